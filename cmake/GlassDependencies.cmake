@@ -1,0 +1,18 @@
+# Dependencies, all from Debian 12 packages (scripts/deps installs them). Each is found once here
+# and exposed as an imported target; modules link the targets, never raw paths.
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+
+# libglm-dev
+find_package(glm REQUIRED)
+# libtinygltf-dev (shared library; only engine/src/asset includes tiny_gltf.h)
+find_package(TinyGLTF REQUIRED)
+# libstb-dev: image decoding (PNG/JPEG in glTF, HDR environments) and PNG writing
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
+# nlohmann-json3-dev: JSON output of the tools and parsing in tests (tinygltf uses it too)
+find_package(nlohmann_json 3 REQUIRED)
+
+if(GLASS_BUILD_TESTS)
+    # libgtest-dev
+    find_package(GTest REQUIRED)
+endif()

@@ -1,0 +1,31 @@
+// glTF 2.0 import: the only entry point to tinygltf. Produces an engine-owned scene::Model.
+#pragma once
+
+#include "engine/core/Result.h"
+#include "engine/scene/Model.h"
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+namespace asset {
+
+struct LoadOptions {
+    /** Decode images into scene::Image pixels (tools that only inspect geometry may skip it). */
+    bool decodeImages = true;
+};
+
+/** Loads a .gltf (embedded, data-URI or external buffers) or .glb file, chosen by content.
+ *
+ *  Validates everything the engine later indexes (nodes, meshes, accessors, buffer views,
+ *  buffers, materials, textures, skins and their joints, animation targets), the hierarchy (no
+ *  cycles, one parent per node), weights (no all-zero or NaN influences), extensionsRequired and
+ *  the engine's limits (core/Limits.h). On failure returns an Error naming the function, the
+ *  file and the element; no partial model is returned. Generates flat normals where NORMAL is
+ *  missing and tangents where a normal map needs them. Never throws. */
+core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const LoadOptions& options = {});
+
+/** Extensions a file may list in extensionsRequired. */
+const std::set<std::string>& supportedRequiredExtensions();
+
+} // namespace asset

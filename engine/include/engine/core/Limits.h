@@ -1,0 +1,36 @@
+// Every hard limit of the engine, with the reason beside it. Loaders check these and report an
+// error naming the element; nothing is silently truncated.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace core::limits {
+
+/** Skin influences per vertex: JOINTS_0/1 + WEIGHTS_0/1, two vec4 sets, as the GPU deform
+ *  pass reads them. A third set (JOINTS_2) is rejected rather than dropped. */
+inline constexpr int kMaxInfluences = 8;
+
+/** Joints per skin. Skin matrices live in an SSBO, so the GPU has no small cap; this bound
+ *  only stops absurd files (each joint costs a 64-byte matrix per frame). */
+inline constexpr std::size_t kMaxJointsPerSkin = 65536;
+
+/** Morph targets per primitive. Deltas live in SSBOs; the bound stops absurd files whose
+ *  per-frame weight loop would dominate (the glTF ecosystem rarely exceeds a few hundred). */
+inline constexpr std::size_t kMaxMorphTargets = 4096;
+
+/** Nodes in a file: the hierarchy walk and per-node pose arrays are sized by it. */
+inline constexpr std::size_t kMaxNodes = 1u << 20;
+
+/** Vertices per primitive: indices are 32-bit and the GPU deform pass dispatches per vertex. */
+inline constexpr std::size_t kMaxVerticesPerPrimitive = std::size_t(1) << 28;
+
+/** Texture width or height accepted by the loader; the GL layer re-checks against
+ *  GL_MAX_TEXTURE_SIZE of the actual context. */
+inline constexpr int kMaxTextureSize = 16384;
+
+/** Decoded bytes a whole model may expand to (vertex data after conversion, images): a guard
+ *  against counts that no file of this size could justify. */
+inline constexpr std::uint64_t kMaxModelBytes = std::uint64_t(8) << 30;
+
+} // namespace core::limits

@@ -1,0 +1,39 @@
+// Engine-owned scene-graph node: local transform, hierarchy links, attached mesh/skin/camera.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <string>
+#include <vector>
+
+namespace scene {
+
+/** Translation, rotation (unit quaternion), scale: the node's local space relative to its
+ *  parent. Double precision, as the CPU reference works in doubles. */
+struct Trs {
+    glm::dvec3 translation{0.0};
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 scale{1.0};
+
+    /** The local matrix T * R * S. */
+    glm::dmat4 matrix() const;
+};
+
+/** A node of the hierarchy. Indices refer into the Model's arrays; -1 means none. */
+struct Node {
+    std::string name;
+    int parent = -1;
+    std::vector<int> children;
+    /** Rest local transform. When the file gave a matrix, it is decomposed into `rest` too and
+     *  `restMatrix` keeps the exact matrix, used while no animation targets the node. */
+    Trs rest;
+    glm::dmat4 restMatrix{1.0};
+    bool hasMatrix = false;
+    int mesh = -1;
+    int skin = -1;
+    int camera = -1;
+    std::vector<float> weights; ///< node-level default morph weights (overrides the mesh's)
+};
+
+} // namespace scene

@@ -1,0 +1,40 @@
+// Private to the asset module: bounds-checked reading of glTF accessors (any component type,
+// normalized integers, byte strides, sparse substitution) into flat engine arrays.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace asset::detail {
+
+class AccessorReader {
+public:
+    /** `fileBytes` sizes the budget for accessors that have no buffer view (zero-filled, maybe
+     *  sparse): their decoded size must stay within what a file of that size could justify. */
+    AccessorReader(const tinygltf::Model& model, std::uint64_t fileBytes);
+
+    /** Reads accessor `index` as `components` floats per element, normalising integer types
+     *  when the accessor says so. `what` names the use in errors ("mesh 0 primitive 1
+     *  POSITION"). Rejects a wrong type, out-of-range views or buffers, non-finite values. */
+    std::vector<float> readFloats(int index, int components, const std::string& what) const;
+
+    /** Reads an unsigned-integer accessor (UNSIGNED_BYTE/SHORT/INT) of `components` per element. */
+    std::vector<std::uint32_t> readUints(int index, int components, const std::string& what) const;
+
+    /** Element count of accessor `index`, after checking the index. */
+    std::size_t count(int index, const std::string& what) const;
+
+private:
+    const tinygltf::Accessor& accessor(int index, const std::string& what) const;
+    /** Decodes every component of the accessor as double (sparse applied), checked. */
+    std::vector<double> decode(int index, int components, bool allowFloat, bool allowSigned,
+                               const std::string& what) const;
+
+    const tinygltf::Model& mModel;
+    std::uint64_t mZeroFillBudget;
+};
+
+} // namespace asset::detail

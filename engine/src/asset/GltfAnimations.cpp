@@ -1,0 +1,121 @@
+// Animations: keyframe accessors into engine samplers, checked against their targets.
+#include "GltfConvert.h"
+
+#include "LoadError.h"
+
+#include <cmath>
+#include <string>
+
+namespace asset::detail {
+namespace {
+
+std::string n(std::size_t v) { return std::to_string(v); }
+
+scene::Interpolation parseInterpolation(const std::string& s, const std::string& what) {
+    if (s.empty() || s == "LINEAR")
+        return scene::Interpolation::Linear;
+    if (s == "STEP")
+        return scene::Interpolation::Step;
+    if (s == "CUBICSPLINE")
+        return scene::Interpolation::CubicSpline;
+    fail(what + " has unknown interpolation \"" + s + "\"");
+}
+
+scene::AnimationPath parsePath(const std::string& s, const std::string& what) {
+    if (s == "translation")
+        return scene::AnimationPath::Translation;
+    if (s == "rotation")
+        return scene::AnimationPath::Rotation;
+    if (s == "scale")
+        return scene::AnimationPath::Scale;
+    if (s == "weights")
+        return scene::AnimationPath::Weights;
+    fail(what + " has unsupported target path \"" + s + "\"");
+}
+
+} // namespace
+
+scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
+                                  int index, const std::vector<scene::Mesh>& meshes) {
+    const tinygltf::Animation& src = model.animations[std::size_t(index)];
+    const std::string what = "animation " + n(std::size_t(index));
+    scene::Animation anim;
+    anim.name = src.name;
+
+    // The component count of a sampler comes from the channels that use it.
+    std::vector<int> components(src.samplers.size(), 0);
+    std::vector<bool> drivesWeights(src.samplers.size(), false);
+    for (std::size_t c = 0; c < src.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& ch = src.channels[c];
+        const std::string channelWhat = what + " channel " + n(c);
+        scene::AnimationChannel channel;
+        channel.sampler = ch.sampler;
+        channel.node = ch.target_node;
+        channel.path = parsePath(ch.target_path, channelWhat);
+        int needed = 3;
+        if (channel.path == scene::AnimationPath::Rotation)
+            needed = 4;
+        if (channel.path == scene::AnimationPath::Weights) {
+            const int mesh = model.nodes[std::size_t(ch.target_node)].mesh;
+            if (mesh < 0 || meshes[std::size_t(mesh)].morphTargetCount() == 0)
+                fail(channelWhat + " animates the weights of node " +
+                     n(std::size_t(ch.target_node)) + ", which has no morph targets");
+            needed = int(meshes[std::size_t(mesh)].morphTargetCount());
+        }
+        int& have = components[std::size_t(ch.sampler)];
+        const bool weights = channel.path == scene::AnimationPath::Weights;
+        if (have != 0 && (have != needed || drivesWeights[std::size_t(ch.sampler)] != weights))
+            fail(channelWhat + " shares sampler " + n(std::size_t(ch.sampler)) +
+                 " with a channel of a different value size");
+        have = needed;
+        drivesWeights[std::size_t(ch.sampler)] = weights;
+        anim.channels.push_back(channel);
+    }
+
+    for (std::size_t s = 0; s < src.samplers.size(); ++s) {
+        const tinygltf::AnimationSampler& ss = src.samplers[s];
+        const std::string samplerWhat = what + " sampler " + n(s);
+        scene::AnimationSampler sampler;
+        sampler.interpolation = parseInterpolation(ss.interpolation, samplerWhat);
+        sampler.components = components[s];
+        sampler.times = reader.readFloats(ss.input, 1, samplerWhat + " input");
+        if (sampler.times.empty())
+            fail(samplerWhat + " input has no keyframes");
+        for (std::size_t k = 1; k < sampler.times.size(); ++k)
+            if (sampler.times[k] < sampler.times[k - 1])
+                fail(samplerWhat + " input time " + n(k) + " decreases");
+        if (sampler.times.front() < 0.0f)
+            fail(samplerWhat + " input starts at a negative time");
+        if (sampler.components == 0) {
+            anim.samplers.push_back(std::move(sampler)); // unused by any channel
+            continue;
+        }
+        const bool isWeights = drivesWeights[s];
+        const std::vector<float> values = reader.readFloats(
+            ss.output, isWeights ? 1 : sampler.components, samplerWhat + " output");
+        const std::size_t perKey =
+            std::size_t(sampler.components) *
+            (sampler.interpolation == scene::Interpolation::CubicSpline ? 3u : 1u);
+        if (values.size() != sampler.times.size() * perKey)
+            fail(samplerWhat + " output has " + n(values.size()) + " values, expected " +
+                 n(sampler.times.size() * perKey) + " for " + n(sampler.times.size()) + " keys");
+        sampler.values = values;
+        if (sampler.components == 4 && !isWeights) {
+            // Rotation keys (not tangents) must be usable quaternions.
+            const std::size_t stride = perKey, offset = perKey == 12 ? 4 : 0;
+            for (std::size_t k = 0; k < sampler.times.size(); ++k) {
+                float* q = &sampler.values[k * stride + offset];
+                const float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+                if (!(length > 1e-8f))
+                    fail(samplerWhat + " rotation key " + n(k) + " is a zero quaternion");
+                for (int c = 0; c < 4; ++c)
+                    q[c] /= length;
+            }
+        }
+        anim.duration = std::max(anim.duration, double(sampler.times.back()));
+        anim.samplers.push_back(std::move(sampler));
+    }
+    return anim;
+}
+
+} // namespace asset::detail

@@ -1,0 +1,39 @@
+// Private to the asset module: the steps of loadGltf(), each turning validated tinygltf data into
+// engine-owned scene data. Each step throws detail::LoadError naming the element on bad input.
+#pragma once
+
+#include "AccessorReader.h"
+#include "engine/scene/Model.h"
+
+#include <tiny_gltf.h>
+
+namespace asset::detail {
+
+/** Index ranges of every cross reference except accessors (checked when read), the node
+ *  hierarchy (single parent, no cycles, scene roots are roots), extensionsRequired, limits. */
+void validateStructure(const tinygltf::Model& model);
+
+/** Nodes with local transforms and hierarchy links; matrices decomposed into TRS. */
+std::vector<scene::Node> convertNodes(const tinygltf::Model& model);
+
+/** Mesh `index`: primitives with attributes, indices, morph targets; generated normals and
+ *  tangents where needed (tangents when `materials` gives the primitive a normal map). */
+scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
+                        const std::vector<scene::Material>& materials);
+
+/** Skin `index` with inverse bind matrices (identity when absent). */
+scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index);
+
+/** Animation `index`; weight channels are checked against the target node's morph count. */
+scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
+                                  int index, const std::vector<scene::Mesh>& meshes);
+
+/** Material `index` with metallic-roughness and the KHR glass extensions. */
+scene::Material convertMaterial(const tinygltf::Model& model, int index);
+
+scene::Camera convertCamera(const tinygltf::Model& model, int index);
+
+/** Joints with non-zero weight index into the node's skin; zero-weight joints are set to 0. */
+void validateSkinnedMeshes(const scene::Model& model);
+
+} // namespace asset::detail

@@ -1,0 +1,371 @@
+// loadGltf(): parse with tinygltf (our own bounded image decoder), validate, convert into an
+// engine-owned scene::Model. Nodes, materials, cameras and images are converted here; meshes,
+// skins and animations in GltfMeshes.cpp / GltfAnimations.cpp.
+#include "engine/asset/GltfLoader.h"
+
+#include "AccessorReader.h"
+#include "GltfConvert.h"
+#include "LoadError.h"
+#include "engine/core/Files.h"
+#include "engine/core/Limits.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <stb_image.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <new>
+
+namespace asset {
+namespace detail {
+namespace {
+
+std::string n(std::size_t v) { return std::to_string(v); }
+
+/** tinygltf image callback: checks the header's size against the limits before decoding,
+ *  decodes to RGBA (8 or 16 bits), or only records the size when decoding is off. */
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
+                 int, const unsigned char* bytes, int size, void* userData) {
+    const bool decode = *static_cast<const bool*>(userData);
+    int width = 0, height = 0, components = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
+        *err += "image " + std::to_string(index) + " could not be decoded: " +
+                (stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+        return false;
+    }
+    if (width <= 0 || height <= 0 || width > core::limits::kMaxTextureSize ||
+        height > core::limits::kMaxTextureSize) {
+        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
+                std::to_string(height) + ", over the limit of " +
+                std::to_string(core::limits::kMaxTextureSize);
+        return false;
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = stbi_is_16_bit_from_memory(bytes, size) ? 16 : 8;
+    image->pixel_type = image->bits == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                          : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    if (!decode)
+        return true;
+    int w = 0, h = 0, c = 0;
+    void* pixels = image->bits == 16 ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))
+                                     : static_cast<void*>(stbi_load_from_memory(bytes, size, &w, &h, &c, 4));
+    if (!pixels) {
+        *err += "image " + std::to_string(index) + " could not be decoded: " +
+                (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data");
+        return false;
+    }
+    const std::size_t byteCount = std::size_t(w) * std::size_t(h) * 4u * std::size_t(image->bits / 8);
+    image->image.assign(static_cast<unsigned char*>(pixels), static_cast<unsigned char*>(pixels) + byteCount);
+    stbi_image_free(pixels);
+    return true;
+}
+
+std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::size_t offset) {
+    std::uint32_t v;
+    std::memcpy(&v, bytes.data() + offset, 4);
+    return v; // GLB is little-endian, as is every platform this engine builds for
+}
+
+/** GLB container checks (glTF §4.4) that tinygltf leaves out or reports vaguely: version 2,
+ *  declared length equal to the file size, chunks inside the file, JSON first, BIN second. */
+void checkGlbContainer(const std::vector<std::uint8_t>& bytes) {
+    if (bytes.size() < 20)
+        fail("GLB is truncated: " + n(bytes.size()) + " bytes, the header alone needs 20");
+    const std::uint32_t version = readU32(bytes, 4);
+    if (version != 2)
+        fail("GLB version is " + std::to_string(version) + ", only version 2 is supported");
+    const std::uint32_t length = readU32(bytes, 8);
+    if (length != bytes.size())
+        fail("GLB header declares " + std::to_string(length) + " bytes but the file has " +
+             n(bytes.size()) + (length > bytes.size() ? " (truncated)" : ""));
+    std::size_t offset = 12;
+    for (int chunk = 0; offset < bytes.size(); ++chunk) {
+        if (bytes.size() - offset < 8)
+            fail("GLB chunk " + std::to_string(chunk) + " header is truncated");
+        const std::uint64_t chunkLength = readU32(bytes, offset);
+        const std::uint32_t type = readU32(bytes, offset + 4);
+        if (chunkLength > bytes.size() - offset - 8)
+            fail("GLB chunk " + std::to_string(chunk) + " declares " + std::to_string(chunkLength) +
+                 " bytes, past the end of the file");
+        if (chunk == 0 && type != 0x4E4F534Au)
+            fail("GLB chunk 0 is not JSON");
+        if (chunk == 1 && type != 0x004E4942u)
+            fail("GLB chunk 1 is not BIN");
+        offset += 8 + std::size_t(chunkLength);
+    }
+}
+
+double number(const tinygltf::Value& object, const char* key, double fallback) {
+    if (!object.IsObject() || !object.Has(key))
+        return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+/** A glTF textureInfo object (index, texCoord, scale/strength) at `key` of `object`. */
+scene::TextureRef textureInfo(const tinygltf::Model& m, const tinygltf::Value& object,
+                              const char* key, const std::string& what) {
+    scene::TextureRef ref;
+    if (!object.IsObject() || !object.Has(key))
+        return ref;
+    const tinygltf::Value& info = object.Get(key);
+    ref.texture = int(number(info, "index", -1));
+    ref.texCoord = int(number(info, "texCoord", 0));
+    if (ref.texture < 0 || std::size_t(ref.texture) >= m.textures.size())
+        fail(what + " " + key + " references texture " + std::to_string(ref.texture) +
+             ", file has " + n(m.textures.size()) + " textures");
+    return ref;
+}
+
+scene::TextureRef textureRef(int index, int texCoord, double scale) {
+    return scene::TextureRef{index, texCoord, float(scale)};
+}
+
+void checkRange(double value, double lo, double hi, const std::string& what) {
+    if (!(value >= lo && value <= hi))
+        fail(what + " is " + std::to_string(value) + ", outside [" + std::to_string(lo) + ", " +
+             std::to_string(hi) + "]");
+}
+
+} // namespace
+
+std::vector<scene::Node> convertNodes(const tinygltf::Model& m) {
+    std::vector<scene::Node> nodes(m.nodes.size());
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+        const tinygltf::Node& src = m.nodes[i];
+        scene::Node& node = nodes[i];
+        const std::string what = "node " + n(i);
+        node.name = src.name;
+        node.children = src.children;
+        node.mesh = src.mesh;
+        node.skin = src.skin;
+        node.camera = src.camera;
+        for (int child : src.children)
+            nodes[std::size_t(child)].parent = int(i);
+        for (double w : src.weights) {
+            if (!std::isfinite(w))
+                fail(what + " has a non-finite morph weight");
+            node.weights.push_back(float(w));
+        }
+        if (src.matrix.size() == 16) {
+            for (double v : src.matrix)
+                if (!std::isfinite(v))
+                    fail(what + " matrix has a non-finite value");
+            node.hasMatrix = true;
+            node.restMatrix = glm::make_mat4(src.matrix.data());
+            // Decompose for channels that may target the node (the spec forbids it, files do it).
+            const glm::dmat4& M = node.restMatrix;
+            glm::dvec3 scale(glm::length(glm::dvec3(M[0])), glm::length(glm::dvec3(M[1])),
+                             glm::length(glm::dvec3(M[2])));
+            if (glm::determinant(glm::dmat3(M)) < 0.0)
+                scale.x = -scale.x;
+            node.rest.translation = glm::dvec3(M[3]);
+            node.rest.scale = scale;
+            if (scale.x != 0.0 && scale.y != 0.0 && scale.z != 0.0)
+                node.rest.rotation = glm::normalize(glm::quat_cast(
+                    glm::dmat3(glm::dvec3(M[0]) / scale.x, glm::dvec3(M[1]) / scale.y,
+                               glm::dvec3(M[2]) / scale.z)));
+            continue;
+        }
+        if (src.translation.size() == 3)
+            node.rest.translation = glm::make_vec3(src.translation.data());
+        if (src.scale.size() == 3)
+            node.rest.scale = glm::make_vec3(src.scale.data());
+        if (src.rotation.size() == 4) {
+            const glm::dquat q(src.rotation[3], src.rotation[0], src.rotation[1], src.rotation[2]);
+            const double length = glm::length(q);
+            if (!(length > 1e-12) || !std::isfinite(length))
+                fail(what + " rotation is not a usable quaternion");
+            node.rest.rotation = q / length;
+        }
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(node.rest.translation[c]) || !std::isfinite(node.rest.scale[c]))
+                fail(what + " has a non-finite translation or scale");
+        node.restMatrix = node.rest.matrix();
+    }
+    return nodes;
+}
+
+scene::Material convertMaterial(const tinygltf::Model& m, int index) {
+    const tinygltf::Material& src = m.materials[std::size_t(index)];
+    const std::string what = "material " + n(std::size_t(index));
+    scene::Material mat;
+    mat.name = src.name;
+    const auto& pbr = src.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+        mat.baseColorFactor = glm::vec4(glm::make_vec4(pbr.baseColorFactor.data()));
+    mat.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0);
+    mat.metallicFactor = float(pbr.metallicFactor);
+    mat.roughnessFactor = float(pbr.roughnessFactor);
+    mat.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture.index,
+                                              pbr.metallicRoughnessTexture.texCoord, 1.0);
+    mat.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord,
+                                   src.normalTexture.scale);
+    mat.occlusionTexture = textureRef(src.occlusionTexture.index, src.occlusionTexture.texCoord,
+                                      src.occlusionTexture.strength);
+    mat.emissiveTexture = textureRef(src.emissiveTexture.index, src.emissiveTexture.texCoord, 1.0);
+    if (src.emissiveFactor.size() == 3)
+        mat.emissiveFactor = glm::vec3(glm::make_vec3(src.emissiveFactor.data()));
+    mat.alphaMode = src.alphaMode == "MASK"    ? scene::AlphaMode::Mask
+                    : src.alphaMode == "BLEND" ? scene::AlphaMode::Blend
+                                               : scene::AlphaMode::Opaque;
+    mat.alphaCutoff = float(src.alphaCutoff);
+    mat.doubleSided = src.doubleSided;
+
+    auto extension = [&](const char* name) -> const tinygltf::Value* {
+        const auto it = src.extensions.find(name);
+        return it == src.extensions.end() ? nullptr : &it->second;
+    };
+    if (const tinygltf::Value* e = extension("KHR_materials_emissive_strength")) {
+        mat.emissiveStrength = float(number(*e, "emissiveStrength", 1.0));
+        checkRange(mat.emissiveStrength, 0.0, 1e9, what + " emissiveStrength");
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_transmission")) {
+        mat.hasTransmission = true;
+        mat.transmissionFactor = float(number(*e, "transmissionFactor", 0.0));
+        checkRange(mat.transmissionFactor, 0.0, 1.0, what + " transmissionFactor");
+        mat.transmissionTexture = textureInfo(m, *e, "transmissionTexture", what);
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_volume")) {
+        mat.hasVolume = true;
+        mat.thicknessFactor = float(number(*e, "thicknessFactor", 0.0));
+        checkRange(mat.thicknessFactor, 0.0, 1e9, what + " thicknessFactor");
+        mat.thicknessTexture = textureInfo(m, *e, "thicknessTexture", what);
+        mat.attenuationDistance = float(number(*e, "attenuationDistance", double(INFINITY)));
+        if (!(mat.attenuationDistance > 0.0f))
+            fail(what + " attenuationDistance must be positive");
+        if (e->Has("attenuationColor") && e->Get("attenuationColor").IsArray() &&
+            e->Get("attenuationColor").ArrayLen() == 3)
+            for (int c = 0; c < 3; ++c) {
+                mat.attenuationColor[c] = float(e->Get("attenuationColor").Get(c).GetNumberAsDouble());
+                checkRange(mat.attenuationColor[c], 0.0, 1.0, what + " attenuationColor");
+            }
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_ior")) {
+        mat.hasIor = true;
+        mat.ior = float(number(*e, "ior", 1.5));
+        if (!(mat.ior == 0.0f || (mat.ior >= 1.0f && mat.ior < 1e6f)))
+            fail(what + " ior " + std::to_string(mat.ior) + " must be 0 or at least 1");
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_dispersion")) {
+        mat.hasDispersion = true;
+        mat.dispersion = float(number(*e, "dispersion", 0.0));
+        checkRange(mat.dispersion, 0.0, 1e6, what + " dispersion");
+    }
+    for (const scene::TextureRef* t :
+         {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
+          &mat.occlusionTexture, &mat.emissiveTexture, &mat.transmissionTexture,
+          &mat.thicknessTexture})
+        if (t->present() && (t->texCoord < 0 || t->texCoord > 1))
+            fail(what + " uses TEXCOORD_" + std::to_string(t->texCoord) +
+                 "; only TEXCOORD_0 and TEXCOORD_1 are supported");
+    return mat;
+}
+
+scene::Camera convertCamera(const tinygltf::Model& m, int index) {
+    const tinygltf::Camera& src = m.cameras[std::size_t(index)];
+    scene::Camera camera;
+    if (src.type == "orthographic") {
+        camera.type = scene::Camera::Type::Orthographic;
+        camera.xmag = src.orthographic.xmag;
+        camera.ymag = src.orthographic.ymag;
+        camera.znear = src.orthographic.znear;
+        camera.zfar = src.orthographic.zfar;
+    } else {
+        camera.yfov = src.perspective.yfov;
+        camera.aspectRatio = src.perspective.aspectRatio;
+        camera.znear = src.perspective.znear;
+        camera.zfar = src.perspective.zfar;
+        if (!(camera.yfov > 0.0 && camera.yfov < 3.14159) || !(camera.znear > 0.0))
+            fail("camera " + n(std::size_t(index)) + " has an invalid yfov or znear");
+    }
+    return camera;
+}
+
+} // namespace detail
+
+core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
+    using namespace detail;
+    const std::string file = path.filename().string();
+    const std::string prefix = "asset::loadGltf(): " + file + ": ";
+    try {
+        auto bytes = core::readFile(path);
+        if (!bytes)
+            return core::Error{prefix + "cannot read " + path.string() + " (" +
+                               bytes.error().message + ")"};
+        if (bytes->size() > 0xFFFFFFFFu)
+            return core::Error{prefix + "file is over 4 GiB"};
+
+        tinygltf::TinyGLTF parser;
+        bool decode = options.decodeImages;
+        parser.SetImageLoader(decodeImage, &decode);
+        tinygltf::Model src;
+        std::string err, warn;
+        const std::string baseDir = path.parent_path().string();
+        const bool isBinary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
+        if (isBinary)
+            checkGlbContainer(*bytes);
+        const bool parsed =
+            isBinary ? parser.LoadBinaryFromMemory(&src, &err, &warn, bytes->data(),
+                                                   unsigned(bytes->size()), baseDir)
+                     : parser.LoadASCIIFromString(&src, &err, &warn,
+                                                  reinterpret_cast<const char*>(bytes->data()),
+                                                  unsigned(bytes->size()), baseDir);
+        if (!parsed) {
+            while (!err.empty() && (err.back() == '\n' || err.back() == ' '))
+                err.pop_back();
+            std::replace(err.begin(), err.end(), '\n', ';');
+            return core::Error{prefix + (err.empty() ? std::string("not a valid glTF file") : err)};
+        }
+
+        validateStructure(src);
+        const AccessorReader reader(src, bytes->size());
+
+        scene::Model model;
+        model.sourceName = file;
+        model.nodes = convertNodes(src);
+        for (std::size_t i = 0; i < src.materials.size(); ++i)
+            model.materials.push_back(convertMaterial(src, int(i)));
+        for (std::size_t i = 0; i < src.meshes.size(); ++i)
+            model.meshes.push_back(convertMesh(src, reader, int(i), model.materials));
+        for (std::size_t i = 0; i < src.skins.size(); ++i)
+            model.skins.push_back(convertSkin(src, reader, int(i)));
+        for (std::size_t i = 0; i < src.animations.size(); ++i)
+            model.animations.push_back(convertAnimation(src, reader, int(i), model.meshes));
+        for (std::size_t i = 0; i < src.cameras.size(); ++i)
+            model.cameras.push_back(convertCamera(src, int(i)));
+        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+            const scene::Node& node = model.nodes[i];
+            if (node.mesh >= 0 && !node.weights.empty() &&
+                node.weights.size() != model.meshes[std::size_t(node.mesh)].morphTargetCount())
+                fail("node " + n(i) + " has " + n(node.weights.size()) + " morph weights, mesh " +
+                     n(std::size_t(node.mesh)) + " has " +
+                     n(model.meshes[std::size_t(node.mesh)].morphTargetCount()) + " targets");
+        }
+        validateSkinnedMeshes(model);
+
+        for (const tinygltf::Sampler& s : src.samplers)
+            model.samplers.push_back({s.magFilter, s.minFilter, s.wrapS, s.wrapT});
+        for (const tinygltf::Texture& t : src.textures)
+            model.textures.push_back({t.source, t.sampler});
+        for (tinygltf::Image& image : src.images)
+            model.images.push_back({image.name, image.uri, image.width, image.height,
+                                    image.component, image.bits, std::move(image.image)});
+        for (const tinygltf::Scene& s : src.scenes)
+            model.scenes.push_back(s.nodes);
+        model.defaultScene = src.scenes.empty() ? -1 : std::max(src.defaultScene, 0);
+        return model;
+    } catch (const LoadError& e) {
+        return core::Error{prefix + e.what()};
+    } catch (const std::bad_alloc&) {
+        return core::Error{prefix + "out of memory while loading (a count in the file is too large)"};
+    } catch (const std::exception& e) {
+        return core::Error{prefix + "unexpected error: " + e.what()};
+    }
+}
+
+} // namespace asset

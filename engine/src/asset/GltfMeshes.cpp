@@ -1,0 +1,283 @@
+// Meshes and skins: attribute accessors into engine primitives (triangle lists), morph targets,
+// skin influences (renormalised, checked), generated normals and tangents; skin matrices.
+#include "GltfConvert.h"
+
+#include "LoadError.h"
+#include "MeshGeneration.h"
+#include "engine/core/Limits.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace asset::detail {
+namespace {
+
+std::string n(std::size_t v) { return std::to_string(v); }
+
+template <class Vec, int N>
+std::vector<Vec> readVecs(const AccessorReader& reader, int accessor, const std::string& what) {
+    const std::vector<float> flat = reader.readFloats(accessor, N, what);
+    std::vector<Vec> out(flat.size() / N);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < N; ++c)
+            out[i][c] = flat[i * N + std::size_t(c)];
+    return out;
+}
+
+/** Triangle-list indices from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN. */
+std::vector<std::uint32_t> toTriangleList(const std::vector<std::uint32_t>& in, int mode,
+                                          const std::string& what) {
+    std::vector<std::uint32_t> out;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (in.size() % 3 != 0)
+            fail(what + ": " + n(in.size()) + " indices is not a multiple of 3");
+        return in;
+    }
+    for (std::size_t i = 2; i < in.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const bool even = i % 2 == 0;
+            out.insert(out.end(), {in[i - 2], even ? in[i - 1] : in[i], even ? in[i] : in[i - 1]});
+        } else {
+            out.insert(out.end(), {in[0], in[i - 1], in[i]});
+        }
+    }
+    return out;
+}
+
+const char* modeName(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+        return "POINTS";
+    case TINYGLTF_MODE_LINE:
+        return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+        return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+        return "LINE_STRIP";
+    default:
+        return "unknown";
+    }
+}
+
+/** Reads JOINTS_s / WEIGHTS_s pairs; renormalises the weights over all sets; rejects
+ *  negative, NaN or all-zero weights and a third set. Zero-weight joints are set to 0 so no
+ *  unused index can reach past a skin. */
+void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader,
+                    scene::Primitive& p, const std::string& what) {
+    const auto& attributes = src.attributes;
+    if (attributes.count("JOINTS_2") || attributes.count("WEIGHTS_2"))
+        fail(what + " has JOINTS_2/WEIGHTS_2: more than " + n(core::limits::kMaxInfluences) +
+             " influences per vertex, over the engine's limit");
+    for (std::size_t s = 0; s < 2; ++s) {
+        const std::string joints = "JOINTS_" + n(s), weights = "WEIGHTS_" + n(s);
+        const bool hasJoints = attributes.count(joints) > 0;
+        if (hasJoints != (attributes.count(weights) > 0))
+            fail(what + " has " + (hasJoints ? joints + " without " + weights
+                                             : weights + " without " + joints));
+        if (!hasJoints)
+            continue;
+        if (s == 1 && p.joints[0].empty())
+            fail(what + " has JOINTS_1 without JOINTS_0");
+        const std::vector<std::uint32_t> flat =
+            reader.readUints(attributes.at(joints), 4, what + " " + joints);
+        p.joints[s].resize(flat.size() / 4);
+        for (std::size_t i = 0; i < p.joints[s].size(); ++i)
+            p.joints[s][i] = glm::uvec4(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2], flat[i * 4 + 3]);
+        p.weights[s] = readVecs<glm::vec4, 4>(reader, attributes.at(weights), what + " " + weights);
+        if (p.joints[s].size() != p.vertexCount() || p.weights[s].size() != p.vertexCount())
+            fail(what + " " + joints + "/" + weights + " count differs from POSITION count " +
+                 n(p.vertexCount()));
+    }
+    if (!p.isSkinned())
+        return;
+    for (std::size_t v = 0; v < p.vertexCount(); ++v) {
+        double sum = 0.0;
+        for (std::size_t s = 0; s < std::size_t(p.influenceSets()); ++s)
+            for (int k = 0; k < 4; ++k) {
+                const float w = p.weights[s][v][k];
+                if (!(w >= 0.0f))
+                    fail(what + " vertex " + n(v) + " has a negative or NaN weight");
+                sum += double(w);
+            }
+        if (!(sum > 0.0) || !std::isfinite(sum))
+            fail(what + " vertex " + n(v) + " has all-zero or NaN skin weights");
+        for (std::size_t s = 0; s < std::size_t(p.influenceSets()); ++s)
+            for (int k = 0; k < 4; ++k) {
+                p.weights[s][v][k] = float(double(p.weights[s][v][k]) / sum);
+                if (p.weights[s][v][k] == 0.0f)
+                    p.joints[s][v][k] = 0;
+            }
+    }
+}
+
+scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const AccessorReader& reader,
+                                  const std::string& what, const std::vector<scene::Material>& materials) {
+    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(what + " has mode " + modeName(mode) + " (" + std::to_string(mode) +
+             "); only triangles, strips and fans are supported");
+    const auto& attributes = src.attributes;
+    if (!attributes.count("POSITION"))
+        fail(what + " has no POSITION attribute");
+
+    scene::Primitive p;
+    p.material = src.material;
+    p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
+    p.sourceVertexCount = p.positions.size();
+    const std::size_t count = p.vertexCount();
+    auto sameCount = [&](std::size_t got, const std::string& attribute) {
+        if (got != count)
+            fail(what + " " + attribute + " has " + n(got) + " elements, POSITION has " + n(count));
+    };
+    if (attributes.count("NORMAL")) {
+        p.normals = readVecs<glm::vec3, 3>(reader, attributes.at("NORMAL"), what + " NORMAL");
+        sameCount(p.normals.size(), "NORMAL");
+    }
+    if (attributes.count("TANGENT")) {
+        p.tangents = readVecs<glm::vec4, 4>(reader, attributes.at("TANGENT"), what + " TANGENT");
+        sameCount(p.tangents.size(), "TANGENT");
+    }
+    if (attributes.count("TEXCOORD_0")) {
+        p.uv0 = readVecs<glm::vec2, 2>(reader, attributes.at("TEXCOORD_0"), what + " TEXCOORD_0");
+        sameCount(p.uv0.size(), "TEXCOORD_0");
+    }
+    if (attributes.count("TEXCOORD_1")) {
+        p.uv1 = readVecs<glm::vec2, 2>(reader, attributes.at("TEXCOORD_1"), what + " TEXCOORD_1");
+        sameCount(p.uv1.size(), "TEXCOORD_1");
+    }
+    readInfluences(src, reader, p, what);
+
+    std::vector<std::uint32_t> indices;
+    if (src.indices >= 0) {
+        indices = reader.readUints(src.indices, 1, what + " indices");
+        for (std::size_t i = 0; i < indices.size(); ++i)
+            if (indices[i] >= count)
+                fail(what + " index " + n(i) + " is " + n(indices[i]) + ", POSITION has " +
+                     n(count) + " vertices");
+    } else {
+        indices.resize(count);
+        for (std::size_t i = 0; i < count; ++i)
+            indices[i] = std::uint32_t(i);
+    }
+    p.indices = toTriangleList(indices, mode, what);
+
+    if (src.targets.size() > core::limits::kMaxMorphTargets)
+        fail(what + " has " + n(src.targets.size()) + " morph targets, over the limit of " +
+             n(core::limits::kMaxMorphTargets));
+    for (std::size_t t = 0; t < src.targets.size(); ++t) {
+        const std::string targetWhat = what + " target " + n(t);
+        scene::MorphTarget target;
+        for (const auto& [name, accessor] : src.targets[t]) {
+            std::vector<glm::vec3> deltas =
+                readVecs<glm::vec3, 3>(reader, accessor, targetWhat + " " + name);
+            sameCount(deltas.size(), "target " + n(t) + " " + name);
+            if (name == "POSITION")
+                target.positions = std::move(deltas);
+            else if (name == "NORMAL")
+                target.normals = std::move(deltas);
+            else if (name == "TANGENT")
+                target.tangents = std::move(deltas);
+        }
+        p.targets.push_back(std::move(target));
+    }
+
+    if (p.normals.empty()) {
+        // glTF §3.7.2.1: no normals means flat normals.
+        unweld(p);
+        computeFlatNormals(p);
+        p.flatNormals = true;
+    }
+    if (p.material >= 0) {
+        const scene::TextureRef& normalMap = materials[std::size_t(p.material)].normalTexture;
+        if (normalMap.present() && p.tangents.empty()) {
+            const auto& uv = normalMap.texCoord == 1 ? p.uv1 : p.uv0;
+            if (uv.size() != p.vertexCount())
+                fail(what + " uses a normal map on TEXCOORD_" + std::to_string(normalMap.texCoord) +
+                     " but has no such attribute");
+            generateTangents(p, normalMap.texCoord);
+        }
+    }
+    return p;
+}
+
+} // namespace
+
+scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
+                        const std::vector<scene::Material>& materials) {
+    const tinygltf::Mesh& src = model.meshes[std::size_t(index)];
+    const std::string what = "mesh " + n(std::size_t(index));
+    scene::Mesh mesh;
+    mesh.name = src.name;
+    for (std::size_t i = 0; i < src.primitives.size(); ++i)
+        mesh.primitives.push_back(
+            convertPrimitive(src.primitives[i], reader, what + " primitive " + n(i), materials));
+    const std::size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    for (std::size_t i = 0; i < mesh.primitives.size(); ++i)
+        if (mesh.primitives[i].targets.size() != targets)
+            fail(what + " primitive " + n(i) + " has " + n(mesh.primitives[i].targets.size()) +
+                 " morph targets, primitive 0 has " + n(targets));
+    if (!src.weights.empty() && src.weights.size() != targets)
+        fail(what + " has " + n(src.weights.size()) + " default weights for " + n(targets) +
+             " morph targets");
+    mesh.defaultWeights.assign(targets, 0.0f);
+    for (std::size_t t = 0; t < src.weights.size(); ++t) {
+        if (!std::isfinite(src.weights[t]))
+            fail(what + " default weight " + n(t) + " is not finite");
+        mesh.defaultWeights[t] = float(src.weights[t]);
+    }
+    // Target names: the common (non-standard but widespread) extras.targetNames.
+    if (src.extras.Has("targetNames") && src.extras.Get("targetNames").IsArray()) {
+        const tinygltf::Value& names = src.extras.Get("targetNames");
+        for (std::size_t i = 0; i < names.ArrayLen(); ++i)
+            mesh.targetNames.push_back(names.Get(int(i)).IsString() ? names.Get(int(i)).Get<std::string>()
+                                                                    : std::string());
+    }
+    return mesh;
+}
+
+scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index) {
+    const tinygltf::Skin& src = model.skins[std::size_t(index)];
+    const std::string what = "skin " + n(std::size_t(index));
+    scene::Skin skin;
+    skin.name = src.name;
+    skin.joints = src.joints;
+    skin.skeleton = src.skeleton;
+    skin.inverseBind.assign(src.joints.size(), glm::dmat4(1.0));
+    if (src.inverseBindMatrices >= 0) {
+        const std::vector<float> flat =
+            reader.readFloats(src.inverseBindMatrices, 16, what + " inverseBindMatrices");
+        if (flat.size() / 16 < src.joints.size())
+            fail(what + " inverseBindMatrices has " + n(flat.size() / 16) + " matrices for " +
+                 n(src.joints.size()) + " joints");
+        for (std::size_t j = 0; j < src.joints.size(); ++j)
+            skin.inverseBind[j] = glm::dmat4(glm::make_mat4(&flat[j * 16]));
+    }
+    return skin;
+}
+
+void validateSkinnedMeshes(const scene::Model& model) {
+    for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+        const scene::Node& node = model.nodes[i];
+        if (node.mesh < 0 || node.skin < 0)
+            continue;
+        const std::size_t joints = model.skins[std::size_t(node.skin)].joints.size();
+        const scene::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const scene::Primitive& prim = mesh.primitives[p];
+            for (std::size_t s = 0; s < std::size_t(prim.influenceSets()); ++s)
+                for (std::size_t v = 0; v < prim.vertexCount(); ++v)
+                    for (int k = 0; k < 4; ++k)
+                        if (prim.joints[s][v][k] >= joints)
+                            fail("node " + n(i) + " (mesh " + n(std::size_t(node.mesh)) +
+                                 " primitive " + n(p) + "): JOINTS_" + n(s) + " of vertex " +
+                                 n(v) + " references joint " + n(prim.joints[s][v][k]) +
+                                 ", skin " + n(std::size_t(node.skin)) + " has " + n(joints) +
+                                 " joints");
+        }
+    }
+}
+
+} // namespace asset::detail

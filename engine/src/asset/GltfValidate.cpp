@@ -1,0 +1,133 @@
+// Structural validation of a parsed glTF before any conversion: every index the engine follows
+// is in range, the node graph is a forest, required extensions are supported, limits hold.
+#include "GltfConvert.h"
+
+#include "LoadError.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/core/Limits.h"
+
+#include <string>
+
+namespace asset::detail {
+namespace {
+
+std::string n(std::size_t v) { return std::to_string(v); }
+std::string n(int v) { return std::to_string(v); }
+
+/** Fails unless -1 <= index < count ("-1" meaning absent is allowed when `optional`). */
+void checkIndex(int index, std::size_t count, bool optional, const std::string& what,
+                const char* kind, const char* plural) {
+    if (optional && index == -1)
+        return;
+    if (index < 0 || std::size_t(index) >= count)
+        fail(what + " references " + kind + " " + n(index) + ", file has " + n(count) + " " +
+             plural);
+}
+
+void checkTexture(const tinygltf::Model& m, int texture, const std::string& what) {
+    checkIndex(texture, m.textures.size(), true, what, "texture", "textures");
+}
+
+} // namespace
+
+const std::set<std::string>& supportedRequiredExtensions() {
+    static const std::set<std::string> supported = {
+        "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
+        "KHR_materials_dispersion", "KHR_materials_emissive_strength"};
+    return supported;
+}
+
+void validateStructure(const tinygltf::Model& m) {
+    for (const std::string& extension : m.extensionsRequired)
+        if (!supportedRequiredExtensions().count(extension))
+            fail("extensionsRequired lists " + extension + ", which this engine does not support");
+
+    if (m.nodes.size() > core::limits::kMaxNodes)
+        fail(n(m.nodes.size()) + " nodes, over the limit of " + n(core::limits::kMaxNodes));
+
+    // Hierarchy: references, then one parent per node, then no cycles.
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+        const tinygltf::Node& node = m.nodes[i];
+        const std::string what = "node " + n(i);
+        checkIndex(node.mesh, m.meshes.size(), true, what, "mesh", "meshes");
+        checkIndex(node.skin, m.skins.size(), true, what, "skin", "skins");
+        checkIndex(node.camera, m.cameras.size(), true, what, "camera", "cameras");
+        if (!node.matrix.empty() && node.matrix.size() != 16)
+            fail(what + " matrix has " + n(node.matrix.size()) + " values, expected 16");
+        for (int child : node.children) {
+            checkIndex(child, m.nodes.size(), false, what + " child", "node", "nodes");
+            if (child == int(i))
+                fail(what + " lists itself as a child (cycle)");
+            int& p = parent[std::size_t(child)];
+            if (p != -1)
+                fail("node " + n(child) + " has two parents: node " + n(p) + " and node " + n(i));
+            p = int(i);
+        }
+    }
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+        // With one parent each, a chain longer than the node count must loop.
+        std::size_t steps = 0;
+        for (int p = parent[i]; p != -1; p = parent[std::size_t(p)])
+            if (++steps > m.nodes.size())
+                fail("node " + n(i) + " is part of a cycle in the node hierarchy");
+    }
+    for (std::size_t s = 0; s < m.scenes.size(); ++s)
+        for (int root : m.scenes[s].nodes) {
+            checkIndex(root, m.nodes.size(), false, "scene " + n(s), "node", "nodes");
+            if (parent[std::size_t(root)] != -1)
+                fail("scene " + n(s) + " lists node " + n(root) + " as a root, but it is a child "
+                     "of node " + n(parent[std::size_t(root)]));
+        }
+    if (!m.scenes.empty())
+        checkIndex(m.defaultScene, m.scenes.size(), true, "the default scene", "scene", "scenes");
+
+    for (std::size_t i = 0; i < m.meshes.size(); ++i)
+        for (std::size_t p = 0; p < m.meshes[i].primitives.size(); ++p)
+            checkIndex(m.meshes[i].primitives[p].material, m.materials.size(), true,
+                       "mesh " + n(i) + " primitive " + n(p), "material", "materials");
+
+    for (std::size_t i = 0; i < m.skins.size(); ++i) {
+        const tinygltf::Skin& skin = m.skins[i];
+        const std::string what = "skin " + n(i);
+        if (skin.joints.empty())
+            fail(what + " has no joints");
+        if (skin.joints.size() > core::limits::kMaxJointsPerSkin)
+            fail(what + " has " + n(skin.joints.size()) + " joints, over the limit of " +
+                 n(core::limits::kMaxJointsPerSkin));
+        for (std::size_t j = 0; j < skin.joints.size(); ++j)
+            if (skin.joints[j] < 0 || std::size_t(skin.joints[j]) >= m.nodes.size())
+                fail(what + ": joint " + n(j) + " references node " + n(skin.joints[j]) +
+                     ", file has " + n(m.nodes.size()) + " nodes");
+        checkIndex(skin.skeleton, m.nodes.size(), true, what + " skeleton", "node", "nodes");
+    }
+
+    for (std::size_t i = 0; i < m.textures.size(); ++i) {
+        const std::string what = "texture " + n(i);
+        checkIndex(m.textures[i].source, m.images.size(), true, what, "image", "images");
+        checkIndex(m.textures[i].sampler, m.samplers.size(), true, what, "sampler", "samplers");
+    }
+    for (std::size_t i = 0; i < m.materials.size(); ++i) {
+        const tinygltf::Material& mat = m.materials[i];
+        const std::string what = "material " + n(i) + " ";
+        checkTexture(m, mat.pbrMetallicRoughness.baseColorTexture.index, what + "baseColorTexture");
+        checkTexture(m, mat.pbrMetallicRoughness.metallicRoughnessTexture.index,
+                     what + "metallicRoughnessTexture");
+        checkTexture(m, mat.normalTexture.index, what + "normalTexture");
+        checkTexture(m, mat.occlusionTexture.index, what + "occlusionTexture");
+        checkTexture(m, mat.emissiveTexture.index, what + "emissiveTexture");
+    }
+
+    for (std::size_t a = 0; a < m.animations.size(); ++a) {
+        const tinygltf::Animation& anim = m.animations[a];
+        for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+            const std::string what = "animation " + n(a) + " channel " + n(c);
+            checkIndex(anim.channels[c].sampler, anim.samplers.size(), false, what, "sampler",
+                       "samplers in this animation");
+            checkIndex(anim.channels[c].target_node, m.nodes.size(), false, what + " target",
+                       "node", "nodes");
+        }
+    }
+}
+
+} // namespace asset::detail

@@ -1,0 +1,84 @@
+// glass-cpu-bench: load time of models and the time to sample + deform one frame on the CPU
+// reference path (median of many runs). A benchmark, not a test: it asserts nothing.
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/deform/CpuDeformer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || std::string(argv[1]) == "--help") {
+        std::fprintf(stderr, "usage: glass-cpu-bench MODEL... [--runs N]\n"
+                             "Prints, per model, the median load time (with and without image\n"
+                             "decoding) and the median time to\n"
+                             "sample the first clip and deform every mesh node (CPU reference),\n"
+                             "as one JSON line per model.\n");
+        return argc < 2 ? 2 : 0;
+    }
+    int runs = 200;
+    std::vector<std::string> models;
+    for (int i = 1; i < argc; ++i) {
+        if (std::string(argv[i]) == "--runs" && i + 1 < argc)
+            runs = std::max(1, std::atoi(argv[++i]));
+        else
+            models.push_back(argv[i]);
+    }
+    for (const std::string& path : models) {
+        std::vector<double> loads, geometryLoads;
+        for (int r = 0; r < std::max(5, runs / 20); ++r) {
+            for (bool decodeImages : {true, false}) {
+                const auto start = Clock::now();
+                auto model = asset::loadGltf(path, {.decodeImages = decodeImages});
+                (decodeImages ? loads : geometryLoads).push_back(millisecondsSince(start));
+                if (!model) {
+                    std::fprintf(stderr, "glass-cpu-bench: %s\n", model.error().message.c_str());
+                    return 1;
+                }
+            }
+        }
+        const scene::Model model = std::move(asset::loadGltf(path).value());
+        const int clip = model.animations.empty() ? -1 : 0;
+        const double duration = clip < 0 ? 1.0 : model.animations[0].duration;
+        std::vector<double> frames;
+        std::size_t vertices = 0;
+        anim::Pose pose = anim::restPose(model);
+        for (int r = 0; r < runs; ++r) {
+            const double time = duration * double(r) / double(runs);
+            const auto start = Clock::now();
+            anim::applyClip(model, clip, time, pose);
+            anim::updateWorld(model, pose);
+            const auto deformed = deform::deformScene(model, pose);
+            frames.push_back(millisecondsSince(start));
+            vertices = 0;
+            for (const auto& instance : deformed)
+                for (const auto& primitive : instance.primitives)
+                    vertices += primitive.positions.size();
+        }
+        std::printf("{\"model\": \"%s\", \"load_ms_median\": %.3f, "
+                    "\"load_without_images_ms_median\": %.3f, \"sample_deform_ms_median\": %.4f, "
+                    "\"vertices\": %zu, \"runs\": %d}\n",
+                    model.sourceName.c_str(), median(loads), median(geometryLoads), median(frames),
+                    vertices, runs);
+    }
+    return 0;
+}

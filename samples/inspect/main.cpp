@@ -1,0 +1,208 @@
+// glass-inspect: what a glTF character contains (meshes, skins, morph targets, clips, glass
+// materials), as text or JSON, and its deformed vertices at a given time as PLY.
+#include "InspectJson.h"
+#include "Ply.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/core/Files.h"
+#include "engine/deform/CpuDeformer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <string>
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: glass-inspect MODEL [--json]
+       glass-inspect MODEL --vertices cpu --out FILE.ply [--time T] [--clip C] [--ascii]
+
+Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
+animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
+_volume, _ior, _dispersion) of a .gltf or .glb file.
+
+  --json          print the same as one JSON object (keys as in shared/assets/INVENTORY.json:
+                  meshes, primitives, triangles, vertices, skins, joints_per_skin,
+                  max_morph_targets, animations, animation_list)
+  --vertices cpu  deform the model on the CPU (double-precision reference: morph, then skin)
+                  and write its vertices to --out
+  --out FILE.ply  PLY file to write (atomically: no partial file on failure)
+  --time T        clip time in seconds (default 0)
+  --clip C        clip name or index (default: the first clip; the rest pose if none)
+  --ascii         ASCII PLY instead of binary little-endian
+
+PLY layout: one vertex element with float properties x y z nx ny nz, in world space. Vertices
+come mesh node by mesh node of the default scene in depth-first order (children in file order),
+then primitive by primitive in file order, then in the primitive's vertex order (the file's
+order; a primitive without NORMAL is unwelded, three vertices per triangle in index order). A
+header comment per primitive gives its node, mesh, primitive, first vertex and count.
+
+Exit status: 0 success, 1 the model could not be loaded or the output written, 2 bad arguments.
+)";
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "glass-inspect: %s\n\n%s", message.c_str(), kUsage);
+    return 2;
+}
+
+struct Options {
+    std::string model;
+    bool json = false;
+    std::optional<std::string> vertices;
+    std::optional<std::string> out;
+    double time = 0.0;
+    std::optional<std::string> clip;
+    bool ascii = false;
+};
+
+/** Parses argv; returns an exit code when the program should stop (help or bad arguments). */
+std::optional<int> parse(int argc, char** argv, Options& o) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&](const char* flag) -> std::optional<std::string> {
+            if (i + 1 >= argc)
+                return std::nullopt;
+            (void)flag;
+            return std::string(argv[++i]);
+        };
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (arg == "--json") {
+            o.json = true;
+        } else if (arg == "--ascii") {
+            o.ascii = true;
+        } else if (arg == "--vertices" || arg == "--out" || arg == "--time" || arg == "--clip") {
+            const auto v = value(arg.c_str());
+            if (!v)
+                return usageError(arg + " needs a value");
+            if (arg == "--vertices")
+                o.vertices = *v;
+            else if (arg == "--out")
+                o.out = *v;
+            else if (arg == "--clip")
+                o.clip = *v;
+            else {
+                char* end = nullptr;
+                o.time = std::strtod(v->c_str(), &end);
+                if (v->empty() || *end != '\0' || !std::isfinite(o.time) || o.time < 0.0)
+                    return usageError("--time needs a non-negative number of seconds, got '" + *v + "'");
+            }
+        } else if (!arg.empty() && arg[0] == '-') {
+            return usageError("unknown option " + arg);
+        } else if (o.model.empty()) {
+            o.model = arg;
+        } else {
+            return usageError("more than one model given: " + arg);
+        }
+    }
+    if (o.model.empty())
+        return usageError("no model given");
+    if (o.vertices && *o.vertices != "cpu")
+        return usageError("--vertices takes 'cpu' (the GPU path arrives with the GPU engine), got '" +
+                          *o.vertices + "'");
+    if (o.vertices.has_value() != o.out.has_value())
+        return usageError("--vertices and --out go together");
+    if (o.json && o.vertices)
+        return usageError("--json and --vertices are separate modes");
+    return std::nullopt;
+}
+
+void printText(const scene::Model& model) {
+    const auto j = inspect::describe(model);
+    std::printf("%s\n", model.sourceName.c_str());
+    std::printf("  meshes %zu, primitives %zu, triangles %zu, vertices %zu, nodes %zu\n",
+                j["meshes"].get<std::size_t>(), j["primitives"].get<std::size_t>(),
+                j["triangles"].get<std::size_t>(), j["vertices"].get<std::size_t>(),
+                model.nodes.size());
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        const scene::Mesh& mesh = model.meshes[m];
+        std::printf("  mesh %zu '%s': %zu primitive(s), %zu morph target(s)\n", m, mesh.name.c_str(),
+                    mesh.primitives.size(), mesh.morphTargetCount());
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const scene::Primitive& prim = mesh.primitives[p];
+            std::printf("    primitive %zu: %zu vertices, %zu triangles, material %d, %d influences%s%s\n",
+                        p, prim.sourceVertexCount, prim.triangleCount(), prim.material,
+                        4 * prim.influenceSets(), prim.flatNormals ? ", flat normals generated" : "",
+                        prim.generatedTangents ? ", tangents generated" : "");
+        }
+    }
+    for (std::size_t s = 0; s < model.skins.size(); ++s)
+        std::printf("  skin %zu '%s': %zu joints\n", s, model.skins[s].name.c_str(),
+                    model.skins[s].joints.size());
+    for (const auto& clip : j["animation_list"]) {
+        std::string modes;
+        for (const auto& mode : clip["interpolation"])
+            modes += (modes.empty() ? "" : ",") + mode.get<std::string>();
+        std::printf("  clip '%s': %.3f s, %zu channels, %s\n", clip["name"].get<std::string>().c_str(),
+                    clip["duration_s"].get<double>(), clip["channels"].get<std::size_t>(),
+                    modes.c_str());
+    }
+    for (const auto& g : j["transmissive_materials"]) {
+        std::printf("  glass material '%s': transmission %.3g, ior %.4g, dispersion %.3g",
+                    g["material"].get<std::string>().c_str(), g["transmission"].get<double>(),
+                    g["ior"].get<double>(), g["dispersion"].get<double>());
+        if (g["volume"].get<bool>())
+            std::printf(", thickness %.3g, attenuation %s at distance %s", g["thickness"].get<double>(),
+                        g["attenuationColor"].dump().c_str(), g["attenuationDistance"].dump().c_str());
+        std::printf("\n");
+    }
+    if (model.cameras.size())
+        std::printf("  cameras %zu\n", model.cameras.size());
+}
+
+int writeVertices(const scene::Model& model, const Options& o) {
+    int clip = model.animations.empty() ? -1 : 0;
+    if (o.clip) {
+        const auto found = model.findAnimation(*o.clip);
+        if (!found)
+            return usageError(model.sourceName + " has no clip '" + *o.clip + "'");
+        clip = *found;
+    }
+    const anim::Pose pose = anim::evaluate(model, clip, o.time);
+    const auto instances = deform::deformScene(model, pose);
+    std::vector<deform::DeformedPrimitive> world;
+    std::vector<std::string> labels;
+    for (const auto& instance : instances)
+        for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+            world.push_back(deform::toWorld(instance.primitives[p], instance.meshToWorld));
+            labels.push_back("node " + std::to_string(instance.node) + " mesh " +
+                             std::to_string(instance.mesh) + " primitive " + std::to_string(p));
+        }
+    std::vector<inspect::PlyBlock> blocks;
+    for (std::size_t i = 0; i < world.size(); ++i)
+        blocks.push_back({labels[i], &world[i]});
+    const std::string comment = "glass-inspect " + model.sourceName + " clip " +
+                                std::to_string(clip) + " time " + std::to_string(o.time) +
+                                " vertices cpu, world space";
+    const core::Status written = core::writeFileAtomic(*o.out, inspect::makePly(blocks, comment, o.ascii));
+    if (!written) {
+        std::fprintf(stderr, "glass-inspect: %s\n", written.error().message.c_str());
+        return 1;
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    if (const auto exitCode = parse(argc, argv, options))
+        return *exitCode;
+    asset::LoadOptions loadOptions;
+    loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
+    auto model = asset::loadGltf(options.model, loadOptions);
+    if (!model) {
+        std::fprintf(stderr, "glass-inspect: %s\n", model.error().message.c_str());
+        return 1;
+    }
+    if (options.vertices)
+        return writeVertices(*model, options);
+    if (options.json)
+        std::printf("%s\n", inspect::describe(*model).dump(2).c_str());
+    else
+        printText(*model);
+    return 0;
+}

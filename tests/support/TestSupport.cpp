@@ -1,0 +1,227 @@
+// Test helpers: shared-asset lookup, temporary directories, glTF writing, commands.
+#include "support/TestSupport.h"
+
+#include <stb_image_write.h>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sys/wait.h>
+
+namespace test {
+namespace {
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::uint32_t b0 = bytes[i];
+        const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+        const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+        const std::uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
+        out += table[(triple >> 18) & 63];
+        out += table[(triple >> 12) & 63];
+        out += i + 1 < bytes.size() ? table[(triple >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? table[triple & 63] : '=';
+    }
+    return out;
+}
+
+void writeBytes(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+void appendU32(std::string& s, std::uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
+
+} // namespace
+
+std::filesystem::path sharedDir() {
+    const char* overridden = std::getenv("GLASS_SHARED_DIR");
+    const std::filesystem::path dir = overridden ? overridden : GLASS_SHARED_DIR;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(dir / "assets" / "INVENTORY.json", ec))
+        return std::filesystem::weakly_canonical(dir, ec);
+    return {};
+}
+
+TempDir::TempDir() {
+    std::random_device random;
+    mPath = std::filesystem::temp_directory_path() /
+            ("glass-test-" + std::to_string(random()) + std::to_string(random()));
+    std::filesystem::create_directories(mPath);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(mPath, ec);
+}
+
+GltfBuilder::GltfBuilder() {
+    doc = {{"asset", {{"version", "2.0"}, {"generator", "glass tests"}}},
+           {"buffers", nlohmann::json::array()},
+           {"bufferViews", nlohmann::json::array()},
+           {"accessors", nlohmann::json::array()}};
+}
+
+int GltfBuilder::componentsOf(const std::string& type) {
+    if (type == "SCALAR")
+        return 1;
+    if (type == "VEC2")
+        return 2;
+    if (type == "VEC3")
+        return 3;
+    if (type == "VEC4" || type == "MAT2")
+        return 4;
+    if (type == "MAT3")
+        return 9;
+    return 16;
+}
+
+int GltfBuilder::addView(const void* data, std::size_t bytes, int byteStride) {
+    while (bin.size() % 4)
+        bin.push_back(0);
+    const std::size_t offset = bin.size();
+    bin.resize(offset + bytes);
+    if (bytes)
+        std::memcpy(bin.data() + offset, data, bytes);
+    nlohmann::json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}};
+    if (byteStride)
+        view["byteStride"] = byteStride;
+    doc["bufferViews"].push_back(view);
+    return int(doc["bufferViews"].size()) - 1;
+}
+
+std::filesystem::path GltfBuilder::save(const std::filesystem::path& directory,
+                                        const std::string& name, GltfFormat format) const {
+    nlohmann::json out = doc;
+    std::vector<std::uint8_t> padded = bin;
+    while (padded.size() % 4)
+        padded.push_back(0);
+    const bool hasBuffer = !out["buffers"].empty() || !padded.empty();
+    if (hasBuffer && out["buffers"].empty())
+        out["buffers"].push_back({{"byteLength", padded.size()}});
+    if (hasBuffer && !out["buffers"][0].contains("byteLength"))
+        out["buffers"][0]["byteLength"] = padded.size();
+    const std::filesystem::path path =
+        directory / (name + (format == GltfFormat::Glb ? ".glb" : ".gltf"));
+    if (format == GltfFormat::DataUri) {
+        if (hasBuffer && !out["buffers"][0].contains("uri"))
+            out["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(padded);
+        writeBytes(path, out.dump(2));
+    } else if (format == GltfFormat::ExternalBin) {
+        if (hasBuffer && !out["buffers"][0].contains("uri")) {
+            out["buffers"][0]["uri"] = name + ".bin";
+            writeBytes(directory / (name + ".bin"), std::string(padded.begin(), padded.end()));
+        }
+        writeBytes(path, out.dump(2));
+    } else {
+        std::string json = out.dump();
+        while (json.size() % 4)
+            json += ' ';
+        std::string glb = "glTF";
+        appendU32(glb, 2);
+        const std::size_t total = 12 + 8 + json.size() + (hasBuffer ? 8 + padded.size() : 0);
+        appendU32(glb, std::uint32_t(total));
+        appendU32(glb, std::uint32_t(json.size()));
+        appendU32(glb, 0x4E4F534Au); // JSON
+        glb += json;
+        if (hasBuffer) {
+            appendU32(glb, std::uint32_t(padded.size()));
+            appendU32(glb, 0x004E4942u); // BIN
+            glb.append(padded.begin(), padded.end());
+        }
+        writeBytes(path, glb);
+    }
+    return path;
+}
+
+GltfBuilder twoJointModel() {
+    GltfBuilder b;
+    const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0};
+    const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const std::vector<std::uint16_t> joints = {0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0,
+                                               0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0};
+    const std::vector<float> weights = {1, 0,   0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0,
+                                        1, 0,   0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0};
+    const std::vector<std::uint16_t> indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
+    const std::vector<float> morph = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    // Inverse bind: joint 0 at the origin (identity), joint 1 at x = 1 (translate by -1).
+    const std::vector<float> inverseBind = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,  0, 0, 1,
+                                            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1};
+    const std::vector<float> times = {0.0f, 1.0f};
+    const float s = std::sqrt(0.5f);
+    const std::vector<float> rotations = {0, 0, 0, 1, 0, 0, s, s};
+    const std::vector<float> morphWeights = {0.0f, 1.0f};
+
+    const int aPos = b.addAccessor(positions, 5126, "VEC3");
+    b.doc["accessors"][aPos]["min"] = {0, 0, 0};
+    b.doc["accessors"][aPos]["max"] = {2, 1, 0};
+    const int aNrm = b.addAccessor(normals, 5126, "VEC3");
+    const int aJnt = b.addAccessor(joints, 5123, "VEC4");
+    const int aWgt = b.addAccessor(weights, 5126, "VEC4");
+    const int aIdx = b.addAccessor(indices, 5123, "SCALAR");
+    const int aMorph = b.addAccessor(morph, 5126, "VEC3");
+    const int aIbm = b.addAccessor(inverseBind, 5126, "MAT4");
+    const int aTime = b.addAccessor(times, 5126, "SCALAR");
+    b.doc["accessors"][aTime]["min"] = {0.0};
+    b.doc["accessors"][aTime]["max"] = {1.0};
+    const int aRot = b.addAccessor(rotations, 5126, "VEC4");
+    const int aMw = b.addAccessor(morphWeights, 5126, "SCALAR");
+
+    b.doc["meshes"] = {{{"name", "strip"},
+                        {"primitives",
+                         {{{"attributes",
+                            {{"POSITION", aPos}, {"NORMAL", aNrm}, {"JOINTS_0", aJnt}, {"WEIGHTS_0", aWgt}}},
+                           {"indices", aIdx},
+                           {"targets", {{{"POSITION", aMorph}}}}}}},
+                        {"weights", {0.0}}}};
+    b.doc["nodes"] = {{{"name", "skinned"}, {"mesh", 0}, {"skin", 0}},
+                      {{"name", "root"}, {"children", {2}}},
+                      {{"name", "tip"}, {"translation", {1.0, 0.0, 0.0}}}};
+    b.doc["skins"] = {{{"joints", {1, 2}}, {"inverseBindMatrices", aIbm}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    b.doc["scene"] = 0;
+    b.doc["animations"] = {{{"name", "bend"},
+                            {"samplers",
+                             {{{"input", aTime}, {"output", aRot}, {"interpolation", "LINEAR"}},
+                              {{"input", aTime}, {"output", aMw}, {"interpolation", "LINEAR"}}}},
+                            {"channels",
+                             {{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}},
+                              {{"sampler", 1}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}};
+    return b;
+}
+
+std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba) {
+    std::vector<std::uint8_t> pixels;
+    for (int i = 0; i < width * height; ++i)
+        pixels.insert(pixels.end(), rgba.begin(), rgba.end());
+    std::vector<std::uint8_t> png;
+    stbi_write_png_to_func(
+        [](void* context, void* data, int size) {
+            auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+            out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+        },
+        &png, width, height, 4, pixels.data(), width * 4);
+    return png;
+}
+
+int runCommand(const std::string& command, std::string* output) {
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe)
+        return -1;
+    std::array<char, 4096> buffer{};
+    std::string text;
+    std::size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+        text.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    if (output)
+        *output = text;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+} // namespace test

@@ -1,0 +1,69 @@
+// Pose evaluation on the two-joint model: world transforms, skin matrices, morph weights.
+#include "support/TestSupport.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace {
+
+scene::Model loadTwoJoint(test::GltfBuilder builder = test::twoJointModel()) {
+    test::TempDir dir;
+    auto model = asset::loadGltf(builder.save(dir.path(), "twojoint"));
+    EXPECT_TRUE(model.ok()) << model.error().message;
+    return std::move(model).value();
+}
+
+void expectMatrixNear(const glm::dmat4& a, const glm::dmat4& b, double eps = 1e-12) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(a[c][r], b[c][r], eps) << "column " << c << " row " << r;
+}
+
+TEST(Pose, WorldTransformsFollowTheHierarchy) {
+    const scene::Model model = loadTwoJoint();
+    const anim::Pose pose = anim::evaluate(model, 0, 0.5);
+    const glm::dmat4 expected = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(1, 0, 0)),
+                                            glm::radians(45.0), glm::dvec3(0, 0, 1));
+    expectMatrixNear(pose.world[2], expected, 1e-7);
+    ASSERT_EQ(pose.weights[0].size(), 1u);
+    EXPECT_NEAR(pose.weights[0][0], 0.5, 1e-12);
+}
+
+TEST(Pose, RestSkinMatricesAreIdentity) {
+    const scene::Model model = loadTwoJoint();
+    const anim::Pose pose = anim::restPose(model);
+    for (const glm::dmat4& m : anim::skinMatrices(model, pose, 0))
+        expectMatrixNear(m, glm::dmat4(1.0));
+}
+
+TEST(Pose, SkinMatricesCancelTheMeshNodeTransform) {
+    test::GltfBuilder builder = test::twoJointModel();
+    builder.doc["nodes"][0]["translation"] = {5.0, 0.0, 0.0};
+    const scene::Model model = loadTwoJoint(builder);
+    const anim::Pose pose = anim::evaluate(model, 0, 1.0);
+    const auto skin = anim::skinMatrices(model, pose, 0);
+    // world(mesh) * skinMatrix == world(joint) * inverseBind, whatever the mesh node's transform.
+    expectMatrixNear(pose.world[0] * skin[1], pose.world[2] * model.skins[0].inverseBind[1]);
+    expectMatrixNear(skin[0], glm::translate(glm::dmat4(1.0), glm::dvec3(-5, 0, 0)));
+}
+
+TEST(Pose, ClipByNameOrIndex) {
+    const scene::Model model = loadTwoJoint();
+    EXPECT_EQ(model.findAnimation("bend"), 0);
+    EXPECT_EQ(model.findAnimation("0"), 0);
+    EXPECT_FALSE(model.findAnimation("1").has_value());
+    EXPECT_FALSE(model.findAnimation("walk").has_value());
+}
+
+TEST(Pose, ChangingClipResetsUntargetedState) {
+    const scene::Model model = loadTwoJoint();
+    anim::Pose pose = anim::evaluate(model, 0, 1.0);
+    anim::applyClip(model, -1, 0.0, pose);
+    anim::updateWorld(model, pose);
+    EXPECT_EQ(pose.weights[0][0], 0.0);
+    expectMatrixNear(pose.world[2], glm::translate(glm::dmat4(1.0), glm::dvec3(1, 0, 0)));
+}
+
+} // namespace

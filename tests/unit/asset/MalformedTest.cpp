@@ -1,0 +1,256 @@
+// One test per load error: each case breaks the valid two-joint model in one way, saves it, and
+// checks the load fails with a message naming the function, the file and the element.
+#include "support/TestSupport.h"
+
+#include "engine/asset/GltfLoader.h"
+
+#include <fstream>
+#include <functional>
+
+namespace {
+
+using Json = nlohmann::json;
+
+struct MalformedCase {
+    const char* name;
+    std::function<void(test::GltfBuilder&)> breakIt;
+    std::vector<std::string> expected; ///< substrings the message must contain
+    test::GltfFormat format = test::GltfFormat::DataUri;
+};
+
+const std::vector<MalformedCase>& cases() {
+    static const std::vector<MalformedCase> all = {
+        {"SceneNodeOutOfRange", [](auto& b) { b.doc["scenes"][0]["nodes"].push_back(99); },
+         {"scene 0", "node 99", "file has 3 nodes"}},
+        {"ChildNodeOutOfRange", [](auto& b) { b.doc["nodes"][1]["children"] = {7}; },
+         {"node 1", "node 7", "3 nodes"}},
+        {"MeshOutOfRange", [](auto& b) { b.doc["nodes"][0]["mesh"] = 5; },
+         {"node 0", "mesh 5", "1 meshes"}},
+        {"AccessorOutOfRange",
+         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 42; },
+         {"accessor 42"}},
+        {"BufferViewOutOfRange", [](auto& b) { b.doc["accessors"][0]["bufferView"] = 40; },
+         {"bufferView 40"}},
+        {"BufferOutOfRange", [](auto& b) { b.doc["bufferViews"][0]["buffer"] = 3; },
+         {"buffer"}},
+        {"MaterialOutOfRange", [](auto& b) { b.doc["meshes"][0]["primitives"][0]["material"] = 2; },
+         {"mesh 0 primitive 0", "material 2"}},
+        {"TextureOutOfRange",
+         [](auto& b) {
+             b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 4}}}}}}};
+             b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         {"material 0", "texture 4"}},
+        {"SkinJointNodeOutOfRange", [](auto& b) { b.doc["skins"][0]["joints"][1] = 91; },
+         {"skin 0: joint 1 references node 91, file has 3 nodes"}},
+        {"JointIndexPastSkin",
+         [](auto& b) {
+             // Vertex 2's first influence (weight 1) now names joint 5 of a 2-joint skin.
+             const int view = b.doc["accessors"][2]["bufferView"];
+             const std::size_t offset = b.doc["bufferViews"][view]["byteOffset"];
+             const std::uint16_t bad = 5;
+             std::memcpy(b.bin.data() + offset + 2 * 8, &bad, 2);
+         },
+         {"JOINTS_0 of vertex 2 references joint 5", "skin 0 has 2 joints"}},
+        {"AccessorPastBufferView", [](auto& b) { b.doc["accessors"][0]["count"] = 60; },
+         {"accessor 0", "runs past the end of bufferView"}},
+        {"BufferViewPastBuffer", [](auto& b) { b.doc["bufferViews"][0]["byteLength"] = 100000; },
+         {"bufferView 0", "past the end of buffer 0"}},
+        {"StrideSmallerThanElement", [](auto& b) { b.doc["bufferViews"][0]["byteStride"] = 4; },
+         {"byteStride 4"}},
+        {"IndexPastVertexCount",
+         [](auto& b) {
+             const int view = b.doc["accessors"][4]["bufferView"];
+             const std::size_t offset = b.doc["bufferViews"][view]["byteOffset"];
+             const std::uint16_t bad = 60;
+             std::memcpy(b.bin.data() + offset + 2, &bad, 2);
+         },
+         {"mesh 0 primitive 0 index 1 is 60", "6 vertices"}},
+        {"NodeCycle",
+         [](auto& b) {
+             b.doc["nodes"][2]["children"] = {1};
+             b.doc["scenes"][0]["nodes"] = {0};
+         },
+         {"cycle"}},
+        {"NodeWithTwoParents",
+         [](auto& b) { b.doc["nodes"][0]["children"] = {2}; },
+         {"node 2 has two parents"}},
+        {"AllZeroWeights",
+         [](auto& b) {
+             const int view = b.doc["accessors"][3]["bufferView"];
+             const std::size_t offset = b.doc["bufferViews"][view]["byteOffset"];
+             std::memset(b.bin.data() + offset + 16 * 3, 0, 16); // vertex 3
+         },
+         {"vertex 3 has all-zero or NaN skin weights"}},
+        {"NaNWeights",
+         [](auto& b) {
+             const int view = b.doc["accessors"][3]["bufferView"];
+             const std::size_t offset = b.doc["bufferViews"][view]["byteOffset"];
+             const float nan = std::numeric_limits<float>::quiet_NaN();
+             std::memcpy(b.bin.data() + offset + 16 * 4, &nan, 4); // vertex 4
+         },
+         {"WEIGHTS_0", "element 4 is not finite"}},
+        {"UnsupportedRequiredExtension",
+         [](auto& b) {
+             b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+             b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+         },
+         {"extensionsRequired lists KHR_draco_mesh_compression"}},
+        {"TooManyInfluenceSets",
+         [](auto& b) {
+             auto& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
+             attributes["JOINTS_1"] = attributes["JOINTS_0"];
+             attributes["WEIGHTS_1"] = attributes["WEIGHTS_0"];
+             attributes["JOINTS_2"] = attributes["JOINTS_0"];
+             attributes["WEIGHTS_2"] = attributes["WEIGHTS_0"];
+         },
+         {"JOINTS_2", "over the engine's limit"}},
+        {"AbsurdSparseCount",
+         [](auto& b) {
+             // 2^27 VEC3 elements with no bufferView: 1.5 GiB from a file of a few KB.
+             b.doc["accessors"].push_back({{"componentType", 5126}, {"count", 134217728},
+                                           {"type", "VEC3"},
+                                           {"sparse", {{"count", 1},
+                                                       {"indices", {{"bufferView", 4}, {"componentType", 5123}}},
+                                                       {"values", {{"bufferView", 0}}}}}});
+             b.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 10;
+         },
+         {"accessor 10", "more memory than a file of this size can justify"}},
+        {"AbsurdAccessorCount", [](auto& b) { b.doc["accessors"][0]["count"] = 4000000000ull; },
+         {"accessor 0", "over the limit"}},
+        {"DecreasingKeyTimes",
+         [](auto& b) {
+             const int view = b.doc["accessors"][7]["bufferView"];
+             const std::size_t offset = b.doc["bufferViews"][view]["byteOffset"];
+             const float t = -1.0f;
+             std::memcpy(b.bin.data() + offset + 4, &t, 4);
+         },
+         {"animation 0 sampler 0 input time 1 decreases"}},
+        {"AnimationTargetOutOfRange",
+         [](auto& b) { b.doc["animations"][0]["channels"][0]["target"]["node"] = 17; },
+         {"animation 0 channel 0 target", "node 17"}},
+        {"WeightsChannelOnNodeWithoutMorphs",
+         [](auto& b) { b.doc["animations"][0]["channels"][1]["target"]["node"] = 1; },
+         {"animates the weights of node 1, which has no morph targets"}},
+        {"MorphWeightCountMismatch", [](auto& b) { b.doc["meshes"][0]["weights"] = {0.0, 1.0}; },
+         {"mesh 0 has 2 default weights for 1 morph targets"}},
+        {"MissingPosition",
+         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
+         {"mesh 0 primitive 0 has no POSITION"}},
+        {"LinePrimitive", [](auto& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 1; },
+         {"mode LINES"}},
+        {"InverseBindTooShort",
+         [](auto& b) {
+             b.doc["accessors"][6]["count"] = 1;
+         },
+         {"skin 0 inverseBindMatrices has 1 matrices for 2 joints"}},
+        {"BadIor",
+         [](auto& b) {
+             b.doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};
+         },
+         {"material 0 ior"}},
+    };
+    return all;
+}
+
+void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.name; }
+
+class Malformed : public ::testing::TestWithParam<MalformedCase> {};
+
+TEST_P(Malformed, FailsNamingFileAndElement) {
+    const MalformedCase& c = GetParam();
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    c.breakIt(builder);
+    const auto path = builder.save(dir.path(), c.name, c.format);
+    const auto model = asset::loadGltf(path);
+    ASSERT_FALSE(model.ok()) << c.name << " loaded but should not";
+    const std::string& message = model.error().message;
+    EXPECT_NE(message.find("asset::loadGltf(): " + path.filename().string() + ": "),
+              std::string::npos)
+        << message;
+    for (const std::string& part : c.expected)
+        EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in: " << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Asset, Malformed, ::testing::ValuesIn(cases()),
+                         [](const auto& testInfo) { return std::string(testInfo.param.name); });
+
+TEST(Malformed, ValidBaseModelLoadsInEveryContainer) {
+    test::TempDir dir;
+    const test::GltfBuilder builder = test::twoJointModel();
+    for (auto format : {test::GltfFormat::DataUri, test::GltfFormat::ExternalBin, test::GltfFormat::Glb}) {
+        const auto model = asset::loadGltf(builder.save(dir.path(), "valid", format));
+        ASSERT_TRUE(model.ok()) << model.error().message;
+        EXPECT_EQ(model->meshes[0].primitives[0].vertexCount(), 6u);
+        EXPECT_EQ(model->skins[0].joints.size(), 2u);
+    }
+}
+
+TEST(Malformed, MissingExternalBuffer) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "external", test::GltfFormat::ExternalBin);
+    std::filesystem::remove(dir / "external.bin");
+    const auto model = asset::loadGltf(path);
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("external.gltf"), std::string::npos) << model.error().message;
+    EXPECT_NE(model.error().message.find("external.bin"), std::string::npos) << model.error().message;
+}
+
+TEST(Malformed, MissingModelFile) {
+    test::TempDir dir;
+    const auto model = asset::loadGltf(dir / "nothing.glb");
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("nothing.glb"), std::string::npos);
+}
+
+std::string readAll(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeAll(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+TEST(Malformed, TruncatedGlb) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "truncated", test::GltfFormat::Glb);
+    const std::string bytes = readAll(path);
+    for (std::size_t keep : {std::size_t(6), std::size_t(30), bytes.size() / 2, bytes.size() - 4}) {
+        writeAll(path, bytes.substr(0, keep));
+        const auto model = asset::loadGltf(path);
+        ASSERT_FALSE(model.ok()) << "kept " << keep << " of " << bytes.size() << " bytes";
+        EXPECT_NE(model.error().message.find("truncated.glb"), std::string::npos);
+    }
+}
+
+TEST(Malformed, CorruptGlbHeader) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "corrupt", test::GltfFormat::Glb);
+    std::string bytes = readAll(path);
+    bytes[4] = 7; // version 7
+    writeAll(path, bytes);
+    auto model = asset::loadGltf(path);
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("corrupt.glb"), std::string::npos);
+
+    bytes = readAll(path);
+    bytes[4] = 2;
+    bytes[12] = char(0xFF); // JSON chunk length far past the file
+    bytes[13] = char(0xFF);
+    writeAll(path, bytes);
+    model = asset::loadGltf(path);
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("corrupt.glb"), std::string::npos);
+}
+
+TEST(Malformed, NotJson) {
+    test::TempDir dir;
+    writeAll(dir / "garbage.gltf", "{ this is not json");
+    const auto model = asset::loadGltf(dir / "garbage.gltf");
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("garbage.gltf"), std::string::npos);
+}
+
+} // namespace

@@ -1,0 +1,151 @@
+// glass-inspect as a user runs it: exit codes, JSON keys and counts, PLY output.
+#include "support/TestSupport.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/deform/CpuDeformer.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+const std::string kInspect = std::string(GLASS_BIN_DIR) + "/glass-inspect";
+
+struct Ply {
+    std::size_t count = 0;
+    std::vector<float> values; // 6 per vertex
+};
+
+Ply readPly(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    Ply ply;
+    std::string line;
+    bool ascii = false;
+    while (std::getline(in, line) && line != "end_header") {
+        if (line.rfind("element vertex ", 0) == 0)
+            ply.count = std::stoul(line.substr(15));
+        if (line == "format ascii 1.0")
+            ascii = true;
+    }
+    ply.values.resize(ply.count * 6);
+    if (ascii)
+        for (float& v : ply.values)
+            in >> v;
+    else
+        in.read(reinterpret_cast<char*>(ply.values.data()), std::streamsize(ply.values.size() * 4));
+    return ply;
+}
+
+TEST(InspectTool, ExitCodes) {
+    std::string out;
+    EXPECT_EQ(test::runCommand(kInspect + " --help", &out), 0);
+    EXPECT_NE(out.find("PLY layout"), std::string::npos);
+    EXPECT_EQ(test::runCommand(kInspect, &out), 2);
+    EXPECT_EQ(test::runCommand(kInspect + " model.glb --bogus", &out), 2);
+    EXPECT_NE(out.find("unknown option --bogus"), std::string::npos);
+    EXPECT_EQ(test::runCommand(kInspect + " model.glb --time -3 --vertices cpu --out x.ply", &out), 2);
+    EXPECT_EQ(test::runCommand(kInspect + " model.glb --vertices cpu", &out), 2);
+}
+
+TEST(InspectTool, BadModelExitsOneAndWritesNothing) {
+    test::TempDir dir;
+    test::GltfBuilder broken = test::twoJointModel();
+    broken.doc["skins"][0]["joints"][0] = 40;
+    const auto path = broken.save(dir.path(), "broken");
+    std::string out;
+    const std::string ply = (dir / "out.ply").string();
+    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --out " + ply, &out), 1);
+    EXPECT_NE(out.find("broken.gltf: skin 0: joint 0 references node 40, file has 3 nodes"),
+              std::string::npos)
+        << out;
+    EXPECT_FALSE(std::filesystem::exists(ply));
+}
+
+TEST(InspectTool, JsonDescribesTheModel) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "twojoint", test::GltfFormat::Glb);
+    std::string out;
+    ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0) << out;
+    const auto j = nlohmann::json::parse(out);
+    EXPECT_EQ(j["meshes"], 1);
+    EXPECT_EQ(j["primitives"], 1);
+    EXPECT_EQ(j["triangles"], 4);
+    EXPECT_EQ(j["vertices"], 6);
+    EXPECT_EQ(j["skins"], 1);
+    EXPECT_EQ(j["joints_per_skin"], nlohmann::json::array({2}));
+    EXPECT_EQ(j["max_morph_targets"], 1);
+    EXPECT_EQ(j["animations"], 1);
+    EXPECT_EQ(j["animation_list"][0]["name"], "bend");
+    EXPECT_EQ(j["animation_list"][0]["interpolation"], nlohmann::json::array({"LINEAR"}));
+    EXPECT_DOUBLE_EQ(j["animation_list"][0]["duration_s"].get<double>(), 1.0);
+    ASSERT_EQ(test::runCommand(kInspect + " " + path.string(), &out), 0);
+    EXPECT_NE(out.find("clip 'bend': 1.000 s"), std::string::npos) << out;
+}
+
+TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {
+    GLASS_REQUIRE_SHARED();
+    std::ifstream in(test::sharedDir() / "assets/INVENTORY.json");
+    const auto inventory = nlohmann::json::parse(in);
+    for (const auto& expected : inventory["models"]) {
+        const auto path = test::sharedDir() / "assets" / expected["file"].get<std::string>();
+        std::string out;
+        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0) << out;
+        const auto j = nlohmann::json::parse(out);
+        SCOPED_TRACE(expected["name"].get<std::string>());
+        for (const char* key : {"meshes", "primitives", "triangles", "vertices", "skins",
+                                "joints_per_skin", "max_morph_targets", "animations"})
+            EXPECT_EQ(j[key], expected[key]) << key;
+        ASSERT_EQ(j["animation_list"].size(), expected["animation_list"].size());
+        for (std::size_t a = 0; a < j["animation_list"].size(); ++a) {
+            EXPECT_EQ(j["animation_list"][a]["name"], expected["animation_list"][a]["name"]);
+            EXPECT_EQ(j["animation_list"][a]["interpolation"], expected["animation_list"][a]["interpolation"]);
+            EXPECT_NEAR(j["animation_list"][a]["duration_s"].get<double>(),
+                        expected["animation_list"][a]["duration_s"].get<double>(), 5e-4);
+        }
+    }
+}
+
+TEST(InspectTool, PlyHoldsTheCpuDeformation) {
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    builder.doc["nodes"][0]["translation"] = {0.0, 0.0, 3.0}; // skinned: ignored, as glTF says
+    const auto path = builder.save(dir.path(), "twojoint");
+    for (const char* format : {"", " --ascii"}) {
+        const auto ply = dir / "out.ply";
+        std::string out;
+        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --time 1 --clip bend --out " +
+                                       ply.string() + format, &out), 0) << out;
+        const Ply result = readPly(ply);
+        ASSERT_EQ(result.count, 6u);
+        // Vertex 2 at t = 1 is at (1,1,1) (see CpuDeformerTest), normal +z.
+        EXPECT_NEAR(result.values[2 * 6 + 0], 1.0f, 1e-5f);
+        EXPECT_NEAR(result.values[2 * 6 + 1], 1.0f, 1e-5f);
+        EXPECT_NEAR(result.values[2 * 6 + 2], 1.0f, 1e-5f);
+        EXPECT_NEAR(result.values[2 * 6 + 5], 1.0f, 1e-5f);
+    }
+    std::string out;
+    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --clip nope --out " +
+                                   (dir / "x.ply").string(), &out), 2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
+}
+
+TEST(InspectTool, CesiumManPlyHasEveryVertex) {
+    GLASS_REQUIRE_SHARED();
+    test::TempDir dir;
+    const auto model = test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb";
+    std::string out;
+    ASSERT_EQ(test::runCommand(kInspect + " " + model.string() + " --vertices cpu --time 1.0 --out " +
+                                   (dir / "cesium.ply").string(), &out), 0) << out;
+    const Ply ply = readPly(dir / "cesium.ply");
+    EXPECT_EQ(ply.count, 3273u);
+    const auto loaded = asset::loadGltf(model);
+    ASSERT_TRUE(loaded.ok());
+    const auto instances = deform::deformScene(*loaded, anim::evaluate(*loaded, 0, 1.0));
+    const auto world = deform::toWorld(instances[0].primitives[0], instances[0].meshToWorld);
+    for (std::size_t v = 0; v < ply.count; v += 97)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ply.values[v * 6 + std::size_t(c)], float(world.positions[v][c]), 1e-5f);
+}
+
+} // namespace
