@@ -9,6 +9,10 @@ find_package(glm REQUIRED)
 find_package(TinyGLTF REQUIRED)
 # libstb-dev: image decoding (PNG/JPEG in glTF, HDR environments) and PNG writing
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
+# libepoxy-dev: GL and EGL entry points (only engine/src/gl includes it)
+pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET GLOBAL epoxy)
+# libglfw3-dev: windows (GL 4.5 core) for the viewer
+pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)
 # nlohmann-json3-dev: JSON output of the tools and parsing in tests (tinygltf uses it too)
 find_package(nlohmann_json 3 REQUIRED)
 

@@ -1,0 +1,73 @@
+// Pipeline state and draw/dispatch commands: the only way code outside gl/ touches GL state.
+#pragma once
+
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Texture.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace gl {
+
+enum class Cull : std::uint8_t { None, Back, Front };
+enum class DepthFunc : std::uint8_t { Always, Less, LessEqual, Greater, GreaterEqual, Equal };
+enum class Blend : std::uint8_t { None, Alpha, Additive };
+
+/** Fixed-function state for a draw; apply() sets all of it, so passes never inherit state. */
+struct PipelineState {
+    Cull cull = Cull::Back;
+    bool depthTest = true;
+    bool depthWrite = true;
+    DepthFunc depthFunc = DepthFunc::Less;
+    Blend blend = Blend::None;
+};
+
+void apply(const PipelineState& state);
+
+void viewport(glm::ivec2 origin, glm::ivec2 size);
+/** Clears the bound framebuffer's colour attachment `index` to `color`. */
+void clearColor(int index, const glm::vec4& color);
+void clearDepth(float depth);
+
+/** A vertex array with only an index buffer: vertex shaders pull attributes from SSBOs. */
+class VertexArray {
+public:
+    VertexArray();
+    ~VertexArray();
+    VertexArray(VertexArray&& other) noexcept;
+    VertexArray& operator=(VertexArray&& other) noexcept;
+    VertexArray(const VertexArray&) = delete;
+    VertexArray& operator=(const VertexArray&) = delete;
+    void setIndexBuffer(const Buffer& indices);
+    void bind() const;
+
+private:
+    std::uint32_t mId = 0;
+};
+
+/** Draws `indexCount` 32-bit indices from the bound vertex array as triangles. */
+void drawIndexed(std::uint32_t indexCount);
+/** Draws `vertexCount` vertices with no index buffer (full-screen triangle: 3). */
+void drawArrays(std::uint32_t vertexCount);
+void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
+
+void bindStorage(std::uint32_t binding, const Buffer& buffer);
+void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset, std::size_t bytes);
+void bindTexture(std::uint32_t unit, const Texture& texture);
+void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
+
+enum Barrier : std::uint32_t {
+    BarrierStorage = 1u << 0,     ///< SSBO writes -> SSBO reads
+    BarrierVertex = 1u << 1,      ///< SSBO writes -> vertex pulling / index reads
+    BarrierTexture = 1u << 2,     ///< image writes -> texture fetches
+    BarrierImage = 1u << 3,       ///< image writes -> image loads
+    BarrierFramebuffer = 1u << 4, ///< image writes -> framebuffer
+    BarrierAll = 0xFFFFFFFFu,
+};
+void memoryBarrier(std::uint32_t barriers);
+
+/** Blocks until the GPU has finished all work (tools and tests only). */
+void finish();
+
+} // namespace gl

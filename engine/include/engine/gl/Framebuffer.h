@@ -1,0 +1,37 @@
+// RAII GL framebuffer object over textures.
+#pragma once
+
+#include "engine/core/Result.h"
+#include "engine/gl/Texture.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gl {
+
+class Framebuffer {
+public:
+    Framebuffer();
+    ~Framebuffer();
+    Framebuffer(Framebuffer&& other) noexcept;
+    Framebuffer& operator=(Framebuffer&& other) noexcept;
+    Framebuffer(const Framebuffer&) = delete;
+    Framebuffer& operator=(const Framebuffer&) = delete;
+
+    /** Attaches colour textures (in draw-buffer order) and an optional depth texture, then
+     *  checks completeness: an incomplete FBO is an Error naming `name` and the status. */
+    core::Status attach(const char* name, const std::vector<const Texture*>& colors,
+                        const Texture* depth, int level = 0);
+    /** Binds for drawing and sets the viewport to the attachments' size. */
+    void bind() const;
+    /** Binds the default framebuffer (the window) with the given viewport. */
+    static void bindDefault(glm::ivec2 size);
+
+    std::uint32_t id() const { return mId; }
+
+private:
+    std::uint32_t mId = 0;
+    glm::ivec2 mSize{0};
+};
+
+} // namespace gl

@@ -1,0 +1,73 @@
+// GLSL programs from embedded sources with #include and per-variant defines.
+#pragma once
+
+#include "engine/core/Result.h"
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace gl {
+
+/** One embedded GLSL file: its path under a shaders/ folder and its text. */
+struct ShaderFile {
+    const char* name;
+    const char* source;
+};
+
+/** Named GLSL sources (embedded at build time); resolves `#include "name"` recursively. */
+class ShaderLibrary {
+public:
+    void add(std::span<const ShaderFile> files);
+    /** `name` with includes expanded, `#version 450 core` and `defines` prepended. Fails on
+     *  a missing file or an include cycle, naming the chain. */
+    core::Result<std::string> assemble(const std::string& name,
+                                       const std::vector<std::string>& defines) const;
+
+private:
+    std::map<std::string, std::string> mFiles;
+};
+
+class Program {
+public:
+    Program() = default;
+    ~Program();
+    Program(Program&& other) noexcept;
+    Program& operator=(Program&& other) noexcept;
+    Program(const Program&) = delete;
+    Program& operator=(const Program&) = delete;
+
+    /** A compute program from `name`. Errors name the shader and carry the compiler log. */
+    static core::Result<Program> compute(const ShaderLibrary& library, const std::string& name,
+                                         const std::vector<std::string>& defines = {});
+    /** A vertex + fragment program. */
+    static core::Result<Program> graphics(const ShaderLibrary& library, const std::string& vertex,
+                                          const std::string& fragment,
+                                          const std::vector<std::string>& defines = {});
+
+    void use() const;
+    /** Uniform setters by name; the program must be in use. Unknown names are ignored (the
+     *  compiler may drop unused uniforms). */
+    void set(const char* name, int value) const;
+    void set(const char* name, float value) const;
+    void set(const char* name, const glm::vec2& value) const;
+    void set(const char* name, const glm::vec3& value) const;
+    void set(const char* name, const glm::vec4& value) const;
+    void set(const char* name, const glm::ivec2& value) const;
+    void set(const char* name, const glm::mat3& value) const;
+    void set(const char* name, const glm::mat4& value) const;
+
+    std::uint32_t id() const { return mId; }
+    explicit operator bool() const { return mId != 0; }
+
+private:
+    int location(const char* name) const;
+    std::uint32_t mId = 0;
+    mutable std::unordered_map<std::string, int> mLocations;
+};
+
+} // namespace gl

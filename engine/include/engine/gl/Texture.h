@@ -1,0 +1,56 @@
+// RAII GL 2D texture with immutable storage.
+#pragma once
+
+#include "engine/gl/Types.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace gl {
+
+struct TextureDesc {
+    glm::ivec2 size{1, 1};
+    Format format = Format::RGBA8;
+    int levels = 1; ///< mip levels; 0 means the full chain
+    bool operator==(const TextureDesc&) const = default;
+};
+
+class Texture {
+public:
+    Texture() = default;
+    /** Allocates storage; the size must be within the context's GL_MAX_TEXTURE_SIZE (checked:
+     *  use validateSize() first for data from files). */
+    explicit Texture(const TextureDesc& desc);
+    ~Texture();
+    Texture(Texture&& other) noexcept;
+    Texture& operator=(Texture&& other) noexcept;
+    Texture(const Texture&) = delete;
+    Texture& operator=(const Texture&) = delete;
+
+    /** Uploads a whole level: `data` holds rows bottom to top in the texture's format
+     *  (RGBA8/SRGB8_A8: 4 bytes per texel; float formats: floats, RGBA16F takes float RGBA). */
+    void upload(int level, const void* data);
+    void generateMipmaps();
+    void setSampling(Filter filter, Wrap wrap);
+    /** Reads a level back as RGBA float (colour formats) or depth float (synchronises). */
+    std::vector<float> downloadFloat(int level = 0) const;
+    /** Reads an 8-bit colour level back as RGBA bytes (synchronises). */
+    std::vector<std::uint8_t> downloadRgba8(int level = 0) const;
+
+    std::uint32_t id() const { return mId; }
+    const TextureDesc& desc() const { return mDesc; }
+    glm::ivec2 size(int level = 0) const;
+    int levels() const { return mDesc.levels; }
+    explicit operator bool() const { return mId != 0; }
+
+    /** GL_MAX_TEXTURE_SIZE of the current context. */
+    static int maxSize();
+
+private:
+    std::uint32_t mId = 0;
+    TextureDesc mDesc;
+};
+
+} // namespace gl

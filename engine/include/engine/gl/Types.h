@@ -1,0 +1,26 @@
+// GL-free enums shared by the GL wrappers and their users (frame graph, renderer).
+#pragma once
+
+#include <cstdint>
+
+namespace gl {
+
+enum class Format : std::uint8_t {
+    RGBA8,       ///< linear 8-bit
+    SRGB8_A8,    ///< sRGB-encoded 8-bit
+    RGBA16F,
+    RGBA32F,
+    R32F,
+    RG32F,
+    R32UI,
+    Depth32F,
+};
+
+/** Bytes per texel of a format. */
+int bytesPerTexel(Format format);
+bool isDepth(Format format);
+
+enum class Filter : std::uint8_t { Nearest, Linear, LinearMipmap };
+enum class Wrap : std::uint8_t { Repeat, Clamp, MirroredRepeat };
+
+} // namespace gl

@@ -1,0 +1,57 @@
+// GPU deformation: morph (base + sum of weighted deltas), then skin (blend of skin matrices by
+// up to 8 influences); normals by the inverse transpose of the blended matrix. One thread per
+// vertex; writes the one deformed vertex buffer every later pass reads.
+#include "common/vertex.glsl"
+
+layout(local_size_x = 64) in;
+
+struct Influence {
+    uvec4 joints0;
+    uvec4 joints1;
+    vec4 weights0;
+    vec4 weights1;
+};
+
+layout(std430, binding = 0) readonly buffer Rest { DeformedVertex rest[]; };
+layout(std430, binding = 1) readonly buffer Influences { Influence influences[]; };
+layout(std430, binding = 2) readonly buffer MorphDeltas { vec4 deltas[]; }; // [target][vertex][3]
+layout(std430, binding = 3) readonly buffer MorphWeights { float weights[]; };
+layout(std430, binding = 4) readonly buffer SkinMatrices { mat4 skin[]; };
+layout(std430, binding = 5) writeonly buffer Deformed { DeformedVertex deformed[]; };
+
+uniform int uVertexCount;
+uniform int uTargetCount;
+uniform int uSkinned; // 0: rest space is the mesh node's space
+
+void main() {
+    uint v = gl_GlobalInvocationID.x;
+    if (v >= uint(uVertexCount))
+        return;
+    vec3 position = rest[v].position.xyz;
+    vec3 normal = rest[v].normal.xyz;
+    vec3 tangent = rest[v].tangent.xyz;
+    for (uint t = 0u; t < uint(uTargetCount); ++t) {
+        float w = weights[t];
+        if (w == 0.0)
+            continue;
+        uint base = (t * uint(uVertexCount) + v) * 3u;
+        position += w * deltas[base].xyz;
+        normal += w * deltas[base + 1u].xyz;
+        tangent += w * deltas[base + 2u].xyz;
+    }
+    mat4 blend = mat4(1.0);
+    if (uSkinned != 0) {
+        Influence inf = influences[v];
+        blend = inf.weights0.x * skin[inf.joints0.x] + inf.weights0.y * skin[inf.joints0.y] +
+                inf.weights0.z * skin[inf.joints0.z] + inf.weights0.w * skin[inf.joints0.w] +
+                inf.weights1.x * skin[inf.joints1.x] + inf.weights1.y * skin[inf.joints1.y] +
+                inf.weights1.z * skin[inf.joints1.z] + inf.weights1.w * skin[inf.joints1.w];
+    }
+    mat3 linear = mat3(blend);
+    mat3 normalMatrix = transpose(inverse(linear));
+    vec3 n = normalMatrix * normal;
+    vec3 t3 = linear * tangent;
+    deformed[v].position = vec4((blend * vec4(position, 1.0)).xyz, 1.0);
+    deformed[v].normal = vec4(length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0), 0.0);
+    deformed[v].tangent = vec4(length(t3) > 0.0 ? normalize(t3) : vec3(1.0, 0.0, 0.0), rest[v].tangent.w);
+}

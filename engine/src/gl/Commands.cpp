@@ -1,0 +1,110 @@
+// Pipeline state, draws, dispatches, bindings and barriers.
+#include "engine/gl/Commands.h"
+
+#include <epoxy/gl.h>
+
+namespace gl {
+
+void apply(const PipelineState& s) {
+    if (s.cull == Cull::None) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(s.cull == Cull::Back ? GL_BACK : GL_FRONT);
+    }
+    if (s.depthTest)
+        glEnable(GL_DEPTH_TEST);
+    else
+        glDisable(GL_DEPTH_TEST);
+    glDepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
+    static const GLenum funcs[] = {GL_ALWAYS, GL_LESS, GL_LEQUAL, GL_GREATER, GL_GEQUAL, GL_EQUAL};
+    glDepthFunc(funcs[int(s.depthFunc)]);
+    if (s.blend == Blend::None) {
+        glDisable(GL_BLEND);
+    } else {
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        if (s.blend == Blend::Alpha)
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        else
+            glBlendFunc(GL_ONE, GL_ONE);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void viewport(glm::ivec2 origin, glm::ivec2 size) { glViewport(origin.x, origin.y, size.x, size.y); }
+
+void clearColor(int index, const glm::vec4& color) {
+    glColorMaski(GLuint(index), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearBufferfv(GL_COLOR, index, &color.x);
+}
+
+void clearDepth(float depth) {
+    glDepthMask(GL_TRUE);
+    glClearBufferfv(GL_DEPTH, 0, &depth);
+}
+
+void drawIndexed(std::uint32_t indexCount) {
+    glDrawElements(GL_TRIANGLES, GLsizei(indexCount), GL_UNSIGNED_INT, nullptr);
+}
+
+void drawArrays(std::uint32_t vertexCount) { glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertexCount)); }
+
+void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) { glDispatchCompute(x, y, z); }
+
+void bindStorage(std::uint32_t binding, const Buffer& buffer) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
+}
+
+void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset, std::size_t bytes) {
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer.id(), GLintptr(offset), GLsizeiptr(bytes));
+}
+
+void bindTexture(std::uint32_t unit, const Texture& texture) { glBindTextureUnit(unit, texture.id()); }
+
+void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write) {
+    GLenum format = GL_RGBA32F;
+    switch (texture.desc().format) {
+    case Format::RGBA16F:
+        format = GL_RGBA16F;
+        break;
+    case Format::R32F:
+        format = GL_R32F;
+        break;
+    case Format::RG32F:
+        format = GL_RG32F;
+        break;
+    case Format::R32UI:
+        format = GL_R32UI;
+        break;
+    case Format::RGBA8:
+        format = GL_RGBA8;
+        break;
+    default:
+        break;
+    }
+    glBindImageTexture(unit, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY, format);
+}
+
+void memoryBarrier(std::uint32_t b) {
+    GLbitfield bits = 0;
+    if (b & BarrierStorage)
+        bits |= GL_SHADER_STORAGE_BARRIER_BIT;
+    if (b & BarrierVertex)
+        bits |= GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
+                GL_SHADER_STORAGE_BARRIER_BIT;
+    if (b & BarrierTexture)
+        bits |= GL_TEXTURE_FETCH_BARRIER_BIT;
+    if (b & BarrierImage)
+        bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    if (b & BarrierFramebuffer)
+        bits |= GL_FRAMEBUFFER_BARRIER_BIT;
+    if (b == BarrierAll)
+        bits = GL_ALL_BARRIER_BITS;
+    glMemoryBarrier(bits);
+}
+
+void finish() { glFinish(); }
+
+} // namespace gl

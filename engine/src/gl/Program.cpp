@@ -1,0 +1,191 @@
+// Shader assembly (#include, defines) and program compilation/linking.
+#include "engine/gl/Program.h"
+
+#include <epoxy/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <sstream>
+#include <utility>
+
+namespace gl {
+namespace {
+
+core::Status expand(const std::map<std::string, std::string>& files, const std::string& name,
+                    std::vector<std::string>& stack, std::string& out) {
+    const auto it = files.find(name);
+    if (it == files.end()) {
+        std::string chain;
+        for (const auto& s : stack)
+            chain += s + " -> ";
+        return core::Error{"gl::ShaderLibrary: no shader file '" + name + "'" +
+                           (stack.empty() ? "" : " (included from " + chain + name + ")")};
+    }
+    for (const auto& s : stack)
+        if (s == name)
+            return core::Error{"gl::ShaderLibrary: include cycle through '" + name + "'"};
+    stack.push_back(name);
+    std::istringstream in(it->second);
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        const auto start = line.find_first_not_of(" \t");
+        if (start != std::string::npos && line.compare(start, 8, "#include") == 0) {
+            const auto open = line.find('"', start);
+            const auto close = line.find('"', open + 1);
+            if (open == std::string::npos || close == std::string::npos)
+                return core::Error{"gl::ShaderLibrary: " + name + ":" + std::to_string(number) +
+                                   ": malformed #include"};
+            auto status = expand(files, line.substr(open + 1, close - open - 1), stack, out);
+            if (!status)
+                return status;
+            continue;
+        }
+        out += line;
+        out += '\n';
+    }
+    stack.pop_back();
+    return {};
+}
+
+core::Result<std::uint32_t> compile(GLenum stage, const std::string& name, const std::string& source) {
+    const GLuint shader = glCreateShader(stage);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader, length, nullptr, log.data());
+        glDeleteShader(shader);
+        return core::Error{"gl::Program: " + name + " does not compile: " + log};
+    }
+    return std::uint32_t(shader);
+}
+
+core::Status link(const std::string& name, std::vector<std::uint32_t> shaders, std::uint32_t& out) {
+    out = glCreateProgram();
+    for (std::uint32_t s : shaders)
+        glAttachShader(out, s);
+    glLinkProgram(out);
+    for (std::uint32_t s : shaders)
+        glDeleteShader(s);
+    GLint ok = 0;
+    glGetProgramiv(out, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(out, GL_INFO_LOG_LENGTH, &length);
+        std::string log(std::size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(out, length, nullptr, log.data());
+        glDeleteProgram(out);
+        out = 0;
+        return core::Error{"gl::Program: " + name + " does not link: " + log};
+    }
+    return {};
+}
+
+} // namespace
+
+void ShaderLibrary::add(std::span<const ShaderFile> files) {
+    for (const ShaderFile& f : files)
+        mFiles[f.name] = f.source;
+}
+
+core::Result<std::string> ShaderLibrary::assemble(const std::string& name,
+                                                  const std::vector<std::string>& defines) const {
+    std::string out = "#version 450 core\n";
+    for (const std::string& d : defines)
+        out += "#define " + d + "\n";
+    out += "#line 1\n";
+    std::vector<std::string> stack;
+    auto status = expand(mFiles, name, stack, out);
+    if (!status)
+        return status.error();
+    return out;
+}
+
+Program::~Program() {
+    if (mId)
+        glDeleteProgram(mId);
+}
+
+Program::Program(Program&& o) noexcept : mId(std::exchange(o.mId, 0)), mLocations(std::move(o.mLocations)) {}
+
+Program& Program::operator=(Program&& o) noexcept {
+    if (this != &o) {
+        if (mId)
+            glDeleteProgram(mId);
+        mId = std::exchange(o.mId, 0);
+        mLocations = std::move(o.mLocations);
+    }
+    return *this;
+}
+
+core::Result<Program> Program::compute(const ShaderLibrary& library, const std::string& name,
+                                       const std::vector<std::string>& defines) {
+    auto source = library.assemble(name, defines);
+    if (!source)
+        return source.error();
+    auto shader = compile(GL_COMPUTE_SHADER, name, *source);
+    if (!shader)
+        return shader.error();
+    std::uint32_t id = 0;
+    auto linked = link(name, {*shader}, id);
+    if (!linked)
+        return linked.error();
+    Program program;
+    program.mId = id;
+    return program;
+}
+
+core::Result<Program> Program::graphics(const ShaderLibrary& library, const std::string& vertex,
+                                        const std::string& fragment,
+                                        const std::vector<std::string>& defines) {
+    auto vs = library.assemble(vertex, defines);
+    if (!vs)
+        return vs.error();
+    auto fs = library.assemble(fragment, defines);
+    if (!fs)
+        return fs.error();
+    auto v = compile(GL_VERTEX_SHADER, vertex, *vs);
+    if (!v)
+        return v.error();
+    auto f = compile(GL_FRAGMENT_SHADER, fragment, *fs);
+    if (!f) {
+        glDeleteShader(*v);
+        return f.error();
+    }
+    std::uint32_t id = 0;
+    auto linked = link(vertex + " + " + fragment, {*v, *f}, id);
+    if (!linked)
+        return linked.error();
+    Program program;
+    program.mId = id;
+    return program;
+}
+
+void Program::use() const { glUseProgram(mId); }
+
+int Program::location(const char* name) const {
+    const auto it = mLocations.find(name);
+    if (it != mLocations.end())
+        return it->second;
+    const int location = glGetUniformLocation(mId, name);
+    mLocations.emplace(name, location);
+    return location;
+}
+
+void Program::set(const char* n, int v) const { glProgramUniform1i(mId, location(n), v); }
+void Program::set(const char* n, float v) const { glProgramUniform1f(mId, location(n), v); }
+void Program::set(const char* n, const glm::vec2& v) const { glProgramUniform2fv(mId, location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(mId, location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(mId, location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::ivec2& v) const { glProgramUniform2iv(mId, location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::mat3& v) const { glProgramUniformMatrix3fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::mat4& v) const { glProgramUniformMatrix4fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v)); }
+
+} // namespace gl

@@ -1,0 +1,75 @@
+// The GPU deform pass against the CPU reference: every skinned or morphing model, several times.
+#include "support/GlTest.h"
+#include "support/TestSupport.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/deform/CpuDeformer.h"
+#include "engine/deform/GpuDeformer.h"
+
+#include <fstream>
+
+namespace {
+
+class GpuDeform : public test::GlTest {
+protected:
+    /** Max position error over the bounding-box diagonal and max normal angle error
+     *  (1 - cos) at `clip`/`times`. */
+    void compare(const scene::Model& model, int clip, const std::vector<double>& times) {
+        auto deformer = deform::GpuDeformer::create(model, shaders());
+        ASSERT_TRUE(deformer.ok()) << deformer.error().message;
+        for (double time : times) {
+            const anim::Pose pose = anim::evaluate(model, clip, time);
+            (*deformer)->update(pose);
+            const auto cpu = deform::deformScene(model, pose);
+            ASSERT_EQ(cpu.size(), (*deformer)->instances().size());
+            for (std::size_t i = 0; i < cpu.size(); ++i)
+                for (std::size_t p = 0; p < cpu[i].primitives.size(); ++p) {
+                    const auto gpu = (*deformer)->download(i, p);
+                    const auto& ref = cpu[i].primitives[p];
+                    glm::dvec3 lo(1e300), hi(-1e300);
+                    for (const auto& v : ref.positions) {
+                        lo = glm::min(lo, v);
+                        hi = glm::max(hi, v);
+                    }
+                    const double diagonal = std::max(glm::length(hi - lo), 1e-12);
+                    double position = 0.0, normal = 0.0;
+                    for (std::size_t v = 0; v < ref.positions.size(); ++v) {
+                        position = std::max(position, glm::length(gpu.positions[v] - ref.positions[v]));
+                        normal = std::max(normal, glm::length(gpu.normals[v] - ref.normals[v]));
+                    }
+                    SCOPED_TRACE(model.sourceName + " t=" + std::to_string(time) + " instance " +
+                                 std::to_string(i) + " primitive " + std::to_string(p));
+                    EXPECT_LE(position / diagonal, 1e-4);
+                    EXPECT_LE(normal, 1e-3);
+                }
+        }
+    }
+};
+
+TEST_F(GpuDeform, TwoJointModelMatchesCpu) {
+    test::TempDir dir;
+    auto model = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
+    ASSERT_TRUE(model.ok());
+    compare(*model, 0, {0.0, 0.3, 0.77, 1.0});
+}
+
+TEST_F(GpuDeform, EverySharedSkinnedOrMorphingModelMatchesCpu) {
+    GLASS_REQUIRE_SHARED();
+    std::ifstream in(test::sharedDir() / "assets/INVENTORY.json");
+    const auto inventory = nlohmann::json::parse(in);
+    int compared = 0;
+    for (const auto& entry : inventory["models"]) {
+        if (entry["skins"] == 0 && entry["morph_primitives"] == 0)
+            continue;
+        auto model = asset::loadGltf(test::sharedDir() / "assets" / entry["file"].get<std::string>());
+        ASSERT_TRUE(model.ok()) << model.error().message;
+        const int clip = model->animations.empty() ? -1 : 0;
+        const double duration = clip < 0 ? 0.0 : model->animations[0].duration;
+        compare(*model, clip, {0.0, 0.37 * duration, 0.81 * duration, duration});
+        ++compared;
+    }
+    EXPECT_GE(compared, 7);
+}
+
+} // namespace
