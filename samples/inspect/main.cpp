@@ -7,6 +7,10 @@
 #include "engine/asset/GltfLoader.h"
 #include "engine/core/Files.h"
 #include "engine/deform/CpuDeformer.h"
+#include "engine/deform/GpuDeformer.h"
+#include "engine/gl/Context.h"
+#include "engine/gl/Debug.h"
+#include "engine/gl/Shaders.h"
 
 #include <cmath>
 #include <cstdio>
@@ -17,7 +21,7 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: glass-inspect MODEL [--json]
-       glass-inspect MODEL --vertices cpu --out FILE.ply [--time T] [--clip C] [--ascii]
+       glass-inspect MODEL --vertices cpu|gpu --out FILE.ply [--time T] [--clip C] [--ascii]
 
 Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
 animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
@@ -28,6 +32,7 @@ _volume, _ior, _dispersion) of a .gltf or .glb file.
                   max_morph_targets, animations, animation_list)
   --vertices cpu  deform the model on the CPU (double-precision reference: morph, then skin)
                   and write its vertices to --out
+  --vertices gpu  the same through the engine's GPU deform pass (headless EGL context), read back
   --out FILE.ply  PLY file to write (atomically: no partial file on failure)
   --time T        clip time in seconds (default 0)
   --clip C        clip name or index (default: the first clip; the rest pose if none)
@@ -100,9 +105,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
     }
     if (o.model.empty())
         return usageError("no model given");
-    if (o.vertices && *o.vertices != "cpu")
-        return usageError("--vertices takes 'cpu' (the GPU path arrives with the GPU engine), got '" +
-                          *o.vertices + "'");
+    if (o.vertices && *o.vertices != "cpu" && *o.vertices != "gpu")
+        return usageError("--vertices takes 'cpu' or 'gpu', got '" + *o.vertices + "'");
     if (o.vertices.has_value() != o.out.has_value())
         return usageError("--vertices and --out go together");
     if (o.json && o.vertices)
@@ -153,6 +157,27 @@ void printText(const scene::Model& model) {
         std::printf("  cameras %zu\n", model.cameras.size());
 }
 
+/** The GPU deform pass's result for `pose`, per mesh node and primitive (mesh-node space). */
+core::Result<std::vector<std::vector<deform::DeformedPrimitive>>> deformOnGpu(const scene::Model& model,
+                                                                             const anim::Pose& pose) {
+    auto context = gl::createHeadlessContext();
+    if (!context)
+        return context.error();
+    gl::ShaderLibrary shaders;
+    shaders.add(engineShaderFiles());
+    auto deformer = deform::GpuDeformer::create(model, shaders);
+    if (!deformer)
+        return deformer.error();
+    (*deformer)->update(pose);
+    std::vector<std::vector<deform::DeformedPrimitive>> result((*deformer)->instances().size());
+    for (std::size_t i = 0; i < result.size(); ++i)
+        for (std::size_t p = 0; p < (*deformer)->instances()[i].primitives.size(); ++p)
+            result[i].push_back((*deformer)->download(i, p));
+    if (gl::checkErrors("glass-inspect --vertices gpu") > 0 || gl::errorCount() > 0)
+        return core::Error{"glass-inspect: GL errors during GPU deformation (see log)"};
+    return result;
+}
+
 int writeVertices(const scene::Model& model, const Options& o) {
     int clip = model.animations.empty() ? -1 : 0;
     if (o.clip) {
@@ -162,7 +187,16 @@ int writeVertices(const scene::Model& model, const Options& o) {
         clip = *found;
     }
     const anim::Pose pose = anim::evaluate(model, clip, o.time);
-    const auto instances = deform::deformScene(model, pose);
+    auto instances = deform::deformScene(model, pose);
+    if (*o.vertices == "gpu") {
+        auto gpu = deformOnGpu(model, pose);
+        if (!gpu) {
+            std::fprintf(stderr, "glass-inspect: %s\n", gpu.error().message.c_str());
+            return 1;
+        }
+        for (std::size_t i = 0; i < instances.size(); ++i)
+            instances[i].primitives = std::move((*gpu)[i]);
+    }
     std::vector<deform::DeformedPrimitive> world;
     std::vector<std::string> labels;
     for (const auto& instance : instances)
@@ -176,7 +210,7 @@ int writeVertices(const scene::Model& model, const Options& o) {
         blocks.push_back({labels[i], &world[i]});
     const std::string comment = "glass-inspect " + model.sourceName + " clip " +
                                 std::to_string(clip) + " time " + std::to_string(o.time) +
-                                " vertices cpu, world space";
+                                " vertices " + *o.vertices + ", world space";
     const core::Status written = core::writeFileAtomic(*o.out, inspect::makePly(blocks, comment, o.ascii));
     if (!written) {
         std::fprintf(stderr, "glass-inspect: %s\n", written.error().message.c_str());

@@ -130,6 +130,22 @@ TEST(InspectTool, PlyHoldsTheCpuDeformation) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
 }
 
+TEST(InspectTool, GpuPlyMatchesCpuPly) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "twojoint");
+    std::string out;
+    const std::string base = kInspect + " " + path.string() + " --time 0.6 --out ";
+    ASSERT_EQ(test::runCommand(base + (dir / "cpu.ply").string() + " --vertices cpu", &out), 0) << out;
+    const int gpuStatus = test::runCommand(base + (dir / "gpu.ply").string() + " --vertices gpu", &out);
+    if (gpuStatus != 0 && out.find("no headless OpenGL") != std::string::npos)
+        GTEST_SKIP() << out;
+    ASSERT_EQ(gpuStatus, 0) << out;
+    const Ply cpu = readPly(dir / "cpu.ply"), gpu = readPly(dir / "gpu.ply");
+    ASSERT_EQ(cpu.count, gpu.count);
+    for (std::size_t i = 0; i < cpu.values.size(); ++i)
+        EXPECT_NEAR(cpu.values[i], gpu.values[i], 1e-5f) << i;
+}
+
 TEST(InspectTool, CesiumManPlyHasEveryVertex) {
     GLASS_REQUIRE_SHARED();
     test::TempDir dir;

@@ -10,13 +10,6 @@
 
 namespace gl {
 
-struct TextureDesc {
-    glm::ivec2 size{1, 1};
-    Format format = Format::RGBA8;
-    int levels = 1; ///< mip levels; 0 means the full chain
-    bool operator==(const TextureDesc&) const = default;
-};
-
 class Texture {
 public:
     Texture() = default;

@@ -1,0 +1,296 @@
+// Frame graph: versioned resource nodes, culling, ordering, lifetimes, execution.
+#include "engine/fg/FrameGraph.h"
+
+#include "engine/core/Check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+namespace fg {
+
+struct FrameGraph::Pass {
+    std::string name;
+    std::vector<std::uint32_t> reads;   // nodes
+    std::vector<std::uint32_t> writes;  // nodes (new versions)
+    std::vector<std::uint32_t> creates; // resources
+    std::vector<std::string> after;
+    bool sideEffect = false;
+    bool culled = false;
+    std::function<void(const Resources&, gl::Context&)> execute;
+};
+
+struct FrameGraph::Resource {
+    std::string name;
+    gl::TextureDesc desc;
+    bool imported = false;
+    void* object = nullptr; // imported object, or the pooled one while alive
+    std::uint32_t latestNode = UINT32_MAX;
+    int firstUse = -1, lastUse = -1; // positions in mOrder
+};
+
+struct FrameGraph::Node {
+    std::uint32_t resource;
+    std::uint32_t version;
+    std::uint32_t writer; // pass, UINT32_MAX for version 0
+};
+
+FrameGraph::FrameGraph(TexturePool& pool) : mPool(pool) {}
+FrameGraph::~FrameGraph() = default;
+
+std::uint32_t FrameGraph::addPassNode(const std::string& name) {
+    ENGINE_CHECK(!mCompiled, "addPass() after compile()");
+    mPasses.push_back(Pass{});
+    mPasses.back().name = name;
+    return std::uint32_t(mPasses.size() - 1);
+}
+
+void FrameGraph::setExecute(std::uint32_t pass, std::function<void(const Resources&, gl::Context&)> fn) {
+    mPasses[pass].execute = std::move(fn);
+}
+
+std::uint32_t FrameGraph::addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer) {
+    mNodes.push_back(Node{resource, version, writer});
+    const auto node = std::uint32_t(mNodes.size() - 1);
+    if (mResources[resource].latestNode == UINT32_MAX || version > mNodes[mResources[resource].latestNode].version)
+        mResources[resource].latestNode = node;
+    return node;
+}
+
+std::string FrameGraph::nodeName(std::uint32_t node) const {
+    const Node& n = mNodes[node];
+    return "'" + mResources[n.resource].name + "' (version " + std::to_string(n.version) + ")";
+}
+
+TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc, void* object) {
+    ENGINE_CHECK(!mCompiled, "importTexture() after compile()");
+    mResources.push_back(Resource{name, desc, true, object});
+    return TextureHandle{addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX)};
+}
+
+TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
+    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, nullptr});
+    const auto resource = std::uint32_t(mGraph.mResources.size() - 1);
+    mGraph.mPasses[mPass].creates.push_back(resource);
+    return TextureHandle{mGraph.addNode(resource, 0, UINT32_MAX)};
+}
+
+TextureHandle Builder::read(TextureHandle handle) {
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "read() of an invalid handle");
+    mGraph.mPasses[mPass].reads.push_back(handle.node);
+    return handle;
+}
+
+TextureHandle Builder::write(TextureHandle handle) {
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "write() of an invalid handle");
+    const FrameGraph::Node previous = mGraph.mNodes[handle.node];
+    // A written version keeps the previous content (draws accumulate), so writing on top of a
+    // written or imported version also reads it.
+    if (previous.version > 0 || mGraph.mResources[previous.resource].imported)
+        mGraph.mPasses[mPass].reads.push_back(handle.node);
+    const std::uint32_t node = mGraph.addNode(previous.resource, previous.version + 1, mPass);
+    mGraph.mPasses[mPass].writes.push_back(node);
+    return TextureHandle{node};
+}
+
+void Builder::sideEffect() { mGraph.mPasses[mPass].sideEffect = true; }
+
+void Builder::after(const std::string& pass) { mGraph.mPasses[mPass].after.push_back(pass); }
+
+void* Resources::object(TextureHandle handle) const {
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "invalid texture handle");
+    void* object = mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
+    ENGINE_CHECK(object != nullptr, "texture used by a pass that did not declare it");
+    return object;
+}
+
+const gl::TextureDesc& Resources::desc(TextureHandle handle) const {
+    return mGraph.mResources[mGraph.mNodes[handle.node].resource].desc;
+}
+
+core::Status FrameGraph::compile() {
+    const std::string where = "fg::FrameGraph::compile(): ";
+    const auto passCount = std::uint32_t(mPasses.size());
+    // 1. Validity of every read and write.
+    for (const Pass& pass : mPasses) {
+        for (std::uint32_t node : pass.reads) {
+            const Node& n = mNodes[node];
+            if (n.version == 0 && !mResources[n.resource].imported)
+                return core::Error{where + "pass '" + pass.name + "' reads " + nodeName(node) +
+                                   ", which no pass writes"};
+        }
+    }
+    for (std::uint32_t later = 0; later < mNodes.size(); ++later)
+        for (std::uint32_t earlier = 0; earlier < later; ++earlier) {
+            const Node& n = mNodes[later];
+            if (mNodes[earlier].resource == n.resource && mNodes[earlier].version == n.version)
+                return core::Error{where + "pass '" + mPasses[n.writer].name +
+                                   "' writes an outdated version of '" + mResources[n.resource].name +
+                                   "' (version " + std::to_string(n.version - 1) + " was already written on)"};
+        }
+    // 2. Dependency edges: writer of a read version -> reader; readers of a version -> the
+    //    writer of the next version; explicit after().
+    //    Only data edges and after() keep a pass alive (`consumes`); all of them order.
+    std::vector<std::vector<std::uint32_t>> successors(passCount);
+    std::vector<std::vector<std::uint32_t>> consumes(passCount);
+    auto edge = [&](std::uint32_t from, std::uint32_t to, bool data) {
+        if (from == to || from == UINT32_MAX)
+            return;
+        successors[from].push_back(to);
+        if (data)
+            consumes[to].push_back(from);
+    };
+    for (std::uint32_t p = 0; p < passCount; ++p) {
+        for (std::uint32_t node : mPasses[p].reads) {
+            edge(mNodes[node].writer, p, true);
+            for (std::uint32_t q = 0; q < passCount; ++q) // readers before the next writer
+                for (std::uint32_t w : mPasses[q].writes)
+                    if (mNodes[w].resource == mNodes[node].resource &&
+                        mNodes[w].version == mNodes[node].version + 1)
+                        edge(p, q, false);
+        }
+        for (const std::string& name : mPasses[p].after) {
+            const auto it = std::find_if(mPasses.begin(), mPasses.end(), [&](const Pass& x) { return x.name == name; });
+            if (it == mPasses.end())
+                return core::Error{where + "pass '" + mPasses[p].name + "' runs after '" + name +
+                                   "', which is not a pass of this graph"};
+            edge(std::uint32_t(it - mPasses.begin()), p, true);
+        }
+    }
+    // 3. Culling: keep side-effect passes and writers of imported resources, then everything
+    //    they depend on.
+    std::vector<bool> needed(passCount, false);
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t p = 0; p < passCount; ++p) {
+        bool root = mPasses[p].sideEffect;
+        for (std::uint32_t w : mPasses[p].writes)
+            root = root || mResources[mNodes[w].resource].imported;
+        if (root) {
+            needed[p] = true;
+            stack.push_back(p);
+        }
+    }
+    while (!stack.empty()) {
+        const std::uint32_t p = stack.back();
+        stack.pop_back();
+        for (std::uint32_t q : consumes[p])
+            if (!needed[q]) {
+                needed[q] = true;
+                stack.push_back(q);
+            }
+    }
+    for (std::uint32_t p = 0; p < passCount; ++p)
+        mPasses[p].culled = !needed[p];
+    // 4. Order (Kahn, lowest declaration index first); what remains forms a cycle.
+    std::vector<int> inDegree(passCount, 0);
+    for (std::uint32_t p = 0; p < passCount; ++p)
+        if (needed[p])
+            for (std::uint32_t q : successors[p])
+                if (needed[q])
+                    ++inDegree[q];
+    mOrder.clear();
+    std::vector<bool> done(passCount, false);
+    for (;;) {
+        std::uint32_t next = UINT32_MAX;
+        for (std::uint32_t p = 0; p < passCount && next == UINT32_MAX; ++p)
+            if (needed[p] && !done[p] && inDegree[p] == 0)
+                next = p;
+        if (next == UINT32_MAX)
+            break;
+        done[next] = true;
+        mOrder.push_back(next);
+        for (std::uint32_t q : successors[next])
+            if (needed[q])
+                --inDegree[q];
+    }
+    std::string cycle;
+    for (std::uint32_t p = 0; p < passCount; ++p)
+        if (needed[p] && !done[p])
+            cycle += (cycle.empty() ? "'" : ", '") + mPasses[p].name + "'";
+    if (!cycle.empty())
+        return core::Error{where + "the passes " + cycle + " depend on each other in a cycle"};
+    // 5. Lifetimes of transients over the execution order.
+    for (Resource& r : mResources)
+        r.firstUse = r.lastUse = -1;
+    for (std::size_t i = 0; i < mOrder.size(); ++i) {
+        const Pass& pass = mPasses[mOrder[i]];
+        auto touch = [&](std::uint32_t resource) {
+            Resource& r = mResources[resource];
+            if (r.firstUse < 0)
+                r.firstUse = int(i);
+            r.lastUse = int(i);
+        };
+        for (std::uint32_t r : pass.creates)
+            touch(r);
+        for (std::uint32_t n : pass.reads)
+            touch(mNodes[n].resource);
+        for (std::uint32_t n : pass.writes)
+            touch(mNodes[n].resource);
+    }
+    mCompiled = true;
+    return {};
+}
+
+std::vector<PassTiming> FrameGraph::execute(gl::Context& context, PassObserver* observer) {
+    ENGINE_CHECK(mCompiled, "execute() before a successful compile()");
+    std::vector<PassTiming> timings;
+    const Resources resources(*this);
+    for (std::size_t i = 0; i < mOrder.size(); ++i) {
+        for (Resource& r : mResources)
+            if (!r.imported && r.firstUse == int(i))
+                r.object = mPool.acquire(r.desc);
+        Pass& pass = mPasses[mOrder[i]];
+        if (observer)
+            observer->beginPass(pass.name);
+        const auto start = std::chrono::steady_clock::now();
+        if (pass.execute)
+            pass.execute(resources, context);
+        const auto end = std::chrono::steady_clock::now();
+        if (observer)
+            observer->endPass(pass.name);
+        timings.push_back({pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
+        for (Resource& r : mResources)
+            if (!r.imported && r.lastUse == int(i)) {
+                mPool.release(r.object);
+                r.object = nullptr;
+            }
+    }
+    return timings;
+}
+
+std::vector<std::string> FrameGraph::executionOrder() const {
+    std::vector<std::string> names;
+    for (std::uint32_t p : mOrder)
+        names.push_back(mPasses[p].name);
+    return names;
+}
+
+std::string FrameGraph::dump() const {
+    std::ostringstream out;
+    out << "frame graph: " << mOrder.size() << " of " << mPasses.size() << " passes execute\n";
+    std::vector<std::uint32_t> listed = mOrder;
+    for (std::uint32_t p = 0; p < mPasses.size(); ++p)
+        if (mPasses[p].culled)
+            listed.push_back(p);
+    for (std::uint32_t p : listed) {
+        const Pass& pass = mPasses[p];
+        out << (pass.culled ? "  [culled] " : "  ") << pass.name << "\n";
+        for (std::uint32_t r : pass.creates)
+            out << "      creates '" << mResources[r].name << "' " << mResources[r].desc.size.x << "x"
+                << mResources[r].desc.size.y << "\n";
+        for (std::uint32_t n : pass.reads)
+            out << "      reads   " << nodeName(n) << "\n";
+        for (std::uint32_t n : pass.writes)
+            out << "      writes  " << nodeName(n) << "\n";
+    }
+    out << "transients:\n";
+    for (const Resource& r : mResources)
+        if (!r.imported)
+            out << "  '" << r.name << "' " << (r.firstUse < 0 ? std::string("unused")
+                                                              : "passes " + std::to_string(r.firstUse) + ".." +
+                                                                    std::to_string(r.lastUse))
+                << "\n";
+    return out.str();
+}
+
+} // namespace fg

@@ -1,0 +1,221 @@
+// Frame graph without a GL context: a fake allocator stands in for GPU textures.
+#include "engine/fg/Blackboard.h"
+#include "engine/fg/FrameGraph.h"
+#include "engine/gl/Context.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace {
+
+/** Hands out distinct fake objects and counts them. */
+class FakeAllocator final : public fg::TextureAllocator {
+public:
+    void* allocate(const gl::TextureDesc&) override {
+        ++allocations;
+        ++live;
+        return reinterpret_cast<void*>(std::uintptr_t(++next) * 16);
+    }
+    void release(void*) override { --live; }
+    int allocations = 0, live = 0;
+    std::uintptr_t next = 0;
+};
+
+/** A context that is never current: fg passes it through untouched. */
+class NoContext final : public gl::Context {
+public:
+    const std::string& description() const override { return mName; }
+    bool isHeadless() const override { return true; }
+    glm::ivec2 framebufferSize() const override { return {0, 0}; }
+
+private:
+    std::string mName = "none";
+};
+
+const gl::TextureDesc kColor{{64, 64}, gl::Format::RGBA16F, 1};
+
+struct One {
+    fg::TextureHandle out;
+};
+struct InOut {
+    fg::TextureHandle in, out;
+};
+
+TEST(FrameGraph, CulledPassNeverExecutes) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    NoContext context;
+    std::vector<std::string> ran;
+    const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+    const auto& a = graph.addPass<One>("a", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("a.out", kColor)); },
+                                       [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("a"); });
+    graph.addPass<One>("unused", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("unused.out", kColor)); },
+                       [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("unused"); });
+    graph.addPass<InOut>("present",
+                         [&](fg::Builder& b, InOut& d) {
+                             d.in = b.read(a.out);
+                             d.out = b.write(back);
+                         },
+                         [&](const fg::Resources& r, const InOut& d, gl::Context&) {
+                             EXPECT_NE(r.object(d.in), nullptr);
+                             ran.push_back("present");
+                         });
+    ASSERT_TRUE(graph.compile().ok());
+    graph.execute(context);
+    EXPECT_EQ(ran, (std::vector<std::string>{"a", "present"}));
+    EXPECT_NE(graph.dump().find("[culled] unused"), std::string::npos) << graph.dump();
+    EXPECT_EQ(allocator.allocations, 1); // the culled pass's texture is never allocated
+}
+
+TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    NoContext context;
+    // A chain t0 -> t1 -> t2 -> t3 of same-descriptor textures: pass i reads t(i-1) and writes t(i),
+    // so at most two are alive at once and the pool needs exactly two.
+    fg::TextureHandle previous;
+    for (int i = 0; i < 4; ++i) {
+        const auto& d = graph.addPass<InOut>(
+            "step" + std::to_string(i),
+            [&](fg::Builder& b, InOut& data) {
+                if (previous.valid())
+                    data.in = b.read(previous);
+                data.out = b.write(b.create("t" + std::to_string(i), kColor));
+                if (i == 3)
+                    b.sideEffect();
+            },
+            [](const fg::Resources&, const InOut&, gl::Context&) {});
+        previous = d.out;
+    }
+    ASSERT_TRUE(graph.compile().ok());
+    graph.execute(context);
+    EXPECT_EQ(pool.peakCount(), 2u);
+    EXPECT_EQ(allocator.allocations, 2);
+    EXPECT_EQ(pool.inUseCount(), 0u);
+
+    // A second frame reuses the pooled textures: no new allocation.
+    fg::FrameGraph again(pool);
+    again.addPass<One>("x", [&](fg::Builder& b, One& d) {
+        d.out = b.write(b.create("x", kColor));
+        b.sideEffect();
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    ASSERT_TRUE(again.compile().ok());
+    again.execute(context);
+    EXPECT_EQ(allocator.allocations, 2);
+    for (int frame = 0; frame < 10; ++frame)
+        pool.endFrame(8);
+    EXPECT_EQ(allocator.live, 0); // idle textures are eventually freed
+}
+
+TEST(FrameGraph, OrdersByDependencyNotDeclaration) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+    graph.addPass<One>("late", [&](fg::Builder& b, One& d) {
+        b.after("early");
+        d.out = b.write(back);
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>("early", [&](fg::Builder& b, One&) { b.sideEffect(); },
+                       [](const fg::Resources&, const One&, gl::Context&) {});
+    ASSERT_TRUE(graph.compile().ok());
+    EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"early", "late"}));
+}
+
+TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    fg::TextureHandle orphan;
+    graph.addPass<One>("maker", [&](fg::Builder& b, One&) { orphan = b.create("orphan", kColor); },
+                       [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>("reader", [&](fg::Builder& b, One&) {
+        b.read(orphan);
+        b.sideEffect();
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    const auto status = graph.compile();
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.error().message,
+              "fg::FrameGraph::compile(): pass 'reader' reads 'orphan' (version 0), which no pass writes");
+}
+
+TEST(FrameGraph, RejectsCycle) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    graph.addPass<One>("a", [&](fg::Builder& b, One&) {
+        b.after("b");
+        b.sideEffect();
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>("b", [&](fg::Builder& b, One&) { b.after("a"); },
+                       [](const fg::Resources&, const One&, gl::Context&) {});
+    const auto status = graph.compile();
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.error().message,
+              "fg::FrameGraph::compile(): the passes 'a', 'b' depend on each other in a cycle");
+}
+
+TEST(FrameGraph, RejectsUnknownAfterAndOutdatedWrite) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    {
+        fg::FrameGraph graph(pool);
+        graph.addPass<One>("p", [&](fg::Builder& b, One&) { b.after("ghost"); },
+                           [](const fg::Resources&, const One&, gl::Context&) {});
+        const auto status = graph.compile();
+        ASSERT_FALSE(status.ok());
+        EXPECT_NE(status.error().message.find("pass 'p' runs after 'ghost'"), std::string::npos);
+    }
+    {
+        fg::FrameGraph graph(pool);
+        const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+        graph.addPass<One>("w1", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+                           [](const fg::Resources&, const One&, gl::Context&) {});
+        graph.addPass<One>("w2", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+                           [](const fg::Resources&, const One&, gl::Context&) {});
+        const auto status = graph.compile();
+        ASSERT_FALSE(status.ok());
+        EXPECT_NE(status.error().message.find("pass 'w2' writes an outdated version of 'backbuffer'"),
+                  std::string::npos)
+            << status.error().message;
+    }
+}
+
+TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::FrameGraph graph(pool);
+    NoContext context;
+    const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+    const auto& first = graph.addPass<One>("draw", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+                                           [](const fg::Resources&, const One&, gl::Context&) {});
+    // Declared first but writes the next version: must wait for the reader of version 1.
+    graph.addPass<One>("overdraw", [&](fg::Builder& b, One& d) {
+        d.out = b.write(first.out);
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>("copy", [&](fg::Builder& b, One& d) {
+        b.read(first.out);
+        d.out = b.write(b.create("copy", kColor));
+        b.sideEffect();
+    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    ASSERT_TRUE(graph.compile().ok());
+    EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"draw", "copy", "overdraw"}));
+    const auto timings = graph.execute(context);
+    ASSERT_EQ(timings.size(), 3u);
+    EXPECT_GE(timings[0].cpuMs, 0.0);
+}
+
+TEST(Blackboard, TypedValues) {
+    fg::Blackboard board;
+    board.put("scene.color", fg::TextureHandle{3});
+    board.put("exposure", 1.5f);
+    EXPECT_EQ(board.get<fg::TextureHandle>("scene.color").node, 3u);
+    EXPECT_EQ(board.find<int>("exposure"), nullptr);
+    EXPECT_FLOAT_EQ(*board.find<float>("exposure"), 1.5f);
+    EXPECT_FALSE(board.contains("missing"));
+}
+
+} // namespace
