@@ -278,29 +278,29 @@ void VertexArray::bind() const { glBindVertexArray(mId); }
 
 // ---- TimerQuery
 
-TimerQuery::TimerQuery() { glCreateQueries(GL_TIME_ELAPSED, 1, &mId); }
+TimerQuery::TimerQuery() { glCreateQueries(GL_TIMESTAMP, 2, mIds); }
 
 TimerQuery::~TimerQuery() {
-    if (mId)
-        glDeleteQueries(1, &mId);
+    if (mIds[0])
+        glDeleteQueries(2, mIds);
 }
 
-TimerQuery::TimerQuery(TimerQuery&& o) noexcept : mId(std::exchange(o.mId, 0)), mIssued(o.mIssued) {}
+TimerQuery::TimerQuery(TimerQuery&& o) noexcept : mIssued(o.mIssued) {
+    std::swap(mIds, o.mIds);
+}
 
 TimerQuery& TimerQuery::operator=(TimerQuery&& o) noexcept {
     if (this != &o) {
-        if (mId)
-            glDeleteQueries(1, &mId);
-        mId = std::exchange(o.mId, 0);
-        mIssued = o.mIssued;
+        std::swap(mIds, o.mIds);
+        std::swap(mIssued, o.mIssued);
     }
     return *this;
 }
 
-void TimerQuery::begin() { glBeginQuery(GL_TIME_ELAPSED, mId); }
+void TimerQuery::begin() { glQueryCounter(mIds[0], GL_TIMESTAMP); }
 
 void TimerQuery::end() {
-    glEndQuery(GL_TIME_ELAPSED);
+    glQueryCounter(mIds[1], GL_TIMESTAMP);
     mIssued = true;
 }
 
@@ -309,13 +309,14 @@ std::optional<std::uint64_t> TimerQuery::resultNs(bool wait) const {
         return std::nullopt;
     if (!wait) {
         GLint available = 0;
-        glGetQueryObjectiv(mId, GL_QUERY_RESULT_AVAILABLE, &available);
+        glGetQueryObjectiv(mIds[1], GL_QUERY_RESULT_AVAILABLE, &available);
         if (!available)
             return std::nullopt;
     }
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(mId, GL_QUERY_RESULT, &ns);
-    return std::uint64_t(ns);
+    GLuint64 begin = 0, end = 0;
+    glGetQueryObjectui64v(mIds[0], GL_QUERY_RESULT, &begin);
+    glGetQueryObjectui64v(mIds[1], GL_QUERY_RESULT, &end);
+    return end > begin ? std::uint64_t(end - begin) : std::uint64_t(0);
 }
 
 } // namespace gl

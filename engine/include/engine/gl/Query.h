@@ -1,4 +1,6 @@
-// GPU timer queries (GL_TIME_ELAPSED), read without stalling when possible.
+// GPU timer queries: a pair of GL_TIMESTAMP queries around the timed commands (timestamps also
+// behave on llvmpipe, where GL_TIME_ELAPSED around compute-only work misreports), read without
+// stalling when possible.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +23,7 @@ public:
     std::optional<std::uint64_t> resultNs(bool wait) const;
 
 private:
-    std::uint32_t mId = 0;
+    std::uint32_t mIds[2] = {0, 0};
     bool mIssued = false;
 };
 

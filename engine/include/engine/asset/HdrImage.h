@@ -1,0 +1,21 @@
+// Equirectangular HDR environments (Radiance .hdr, or any format stb decodes) as linear floats.
+#pragma once
+
+#include "engine/core/Result.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace asset {
+
+/** Linear RGB floats, rows top to bottom (row 0 looks up, +y), longitude along x. */
+struct HdrImage {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+};
+
+/** Decodes an HDR image. Fails naming the file when it is missing, does not decode, is not
+ *  2:1-ish (width < height) or is over core::limits::kMaxTextureSize. */
+core::Result<HdrImage> loadHdr(const std::filesystem::path& path);
+
+} // namespace asset

@@ -1,0 +1,51 @@
+// A plugin's tunable parameters: declarations (name, type, range, default, choices) and current
+// values, settable from text ("--set ior=1.5", presets) with range and type checks.
+#pragma once
+
+#include "engine/core/Result.h"
+
+#include <string>
+#include <vector>
+
+namespace plugin {
+
+struct Parameter {
+    enum class Type { Float, Int, Bool, Enum };
+    std::string name;  ///< key: lower-case, dashes ("search-steps")
+    std::string label; ///< for panels
+    Type type = Type::Float;
+    double min = 0.0, max = 1.0; ///< Float and Int
+    double defaultValue = 0.0;   ///< Enum: index into choices; Bool: 0 or 1
+    std::vector<std::string> choices;
+    std::string help;
+};
+
+class ParameterSet {
+public:
+    /** Declares a parameter; its value starts at the default. Names must be unique. */
+    void declare(Parameter parameter);
+
+    const std::vector<Parameter>& declarations() const { return mDeclarations; }
+
+    /** Parses and sets `value` ("1.5", "8", "on"/"off"/"true"/"false", an enum choice). Fails
+     *  naming the parameter on an unknown name, an unparsable value or one out of range. */
+    core::Status set(const std::string& name, const std::string& value);
+    /** Sets a numeric value directly (clamped to the range; Enum: index). */
+    void setNumber(const std::string& name, double value);
+
+    double number(const std::string& name) const;
+    bool flag(const std::string& name) const { return number(name) != 0.0; }
+    /** An Enum parameter's current choice. */
+    const std::string& choice(const std::string& name) const;
+    /** The value as text, in the form set() accepts. */
+    std::string text(const std::string& name) const;
+
+    const Parameter* find(const std::string& name) const;
+
+private:
+    std::size_t index(const std::string& name) const;
+    std::vector<Parameter> mDeclarations;
+    std::vector<double> mValues;
+};
+
+} // namespace plugin

@@ -1,0 +1,88 @@
+// The scene renderer: deform -> background -> opaque (+ ground) -> plugin stages -> tonemap,
+// recorded into a frame graph every frame, executed, timed per pass on CPU and GPU.
+#pragma once
+
+#include "engine/anim/Pose.h"
+#include "engine/core/Result.h"
+#include "engine/deform/GpuDeformer.h"
+#include "engine/fg/TexturePool.h"
+#include "engine/gl/Commands.h"
+#include "engine/gl/Context.h"
+#include "engine/gl/Framebuffer.h"
+#include "engine/gl/Program.h"
+#include "engine/plugin/Plugin.h"
+#include "engine/render/Environment.h"
+#include "engine/render/FrameInfo.h"
+#include "engine/render/MaterialTextures.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace render {
+
+/** One executed pass: CPU time of its execute callback, GPU time from a timer query. */
+struct PassStats {
+    std::string name;
+    double cpuMs = 0.0;
+    double gpuMs = 0.0;
+};
+
+struct FrameStats {
+    std::vector<PassStats> passes;
+    double cpuMs = 0.0; ///< whole frame on the CPU (record, compile, execute)
+    double gpuMs = 0.0; ///< sum of the passes' GPU times
+    std::string graph;  ///< the compiled frame graph as text
+};
+
+class Renderer {
+public:
+    /** Prepares `model` for drawing (GPU deformer, textures, programs) with `environment`.
+     *  `model` must outlive the renderer. Needs a current context. */
+    static core::Result<std::unique_ptr<Renderer>> create(const scene::Model& model,
+                                                         const asset::HdrImage& environment,
+                                                         gl::Context& context);
+    ~Renderer();
+
+    /** Adds a plugin (not owned): initialises it now, then it adds passes every frame. */
+    core::Status addPlugin(plugin::Plugin* plugin);
+
+    /** Renders one frame of `pose` seen by `camera` into output() (RGBA8, sRGB-encoded, size
+     *  settings.size). Fails (no crash) on a frame graph error, naming the pass. */
+    core::Result<FrameStats> render(const anim::Pose& pose, const Camera& camera,
+                                    const RenderSettings& settings, double time = 0.0);
+
+    const gl::Texture& output() const { return mOutput; }
+    /** The output's pixels, rows top to bottom, RGBA8 (synchronises). */
+    std::vector<std::uint8_t> readOutput() const;
+
+    /** Sets where the ground plane is drawn when settings.ground is on. */
+    void setGround(float height, const glm::vec3& center, float halfSize);
+
+    gl::ShaderLibrary& shaders() { return mShaders; }
+    const deform::GpuDeformer& geometry() const { return *mDeformer; }
+
+private:
+    Renderer() = default;
+    class Allocator;
+    class Timer;
+    const scene::Model* mModel = nullptr;
+    gl::Context* mContext = nullptr;
+    gl::ShaderLibrary mShaders;
+    std::unique_ptr<deform::GpuDeformer> mDeformer;
+    std::unique_ptr<Environment> mEnvironment;
+    std::unique_ptr<MaterialTextures> mMaterials;
+    std::unique_ptr<Allocator> mAllocator;
+    std::unique_ptr<fg::TexturePool> mPool;
+    std::unique_ptr<Timer> mTimer;
+    std::vector<plugin::Plugin*> mPlugins;
+    gl::Program mBackground, mOpaque, mGround, mTonemap;
+    gl::VertexArray mEmptyVao;
+    std::vector<gl::VertexArray> mVaos; // per instance primitive, flattened
+    gl::Texture mOutput;
+    gl::Framebuffer mFramebuffer;
+    float mGroundHeight = 0.0f, mGroundHalfSize = 1.0f;
+    glm::vec3 mGroundCenter{0.0f};
+};
+
+} // namespace render

@@ -1,0 +1,52 @@
+// Opaque metallic-roughness surface lit by the environment (glTF core material model).
+#include "common/brdf.glsl"
+
+in vec3 vWorldPosition;
+in vec3 vWorldNormal;
+in vec4 vWorldTangent;
+in vec2 vUv;
+out vec4 outColor;
+
+uniform vec3 uCameraPosition;
+uniform vec4 uBaseColorFactor;
+uniform float uMetallicFactor;
+uniform float uRoughnessFactor;
+uniform vec3 uEmissive; // factor * strength
+uniform float uNormalScale;
+uniform float uOcclusionStrength;
+uniform int uHasBaseColorTexture, uHasMetallicRoughnessTexture, uHasNormalTexture;
+uniform int uHasOcclusionTexture, uHasEmissiveTexture;
+uniform sampler2D uBaseColorTexture, uMetallicRoughnessTexture, uNormalTexture;
+uniform sampler2D uOcclusionTexture, uEmissiveTexture;
+
+void main() {
+    vec4 baseColor = uBaseColorFactor;
+    if (uHasBaseColorTexture != 0)
+        baseColor *= texture(uBaseColorTexture, vUv); // sRGB texture: decoded to linear
+    float metallic = uMetallicFactor, roughness = uRoughnessFactor;
+    if (uHasMetallicRoughnessTexture != 0) {
+        vec4 mr = texture(uMetallicRoughnessTexture, vUv);
+        roughness *= mr.g;
+        metallic *= mr.b;
+    }
+    vec3 N = normalize(vWorldNormal);
+    vec3 V = normalize(uCameraPosition - vWorldPosition);
+    if (!gl_FrontFacing)
+        N = -N;
+    if (uHasNormalTexture != 0) {
+        vec3 T = normalize(vWorldTangent.xyz - N * dot(N, vWorldTangent.xyz));
+        vec3 B = cross(N, T) * vWorldTangent.w;
+        vec3 n = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
+        n.xy *= uNormalScale;
+        N = normalize(mat3(T, B, N) * n);
+    }
+    float occlusion = 1.0;
+    if (uHasOcclusionTexture != 0)
+        occlusion = mix(1.0, texture(uOcclusionTexture, vUv).r, uOcclusionStrength);
+    vec3 color = shadeMetallicRoughness(baseColor.rgb, clamp(metallic, 0.0, 1.0),
+                                        clamp(roughness, 0.03, 1.0), occlusion, N, V);
+    vec3 emissive = uEmissive;
+    if (uHasEmissiveTexture != 0)
+        emissive *= texture(uEmissiveTexture, vUv).rgb;
+    outColor = vec4(color + emissive, 1.0);
+}

@@ -1,0 +1,46 @@
+// HDR environment decoding through stb_image (loadf).
+#include "engine/asset/HdrImage.h"
+
+#include "engine/core/Files.h"
+#include "engine/core/Limits.h"
+
+#include <stb_image.h>
+
+#include <cmath>
+
+namespace asset {
+
+core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
+    const std::string prefix = "asset::loadHdr(): " + path.filename().string() + ": ";
+    auto bytes = core::readFile(path, std::uint64_t(1) << 30);
+    if (!bytes)
+        return core::Error{prefix + bytes.error().message};
+    if (bytes->size() > std::size_t(INT32_MAX))
+        return core::Error{prefix + "file too large"};
+    int width = 0, height = 0, components = 0;
+    const int size = int(bytes->size());
+    if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components))
+        return core::Error{prefix + "not a decodable image (" +
+                           (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") + ")"};
+    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
+        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
+                           " is over the texture limit of " + std::to_string(core::limits::kMaxTextureSize)};
+    if (width < height || height < 2)
+        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
+                           " is not an equirectangular (2:1) environment"};
+    float* pixels = stbi_loadf_from_memory(bytes->data(), size, &width, &height, &components, 3);
+    if (!pixels)
+        return core::Error{prefix + "decoding failed (" +
+                           (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") + ")"};
+    HdrImage image;
+    image.width = width;
+    image.height = height;
+    image.rgb.assign(pixels, pixels + std::size_t(width) * std::size_t(height) * 3u);
+    stbi_image_free(pixels);
+    for (float& v : image.rgb)
+        if (!std::isfinite(v) || v < 0.0f)
+            v = 0.0f;
+    return image;
+}
+
+} // namespace asset

@@ -1,0 +1,70 @@
+// PNG I/O through stb and image comparison.
+#include "engine/capture/Image.h"
+
+#include "engine/core/Files.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace capture {
+
+core::Status writePng(const std::filesystem::path& path, const Image& image) {
+    std::vector<std::uint8_t> png;
+    const int ok = stbi_write_png_to_func(
+        [](void* context, void* data, int size) {
+            auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+            out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+        },
+        &png, image.width, image.height, 4, image.rgba.data(), image.width * 4);
+    if (!ok)
+        return core::Error{"capture::writePng(): " + path.string() + ": PNG encoding failed"};
+    return core::writeFileAtomic(path, png);
+}
+
+core::Result<Image> readPng(const std::filesystem::path& path) {
+    auto bytes = core::readFile(path, std::uint64_t(1) << 30);
+    if (!bytes)
+        return core::Error{"capture::readPng(): " + bytes.error().message};
+    int w = 0, h = 0, c = 0;
+    std::uint8_t* pixels = stbi_load_from_memory(bytes->data(), int(bytes->size()), &w, &h, &c, 4);
+    if (!pixels)
+        return core::Error{"capture::readPng(): " + path.string() + ": not a decodable image"};
+    Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + std::size_t(w) * std::size_t(h) * 4u)};
+    stbi_image_free(pixels);
+    return image;
+}
+
+Comparison compare(const Image& actual, const Image& expected, const Tolerance& tolerance) {
+    Comparison result;
+    if (actual.width != expected.width || actual.height != expected.height) {
+        result.sizeMatches = false;
+        return result;
+    }
+    const std::size_t pixels = std::size_t(actual.width) * std::size_t(actual.height);
+    result.diff = Image{actual.width, actual.height, std::vector<std::uint8_t>(pixels * 4u)};
+    for (std::size_t i = 0; i < pixels; ++i) {
+        int worst = 0;
+        for (int c = 0; c < 4; ++c)
+            worst = std::max(worst, std::abs(int(actual.rgba[i * 4 + std::size_t(c)]) -
+                                             int(expected.rgba[i * 4 + std::size_t(c)])));
+        result.maxAbsDiff = std::max(result.maxAbsDiff, worst);
+        std::uint8_t* d = &result.diff.rgba[i * 4];
+        if (worst > tolerance.maxAbsDiff) {
+            ++result.failingPixels;
+            d[0] = std::uint8_t(std::min(255, 128 + worst));
+            d[1] = d[2] = 0;
+        } else {
+            const std::uint8_t grey = std::uint8_t(expected.rgba[i * 4 + 1] / 4);
+            d[0] = d[1] = d[2] = grey;
+        }
+        d[3] = 255;
+    }
+    result.failingFraction = pixels ? double(result.failingPixels) / double(pixels) : 0.0;
+    result.passed = result.failingFraction <= tolerance.maxFailingFraction;
+    return result;
+}
+
+} // namespace capture

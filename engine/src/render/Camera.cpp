@@ -1,0 +1,70 @@
+// Camera construction.
+#include "engine/render/Camera.h"
+
+#include "engine/deform/CpuDeformer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace render {
+
+Bounds animatedBounds(const scene::Model& model, int clip, int samples) {
+    Bounds bounds;
+    const double duration = clip >= 0 ? model.animations[std::size_t(clip)].duration : 0.0;
+    const int count = clip >= 0 ? std::max(samples, 1) : 1;
+    for (int i = 0; i < count; ++i) {
+        const double time = count > 1 ? duration * double(i) / double(count - 1) : 0.0;
+        for (const auto& instance : deform::deformScene(model, anim::evaluate(model, clip, time)))
+            for (const auto& primitive : instance.primitives)
+                for (const glm::dvec3& p : primitive.positions)
+                    bounds.add(glm::vec3(instance.meshToWorld * glm::dvec4(p, 1.0)));
+    }
+    if (bounds.empty())
+        bounds.add(glm::vec3(0.0f));
+    return bounds;
+}
+
+Camera frameBounds(const Bounds& bounds, float aspect, float yfov, float azimuth, float elevation,
+                   float distanceScale) {
+    Camera c;
+    c.yfov = yfov;
+    const float radius = std::max(bounds.radius(), 1e-3f);
+    const float halfFov = 0.5f * std::min(yfov, 2.0f * std::atan(std::tan(0.5f * yfov) * aspect));
+    const float distance = distanceScale * radius / std::sin(halfFov);
+    const glm::vec3 direction(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                              std::cos(azimuth) * std::cos(elevation));
+    c.position = bounds.center() + direction * distance;
+    c.view = glm::lookAt(c.position, bounds.center(), glm::vec3(0, 1, 0));
+    c.znear = std::max(distance - 4.0f * radius, distance * 0.01f);
+    c.zfar = distance + 8.0f * radius;
+    c.projection = glm::perspective(yfov, aspect, c.znear, c.zfar);
+    return c;
+}
+
+std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& pose, float aspect) {
+    for (int node : model.sceneNodes()) {
+        const scene::Node& n = model.nodes[std::size_t(node)];
+        if (n.camera < 0)
+            continue;
+        const scene::Camera& cam = model.cameras[std::size_t(n.camera)];
+        if (cam.type != scene::Camera::Type::Perspective)
+            continue;
+        Camera c;
+        glm::dmat4 world = pose.world[std::size_t(node)];
+        // Remove scale: a camera's frame is its node's rotation and translation.
+        for (int i = 0; i < 3; ++i)
+            world[i] = glm::dvec4(glm::normalize(glm::dvec3(world[i])), 0.0);
+        c.view = glm::mat4(glm::inverse(world));
+        c.position = glm::vec3(world[3]);
+        c.yfov = float(cam.yfov);
+        c.znear = float(cam.znear);
+        c.zfar = cam.zfar > 0.0 ? float(cam.zfar) : float(cam.znear) * 1e4f;
+        c.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar);
+        return c;
+    }
+    return std::nullopt;
+}
+
+} // namespace render

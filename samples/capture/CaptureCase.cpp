@@ -1,0 +1,144 @@
+// Case files, golden comparison and regeneration.
+#include "CaptureCase.h"
+
+#include "engine/core/Files.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace capture {
+namespace {
+
+std::string seconds(double t) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.3f", t);
+    return s;
+}
+
+} // namespace
+
+core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
+    const std::string where = "glass-capture: " + path.string() + ": ";
+    std::ifstream in(path);
+    if (!in)
+        return core::Error{where + "cannot open the case file"};
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+        return core::Error{where + "not valid JSON (" + e.what() + ")"};
+    }
+    const std::filesystem::path dir = path.parent_path();
+    auto resolve = [&](const std::string& p) { return (dir / p).lexically_normal().string(); };
+    CaseFile c;
+    c.path = path;
+    try {
+        if (!j.contains("model") || !j["model"].is_string())
+            return core::Error{where + "\"model\" (a path relative to the case file) is required"};
+        c.session.model = resolve(j["model"].get<std::string>());
+        if (j.contains("clip"))
+            c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>() : std::to_string(j["clip"].get<int>());
+        if (!j.contains("times") || !j["times"].is_array() || j["times"].empty())
+            return core::Error{where + "\"times\" (a non-empty array of seconds) is required"};
+        for (const auto& t : j["times"])
+            c.times.push_back(t.get<double>());
+        if (j.contains("size"))
+            c.session.size = {j["size"].at(0).get<int>(), j["size"].at(1).get<int>()};
+        if (c.session.size.x < 1 || c.session.size.y < 1 || c.session.size.x > 8192 || c.session.size.y > 8192)
+            return core::Error{where + "\"size\" must be [width, height] within 1..8192"};
+        if (j.contains("env") && !j["env"].is_null())
+            c.session.environment = resolve(j["env"].get<std::string>());
+        c.session.ground = j.value("ground", false);
+        c.session.exposure = j.value("exposure", 1.0f);
+        if (j.contains("camera") && j["camera"].is_object()) {
+            const auto& cam = j["camera"];
+            CameraOverride o;
+            for (int k = 0; k < 3; ++k) {
+                o.position[k] = cam.at("position").at(std::size_t(k)).get<float>();
+                o.target[k] = cam.at("target").at(std::size_t(k)).get<float>();
+            }
+            o.yfov = cam.value("yfov", 0.7f);
+            c.session.camera = o;
+        }
+        if (j.contains("plugins"))
+            for (const auto& p : j["plugins"]) {
+                SessionOptions::PluginSpec spec;
+                spec.path = resolve(p.at("path").get<std::string>());
+                if (p.contains("parameters"))
+                    for (const auto& [key, value] : p["parameters"].items())
+                        spec.parameters.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+                c.session.plugins.push_back(spec);
+            }
+        if (j.contains("tolerance")) {
+            c.tolerance.maxAbsDiff = j["tolerance"].value("max_abs_diff", c.tolerance.maxAbsDiff);
+            c.tolerance.maxFailingFraction = j["tolerance"].value("max_failing_fraction", c.tolerance.maxFailingFraction);
+        }
+        c.skipIfModelMissing = j.value("skip_if_missing", false);
+    } catch (const std::exception& e) {
+        return core::Error{where + "malformed entry (" + e.what() + ")"};
+    }
+    return c;
+}
+
+std::filesystem::path goldenPath(const CaseFile& c, double time) {
+    return c.path.parent_path() / (c.path.stem().string() + ".t" + seconds(time) + ".png");
+}
+
+core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem::path& outDir) {
+    auto session = CaptureSession::create(c.session);
+    if (!session)
+        return session.error();
+    std::ostringstream report;
+    bool allMatch = true;
+    for (double time : c.times) {
+        auto frame = (*session)->render(time);
+        if (!frame)
+            return frame.error();
+        const auto golden = goldenPath(c, time);
+        if (update) {
+            auto written = writePng(golden, frame->image);
+            if (!written)
+                return written.error();
+            std::printf("updated %s\n", golden.string().c_str());
+            continue;
+        }
+        auto expected = readPng(golden);
+        if (!expected)
+            return core::Error{"glass-capture: no golden for t=" + seconds(time) + " (" +
+                               expected.error().message + "); run with --update to create it"};
+        const Comparison cmp = compare(frame->image, *expected, c.tolerance);
+        char line[256];
+        std::snprintf(line, sizeof line, "%s t=%s: %s (max abs diff %d, failing pixels %zu = %.4f%%, allowed %.4f%%)",
+                      c.path.stem().string().c_str(), seconds(time).c_str(),
+                      !cmp.sizeMatches ? "SIZE MISMATCH" : cmp.passed ? "match" : "MISMATCH", cmp.maxAbsDiff,
+                      cmp.failingPixels, 100.0 * cmp.failingFraction, 100.0 * c.tolerance.maxFailingFraction);
+        std::printf("%s\n", line);
+        report << line << "\n";
+        if (cmp.sizeMatches && cmp.passed)
+            continue;
+        allMatch = false;
+        std::filesystem::create_directories(outDir);
+        const std::string stem = c.path.stem().string() + ".t" + seconds(time);
+        auto a = writePng(outDir / (stem + ".actual.png"), frame->image);
+        if (!a)
+            return a.error();
+        if (cmp.sizeMatches) {
+            auto d = writePng(outDir / (stem + ".diff.png"), cmp.diff);
+            if (!d)
+                return d.error();
+        }
+        report << "  golden " << golden.string() << "\n  actual " << (outDir / (stem + ".actual.png")).string()
+               << "\n  diff   " << (outDir / (stem + ".diff.png")).string() << "\n";
+    }
+    if (!update && !allMatch) {
+        const auto reportPath = outDir / (c.path.stem().string() + ".report.txt");
+        auto w = core::writeFileAtomic(reportPath, report.str());
+        if (!w)
+            return w.error();
+        std::printf("report: %s\n", reportPath.string().c_str());
+    }
+    return allMatch || update ? kCaseMatch : kCaseMismatch;
+}
+
+} // namespace capture

@@ -1,0 +1,127 @@
+// glass-capture's rendering session.
+#include "CaptureSession.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/asset/HdrImage.h"
+#include "engine/gl/Debug.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+namespace capture {
+
+core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const SessionOptions& options) {
+    std::unique_ptr<CaptureSession> s(new CaptureSession());
+    s->mOptions = options;
+    auto model = asset::loadGltf(options.model);
+    if (!model)
+        return model.error();
+    s->mModel = std::move(*model);
+    s->mClip = s->mModel.animations.empty() ? -1 : 0;
+    if (options.clip) {
+        const auto clip = s->mModel.findAnimation(*options.clip);
+        if (!clip)
+            return core::Error{"glass-capture: " + s->mModel.sourceName + " has no clip '" + *options.clip + "'"};
+        s->mClip = *clip;
+    }
+    asset::HdrImage environment = render::Environment::proceduralSky();
+    if (options.environment) {
+        auto hdr = asset::loadHdr(*options.environment);
+        if (!hdr)
+            return hdr.error();
+        environment = std::move(*hdr);
+    }
+    auto context = gl::createHeadlessContext();
+    if (!context)
+        return context.error();
+    s->mContext = std::move(*context);
+    auto renderer = render::Renderer::create(s->mModel, environment, *s->mContext);
+    if (!renderer)
+        return renderer.error();
+    s->mRenderer = std::move(*renderer);
+    for (const auto& spec : options.plugins) {
+        auto loaded = plugin::loadPlugin(spec.path);
+        if (!loaded)
+            return loaded.error();
+        for (const auto& [key, value] : spec.parameters) {
+            auto set = loaded->get()->parameters().set(key, value);
+            if (!set)
+                return core::Error{"glass-capture: plugin " + std::string(loaded->get()->name()) + ": " + set.error().message};
+        }
+        auto added = s->mRenderer->addPlugin(loaded->get());
+        if (!added)
+            return added.error();
+        s->mPlugins.push_back(std::move(*loaded));
+    }
+    s->mBounds = render::animatedBounds(s->mModel, s->mClip);
+    const float radius = s->mBounds.radius();
+    s->mRenderer->setGround(s->mBounds.min.y, s->mBounds.center(), 3.0f * radius);
+    return s;
+}
+
+std::string CaptureSession::clipLabel() const {
+    if (mClip < 0)
+        return "rest";
+    const std::string& name = mModel.animations[std::size_t(mClip)].name;
+    std::string label = name.empty() ? "clip" + std::to_string(mClip) : name;
+    for (char& c : label)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
+            c = '_';
+    return label;
+}
+
+core::Result<RenderedFrame> CaptureSession::render(double time) {
+    const glm::ivec2 size = mOptions.size;
+    const float aspect = float(size.x) / float(size.y);
+    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
+    render::Camera camera;
+    if (mOptions.camera) {
+        camera.position = mOptions.camera->position;
+        camera.yfov = mOptions.camera->yfov;
+        camera.view = glm::lookAt(camera.position, mOptions.camera->target, glm::vec3(0, 1, 0));
+        const float distance = glm::length(mOptions.camera->target - camera.position);
+        camera.znear = std::max(distance * 0.01f, 1e-3f);
+        camera.zfar = distance * 100.0f;
+        camera.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
+    } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
+        camera = *gltf;
+    } else {
+        camera = render::frameBounds(mBounds, aspect);
+    }
+    render::RenderSettings settings;
+    settings.size = size;
+    settings.ground = mOptions.ground;
+    settings.exposure = mOptions.exposure;
+    settings.exactPassTimes = true; // captures are not real-time: report true per-pass GPU times
+    const std::uint64_t errorsBefore = gl::errorCount();
+    auto stats = mRenderer->render(pose, camera, settings, time);
+    if (!stats)
+        return stats.error();
+    RenderedFrame frame;
+    frame.time = time;
+    frame.stats = std::move(*stats);
+    frame.image = Image{size.x, size.y, mRenderer->readOutput()};
+    gl::checkErrors("glass-capture frame");
+    if (gl::errorCount() != errorsBefore)
+        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) + " (see log)"};
+    return frame;
+}
+
+std::string frameFileName(const std::string& modelStem, const std::string& clipLabel, double time) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.3f", time);
+    return modelStem + "_" + clipLabel + "_t" + seconds + ".png";
+}
+
+nlohmann::json statsJson(const render::FrameStats& stats) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const auto& p : stats.passes)
+        passes.push_back({{"name", p.name}, {"cpu_ms", p.cpuMs}, {"gpu_ms", p.gpuMs}});
+    return {{"passes", passes}, {"frame_cpu_ms", stats.cpuMs}, {"frame_gpu_ms", stats.gpuMs}};
+}
+
+} // namespace capture

@@ -1,0 +1,75 @@
+// What glass-capture renders: a model, its clip, a camera, the environment and plugins, set up
+// once and rendered at any number of times.
+#pragma once
+
+#include "engine/capture/Image.h"
+#include "engine/gl/Context.h"
+#include "engine/plugin/Plugin.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/Model.h"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace capture {
+
+struct CameraOverride {
+    glm::vec3 position{0.0f}, target{0.0f};
+    float yfov = 0.7f;
+};
+
+struct SessionOptions {
+    std::string model;
+    std::optional<std::string> clip;        ///< name or index; default: the first clip
+    std::optional<std::string> environment; ///< HDR path; default: procedural sky
+    glm::ivec2 size{256, 256};
+    bool ground = false;
+    float exposure = 1.0f;
+    std::optional<CameraOverride> camera;   ///< default: glTF camera, else framing
+    struct PluginSpec {
+        std::string path;
+        std::vector<std::pair<std::string, std::string>> parameters;
+    };
+    std::vector<PluginSpec> plugins;
+};
+
+struct RenderedFrame {
+    double time = 0.0;
+    Image image;
+    render::FrameStats stats;
+};
+
+class CaptureSession {
+public:
+    /** Loads the model and environment, creates a headless context and the renderer, loads
+     *  and configures plugins. Fails with the loader's (or GL's) message. */
+    static core::Result<std::unique_ptr<CaptureSession>> create(const SessionOptions& options);
+
+    core::Result<RenderedFrame> render(double time);
+
+    const scene::Model& model() const { return mModel; }
+    int clip() const { return mClip; }
+    std::string clipLabel() const;
+
+private:
+    CaptureSession() = default;
+    SessionOptions mOptions;
+    scene::Model mModel;
+    int mClip = -1;
+    std::unique_ptr<gl::Context> mContext;
+    std::vector<plugin::LoadedPlugin> mPlugins;
+    std::unique_ptr<render::Renderer> mRenderer;
+    render::Bounds mBounds;
+};
+
+/** Deterministic file name of a frame: "<model>_<clip>_t<seconds with 3 decimals>.png". */
+std::string frameFileName(const std::string& modelStem, const std::string& clipLabel, double time);
+
+/** Frame statistics as JSON: per pass name, cpu_ms, gpu_ms; totals. */
+nlohmann::json statsJson(const render::FrameStats& stats);
+
+} // namespace capture

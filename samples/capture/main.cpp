@@ -1,0 +1,216 @@
+// glass-capture: renders a glTF character headless (EGL) at given times to PNG, with per-pass
+// CPU/GPU timings; or runs a frame-capture test case against its goldens.
+#include "CaptureCase.h"
+#include "CaptureSession.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
+                     [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
+                     [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph]
+       glass-capture --case FILE.json [--update] [--out DIR]
+
+Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
+DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals).
+
+  --clip N|NAME       clip index or name (default: the first clip; the rest pose if none)
+  --time T            one time in seconds (default 0)
+  --frames S:E:STEP   times S, S+STEP, ... up to E inclusive (at most 10000 frames)
+  --size WxH          output size in pixels (default 256x256)
+  --env HDR           equirectangular environment (default: a procedural sky)
+  --ground            draw a ground plane under the character
+  --exposure E        exposure multiplier before tonemapping (default 1)
+  --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
+  --json              print files written, times and per-pass CPU/GPU timings as JSON
+  --dump-graph        print the compiled frame graph of the first frame to stderr
+  --case FILE.json    render a frame-capture case and compare with its goldens (exit 0 match,
+                      1 mismatch; .actual.png, .diff.png and a report go to --out, default the
+                      case's folder); --update regenerates the goldens instead
+
+Exit status: 0 success, 1 the model or environment could not be loaded (nothing written) or a
+case mismatched, 2 bad arguments, 77 a case whose model is missing and marked skip_if_missing.
+)";
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "glass-capture: %s\n\n%s", message.c_str(), kUsage);
+    return 2;
+}
+
+bool parseDouble(const std::string& s, double& out) {
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return !s.empty() && *end == '\0' && std::isfinite(out);
+}
+
+struct Options {
+    capture::SessionOptions session;
+    std::vector<double> times{0.0};
+    std::string out = "out/capture";
+    bool outGiven = false, json = false, dumpGraph = false, update = false;
+    std::string caseFile;
+};
+
+std::optional<int> parse(int argc, char** argv, Options& o) {
+    bool haveTime = false, haveFrames = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto next = [&]() -> std::optional<std::string> {
+            if (i + 1 >= argc)
+                return std::nullopt;
+            return std::string(argv[++i]);
+        };
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (arg == "--json") {
+            o.json = true;
+        } else if (arg == "--ground") {
+            o.session.ground = true;
+        } else if (arg == "--dump-graph") {
+            o.dumpGraph = true;
+        } else if (arg == "--update") {
+            o.update = true;
+        } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" || arg == "--env" ||
+                   arg == "--out" || arg == "--exposure" || arg == "--plugin" || arg == "--set" || arg == "--case") {
+            const auto v = next();
+            if (!v)
+                return usageError(arg + " needs a value");
+            if (arg == "--clip") {
+                o.session.clip = *v;
+            } else if (arg == "--time") {
+                double t = 0;
+                if (!parseDouble(*v, t) || t < 0)
+                    return usageError("--time needs a non-negative number of seconds, got '" + *v + "'");
+                o.times = {t};
+                haveTime = true;
+            } else if (arg == "--frames") {
+                double s = 0, e = 0, step = 0;
+                const auto a = v->find(':'), b = v->find(':', a == std::string::npos ? a : a + 1);
+                if (a == std::string::npos || b == std::string::npos || !parseDouble(v->substr(0, a), s) ||
+                    !parseDouble(v->substr(a + 1, b - a - 1), e) || !parseDouble(v->substr(b + 1), step) || s < 0 ||
+                    e < s || step <= 0 || (e - s) / step > 10000)
+                    return usageError("--frames needs START:END:STEP with 0 <= START <= END, STEP > 0 and at most "
+                                      "10000 frames, got '" + *v + "'");
+                o.times.clear();
+                for (int k = 0; s + k * step <= e + 1e-9; ++k)
+                    o.times.push_back(s + k * step);
+                haveFrames = true;
+            } else if (arg == "--size") {
+                int w = 0, h = 0;
+                char extra = 0;
+                if (std::sscanf(v->c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
+                    return usageError("--size needs WxH within 1..8192, got '" + *v + "'");
+                o.session.size = {w, h};
+            } else if (arg == "--env") {
+                o.session.environment = *v;
+            } else if (arg == "--out") {
+                o.out = *v;
+                o.outGiven = true;
+            } else if (arg == "--exposure") {
+                double e = 0;
+                if (!parseDouble(*v, e) || e <= 0)
+                    return usageError("--exposure needs a positive number, got '" + *v + "'");
+                o.session.exposure = float(e);
+            } else if (arg == "--plugin") {
+                o.session.plugins.push_back({*v, {}});
+            } else if (arg == "--set") {
+                const auto eq = v->find('=');
+                if (o.session.plugins.empty() || eq == std::string::npos || eq == 0)
+                    return usageError("--set KEY=VALUE must follow a --plugin, got '" + *v + "'");
+                o.session.plugins.back().parameters.emplace_back(v->substr(0, eq), v->substr(eq + 1));
+            } else {
+                o.caseFile = *v;
+            }
+        } else if (!arg.empty() && arg[0] == '-') {
+            return usageError("unknown option " + arg);
+        } else if (o.session.model.empty()) {
+            o.session.model = arg;
+        } else {
+            return usageError("more than one model given: " + arg);
+        }
+    }
+    if (haveTime && haveFrames)
+        return usageError("--time and --frames are exclusive");
+    if (o.caseFile.empty() && o.session.model.empty())
+        return usageError("no model given");
+    if (!o.caseFile.empty() && !o.session.model.empty())
+        return usageError("--case takes its model from the case file");
+    if (o.update && o.caseFile.empty())
+        return usageError("--update goes with --case");
+    return std::nullopt;
+}
+
+int runCase(const Options& o) {
+    auto c = capture::readCaseFile(o.caseFile);
+    if (!c) {
+        std::fprintf(stderr, "%s\n", c.error().message.c_str());
+        return 2;
+    }
+    if (c->skipIfModelMissing && !std::filesystem::exists(c->session.model)) {
+        std::printf("skipped %s: model %s is not present (third-party samples live in ../shared)\n",
+                    o.caseFile.c_str(), c->session.model.c_str());
+        return capture::kCaseSkipped;
+    }
+    const std::filesystem::path outDir = o.outGiven ? std::filesystem::path(o.out) : c->path.parent_path();
+    auto result = capture::runCase(*c, o.update, outDir);
+    if (!result) {
+        std::fprintf(stderr, "%s\n", result.error().message.c_str());
+        return 1;
+    }
+    return *result;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    if (const auto code = parse(argc, argv, o))
+        return *code;
+    if (!o.caseFile.empty())
+        return runCase(o);
+
+    auto session = capture::CaptureSession::create(o.session);
+    if (!session) {
+        std::fprintf(stderr, "%s\n", session.error().message.c_str());
+        return 1;
+    }
+    const std::string stem = std::filesystem::path(o.session.model).stem().string();
+    nlohmann::json report = {{"model", o.session.model}, {"clip", (*session)->clipLabel()},
+                             {"size", {o.session.size.x, o.session.size.y}}, {"frames", nlohmann::json::array()}};
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec) {
+        std::fprintf(stderr, "glass-capture: cannot create %s: %s\n", o.out.c_str(), ec.message().c_str());
+        return 1;
+    }
+    for (std::size_t i = 0; i < o.times.size(); ++i) {
+        auto frame = (*session)->render(o.times[i]);
+        if (!frame) {
+            std::fprintf(stderr, "%s\n", frame.error().message.c_str());
+            return 1;
+        }
+        if (i == 0 && o.dumpGraph)
+            std::fprintf(stderr, "%s", frame->stats.graph.c_str());
+        const auto path = std::filesystem::path(o.out) / capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
+        auto written = capture::writePng(path, frame->image);
+        if (!written) {
+            std::fprintf(stderr, "%s\n", written.error().message.c_str());
+            return 1;
+        }
+        nlohmann::json entry = capture::statsJson(frame->stats);
+        entry["time"] = frame->time;
+        entry["file"] = path.string();
+        report["frames"].push_back(entry);
+        if (!o.json)
+            std::printf("%s (cpu %.2f ms, gpu %.2f ms)\n", path.string().c_str(), frame->stats.cpuMs, frame->stats.gpuMs);
+    }
+    if (o.json)
+        std::printf("%s\n", report.dump(2).c_str());
+    return 0;
+}
