@@ -54,11 +54,17 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         if (j.contains("camera") && j["camera"].is_object()) {
             const auto& cam = j["camera"];
             CameraOverride o;
-            for (int k = 0; k < 3; ++k) {
-                o.position[k] = cam.at("position").at(std::size_t(k)).get<float>();
-                o.target[k] = cam.at("target").at(std::size_t(k)).get<float>();
+            if (cam.contains("position")) {
+                glm::vec3 position;
+                for (int k = 0; k < 3; ++k) {
+                    position[k] = cam.at("position").at(std::size_t(k)).get<float>();
+                    o.target[k] = cam.at("target").at(std::size_t(k)).get<float>();
+                }
+                o.position = position;
             }
             o.yfov = cam.value("yfov", 0.7f);
+            o.azimuth = cam.value("azimuth", 0.0f);
+            o.elevation = cam.value("elevation", 0.15f);
             c.session.camera = o;
         }
         if (j.contains("plugins"))

@@ -79,14 +79,17 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
     const float aspect = float(size.x) / float(size.y);
     const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     render::Camera camera;
-    if (mOptions.camera) {
-        camera.position = mOptions.camera->position;
+    if (mOptions.camera && mOptions.camera->position) {
+        camera.position = *mOptions.camera->position;
         camera.yfov = mOptions.camera->yfov;
         camera.view = glm::lookAt(camera.position, mOptions.camera->target, glm::vec3(0, 1, 0));
         const float distance = glm::length(mOptions.camera->target - camera.position);
         camera.znear = std::max(distance * 0.01f, 1e-3f);
         camera.zfar = distance * 100.0f;
         camera.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
+    } else if (mOptions.camera) {
+        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov, mOptions.camera->azimuth,
+                                     mOptions.camera->elevation);
     } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
         camera = *gltf;
     } else {

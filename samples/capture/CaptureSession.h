@@ -17,9 +17,13 @@
 
 namespace capture {
 
+/** An explicit camera (position, target) or, without a position, the automatic framing seen
+ *  from other angles (radians; azimuth about +y from +z, elevation above the horizon). */
 struct CameraOverride {
-    glm::vec3 position{0.0f}, target{0.0f};
+    std::optional<glm::vec3> position;
+    glm::vec3 target{0.0f};
     float yfov = 0.7f;
+    float azimuth = 0.0f, elevation = 0.15f;
 };
 
 struct SessionOptions {

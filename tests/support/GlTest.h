@@ -24,6 +24,8 @@ protected:
     /** Engine shaders, ready to compile. */
     static const gl::ShaderLibrary& shaders();
     static gl::Context& context() { return *sContext; }
+    /** For tests that provoke GL errors on purpose: errors so far do not fail the test. */
+    void acceptErrors() { mErrorsAtStart = gl::errorCount(); }
 
 private:
     static std::unique_ptr<gl::Context> sContext;

@@ -1,0 +1,89 @@
+// The GL layer: shader includes, program errors, framebuffer completeness, error accounting.
+#include "support/GlTest.h"
+
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Commands.h"
+#include "engine/gl/Framebuffer.h"
+#include "engine/gl/Texture.h"
+
+#include <cstring>
+
+namespace {
+
+class GlLayer : public test::GlTest {};
+
+const gl::ShaderFile kFiles[] = {
+    {"a.glsl", "#include \"b.glsl\"\nfloat a() { return b(); }\n"},
+    {"b.glsl", "float b() { return 2.0; }\n"},
+    {"loop1.glsl", "#include \"loop2.glsl\"\n"},
+    {"loop2.glsl", "#include \"loop1.glsl\"\n"},
+    {"main.comp.glsl", "#include \"a.glsl\"\nlayout(local_size_x = 1) in;\n"
+                       "layout(std430, binding = 0) buffer Out { float v[]; };\n"
+                       "void main() { v[0] = a(); }\n"},
+    {"broken.comp.glsl", "layout(local_size_x = 1) in;\nvoid main() { undefined_call(); }\n"},
+};
+
+TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    auto program = gl::Program::compute(library, "main.comp.glsl");
+    ASSERT_TRUE(program.ok()) << program.error().message;
+    gl::Buffer out(sizeof(float));
+    program->use();
+    gl::bindStorage(0, out);
+    gl::dispatch(1);
+    gl::memoryBarrier(gl::BarrierAll);
+    const auto bytes = out.download();
+    float value = 0.0f;
+    std::memcpy(&value, bytes.data(), sizeof value);
+    EXPECT_EQ(value, 2.0f);
+}
+
+TEST_F(GlLayer, ShaderErrorsNameTheFile) {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    auto cycle = library.assemble("loop1.glsl", {});
+    ASSERT_FALSE(cycle.ok());
+    EXPECT_NE(cycle.error().message.find("include cycle"), std::string::npos);
+    auto missing = library.assemble("nope.glsl", {});
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().message.find("no shader file 'nope.glsl'"), std::string::npos);
+    auto broken = gl::Program::compute(library, "broken.comp.glsl");
+    ASSERT_FALSE(broken.ok());
+    EXPECT_NE(broken.error().message.find("broken.comp.glsl does not compile"), std::string::npos);
+    acceptErrors(); // the driver also reports the failed compile through KHR_debug
+}
+
+TEST_F(GlLayer, IncompleteFramebufferIsAnError) {
+    gl::Texture color({{16, 16}, gl::Format::RGBA8, 1});
+    gl::Texture depth({{8, 8}, gl::Format::Depth32F, 1});
+    gl::Framebuffer fbo;
+    EXPECT_TRUE(fbo.attach("complete", {&color}, nullptr).ok());
+    // Attaching a depth texture as a colour attachment makes the FBO incomplete.
+    const auto status = fbo.attach("depth-as-colour", {&depth}, nullptr);
+    ASSERT_FALSE(status.ok());
+    EXPECT_NE(status.error().message.find("'depth-as-colour' is incomplete"), std::string::npos);
+}
+
+TEST_F(GlLayer, DebugOutputCountsErrors) {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    auto program = gl::Program::compute(library, "main.comp.glsl");
+    ASSERT_TRUE(program.ok());
+    const auto before = gl::errorCount();
+    gl::dispatch(100000000); // over GL_MAX_COMPUTE_WORK_GROUP_COUNT: GL_INVALID_VALUE
+    gl::checkErrors("deliberate error");
+    EXPECT_GT(gl::errorCount(), before) << "a GL error must be noticed, or no test could fail on one";
+    acceptErrors();
+}
+
+TEST_F(GlLayer, TextureRoundTrip) {
+    gl::Texture t({{4, 2}, gl::Format::RGBA8, 1});
+    std::vector<std::uint8_t> pixels(4 * 2 * 4);
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        pixels[i] = std::uint8_t(i * 7);
+    t.upload(0, pixels.data());
+    EXPECT_EQ(t.downloadRgba8(), pixels);
+}
+
+} // namespace
