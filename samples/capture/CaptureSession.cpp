@@ -8,7 +8,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <map>
 #include <cmath>
 #include <cstdio>
 
@@ -125,6 +127,38 @@ nlohmann::json statsJson(const render::FrameStats& stats) {
     for (const auto& p : stats.passes)
         passes.push_back({{"name", p.name}, {"cpu_ms", p.cpuMs}, {"gpu_ms", p.gpuMs}});
     return {{"passes", passes}, {"frame_cpu_ms", stats.cpuMs}, {"frame_gpu_ms", stats.gpuMs}};
+}
+
+} // namespace capture
+
+namespace capture {
+
+nlohmann::json medianStats(const nlohmann::json& frames) {
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    const std::size_t first = frames.size() > 1 ? 1 : 0;
+    std::vector<double> cpu, gpu;
+    std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> passes;
+    std::vector<std::string> order;
+    for (std::size_t i = first; i < frames.size(); ++i) {
+        cpu.push_back(frames[i]["frame_cpu_ms"].get<double>());
+        gpu.push_back(frames[i]["frame_gpu_ms"].get<double>());
+        for (const auto& p : frames[i]["passes"]) {
+            const std::string name = p["name"];
+            if (!passes.count(name))
+                order.push_back(name);
+            passes[name].first.push_back(p["cpu_ms"].get<double>());
+            passes[name].second.push_back(p["gpu_ms"].get<double>());
+        }
+    }
+    nlohmann::json out = {{"frames", frames.size() - first}, {"frame_cpu_ms", median(cpu)},
+                          {"frame_gpu_ms", median(gpu)}, {"passes", nlohmann::json::array()}};
+    for (const std::string& name : order)
+        out["passes"].push_back({{"name", name}, {"cpu_ms", median(passes[name].first)},
+                                 {"gpu_ms", median(passes[name].second)}});
+    return out;
 }
 
 } // namespace capture

@@ -76,4 +76,9 @@ std::string frameFileName(const std::string& modelStem, const std::string& clipL
 /** Frame statistics as JSON: per pass name, cpu_ms, gpu_ms; totals. */
 nlohmann::json statsJson(const render::FrameStats& stats);
 
+/** Medians of frame_cpu_ms, frame_gpu_ms and each pass's cpu_ms/gpu_ms over `frames` (as
+ *  statsJson writes them), leaving out the first frame (shader JIT, first uploads) when there
+ *  are several. */
+nlohmann::json medianStats(const nlohmann::json& frames);
+
 } // namespace capture

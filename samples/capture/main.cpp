@@ -27,7 +27,8 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --ground            draw a ground plane under the character
   --exposure E        exposure multiplier before tonemapping (default 1)
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
-  --json              print files written, times and per-pass CPU/GPU timings as JSON
+  --json              print files written, times and per-pass CPU/GPU timings as JSON, with
+                      the median of each over all frames after the first (warm-up)
   --dump-graph        print the compiled frame graph of the first frame to stderr
   --case FILE.json    render a frame-capture case and compare with its goldens (exit 0 match,
                       1 mismatch; .actual.png, .diff.png and a report go to --out, default the
@@ -210,7 +211,9 @@ int main(int argc, char** argv) {
         if (!o.json)
             std::printf("%s (cpu %.2f ms, gpu %.2f ms)\n", path.string().c_str(), frame->stats.cpuMs, frame->stats.gpuMs);
     }
-    if (o.json)
+    if (o.json) {
+        report["median"] = capture::medianStats(report["frames"]);
         std::printf("%s\n", report.dump(2).c_str());
+    }
     return 0;
 }
