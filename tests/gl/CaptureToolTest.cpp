@@ -158,6 +158,27 @@ TEST(CaptureTool, PluginInterfaceVersionIsChecked) {
     EXPECT_NE(out.find("/nonexistent.so: cannot load"), std::string::npos) << out;
 }
 
+TEST(CaptureTool, EnvironmentComesFromTheHdrFile) {
+    test::TempDir dir;
+    const auto model = test::twoJointModel().save(dir.path(), "twojoint");
+    test::writeHdr(dir / "red.hdr", 64, 32, 2.0f, 0.05f, 0.05f);
+    std::string out;
+    const int status = capture(model.string() + " --size 32x32 --env " + (dir / "red.hdr").string() + " --out " +
+                                   (dir / "red").string(), &out);
+    SKIP_WITHOUT_GL(out);
+    ASSERT_EQ(status, 0) << out;
+    auto image = capture::readPng(dir / "red" / "twojoint_bend_t0.000.png");
+    ASSERT_TRUE(image.ok());
+    // The corner pixel is background: red sky.
+    EXPECT_GT(int(image->rgba[0]), 200);
+    EXPECT_LT(int(image->rgba[1]), 100);
+
+    std::ofstream(dir / "bad.hdr") << "#?RADIANCE\nnot really an image";
+    EXPECT_EQ(capture(model.string() + " --env " + (dir / "bad.hdr").string() + " --out " + (dir / "bad").string(), &out), 1);
+    EXPECT_NE(out.find("asset::loadHdr(): bad.hdr: not a decodable image"), std::string::npos) << out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+}
+
 TEST(CaptureTool, RefractionPluginLoads) {
     test::TempDir dir;
     const auto model = test::twoJointModel().save(dir.path(), "twojoint");

@@ -209,6 +209,13 @@ std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_
     return png;
 }
 
+void writeHdr(const std::filesystem::path& path, int width, int height, float r, float g, float b) {
+    std::vector<float> pixels;
+    for (int i = 0; i < width * height; ++i)
+        pixels.insert(pixels.end(), {r, g, b});
+    stbi_write_hdr(path.c_str(), width, height, 3, pixels.data());
+}
+
 int runCommand(const std::string& command, std::string* output) {
     FILE* pipe = popen((command + " 2>&1").c_str(), "r");
     if (!pipe)

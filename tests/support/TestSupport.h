@@ -88,6 +88,9 @@ GltfBuilder twoJointModel();
 /** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba);
 
+/** Writes a width x height Radiance HDR file filled with one linear RGB colour. */
+void writeHdr(const std::filesystem::path& path, int width, int height, float r, float g, float b);
+
 /** Runs a shell command and returns its exit status; stdout and stderr into `output`. */
 int runCommand(const std::string& command, std::string* output = nullptr);
 
