@@ -1,13 +1,391 @@
-// The refraction plugin's frame-graph hook.
+// The refraction plugin's parameters and frame-graph passes.
 #include "refraction/RefractionPlugin.h"
+
+#include "NormalDistance.h"
+
+#include "engine/deform/GpuDeformer.h"
+#include "engine/fg/Blackboard.h"
+#include "engine/fg/FrameGraph.h"
+#include "engine/render/Environment.h"
+#include "engine/render/FrameInfo.h"
+#include "engine/render/MaterialTextures.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+std::span<const gl::ShaderFile> refractionShaderFiles();
 
 namespace refraction {
 
-RefractionPlugin::RefractionPlugin() = default;
+using Type = plugin::Parameter::Type;
 
-core::Status RefractionPlugin::initialize(gl::ShaderLibrary&) { return {}; }
+struct RefractionPlugin::Gpu {
+    gl::Program surface, front, composite, depthRange, refit, normalDistance;
+    gl::Framebuffer framebuffer;
+    gl::VertexArray emptyVao;
+    gl::Buffer range{4 * sizeof(std::uint32_t)};
+    const scene::Model* model = nullptr;
+    const void* geometry = nullptr;
+    std::vector<gl::VertexArray> vaos; // per instance primitive, flattened
+    std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<NormalDistance>> distances;
+};
 
-void RefractionPlugin::addPasses(plugin::Stage, fg::FrameGraph&, fg::Blackboard&) {}
+RefractionPlugin::RefractionPlugin() {
+    auto& p = mParameters;
+    p.declare({"method", "Method", Type::Enum, 0, 0, 3, {"opaque", "sir", "isr", "dir"},
+               "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame d_N; "
+               "dir: depth-map search, no preprocessing"});
+    p.declare({"glass", "Glass", Type::Enum, 0, 0, 0, {"auto", "all"},
+               "auto: materials with transmission; all: every mesh"});
+    p.declare({"ior", "IOR", Type::Float, 0.0, 4.0, 0.0, {}, "index of refraction; 0: the material's"});
+    p.declare({"dispersion", "Dispersion", Type::Float, -1.0, 10.0, -1.0, {},
+               "20 / Abbe number (KHR_materials_dispersion); -1: the material's"});
+    p.declare({"tint", "Tint", Type::Color, 0.0, 1.0, 1.0, {}, "multiplies the attenuation colour"});
+    p.declare({"absorption-distance", "Absorption distance", Type::Float, 0.0, 1e6, 0.0, {},
+               "distance at which light takes the attenuation colour; 0: the material's"});
+    p.declare({"fresnel", "Fresnel", Type::Enum, 0, 0, 0, {"exact", "schlick", "off"}, ""});
+    p.declare({"search-steps", "Search steps", Type::Int, 1, 16, 5, {}, "DIR conservative binary search steps"});
+    p.declare({"tir", "TIR", Type::Enum, 0, 0, 0, {"clamp", "reflect"},
+               "clamp: exit tangent (the papers); reflect: bounce inside and search again"});
+    p.declare({"tir-bounces", "TIR bounces", Type::Int, 1, 8, 2, {}, "reflections followed with tir=reflect"});
+    p.declare({"back-surface", "Back surface", Type::Enum, 0, 0, 0, {"farthest", "first"},
+               "which back face the depth map keeps (ISR paper §3.2)"});
+    p.declare({"nearby", "Nearby scene", Type::Bool, 0, 1, 1, {},
+               "exit rays see the opaque scene on screen before the environment"});
+    p.declare({"debug", "Debug view", Type::Enum, 0, 0, 0,
+               {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir", "exit-point",
+                "exit-direction"},
+               ""});
+}
+
+RefractionPlugin::~RefractionPlugin() = default;
+
+core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
+    shaders.add(refractionShaderFiles());
+    mGpu = std::make_unique<Gpu>();
+    struct Spec {
+        gl::Program* target;
+        const char* vertex;
+        const char* fragment;
+    };
+    for (const Spec& spec : {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
+                             Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
+                             Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"}}) {
+        auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
+        if (!program)
+            return program.error();
+        *spec.target = std::move(*program);
+    }
+    for (auto [target, name] : {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
+                                std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
+                                std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"}}) {
+        auto program = gl::Program::compute(shaders, name);
+        if (!program)
+            return program.error();
+        *target = std::move(*program);
+    }
+    return {};
+}
+
+bool RefractionPlugin::isGlass(const scene::Model& model, const scene::Primitive& primitive) const {
+    if (mParameters.choice("method") == "opaque")
+        return false;
+    if (mParameters.choice("glass") == "all")
+        return true;
+    return primitive.material >= 0 && model.materials[std::size_t(primitive.material)].isTransmissive();
+}
+
+bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int, const scene::Primitive& primitive) const {
+    return mGpu && isGlass(model, primitive);
+}
+
+void RefractionPlugin::prepare(const scene::Model& model, const void* geometry) {
+    if (mGpu->model == &model && mGpu->geometry == geometry)
+        return;
+    mGpu->model = &model;
+    mGpu->geometry = geometry;
+    mGpu->vaos.clear();
+    mGpu->distances.clear();
+    const auto& instances = static_cast<const deform::GpuDeformer*>(geometry)->instances();
+    for (const auto& instance : instances)
+        for (const auto& primitive : instance.primitives) {
+            gl::VertexArray vao;
+            vao.setIndexBuffer(*primitive.indices);
+            mGpu->vaos.push_back(std::move(vao));
+        }
+}
+
+namespace {
+
+struct SurfaceData {
+    fg::TextureHandle depth, normal, zbuffer;
+};
+struct FrontData {
+    fg::TextureHandle backDepth, backNormal, frontDepth, frontNormal, sceneColor, sceneDepth, glass, zbuffer;
+};
+struct CompositeData {
+    fg::TextureHandle scene, glass, out;
+};
+
+/** Per-primitive optical parameters from the material and the global overrides. */
+struct Optics {
+    glm::vec3 ior;
+    bool dispersion;
+    glm::vec3 sigma;
+    float transmission;
+};
+
+Optics opticsFor(const plugin::ParameterSet& p, const scene::Material* m) {
+    Optics o;
+    const double iorOverride = p.number("ior");
+    double ior = iorOverride >= 1.0 ? iorOverride : (m && m->hasIor && m->ior >= 1.0f ? double(m->ior) : 1.5);
+    const double dispersion = p.number("dispersion") >= 0.0 ? p.number("dispersion") : (m ? double(m->dispersion) : 0.0);
+    // KHR_materials_dispersion: spread of the indices around ior from the Abbe number.
+    const double halfSpread = (ior - 1.0) * 0.025 * dispersion;
+    o.ior = glm::vec3(float(ior - halfSpread), float(ior), float(ior + halfSpread));
+    o.dispersion = halfSpread > 0.0;
+    const auto tint = p.color("tint");
+    const glm::vec3 attenuation = (m ? m->attenuationColor : glm::vec3(1.0f)) *
+                                  glm::vec3(float(tint[0]), float(tint[1]), float(tint[2]));
+    const double distanceOverride = p.number("absorption-distance");
+    const float distance = distanceOverride > 0.0 ? float(distanceOverride)
+                           : m ? m->attenuationDistance
+                               : std::numeric_limits<float>::infinity();
+    o.sigma = std::isfinite(distance) ? -glm::log(glm::max(attenuation, glm::vec3(1e-4f))) / distance : glm::vec3(0.0f);
+    o.transmission = m && m->isTransmissive() ? m->transmissionFactor : 1.0f;
+    return o;
+}
+
+} // namespace
+
+void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) {
+    if (stage != plugin::Stage::AfterOpaque || !mGpu || mParameters.choice("method") == "opaque")
+        return;
+    const render::FrameInfo* frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
+    const scene::Model& model = *frame->model;
+    prepare(model, frame->geometry);
+    bool anyGlass = false;
+    for (const auto& instance : frame->geometry->instances())
+        for (const auto& primitive : instance.primitives)
+            anyGlass = anyGlass || isGlass(model, *primitive.source);
+    if (!anyGlass)
+        return;
+
+    const std::string method = mParameters.choice("method");
+    const bool reflect = mParameters.choice("tir") == "reflect" && method != "sir";
+    const bool firstBack = mParameters.choice("back-surface") == "first";
+    const glm::ivec2 size = frame->settings.size;
+    const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1}, normalDesc{size, gl::Format::RGBA16F, 0},
+        zDesc{size, gl::Format::Depth32F, 1}, colorDesc{size, gl::Format::RGBA16F, 1};
+    Gpu& gpu = *mGpu;
+
+    // Draws every glass primitive with `program` (glass.vert.glsl), setting per-primitive state.
+    auto drawGlass = [this, frame, &model](const gl::Program& program, const gl::PipelineState& state, bool front) {
+        Gpu& g = *mGpu;
+        program.use();
+        program.set("uProjection", frame->camera.projection);
+        std::size_t vao = 0, instanceIndex = 0;
+        for (const auto& instance : frame->geometry->instances()) {
+            const glm::mat4 modelView = frame->camera.view * instance.meshToWorld;
+            program.set("uModelView", modelView);
+            program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
+            for (std::size_t p = 0; p < instance.primitives.size(); ++p, ++vao) {
+                const auto& primitive = instance.primitives[p];
+                if (!isGlass(model, *primitive.source))
+                    continue;
+                gl::bindStorage(0, primitive.deformed);
+                gl::bindStorage(1, *primitive.uv0);
+                const auto distance = g.distances.find({instanceIndex, p});
+                const bool hasDistance = distance != g.distances.end() && mParameters.choice("method") == "isr";
+                program.set("uHasNormalDistance", hasDistance ? 1 : 0);
+                if (hasDistance)
+                    gl::bindStorage(2, distance->second->distances());
+                else
+                    gl::bindStorage(2, primitive.deformed); // unread; keeps the binding valid
+                if (front) {
+                    const int material = primitive.source->material;
+                    const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+                    frame->materials->bind(program, model, material, 8);
+                    const Optics o = opticsFor(mParameters, m);
+                    program.set("uIor", o.ior);
+                    program.set("uDispersion", o.dispersion ? 1 : 0);
+                    program.set("uSigma", o.sigma);
+                    program.set("uTransmission", o.transmission);
+                    program.set("uBaseColor", m ? m->baseColorFactor : glm::vec4(1.0f));
+                    program.set("uRoughness", m ? m->roughnessFactor : 0.0f);
+                    program.set("uMetallic", m ? m->metallicFactor : 0.0f);
+                    program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
+                }
+                gl::apply(state);
+                g.vaos[vao].bind();
+                gl::drawIndexed(primitive.indexCount);
+            }
+            ++instanceIndex;
+        }
+    };
+
+    // 1. Back faces (DIR §3.1): farthest (GREATER, cleared to 0) or first (LESS, cleared to 1).
+    auto surfacePass = [&](const char* name, bool backFaces, bool nearest) -> const SurfaceData& {
+        return graph.addPass<SurfaceData>(
+            name,
+            [&](fg::Builder& b, SurfaceData& d) {
+                b.after("deform");
+                d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc));
+                d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc));
+                d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc));
+            },
+            [&gpu, drawGlass, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d, gl::Context&) {
+                auto status = gpu.framebuffer.attach(name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
+                ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+                gpu.framebuffer.bind();
+                gl::clearColor(0, glm::vec4(0.0f));
+                gl::clearColor(1, glm::vec4(0.0f));
+                gl::clearDepth(nearest ? 1.0f : 0.0f);
+                drawGlass(gpu.surface,
+                          {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
+                           .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater},
+                          false);
+                r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+            });
+    };
+    const SurfaceData back = surfacePass("refraction.back_faces", true, firstBack);
+    SurfaceData front;
+    if (reflect)
+        front = surfacePass("refraction.front_depth", false, true);
+
+    // 2. Depth range of the valid back (and front) texels: a compute reduction.
+    struct RangeData {
+        fg::TextureHandle back, front;
+    };
+    graph.addPass<RangeData>(
+        "refraction.depth_range",
+        [&](fg::Builder& b, RangeData& d) {
+            d.back = b.read(back.depth);
+            if (reflect)
+                d.front = b.read(front.depth);
+        },
+        [&gpu, size](const fg::Resources& r, const RangeData& d, gl::Context&) {
+            const std::uint32_t reset[4] = {0x7F7FFFFFu, 0u, 0x7F7FFFFFu, 0u};
+            gpu.range.update(0, sizeof reset, reset);
+            gpu.depthRange.use();
+            gl::bindStorage(0, gpu.range);
+            for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
+                gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
+                gpu.depthRange.set("uDepth", 0);
+                gpu.depthRange.set("uSlot", slot);
+                gl::dispatch(std::uint32_t((size.x + 15) / 16), std::uint32_t((size.y + 15) / 16));
+            }
+            gl::memoryBarrier(gl::BarrierStorage);
+        });
+
+    // 3. d_N per deformed vertex, every frame (ISR only).
+    if (method == "isr") {
+        struct Empty {};
+        graph.addPass<Empty>(
+            "refraction.normal_distance", [](fg::Builder& b, Empty&) { b.after("deform"); },
+            [this, frame, &model](const fg::Resources&, const Empty&, gl::Context&) {
+                Gpu& g = *mGpu;
+                std::size_t instanceIndex = 0;
+                for (const auto& instance : frame->geometry->instances()) {
+                    for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+                        const auto& primitive = instance.primitives[p];
+                        if (!isGlass(model, *primitive.source))
+                            continue;
+                        auto& distance = g.distances[{instanceIndex, p}];
+                        if (!distance)
+                            distance = std::make_unique<NormalDistance>(*primitive.source);
+                        distance->update(primitive.deformed, *primitive.indices, g.refit, g.normalDistance);
+                    }
+                    ++instanceIndex;
+                }
+            });
+    }
+
+    // 4. Front faces: refract, find the exit, shade.
+    const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+    const auto& shaded = graph.addPass<FrontData>(
+        "refraction.front_faces",
+        [&](fg::Builder& b, FrontData& d) {
+            b.after("refraction.depth_range");
+            if (method == "isr")
+                b.after("refraction.normal_distance");
+            d.backDepth = b.read(back.depth);
+            d.backNormal = b.read(back.normal);
+            if (reflect) {
+                d.frontDepth = b.read(front.depth);
+                d.frontNormal = b.read(front.normal);
+            }
+            d.sceneColor = b.read(sceneColor);
+            d.sceneDepth = b.read(sceneDepth);
+            d.glass = b.write(b.create("refraction.glass", colorDesc));
+            d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc));
+        },
+        [this, &gpu, drawGlass, frame, size](const fg::Resources& r, const FrontData& d, gl::Context&) {
+            auto status = gpu.framebuffer.attach("refraction.front_faces", {&r.texture(d.glass)}, &r.texture(d.zbuffer));
+            ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+            gpu.framebuffer.bind();
+            gl::clearColor(0, glm::vec4(0.0f));
+            gl::clearDepth(1.0f);
+            const gl::Program& f = gpu.front;
+            f.use();
+            const std::string chosen = mParameters.choice("method");
+            f.set("uMethod", chosen == "sir" ? 1 : chosen == "isr" ? 2 : 3);
+            f.set("uSteps", int(mParameters.number("search-steps")));
+            f.set("uTirPolicy", mParameters.choice("tir") == "reflect" ? 1 : 0);
+            f.set("uBounces", int(mParameters.number("tir-bounces")));
+            const std::string fresnel = mParameters.choice("fresnel");
+            f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
+            f.set("uNearby", mParameters.flag("nearby") ? 1 : 0);
+            f.set("uDebug", int(mParameters.number("debug")));
+            f.set("uViewportSize", glm::vec2(size));
+            f.set("uNear", frame->camera.znear);
+            f.set("uFar", frame->camera.zfar);
+            f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+            const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
+            f.set("uViewToWorld", glm::mat3(viewToWorld));
+            f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+            f.set("uNormalLod", 1.0f);
+            frame->environment->bind(f, 0, frame->settings.environmentRotation, frame->settings.environmentIntensity);
+            const std::pair<const char*, fg::TextureHandle> samplers[] = {
+                {"uBackDepth", d.backDepth},   {"uBackNormal", d.backNormal}, {"uFrontDepth", d.frontDepth},
+                {"uFrontNormal", d.frontNormal}, {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
+            int unit = 2;
+            for (const auto& [uniform, handle] : samplers) {
+                // Without TIR reflection the front maps are absent: the back maps stand in (unread).
+                gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.backDepth));
+                f.set(uniform, unit++);
+            }
+            gl::bindStorage(3, gpu.range);
+            drawGlass(f, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less}, true);
+        });
+
+    // 5. Glass over the scene colour.
+    const auto& composite = graph.addPass<CompositeData>(
+        "refraction.composite",
+        [&](fg::Builder& b, CompositeData& d) {
+            d.scene = b.read(sceneColor);
+            d.glass = b.read(shaded.glass);
+            d.out = b.write(b.create("refraction.scene_color", colorDesc));
+        },
+        [&gpu](const fg::Resources& r, const CompositeData& d, gl::Context&) {
+            auto status = gpu.framebuffer.attach("refraction.composite", {&r.texture(d.out)}, nullptr);
+            ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+            gpu.framebuffer.bind();
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            gpu.composite.use();
+            gl::bindTexture(0, r.texture(d.scene));
+            gl::bindTexture(1, r.texture(d.glass));
+            gpu.composite.set("uScene", 0);
+            gpu.composite.set("uGlass", 1);
+            gpu.emptyVao.bind();
+            gl::drawArrays(3);
+        });
+    blackboard.put(plugin::kSceneColor, composite.out);
+}
 
 std::unique_ptr<plugin::Plugin> createPlugin() { return std::make_unique<RefractionPlugin>(); }
 

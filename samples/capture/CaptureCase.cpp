@@ -76,6 +76,9 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
                         spec.parameters.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
                 c.session.plugins.push_back(spec);
             }
+        if (j.contains("refraction"))
+            for (const auto& [key, value] : j["refraction"].items())
+                c.session.refraction.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
         if (j.contains("tolerance")) {
             c.tolerance.maxAbsDiff = j["tolerance"].value("max_abs_diff", c.tolerance.maxAbsDiff);
             c.tolerance.maxFailingFraction = j["tolerance"].value("max_failing_fraction", c.tolerance.maxFailingFraction);

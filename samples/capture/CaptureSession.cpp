@@ -2,9 +2,10 @@
 #include "CaptureSession.h"
 
 #include "engine/anim/Pose.h"
-#include "engine/asset/GltfLoader.h"
+#include "engine/asset/ModelLoader.h"
 #include "engine/asset/HdrImage.h"
 #include "engine/gl/Debug.h"
+#include "refraction/RefractionPlugin.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -19,7 +20,7 @@ namespace capture {
 core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const SessionOptions& options) {
     std::unique_ptr<CaptureSession> s(new CaptureSession());
     s->mOptions = options;
-    auto model = asset::loadGltf(options.model);
+    auto model = asset::loadModel(options.model);
     if (!model)
         return model.error();
     s->mModel = std::move(*model);
@@ -45,6 +46,14 @@ core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const Sessi
     if (!renderer)
         return renderer.error();
     s->mRenderer = std::move(*renderer);
+    s->mRefraction = refraction::createPlugin();
+    for (const auto& [key, value] : options.refraction) {
+        auto set = s->mRefraction->parameters().set(key, value);
+        if (!set)
+            return core::Error{"glass-capture: --" + key + ": " + set.error().message};
+    }
+    if (auto added = s->mRenderer->addPlugin(s->mRefraction.get()); !added)
+        return added.error();
     for (const auto& spec : options.plugins) {
         auto loaded = plugin::loadPlugin(spec.path);
         if (!loaded)

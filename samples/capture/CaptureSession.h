@@ -39,6 +39,8 @@ struct SessionOptions {
         std::vector<std::pair<std::string, std::string>> parameters;
     };
     std::vector<PluginSpec> plugins;
+    /** Parameters of the built-in refraction plugin (linked statically, always present). */
+    std::vector<std::pair<std::string, std::string>> refraction;
 };
 
 struct RenderedFrame {
@@ -65,6 +67,7 @@ private:
     scene::Model mModel;
     int mClip = -1;
     std::unique_ptr<gl::Context> mContext;
+    std::unique_ptr<plugin::Plugin> mRefraction;
     std::vector<plugin::LoadedPlugin> mPlugins;
     std::unique_ptr<render::Renderer> mRenderer;
     render::Bounds mBounds;

@@ -3,6 +3,8 @@
 #include "CaptureCase.h"
 #include "CaptureSession.h"
 
+#include "refraction/RefractionPlugin.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +16,10 @@ namespace {
 constexpr const char* kUsage = R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph]
+                     [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
+                     [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
+                     [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
+                     [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
        glass-capture --case FILE.json [--update] [--out DIR]
 
 Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
@@ -27,6 +33,21 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --ground            draw a ground plane under the character
   --exposure E        exposure multiplier before tonemapping (default 1)
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
+  Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
+  --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
+                      depth-map search, no preprocessing)
+  --glass auto|all    auto: transmissive materials (default); all: play every mesh as glass
+  --ior N             index of refraction, 0 = the material's (default)
+  --dispersion D      20/Abbe number, -1 = the material's (default)
+  --tint R,G,B        multiplies the attenuation colour; --absorption-distance D sets where
+                      light reaches it (0 = the material's)
+  --fresnel M         exact (default), schlick or off
+  --search-steps N    DIR binary search steps, 1..16 (default 5)
+  --tir P             clamp (the papers, default) or reflect; --tir-bounces B (default 2)
+  --back-surface S    farthest (default) or first back face
+  --nearby on|off     exit rays see the opaque scene before the environment (default on)
+  --debug VIEW        none, back-depth, back-normal, dv, dn, exit-uv, steps, tir, exit-point,
+                      exit-direction
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
   --dump-graph        print the compiled frame graph of the first frame to stderr
@@ -77,6 +98,17 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.dumpGraph = true;
         } else if (arg == "--update") {
             o.update = true;
+        } else if (arg == "--method" || arg == "--glass" || arg == "--ior" || arg == "--dispersion" ||
+                   arg == "--tint" || arg == "--absorption-distance" || arg == "--fresnel" ||
+                   arg == "--search-steps" || arg == "--tir" || arg == "--tir-bounces" ||
+                   arg == "--back-surface" || arg == "--nearby" || arg == "--debug") {
+            const auto v = next();
+            if (!v)
+                return usageError(arg + " needs a value");
+            plugin::ParameterSet check = refraction::createPlugin()->parameters();
+            if (auto status = check.set(arg.substr(2), *v); !status)
+                return usageError(arg + ": " + status.error().message);
+            o.session.refraction.emplace_back(arg.substr(2), *v);
         } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" || arg == "--env" ||
                    arg == "--out" || arg == "--exposure" || arg == "--plugin" || arg == "--set" || arg == "--case") {
             const auto v = next();
@@ -181,7 +213,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", session.error().message.c_str());
         return 1;
     }
-    const std::string stem = std::filesystem::path(o.session.model).stem().string();
+    std::string stem = std::filesystem::path(o.session.model).stem().string();
+    for (char& c : stem)
+        if (c == ':' || c == '?' || c == '=' || c == '/')
+            c = '_';
     nlohmann::json report = {{"model", o.session.model}, {"clip", (*session)->clipLabel()},
                              {"size", {o.session.size.x, o.session.size.y}}, {"frames", nlohmann::json::array()}};
     std::error_code ec;

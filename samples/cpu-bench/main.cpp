@@ -1,7 +1,7 @@
 // glass-cpu-bench: load time of models and the time to sample + deform one frame on the CPU
 // reference path (median of many runs). A benchmark, not a test: it asserts nothing.
 #include "engine/anim/Pose.h"
-#include "engine/asset/GltfLoader.h"
+#include "engine/asset/ModelLoader.h"
 #include "engine/deform/CpuDeformer.h"
 
 #include <algorithm>
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
         for (int r = 0; r < std::max(5, runs / 20); ++r) {
             for (bool decodeImages : {true, false}) {
                 const auto start = Clock::now();
-                auto model = asset::loadGltf(path, {.decodeImages = decodeImages});
+                auto model = asset::loadModel(path, {.decodeImages = decodeImages});
                 (decodeImages ? loads : geometryLoads).push_back(millisecondsSince(start));
                 if (!model) {
                     std::fprintf(stderr, "glass-cpu-bench: %s\n", model.error().message.c_str());
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
                 }
             }
         }
-        const scene::Model model = std::move(asset::loadGltf(path).value());
+        const scene::Model model = std::move(asset::loadModel(path).value());
         const int clip = model.animations.empty() ? -1 : 0;
         const double duration = clip < 0 ? 1.0 : model.animations[0].duration;
         std::vector<double> frames;

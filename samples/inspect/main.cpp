@@ -4,7 +4,7 @@
 #include "Ply.h"
 
 #include "engine/anim/Pose.h"
-#include "engine/asset/GltfLoader.h"
+#include "engine/asset/ModelLoader.h"
 #include "engine/core/Files.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/GpuDeformer.h"
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
         return *exitCode;
     asset::LoadOptions loadOptions;
     loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
-    auto model = asset::loadGltf(options.model, loadOptions);
+    auto model = asset::loadModel(options.model, loadOptions);
     if (!model) {
         std::fprintf(stderr, "glass-inspect: %s\n", model.error().message.c_str());
         return 1;

@@ -3,6 +3,7 @@ in vec2 vUv;
 out vec4 outColor;
 uniform sampler2D uScene;
 uniform float uExposure;
+uniform int uRaw; // 1: pass the HDR colour through (hdrOutput frames)
 
 vec3 acesFilm(vec3 x) {
     return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
@@ -13,6 +14,11 @@ vec3 linearToSrgb(vec3 c) {
 }
 
 void main() {
-    vec3 hdr = texelFetch(uScene, ivec2(gl_FragCoord.xy), 0).rgb * uExposure;
+    vec3 hdr = texelFetch(uScene, ivec2(gl_FragCoord.xy), 0).rgb;
+    if (uRaw != 0) {
+        outColor = vec4(hdr, 1.0);
+        return;
+    }
+    hdr *= uExposure;
     outColor = vec4(linearToSrgb(acesFilm(max(hdr, vec3(0.0)))), 1.0);
 }

@@ -12,7 +12,8 @@ namespace plugin {
 
 void ParameterSet::declare(Parameter parameter) {
     ENGINE_CHECK(find(parameter.name) == nullptr, "parameter '" + parameter.name + "' declared twice");
-    mValues.push_back(parameter.defaultValue);
+    const double d = parameter.defaultValue;
+    mValues.push_back({d, d, d});
     mDeclarations.push_back(std::move(parameter));
 }
 
@@ -43,9 +44,9 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
     switch (p->type) {
     case Parameter::Type::Bool:
         if (value == "on" || value == "true" || value == "1")
-            mValues[i] = 1.0;
+            mValues[i] = {1.0, 1.0, 1.0};
         else if (value == "off" || value == "false" || value == "0")
-            mValues[i] = 0.0;
+            mValues[i] = {0.0, 0.0, 0.0};
         else
             return core::Error{"parameter '" + name + "' takes on/off, got '" + value + "'"};
         return {};
@@ -57,7 +58,26 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
                 choices += (choices.empty() ? "" : "|") + c;
             return core::Error{"parameter '" + name + "' takes " + choices + ", got '" + value + "'"};
         }
-        mValues[i] = double(it - p->choices.begin());
+        const double index = double(it - p->choices.begin());
+        mValues[i] = {index, index, index};
+        return {};
+    }
+    case Parameter::Type::Color: {
+        std::array<double, 3> rgb{};
+        std::size_t start = 0;
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t comma = value.find(',', start);
+            if ((c < 2) == (comma == std::string::npos))
+                return core::Error{"parameter '" + name + "' takes R,G,B, got '" + value + "'"};
+            const std::string part = value.substr(start, c < 2 ? comma - start : std::string::npos);
+            const char* end = part.data() + part.size();
+            const auto [ptr, ec] = std::from_chars(part.data(), end, rgb[std::size_t(c)]);
+            if (ec != std::errc() || ptr != end || !(rgb[std::size_t(c)] >= p->min && rgb[std::size_t(c)] <= p->max))
+                return core::Error{"parameter '" + name + "' takes R,G,B each in [" + std::to_string(p->min) +
+                                   ", " + std::to_string(p->max) + "], got '" + value + "'"};
+            start = comma + 1;
+        }
+        mValues[i] = rgb;
         return {};
     }
     case Parameter::Type::Float:
@@ -74,7 +94,7 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
             range << "[" << p->min << ", " << p->max << "]";
             return core::Error{"parameter '" + name + "' must lie in " + range.str() + ", got " + value};
         }
-        mValues[i] = number;
+        mValues[i] = {number, number, number};
         return {};
     }
     }
@@ -84,21 +104,23 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
 void ParameterSet::setNumber(const std::string& name, double value) {
     const std::size_t i = index(name);
     const Parameter& p = mDeclarations[i];
-    if (p.type == Parameter::Type::Float || p.type == Parameter::Type::Int)
+    if (p.type == Parameter::Type::Float || p.type == Parameter::Type::Int || p.type == Parameter::Type::Color)
         value = std::clamp(value, p.min, p.max);
     if (p.type == Parameter::Type::Enum)
         value = std::clamp(std::round(value), 0.0, double(p.choices.size() - 1));
     if (p.type == Parameter::Type::Bool)
         value = value != 0.0 ? 1.0 : 0.0;
-    mValues[i] = value;
+    mValues[i] = {value, value, value};
 }
 
-double ParameterSet::number(const std::string& name) const { return mValues[index(name)]; }
+double ParameterSet::number(const std::string& name) const { return mValues[index(name)][0]; }
+
+std::array<double, 3> ParameterSet::color(const std::string& name) const { return mValues[index(name)]; }
 
 const std::string& ParameterSet::choice(const std::string& name) const {
     const std::size_t i = index(name);
     ENGINE_CHECK(mDeclarations[i].type == Parameter::Type::Enum, "choice() of a non-enum parameter");
-    return mDeclarations[i].choices[std::size_t(mValues[i])];
+    return mDeclarations[i].choices[std::size_t(mValues[i][0])];
 }
 
 std::string ParameterSet::text(const std::string& name) const {
@@ -106,14 +128,19 @@ std::string ParameterSet::text(const std::string& name) const {
     const Parameter& p = mDeclarations[i];
     switch (p.type) {
     case Parameter::Type::Bool:
-        return mValues[i] != 0.0 ? "on" : "off";
+        return mValues[i][0] != 0.0 ? "on" : "off";
     case Parameter::Type::Enum:
-        return p.choices[std::size_t(mValues[i])];
+        return p.choices[std::size_t(mValues[i][0])];
     case Parameter::Type::Int:
-        return std::to_string(static_cast<long long>(mValues[i]));
+        return std::to_string(static_cast<long long>(mValues[i][0]));
     case Parameter::Type::Float: {
         std::ostringstream s;
-        s << mValues[i];
+        s << mValues[i][0];
+        return s.str();
+    }
+    case Parameter::Type::Color: {
+        std::ostringstream s;
+        s << mValues[i][0] << "," << mValues[i][1] << "," << mValues[i][2];
         return s.str();
     }
     }

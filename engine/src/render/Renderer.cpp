@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 
@@ -19,7 +20,7 @@ class Renderer::Allocator final : public fg::TextureAllocator {
 public:
     void* allocate(const gl::TextureDesc& desc) override {
         auto* texture = new gl::Texture(desc);
-        texture->setSampling(desc.levels > 1 ? gl::Filter::LinearMipmap : gl::Filter::Nearest, gl::Wrap::Clamp);
+        texture->setSampling(desc.levels != 1 ? gl::Filter::LinearMipmap : gl::Filter::Nearest, gl::Wrap::Clamp);
         return texture;
     }
     void release(void* object) override { delete static_cast<gl::Texture*>(object); }
@@ -123,8 +124,9 @@ void Renderer::setGround(float height, const glm::vec3& center, float halfSize) 
 core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
-    if (!mOutput || mOutput.desc().size != settings.size)
-        mOutput = gl::Texture({settings.size, gl::Format::RGBA8, 1});
+    const gl::Format outputFormat = settings.hdrOutput ? gl::Format::RGBA32F : gl::Format::RGBA8;
+    if (!mOutput || mOutput.desc().size != settings.size || mOutput.desc().format != outputFormat)
+        mOutput = gl::Texture({settings.size, outputFormat, 1});
 
     FrameInfo frame;
     frame.model = mModel;
@@ -215,6 +217,13 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
                 mOpaque.set("uModel", instance.meshToWorld);
                 mOpaque.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
                 for (const auto& primitive : instance.primitives) {
+                    const bool claimed = std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
+                        return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
+                    });
+                    if (claimed) {
+                        ++vao;
+                        continue;
+                    }
                     const int material = primitive.source->material;
                     gl::apply({.cull = cullFor(*mModel, material)});
                     mMaterials->bind(mOpaque, *mModel, material, 2);
@@ -252,6 +261,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
             gl::bindTexture(0, r.texture(d.scene));
             mTonemap.set("uScene", 0);
             mTonemap.set("uExposure", frame.settings.exposure);
+            mTonemap.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
             mEmptyVao.bind();
             gl::drawArrays(3);
         });
@@ -271,6 +281,17 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     stats.graph = graph.dump();
     mPool->endFrame();
     return stats;
+}
+
+std::vector<float> Renderer::readHdrOutput() const {
+    std::vector<float> pixels = mOutput.downloadFloat();
+    const glm::ivec2 size = mOutput.desc().size;
+    const std::size_t row = std::size_t(size.x) * 4u;
+    for (int y = 0; y < size.y / 2; ++y)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
+    return pixels;
 }
 
 std::vector<std::uint8_t> Renderer::readOutput() const {

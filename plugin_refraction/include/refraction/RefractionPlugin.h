@@ -1,23 +1,43 @@
-// The refraction plugin: renders the engine's deforming glTF characters as glass (DIR, ISR, SIR).
-// This first version plugs into the frame graph and adds no pass yet; the methods follow.
+// The refraction plugin: renders the engine's deforming glTF characters as glass through two
+// interfaces, with no preprocessing (DIR), with per-frame d_N (ISR), or through one (SIR).
+// Passes, per frame (ARCHITECTURE.md): back faces -> depth range -> [d_N] -> [front depth, for
+// TIR reflection] -> front faces -> composite over the scene colour.
 #pragma once
 
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Commands.h"
+#include "engine/gl/Framebuffer.h"
+#include "engine/gl/Program.h"
 #include "engine/plugin/Plugin.h"
 
 #include <memory>
+#include <vector>
 
 namespace refraction {
 
+class NormalDistance;
+
+/** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,
+ *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
+ *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
+ *  search-steps 1..16, tir clamp|reflect, tir-bounces, back-surface farthest|first,
+ *  nearby on|off, debug none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction. */
 class RefractionPlugin final : public plugin::Plugin {
 public:
     RefractionPlugin();
+    ~RefractionPlugin() override;
     const char* name() const override { return "refraction"; }
     core::Status initialize(gl::ShaderLibrary& shaders) override;
     void addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) override;
+    bool drawsPrimitive(const scene::Model& model, int node, const scene::Primitive& primitive) const override;
     plugin::ParameterSet& parameters() override { return mParameters; }
 
 private:
+    struct Gpu;
+    bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
+    void prepare(const scene::Model& model, const void* geometry);
     plugin::ParameterSet mParameters;
+    std::unique_ptr<Gpu> mGpu;
 };
 
 /** For hosts that link the plugin statically instead of loading the module. */

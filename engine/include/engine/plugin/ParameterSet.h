@@ -4,18 +4,19 @@
 
 #include "engine/core/Result.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace plugin {
 
 struct Parameter {
-    enum class Type { Float, Int, Bool, Enum };
+    enum class Type { Float, Int, Bool, Enum, Color };
     std::string name;  ///< key: lower-case, dashes ("search-steps")
     std::string label; ///< for panels
     Type type = Type::Float;
-    double min = 0.0, max = 1.0; ///< Float and Int
-    double defaultValue = 0.0;   ///< Enum: index into choices; Bool: 0 or 1
+    double min = 0.0, max = 1.0; ///< Float, Int, and each Color component
+    double defaultValue = 0.0;   ///< Enum: index into choices; Bool: 0 or 1; Color: grey level
     std::vector<std::string> choices;
     std::string help;
 };
@@ -27,13 +28,16 @@ public:
 
     const std::vector<Parameter>& declarations() const { return mDeclarations; }
 
-    /** Parses and sets `value` ("1.5", "8", "on"/"off"/"true"/"false", an enum choice). Fails
+    /** Parses and sets `value` ("1.5", "8", "on"/"off"/"true"/"false", an enum choice, "r,g,b"
+     *  for a colour). Fails
      *  naming the parameter on an unknown name, an unparsable value or one out of range. */
     core::Status set(const std::string& name, const std::string& value);
     /** Sets a numeric value directly (clamped to the range; Enum: index). */
     void setNumber(const std::string& name, double value);
 
     double number(const std::string& name) const;
+    /** A Color parameter's components. */
+    std::array<double, 3> color(const std::string& name) const;
     bool flag(const std::string& name) const { return number(name) != 0.0; }
     /** An Enum parameter's current choice. */
     const std::string& choice(const std::string& name) const;
@@ -45,7 +49,7 @@ public:
 private:
     std::size_t index(const std::string& name) const;
     std::vector<Parameter> mDeclarations;
-    std::vector<double> mValues;
+    std::vector<std::array<double, 3>> mValues;
 };
 
 } // namespace plugin

@@ -15,6 +15,10 @@ class Blackboard;
 namespace gl {
 class ShaderLibrary;
 }
+namespace scene {
+struct Model;
+struct Primitive;
+} // namespace scene
 
 namespace plugin {
 
@@ -44,6 +48,12 @@ public:
     virtual core::Status initialize(gl::ShaderLibrary& shaders) = 0;
     /** Adds this plugin's passes for `stage` (may add none). */
     virtual void addPasses(Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) = 0;
+    /** True when this plugin draws primitive `primitive` of mesh node `node` itself, so the
+     *  opaque pass leaves it out (a glass plugin claims its glass). */
+    virtual bool drawsPrimitive(const scene::Model& model, int node, const scene::Primitive& primitive) const {
+        (void)model, (void)node, (void)primitive;
+        return false;
+    }
     /** Parameters the host may list, set from the command line and show in a panel. */
     virtual ParameterSet& parameters() = 0;
     /** Draws extra panel widgets; `imguiContext` is the viewer's ImGuiContext*. */

@@ -32,6 +32,9 @@ struct RenderSettings {
      *  (llvmpipe) otherwise bill a pass's rasterisation to whichever pass flushes it; this
      *  gives true per-pass times at the cost of pipelining. */
     bool exactPassTimes = false;
+    /** Output the HDR scene colour unchanged (RGBA32F, no exposure, tonemap or sRGB) instead of
+     *  the display image: for measurements and debug views. */
+    bool hdrOutput = false;
 };
 
 struct FrameInfo {

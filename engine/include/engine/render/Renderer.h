@@ -55,6 +55,8 @@ public:
     const gl::Texture& output() const { return mOutput; }
     /** The output's pixels, rows top to bottom, RGBA8 (synchronises). */
     std::vector<std::uint8_t> readOutput() const;
+    /** The output of an hdrOutput frame as RGBA floats, rows top to bottom (synchronises). */
+    std::vector<float> readHdrOutput() const;
 
     /** Sets where the ground plane is drawn when settings.ground is on. */
     void setGround(float height, const glm::vec3& center, float halfSize);

@@ -1,0 +1,83 @@
+// Built-in analytic models and the loader front door.
+#include "engine/asset/ModelLoader.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace asset {
+
+scene::Model makeSphere(int segments) {
+    const int longitudes = segments, latitudes = segments / 2;
+    scene::Primitive p;
+    for (int lat = 0; lat <= latitudes; ++lat) {
+        const double theta = M_PI * double(lat) / double(latitudes);
+        for (int lon = 0; lon <= longitudes; ++lon) {
+            const double phi = 2.0 * M_PI * double(lon) / double(longitudes);
+            const glm::vec3 n(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                              float(-std::sin(theta) * std::sin(phi)));
+            p.positions.push_back(n);
+            p.normals.push_back(n);
+            p.tangents.emplace_back(float(-std::sin(phi)), 0.0f, float(-std::cos(phi)), 1.0f);
+            p.uv0.emplace_back(float(lon) / float(longitudes), float(lat) / float(latitudes));
+        }
+    }
+    const auto index = [&](int lat, int lon) { return std::uint32_t(lat * (longitudes + 1) + lon); };
+    for (int lat = 0; lat < latitudes; ++lat)
+        for (int lon = 0; lon < longitudes; ++lon) {
+            const std::uint32_t a = index(lat, lon), b = index(lat + 1, lon), c = index(lat + 1, lon + 1),
+                                d = index(lat, lon + 1);
+            if (lat > 0)
+                p.indices.insert(p.indices.end(), {a, b, d});
+            if (lat + 1 < latitudes)
+                p.indices.insert(p.indices.end(), {d, b, c});
+        }
+    p.sourceVertexCount = p.positions.size();
+    p.material = 0;
+
+    scene::Model model;
+    model.sourceName = "builtin:sphere";
+    scene::Material glass;
+    glass.name = "sphere glass";
+    glass.baseColorFactor = glm::vec4(1.0f);
+    glass.metallicFactor = 0.0f;
+    glass.roughnessFactor = 0.0f;
+    glass.hasTransmission = true;
+    glass.transmissionFactor = 1.0f;
+    glass.hasIor = true;
+    glass.ior = 1.5f;
+    glass.hasVolume = true;
+    model.materials.push_back(glass);
+    scene::Mesh mesh;
+    mesh.name = "sphere";
+    mesh.primitives.push_back(std::move(p));
+    model.meshes.push_back(std::move(mesh));
+    scene::Node node;
+    node.name = "sphere";
+    node.mesh = 0;
+    model.nodes.push_back(node);
+    model.scenes.push_back({0});
+    model.defaultScene = 0;
+    return model;
+}
+
+core::Result<scene::Model> loadModel(const std::string& path, const LoadOptions& options) {
+    const std::string prefix = "builtin:sphere";
+    if (path.rfind("builtin:", 0) != 0)
+        return loadGltf(path, options);
+    int segments = 128;
+    if (path == prefix)
+        return makeSphere(segments);
+    const std::string query = prefix + "?segments=";
+    if (path.rfind(query, 0) == 0) {
+        const char* begin = path.data() + query.size();
+        const char* end = path.data() + path.size();
+        const auto [ptr, ec] = std::from_chars(begin, end, segments);
+        if (ec == std::errc() && ptr == end && segments >= 8 && segments <= 1024)
+            return makeSphere(segments);
+        return core::Error{"asset::loadModel(): " + path + ": segments must be an integer in 8..1024"};
+    }
+    return core::Error{"asset::loadModel(): unknown built-in model '" + path +
+                       "' (known: builtin:sphere, builtin:sphere?segments=N)"};
+}
+
+} // namespace asset

@@ -1,0 +1,31 @@
+// Glass surfaces: pulls the deformed vertex (and, for ISR, its per-frame d_N) and passes
+// view-space position, normal and tangent on.
+#include "common/vertex.glsl"
+
+layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
+layout(std430, binding = 1) readonly buffer Uv { vec2 uvs[]; };
+layout(std430, binding = 2) readonly buffer NormalDistance { float normalDistance[]; };
+
+uniform mat4 uModelView;       // mesh node space -> view
+uniform mat3 uNormalMatrix;    // inverse transpose of uModelView's 3x3
+uniform mat4 uProjection;
+uniform int uHasNormalDistance;
+
+out vec3 vViewPosition;
+out vec3 vViewNormal;
+out vec4 vViewTangent;
+out vec2 vUv;
+out float vNormalDistance;
+
+void main() {
+    DeformedVertex v = vertices[gl_VertexID];
+    vec4 view = uModelView * vec4(v.position.xyz, 1.0);
+    vViewPosition = view.xyz;
+    vViewNormal = normalize(uNormalMatrix * v.normal.xyz);
+    vViewTangent = vec4(normalize(mat3(uModelView) * v.tangent.xyz), v.tangent.w);
+    vUv = uvs[gl_VertexID];
+    // d_N is measured in mesh units; the model-view matrix scales it along the normal.
+    float d = uHasNormalDistance != 0 ? normalDistance[gl_VertexID] : -1.0;
+    vNormalDistance = d >= 0.0 ? d * length(mat3(uModelView) * v.normal.xyz) : -1.0;
+    gl_Position = uProjection * view;
+}

@@ -1,0 +1,260 @@
+// The refraction plugin against closed-form answers on the built-in sphere, d_N against a
+// brute-force ray cast, and long deforming runs free of NaN, infinities and unwritten pixels.
+#include "support/GlTest.h"
+#include "support/TestSupport.h"
+
+#include "NormalDistance.h"
+#include "engine/anim/Pose.h"
+#include "engine/asset/ModelLoader.h"
+#include "engine/render/Renderer.h"
+#include "refraction/RefractionPlugin.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+std::span<const gl::ShaderFile> refractionShaderFiles();
+
+namespace {
+
+constexpr int kSize = 128;
+
+/** Renders `model` with the refraction plugin configured by `settings` (KEY=VALUE pairs) into
+ *  an HDR image (rows top to bottom). */
+class RefractionRig {
+public:
+    RefractionRig(const scene::Model& model, gl::Context& context) : mModel(model) {
+        auto renderer = render::Renderer::create(model, render::Environment::proceduralSky(128), context);
+        EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
+        mRenderer = std::move(*renderer);
+        mPlugin = refraction::createPlugin();
+        EXPECT_TRUE(mRenderer->addPlugin(mPlugin.get()).ok());
+        const float aspect = 1.0f;
+        mCamera = render::frameBounds(render::animatedBounds(model, -1), aspect, 0.6f, 0.3f, 0.2f, 1.15f);
+    }
+    void set(const std::string& key, const std::string& value) {
+        ASSERT_TRUE(mPlugin->parameters().set(key, value).ok()) << key << "=" << value;
+    }
+    std::vector<float> render(double time = 0.0, int clip = -1, int size = kSize) {
+        render::RenderSettings settings;
+        settings.size = {size, size};
+        settings.hdrOutput = true;
+        auto stats = mRenderer->render(anim::evaluate(mModel, clip, time), mCamera, settings, time);
+        EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
+        return mRenderer->readHdrOutput();
+    }
+    const render::Camera& camera() const { return mCamera; }
+    void setCamera(const render::Camera& camera) { mCamera = camera; }
+
+private:
+    const scene::Model& mModel;
+    std::unique_ptr<render::Renderer> mRenderer;
+    std::unique_ptr<plugin::Plugin> mPlugin;
+    render::Camera mCamera;
+};
+
+/** The exact two-interface path through the unit sphere for the ray through pixel (x, row). */
+struct ExactPath {
+    bool hit = false;
+    glm::dvec3 p2, t2;
+};
+
+ExactPath exactPath(const render::Camera& camera, int x, int row, int size, double ior) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    const double ndcX = (x + 0.5) / size * 2.0 - 1.0;
+    const double ndcY = (size - 1 - row + 0.5) / size * 2.0 - 1.0;
+    glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0), farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
+    const glm::dvec3 d = glm::normalize(glm::dvec3(farPoint) / farPoint.w - origin);
+    const double b = glm::dot(origin, d), c = glm::dot(origin, origin) - 1.0, disc = b * b - c;
+    ExactPath path;
+    if (disc <= 0.0)
+        return path;
+    const glm::dvec3 p1 = origin + d * (-b - std::sqrt(disc));
+    const glm::dvec3 t1 = glm::refract(d, p1, 1.0 / ior);
+    path.p2 = p1 + t1 * (-2.0 * glm::dot(p1, t1));
+    path.t2 = glm::normalize(glm::refract(t1, -path.p2, ior));
+    path.hit = true;
+    return path;
+}
+
+/** Per-pixel errors of DIR's exit point (over the diameter) and exit direction (degrees). */
+struct SphereErrors {
+    std::vector<double> point, angle;
+};
+
+class Refraction : public test::GlTest {
+protected:
+    SphereErrors sphereErrors(RefractionRig& rig, int steps, double ior) {
+        rig.set("method", "dir");
+        rig.set("ior", std::to_string(ior));
+        rig.set("search-steps", std::to_string(steps));
+        rig.set("debug", "exit-point");
+        const auto points = rig.render();
+        rig.set("debug", "exit-direction");
+        const auto directions = rig.render();
+        SphereErrors e;
+        for (int row = 0; row < kSize; ++row)
+            for (int x = 0; x < kSize; ++x) {
+                const ExactPath exact = exactPath(rig.camera(), x, row, kSize, ior);
+                if (!exact.hit)
+                    continue;
+                const std::size_t i = (std::size_t(row) * kSize + std::size_t(x)) * 4;
+                const glm::dvec3 p(points[i], points[i + 1], points[i + 2]);
+                const glm::dvec3 t(directions[i], directions[i + 1], directions[i + 2]);
+                e.point.push_back(glm::length(p - exact.p2) / 2.0);
+                const double cosAngle = glm::dot(glm::normalize(t), exact.t2);
+                e.angle.push_back(glm::degrees(std::acos(std::clamp(cosAngle, -1.0, 1.0))));
+            }
+        return e;
+    }
+};
+
+double fractionBelow(const std::vector<double>& v, double limit) {
+    return double(std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) / double(v.size());
+}
+
+double percentile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[std::size_t(q * double(v.size() - 1))];
+}
+
+TEST_F(Refraction, DirExitPointAndDirectionOnTheSphere) {
+    const scene::Model sphere = asset::makeSphere(128);
+    RefractionRig rig(sphere, context());
+    const SphereErrors e = sphereErrors(rig, 8, 1.5);
+    ASSERT_GT(e.point.size(), 2000u) << "the sphere should cover a good part of the frame";
+    const double pointOk = fractionBelow(e.point, 0.02), angleOk = fractionBelow(e.angle, 2.0);
+    std::printf("sphere IOR 1.5, DIR 8 steps, %zu pixels: P2 within 2%% of the diameter for %.2f%%, "
+                "T2 within 2 deg for %.2f%%; worst P2 %.4f, worst T2 %.2f deg, p99 P2 %.4f, p99 T2 %.2f deg\n",
+                e.point.size(), 100 * pointOk, 100 * angleOk, percentile(e.point, 1.0), percentile(e.angle, 1.0),
+                percentile(e.point, 0.99), percentile(e.angle, 0.99));
+    EXPECT_GE(pointOk, 0.95);
+    EXPECT_GE(angleOk, 0.95);
+}
+
+TEST_F(Refraction, DirErrorFallsWithMoreSearchSteps) {
+    const scene::Model sphere = asset::makeSphere(128);
+    RefractionRig rig(sphere, context());
+    std::vector<double> mean;
+    for (int steps : {1, 2, 3, 4, 6, 8}) {
+        const SphereErrors e = sphereErrors(rig, steps, 1.5);
+        double sum = 0.0;
+        for (double v : e.point)
+            sum += v;
+        mean.push_back(sum / double(e.point.size()));
+        std::printf("DIR %d steps: mean P2 error %.5f of the diameter\n", steps, mean.back());
+    }
+    for (std::size_t i = 1; i < mean.size(); ++i)
+        EXPECT_LE(mean[i], mean[i - 1] * 1.02 + 1e-4) << "step count index " << i;
+    EXPECT_LT(mean.back(), mean.front() / 4.0);
+}
+
+TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
+    GLASS_REQUIRE_SHARED();
+    const auto model = asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    gl::ShaderLibrary library = shaders();
+    library.add(refractionShaderFiles());
+    auto refit = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
+    auto cast = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
+    ASSERT_TRUE(refit.ok() && cast.ok());
+    auto deformer = deform::GpuDeformer::create(*model, library);
+    ASSERT_TRUE(deformer.ok());
+    (*deformer)->update(anim::evaluate(*model, 0, 1.0));
+    const auto& primitive = (*deformer)->instances()[0].primitives[0];
+    refraction::NormalDistance distance(*primitive.source);
+    distance.update(primitive.deformed, *primitive.indices, *refit, *cast);
+    const auto bytes = distance.distances().download();
+    std::vector<float> gpu(primitive.vertexCount);
+    std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
+
+    // Brute force over every triangle of the same deformed vertices.
+    const auto deformed = (*deformer)->download(0, 0);
+    const auto& indices = primitive.source->indices;
+    glm::dvec3 lo(1e30), hi(-1e30);
+    for (const auto& p : primitive.source->positions) {
+        lo = glm::min(lo, glm::dvec3(p));
+        hi = glm::max(hi, glm::dvec3(p));
+    }
+    const double epsilon = 1e-4 * glm::length(hi - lo);
+    std::vector<double> relative;
+    int missesAgree = 0, missesDiffer = 0;
+    for (std::size_t v = 0; v < deformed.positions.size(); ++v) {
+        const glm::dvec3 o = deformed.positions[v], d = -glm::normalize(deformed.normals[v]);
+        double best = 1e300;
+        for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+            const glm::dvec3 a = deformed.positions[indices[t]], e1 = deformed.positions[indices[t + 1]] - a,
+                             e2 = deformed.positions[indices[t + 2]] - a;
+            const glm::dvec3 p = glm::cross(d, e2);
+            const double det = glm::dot(e1, p);
+            if (std::abs(det) < 1e-30)
+                continue;
+            const glm::dvec3 s = o - a;
+            const double u = glm::dot(s, p) / det;
+            const glm::dvec3 q = glm::cross(s, e1);
+            const double w = glm::dot(d, q) / det;
+            const double h = glm::dot(e2, q) / det;
+            if (u >= 0 && w >= 0 && u + w <= 1 && h > epsilon)
+                best = std::min(best, h);
+        }
+        if (best == 1e300) {
+            (gpu[v] < 0 ? missesAgree : missesDiffer)++;
+            continue;
+        }
+        if (gpu[v] < 0) {
+            ++missesDiffer;
+            continue;
+        }
+        relative.push_back(std::abs(double(gpu[v]) - best) / best);
+    }
+    ASSERT_GT(relative.size(), deformed.positions.size() / 2);
+    const double median = percentile(relative, 0.5);
+    std::printf("d_N on CesiumMan t=1: %zu vertices, median relative error %.2e, p95 %.2e, "
+                "misses agreeing %d, disagreeing %d\n",
+                relative.size(), median, percentile(relative, 0.95), missesAgree, missesDiffer);
+    EXPECT_LE(median, 1e-3);
+    EXPECT_LE(missesDiffer, int(deformed.positions.size() / 100));
+}
+
+/** Every pixel written, finite and non-negative (the glass target is cleared to 0 alpha, so an
+ *  unwritten glass pixel would show the scene; a NaN anywhere fails). */
+void expectClean(const std::vector<float>& pixels, const std::string& what) {
+    std::size_t bad = 0;
+    for (float v : pixels)
+        if (!std::isfinite(v) || v < 0.0f)
+            ++bad;
+    EXPECT_EQ(bad, 0u) << what;
+}
+
+TEST_F(Refraction, SixtyDeformingFramesOfCesiumManStayClean) {
+    GLASS_REQUIRE_SHARED();
+    const auto model = asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+    ASSERT_TRUE(model.ok());
+    RefractionRig rig(*model, context());
+    rig.setCamera(render::frameBounds(render::animatedBounds(*model, 0), 1.0f));
+    rig.set("glass", "all");
+    for (const char* method : {"sir", "isr", "dir"})
+        for (const char* tir : {"clamp", "reflect"}) {
+            rig.set("method", method);
+            rig.set("tir", tir);
+            for (int frame = 0; frame < 60; ++frame)
+                expectClean(rig.render(frame / 30.0, 0, 48),
+                            std::string(method) + " tir " + tir + " frame " + std::to_string(frame));
+        }
+}
+
+TEST_F(Refraction, EveryMethodAndDebugViewRendersTheSphere) {
+    const scene::Model sphere = asset::makeSphere(64);
+    RefractionRig rig(sphere, context());
+    rig.set("dispersion", "0.5");
+    for (const char* method : {"sir", "isr", "dir"})
+        for (const char* debug : {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir"}) {
+            rig.set("method", method);
+            rig.set("debug", debug);
+            expectClean(rig.render(0.0, -1, 48), std::string(method) + " debug " + debug);
+        }
+}
+
+} // namespace
