@@ -251,8 +251,11 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                 r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
             });
     };
-    const SurfaceData back = surfacePass("refraction.back_faces", true, firstBack);
-    SurfaceData front;
+    // SIR reads neither the back faces nor their range.
+    const bool twoInterfaces = method != "sir";
+    SurfaceData back, front;
+    if (twoInterfaces)
+        back = surfacePass("refraction.back_faces", true, firstBack);
     if (reflect)
         front = surfacePass("refraction.front_depth", false, true);
 
@@ -260,7 +263,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
     struct RangeData {
         fg::TextureHandle back, front;
     };
-    graph.addPass<RangeData>(
+    if (twoInterfaces)
+        graph.addPass<RangeData>(
         "refraction.depth_range",
         [&](fg::Builder& b, RangeData& d) {
             d.back = b.read(back.depth);
@@ -276,7 +280,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                 gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
                 gpu.depthRange.set("uDepth", 0);
                 gpu.depthRange.set("uSlot", slot);
-                gl::dispatch(std::uint32_t((size.x + 15) / 16), std::uint32_t((size.y + 15) / 16));
+                gl::dispatch(std::uint32_t((size.x + 63) / 64), std::uint32_t((size.y + 63) / 64));
             }
             gl::memoryBarrier(gl::BarrierStorage);
         });
@@ -310,11 +314,13 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
     const auto& shaded = graph.addPass<FrontData>(
         "refraction.front_faces",
         [&](fg::Builder& b, FrontData& d) {
-            b.after("refraction.depth_range");
+            if (twoInterfaces) {
+                b.after("refraction.depth_range");
+                d.backDepth = b.read(back.depth);
+                d.backNormal = b.read(back.normal);
+            }
             if (method == "isr")
                 b.after("refraction.normal_distance");
-            d.backDepth = b.read(back.depth);
-            d.backNormal = b.read(back.normal);
             if (reflect) {
                 d.frontDepth = b.read(front.depth);
                 d.frontNormal = b.read(front.normal);
@@ -355,8 +361,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                 {"uFrontNormal", d.frontNormal}, {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
             int unit = 2;
             for (const auto& [uniform, handle] : samplers) {
-                // Without TIR reflection the front maps are absent: the back maps stand in (unread).
-                gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.backDepth));
+                // Maps this method does not read are absent: the scene depth stands in (unread).
+                gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
                 f.set(uniform, unit++);
             }
             gl::bindStorage(3, gpu.range);

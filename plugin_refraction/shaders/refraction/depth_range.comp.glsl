@@ -1,6 +1,6 @@
-// Depth range of the valid texels of a surface depth map (DIR §3, pass 2): per 16x16 tile a
-// shared-memory reduction, then one atomic min and max per tile. Positive floats order like
-// their bit patterns, so the atomics work on uints.
+// Depth range of the valid texels of a surface depth map (DIR §3, pass 2): each thread scans a
+// 4x4 block, a 16x16 group reduces its 64x64 tile in shared memory, then one atomic min and
+// max per tile. Positive floats order like their bit patterns, so the atomics work on uints.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 uniform sampler2D uDepth;
@@ -12,11 +12,20 @@ shared float sMax[256];
 
 void main() {
     ivec2 size = textureSize(uDepth, 0);
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    float d = all(lessThan(texel, size)) ? texelFetch(uDepth, texel, 0).r : 0.0;
+    ivec2 base = ivec2(gl_GlobalInvocationID.xy) * 4;
+    float lo = 3.0e38, hi = 0.0;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            ivec2 texel = base + ivec2(x, y);
+            float d = all(lessThan(texel, size)) ? texelFetch(uDepth, texel, 0).r : 0.0;
+            if (d > 0.0) {
+                lo = min(lo, d);
+                hi = max(hi, d);
+            }
+        }
     uint i = gl_LocalInvocationIndex;
-    sMin[i] = d > 0.0 ? d : 3.0e38;
-    sMax[i] = d > 0.0 ? d : 0.0;
+    sMin[i] = lo;
+    sMax[i] = hi;
     barrier();
     for (uint stride = 128u; stride > 0u; stride >>= 1u) {
         if (i < stride) {

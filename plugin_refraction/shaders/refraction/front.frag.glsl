@@ -223,12 +223,15 @@ void main() {
 
     float zBackMax = uintBitsToFloat(range[1]);
     float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;
-    switch (uDebug) {
+    // SIR has no back-face maps: its two-interface views stay black.
+    int view = uMethod == METHOD_SIR && uDebug >= 1 && uDebug <= 6 ? -1 : uDebug;
+    switch (view) {
+    case -1: color = vec3(0.0); break;
     case 1: color = vec3(storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize) * scale); break;
     case 2: color = mapNormal(uBackNormal, gl_FragCoord.xy / uViewportSize) * 0.5 + 0.5; break;
     case 3: {
         float back = storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize);
-        color = vec3(back > 0.0 ? (back + P1.z) * scale : 0.0);
+        color = vec3(back > 0.0 ? max(back + P1.z, 0.0) * scale : 0.0);
         break;
     }
     case 4: color = vec3(max(vNormalDistance, 0.0) * scale); break;
