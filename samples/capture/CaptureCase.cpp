@@ -36,7 +36,8 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
     try {
         if (!j.contains("model") || !j["model"].is_string())
             return core::Error{where + "\"model\" (a path relative to the case file) is required"};
-        c.session.model = resolve(j["model"].get<std::string>());
+        const std::string model = j["model"].get<std::string>();
+        c.session.model = model.rfind("builtin:", 0) == 0 ? model : resolve(model);
         if (j.contains("clip"))
             c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>() : std::to_string(j["clip"].get<int>());
         if (!j.contains("times") || !j["times"].is_array() || j["times"].empty())

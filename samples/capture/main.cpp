@@ -185,7 +185,8 @@ int runCase(const Options& o) {
         std::fprintf(stderr, "%s\n", c.error().message.c_str());
         return 2;
     }
-    if (c->skipIfModelMissing && !std::filesystem::exists(c->session.model)) {
+    const bool builtin = c->session.model.rfind("builtin:", 0) == 0;
+    if (c->skipIfModelMissing && !builtin && !std::filesystem::exists(c->session.model)) {
         std::printf("skipped %s: model %s is not present (third-party samples live in ../shared)\n",
                     o.caseFile.c_str(), c->session.model.c_str());
         return capture::kCaseSkipped;

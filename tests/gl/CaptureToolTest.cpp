@@ -31,6 +31,13 @@ TEST(CaptureTool, BadArgumentsExitTwo) {
     EXPECT_EQ(capture("model.glb --time 1 --frames 0:1:0.5", &out), 2);
     EXPECT_EQ(capture("model.glb --set a=b", &out), 2);
     EXPECT_EQ(capture("--help", &out), 0);
+    EXPECT_EQ(capture("builtin:sphere --method magic", &out), 2);
+    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir, got 'magic'"), std::string::npos) << out;
+    EXPECT_EQ(capture("builtin:sphere --ior 9", &out), 2);
+    EXPECT_EQ(capture("builtin:sphere --tint 1,2", &out), 2);
+    EXPECT_EQ(capture("builtin:sphere --search-steps 17", &out), 2);
+    EXPECT_EQ(capture("builtin:cube", &out), 1);
+    EXPECT_NE(out.find("unknown built-in model 'builtin:cube'"), std::string::npos) << out;
 }
 
 TEST(CaptureTool, BadModelExitsOneAndWritesNothing) {
