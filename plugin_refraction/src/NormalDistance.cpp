@@ -18,7 +18,8 @@ Bvh buildBvh(const scene::Primitive& p) {
     std::vector<glm::vec3> centroid(triangles);
     for (std::size_t t = 0; t < triangles; ++t)
         centroid[t] = (p.positions[p.indices[3 * t]] + p.positions[p.indices[3 * t + 1]] +
-                       p.positions[p.indices[3 * t + 2]]) / 3.0f;
+                       p.positions[p.indices[3 * t + 2]]) /
+                      3.0f;
     struct Task {
         int node, first, count, depth;
     };
@@ -39,11 +40,14 @@ Bvh buildBvh(const scene::Primitive& p) {
             hi = glm::max(hi, centroid[bvh.order[std::size_t(i)]]);
         }
         const glm::vec3 extent = hi - lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                         : extent.y >= extent.z                       ? 1
+                                                                      : 2;
         const auto begin = bvh.order.begin() + task.first;
         const auto middle = begin + task.count / 2;
-        std::nth_element(begin, middle, begin + task.count,
-                         [&](std::uint32_t a, std::uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
+        std::nth_element(begin, middle, begin + task.count, [&](std::uint32_t a, std::uint32_t b) {
+            return centroid[a][axis] < centroid[b][axis];
+        });
         const int left = int(bvh.nodes.size()), right = left + 1;
         bvh.nodes.push_back({});
         bvh.nodes.push_back({});
@@ -51,7 +55,8 @@ Bvh buildBvh(const scene::Primitive& p) {
         depthOf.push_back(task.depth + 1);
         bvh.nodes[std::size_t(task.node)] = {left, right, 0, 0};
         stack.push_back({left, task.first, task.count / 2, task.depth + 1});
-        stack.push_back({right, task.first + task.count / 2, task.count - task.count / 2, task.depth + 1});
+        stack.push_back(
+            {right, task.first + task.count / 2, task.count - task.count / 2, task.depth + 1});
     }
     const int maxDepth = *std::max_element(depthOf.begin(), depthOf.end());
     for (int depth = maxDepth; depth >= 0; --depth) {

@@ -35,29 +35,92 @@ struct RefractionPlugin::Gpu {
 
 RefractionPlugin::RefractionPlugin() {
     auto& p = mParameters;
-    p.declare({"method", "Method", Type::Enum, 0, 0, 3, {"opaque", "sir", "isr", "dir"},
+    p.declare({"method",
+               "Method",
+               Type::Enum,
+               0,
+               0,
+               3,
+               {"opaque", "sir", "isr", "dir"},
                "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame d_N; "
                "dir: depth-map search, no preprocessing"});
-    p.declare({"glass", "Glass", Type::Enum, 0, 0, 0, {"auto", "all"},
+    p.declare({"glass",
+               "Glass",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"auto", "all"},
                "auto: materials with transmission; all: every mesh"});
-    p.declare({"ior", "IOR", Type::Float, 0.0, 4.0, 0.0, {}, "index of refraction; 0: the material's"});
-    p.declare({"dispersion", "Dispersion", Type::Float, -1.0, 10.0, -1.0, {},
+    p.declare(
+        {"ior", "IOR", Type::Float, 0.0, 4.0, 0.0, {}, "index of refraction; 0: the material's"});
+    p.declare({"dispersion",
+               "Dispersion",
+               Type::Float,
+               -1.0,
+               10.0,
+               -1.0,
+               {},
                "20 / Abbe number (KHR_materials_dispersion); -1: the material's"});
-    p.declare({"tint", "Tint", Type::Color, 0.0, 1.0, 1.0, {}, "multiplies the attenuation colour"});
-    p.declare({"absorption-distance", "Absorption distance", Type::Float, 0.0, 1e6, 0.0, {},
+    p.declare(
+        {"tint", "Tint", Type::Color, 0.0, 1.0, 1.0, {}, "multiplies the attenuation colour"});
+    p.declare({"absorption-distance",
+               "Absorption distance",
+               Type::Float,
+               0.0,
+               1e6,
+               0.0,
+               {},
                "distance at which light takes the attenuation colour; 0: the material's"});
     p.declare({"fresnel", "Fresnel", Type::Enum, 0, 0, 0, {"exact", "schlick", "off"}, ""});
-    p.declare({"search-steps", "Search steps", Type::Int, 1, 16, 5, {}, "DIR conservative binary search steps"});
-    p.declare({"tir", "TIR", Type::Enum, 0, 0, 0, {"clamp", "reflect"},
+    p.declare({"search-steps",
+               "Search steps",
+               Type::Int,
+               1,
+               16,
+               5,
+               {},
+               "DIR conservative binary search steps"});
+    p.declare({"tir",
+               "TIR",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"clamp", "reflect"},
                "clamp: exit tangent (the papers); reflect: bounce inside and search again"});
-    p.declare({"tir-bounces", "TIR bounces", Type::Int, 1, 8, 2, {}, "reflections followed with tir=reflect"});
-    p.declare({"back-surface", "Back surface", Type::Enum, 0, 0, 0, {"farthest", "first"},
+    p.declare({"tir-bounces",
+               "TIR bounces",
+               Type::Int,
+               1,
+               8,
+               2,
+               {},
+               "reflections followed with tir=reflect"});
+    p.declare({"back-surface",
+               "Back surface",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"farthest", "first"},
                "which back face the depth map keeps (ISR paper §3.2)"});
-    p.declare({"nearby", "Nearby scene", Type::Bool, 0, 1, 1, {},
+    p.declare({"nearby",
+               "Nearby scene",
+               Type::Bool,
+               0,
+               1,
+               1,
+               {},
                "exit rays see the opaque scene on screen before the environment"});
-    p.declare({"debug", "Debug view", Type::Enum, 0, 0, 0,
-               {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir", "exit-point",
-                "exit-direction"},
+    p.declare({"debug",
+               "Debug view",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
+                "exit-point", "exit-direction"},
                ""});
 }
 
@@ -71,17 +134,20 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         const char* vertex;
         const char* fragment;
     };
-    for (const Spec& spec : {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
-                             Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
-                             Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"}}) {
+    for (const Spec& spec :
+         {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
+          Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
+          Spec{&mGpu->composite, "render/fullscreen.vert.glsl",
+               "refraction/composite.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
         if (!program)
             return program.error();
         *spec.target = std::move(*program);
     }
-    for (auto [target, name] : {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
-                                std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
-                                std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"}}) {
+    for (auto [target, name] :
+         {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
+          std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
+          std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"}}) {
         auto program = gl::Program::compute(shaders, name);
         if (!program)
             return program.error();
@@ -95,10 +161,12 @@ bool RefractionPlugin::isGlass(const scene::Model& model, const scene::Primitive
         return false;
     if (mParameters.choice("glass") == "all")
         return true;
-    return primitive.material >= 0 && model.materials[std::size_t(primitive.material)].isTransmissive();
+    return primitive.material >= 0 &&
+           model.materials[std::size_t(primitive.material)].isTransmissive();
 }
 
-bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int, const scene::Primitive& primitive) const {
+bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int,
+                                      const scene::Primitive& primitive) const {
     return mGpu && isGlass(model, primitive);
 }
 
@@ -124,7 +192,8 @@ struct SurfaceData {
     fg::TextureHandle depth, normal, zbuffer;
 };
 struct FrontData {
-    fg::TextureHandle backDepth, backNormal, frontDepth, frontNormal, sceneColor, sceneDepth, glass, zbuffer;
+    fg::TextureHandle backDepth, backNormal, frontDepth, frontNormal, sceneColor, sceneDepth, glass,
+        zbuffer;
 };
 struct CompositeData {
     fg::TextureHandle scene, glass, out;
@@ -141,8 +210,10 @@ struct Optics {
 Optics opticsFor(const plugin::ParameterSet& p, const scene::Material* m) {
     Optics o;
     const double iorOverride = p.number("ior");
-    double ior = iorOverride >= 1.0 ? iorOverride : (m && m->hasIor && m->ior >= 1.0f ? double(m->ior) : 1.5);
-    const double dispersion = p.number("dispersion") >= 0.0 ? p.number("dispersion") : (m ? double(m->dispersion) : 0.0);
+    double ior = iorOverride >= 1.0 ? iorOverride
+                                    : (m && m->hasIor && m->ior >= 1.0f ? double(m->ior) : 1.5);
+    const double dispersion =
+        p.number("dispersion") >= 0.0 ? p.number("dispersion") : (m ? double(m->dispersion) : 0.0);
     // KHR_materials_dispersion: spread of the indices around ior from the Abbe number.
     const double halfSpread = (ior - 1.0) * 0.025 * dispersion;
     o.ior = glm::vec3(float(ior - halfSpread), float(ior), float(ior + halfSpread));
@@ -152,16 +223,19 @@ Optics opticsFor(const plugin::ParameterSet& p, const scene::Material* m) {
                                   glm::vec3(float(tint[0]), float(tint[1]), float(tint[2]));
     const double distanceOverride = p.number("absorption-distance");
     const float distance = distanceOverride > 0.0 ? float(distanceOverride)
-                           : m ? m->attenuationDistance
-                               : std::numeric_limits<float>::infinity();
-    o.sigma = std::isfinite(distance) ? -glm::log(glm::max(attenuation, glm::vec3(1e-4f))) / distance : glm::vec3(0.0f);
+                           : m                    ? m->attenuationDistance
+                                                  : std::numeric_limits<float>::infinity();
+    o.sigma = std::isfinite(distance)
+                  ? -glm::log(glm::max(attenuation, glm::vec3(1e-4f))) / distance
+                  : glm::vec3(0.0f);
     o.transmission = m && m->isTransmissive() ? m->transmissionFactor : 1.0f;
     return o;
 }
 
 } // namespace
 
-void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) {
+void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
+                                 fg::Blackboard& blackboard) {
     if (stage != plugin::Stage::AfterOpaque || !mGpu || mParameters.choice("method") == "opaque")
         return;
     const render::FrameInfo* frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
@@ -178,12 +252,14 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
     const bool reflect = mParameters.choice("tir") == "reflect" && method != "sir";
     const bool firstBack = mParameters.choice("back-surface") == "first";
     const glm::ivec2 size = frame->settings.size;
-    const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1}, normalDesc{size, gl::Format::RGBA16F, 0},
-        zDesc{size, gl::Format::Depth32F, 1}, colorDesc{size, gl::Format::RGBA16F, 1};
+    const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1},
+        normalDesc{size, gl::Format::RGBA16F, 0}, zDesc{size, gl::Format::Depth32F, 1},
+        colorDesc{size, gl::Format::RGBA16F, 1};
     Gpu& gpu = *mGpu;
 
     // Draws every glass primitive with `program` (glass.vert.glsl), setting per-primitive state.
-    auto drawGlass = [this, frame, &model](const gl::Program& program, const gl::PipelineState& state, bool front) {
+    auto drawGlass = [this, frame, &model](const gl::Program& program,
+                                           const gl::PipelineState& state, bool front) {
         Gpu& g = *mGpu;
         program.use();
         program.set("uProjection", frame->camera.projection);
@@ -199,7 +275,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                 gl::bindStorage(0, primitive.deformed);
                 gl::bindStorage(1, *primitive.uv0);
                 const auto distance = g.distances.find({instanceIndex, p});
-                const bool hasDistance = distance != g.distances.end() && mParameters.choice("method") == "isr";
+                const bool hasDistance =
+                    distance != g.distances.end() && mParameters.choice("method") == "isr";
                 program.set("uHasNormalDistance", hasDistance ? 1 : 0);
                 if (hasDistance)
                     gl::bindStorage(2, distance->second->distances());
@@ -207,7 +284,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                     gl::bindStorage(2, primitive.deformed); // unread; keeps the binding valid
                 if (front) {
                     const int material = primitive.source->material;
-                    const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+                    const scene::Material* m =
+                        material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                     frame->materials->bind(program, model, material, 8);
                     const Optics o = opticsFor(mParameters, m);
                     program.set("uIor", o.ior);
@@ -217,7 +295,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                     program.set("uBaseColor", m ? m->baseColorFactor : glm::vec4(1.0f));
                     program.set("uRoughness", m ? m->roughnessFactor : 0.0f);
                     program.set("uMetallic", m ? m->metallicFactor : 0.0f);
-                    program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
+                    program.set("uEmissive",
+                                m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
                 }
                 gl::apply(state);
                 g.vaos[vao].bind();
@@ -237,8 +316,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc));
                 d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc));
             },
-            [&gpu, drawGlass, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d, gl::Context&) {
-                auto status = gpu.framebuffer.attach(name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
+            [&gpu, drawGlass, backFaces, nearest, name](const fg::Resources& r,
+                                                        const SurfaceData& d, gl::Context&) {
+                auto status = gpu.framebuffer.attach(
+                    name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
                 ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
                 gpu.framebuffer.bind();
                 gl::clearColor(0, glm::vec4(0.0f));
@@ -265,25 +346,26 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
     };
     if (twoInterfaces)
         graph.addPass<RangeData>(
-        "refraction.depth_range",
-        [&](fg::Builder& b, RangeData& d) {
-            d.back = b.read(back.depth);
-            if (reflect)
-                d.front = b.read(front.depth);
-        },
-        [&gpu, size](const fg::Resources& r, const RangeData& d, gl::Context&) {
-            const std::uint32_t reset[4] = {0x7F7FFFFFu, 0u, 0x7F7FFFFFu, 0u};
-            gpu.range.update(0, sizeof reset, reset);
-            gpu.depthRange.use();
-            gl::bindStorage(0, gpu.range);
-            for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
-                gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
-                gpu.depthRange.set("uDepth", 0);
-                gpu.depthRange.set("uSlot", slot);
-                gl::dispatch(std::uint32_t((size.x + 63) / 64), std::uint32_t((size.y + 63) / 64));
-            }
-            gl::memoryBarrier(gl::BarrierStorage);
-        });
+            "refraction.depth_range",
+            [&](fg::Builder& b, RangeData& d) {
+                d.back = b.read(back.depth);
+                if (reflect)
+                    d.front = b.read(front.depth);
+            },
+            [&gpu, size](const fg::Resources& r, const RangeData& d, gl::Context&) {
+                const std::uint32_t reset[4] = {0x7F7FFFFFu, 0u, 0x7F7FFFFFu, 0u};
+                gpu.range.update(0, sizeof reset, reset);
+                gpu.depthRange.use();
+                gl::bindStorage(0, gpu.range);
+                for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
+                    gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
+                    gpu.depthRange.set("uDepth", 0);
+                    gpu.depthRange.set("uSlot", slot);
+                    gl::dispatch(std::uint32_t((size.x + 63) / 64),
+                                 std::uint32_t((size.y + 63) / 64));
+                }
+                gl::memoryBarrier(gl::BarrierStorage);
+            });
 
     // 3. d_N per deformed vertex, every frame (ISR only).
     if (method == "isr") {
@@ -301,7 +383,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
                         auto& distance = g.distances[{instanceIndex, p}];
                         if (!distance)
                             distance = std::make_unique<NormalDistance>(*primitive.source);
-                        distance->update(primitive.deformed, *primitive.indices, g.refit, g.normalDistance);
+                        distance->update(primitive.deformed, *primitive.indices, g.refit,
+                                         g.normalDistance);
                     }
                     ++instanceIndex;
                 }
@@ -330,8 +413,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
             d.glass = b.write(b.create("refraction.glass", colorDesc));
             d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc));
         },
-        [this, &gpu, drawGlass, frame, size](const fg::Resources& r, const FrontData& d, gl::Context&) {
-            auto status = gpu.framebuffer.attach("refraction.front_faces", {&r.texture(d.glass)}, &r.texture(d.zbuffer));
+        [this, &gpu, drawGlass, frame, size](const fg::Resources& r, const FrontData& d,
+                                             gl::Context&) {
+            auto status = gpu.framebuffer.attach("refraction.front_faces", {&r.texture(d.glass)},
+                                                 &r.texture(d.zbuffer));
             ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
             gpu.framebuffer.bind();
             gl::clearColor(0, glm::vec4(0.0f));
@@ -355,14 +440,17 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
             f.set("uViewToWorld", glm::mat3(viewToWorld));
             f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
             f.set("uNormalLod", 1.0f);
-            frame->environment->bind(f, 0, frame->settings.environmentRotation, frame->settings.environmentIntensity);
+            frame->environment->bind(f, 0, frame->settings.environmentRotation,
+                                     frame->settings.environmentIntensity);
             const std::pair<const char*, fg::TextureHandle> samplers[] = {
-                {"uBackDepth", d.backDepth},   {"uBackNormal", d.backNormal}, {"uFrontDepth", d.frontDepth},
-                {"uFrontNormal", d.frontNormal}, {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
+                {"uBackDepth", d.backDepth},   {"uBackNormal", d.backNormal},
+                {"uFrontDepth", d.frontDepth}, {"uFrontNormal", d.frontNormal},
+                {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
             int unit = 2;
             for (const auto& [uniform, handle] : samplers) {
                 // Maps this method does not read are absent: the scene depth stands in (unread).
-                gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
+                gl::bindTexture(std::uint32_t(unit),
+                                r.texture(handle.valid() ? handle : d.sceneDepth));
                 f.set(uniform, unit++);
             }
             gl::bindStorage(3, gpu.range);
@@ -378,7 +466,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
             d.out = b.write(b.create("refraction.scene_color", colorDesc));
         },
         [&gpu](const fg::Resources& r, const CompositeData& d, gl::Context&) {
-            auto status = gpu.framebuffer.attach("refraction.composite", {&r.texture(d.out)}, nullptr);
+            auto status =
+                gpu.framebuffer.attach("refraction.composite", {&r.texture(d.out)}, nullptr);
             ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
             gpu.framebuffer.bind();
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
@@ -393,6 +482,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg:
     blackboard.put(plugin::kSceneColor, composite.out);
 }
 
-std::unique_ptr<plugin::Plugin> createPlugin() { return std::make_unique<RefractionPlugin>(); }
+std::unique_ptr<plugin::Plugin> createPlugin() {
+    return std::make_unique<RefractionPlugin>();
+}
 
 } // namespace refraction

@@ -39,14 +39,16 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         const std::string model = j["model"].get<std::string>();
         c.session.model = model.rfind("builtin:", 0) == 0 ? model : resolve(model);
         if (j.contains("clip"))
-            c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>() : std::to_string(j["clip"].get<int>());
+            c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>()
+                                                   : std::to_string(j["clip"].get<int>());
         if (!j.contains("times") || !j["times"].is_array() || j["times"].empty())
             return core::Error{where + "\"times\" (a non-empty array of seconds) is required"};
         for (const auto& t : j["times"])
             c.times.push_back(t.get<double>());
         if (j.contains("size"))
             c.session.size = {j["size"].at(0).get<int>(), j["size"].at(1).get<int>()};
-        if (c.session.size.x < 1 || c.session.size.y < 1 || c.session.size.x > 8192 || c.session.size.y > 8192)
+        if (c.session.size.x < 1 || c.session.size.y < 1 || c.session.size.x > 8192 ||
+            c.session.size.y > 8192)
             return core::Error{where + "\"size\" must be [width, height] within 1..8192"};
         if (j.contains("env") && !j["env"].is_null())
             c.session.environment = resolve(j["env"].get<std::string>());
@@ -74,15 +76,18 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
                 spec.path = resolve(p.at("path").get<std::string>());
                 if (p.contains("parameters"))
                     for (const auto& [key, value] : p["parameters"].items())
-                        spec.parameters.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+                        spec.parameters.emplace_back(
+                            key, value.is_string() ? value.get<std::string>() : value.dump());
                 c.session.plugins.push_back(spec);
             }
         if (j.contains("refraction"))
             for (const auto& [key, value] : j["refraction"].items())
-                c.session.refraction.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+                c.session.refraction.emplace_back(key, value.is_string() ? value.get<std::string>()
+                                                                         : value.dump());
         if (j.contains("tolerance")) {
             c.tolerance.maxAbsDiff = j["tolerance"].value("max_abs_diff", c.tolerance.maxAbsDiff);
-            c.tolerance.maxFailingFraction = j["tolerance"].value("max_failing_fraction", c.tolerance.maxFailingFraction);
+            c.tolerance.maxFailingFraction =
+                j["tolerance"].value("max_failing_fraction", c.tolerance.maxFailingFraction);
         }
         c.skipIfModelMissing = j.value("skip_if_missing", false);
     } catch (const std::exception& e) {
@@ -119,10 +124,14 @@ core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem:
                                expected.error().message + "); run with --update to create it"};
         const Comparison cmp = compare(frame->image, *expected, c.tolerance);
         char line[256];
-        std::snprintf(line, sizeof line, "%s t=%s: %s (max abs diff %d, failing pixels %zu = %.4f%%, allowed %.4f%%)",
+        std::snprintf(line, sizeof line,
+                      "%s t=%s: %s (max abs diff %d, failing pixels %zu = %.4f%%, allowed %.4f%%)",
                       c.path.stem().string().c_str(), seconds(time).c_str(),
-                      !cmp.sizeMatches ? "SIZE MISMATCH" : cmp.passed ? "match" : "MISMATCH", cmp.maxAbsDiff,
-                      cmp.failingPixels, 100.0 * cmp.failingFraction, 100.0 * c.tolerance.maxFailingFraction);
+                      !cmp.sizeMatches ? "SIZE MISMATCH"
+                      : cmp.passed     ? "match"
+                                       : "MISMATCH",
+                      cmp.maxAbsDiff, cmp.failingPixels, 100.0 * cmp.failingFraction,
+                      100.0 * c.tolerance.maxFailingFraction);
         std::printf("%s\n", line);
         report << line << "\n";
         if (cmp.sizeMatches && cmp.passed)
@@ -138,8 +147,9 @@ core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem:
             if (!d)
                 return d.error();
         }
-        report << "  golden " << golden.string() << "\n  actual " << (outDir / (stem + ".actual.png")).string()
-               << "\n  diff   " << (outDir / (stem + ".diff.png")).string() << "\n";
+        report << "  golden " << golden.string() << "\n  actual "
+               << (outDir / (stem + ".actual.png")).string() << "\n  diff   "
+               << (outDir / (stem + ".diff.png")).string() << "\n";
     }
     if (!update && !allMatch) {
         const auto reportPath = outDir / (c.path.stem().string() + ".report.txt");

@@ -2,8 +2,8 @@
 #include "CaptureSession.h"
 
 #include "engine/anim/Pose.h"
-#include "engine/asset/ModelLoader.h"
 #include "engine/asset/HdrImage.h"
+#include "engine/asset/ModelLoader.h"
 #include "engine/gl/Debug.h"
 #include "refraction/RefractionPlugin.h"
 
@@ -11,13 +11,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <map>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 namespace capture {
 
-core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const SessionOptions& options) {
+core::Result<std::unique_ptr<CaptureSession>>
+CaptureSession::create(const SessionOptions& options) {
     std::unique_ptr<CaptureSession> s(new CaptureSession());
     s->mOptions = options;
     auto model = asset::loadModel(options.model);
@@ -28,7 +29,8 @@ core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const Sessi
     if (options.clip) {
         const auto clip = s->mModel.findAnimation(*options.clip);
         if (!clip)
-            return core::Error{"glass-capture: " + s->mModel.sourceName + " has no clip '" + *options.clip + "'"};
+            return core::Error{"glass-capture: " + s->mModel.sourceName + " has no clip '" +
+                               *options.clip + "'"};
         s->mClip = *clip;
     }
     asset::HdrImage environment = render::Environment::proceduralSky();
@@ -61,7 +63,8 @@ core::Result<std::unique_ptr<CaptureSession>> CaptureSession::create(const Sessi
         for (const auto& [key, value] : spec.parameters) {
             auto set = loaded->get()->parameters().set(key, value);
             if (!set)
-                return core::Error{"glass-capture: plugin " + std::string(loaded->get()->name()) + ": " + set.error().message};
+                return core::Error{"glass-capture: plugin " + std::string(loaded->get()->name()) +
+                                   ": " + set.error().message};
         }
         auto added = s->mRenderer->addPlugin(loaded->get());
         if (!added)
@@ -99,8 +102,8 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
         camera.zfar = distance * 100.0f;
         camera.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
     } else if (mOptions.camera) {
-        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov, mOptions.camera->azimuth,
-                                     mOptions.camera->elevation);
+        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov,
+                                     mOptions.camera->azimuth, mOptions.camera->elevation);
     } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
         camera = *gltf;
     } else {
@@ -121,7 +124,8 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
     frame.image = Image{size.x, size.y, mRenderer->readOutput()};
     gl::checkErrors("glass-capture frame");
     if (gl::errorCount() != errorsBefore)
-        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) + " (see log)"};
+        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) +
+                           " (see log)"};
     return frame;
 }
 
@@ -162,10 +166,13 @@ nlohmann::json medianStats(const nlohmann::json& frames) {
             passes[name].second.push_back(p["gpu_ms"].get<double>());
         }
     }
-    nlohmann::json out = {{"frames", frames.size() - first}, {"frame_cpu_ms", median(cpu)},
-                          {"frame_gpu_ms", median(gpu)}, {"passes", nlohmann::json::array()}};
+    nlohmann::json out = {{"frames", frames.size() - first},
+                          {"frame_cpu_ms", median(cpu)},
+                          {"frame_gpu_ms", median(gpu)},
+                          {"passes", nlohmann::json::array()}};
     for (const std::string& name : order)
-        out["passes"].push_back({{"name", name}, {"cpu_ms", median(passes[name].first)},
+        out["passes"].push_back({{"name", name},
+                                 {"cpu_ms", median(passes[name].first)},
                                  {"gpu_ms", median(passes[name].second)}});
     return out;
 }

@@ -33,7 +33,7 @@ struct SessionOptions {
     glm::ivec2 size{256, 256};
     bool ground = false;
     float exposure = 1.0f;
-    std::optional<CameraOverride> camera;   ///< default: glTF camera, else framing
+    std::optional<CameraOverride> camera; ///< default: glTF camera, else framing
     struct PluginSpec {
         std::string path;
         std::vector<std::pair<std::string, std::string>> parameters;

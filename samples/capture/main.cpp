@@ -13,7 +13,8 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
+constexpr const char* kUsage =
+    R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph]
                      [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
@@ -98,10 +99,11 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.dumpGraph = true;
         } else if (arg == "--update") {
             o.update = true;
-        } else if (arg == "--method" || arg == "--glass" || arg == "--ior" || arg == "--dispersion" ||
-                   arg == "--tint" || arg == "--absorption-distance" || arg == "--fresnel" ||
-                   arg == "--search-steps" || arg == "--tir" || arg == "--tir-bounces" ||
-                   arg == "--back-surface" || arg == "--nearby" || arg == "--debug") {
+        } else if (arg == "--method" || arg == "--glass" || arg == "--ior" ||
+                   arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
+                   arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
+                   arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
+                   arg == "--debug") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -109,8 +111,9 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             if (auto status = check.set(arg.substr(2), *v); !status)
                 return usageError(arg + ": " + status.error().message);
             o.session.refraction.emplace_back(arg.substr(2), *v);
-        } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" || arg == "--env" ||
-                   arg == "--out" || arg == "--exposure" || arg == "--plugin" || arg == "--set" || arg == "--case") {
+        } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" ||
+                   arg == "--env" || arg == "--out" || arg == "--exposure" || arg == "--plugin" ||
+                   arg == "--set" || arg == "--case") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -119,17 +122,22 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             } else if (arg == "--time") {
                 double t = 0;
                 if (!parseDouble(*v, t) || t < 0)
-                    return usageError("--time needs a non-negative number of seconds, got '" + *v + "'");
+                    return usageError("--time needs a non-negative number of seconds, got '" + *v +
+                                      "'");
                 o.times = {t};
                 haveTime = true;
             } else if (arg == "--frames") {
                 double s = 0, e = 0, step = 0;
                 const auto a = v->find(':'), b = v->find(':', a == std::string::npos ? a : a + 1);
-                if (a == std::string::npos || b == std::string::npos || !parseDouble(v->substr(0, a), s) ||
-                    !parseDouble(v->substr(a + 1, b - a - 1), e) || !parseDouble(v->substr(b + 1), step) || s < 0 ||
-                    e < s || step <= 0 || (e - s) / step > 10000)
-                    return usageError("--frames needs START:END:STEP with 0 <= START <= END, STEP > 0 and at most "
-                                      "10000 frames, got '" + *v + "'");
+                if (a == std::string::npos || b == std::string::npos ||
+                    !parseDouble(v->substr(0, a), s) ||
+                    !parseDouble(v->substr(a + 1, b - a - 1), e) ||
+                    !parseDouble(v->substr(b + 1), step) || s < 0 || e < s || step <= 0 ||
+                    (e - s) / step > 10000)
+                    return usageError("--frames needs START:END:STEP with 0 <= START <= END, STEP "
+                                      "> 0 and at most "
+                                      "10000 frames, got '" +
+                                      *v + "'");
                 o.times.clear();
                 for (int k = 0; s + k * step <= e + 1e-9; ++k)
                     o.times.push_back(s + k * step);
@@ -137,7 +145,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             } else if (arg == "--size") {
                 int w = 0, h = 0;
                 char extra = 0;
-                if (std::sscanf(v->c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
+                if (std::sscanf(v->c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
+                    w > 8192 || h > 8192)
                     return usageError("--size needs WxH within 1..8192, got '" + *v + "'");
                 o.session.size = {w, h};
             } else if (arg == "--env") {
@@ -156,7 +165,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                 const auto eq = v->find('=');
                 if (o.session.plugins.empty() || eq == std::string::npos || eq == 0)
                     return usageError("--set KEY=VALUE must follow a --plugin, got '" + *v + "'");
-                o.session.plugins.back().parameters.emplace_back(v->substr(0, eq), v->substr(eq + 1));
+                o.session.plugins.back().parameters.emplace_back(v->substr(0, eq),
+                                                                 v->substr(eq + 1));
             } else {
                 o.caseFile = *v;
             }
@@ -191,7 +201,8 @@ int runCase(const Options& o) {
                     o.caseFile.c_str(), c->session.model.c_str());
         return capture::kCaseSkipped;
     }
-    const std::filesystem::path outDir = o.outGiven ? std::filesystem::path(o.out) : c->path.parent_path();
+    const std::filesystem::path outDir =
+        o.outGiven ? std::filesystem::path(o.out) : c->path.parent_path();
     auto result = capture::runCase(*c, o.update, outDir);
     if (!result) {
         std::fprintf(stderr, "%s\n", result.error().message.c_str());
@@ -218,12 +229,15 @@ int main(int argc, char** argv) {
     for (char& c : stem)
         if (c == ':' || c == '?' || c == '=' || c == '/')
             c = '_';
-    nlohmann::json report = {{"model", o.session.model}, {"clip", (*session)->clipLabel()},
-                             {"size", {o.session.size.x, o.session.size.y}}, {"frames", nlohmann::json::array()}};
+    nlohmann::json report = {{"model", o.session.model},
+                             {"clip", (*session)->clipLabel()},
+                             {"size", {o.session.size.x, o.session.size.y}},
+                             {"frames", nlohmann::json::array()}};
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) {
-        std::fprintf(stderr, "glass-capture: cannot create %s: %s\n", o.out.c_str(), ec.message().c_str());
+        std::fprintf(stderr, "glass-capture: cannot create %s: %s\n", o.out.c_str(),
+                     ec.message().c_str());
         return 1;
     }
     for (std::size_t i = 0; i < o.times.size(); ++i) {
@@ -234,7 +248,8 @@ int main(int argc, char** argv) {
         }
         if (i == 0 && o.dumpGraph)
             std::fprintf(stderr, "%s", frame->stats.graph.c_str());
-        const auto path = std::filesystem::path(o.out) / capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
+        const auto path = std::filesystem::path(o.out) /
+                          capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
         auto written = capture::writePng(path, frame->image);
         if (!written) {
             std::fprintf(stderr, "%s\n", written.error().message.c_str());
@@ -245,7 +260,8 @@ int main(int argc, char** argv) {
         entry["file"] = path.string();
         report["frames"].push_back(entry);
         if (!o.json)
-            std::printf("%s (cpu %.2f ms, gpu %.2f ms)\n", path.string().c_str(), frame->stats.cpuMs, frame->stats.gpuMs);
+            std::printf("%s (cpu %.2f ms, gpu %.2f ms)\n", path.string().c_str(),
+                        frame->stats.cpuMs, frame->stats.gpuMs);
     }
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);

@@ -33,8 +33,8 @@ std::string makePly(const std::vector<PlyBlock>& blocks, const std::string& comm
             const float values[6] = {float(p[v].x), float(p[v].y), float(p[v].z),
                                      float(n[v].x), float(n[v].y), float(n[v].z)};
             if (ascii) {
-                out << values[0] << ' ' << values[1] << ' ' << values[2] << ' ' << values[3]
-                    << ' ' << values[4] << ' ' << values[5] << '\n';
+                out << values[0] << ' ' << values[1] << ' ' << values[2] << ' ' << values[3] << ' '
+                    << values[4] << ' ' << values[5] << '\n';
             } else {
                 out.write(reinterpret_cast<const char*>(values), sizeof values);
             }

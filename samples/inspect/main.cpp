@@ -93,7 +93,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                 char* end = nullptr;
                 o.time = std::strtod(v->c_str(), &end);
                 if (v->empty() || *end != '\0' || !std::isfinite(o.time) || o.time < 0.0)
-                    return usageError("--time needs a non-negative number of seconds, got '" + *v + "'");
+                    return usageError("--time needs a non-negative number of seconds, got '" + *v +
+                                      "'");
             }
         } else if (!arg.empty() && arg[0] == '-') {
             return usageError("unknown option " + arg);
@@ -123,14 +124,15 @@ void printText(const scene::Model& model) {
                 model.nodes.size());
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const scene::Mesh& mesh = model.meshes[m];
-        std::printf("  mesh %zu '%s': %zu primitive(s), %zu morph target(s)\n", m, mesh.name.c_str(),
-                    mesh.primitives.size(), mesh.morphTargetCount());
+        std::printf("  mesh %zu '%s': %zu primitive(s), %zu morph target(s)\n", m,
+                    mesh.name.c_str(), mesh.primitives.size(), mesh.morphTargetCount());
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const scene::Primitive& prim = mesh.primitives[p];
-            std::printf("    primitive %zu: %zu vertices, %zu triangles, material %d, %d influences%s%s\n",
-                        p, prim.sourceVertexCount, prim.triangleCount(), prim.material,
-                        4 * prim.influenceSets(), prim.flatNormals ? ", flat normals generated" : "",
-                        prim.generatedTangents ? ", tangents generated" : "");
+            std::printf(
+                "    primitive %zu: %zu vertices, %zu triangles, material %d, %d influences%s%s\n",
+                p, prim.sourceVertexCount, prim.triangleCount(), prim.material,
+                4 * prim.influenceSets(), prim.flatNormals ? ", flat normals generated" : "",
+                prim.generatedTangents ? ", tangents generated" : "");
         }
     }
     for (std::size_t s = 0; s < model.skins.size(); ++s)
@@ -140,17 +142,18 @@ void printText(const scene::Model& model) {
         std::string modes;
         for (const auto& mode : clip["interpolation"])
             modes += (modes.empty() ? "" : ",") + mode.get<std::string>();
-        std::printf("  clip '%s': %.3f s, %zu channels, %s\n", clip["name"].get<std::string>().c_str(),
-                    clip["duration_s"].get<double>(), clip["channels"].get<std::size_t>(),
-                    modes.c_str());
+        std::printf("  clip '%s': %.3f s, %zu channels, %s\n",
+                    clip["name"].get<std::string>().c_str(), clip["duration_s"].get<double>(),
+                    clip["channels"].get<std::size_t>(), modes.c_str());
     }
     for (const auto& g : j["transmissive_materials"]) {
         std::printf("  glass material '%s': transmission %.3g, ior %.4g, dispersion %.3g",
                     g["material"].get<std::string>().c_str(), g["transmission"].get<double>(),
                     g["ior"].get<double>(), g["dispersion"].get<double>());
         if (g["volume"].get<bool>())
-            std::printf(", thickness %.3g, attenuation %s at distance %s", g["thickness"].get<double>(),
-                        g["attenuationColor"].dump().c_str(), g["attenuationDistance"].dump().c_str());
+            std::printf(", thickness %.3g, attenuation %s at distance %s",
+                        g["thickness"].get<double>(), g["attenuationColor"].dump().c_str(),
+                        g["attenuationDistance"].dump().c_str());
         std::printf("\n");
     }
     if (model.cameras.size())
@@ -158,8 +161,8 @@ void printText(const scene::Model& model) {
 }
 
 /** The GPU deform pass's result for `pose`, per mesh node and primitive (mesh-node space). */
-core::Result<std::vector<std::vector<deform::DeformedPrimitive>>> deformOnGpu(const scene::Model& model,
-                                                                             const anim::Pose& pose) {
+core::Result<std::vector<std::vector<deform::DeformedPrimitive>>>
+deformOnGpu(const scene::Model& model, const anim::Pose& pose) {
     auto context = gl::createHeadlessContext();
     if (!context)
         return context.error();
@@ -211,7 +214,8 @@ int writeVertices(const scene::Model& model, const Options& o) {
     const std::string comment = "glass-inspect " + model.sourceName + " clip " +
                                 std::to_string(clip) + " time " + std::to_string(o.time) +
                                 " vertices " + *o.vertices + ", world space";
-    const core::Status written = core::writeFileAtomic(*o.out, inspect::makePly(blocks, comment, o.ascii));
+    const core::Status written =
+        core::writeFileAtomic(*o.out, inspect::makePly(blocks, comment, o.ascii));
     if (!written) {
         std::fprintf(stderr, "glass-inspect: %s\n", written.error().message.c_str());
         return 1;

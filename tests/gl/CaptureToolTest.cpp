@@ -32,7 +32,9 @@ TEST(CaptureTool, BadArgumentsExitTwo) {
     EXPECT_EQ(capture("model.glb --set a=b", &out), 2);
     EXPECT_EQ(capture("--help", &out), 0);
     EXPECT_EQ(capture("builtin:sphere --method magic", &out), 2);
-    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir, got 'magic'"), std::string::npos) << out;
+    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir, got 'magic'"),
+              std::string::npos)
+        << out;
     EXPECT_EQ(capture("builtin:sphere --ior 9", &out), 2);
     EXPECT_EQ(capture("builtin:sphere --tint 1,2", &out), 2);
     EXPECT_EQ(capture("builtin:sphere --search-steps 17", &out), 2);
@@ -47,7 +49,9 @@ TEST(CaptureTool, BadModelExitsOneAndWritesNothing) {
     const auto model = broken.save(dir.path(), "broken");
     std::string out;
     EXPECT_EQ(capture(model.string() + " --out " + (dir / "frames").string(), &out), 1);
-    EXPECT_NE(out.find("broken.gltf: mesh 0 primitive 0 POSITION references accessor 99"), std::string::npos) << out;
+    EXPECT_NE(out.find("broken.gltf: mesh 0 primitive 0 POSITION references accessor 99"),
+              std::string::npos)
+        << out;
     EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
 }
 
@@ -56,7 +60,8 @@ TEST(CaptureTool, JsonListsFilesTimesAndPassTimings) {
     const auto model = test::twoJointModel().save(dir.path(), "twojoint");
     std::string out;
     const int status = capture(model.string() + " --frames 0:1:0.5 --size 64x48 --json --out " +
-                                   (dir / "frames").string() + " 2>/dev/null", &out);
+                                   (dir / "frames").string() + " 2>/dev/null",
+                               &out);
     SKIP_WITHOUT_GL(out);
     ASSERT_EQ(status, 0) << out;
     const auto j = nlohmann::json::parse(out);
@@ -105,7 +110,8 @@ TEST(CaptureTool, CaseMatchesItsGoldensAndReportsAMismatch) {
         for (int x = 0; x < 10; ++x)
             golden->rgba[(std::size_t(y) * 64 + std::size_t(x)) * 4] ^= 0x80;
     ASSERT_TRUE(capture::writePng(dir / "case.t0.750.png", *golden).ok());
-    EXPECT_EQ(capture("--case " + casePath.string() + " --out " + (dir / "result").string(), &out), 1);
+    EXPECT_EQ(capture("--case " + casePath.string() + " --out " + (dir / "result").string(), &out),
+              1);
     EXPECT_NE(out.find("case t=0.750: MISMATCH"), std::string::npos) << out;
     EXPECT_TRUE(std::filesystem::exists(dir / "result" / "case.t0.750.actual.png"));
     EXPECT_TRUE(std::filesystem::exists(dir / "result" / "case.t0.750.diff.png"));
@@ -115,7 +121,8 @@ TEST(CaptureTool, CaseMatchesItsGoldensAndReportsAMismatch) {
 
 TEST(CaptureTool, CaseWithMissingModelSkipsOnlyWhenAllowed) {
     test::TempDir dir;
-    std::ofstream(dir / "absent.json") << R"({"model": "nowhere.glb", "times": [0], "skip_if_missing": true})";
+    std::ofstream(dir / "absent.json")
+        << R"({"model": "nowhere.glb", "times": [0], "skip_if_missing": true})";
     std::string out;
     EXPECT_EQ(capture("--case " + (dir / "absent.json").string(), &out), 77);
     std::ofstream(dir / "required.json") << R"({"model": "nowhere.glb", "times": [0]})";
@@ -134,7 +141,10 @@ TEST(CaptureTool, PluginAddsAPassAndTakesParameters) {
     SKIP_WITHOUT_GL(out);
     ASSERT_EQ(status, 0) << out;
     ASSERT_EQ(capture(base + "--out " + (dir / "tinted").string() + " --plugin " + kLib +
-                          "/libtint_plugin.so --set red=3 2>/dev/null", &out), 0) << out;
+                          "/libtint_plugin.so --set red=3 2>/dev/null",
+                      &out),
+              0)
+        << out;
     bool hasTintPass = false;
     const auto report = nlohmann::json::parse(out);
     for (const auto& p : report["frames"][0]["passes"])
@@ -149,7 +159,9 @@ TEST(CaptureTool, PluginAddsAPassAndTakesParameters) {
     EXPECT_GT(redGain, 48L * 48L * 10L) << "the tint pass must raise red everywhere";
 
     EXPECT_EQ(capture(base + "--out " + (dir / "x").string() + " --plugin " + kLib +
-                          "/libtint_plugin.so --set green=2", &out), 1);
+                          "/libtint_plugin.so --set green=2",
+                      &out),
+              1);
     EXPECT_NE(out.find("unknown parameter 'green'"), std::string::npos) << out;
 }
 
@@ -158,10 +170,17 @@ TEST(CaptureTool, PluginInterfaceVersionIsChecked) {
     const auto model = test::twoJointModel().save(dir.path(), "twojoint");
     std::string out;
     EXPECT_EQ(capture(model.string() + " --out " + (dir / "x").string() + " --plugin " + kLib +
-                          "/libtint_plugin_wrong.so", &out), 1);
-    EXPECT_NE(out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/1'"),
-              std::string::npos) << out;
-    EXPECT_EQ(capture(model.string() + " --out " + (dir / "x").string() + " --plugin /nonexistent.so", &out), 1);
+                          "/libtint_plugin_wrong.so",
+                      &out),
+              1);
+    EXPECT_NE(
+        out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/1'"),
+        std::string::npos)
+        << out;
+    EXPECT_EQ(
+        capture(model.string() + " --out " + (dir / "x").string() + " --plugin /nonexistent.so",
+                &out),
+        1);
     EXPECT_NE(out.find("/nonexistent.so: cannot load"), std::string::npos) << out;
 }
 
@@ -170,8 +189,9 @@ TEST(CaptureTool, EnvironmentComesFromTheHdrFile) {
     const auto model = test::twoJointModel().save(dir.path(), "twojoint");
     test::writeHdr(dir / "red.hdr", 64, 32, 2.0f, 0.05f, 0.05f);
     std::string out;
-    const int status = capture(model.string() + " --size 32x32 --env " + (dir / "red.hdr").string() + " --out " +
-                                   (dir / "red").string(), &out);
+    const int status = capture(model.string() + " --size 32x32 --env " +
+                                   (dir / "red.hdr").string() + " --out " + (dir / "red").string(),
+                               &out);
     SKIP_WITHOUT_GL(out);
     ASSERT_EQ(status, 0) << out;
     auto image = capture::readPng(dir / "red" / "twojoint_bend_t0.000.png");
@@ -181,8 +201,12 @@ TEST(CaptureTool, EnvironmentComesFromTheHdrFile) {
     EXPECT_LT(int(image->rgba[1]), 100);
 
     std::ofstream(dir / "bad.hdr") << "#?RADIANCE\nnot really an image";
-    EXPECT_EQ(capture(model.string() + " --env " + (dir / "bad.hdr").string() + " --out " + (dir / "bad").string(), &out), 1);
-    EXPECT_NE(out.find("asset::loadHdr(): bad.hdr: not a decodable image"), std::string::npos) << out;
+    EXPECT_EQ(capture(model.string() + " --env " + (dir / "bad.hdr").string() + " --out " +
+                          (dir / "bad").string(),
+                      &out),
+              1);
+    EXPECT_NE(out.find("asset::loadHdr(): bad.hdr: not a decodable image"), std::string::npos)
+        << out;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
 }
 
@@ -190,8 +214,9 @@ TEST(CaptureTool, RefractionPluginLoads) {
     test::TempDir dir;
     const auto model = test::twoJointModel().save(dir.path(), "twojoint");
     std::string out;
-    const int status = capture(model.string() + " --size 32x32 --out " + (dir / "x").string() + " --plugin " + kLib +
-                                   "/libglass_refraction.so", &out);
+    const int status = capture(model.string() + " --size 32x32 --out " + (dir / "x").string() +
+                                   " --plugin " + kLib + "/libglass_refraction.so",
+                               &out);
     SKIP_WITHOUT_GL(out);
     EXPECT_EQ(status, 0) << out;
 }

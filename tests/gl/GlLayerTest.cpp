@@ -73,7 +73,8 @@ TEST_F(GlLayer, DebugOutputCountsErrors) {
     const auto before = gl::errorCount();
     gl::dispatch(100000000); // over GL_MAX_COMPUTE_WORK_GROUP_COUNT: GL_INVALID_VALUE
     gl::checkErrors("deliberate error");
-    EXPECT_GT(gl::errorCount(), before) << "a GL error must be noticed, or no test could fail on one";
+    EXPECT_GT(gl::errorCount(), before)
+        << "a GL error must be noticed, or no test could fail on one";
     acceptErrors();
 }
 

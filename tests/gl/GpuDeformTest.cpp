@@ -35,7 +35,8 @@ protected:
                     const double diagonal = std::max(glm::length(hi - lo), 1e-12);
                     double position = 0.0, normal = 0.0;
                     for (std::size_t v = 0; v < ref.positions.size(); ++v) {
-                        position = std::max(position, glm::length(gpu.positions[v] - ref.positions[v]));
+                        position =
+                            std::max(position, glm::length(gpu.positions[v] - ref.positions[v]));
                         normal = std::max(normal, glm::length(gpu.normals[v] - ref.normals[v]));
                     }
                     SCOPED_TRACE(model.sourceName + " t=" + std::to_string(time) + " instance " +
@@ -62,7 +63,8 @@ TEST_F(GpuDeform, EverySharedSkinnedOrMorphingModelMatchesCpu) {
     for (const auto& entry : inventory["models"]) {
         if (entry["skins"] == 0 && entry["morph_primitives"] == 0)
             continue;
-        auto model = asset::loadGltf(test::sharedDir() / "assets" / entry["file"].get<std::string>());
+        auto model =
+            asset::loadGltf(test::sharedDir() / "assets" / entry["file"].get<std::string>());
         ASSERT_TRUE(model.ok()) << model.error().message;
         const int clip = model->animations.empty() ? -1 : 0;
         const double duration = clip < 0 ? 0.0 : model->animations[0].duration;

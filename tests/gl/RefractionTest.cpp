@@ -25,13 +25,15 @@ constexpr int kSize = 128;
 class RefractionRig {
 public:
     RefractionRig(const scene::Model& model, gl::Context& context) : mModel(model) {
-        auto renderer = render::Renderer::create(model, render::Environment::proceduralSky(128), context);
+        auto renderer =
+            render::Renderer::create(model, render::Environment::proceduralSky(128), context);
         EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
         mRenderer = std::move(*renderer);
         mPlugin = refraction::createPlugin();
         EXPECT_TRUE(mRenderer->addPlugin(mPlugin.get()).ok());
         const float aspect = 1.0f;
-        mCamera = render::frameBounds(render::animatedBounds(model, -1), aspect, 0.6f, 0.3f, 0.2f, 1.15f);
+        mCamera =
+            render::frameBounds(render::animatedBounds(model, -1), aspect, 0.6f, 0.3f, 0.2f, 1.15f);
     }
     void set(const std::string& key, const std::string& value) {
         ASSERT_TRUE(mPlugin->parameters().set(key, value).ok()) << key << "=" << value;
@@ -64,7 +66,8 @@ ExactPath exactPath(const render::Camera& camera, int x, int row, int size, doub
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
     const double ndcX = (x + 0.5) / size * 2.0 - 1.0;
     const double ndcY = (size - 1 - row + 0.5) / size * 2.0 - 1.0;
-    glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0), farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0),
+               farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
     const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
     const glm::dvec3 d = glm::normalize(glm::dvec3(farPoint) / farPoint.w - origin);
     const double b = glm::dot(origin, d), c = glm::dot(origin, origin) - 1.0, disc = b * b - c;
@@ -112,7 +115,8 @@ protected:
 };
 
 double fractionBelow(const std::vector<double>& v, double limit) {
-    return double(std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) / double(v.size());
+    return double(std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) /
+           double(v.size());
 }
 
 double percentile(std::vector<double> v, double q) {
@@ -126,10 +130,12 @@ TEST_F(Refraction, DirExitPointAndDirectionOnTheSphere) {
     const SphereErrors e = sphereErrors(rig, 8, 1.5);
     ASSERT_GT(e.point.size(), 2000u) << "the sphere should cover a good part of the frame";
     const double pointOk = fractionBelow(e.point, 0.02), angleOk = fractionBelow(e.angle, 2.0);
-    std::printf("sphere IOR 1.5, DIR 8 steps, %zu pixels: P2 within 2%% of the diameter for %.2f%%, "
-                "T2 within 2 deg for %.2f%%; worst P2 %.4f, worst T2 %.2f deg, p99 P2 %.4f, p99 T2 %.2f deg\n",
-                e.point.size(), 100 * pointOk, 100 * angleOk, percentile(e.point, 1.0), percentile(e.angle, 1.0),
-                percentile(e.point, 0.99), percentile(e.angle, 0.99));
+    std::printf(
+        "sphere IOR 1.5, DIR 8 steps, %zu pixels: P2 within 2%% of the diameter for %.2f%%, "
+        "T2 within 2 deg for %.2f%%; worst P2 %.4f, worst T2 %.2f deg, p99 P2 %.4f, p99 T2 %.2f "
+        "deg\n",
+        e.point.size(), 100 * pointOk, 100 * angleOk, percentile(e.point, 1.0),
+        percentile(e.angle, 1.0), percentile(e.point, 0.99), percentile(e.angle, 0.99));
     EXPECT_GE(pointOk, 0.95);
     EXPECT_GE(angleOk, 0.95);
 }
@@ -153,7 +159,8 @@ TEST_F(Refraction, DirErrorFallsWithMoreSearchSteps) {
 
 TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     GLASS_REQUIRE_SHARED();
-    const auto model = asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+    const auto model =
+        asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
     ASSERT_TRUE(model.ok()) << model.error().message;
     gl::ShaderLibrary library = shaders();
     library.add(refractionShaderFiles());
@@ -185,7 +192,8 @@ TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
         const glm::dvec3 o = deformed.positions[v], d = -glm::normalize(deformed.normals[v]);
         double best = 1e300;
         for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-            const glm::dvec3 a = deformed.positions[indices[t]], e1 = deformed.positions[indices[t + 1]] - a,
+            const glm::dvec3 a = deformed.positions[indices[t]],
+                             e1 = deformed.positions[indices[t + 1]] - a,
                              e2 = deformed.positions[indices[t + 2]] - a;
             const glm::dvec3 p = glm::cross(d, e2);
             const double det = glm::dot(e1, p);
@@ -230,7 +238,8 @@ void expectClean(const std::vector<float>& pixels, const std::string& what) {
 
 TEST_F(Refraction, SixtyDeformingFramesOfCesiumManStayClean) {
     GLASS_REQUIRE_SHARED();
-    const auto model = asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+    const auto model =
+        asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
     ASSERT_TRUE(model.ok());
     RefractionRig rig(*model, context());
     rig.setCamera(render::frameBounds(render::animatedBounds(*model, 0), 1.0f));
@@ -240,8 +249,8 @@ TEST_F(Refraction, SixtyDeformingFramesOfCesiumManStayClean) {
             rig.set("method", method);
             rig.set("tir", tir);
             for (int frame = 0; frame < 60; ++frame)
-                expectClean(rig.render(frame / 30.0, 0, 48),
-                            std::string(method) + " tir " + tir + " frame " + std::to_string(frame));
+                expectClean(rig.render(frame / 30.0, 0, 48), std::string(method) + " tir " + tir +
+                                                                 " frame " + std::to_string(frame));
         }
 }
 
@@ -250,7 +259,8 @@ TEST_F(Refraction, EveryMethodAndDebugViewRendersTheSphere) {
     RefractionRig rig(sphere, context());
     rig.set("dispersion", "0.5");
     for (const char* method : {"sir", "isr", "dir"})
-        for (const char* debug : {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir"}) {
+        for (const char* debug :
+             {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir"}) {
             rig.set("method", method);
             rig.set("debug", debug);
             expectClean(rig.render(0.0, -1, 48), std::string(method) + " debug " + debug);

@@ -13,8 +13,7 @@
 
 namespace {
 
-const gl::ShaderFile kShaders[] = {
-    {"tint/tint.frag.glsl", R"(
+const gl::ShaderFile kShaders[] = {{"tint/tint.frag.glsl", R"(
 in vec2 vUv;
 out vec4 outColor;
 uniform sampler2D uScene;
@@ -25,14 +24,23 @@ void main() { outColor = vec4(texelFetch(uScene, ivec2(gl_FragCoord.xy), 0).rgb 
 class TintPlugin final : public plugin::Plugin {
 public:
     TintPlugin() {
-        mParameters.declare({"red", "Red", plugin::Parameter::Type::Float, 0.0, 4.0, 1.0, {}, "red multiplier"});
+        mParameters.declare(
+            {"red", "Red", plugin::Parameter::Type::Float, 0.0, 4.0, 1.0, {}, "red multiplier"});
         mParameters.declare({"enabled", "Enabled", plugin::Parameter::Type::Bool, 0, 1, 1, {}, ""});
-        mParameters.declare({"stage", "Stage", plugin::Parameter::Type::Enum, 0, 1, 1, {"after-opaque", "before-tonemap"}, ""});
+        mParameters.declare({"stage",
+                             "Stage",
+                             plugin::Parameter::Type::Enum,
+                             0,
+                             1,
+                             1,
+                             {"after-opaque", "before-tonemap"},
+                             ""});
     }
     const char* name() const override { return "tint"; }
     core::Status initialize(gl::ShaderLibrary& shaders) override {
         shaders.add(kShaders);
-        auto program = gl::Program::graphics(shaders, "render/fullscreen.vert.glsl", "tint/tint.frag.glsl");
+        auto program =
+            gl::Program::graphics(shaders, "render/fullscreen.vert.glsl", "tint/tint.frag.glsl");
         if (!program)
             return program.error();
         mProgram = std::move(*program);
@@ -40,7 +48,8 @@ public:
         mVao = std::make_unique<gl::VertexArray>();
         return {};
     }
-    void addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) override {
+    void addPasses(plugin::Stage stage, fg::FrameGraph& graph,
+                   fg::Blackboard& blackboard) override {
         if (!mParameters.flag("enabled") || int(stage) != int(mParameters.number("stage")))
             return;
         struct Data {
@@ -53,7 +62,8 @@ public:
             "tint",
             [&](fg::Builder& b, Data& d) {
                 d.in = b.read(scene);
-                d.out = b.write(b.create("tint.color", {frame->settings.size, gl::Format::RGBA16F, 1}));
+                d.out =
+                    b.write(b.create("tint.color", {frame->settings.size, gl::Format::RGBA16F, 1}));
             },
             [this, red](const fg::Resources& r, const Data& d, gl::Context&) {
                 (void)mFramebuffer->attach("tint", {&r.texture(d.out)}, nullptr);
@@ -80,9 +90,15 @@ private:
 } // namespace
 
 #ifdef TINT_WRONG_INTERFACE
-extern "C" __attribute__((visibility("default"))) const char* glass_plugin_interface() { return "glass.plugin/0"; }
-extern "C" __attribute__((visibility("default"))) plugin::Plugin* glass_plugin_create() { return new TintPlugin(); }
-extern "C" __attribute__((visibility("default"))) void glass_plugin_destroy(plugin::Plugin* p) { delete p; }
+extern "C" __attribute__((visibility("default"))) const char* glass_plugin_interface() {
+    return "glass.plugin/0";
+}
+extern "C" __attribute__((visibility("default"))) plugin::Plugin* glass_plugin_create() {
+    return new TintPlugin();
+}
+extern "C" __attribute__((visibility("default"))) void glass_plugin_destroy(plugin::Plugin* p) {
+    delete p;
+}
 #else
 GLASS_PLUGIN_ENTRY(TintPlugin)
 #endif

@@ -18,7 +18,9 @@ void GlTest::SetUpTestSuite() {
         sSkipReason = context.error().message;
 }
 
-void GlTest::TearDownTestSuite() { sContext.reset(); }
+void GlTest::TearDownTestSuite() {
+    sContext.reset();
+}
 
 const gl::ShaderLibrary& GlTest::shaders() {
     static gl::ShaderLibrary library = [] {
@@ -40,7 +42,8 @@ void GlTest::TearDown() {
     if (!sContext)
         return;
     gl::checkErrors("end of test");
-    EXPECT_EQ(gl::errorCount(), mErrorsAtStart) << "GL errors were reported during the test (see log)";
+    EXPECT_EQ(gl::errorCount(), mErrorsAtStart)
+        << "GL errors were reported during the test (see log)";
 }
 
 } // namespace test

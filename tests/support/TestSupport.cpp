@@ -5,8 +5,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sys/wait.h>
@@ -35,7 +35,9 @@ void writeBytes(const std::filesystem::path& path, const std::string& bytes) {
     out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
-void appendU32(std::string& s, std::uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
+void appendU32(std::string& s, std::uint32_t v) {
+    s.append(reinterpret_cast<const char*>(&v), 4);
+}
 
 } // namespace
 
@@ -145,8 +147,8 @@ GltfBuilder twoJointModel() {
     const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     const std::vector<std::uint16_t> joints = {0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0,
                                                0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0};
-    const std::vector<float> weights = {1, 0,   0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0,
-                                        1, 0,   0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0};
+    const std::vector<float> weights = {1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0,
+                                        1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0};
     const std::vector<std::uint16_t> indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
     const std::vector<float> morph = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     // Inverse bind: joint 0 at the origin (identity), joint 1 at x = 1 (translate by -1).
@@ -172,13 +174,14 @@ GltfBuilder twoJointModel() {
     const int aRot = b.addAccessor(rotations, 5126, "VEC4");
     const int aMw = b.addAccessor(morphWeights, 5126, "SCALAR");
 
-    b.doc["meshes"] = {{{"name", "strip"},
-                        {"primitives",
-                         {{{"attributes",
-                            {{"POSITION", aPos}, {"NORMAL", aNrm}, {"JOINTS_0", aJnt}, {"WEIGHTS_0", aWgt}}},
-                           {"indices", aIdx},
-                           {"targets", {{{"POSITION", aMorph}}}}}}},
-                        {"weights", {0.0}}}};
+    b.doc["meshes"] = {
+        {{"name", "strip"},
+         {"primitives",
+          {{{"attributes",
+             {{"POSITION", aPos}, {"NORMAL", aNrm}, {"JOINTS_0", aJnt}, {"WEIGHTS_0", aWgt}}},
+            {"indices", aIdx},
+            {"targets", {{{"POSITION", aMorph}}}}}}},
+         {"weights", {0.0}}}};
     b.doc["nodes"] = {{{"name", "skinned"}, {"mesh", 0}, {"skin", 0}},
                       {{"name", "root"}, {"children", {2}}},
                       {{"name", "tip"}, {"translation", {1.0, 0.0, 0.0}}}};
@@ -203,7 +206,8 @@ std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_
     stbi_write_png_to_func(
         [](void* context, void* data, int size) {
             auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-            out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+            out->insert(out->end(), static_cast<std::uint8_t*>(data),
+                        static_cast<std::uint8_t*>(data) + size);
         },
         &png, width, height, 4, pixels.data(), width * 4);
     return png;

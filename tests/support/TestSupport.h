@@ -21,7 +21,7 @@ std::filesystem::path sharedDir();
     do {                                                                                           \
         if (::test::sharedDir().empty())                                                           \
             GTEST_SKIP() << "../shared/assets is not beside this checkout (a user's clone): the "  \
-                            "third-party sample models are not available";                        \
+                            "third-party sample models are not available";                         \
     } while (false)
 
 /** A fresh directory under the system temp dir, removed with everything in it on destruction. */

@@ -9,7 +9,9 @@
 namespace anim {
 namespace {
 
-glm::dquat toQuat(const double* v) { return glm::dquat(v[3], v[0], v[1], v[2]); }
+glm::dquat toQuat(const double* v) {
+    return glm::dquat(v[3], v[0], v[1], v[2]);
+}
 
 void fromQuat(const glm::dquat& q, std::span<double> out) {
     out[0] = q.x;
@@ -64,8 +66,7 @@ void sample(const scene::AnimationSampler& sampler, double time, bool isRotation
         if (double(t[k]) > time) // float rounding of `time`
             k = k > 0 ? k - 1 : 0;
     }
-    if (time <= double(t[0]) || k == last ||
-        sampler.interpolation == scene::Interpolation::Step) {
+    if (time <= double(t[0]) || k == last || sampler.interpolation == scene::Interpolation::Step) {
         const float* value = keyValue(k);
         for (std::size_t c = 0; c < comps; ++c)
             out[c] = double(value[c]);
@@ -95,9 +96,9 @@ void sample(const scene::AnimationSampler& sampler, double time, bool isRotation
     const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s;
     const double h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
     const float* p0 = keyValue(k);
-    const float* m0 = v + k * stride + 2 * comps;   // out-tangent of key k
+    const float* m0 = v + k * stride + 2 * comps; // out-tangent of key k
     const float* p1 = keyValue(k + 1);
-    const float* m1 = v + (k + 1) * stride;         // in-tangent of key k+1
+    const float* m1 = v + (k + 1) * stride; // in-tangent of key k+1
     for (std::size_t c = 0; c < comps; ++c)
         out[c] = h00 * double(p0[c]) + h10 * dt * double(m0[c]) + h01 * double(p1[c]) +
                  h11 * dt * double(m1[c]);

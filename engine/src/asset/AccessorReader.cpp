@@ -160,8 +160,8 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
         if (byteOffset > view.byteLength || needed > view.byteLength - byteOffset)
             fail(name + " " + role + "(offset " + std::to_string(byteOffset) + ", " +
                  std::to_string(count) + " elements of " + std::to_string(elementBytes) +
-                 " bytes, stride " + std::to_string(stride) + ") runs past the end of " +
-                 viewName + " (" + std::to_string(view.byteLength) + " bytes)");
+                 " bytes, stride " + std::to_string(stride) + ") runs past the end of " + viewName +
+                 " (" + std::to_string(view.byteLength) + " bytes)");
         const unsigned char* base =
             mModel.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + byteOffset;
         return Span{base, stride};
@@ -173,9 +173,9 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
         out.resize(total);
         for (std::size_t i = 0; i < a.count; ++i)
             for (int c = 0; c < components; ++c)
-                out[i * std::size_t(components) + std::size_t(c)] = readComponent(
-                    span.data + i * span.stride + std::size_t(c * size), a.componentType,
-                    a.normalized);
+                out[i * std::size_t(components) + std::size_t(c)] =
+                    readComponent(span.data + i * span.stride + std::size_t(c * size),
+                                  a.componentType, a.normalized);
     } else {
         // No buffer view: zeros (to be replaced by sparse values). Its size is not backed by
         // file bytes, so it gets a budget relative to the file's size.
@@ -188,8 +188,8 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
     if (a.sparse.isSparse) {
         const std::string sparseName = name + " sparse";
         if (a.sparse.count < 1 || std::size_t(a.sparse.count) > a.count)
-            fail(sparseName + " count " + std::to_string(a.sparse.count) +
-                 " is not within 1.." + std::to_string(a.count));
+            fail(sparseName + " count " + std::to_string(a.sparse.count) + " is not within 1.." +
+                 std::to_string(a.count));
         const std::size_t n = std::size_t(a.sparse.count);
         const int indexType = a.sparse.indices.componentType;
         if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
@@ -198,15 +198,16 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
             fail(sparseName + " indices have invalid componentType " + std::to_string(indexType));
         if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
             fail(sparseName + " has a negative byteOffset");
-        const Span indices = locate(a.sparse.indices.bufferView,
-                                    std::size_t(a.sparse.indices.byteOffset), n,
-                                    std::size_t(componentSize(indexType)), false, "sparse indices ");
-        const Span values = locate(a.sparse.values.bufferView,
-                                   std::size_t(a.sparse.values.byteOffset), n, elementSize, false,
-                                   "sparse values ");
+        const Span indices =
+            locate(a.sparse.indices.bufferView, std::size_t(a.sparse.indices.byteOffset), n,
+                   std::size_t(componentSize(indexType)), false, "sparse indices ");
+        const Span values =
+            locate(a.sparse.values.bufferView, std::size_t(a.sparse.values.byteOffset), n,
+                   elementSize, false, "sparse values ");
         double previous = -1.0;
         for (std::size_t i = 0; i < n; ++i) {
-            const double target = readComponent(indices.data + i * indices.stride, indexType, false);
+            const double target =
+                readComponent(indices.data + i * indices.stride, indexType, false);
             if (target <= previous || target >= double(a.count))
                 fail(sparseName + " index " + std::to_string(i) + " (" +
                      std::to_string(std::uint64_t(target)) +

@@ -9,7 +9,9 @@
 namespace asset::detail {
 namespace {
 
-std::string n(std::size_t v) { return std::to_string(v); }
+std::string n(std::size_t v) {
+    return std::to_string(v);
+}
 
 scene::Interpolation parseInterpolation(const std::string& s, const std::string& what) {
     if (s.empty() || s == "LINEAR")
@@ -105,7 +107,8 @@ scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorRe
             const std::size_t stride = perKey, offset = perKey == 12 ? 4 : 0;
             for (std::size_t k = 0; k < sampler.times.size(); ++k) {
                 float* q = &sampler.values[k * stride + offset];
-                const float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+                const float length =
+                    std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
                 if (!(length > 1e-8f))
                     fail(samplerWhat + " rotation key " + n(k) + " is a zero quaternion");
                 for (int c = 0; c < 4; ++c)

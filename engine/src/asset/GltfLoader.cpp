@@ -22,12 +22,14 @@ namespace asset {
 namespace detail {
 namespace {
 
-std::string n(std::size_t v) { return std::to_string(v); }
+std::string n(std::size_t v) {
+    return std::to_string(v);
+}
 
 /** tinygltf image callback: checks the header's size against the limits before decoding,
  *  decodes to RGBA (8 or 16 bits), or only records the size when decoding is off. */
-bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
-                 int, const unsigned char* bytes, int size, void* userData) {
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void* userData) {
     const bool decode = *static_cast<const bool*>(userData);
     int width = 0, height = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
@@ -51,15 +53,18 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     if (!decode)
         return true;
     int w = 0, h = 0, c = 0;
-    void* pixels = image->bits == 16 ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))
-                                     : static_cast<void*>(stbi_load_from_memory(bytes, size, &w, &h, &c, 4));
+    void* pixels = image->bits == 16
+                       ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))
+                       : static_cast<void*>(stbi_load_from_memory(bytes, size, &w, &h, &c, 4));
     if (!pixels) {
         *err += "image " + std::to_string(index) + " could not be decoded: " +
                 (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data");
         return false;
     }
-    const std::size_t byteCount = std::size_t(w) * std::size_t(h) * 4u * std::size_t(image->bits / 8);
-    image->image.assign(static_cast<unsigned char*>(pixels), static_cast<unsigned char*>(pixels) + byteCount);
+    const std::size_t byteCount =
+        std::size_t(w) * std::size_t(h) * 4u * std::size_t(image->bits / 8);
+    image->image.assign(static_cast<unsigned char*>(pixels),
+                        static_cast<unsigned char*>(pixels) + byteCount);
     stbi_image_free(pixels);
     return true;
 }
@@ -198,13 +203,14 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index) {
     const auto& pbr = src.pbrMetallicRoughness;
     if (pbr.baseColorFactor.size() == 4)
         mat.baseColorFactor = glm::vec4(glm::make_vec4(pbr.baseColorFactor.data()));
-    mat.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0);
+    mat.baseColorTexture =
+        textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0);
     mat.metallicFactor = float(pbr.metallicFactor);
     mat.roughnessFactor = float(pbr.roughnessFactor);
-    mat.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture.index,
-                                              pbr.metallicRoughnessTexture.texCoord, 1.0);
-    mat.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord,
-                                   src.normalTexture.scale);
+    mat.metallicRoughnessTexture =
+        textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, 1.0);
+    mat.normalTexture =
+        textureRef(src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.scale);
     mat.occlusionTexture = textureRef(src.occlusionTexture.index, src.occlusionTexture.texCoord,
                                       src.occlusionTexture.strength);
     mat.emissiveTexture = textureRef(src.emissiveTexture.index, src.emissiveTexture.texCoord, 1.0);
@@ -241,7 +247,8 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index) {
         if (e->Has("attenuationColor") && e->Get("attenuationColor").IsArray() &&
             e->Get("attenuationColor").ArrayLen() == 3)
             for (int c = 0; c < 3; ++c) {
-                mat.attenuationColor[c] = float(e->Get("attenuationColor").Get(c).GetNumberAsDouble());
+                mat.attenuationColor[c] =
+                    float(e->Get("attenuationColor").Get(c).GetNumberAsDouble());
                 checkRange(mat.attenuationColor[c], 0.0, 1.0, what + " attenuationColor");
             }
     }
@@ -362,7 +369,8 @@ core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const Loa
     } catch (const LoadError& e) {
         return core::Error{prefix + e.what()};
     } catch (const std::bad_alloc&) {
-        return core::Error{prefix + "out of memory while loading (a count in the file is too large)"};
+        return core::Error{prefix +
+                           "out of memory while loading (a count in the file is too large)"};
     } catch (const std::exception& e) {
         return core::Error{prefix + "unexpected error: " + e.what()};
     }

@@ -14,7 +14,9 @@
 namespace asset::detail {
 namespace {
 
-std::string n(std::size_t v) { return std::to_string(v); }
+std::string n(std::size_t v) {
+    return std::to_string(v);
+}
 
 template <class Vec, int N>
 std::vector<Vec> readVecs(const AccessorReader& reader, int accessor, const std::string& what) {
@@ -74,8 +76,8 @@ void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader
         const std::string joints = "JOINTS_" + n(s), weights = "WEIGHTS_" + n(s);
         const bool hasJoints = attributes.count(joints) > 0;
         if (hasJoints != (attributes.count(weights) > 0))
-            fail(what + " has " + (hasJoints ? joints + " without " + weights
-                                             : weights + " without " + joints));
+            fail(what + " has " +
+                 (hasJoints ? joints + " without " + weights : weights + " without " + joints));
         if (!hasJoints)
             continue;
         if (s == 1 && p.joints[0].empty())
@@ -84,7 +86,8 @@ void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader
             reader.readUints(attributes.at(joints), 4, what + " " + joints);
         p.joints[s].resize(flat.size() / 4);
         for (std::size_t i = 0; i < p.joints[s].size(); ++i)
-            p.joints[s][i] = glm::uvec4(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2], flat[i * 4 + 3]);
+            p.joints[s][i] =
+                glm::uvec4(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2], flat[i * 4 + 3]);
         p.weights[s] = readVecs<glm::vec4, 4>(reader, attributes.at(weights), what + " " + weights);
         if (p.joints[s].size() != p.vertexCount() || p.weights[s].size() != p.vertexCount())
             fail(what + " " + joints + "/" + weights + " count differs from POSITION count " +
@@ -113,7 +116,8 @@ void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader
 }
 
 scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const AccessorReader& reader,
-                                  const std::string& what, const std::vector<scene::Material>& materials) {
+                                  const std::string& what,
+                                  const std::vector<scene::Material>& materials) {
     const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
@@ -232,8 +236,9 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
     if (src.extras.Has("targetNames") && src.extras.Get("targetNames").IsArray()) {
         const tinygltf::Value& names = src.extras.Get("targetNames");
         for (std::size_t i = 0; i < names.ArrayLen(); ++i)
-            mesh.targetNames.push_back(names.Get(int(i)).IsString() ? names.Get(int(i)).Get<std::string>()
-                                                                    : std::string());
+            mesh.targetNames.push_back(names.Get(int(i)).IsString()
+                                           ? names.Get(int(i)).Get<std::string>()
+                                           : std::string());
     }
     return mesh;
 }
@@ -272,10 +277,9 @@ void validateSkinnedMeshes(const scene::Model& model) {
                     for (int k = 0; k < 4; ++k)
                         if (prim.joints[s][v][k] >= joints)
                             fail("node " + n(i) + " (mesh " + n(std::size_t(node.mesh)) +
-                                 " primitive " + n(p) + "): JOINTS_" + n(s) + " of vertex " +
-                                 n(v) + " references joint " + n(prim.joints[s][v][k]) +
-                                 ", skin " + n(std::size_t(node.skin)) + " has " + n(joints) +
-                                 " joints");
+                                 " primitive " + n(p) + "): JOINTS_" + n(s) + " of vertex " + n(v) +
+                                 " references joint " + n(prim.joints[s][v][k]) + ", skin " +
+                                 n(std::size_t(node.skin)) + " has " + n(joints) + " joints");
         }
     }
 }

@@ -11,8 +11,12 @@
 namespace asset::detail {
 namespace {
 
-std::string n(std::size_t v) { return std::to_string(v); }
-std::string n(int v) { return std::to_string(v); }
+std::string n(std::size_t v) {
+    return std::to_string(v);
+}
+std::string n(int v) {
+    return std::to_string(v);
+}
 
 /** Fails unless -1 <= index < count ("-1" meaning absent is allowed when `optional`). */
 void checkIndex(int index, std::size_t count, bool optional, const std::string& what,
@@ -76,8 +80,10 @@ void validateStructure(const tinygltf::Model& m) {
         for (int root : m.scenes[s].nodes) {
             checkIndex(root, m.nodes.size(), false, "scene " + n(s), "node", "nodes");
             if (parent[std::size_t(root)] != -1)
-                fail("scene " + n(s) + " lists node " + n(root) + " as a root, but it is a child "
-                     "of node " + n(parent[std::size_t(root)]));
+                fail("scene " + n(s) + " lists node " + n(root) +
+                     " as a root, but it is a child "
+                     "of node " +
+                     n(parent[std::size_t(root)]));
         }
     if (!m.scenes.empty())
         checkIndex(m.defaultScene, m.scenes.size(), true, "the default scene", "scene", "scenes");

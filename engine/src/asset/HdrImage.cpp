@@ -21,10 +21,12 @@ core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
     const int size = int(bytes->size());
     if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components))
         return core::Error{prefix + "not a decodable image (" +
-                           (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") + ")"};
+                           (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") +
+                           ")"};
     if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
-                           " is over the texture limit of " + std::to_string(core::limits::kMaxTextureSize)};
+                           " is over the texture limit of " +
+                           std::to_string(core::limits::kMaxTextureSize)};
     if (width < height || height < 2)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is not an equirectangular (2:1) environment"};

@@ -13,6 +13,8 @@ struct LoadError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-[[noreturn]] inline void fail(const std::string& message) { throw LoadError(message); }
+[[noreturn]] inline void fail(const std::string& message) {
+    throw LoadError(message);
+}
 
 } // namespace asset::detail

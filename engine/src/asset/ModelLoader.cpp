@@ -21,11 +21,13 @@ scene::Model makeSphere(int segments) {
             p.uv0.emplace_back(float(lon) / float(longitudes), float(lat) / float(latitudes));
         }
     }
-    const auto index = [&](int lat, int lon) { return std::uint32_t(lat * (longitudes + 1) + lon); };
+    const auto index = [&](int lat, int lon) {
+        return std::uint32_t(lat * (longitudes + 1) + lon);
+    };
     for (int lat = 0; lat < latitudes; ++lat)
         for (int lon = 0; lon < longitudes; ++lon) {
-            const std::uint32_t a = index(lat, lon), b = index(lat + 1, lon), c = index(lat + 1, lon + 1),
-                                d = index(lat, lon + 1);
+            const std::uint32_t a = index(lat, lon), b = index(lat + 1, lon),
+                                c = index(lat + 1, lon + 1), d = index(lat, lon + 1);
             if (lat > 0)
                 p.indices.insert(p.indices.end(), {a, b, d});
             if (lat + 1 < latitudes)
@@ -74,7 +76,8 @@ core::Result<scene::Model> loadModel(const std::string& path, const LoadOptions&
         const auto [ptr, ec] = std::from_chars(begin, end, segments);
         if (ec == std::errc() && ptr == end && segments >= 8 && segments <= 1024)
             return makeSphere(segments);
-        return core::Error{"asset::loadModel(): " + path + ": segments must be an integer in 8..1024"};
+        return core::Error{"asset::loadModel(): " + path +
+                           ": segments must be an integer in 8..1024"};
     }
     return core::Error{"asset::loadModel(): unknown built-in model '" + path +
                        "' (known: builtin:sphere, builtin:sphere?segments=N)"};

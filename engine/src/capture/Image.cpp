@@ -16,7 +16,8 @@ core::Status writePng(const std::filesystem::path& path, const Image& image) {
     const int ok = stbi_write_png_to_func(
         [](void* context, void* data, int size) {
             auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-            out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+            out->insert(out->end(), static_cast<std::uint8_t*>(data),
+                        static_cast<std::uint8_t*>(data) + size);
         },
         &png, image.width, image.height, 4, image.rgba.data(), image.width * 4);
     if (!ok)
@@ -32,7 +33,8 @@ core::Result<Image> readPng(const std::filesystem::path& path) {
     std::uint8_t* pixels = stbi_load_from_memory(bytes->data(), int(bytes->size()), &w, &h, &c, 4);
     if (!pixels)
         return core::Error{"capture::readPng(): " + path.string() + ": not a decodable image"};
-    Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + std::size_t(w) * std::size_t(h) * 4u)};
+    Image image{w, h,
+                std::vector<std::uint8_t>(pixels, pixels + std::size_t(w) * std::size_t(h) * 4u)};
     stbi_image_free(pixels);
     return image;
 }

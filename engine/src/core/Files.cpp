@@ -65,8 +65,8 @@ Status writeFileAtomic(const std::filesystem::path& path, std::span<const std::u
 }
 
 Status writeFileAtomic(const std::filesystem::path& path, const std::string& text) {
-    return writeFileAtomic(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()),
-                                           text.size()));
+    return writeFileAtomic(
+        path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 } // namespace core

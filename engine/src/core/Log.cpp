@@ -49,8 +49,12 @@ const char* levelName(LogLevel level) {
 
 } // namespace
 
-void setLogLevel(LogLevel level) { threshold().store(level); }
-LogLevel logLevel() { return threshold().load(); }
+void setLogLevel(LogLevel level) {
+    threshold().store(level);
+}
+LogLevel logLevel() {
+    return threshold().load();
+}
 
 void log(LogLevel level, std::string_view message) {
     if (level < threshold().load() || level == LogLevel::Off)

@@ -21,7 +21,9 @@ struct InfluenceGpu {
 
 constexpr std::uint32_t kGroupSize = 64;
 
-std::uint32_t groups(std::size_t n) { return std::uint32_t((n + kGroupSize - 1) / kGroupSize); }
+std::uint32_t groups(std::size_t n) {
+    return std::uint32_t((n + kGroupSize - 1) / kGroupSize);
+}
 
 } // namespace
 
@@ -31,7 +33,7 @@ struct GpuDeformer::Static {
 };
 
 core::Result<std::unique_ptr<GpuDeformer>> GpuDeformer::create(const scene::Model& model,
-                                                              const gl::ShaderLibrary& shaders) {
+                                                               const gl::ShaderLibrary& shaders) {
     std::unique_ptr<GpuDeformer> d(new GpuDeformer());
     d->mModel = &model;
     auto deformProgram = gl::Program::compute(shaders, "deform/deform.comp.glsl");
@@ -68,8 +70,8 @@ core::Result<std::unique_ptr<GpuDeformer>> GpuDeformer::create(const scene::Mode
                 }
                 s->influences = gl::Buffer(std::span<const InfluenceGpu>(influences));
                 s->targetCount = std::uint32_t(p.targets.size());
-                std::vector<glm::vec4> deltas(std::max<std::size_t>(1, p.targets.size() * count * 3),
-                                              glm::vec4(0.0f));
+                std::vector<glm::vec4> deltas(
+                    std::max<std::size_t>(1, p.targets.size() * count * 3), glm::vec4(0.0f));
                 for (std::size_t t = 0; t < p.targets.size(); ++t) {
                     const scene::MorphTarget& target = p.targets[t];
                     for (std::size_t v = 0; v < count; ++v) {
@@ -84,7 +86,8 @@ core::Result<std::unique_ptr<GpuDeformer>> GpuDeformer::create(const scene::Mode
                 }
                 s->deltas = gl::Buffer(std::span<const glm::vec4>(deltas));
                 s->indices = gl::Buffer(std::span<const std::uint32_t>(p.indices));
-                std::vector<glm::vec2> uv = p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f)) : p.uv0;
+                std::vector<glm::vec2> uv =
+                    p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f)) : p.uv0;
                 s->uv0 = gl::Buffer(std::span<const glm::vec2>(uv));
                 statics.push_back(std::move(s));
             }
@@ -105,7 +108,8 @@ core::Result<std::unique_ptr<GpuDeformer>> GpuDeformer::create(const scene::Mode
         }
         const std::size_t joints = n.skin >= 0 ? model.skins[std::size_t(n.skin)].joints.size() : 1;
         d->mSkinMatrices.emplace_back(joints * sizeof(glm::mat4));
-        d->mMorphWeights.emplace_back(std::max<std::size_t>(1, mesh.morphTargetCount()) * sizeof(float));
+        d->mMorphWeights.emplace_back(std::max<std::size_t>(1, mesh.morphTargetCount()) *
+                                      sizeof(float));
         d->mInstances.push_back(std::move(instance));
     }
     return d;

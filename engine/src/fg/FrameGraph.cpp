@@ -45,14 +45,17 @@ std::uint32_t FrameGraph::addPassNode(const std::string& name) {
     return std::uint32_t(mPasses.size() - 1);
 }
 
-void FrameGraph::setExecute(std::uint32_t pass, std::function<void(const Resources&, gl::Context&)> fn) {
+void FrameGraph::setExecute(std::uint32_t pass,
+                            std::function<void(const Resources&, gl::Context&)> fn) {
     mPasses[pass].execute = std::move(fn);
 }
 
-std::uint32_t FrameGraph::addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer) {
+std::uint32_t FrameGraph::addNode(std::uint32_t resource, std::uint32_t version,
+                                  std::uint32_t writer) {
     mNodes.push_back(Node{resource, version, writer});
     const auto node = std::uint32_t(mNodes.size() - 1);
-    if (mResources[resource].latestNode == UINT32_MAX || version > mNodes[mResources[resource].latestNode].version)
+    if (mResources[resource].latestNode == UINT32_MAX ||
+        version > mNodes[mResources[resource].latestNode].version)
         mResources[resource].latestNode = node;
     return node;
 }
@@ -62,7 +65,8 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
     return "'" + mResources[n.resource].name + "' (version " + std::to_string(n.version) + ")";
 }
 
-TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc, void* object) {
+TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc,
+                                        void* object) {
     ENGINE_CHECK(!mCompiled, "importTexture() after compile()");
     mResources.push_back(Resource{name, desc, true, object});
     return TextureHandle{addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX)};
@@ -76,13 +80,15 @@ TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& de
 }
 
 TextureHandle Builder::read(TextureHandle handle) {
-    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "read() of an invalid handle");
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(),
+                 "read() of an invalid handle");
     mGraph.mPasses[mPass].reads.push_back(handle.node);
     return handle;
 }
 
 TextureHandle Builder::write(TextureHandle handle) {
-    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "write() of an invalid handle");
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(),
+                 "write() of an invalid handle");
     const FrameGraph::Node previous = mGraph.mNodes[handle.node];
     // A written version keeps the previous content (draws accumulate), so writing on top of a
     // written or imported version also reads it.
@@ -93,9 +99,13 @@ TextureHandle Builder::write(TextureHandle handle) {
     return TextureHandle{node};
 }
 
-void Builder::sideEffect() { mGraph.mPasses[mPass].sideEffect = true; }
+void Builder::sideEffect() {
+    mGraph.mPasses[mPass].sideEffect = true;
+}
 
-void Builder::after(const std::string& pass) { mGraph.mPasses[mPass].after.push_back(pass); }
+void Builder::after(const std::string& pass) {
+    mGraph.mPasses[mPass].after.push_back(pass);
+}
 
 void* Resources::object(TextureHandle handle) const {
     ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "invalid texture handle");
@@ -125,8 +135,9 @@ core::Status FrameGraph::compile() {
             const Node& n = mNodes[later];
             if (mNodes[earlier].resource == n.resource && mNodes[earlier].version == n.version)
                 return core::Error{where + "pass '" + mPasses[n.writer].name +
-                                   "' writes an outdated version of '" + mResources[n.resource].name +
-                                   "' (version " + std::to_string(n.version - 1) + " was already written on)"};
+                                   "' writes an outdated version of '" +
+                                   mResources[n.resource].name + "' (version " +
+                                   std::to_string(n.version - 1) + " was already written on)"};
         }
     // 2. Dependency edges: writer of a read version -> reader; readers of a version -> the
     //    writer of the next version; explicit after().
@@ -150,7 +161,8 @@ core::Status FrameGraph::compile() {
                         edge(p, q, false);
         }
         for (const std::string& name : mPasses[p].after) {
-            const auto it = std::find_if(mPasses.begin(), mPasses.end(), [&](const Pass& x) { return x.name == name; });
+            const auto it = std::find_if(mPasses.begin(), mPasses.end(),
+                                         [&](const Pass& x) { return x.name == name; });
             if (it == mPasses.end())
                 return core::Error{where + "pass '" + mPasses[p].name + "' runs after '" + name +
                                    "', which is not a pass of this graph"};
@@ -248,7 +260,8 @@ std::vector<PassTiming> FrameGraph::execute(gl::Context& context, PassObserver* 
         const auto end = std::chrono::steady_clock::now();
         if (observer)
             observer->endPass(pass.name);
-        timings.push_back({pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
+        timings.push_back(
+            {pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
         for (Resource& r : mResources)
             if (!r.imported && r.lastUse == int(i)) {
                 mPool.release(r.object);
@@ -276,8 +289,8 @@ std::string FrameGraph::dump() const {
         const Pass& pass = mPasses[p];
         out << (pass.culled ? "  [culled] " : "  ") << pass.name << "\n";
         for (std::uint32_t r : pass.creates)
-            out << "      creates '" << mResources[r].name << "' " << mResources[r].desc.size.x << "x"
-                << mResources[r].desc.size.y << "\n";
+            out << "      creates '" << mResources[r].name << "' " << mResources[r].desc.size.x
+                << "x" << mResources[r].desc.size.y << "\n";
         for (std::uint32_t n : pass.reads)
             out << "      reads   " << nodeName(n) << "\n";
         for (std::uint32_t n : pass.writes)
@@ -286,9 +299,10 @@ std::string FrameGraph::dump() const {
     out << "transients:\n";
     for (const Resource& r : mResources)
         if (!r.imported)
-            out << "  '" << r.name << "' " << (r.firstUse < 0 ? std::string("unused")
-                                                              : "passes " + std::to_string(r.firstUse) + ".." +
-                                                                    std::to_string(r.lastUse))
+            out << "  '" << r.name << "' "
+                << (r.firstUse < 0
+                        ? std::string("unused")
+                        : "passes " + std::to_string(r.firstUse) + ".." + std::to_string(r.lastUse))
                 << "\n";
     return out.str();
 }

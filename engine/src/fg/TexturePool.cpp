@@ -47,7 +47,8 @@ void TexturePool::endFrame(int maxIdleFrames) {
 }
 
 std::size_t TexturePool::inUseCount() const {
-    return std::size_t(std::count_if(mEntries.begin(), mEntries.end(), [](const Entry& e) { return e.inUse; }));
+    return std::size_t(
+        std::count_if(mEntries.begin(), mEntries.end(), [](const Entry& e) { return e.inUse; }));
 }
 
 } // namespace fg

@@ -25,7 +25,8 @@ void apply(const PipelineState& s) {
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         if (s.blend == Blend::Alpha)
-            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
+                                GL_ONE_MINUS_SRC_ALPHA);
         else
             glBlendFunc(GL_ONE, GL_ONE);
     }
@@ -33,7 +34,9 @@ void apply(const PipelineState& s) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void viewport(glm::ivec2 origin, glm::ivec2 size) { glViewport(origin.x, origin.y, size.x, size.y); }
+void viewport(glm::ivec2 origin, glm::ivec2 size) {
+    glViewport(origin.x, origin.y, size.x, size.y);
+}
 
 void clearColor(int index, const glm::vec4& color) {
     glColorMaski(GLuint(index), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -49,19 +52,27 @@ void drawIndexed(std::uint32_t indexCount) {
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount), GL_UNSIGNED_INT, nullptr);
 }
 
-void drawArrays(std::uint32_t vertexCount) { glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertexCount)); }
+void drawArrays(std::uint32_t vertexCount) {
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertexCount));
+}
 
-void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) { glDispatchCompute(x, y, z); }
+void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    glDispatchCompute(x, y, z);
+}
 
 void bindStorage(std::uint32_t binding, const Buffer& buffer) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
 }
 
-void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset, std::size_t bytes) {
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer.id(), GLintptr(offset), GLsizeiptr(bytes));
+void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset,
+                      std::size_t bytes) {
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer.id(), GLintptr(offset),
+                      GLsizeiptr(bytes));
 }
 
-void bindTexture(std::uint32_t unit, const Texture& texture) { glBindTextureUnit(unit, texture.id()); }
+void bindTexture(std::uint32_t unit, const Texture& texture) {
+    glBindTextureUnit(unit, texture.id());
+}
 
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write) {
     GLenum format = GL_RGBA32F;
@@ -84,7 +95,8 @@ void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write
     default:
         break;
     }
-    glBindImageTexture(unit, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY, format);
+    glBindImageTexture(unit, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY,
+                       format);
 }
 
 void memoryBarrier(std::uint32_t b) {
@@ -105,6 +117,8 @@ void memoryBarrier(std::uint32_t b) {
     glMemoryBarrier(bits);
 }
 
-void finish() { glFinish(); }
+void finish() {
+    glFinish();
+}
 
 } // namespace gl

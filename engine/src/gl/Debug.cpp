@@ -13,13 +13,13 @@ namespace {
 
 std::atomic<std::uint64_t> gErrors{0};
 
-void GLAPIENTRY onDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
-                               const GLchar* message, const void*) {
+void GLAPIENTRY onDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity,
+                               GLsizei length, const GLchar* message, const void*) {
     (void)source;
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION)
         return;
-    const std::string text = "GL debug (id " + std::to_string(id) + "): " +
-                             std::string(message, length > 0 ? std::size_t(length) : 0);
+    const std::string text = "GL debug (id " + std::to_string(id) +
+                             "): " + std::string(message, length > 0 ? std::size_t(length) : 0);
     if (type == GL_DEBUG_TYPE_ERROR) {
         gErrors.fetch_add(1);
         core::logError(text);
@@ -41,7 +41,9 @@ void installDebugOutput() {
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }
 
-std::uint64_t errorCount() { return gErrors.load(); }
+std::uint64_t errorCount() {
+    return gErrors.load();
+}
 
 int checkErrors(const char* where) {
     int found = 0;

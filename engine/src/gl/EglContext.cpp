@@ -55,8 +55,10 @@ core::Result<std::unique_ptr<Context>> makeContext(EGLDisplay display, const std
     EGLConfig config = nullptr;
     EGLint configs = 0;
     eglChooseConfig(display, configAttributes, &config, 1, &configs);
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                        EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        4,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        5,
                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                         EGL_CONTEXT_OPENGL_DEBUG,
@@ -66,8 +68,11 @@ core::Result<std::unique_ptr<Context>> makeContext(EGLDisplay display, const std
                                           EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT) {
         eglTerminate(display);
-        return core::Error{platform + ": no OpenGL 4.5 core context (EGL error 0x" +
-                           [] { char b[16]; std::snprintf(b, sizeof b, "%x", unsigned(eglGetError())); return std::string(b); }() + ")"};
+        return core::Error{platform + ": no OpenGL 4.5 core context (EGL error 0x" + [] {
+            char b[16];
+            std::snprintf(b, sizeof b, "%x", unsigned(eglGetError()));
+            return std::string(b);
+        }() + ")"};
     }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
         eglDestroyContext(display, context);
@@ -87,9 +92,11 @@ core::Result<std::unique_ptr<Context>> makeContext(EGLDisplay display, const std
 core::Result<std::unique_ptr<Context>> createHeadlessContext(const ContextOptions& options) {
     std::vector<std::string> tried;
     if (!hasClientExtension("EGL_EXT_platform_base"))
-        return core::Error{"gl::createHeadlessContext(): EGL has no EGL_EXT_platform_base; "
-                           "install libegl1 and a driver (libegl-mesa0 + libgl1-mesa-dri for llvmpipe)"};
-    if (hasClientExtension("EGL_EXT_platform_device") && hasClientExtension("EGL_EXT_device_enumeration")) {
+        return core::Error{
+            "gl::createHeadlessContext(): EGL has no EGL_EXT_platform_base; "
+            "install libegl1 and a driver (libegl-mesa0 + libgl1-mesa-dri for llvmpipe)"};
+    if (hasClientExtension("EGL_EXT_platform_device") &&
+        hasClientExtension("EGL_EXT_device_enumeration")) {
         EGLDeviceEXT devices[16];
         EGLint count = 0;
         if (eglQueryDevicesEXT(16, devices, &count)) {
@@ -123,7 +130,8 @@ core::Result<std::unique_ptr<Context>> createHeadlessContext(const ContextOption
     return core::Error{message};
 }
 
-core::Result<std::unique_ptr<Context>> createContext(bool preferWindow, const ContextOptions& options) {
+core::Result<std::unique_ptr<Context>> createContext(bool preferWindow,
+                                                     const ContextOptions& options) {
     if (preferWindow) {
         auto window = createWindowContext(options);
         if (window)

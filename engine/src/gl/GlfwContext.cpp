@@ -50,7 +50,8 @@ core::Result<std::unique_ptr<Context>> createWindowContext(const ContextOptions&
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland))
-        return core::Error{"gl::createWindowContext(): no display (DISPLAY and WAYLAND_DISPLAY unset)"};
+        return core::Error{
+            "gl::createWindowContext(): no display (DISPLAY and WAYLAND_DISPLAY unset)"};
     if (!glfwInit())
         return core::Error{"gl::createWindowContext(): glfwInit failed: " + glfwLastError()};
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);

@@ -49,7 +49,8 @@ core::Status expand(const std::map<std::string, std::string>& files, const std::
     return {};
 }
 
-core::Result<std::uint32_t> compile(GLenum stage, const std::string& name, const std::string& source) {
+core::Result<std::uint32_t> compile(GLenum stage, const std::string& name,
+                                    const std::string& source) {
     const GLuint shader = glCreateShader(stage);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -113,7 +114,8 @@ Program::~Program() {
         glDeleteProgram(mId);
 }
 
-Program::Program(Program&& o) noexcept : mId(std::exchange(o.mId, 0)), mLocations(std::move(o.mLocations)) {}
+Program::Program(Program&& o) noexcept
+    : mId(std::exchange(o.mId, 0)), mLocations(std::move(o.mLocations)) {}
 
 Program& Program::operator=(Program&& o) noexcept {
     if (this != &o) {
@@ -168,7 +170,9 @@ core::Result<Program> Program::graphics(const ShaderLibrary& library, const std:
     return program;
 }
 
-void Program::use() const { glUseProgram(mId); }
+void Program::use() const {
+    glUseProgram(mId);
+}
 
 int Program::location(const char* name) const {
     const auto it = mLocations.find(name);
@@ -179,13 +183,29 @@ int Program::location(const char* name) const {
     return location;
 }
 
-void Program::set(const char* n, int v) const { glProgramUniform1i(mId, location(n), v); }
-void Program::set(const char* n, float v) const { glProgramUniform1f(mId, location(n), v); }
-void Program::set(const char* n, const glm::vec2& v) const { glProgramUniform2fv(mId, location(n), 1, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(mId, location(n), 1, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(mId, location(n), 1, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::ivec2& v) const { glProgramUniform2iv(mId, location(n), 1, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::mat3& v) const { glProgramUniformMatrix3fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::mat4& v) const { glProgramUniformMatrix4fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v)); }
+void Program::set(const char* n, int v) const {
+    glProgramUniform1i(mId, location(n), v);
+}
+void Program::set(const char* n, float v) const {
+    glProgramUniform1f(mId, location(n), v);
+}
+void Program::set(const char* n, const glm::vec2& v) const {
+    glProgramUniform2fv(mId, location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::vec3& v) const {
+    glProgramUniform3fv(mId, location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::vec4& v) const {
+    glProgramUniform4fv(mId, location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::ivec2& v) const {
+    glProgramUniform2iv(mId, location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::mat3& v) const {
+    glProgramUniformMatrix3fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::mat4& v) const {
+    glProgramUniformMatrix4fv(mId, location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
 
 } // namespace gl

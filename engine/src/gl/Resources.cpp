@@ -67,7 +67,9 @@ int bytesPerTexel(Format f) {
     return 4;
 }
 
-bool isDepth(Format f) { return f == Format::Depth32F; }
+bool isDepth(Format f) {
+    return f == Format::Depth32F;
+}
 
 // ---- Buffer
 
@@ -88,7 +90,8 @@ Buffer::~Buffer() {
         glDeleteBuffers(1, &mId);
 }
 
-Buffer::Buffer(Buffer&& o) noexcept : mId(std::exchange(o.mId, 0)), mSize(std::exchange(o.mSize, 0)) {}
+Buffer::Buffer(Buffer&& o) noexcept
+    : mId(std::exchange(o.mId, 0)), mSize(std::exchange(o.mSize, 0)) {}
 
 Buffer& Buffer::operator=(Buffer&& o) noexcept {
     if (this != &o) {
@@ -145,7 +148,9 @@ Texture& Texture::operator=(Texture&& o) noexcept {
     return *this;
 }
 
-glm::ivec2 Texture::size(int level) const { return glm::max(mDesc.size >> level, glm::ivec2(1)); }
+glm::ivec2 Texture::size(int level) const {
+    return glm::max(mDesc.size >> level, glm::ivec2(1));
+}
 
 int Texture::maxSize() {
     GLint size = 0;
@@ -160,14 +165,16 @@ void Texture::upload(int level, const void* data) {
     glTextureSubImage2D(mId, level, 0, 0, s.x, s.y, f.format, f.type, data);
 }
 
-void Texture::generateMipmaps() { glGenerateTextureMipmap(mId); }
+void Texture::generateMipmaps() {
+    glGenerateTextureMipmap(mId);
+}
 
 void Texture::setSampling(Filter filter, Wrap wrap) {
     const GLint mag = filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;
-    const GLint min = filter == Filter::Nearest ? GL_NEAREST
+    const GLint min = filter == Filter::Nearest  ? GL_NEAREST
                       : filter == Filter::Linear ? GL_LINEAR
                                                  : GL_LINEAR_MIPMAP_LINEAR;
-    const GLint w = wrap == Wrap::Repeat ? GL_REPEAT
+    const GLint w = wrap == Wrap::Repeat  ? GL_REPEAT
                     : wrap == Wrap::Clamp ? GL_CLAMP_TO_EDGE
                                           : GL_MIRRORED_REPEAT;
     glTextureParameteri(mId, GL_TEXTURE_MAG_FILTER, mag);
@@ -196,7 +203,9 @@ std::vector<std::uint8_t> Texture::downloadRgba8(int level) const {
 
 // ---- Framebuffer
 
-Framebuffer::Framebuffer() { glCreateFramebuffers(1, &mId); }
+Framebuffer::Framebuffer() {
+    glCreateFramebuffers(1, &mId);
+}
 
 Framebuffer::~Framebuffer() {
     if (mId)
@@ -254,7 +263,9 @@ void Framebuffer::bindDefault(glm::ivec2 size) {
 
 // ---- VertexArray
 
-VertexArray::VertexArray() { glCreateVertexArrays(1, &mId); }
+VertexArray::VertexArray() {
+    glCreateVertexArrays(1, &mId);
+}
 
 VertexArray::~VertexArray() {
     if (mId)
@@ -272,13 +283,19 @@ VertexArray& VertexArray::operator=(VertexArray&& o) noexcept {
     return *this;
 }
 
-void VertexArray::setIndexBuffer(const Buffer& indices) { glVertexArrayElementBuffer(mId, indices.id()); }
+void VertexArray::setIndexBuffer(const Buffer& indices) {
+    glVertexArrayElementBuffer(mId, indices.id());
+}
 
-void VertexArray::bind() const { glBindVertexArray(mId); }
+void VertexArray::bind() const {
+    glBindVertexArray(mId);
+}
 
 // ---- TimerQuery
 
-TimerQuery::TimerQuery() { glCreateQueries(GL_TIMESTAMP, 2, mIds); }
+TimerQuery::TimerQuery() {
+    glCreateQueries(GL_TIMESTAMP, 2, mIds);
+}
 
 TimerQuery::~TimerQuery() {
     if (mIds[0])
@@ -297,7 +314,9 @@ TimerQuery& TimerQuery::operator=(TimerQuery&& o) noexcept {
     return *this;
 }
 
-void TimerQuery::begin() { glQueryCounter(mIds[0], GL_TIMESTAMP); }
+void TimerQuery::begin() {
+    glQueryCounter(mIds[0], GL_TIMESTAMP);
+}
 
 void TimerQuery::end() {
     glQueryCounter(mIds[1], GL_TIMESTAMP);

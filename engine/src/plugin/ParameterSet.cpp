@@ -11,7 +11,8 @@
 namespace plugin {
 
 void ParameterSet::declare(Parameter parameter) {
-    ENGINE_CHECK(find(parameter.name) == nullptr, "parameter '" + parameter.name + "' declared twice");
+    ENGINE_CHECK(find(parameter.name) == nullptr,
+                 "parameter '" + parameter.name + "' declared twice");
     const double d = parameter.defaultValue;
     mValues.push_back({d, d, d});
     mDeclarations.push_back(std::move(parameter));
@@ -56,7 +57,8 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
             std::string choices;
             for (const auto& c : p->choices)
                 choices += (choices.empty() ? "" : "|") + c;
-            return core::Error{"parameter '" + name + "' takes " + choices + ", got '" + value + "'"};
+            return core::Error{"parameter '" + name + "' takes " + choices + ", got '" + value +
+                               "'"};
         }
         const double index = double(it - p->choices.begin());
         mValues[i] = {index, index, index};
@@ -72,9 +74,11 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
             const std::string part = value.substr(start, c < 2 ? comma - start : std::string::npos);
             const char* end = part.data() + part.size();
             const auto [ptr, ec] = std::from_chars(part.data(), end, rgb[std::size_t(c)]);
-            if (ec != std::errc() || ptr != end || !(rgb[std::size_t(c)] >= p->min && rgb[std::size_t(c)] <= p->max))
-                return core::Error{"parameter '" + name + "' takes R,G,B each in [" + std::to_string(p->min) +
-                                   ", " + std::to_string(p->max) + "], got '" + value + "'"};
+            if (ec != std::errc() || ptr != end ||
+                !(rgb[std::size_t(c)] >= p->min && rgb[std::size_t(c)] <= p->max))
+                return core::Error{"parameter '" + name + "' takes R,G,B each in [" +
+                                   std::to_string(p->min) + ", " + std::to_string(p->max) +
+                                   "], got '" + value + "'"};
             start = comma + 1;
         }
         mValues[i] = rgb;
@@ -92,7 +96,8 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
         if (number < p->min || number > p->max) {
             std::ostringstream range;
             range << "[" << p->min << ", " << p->max << "]";
-            return core::Error{"parameter '" + name + "' must lie in " + range.str() + ", got " + value};
+            return core::Error{"parameter '" + name + "' must lie in " + range.str() + ", got " +
+                               value};
         }
         mValues[i] = {number, number, number};
         return {};
@@ -104,7 +109,8 @@ core::Status ParameterSet::set(const std::string& name, const std::string& value
 void ParameterSet::setNumber(const std::string& name, double value) {
     const std::size_t i = index(name);
     const Parameter& p = mDeclarations[i];
-    if (p.type == Parameter::Type::Float || p.type == Parameter::Type::Int || p.type == Parameter::Type::Color)
+    if (p.type == Parameter::Type::Float || p.type == Parameter::Type::Int ||
+        p.type == Parameter::Type::Color)
         value = std::clamp(value, p.min, p.max);
     if (p.type == Parameter::Type::Enum)
         value = std::clamp(std::round(value), 0.0, double(p.choices.size() - 1));
@@ -113,13 +119,18 @@ void ParameterSet::setNumber(const std::string& name, double value) {
     mValues[i] = {value, value, value};
 }
 
-double ParameterSet::number(const std::string& name) const { return mValues[index(name)][0]; }
+double ParameterSet::number(const std::string& name) const {
+    return mValues[index(name)][0];
+}
 
-std::array<double, 3> ParameterSet::color(const std::string& name) const { return mValues[index(name)]; }
+std::array<double, 3> ParameterSet::color(const std::string& name) const {
+    return mValues[index(name)];
+}
 
 const std::string& ParameterSet::choice(const std::string& name) const {
     const std::size_t i = index(name);
-    ENGINE_CHECK(mDeclarations[i].type == Parameter::Type::Enum, "choice() of a non-enum parameter");
+    ENGINE_CHECK(mDeclarations[i].type == Parameter::Type::Enum,
+                 "choice() of a non-enum parameter");
     return mDeclarations[i].choices[std::size_t(mValues[i][0])];
 }
 

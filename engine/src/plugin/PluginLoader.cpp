@@ -26,14 +26,16 @@ core::Result<LoadedPlugin> loadPlugin(const std::string& path) {
                                     "glass_plugin_create and glass_plugin_destroy)"};
     const char* version = interface();
     if (!version || std::strcmp(version, kInterfaceVersion) != 0)
-        return core::Error{prefix + "built for plugin interface '" + (version ? version : "(null)") +
-                           "', this engine needs '" + kInterfaceVersion + "'"};
+        return core::Error{prefix + "built for plugin interface '" +
+                           (version ? version : "(null)") + "', this engine needs '" +
+                           kInterfaceVersion + "'"};
     Plugin* raw = create();
     if (!raw)
         return core::Error{prefix + "glass_plugin_create returned no plugin"};
     // The module's own destroy function deletes what its create made; the deleter holds the
     // library, so the module is unloaded only after that.
-    return LoadedPlugin(std::shared_ptr<Plugin>(raw, [library, destroy](Plugin* p) { destroy(p); }));
+    return LoadedPlugin(
+        std::shared_ptr<Plugin>(raw, [library, destroy](Plugin* p) { destroy(p); }));
 }
 
 } // namespace plugin

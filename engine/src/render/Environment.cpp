@@ -32,24 +32,28 @@ asset::HdrImage Environment::proceduralSky(int width) {
             const float u = (float(x) + 0.5f) / float(image.width);
             const float v = (float(y) + 0.5f) / float(image.height);
             const float phi = (u - 0.5f) * 6.2831853f, theta = v * 3.1415926f;
-            const glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+            const glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                              -std::sin(theta) * std::cos(phi));
             glm::vec3 c;
             if (d.y > 0.0f) {
                 const float t = std::pow(1.0f - d.y, 4.0f);
                 c = glm::mix(glm::vec3(0.15f, 0.35f, 0.9f), glm::vec3(1.1f, 1.0f, 0.9f), t);
             } else {
-                c = glm::mix(glm::vec3(0.35f, 0.3f, 0.25f), glm::vec3(0.12f, 0.1f, 0.08f), std::min(-d.y * 3.0f, 1.0f));
+                c = glm::mix(glm::vec3(0.35f, 0.3f, 0.25f), glm::vec3(0.12f, 0.1f, 0.08f),
+                             std::min(-d.y * 3.0f, 1.0f));
             }
             const float s = std::max(glm::dot(d, sun), 0.0f);
-            c += glm::vec3(40.0f, 32.0f, 24.0f) * std::pow(s, 800.0f) + glm::vec3(0.6f, 0.4f, 0.2f) * std::pow(s, 16.0f);
+            c += glm::vec3(40.0f, 32.0f, 24.0f) * std::pow(s, 800.0f) +
+                 glm::vec3(0.6f, 0.4f, 0.2f) * std::pow(s, 16.0f);
             for (int k = 0; k < 3; ++k)
-                image.rgb[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3 + std::size_t(k)] = c[k];
+                image.rgb[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3 +
+                          std::size_t(k)] = c[k];
         }
     return image;
 }
 
 core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrImage& image,
-                                                              const gl::ShaderLibrary& shaders) {
+                                                               const gl::ShaderLibrary& shaders) {
     if (image.width > gl::Texture::maxSize() || image.height > gl::Texture::maxSize())
         return core::Error{"render::Environment::create(): " + std::to_string(image.width) + "x" +
                            std::to_string(image.height) + " is over GL_MAX_TEXTURE_SIZE " +
@@ -96,7 +100,8 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     return env;
 }
 
-void Environment::bind(const gl::Program& program, int first, float rotation, float intensity) const {
+void Environment::bind(const gl::Program& program, int first, float rotation,
+                       float intensity) const {
     gl::bindTexture(std::uint32_t(first), mPrefiltered);
     gl::bindTexture(std::uint32_t(first + 1), mIrradiance);
     program.set("uEnvPrefiltered", first);

@@ -17,7 +17,9 @@ gl::Filter filterOf(const scene::Sampler* s) {
 gl::Wrap wrapOf(const scene::Sampler* s) {
     if (!s)
         return gl::Wrap::Repeat;
-    return s->wrapS == 33071 ? gl::Wrap::Clamp : s->wrapS == 33648 ? gl::Wrap::MirroredRepeat : gl::Wrap::Repeat;
+    return s->wrapS == 33071   ? gl::Wrap::Clamp
+           : s->wrapS == 33648 ? gl::Wrap::MirroredRepeat
+                               : gl::Wrap::Repeat;
 }
 
 } // namespace
@@ -29,8 +31,9 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
         for (const scene::TextureRef* t : {&m.baseColorTexture, &m.emissiveTexture})
             if (t->present())
                 srgb[std::size_t(t->texture)] = true;
-        for (const scene::TextureRef* t : {&m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-                                           &m.transmissionTexture, &m.thicknessTexture})
+        for (const scene::TextureRef* t :
+             {&m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
+              &m.transmissionTexture, &m.thicknessTexture})
             if (t->present())
                 linear[std::size_t(t->texture)] = true;
     }
@@ -49,7 +52,8 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
         if (image.width > gl::Texture::maxSize() || image.height > gl::Texture::maxSize())
             return core::Error{"render::MaterialTextures::create(): " + name + " is " +
                                std::to_string(image.width) + "x" + std::to_string(image.height) +
-                               ", over GL_MAX_TEXTURE_SIZE " + std::to_string(gl::Texture::maxSize())};
+                               ", over GL_MAX_TEXTURE_SIZE " +
+                               std::to_string(gl::Texture::maxSize())};
         std::vector<std::uint8_t> rgba8;
         const std::uint8_t* pixels = image.pixels.data();
         if (image.bitsPerChannel == 16) {
@@ -59,11 +63,14 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
             pixels = rgba8.data();
         }
         const scene::Sampler* sampler =
-            model.textures[i].sampler >= 0 ? &model.samplers[std::size_t(model.textures[i].sampler)] : nullptr;
+            model.textures[i].sampler >= 0 ? &model.samplers[std::size_t(model.textures[i].sampler)]
+                                           : nullptr;
         for (bool asSrgb : {true, false}) {
             if (asSrgb ? !srgb[i] : !linear[i])
                 continue;
-            gl::Texture texture({{image.width, image.height}, asSrgb ? gl::Format::SRGB8_A8 : gl::Format::RGBA8, 0});
+            gl::Texture texture({{image.width, image.height},
+                                 asSrgb ? gl::Format::SRGB8_A8 : gl::Format::RGBA8,
+                                 0});
             texture.upload(0, pixels);
             texture.generateMipmaps();
             texture.setSampling(filterOf(sampler), wrapOf(sampler));
@@ -95,7 +102,8 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
         bool srgb;
     };
     const Slot slots[] = {{m.baseColorTexture, "uBaseColorTexture", "uHasBaseColorTexture", true},
-                          {m.metallicRoughnessTexture, "uMetallicRoughnessTexture", "uHasMetallicRoughnessTexture", false},
+                          {m.metallicRoughnessTexture, "uMetallicRoughnessTexture",
+                           "uHasMetallicRoughnessTexture", false},
                           {m.normalTexture, "uNormalTexture", "uHasNormalTexture", false},
                           {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", false},
                           {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", true}};

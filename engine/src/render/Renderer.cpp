@@ -20,7 +20,8 @@ class Renderer::Allocator final : public fg::TextureAllocator {
 public:
     void* allocate(const gl::TextureDesc& desc) override {
         auto* texture = new gl::Texture(desc);
-        texture->setSampling(desc.levels != 1 ? gl::Filter::LinearMipmap : gl::Filter::Nearest, gl::Wrap::Clamp);
+        texture->setSampling(desc.levels != 1 ? gl::Filter::LinearMipmap : gl::Filter::Nearest,
+                             gl::Wrap::Clamp);
         return texture;
     }
     void release(void* object) override { delete static_cast<gl::Texture*>(object); }
@@ -54,8 +55,19 @@ struct TargetData {
     fg::TextureHandle color, depth;
 };
 
+/** GL rows run bottom to top; images are read top to bottom. */
+template <class T> std::vector<T> flipRows(std::vector<T> pixels, glm::ivec2 size) {
+    const std::size_t row = std::size_t(size.x) * 4u;
+    for (int y = 0; y < size.y / 2; ++y)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
+    return pixels;
+}
+
 gl::Cull cullFor(const scene::Model& model, int material) {
-    return material >= 0 && model.materials[std::size_t(material)].doubleSided ? gl::Cull::None : gl::Cull::Back;
+    return material >= 0 && model.materials[std::size_t(material)].doubleSided ? gl::Cull::None
+                                                                               : gl::Cull::Back;
 }
 
 } // namespace
@@ -63,8 +75,8 @@ gl::Cull cullFor(const scene::Model& model, int material) {
 Renderer::~Renderer() = default;
 
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& model,
-                                                        const asset::HdrImage& environment,
-                                                        gl::Context& context) {
+                                                         const asset::HdrImage& environment,
+                                                         gl::Context& context) {
     std::unique_ptr<Renderer> r(new Renderer());
     r->mModel = &model;
     r->mContext = &context;
@@ -86,10 +98,12 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
         const char* vertex;
         const char* fragment;
     };
-    for (const ProgramSpec& spec : {ProgramSpec{&r->mBackground, "render/fullscreen.vert.glsl", "render/background.frag.glsl"},
-                                    ProgramSpec{&r->mOpaque, "render/mesh.vert.glsl", "render/pbr.frag.glsl"},
-                                    ProgramSpec{&r->mGround, "render/ground.vert.glsl", "render/ground.frag.glsl"},
-                                    ProgramSpec{&r->mTonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
+    for (const ProgramSpec& spec :
+         {ProgramSpec{&r->mBackground, "render/fullscreen.vert.glsl",
+                      "render/background.frag.glsl"},
+          ProgramSpec{&r->mOpaque, "render/mesh.vert.glsl", "render/pbr.frag.glsl"},
+          ProgramSpec{&r->mGround, "render/ground.vert.glsl", "render/ground.frag.glsl"},
+          ProgramSpec{&r->mTonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
         if (!program)
             return core::Error{"render::Renderer::create(): " + program.error().message};
@@ -110,7 +124,8 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
 core::Status Renderer::addPlugin(plugin::Plugin* p) {
     auto status = p->initialize(mShaders);
     if (!status)
-        return core::Error{std::string("render::Renderer::addPlugin(): ") + p->name() + ": " + status.error().message};
+        return core::Error{std::string("render::Renderer::addPlugin(): ") + p->name() + ": " +
+                           status.error().message};
     mPlugins.push_back(p);
     return {};
 }
@@ -148,8 +163,11 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
 
     struct Empty {};
-    graph.addPass<Empty>("deform", [](fg::Builder& b, Empty&) { b.sideEffect(); },
-                         [this, &pose](const fg::Resources&, const Empty&, gl::Context&) { mDeformer->update(pose); });
+    graph.addPass<Empty>(
+        "deform", [](fg::Builder& b, Empty&) { b.sideEffect(); },
+        [this, &pose](const fg::Resources&, const Empty&, gl::Context&) {
+            mDeformer->update(pose);
+        });
 
     const auto& background = graph.addPass<TargetData>(
         "background",
@@ -158,13 +176,15 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
             d.depth = b.write(b.create("scene.depth", depthDesc));
         },
         [this, &frame](const fg::Resources& r, const TargetData& d, gl::Context&) {
-            auto status = mFramebuffer.attach("background", {&r.texture(d.color)}, &r.texture(d.depth));
+            auto status =
+                mFramebuffer.attach("background", {&r.texture(d.color)}, &r.texture(d.depth));
             ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
             mFramebuffer.bind();
             gl::clearDepth(1.0f);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             mBackground.use();
-            mEnvironment->bind(mBackground, 0, frame.settings.environmentRotation, frame.settings.environmentIntensity);
+            mEnvironment->bind(mBackground, 0, frame.settings.environmentRotation,
+                               frame.settings.environmentIntensity);
             mBackground.set("uInverseViewProjection", glm::inverse(frame.camera.viewProjection()));
             mBackground.set("uBackgroundBlur", frame.settings.backgroundBlur);
             mEmptyVao.bind();
@@ -180,12 +200,14 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
                 d.depth = b.write(scene.depth);
             },
             [this, &frame](const fg::Resources& r, const TargetData& d, gl::Context&) {
-                auto status = mFramebuffer.attach("ground", {&r.texture(d.color)}, &r.texture(d.depth));
+                auto status =
+                    mFramebuffer.attach("ground", {&r.texture(d.color)}, &r.texture(d.depth));
                 ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
                 mFramebuffer.bind();
                 gl::apply({.cull = gl::Cull::None});
                 mGround.use();
-                mEnvironment->bind(mGround, 0, frame.settings.environmentRotation, frame.settings.environmentIntensity);
+                mEnvironment->bind(mGround, 0, frame.settings.environmentRotation,
+                                   frame.settings.environmentIntensity);
                 mGround.set("uViewProjection", frame.camera.viewProjection());
                 mGround.set("uCameraPosition", frame.camera.position);
                 mGround.set("uCenter", frame.groundCenter);
@@ -209,17 +231,20 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
             ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
             mFramebuffer.bind();
             mOpaque.use();
-            mEnvironment->bind(mOpaque, 0, frame.settings.environmentRotation, frame.settings.environmentIntensity);
+            mEnvironment->bind(mOpaque, 0, frame.settings.environmentRotation,
+                               frame.settings.environmentIntensity);
             mOpaque.set("uViewProjection", frame.camera.viewProjection());
             mOpaque.set("uCameraPosition", frame.camera.position);
             std::size_t vao = 0;
             for (const auto& instance : mDeformer->instances()) {
                 mOpaque.set("uModel", instance.meshToWorld);
-                mOpaque.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
+                mOpaque.set("uNormalMatrix",
+                            glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
                 for (const auto& primitive : instance.primitives) {
-                    const bool claimed = std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
-                        return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
-                    });
+                    const bool claimed =
+                        std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
+                            return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
+                        });
                     if (claimed) {
                         ++vao;
                         continue;
@@ -273,7 +298,9 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     mTimer->exact = settings.exactPassTimes;
     for (const fg::PassTiming& t : graph.execute(*mContext, mTimer.get()))
         stats.passes.push_back({t.name, t.cpuMs, 0.0});
-    stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+    stats.cpuMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
+            .count();
     for (PassStats& p : stats.passes) {
         p.gpuMs = mTimer->milliseconds(p.name);
         stats.gpuMs += p.gpuMs;
@@ -283,26 +310,12 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     return stats;
 }
 
-std::vector<float> Renderer::readHdrOutput() const {
-    std::vector<float> pixels = mOutput.downloadFloat();
-    const glm::ivec2 size = mOutput.desc().size;
-    const std::size_t row = std::size_t(size.x) * 4u;
-    for (int y = 0; y < size.y / 2; ++y)
-        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
-    return pixels;
+std::vector<std::uint8_t> Renderer::readOutput() const {
+    return flipRows(mOutput.downloadRgba8(), mOutput.size());
 }
 
-std::vector<std::uint8_t> Renderer::readOutput() const {
-    std::vector<std::uint8_t> pixels = mOutput.downloadRgba8();
-    const glm::ivec2 size = mOutput.desc().size;
-    const std::size_t row = std::size_t(size.x) * 4u;
-    for (int y = 0; y < size.y / 2; ++y)
-        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
-    return pixels;
+std::vector<float> Renderer::readHdrOutput() const {
+    return flipRows(mOutput.downloadFloat(), mOutput.size());
 }
 
 } // namespace render

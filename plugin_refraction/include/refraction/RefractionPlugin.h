@@ -21,7 +21,8 @@ class NormalDistance;
  *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
  *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
  *  search-steps 1..16, tir clamp|reflect, tir-bounces, back-surface farthest|first,
- *  nearby on|off, debug none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction. */
+ *  nearby on|off, debug
+ * none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction. */
 class RefractionPlugin final : public plugin::Plugin {
 public:
     RefractionPlugin();
@@ -29,7 +30,8 @@ public:
     const char* name() const override { return "refraction"; }
     core::Status initialize(gl::ShaderLibrary& shaders) override;
     void addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) override;
-    bool drawsPrimitive(const scene::Model& model, int node, const scene::Primitive& primitive) const override;
+    bool drawsPrimitive(const scene::Model& model, int node,
+                        const scene::Primitive& primitive) const override;
     plugin::ParameterSet& parameters() override { return mParameters; }
 
 private:

@@ -1,6 +1,6 @@
 // Keyframe sampling against hand-computed values, one case per interpolation mode.
-#include "engine/anim/Playback.h"
 #include "engine/anim/Sampler.h"
+#include "engine/anim/Playback.h"
 
 #include <gtest/gtest.h>
 
@@ -71,10 +71,9 @@ TEST(Sampler, CubicSplineScalesTangentsByKeyInterval) {
 }
 
 TEST(Sampler, CubicSplineRotationIsNormalised) {
-    const auto s = makeSampler(scene::Interpolation::CubicSpline, {0, 1},
-                               {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0,
-                                0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0},
-                               4);
+    const auto s =
+        makeSampler(scene::Interpolation::CubicSpline, {0, 1},
+                    {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0}, 4);
     std::array<double, 4> q{};
     anim::sample(s, 0.5, true, q);
     EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1.0, 1e-12);

@@ -22,9 +22,13 @@ TEST(Accessor, InterleavedWithByteStride) {
     // position (12 bytes) + normal (12 bytes) interleaved, stride 24.
     const std::vector<float> interleaved = {0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
     const int view = b.addView(interleaved.data(), interleaved.size() * 4, 24);
-    b.doc["accessors"] = {{{"bufferView", view}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
-                          {{"bufferView", view}, {"byteOffset", 12}, {"componentType", 5126},
-                           {"count", 3}, {"type", "VEC3"}}};
+    b.doc["accessors"] = {
+        {{"bufferView", view}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+        {{"bufferView", view},
+         {"byteOffset", 12},
+         {"componentType", 5126},
+         {"count", 3},
+         {"type", "VEC3"}}};
     b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}}}}}};
     b.doc["nodes"] = {{{"mesh", 0}}};
     test::TempDir dir;
@@ -73,7 +77,8 @@ TEST(Accessor, SparseSubstitutesOnZerosAndOnData) {
                                    {"indices", {{"bufferView", iv}, {"componentType", 5123}}},
                                    {"values", {{"bufferView", vv}}}};
     // Morph target without a bufferView: zeros, then the sparse values.
-    b.doc["accessors"].push_back({{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"sparse", sparse}});
+    b.doc["accessors"].push_back(
+        {{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"sparse", sparse}});
     b.doc["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 1}}};
     // The base positions also get a sparse override on top of their buffer data.
     b.doc["accessors"][0]["sparse"] = sparse;
@@ -97,8 +102,9 @@ TEST(Accessor, StripsAndFansBecomeLists) {
         const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
         const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
         b.doc["meshes"] = {{{"primitives",
-                             {{{"attributes", {{"POSITION", b.addAccessor(positions, 5126, "VEC3")},
-                                               {"NORMAL", b.addAccessor(normals, 5126, "VEC3")}}},
+                             {{{"attributes",
+                                {{"POSITION", b.addAccessor(positions, 5126, "VEC3")},
+                                 {"NORMAL", b.addAccessor(normals, 5126, "VEC3")}}},
                                {"mode", mode}}}}}};
         test::TempDir dir;
         const auto model = asset::loadGltf(b.save(dir.path(), "strip"));
@@ -116,8 +122,9 @@ TEST(Accessor, FlatNormalsUnweldSharedVertices) {
     // Two triangles folded along x: flat normals must differ per face at the shared edge.
     const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1};
     const std::vector<std::uint16_t> indices = {0, 1, 2, 1, 0, 3};
-    b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", b.addAccessor(positions, 5126, "VEC3")}}},
-                                         {"indices", b.addAccessor(indices, 5123, "SCALAR")}}}}}};
+    b.doc["meshes"] = {{{"primitives",
+                         {{{"attributes", {{"POSITION", b.addAccessor(positions, 5126, "VEC3")}}},
+                           {"indices", b.addAccessor(indices, 5123, "SCALAR")}}}}}};
     test::TempDir dir;
     const auto model = asset::loadGltf(b.save(dir.path(), "flat"));
     ASSERT_TRUE(model.ok()) << model.error().message;
@@ -156,17 +163,19 @@ TEST(Accessor, TangentsGeneratedForNormalMap) {
 
 TEST(Accessor, GlassExtensionsAreRead) {
     test::GltfBuilder b = triangle();
-    b.doc["materials"] = {
-        {{"name", "glass"},
-         {"extensions",
-          {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}}},
-           {"KHR_materials_volume",
-            {{"thicknessFactor", 0.2}, {"attenuationDistance", 2.0}, {"attenuationColor", {0.5, 0.8, 1.0}}}},
-           {"KHR_materials_ior", {{"ior", 1.33}}},
-           {"KHR_materials_dispersion", {{"dispersion", 0.1}}},
-           {"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}};
-    b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
-                               "KHR_materials_dispersion", "KHR_materials_emissive_strength"};
+    b.doc["materials"] = {{{"name", "glass"},
+                           {"extensions",
+                            {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}}},
+                             {"KHR_materials_volume",
+                              {{"thicknessFactor", 0.2},
+                               {"attenuationDistance", 2.0},
+                               {"attenuationColor", {0.5, 0.8, 1.0}}}},
+                             {"KHR_materials_ior", {{"ior", 1.33}}},
+                             {"KHR_materials_dispersion", {{"dispersion", 0.1}}},
+                             {"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}};
+    b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume",
+                               "KHR_materials_ior", "KHR_materials_dispersion",
+                               "KHR_materials_emissive_strength"};
     b.doc["extensionsRequired"] = {"KHR_materials_volume"};
     test::TempDir dir;
     const auto model = asset::loadGltf(b.save(dir.path(), "glass"));
@@ -186,7 +195,8 @@ TEST(Accessor, MatrixNodeAndCamera) {
     test::GltfBuilder b = triangle();
     // Scale 2 then translate (1,2,3), column-major.
     b.doc["nodes"][0]["matrix"] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1};
-    b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
+    b.doc["cameras"] = {
+        {{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
     b.doc["nodes"].push_back({{"camera", 0}});
     b.doc["scenes"][0]["nodes"] = {0, 1};
     test::TempDir dir;

@@ -20,28 +20,34 @@ struct MalformedCase {
 
 const std::vector<MalformedCase>& cases() {
     static const std::vector<MalformedCase> all = {
-        {"SceneNodeOutOfRange", [](auto& b) { b.doc["scenes"][0]["nodes"].push_back(99); },
+        {"SceneNodeOutOfRange",
+         [](auto& b) { b.doc["scenes"][0]["nodes"].push_back(99); },
          {"scene 0", "node 99", "file has 3 nodes"}},
-        {"ChildNodeOutOfRange", [](auto& b) { b.doc["nodes"][1]["children"] = {7}; },
+        {"ChildNodeOutOfRange",
+         [](auto& b) { b.doc["nodes"][1]["children"] = {7}; },
          {"node 1", "node 7", "3 nodes"}},
-        {"MeshOutOfRange", [](auto& b) { b.doc["nodes"][0]["mesh"] = 5; },
+        {"MeshOutOfRange",
+         [](auto& b) { b.doc["nodes"][0]["mesh"] = 5; },
          {"node 0", "mesh 5", "1 meshes"}},
         {"AccessorOutOfRange",
          [](auto& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 42; },
          {"accessor 42"}},
-        {"BufferViewOutOfRange", [](auto& b) { b.doc["accessors"][0]["bufferView"] = 40; },
+        {"BufferViewOutOfRange",
+         [](auto& b) { b.doc["accessors"][0]["bufferView"] = 40; },
          {"bufferView 40"}},
-        {"BufferOutOfRange", [](auto& b) { b.doc["bufferViews"][0]["buffer"] = 3; },
-         {"buffer"}},
-        {"MaterialOutOfRange", [](auto& b) { b.doc["meshes"][0]["primitives"][0]["material"] = 2; },
+        {"BufferOutOfRange", [](auto& b) { b.doc["bufferViews"][0]["buffer"] = 3; }, {"buffer"}},
+        {"MaterialOutOfRange",
+         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["material"] = 2; },
          {"mesh 0 primitive 0", "material 2"}},
         {"TextureOutOfRange",
          [](auto& b) {
-             b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 4}}}}}}};
+             b.doc["materials"] = {
+                 {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 4}}}}}}};
              b.doc["meshes"][0]["primitives"][0]["material"] = 0;
          },
          {"material 0", "texture 4"}},
-        {"SkinJointNodeOutOfRange", [](auto& b) { b.doc["skins"][0]["joints"][1] = 91; },
+        {"SkinJointNodeOutOfRange",
+         [](auto& b) { b.doc["skins"][0]["joints"][1] = 91; },
          {"skin 0: joint 1 references node 91, file has 3 nodes"}},
         {"JointIndexPastSkin",
          [](auto& b) {
@@ -52,11 +58,14 @@ const std::vector<MalformedCase>& cases() {
              std::memcpy(b.bin.data() + offset + 2 * 8, &bad, 2);
          },
          {"JOINTS_0 of vertex 2 references joint 5", "skin 0 has 2 joints"}},
-        {"AccessorPastBufferView", [](auto& b) { b.doc["accessors"][0]["count"] = 60; },
+        {"AccessorPastBufferView",
+         [](auto& b) { b.doc["accessors"][0]["count"] = 60; },
          {"accessor 0", "runs past the end of bufferView"}},
-        {"BufferViewPastBuffer", [](auto& b) { b.doc["bufferViews"][0]["byteLength"] = 100000; },
+        {"BufferViewPastBuffer",
+         [](auto& b) { b.doc["bufferViews"][0]["byteLength"] = 100000; },
          {"bufferView 0", "past the end of buffer 0"}},
-        {"StrideSmallerThanElement", [](auto& b) { b.doc["bufferViews"][0]["byteStride"] = 4; },
+        {"StrideSmallerThanElement",
+         [](auto& b) { b.doc["bufferViews"][0]["byteStride"] = 4; },
          {"byteStride 4"}},
         {"IndexPastVertexCount",
          [](auto& b) {
@@ -108,15 +117,19 @@ const std::vector<MalformedCase>& cases() {
         {"AbsurdSparseCount",
          [](auto& b) {
              // 2^27 VEC3 elements with no bufferView: 1.5 GiB from a file of a few KB.
-             b.doc["accessors"].push_back({{"componentType", 5126}, {"count", 134217728},
-                                           {"type", "VEC3"},
-                                           {"sparse", {{"count", 1},
-                                                       {"indices", {{"bufferView", 4}, {"componentType", 5123}}},
-                                                       {"values", {{"bufferView", 0}}}}}});
+             b.doc["accessors"].push_back(
+                 {{"componentType", 5126},
+                  {"count", 134217728},
+                  {"type", "VEC3"},
+                  {"sparse",
+                   {{"count", 1},
+                    {"indices", {{"bufferView", 4}, {"componentType", 5123}}},
+                    {"values", {{"bufferView", 0}}}}}});
              b.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 10;
          },
          {"accessor 10", "more memory than a file of this size can justify"}},
-        {"AbsurdAccessorCount", [](auto& b) { b.doc["accessors"][0]["count"] = 4000000000ull; },
+        {"AbsurdAccessorCount",
+         [](auto& b) { b.doc["accessors"][0]["count"] = 4000000000ull; },
          {"accessor 0", "over the limit"}},
         {"DecreasingKeyTimes",
          [](auto& b) {
@@ -132,17 +145,19 @@ const std::vector<MalformedCase>& cases() {
         {"WeightsChannelOnNodeWithoutMorphs",
          [](auto& b) { b.doc["animations"][0]["channels"][1]["target"]["node"] = 1; },
          {"animates the weights of node 1, which has no morph targets"}},
-        {"MorphWeightCountMismatch", [](auto& b) { b.doc["meshes"][0]["weights"] = {0.0, 1.0}; },
+        {"MorphWeightCountMismatch",
+         [](auto& b) {
+             b.doc["meshes"][0]["weights"] = {0.0, 1.0};
+         },
          {"mesh 0 has 2 default weights for 1 morph targets"}},
         {"MissingPosition",
          [](auto& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
          {"mesh 0 primitive 0 has no POSITION"}},
-        {"LinePrimitive", [](auto& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 1; },
+        {"LinePrimitive",
+         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 1; },
          {"mode LINES"}},
         {"InverseBindTooShort",
-         [](auto& b) {
-             b.doc["accessors"][6]["count"] = 1;
-         },
+         [](auto& b) { b.doc["accessors"][6]["count"] = 1; },
          {"skin 0 inverseBindMatrices has 1 matrices for 2 joints"}},
         {"BadIor",
          [](auto& b) {
@@ -153,7 +168,9 @@ const std::vector<MalformedCase>& cases() {
     return all;
 }
 
-void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const MalformedCase& c, std::ostream* os) {
+    *os << c.name;
+}
 
 class Malformed : public ::testing::TestWithParam<MalformedCase> {};
 
@@ -170,7 +187,8 @@ TEST_P(Malformed, FailsNamingFileAndElement) {
               std::string::npos)
         << message;
     for (const std::string& part : c.expected)
-        EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in: " << message;
+        EXPECT_NE(message.find(part), std::string::npos)
+            << "missing '" << part << "' in: " << message;
 }
 
 INSTANTIATE_TEST_SUITE_P(Asset, Malformed, ::testing::ValuesIn(cases()),
@@ -179,7 +197,8 @@ INSTANTIATE_TEST_SUITE_P(Asset, Malformed, ::testing::ValuesIn(cases()),
 TEST(Malformed, ValidBaseModelLoadsInEveryContainer) {
     test::TempDir dir;
     const test::GltfBuilder builder = test::twoJointModel();
-    for (auto format : {test::GltfFormat::DataUri, test::GltfFormat::ExternalBin, test::GltfFormat::Glb}) {
+    for (auto format :
+         {test::GltfFormat::DataUri, test::GltfFormat::ExternalBin, test::GltfFormat::Glb}) {
         const auto model = asset::loadGltf(builder.save(dir.path(), "valid", format));
         ASSERT_TRUE(model.ok()) << model.error().message;
         EXPECT_EQ(model->meshes[0].primitives[0].vertexCount(), 6u);
@@ -189,12 +208,15 @@ TEST(Malformed, ValidBaseModelLoadsInEveryContainer) {
 
 TEST(Malformed, MissingExternalBuffer) {
     test::TempDir dir;
-    const auto path = test::twoJointModel().save(dir.path(), "external", test::GltfFormat::ExternalBin);
+    const auto path =
+        test::twoJointModel().save(dir.path(), "external", test::GltfFormat::ExternalBin);
     std::filesystem::remove(dir / "external.bin");
     const auto model = asset::loadGltf(path);
     ASSERT_FALSE(model.ok());
-    EXPECT_NE(model.error().message.find("external.gltf"), std::string::npos) << model.error().message;
-    EXPECT_NE(model.error().message.find("external.bin"), std::string::npos) << model.error().message;
+    EXPECT_NE(model.error().message.find("external.gltf"), std::string::npos)
+        << model.error().message;
+    EXPECT_NE(model.error().message.find("external.bin"), std::string::npos)
+        << model.error().message;
 }
 
 TEST(Malformed, MissingModelFile) {

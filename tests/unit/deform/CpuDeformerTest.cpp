@@ -86,11 +86,13 @@ TEST(CpuDeformer, FlatNormalsFollowTheDeformedTriangle) {
 
 TEST(CpuDeformer, AnimatedMorphCubeTargetsAtKnownWeights) {
     GLASS_REQUIRE_SHARED();
-    const auto model = asset::loadGltf(test::sharedDir() / "assets/gltf/AnimatedMorphCube/AnimatedMorphCube.glb");
+    const auto model =
+        asset::loadGltf(test::sharedDir() / "assets/gltf/AnimatedMorphCube/AnimatedMorphCube.glb");
     ASSERT_TRUE(model.ok()) << model.error().message;
     const scene::Primitive& p = model->meshes[0].primitives[0];
     ASSERT_EQ(p.targets.size(), 2u);
-    for (const std::array<double, 2> w : {std::array{1.0, 0.0}, std::array{0.0, 1.0}, std::array{0.5, 0.25}}) {
+    for (const std::array<double, 2> w :
+         {std::array{1.0, 0.0}, std::array{0.0, 1.0}, std::array{0.5, 0.25}}) {
         const auto out = deform::deformPrimitive(p, w, {});
         for (std::size_t v = 0; v < p.vertexCount(); ++v) {
             const glm::dvec3 expected = glm::dvec3(p.positions[v]) +

@@ -1,6 +1,6 @@
 // Frame graph without a GL context: a fake allocator stands in for GPU textures.
-#include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
+#include "engine/fg/Blackboard.h"
 #include "engine/gl/Context.h"
 
 #include <gtest/gtest.h>
@@ -49,19 +49,22 @@ TEST(FrameGraph, CulledPassNeverExecutes) {
     NoContext context;
     std::vector<std::string> ran;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
-    const auto& a = graph.addPass<One>("a", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("a.out", kColor)); },
-                                       [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("a"); });
-    graph.addPass<One>("unused", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("unused.out", kColor)); },
-                       [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("unused"); });
-    graph.addPass<InOut>("present",
-                         [&](fg::Builder& b, InOut& d) {
-                             d.in = b.read(a.out);
-                             d.out = b.write(back);
-                         },
-                         [&](const fg::Resources& r, const InOut& d, gl::Context&) {
-                             EXPECT_NE(r.object(d.in), nullptr);
-                             ran.push_back("present");
-                         });
+    const auto& a = graph.addPass<One>(
+        "a", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("a.out", kColor)); },
+        [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("a"); });
+    graph.addPass<One>(
+        "unused", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("unused.out", kColor)); },
+        [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("unused"); });
+    graph.addPass<InOut>(
+        "present",
+        [&](fg::Builder& b, InOut& d) {
+            d.in = b.read(a.out);
+            d.out = b.write(back);
+        },
+        [&](const fg::Resources& r, const InOut& d, gl::Context&) {
+            EXPECT_NE(r.object(d.in), nullptr);
+            ran.push_back("present");
+        });
     ASSERT_TRUE(graph.compile().ok());
     graph.execute(context);
     EXPECT_EQ(ran, (std::vector<std::string>{"a", "present"}));
@@ -74,8 +77,8 @@ TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
     fg::TexturePool pool(allocator);
     fg::FrameGraph graph(pool);
     NoContext context;
-    // A chain t0 -> t1 -> t2 -> t3 of same-descriptor textures: pass i reads t(i-1) and writes t(i),
-    // so at most two are alive at once and the pool needs exactly two.
+    // A chain t0 -> t1 -> t2 -> t3 of same-descriptor textures: pass i reads t(i-1) and writes
+    // t(i), so at most two are alive at once and the pool needs exactly two.
     fg::TextureHandle previous;
     for (int i = 0; i < 4; ++i) {
         const auto& d = graph.addPass<InOut>(
@@ -98,10 +101,13 @@ TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
 
     // A second frame reuses the pooled textures: no new allocation.
     fg::FrameGraph again(pool);
-    again.addPass<One>("x", [&](fg::Builder& b, One& d) {
-        d.out = b.write(b.create("x", kColor));
-        b.sideEffect();
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    again.addPass<One>(
+        "x",
+        [&](fg::Builder& b, One& d) {
+            d.out = b.write(b.create("x", kColor));
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     ASSERT_TRUE(again.compile().ok());
     again.execute(context);
     EXPECT_EQ(allocator.allocations, 2);
@@ -115,12 +121,16 @@ TEST(FrameGraph, OrdersByDependencyNotDeclaration) {
     fg::TexturePool pool(allocator);
     fg::FrameGraph graph(pool);
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
-    graph.addPass<One>("late", [&](fg::Builder& b, One& d) {
-        b.after("early");
-        d.out = b.write(back);
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
-    graph.addPass<One>("early", [&](fg::Builder& b, One&) { b.sideEffect(); },
-                       [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "late",
+        [&](fg::Builder& b, One& d) {
+            b.after("early");
+            d.out = b.write(back);
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "early", [&](fg::Builder& b, One&) { b.sideEffect(); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     ASSERT_TRUE(graph.compile().ok());
     EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"early", "late"}));
 }
@@ -130,28 +140,36 @@ TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
     fg::TexturePool pool(allocator);
     fg::FrameGraph graph(pool);
     fg::TextureHandle orphan;
-    graph.addPass<One>("maker", [&](fg::Builder& b, One&) { orphan = b.create("orphan", kColor); },
-                       [](const fg::Resources&, const One&, gl::Context&) {});
-    graph.addPass<One>("reader", [&](fg::Builder& b, One&) {
-        b.read(orphan);
-        b.sideEffect();
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "maker", [&](fg::Builder& b, One&) { orphan = b.create("orphan", kColor); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "reader",
+        [&](fg::Builder& b, One&) {
+            b.read(orphan);
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     const auto status = graph.compile();
     ASSERT_FALSE(status.ok());
-    EXPECT_EQ(status.error().message,
-              "fg::FrameGraph::compile(): pass 'reader' reads 'orphan' (version 0), which no pass writes");
+    EXPECT_EQ(status.error().message, "fg::FrameGraph::compile(): pass 'reader' reads 'orphan' "
+                                      "(version 0), which no pass writes");
 }
 
 TEST(FrameGraph, RejectsCycle) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
     fg::FrameGraph graph(pool);
-    graph.addPass<One>("a", [&](fg::Builder& b, One&) {
-        b.after("b");
-        b.sideEffect();
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
-    graph.addPass<One>("b", [&](fg::Builder& b, One&) { b.after("a"); },
-                       [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "a",
+        [&](fg::Builder& b, One&) {
+            b.after("b");
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "b", [&](fg::Builder& b, One&) { b.after("a"); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     const auto status = graph.compile();
     ASSERT_FALSE(status.ok());
     EXPECT_EQ(status.error().message,
@@ -163,8 +181,9 @@ TEST(FrameGraph, RejectsUnknownAfterAndOutdatedWrite) {
     fg::TexturePool pool(allocator);
     {
         fg::FrameGraph graph(pool);
-        graph.addPass<One>("p", [&](fg::Builder& b, One&) { b.after("ghost"); },
-                           [](const fg::Resources&, const One&, gl::Context&) {});
+        graph.addPass<One>(
+            "p", [&](fg::Builder& b, One&) { b.after("ghost"); },
+            [](const fg::Resources&, const One&, gl::Context&) {});
         const auto status = graph.compile();
         ASSERT_FALSE(status.ok());
         EXPECT_NE(status.error().message.find("pass 'p' runs after 'ghost'"), std::string::npos);
@@ -172,14 +191,17 @@ TEST(FrameGraph, RejectsUnknownAfterAndOutdatedWrite) {
     {
         fg::FrameGraph graph(pool);
         const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
-        graph.addPass<One>("w1", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
-                           [](const fg::Resources&, const One&, gl::Context&) {});
-        graph.addPass<One>("w2", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
-                           [](const fg::Resources&, const One&, gl::Context&) {});
+        graph.addPass<One>(
+            "w1", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+            [](const fg::Resources&, const One&, gl::Context&) {});
+        graph.addPass<One>(
+            "w2", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+            [](const fg::Resources&, const One&, gl::Context&) {});
         const auto status = graph.compile();
         ASSERT_FALSE(status.ok());
-        EXPECT_NE(status.error().message.find("pass 'w2' writes an outdated version of 'backbuffer'"),
-                  std::string::npos)
+        EXPECT_NE(
+            status.error().message.find("pass 'w2' writes an outdated version of 'backbuffer'"),
+            std::string::npos)
             << status.error().message;
     }
 }
@@ -190,17 +212,21 @@ TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
     fg::FrameGraph graph(pool);
     NoContext context;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
-    const auto& first = graph.addPass<One>("draw", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
-                                           [](const fg::Resources&, const One&, gl::Context&) {});
+    const auto& first = graph.addPass<One>(
+        "draw", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     // Declared first but writes the next version: must wait for the reader of version 1.
-    graph.addPass<One>("overdraw", [&](fg::Builder& b, One& d) {
-        d.out = b.write(first.out);
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
-    graph.addPass<One>("copy", [&](fg::Builder& b, One& d) {
-        b.read(first.out);
-        d.out = b.write(b.create("copy", kColor));
-        b.sideEffect();
-    }, [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "overdraw", [&](fg::Builder& b, One& d) { d.out = b.write(first.out); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    graph.addPass<One>(
+        "copy",
+        [&](fg::Builder& b, One& d) {
+            b.read(first.out);
+            d.out = b.write(b.create("copy", kColor));
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
     ASSERT_TRUE(graph.compile().ok());
     EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"draw", "copy", "overdraw"}));
     const auto timings = graph.execute(context);

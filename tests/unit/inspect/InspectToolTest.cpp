@@ -44,7 +44,8 @@ TEST(InspectTool, ExitCodes) {
     EXPECT_EQ(test::runCommand(kInspect, &out), 2);
     EXPECT_EQ(test::runCommand(kInspect + " model.glb --bogus", &out), 2);
     EXPECT_NE(out.find("unknown option --bogus"), std::string::npos);
-    EXPECT_EQ(test::runCommand(kInspect + " model.glb --time -3 --vertices cpu --out x.ply", &out), 2);
+    EXPECT_EQ(test::runCommand(kInspect + " model.glb --time -3 --vertices cpu --out x.ply", &out),
+              2);
     EXPECT_EQ(test::runCommand(kInspect + " model.glb --vertices cpu", &out), 2);
 }
 
@@ -55,7 +56,8 @@ TEST(InspectTool, BadModelExitsOneAndWritesNothing) {
     const auto path = broken.save(dir.path(), "broken");
     std::string out;
     const std::string ply = (dir / "out.ply").string();
-    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --out " + ply, &out), 1);
+    EXPECT_EQ(
+        test::runCommand(kInspect + " " + path.string() + " --vertices cpu --out " + ply, &out), 1);
     EXPECT_NE(out.find("broken.gltf: skin 0: joint 0 references node 40, file has 3 nodes"),
               std::string::npos)
         << out;
@@ -66,7 +68,8 @@ TEST(InspectTool, JsonDescribesTheModel) {
     test::TempDir dir;
     const auto path = test::twoJointModel().save(dir.path(), "twojoint", test::GltfFormat::Glb);
     std::string out;
-    ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0) << out;
+    ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0)
+        << out;
     const auto j = nlohmann::json::parse(out);
     EXPECT_EQ(j["meshes"], 1);
     EXPECT_EQ(j["primitives"], 1);
@@ -90,7 +93,8 @@ TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {
     for (const auto& expected : inventory["models"]) {
         const auto path = test::sharedDir() / "assets" / expected["file"].get<std::string>();
         std::string out;
-        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0) << out;
+        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --json 2>/dev/null", &out), 0)
+            << out;
         const auto j = nlohmann::json::parse(out);
         SCOPED_TRACE(expected["name"].get<std::string>());
         for (const char* key : {"meshes", "primitives", "triangles", "vertices", "skins",
@@ -99,7 +103,8 @@ TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {
         ASSERT_EQ(j["animation_list"].size(), expected["animation_list"].size());
         for (std::size_t a = 0; a < j["animation_list"].size(); ++a) {
             EXPECT_EQ(j["animation_list"][a]["name"], expected["animation_list"][a]["name"]);
-            EXPECT_EQ(j["animation_list"][a]["interpolation"], expected["animation_list"][a]["interpolation"]);
+            EXPECT_EQ(j["animation_list"][a]["interpolation"],
+                      expected["animation_list"][a]["interpolation"]);
             EXPECT_NEAR(j["animation_list"][a]["duration_s"].get<double>(),
                         expected["animation_list"][a]["duration_s"].get<double>(), 5e-4);
         }
@@ -114,8 +119,12 @@ TEST(InspectTool, PlyHoldsTheCpuDeformation) {
     for (const char* format : {"", " --ascii"}) {
         const auto ply = dir / "out.ply";
         std::string out;
-        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --time 1 --clip bend --out " +
-                                       ply.string() + format, &out), 0) << out;
+        ASSERT_EQ(test::runCommand(kInspect + " " + path.string() +
+                                       " --vertices cpu --time 1 --clip bend --out " +
+                                       ply.string() + format,
+                                   &out),
+                  0)
+            << out;
         const Ply result = readPly(ply);
         ASSERT_EQ(result.count, 6u);
         // Vertex 2 at t = 1 is at (1,1,1) (see CpuDeformerTest), normal +z.
@@ -125,8 +134,10 @@ TEST(InspectTool, PlyHoldsTheCpuDeformation) {
         EXPECT_NEAR(result.values[2 * 6 + 5], 1.0f, 1e-5f);
     }
     std::string out;
-    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --clip nope --out " +
-                                   (dir / "x.ply").string(), &out), 2);
+    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() +
+                                   " --vertices cpu --clip nope --out " + (dir / "x.ply").string(),
+                               &out),
+              2);
     EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
 }
 
@@ -135,8 +146,10 @@ TEST(InspectTool, GpuPlyMatchesCpuPly) {
     const auto path = test::twoJointModel().save(dir.path(), "twojoint");
     std::string out;
     const std::string base = kInspect + " " + path.string() + " --time 0.6 --out ";
-    ASSERT_EQ(test::runCommand(base + (dir / "cpu.ply").string() + " --vertices cpu", &out), 0) << out;
-    const int gpuStatus = test::runCommand(base + (dir / "gpu.ply").string() + " --vertices gpu", &out);
+    ASSERT_EQ(test::runCommand(base + (dir / "cpu.ply").string() + " --vertices cpu", &out), 0)
+        << out;
+    const int gpuStatus =
+        test::runCommand(base + (dir / "gpu.ply").string() + " --vertices gpu", &out);
     if (gpuStatus != 0 && out.find("no headless OpenGL") != std::string::npos)
         GTEST_SKIP() << out;
     ASSERT_EQ(gpuStatus, 0) << out;
@@ -151,8 +164,12 @@ TEST(InspectTool, CesiumManPlyHasEveryVertex) {
     test::TempDir dir;
     const auto model = test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb";
     std::string out;
-    ASSERT_EQ(test::runCommand(kInspect + " " + model.string() + " --vertices cpu --time 1.0 --out " +
-                                   (dir / "cesium.ply").string(), &out), 0) << out;
+    ASSERT_EQ(test::runCommand(kInspect + " " + model.string() +
+                                   " --vertices cpu --time 1.0 --out " +
+                                   (dir / "cesium.ply").string(),
+                               &out),
+              0)
+        << out;
     const Ply ply = readPly(dir / "cesium.ply");
     EXPECT_EQ(ply.count, 3273u);
     const auto loaded = asset::loadGltf(model);

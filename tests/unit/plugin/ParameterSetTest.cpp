@@ -10,7 +10,8 @@ plugin::ParameterSet make() {
     p.declare({"ior", "IOR", plugin::Parameter::Type::Float, 1.0, 3.0, 1.5, {}, ""});
     p.declare({"steps", "Steps", plugin::Parameter::Type::Int, 1, 16, 5, {}, ""});
     p.declare({"nearby", "Nearby", plugin::Parameter::Type::Bool, 0, 1, 1, {}, ""});
-    p.declare({"method", "Method", plugin::Parameter::Type::Enum, 0, 0, 2, {"opaque", "sir", "dir"}, ""});
+    p.declare(
+        {"method", "Method", plugin::Parameter::Type::Enum, 0, 0, 2, {"opaque", "sir", "dir"}, ""});
     return p;
 }
 

@@ -23,7 +23,8 @@ struct LoadOptions {
  *  the engine's limits (core/Limits.h). On failure returns an Error naming the function, the
  *  file and the element; no partial model is returned. Generates flat normals where NORMAL is
  *  missing and tangents where a normal map needs them. Never throws. */
-core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const LoadOptions& options = {});
+core::Result<scene::Model> loadGltf(const std::filesystem::path& path,
+                                    const LoadOptions& options = {});
 
 /** Extensions a file may list in extensionsRequired. */
 const std::set<std::string>& supportedRequiredExtensions();

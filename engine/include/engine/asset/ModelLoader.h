@@ -8,7 +8,8 @@ namespace asset {
 /** "builtin:sphere" or "builtin:sphere?segments=N" (8 <= N <= 1024, default 128): a unit sphere
  *  at the origin, N longitudes by N/2 latitudes, smooth normals, one glass material
  *  (transmission 1, ior 1.5); anything else is loaded with loadGltf(). */
-core::Result<scene::Model> loadModel(const std::string& pathOrBuiltin, const LoadOptions& options = {});
+core::Result<scene::Model> loadModel(const std::string& pathOrBuiltin,
+                                     const LoadOptions& options = {});
 
 /** The built-in unit sphere (see loadModel). */
 scene::Model makeSphere(int segments);

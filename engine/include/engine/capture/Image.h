@@ -21,17 +21,17 @@ core::Status writePng(const std::filesystem::path& path, const Image& image);
 core::Result<Image> readPng(const std::filesystem::path& path);
 
 struct Tolerance {
-    int maxAbsDiff = 5;                 ///< per channel, in 1/255
-    double maxFailingFraction = 0.001;  ///< of all pixels
+    int maxAbsDiff = 5;                ///< per channel, in 1/255
+    double maxFailingFraction = 0.001; ///< of all pixels
 };
 
 struct Comparison {
     bool sizeMatches = true;
-    int maxAbsDiff = 0;           ///< over all pixels and channels
+    int maxAbsDiff = 0; ///< over all pixels and channels
     std::size_t failingPixels = 0;
     double failingFraction = 0.0;
     bool passed = false;
-    Image diff;                   ///< failing pixels red (brighter = larger), others dimmed grey
+    Image diff; ///< failing pixels red (brighter = larger), others dimmed grey
 };
 
 /** Per-pixel comparison: a pixel fails when any channel differs by more than maxAbsDiff. */

@@ -14,7 +14,7 @@ namespace core {
 } // namespace core
 
 /** Aborts with file, line and message when `cond` is false; active in every build type. */
-#define ENGINE_CHECK(cond, message)                                                               \
+#define ENGINE_CHECK(cond, message)                                                                \
     do {                                                                                           \
         if (!(cond)) [[unlikely]]                                                                  \
             ::core::checkFailed(#cond, (message));                                                 \

@@ -25,7 +25,8 @@ struct DeformedPrimitive {
  *  under non-uniform scale; flat-normal primitives recompute the face normal instead.
  *  `weights` may be shorter than the target count (missing weights are 0); `skin` is empty for
  *  an unskinned node. */
-DeformedPrimitive deformPrimitive(const scene::Primitive& primitive, std::span<const double> weights,
+DeformedPrimitive deformPrimitive(const scene::Primitive& primitive,
+                                  std::span<const double> weights,
                                   std::span<const glm::dmat4> skin);
 
 /** One mesh node of the scene, deformed. */

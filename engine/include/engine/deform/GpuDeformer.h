@@ -42,7 +42,7 @@ public:
     /** Uploads rest attributes, influences and morph deltas of every mesh node of the default
      *  scene and compiles the deform programs. Needs a current GL context. */
     static core::Result<std::unique_ptr<GpuDeformer>> create(const scene::Model& model,
-                                                            const gl::ShaderLibrary& shaders);
+                                                             const gl::ShaderLibrary& shaders);
 
     /** Uploads this pose's skin matrices and morph weights and runs the deform passes (one
      *  dispatch per primitive, plus one for flat normals where the file had none). Issues a

@@ -12,7 +12,9 @@ namespace fg {
 
 class Blackboard {
 public:
-    template <class T> void put(const std::string& name, T value) { mValues[name] = std::move(value); }
+    template <class T> void put(const std::string& name, T value) {
+        mValues[name] = std::move(value);
+    }
 
     /** The value under `name` if present and of type T, else nullptr. */
     template <class T> const T* find(const std::string& name) const {

@@ -56,7 +56,9 @@ class Resources {
 public:
     /** The GPU object behind `handle` (a gl::Texture for the engine's allocator). */
     void* object(TextureHandle handle) const;
-    gl::Texture& texture(TextureHandle handle) const { return *static_cast<gl::Texture*>(object(handle)); }
+    gl::Texture& texture(TextureHandle handle) const {
+        return *static_cast<gl::Texture*>(object(handle));
+    }
     const gl::TextureDesc& desc(TextureHandle handle) const;
 
 private:

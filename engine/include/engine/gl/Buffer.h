@@ -15,8 +15,8 @@ public:
     Buffer() = default;
     /** Allocates `bytes` bytes, filled from `data` when given (else zeros). */
     explicit Buffer(std::size_t bytes, const void* data = nullptr);
-    template <class T> explicit Buffer(std::span<const T> values)
-        : Buffer(values.size_bytes(), values.data()) {}
+    template <class T>
+    explicit Buffer(std::span<const T> values) : Buffer(values.size_bytes(), values.data()) {}
     ~Buffer();
     Buffer(Buffer&& other) noexcept;
     Buffer& operator=(Buffer&& other) noexcept;

@@ -53,7 +53,8 @@ void drawArrays(std::uint32_t vertexCount);
 void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
 
 void bindStorage(std::uint32_t binding, const Buffer& buffer);
-void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset, std::size_t bytes);
+void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset,
+                      std::size_t bytes);
 void bindTexture(std::uint32_t unit, const Texture& texture);
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
 

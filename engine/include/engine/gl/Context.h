@@ -14,8 +14,8 @@ namespace gl {
 struct ContextOptions {
     glm::ivec2 windowSize{1280, 720}; ///< window contexts only
     std::string title = "glass";
-    bool debug = true;   ///< KHR_debug context, messages to the log, errors counted
-    bool vsync = true;   ///< window contexts only
+    bool debug = true; ///< KHR_debug context, messages to the log, errors counted
+    bool vsync = true; ///< window contexts only
 };
 
 class Context {
@@ -41,6 +41,7 @@ core::Result<std::unique_ptr<Context>> createHeadlessContext(const ContextOption
 core::Result<std::unique_ptr<Context>> createWindowContext(const ContextOptions& options = {});
 
 /** A window when a display is available and `preferWindow`, else headless. */
-core::Result<std::unique_ptr<Context>> createContext(bool preferWindow, const ContextOptions& options = {});
+core::Result<std::unique_ptr<Context>> createContext(bool preferWindow,
+                                                     const ContextOptions& options = {});
 
 } // namespace gl

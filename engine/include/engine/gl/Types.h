@@ -8,8 +8,8 @@
 namespace gl {
 
 enum class Format : std::uint8_t {
-    RGBA8,       ///< linear 8-bit
-    SRGB8_A8,    ///< sRGB-encoded 8-bit
+    RGBA8,    ///< linear 8-bit
+    SRGB8_A8, ///< sRGB-encoded 8-bit
     RGBA16F,
     RGBA32F,
     R32F,

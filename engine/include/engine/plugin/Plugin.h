@@ -50,7 +50,8 @@ public:
     virtual void addPasses(Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) = 0;
     /** True when this plugin draws primitive `primitive` of mesh node `node` itself, so the
      *  opaque pass leaves it out (a glass plugin claims its glass). */
-    virtual bool drawsPrimitive(const scene::Model& model, int node, const scene::Primitive& primitive) const {
+    virtual bool drawsPrimitive(const scene::Model& model, int node,
+                                const scene::Primitive& primitive) const {
         (void)model, (void)node, (void)primitive;
         return false;
     }
@@ -83,12 +84,13 @@ core::Result<LoadedPlugin> loadPlugin(const std::string& path);
 
 /** Defines the three entry points of a plugin module for class `Type`. */
 #define GLASS_PLUGIN_ENTRY(Type)                                                                   \
-    extern "C" __attribute__((visibility("default"))) const char* glass_plugin_interface() {      \
+    extern "C" __attribute__((visibility("default"))) const char* glass_plugin_interface() {       \
         return ::plugin::kInterfaceVersion;                                                        \
     }                                                                                              \
-    extern "C" __attribute__((visibility("default"))) ::plugin::Plugin* glass_plugin_create() {   \
+    extern "C" __attribute__((visibility("default"))) ::plugin::Plugin* glass_plugin_create() {    \
         return new Type();                                                                         \
     }                                                                                              \
-    extern "C" __attribute__((visibility("default"))) void glass_plugin_destroy(::plugin::Plugin* p) { \
+    extern "C" __attribute__((visibility("default"))) void glass_plugin_destroy(                   \
+        ::plugin::Plugin* p) {                                                                     \
         delete p;                                                                                  \
     }

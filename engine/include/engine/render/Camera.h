@@ -15,7 +15,7 @@ struct Camera {
     glm::mat4 projection{1.0f}; ///< view -> clip (OpenGL conventions)
     glm::vec3 position{0.0f};   ///< world
     float znear = 0.01f, zfar = 100.0f;
-    float yfov = 0.8f;          ///< radians
+    float yfov = 0.8f; ///< radians
     glm::mat4 viewProjection() const { return projection * view; }
 };
 

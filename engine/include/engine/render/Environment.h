@@ -15,7 +15,7 @@ class Environment {
 public:
     /** Uploads `image` and computes the prefiltered levels and irradiance (compute shaders). */
     static core::Result<std::unique_ptr<Environment>> create(const asset::HdrImage& image,
-                                                            const gl::ShaderLibrary& shaders);
+                                                             const gl::ShaderLibrary& shaders);
 
     /** A small procedural sky (used when no --env is given): blue zenith, bright horizon band
      *  with a warm sun, darker ground. */

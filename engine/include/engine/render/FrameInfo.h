@@ -26,7 +26,7 @@ struct RenderSettings {
     float exposure = 1.0f;
     float environmentRotation = 0.0f; ///< radians about +y
     float environmentIntensity = 1.0f;
-    float backgroundBlur = 0.0f;      ///< roughness of the background lookup
+    float backgroundBlur = 0.0f; ///< roughness of the background lookup
     bool ground = false;
     /** Finish the GPU work of each pass before timing its end. Tile-deferred rasterisers
      *  (llvmpipe) otherwise bill a pass's rasterisation to whichever pass flushes it; this

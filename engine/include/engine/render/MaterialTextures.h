@@ -19,7 +19,8 @@ public:
 
     /** Sets the material uniforms (factors, texture flags) and binds its textures to units
      *  `firstUnit`..`firstUnit + 4`. Material -1 is the glTF default material. */
-    void bind(const gl::Program& program, const scene::Model& model, int material, int firstUnit) const;
+    void bind(const gl::Program& program, const scene::Model& model, int material,
+              int firstUnit) const;
 
 private:
     std::vector<gl::Texture> mLinear, mSrgb; // per texture; empty Texture where not needed

@@ -39,9 +39,8 @@ class Renderer {
 public:
     /** Prepares `model` for drawing (GPU deformer, textures, programs) with `environment`.
      *  `model` must outlive the renderer. Needs a current context. */
-    static core::Result<std::unique_ptr<Renderer>> create(const scene::Model& model,
-                                                         const asset::HdrImage& environment,
-                                                         gl::Context& context);
+    static core::Result<std::unique_ptr<Renderer>>
+    create(const scene::Model& model, const asset::HdrImage& environment, gl::Context& context);
     ~Renderer();
 
     /** Adds a plugin (not owned): initialises it now, then it adds passes every frame. */
