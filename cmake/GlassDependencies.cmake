@@ -13,6 +13,8 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET GLOBAL epoxy)
 # libglfw3-dev: windows (GL 4.5 core) for the viewer
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)
+# libembree-dev: the reference ray tracer (plugin_refraction only)
+find_package(embree 3 REQUIRED)
 # nlohmann-json3-dev: JSON output of the tools and parsing in tests (tinygltf uses it too)
 find_package(nlohmann_json 3 REQUIRED)
 

@@ -2,6 +2,7 @@
 #include "refraction/RefractionPlugin.h"
 
 #include "NormalDistance.h"
+#include "Optics.h"
 
 #include "engine/deform/GpuDeformer.h"
 #include "engine/fg/Blackboard.h"
@@ -199,39 +200,6 @@ struct CompositeData {
     fg::TextureHandle scene, glass, out;
 };
 
-/** Per-primitive optical parameters from the material and the global overrides. */
-struct Optics {
-    glm::vec3 ior;
-    bool dispersion;
-    glm::vec3 sigma;
-    float transmission;
-};
-
-Optics opticsFor(const plugin::ParameterSet& p, const scene::Material* m) {
-    Optics o;
-    const double iorOverride = p.number("ior");
-    double ior = iorOverride >= 1.0 ? iorOverride
-                                    : (m && m->hasIor && m->ior >= 1.0f ? double(m->ior) : 1.5);
-    const double dispersion =
-        p.number("dispersion") >= 0.0 ? p.number("dispersion") : (m ? double(m->dispersion) : 0.0);
-    // KHR_materials_dispersion: spread of the indices around ior from the Abbe number.
-    const double halfSpread = (ior - 1.0) * 0.025 * dispersion;
-    o.ior = glm::vec3(float(ior - halfSpread), float(ior), float(ior + halfSpread));
-    o.dispersion = halfSpread > 0.0;
-    const auto tint = p.color("tint");
-    const glm::vec3 attenuation = (m ? m->attenuationColor : glm::vec3(1.0f)) *
-                                  glm::vec3(float(tint[0]), float(tint[1]), float(tint[2]));
-    const double distanceOverride = p.number("absorption-distance");
-    const float distance = distanceOverride > 0.0 ? float(distanceOverride)
-                           : m                    ? m->attenuationDistance
-                                                  : std::numeric_limits<float>::infinity();
-    o.sigma = std::isfinite(distance)
-                  ? -glm::log(glm::max(attenuation, glm::vec3(1e-4f))) / distance
-                  : glm::vec3(0.0f);
-    o.transmission = m && m->isTransmissive() ? m->transmissionFactor : 1.0f;
-    return o;
-}
-
 } // namespace
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
@@ -292,9 +260,9 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                     program.set("uDispersion", o.dispersion ? 1 : 0);
                     program.set("uSigma", o.sigma);
                     program.set("uTransmission", o.transmission);
-                    program.set("uBaseColor", m ? m->baseColorFactor : glm::vec4(1.0f));
-                    program.set("uRoughness", m ? m->roughnessFactor : 0.0f);
-                    program.set("uMetallic", m ? m->metallicFactor : 0.0f);
+                    program.set("uBaseColor", o.baseColor);
+                    program.set("uRoughness", o.roughness);
+                    program.set("uMetallic", o.metallic);
                     program.set("uEmissive",
                                 m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
                 }

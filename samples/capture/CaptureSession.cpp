@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -44,6 +45,7 @@ CaptureSession::create(const SessionOptions& options) {
     if (!context)
         return context.error();
     s->mContext = std::move(*context);
+    s->mEnvironment = environment;
     auto renderer = render::Renderer::create(s->mModel, environment, *s->mContext);
     if (!renderer)
         return renderer.error();
@@ -88,10 +90,8 @@ std::string CaptureSession::clipLabel() const {
     return label;
 }
 
-core::Result<RenderedFrame> CaptureSession::render(double time) {
-    const glm::ivec2 size = mOptions.size;
-    const float aspect = float(size.x) / float(size.y);
-    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
+render::Camera CaptureSession::cameraAt(const anim::Pose& pose) const {
+    const float aspect = float(mOptions.size.x) / float(mOptions.size.y);
     render::Camera camera;
     if (mOptions.camera && mOptions.camera->position) {
         camera.position = *mOptions.camera->position;
@@ -102,30 +102,57 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
         camera.zfar = distance * 100.0f;
         camera.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
     } else if (mOptions.camera) {
-        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov,
-                                     mOptions.camera->azimuth, mOptions.camera->elevation);
+        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov, mOptions.camera->azimuth,
+                                     mOptions.camera->elevation);
     } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
         camera = *gltf;
     } else {
         camera = render::frameBounds(mBounds, aspect);
     }
+    return camera;
+}
+
+render::RenderSettings CaptureSession::settings() const {
     render::RenderSettings settings;
-    settings.size = size;
+    settings.size = mOptions.size;
     settings.ground = mOptions.ground;
     settings.exposure = mOptions.exposure;
     settings.exactPassTimes = true; // captures are not real-time: report true per-pass GPU times
+    return settings;
+}
+
+core::Result<RenderedFrame> CaptureSession::render(double time) {
+    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     const std::uint64_t errorsBefore = gl::errorCount();
-    auto stats = mRenderer->render(pose, camera, settings, time);
+    auto stats = mRenderer->render(pose, cameraAt(pose), settings(), time);
     if (!stats)
         return stats.error();
     RenderedFrame frame;
     frame.time = time;
     frame.stats = std::move(*stats);
-    frame.image = Image{size.x, size.y, mRenderer->readOutput()};
+    frame.image = Image{mOptions.size.x, mOptions.size.y, mRenderer->readOutput()};
     gl::checkErrors("glass-capture frame");
     if (gl::errorCount() != errorsBefore)
-        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) +
-                           " (see log)"};
+        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) + " (see log)"};
+    return frame;
+}
+
+core::Result<RenderedFrame> CaptureSession::renderReference(double time, const refraction::ReferenceOptions& options) {
+    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
+    const auto start = std::chrono::steady_clock::now();
+    auto traced = refraction::traceReference(mModel, pose, cameraAt(pose), mEnvironment, settings(),
+                                             mRefraction->parameters(), options);
+    if (!traced)
+        return traced.error();
+    RenderedFrame frame;
+    frame.time = time;
+    frame.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frame.image = Image{mOptions.size.x, mOptions.size.y, refraction::tonemap(traced->rgba, mOptions.exposure)};
+    for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
+        frame.glassMask.push_back(traced->rgba[i] > 0.5f);
+    if (traced->trappedSamples > 0)
+        std::fprintf(stderr, "reference: %zu samples still inside after the bounce limit (black)\n",
+                     traced->trappedSamples);
     return frame;
 }
 

@@ -7,6 +7,7 @@
 #include "engine/plugin/Plugin.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/Model.h"
+#include "refraction/ReferenceTracer.h"
 
 #include <nlohmann/json.hpp>
 
@@ -47,6 +48,8 @@ struct RenderedFrame {
     double time = 0.0;
     Image image;
     render::FrameStats stats;
+    std::vector<bool> glassMask; ///< reference frames: pixels whose camera rays hit glass
+    double milliseconds = 0.0;    ///< reference frames: tracing time
 };
 
 class CaptureSession {
@@ -56,6 +59,8 @@ public:
     static core::Result<std::unique_ptr<CaptureSession>> create(const SessionOptions& options);
 
     core::Result<RenderedFrame> render(double time);
+    /** The Embree reference of the same frame, tonemapped like the GPU output. */
+    core::Result<RenderedFrame> renderReference(double time, const refraction::ReferenceOptions& options);
 
     const scene::Model& model() const { return mModel; }
     int clip() const { return mClip; }
@@ -63,11 +68,14 @@ public:
 
 private:
     CaptureSession() = default;
+    render::Camera cameraAt(const anim::Pose& pose) const;
+    render::RenderSettings settings() const;
     SessionOptions mOptions;
     scene::Model mModel;
     int mClip = -1;
     std::unique_ptr<gl::Context> mContext;
     std::unique_ptr<plugin::Plugin> mRefraction;
+    asset::HdrImage mEnvironment;
     std::vector<plugin::LoadedPlugin> mPlugins;
     std::unique_ptr<render::Renderer> mRenderer;
     render::Bounds mBounds;

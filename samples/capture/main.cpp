@@ -3,7 +3,9 @@
 #include "CaptureCase.h"
 #include "CaptureSession.h"
 
+#include "engine/capture/Metrics.h"
 #include "refraction/RefractionPlugin.h"
+#include "refraction/ReferenceTracer.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,7 @@ constexpr const char* kUsage =
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
+                     [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR]
 
 Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
@@ -49,6 +52,13 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --nearby on|off     exit rays see the opaque scene before the environment (default on)
   --debug VIEW        none, back-depth, back-normal, dv, dn, exit-uv, steps, tir, exit-point,
                       exit-direction
+  Reference (Embree, on the CPU, all cores; glass-only scenes without --ground):
+  --method reference  trace the ground truth instead of rendering on the GPU
+  --compare-reference render --method and the reference, report PSNR and SSIM over the glass
+                      mask and the whole image, write MODEL_..._tT.reference.png and
+                      .heatmap.png beside the frame
+  --spp K             reference samples per pixel, jittered (default 16)
+  --max-bounces N     total internal reflections the reference follows (default 8)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
   --dump-graph        print the compiled frame graph of the first frame to stderr
@@ -76,6 +86,8 @@ struct Options {
     std::vector<double> times{0.0};
     std::string out = "out/capture";
     bool outGiven = false, json = false, dumpGraph = false, update = false;
+    bool reference = false, compare = false;
+    refraction::ReferenceOptions referenceOptions;
     std::string caseFile;
 };
 
@@ -99,6 +111,15 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.dumpGraph = true;
         } else if (arg == "--update") {
             o.update = true;
+        } else if (arg == "--compare-reference") {
+            o.compare = true;
+        } else if (arg == "--spp" || arg == "--max-bounces") {
+            const auto v = next();
+            double n = 0;
+            const double limit = arg == "--spp" ? 4096 : 64;
+            if (!v || !parseDouble(*v, n) || n != std::floor(n) || n < (arg == "--spp" ? 1 : 0) || n > limit)
+                return usageError(arg + " needs an integer up to " + std::to_string(int(limit)));
+            (arg == "--spp" ? o.referenceOptions.samplesPerPixel : o.referenceOptions.maxBounces) = int(n);
         } else if (arg == "--method" || arg == "--glass" || arg == "--ior" ||
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
@@ -107,6 +128,10 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
+            if (arg == "--method" && *v == "reference") {
+                o.reference = true;
+                continue;
+            }
             plugin::ParameterSet check = refraction::createPlugin()->parameters();
             if (auto status = check.set(arg.substr(2), *v); !status)
                 return usageError(arg + ": " + status.error().message);
@@ -178,6 +203,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             return usageError("more than one model given: " + arg);
         }
     }
+    if (o.reference && o.compare)
+        return usageError("--method reference and --compare-reference are exclusive");
     if (haveTime && haveFrames)
         return usageError("--time and --frames are exclusive");
     if (o.caseFile.empty() && o.session.model.empty())
@@ -240,28 +267,61 @@ int main(int argc, char** argv) {
                      ec.message().c_str());
         return 1;
     }
+    o.referenceOptions.progress = !o.json;
     for (std::size_t i = 0; i < o.times.size(); ++i) {
-        auto frame = (*session)->render(o.times[i]);
+        auto frame = o.reference ? (*session)->renderReference(o.times[i], o.referenceOptions)
+                                 : (*session)->render(o.times[i]);
         if (!frame) {
             std::fprintf(stderr, "%s\n", frame.error().message.c_str());
             return 1;
         }
         if (i == 0 && o.dumpGraph)
             std::fprintf(stderr, "%s", frame->stats.graph.c_str());
-        const auto path = std::filesystem::path(o.out) /
-                          capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
-        auto written = capture::writePng(path, frame->image);
-        if (!written) {
+        const auto path = std::filesystem::path(o.out) / capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
+        if (auto written = capture::writePng(path, frame->image); !written) {
             std::fprintf(stderr, "%s\n", written.error().message.c_str());
             return 1;
         }
         nlohmann::json entry = capture::statsJson(frame->stats);
         entry["time"] = frame->time;
         entry["file"] = path.string();
+        if (o.reference)
+            entry["reference_ms"] = frame->milliseconds;
+        std::string scoreText;
+        if (o.compare) {
+            auto reference = (*session)->renderReference(o.times[i], o.referenceOptions);
+            if (!reference) {
+                std::fprintf(stderr, "%s\n", reference.error().message.c_str());
+                return 1;
+            }
+            const auto masked = capture::score(frame->image, reference->image, &reference->glassMask);
+            const auto full = capture::score(frame->image, reference->image);
+            auto sibling = [&](const char* suffix) {
+                auto p = path;
+                return p.replace_extension(std::string(suffix) + ".png");
+            };
+            for (const auto& [file, image] : {std::pair{sibling(".reference"), reference->image},
+                                              std::pair{sibling(".heatmap"),
+                                                        capture::heatmap(frame->image, reference->image, 64,
+                                                                         &reference->glassMask)}})
+                if (auto written = capture::writePng(file, image); !written) {
+                    std::fprintf(stderr, "%s\n", written.error().message.c_str());
+                    return 1;
+                }
+            entry["reference_file"] = sibling(".reference").string();
+            entry["heatmap_file"] = sibling(".heatmap").string();
+            entry["reference_ms"] = reference->milliseconds;
+            entry["scores"] = {{"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
+                               {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
+            char text[160];
+            std::snprintf(text, sizeof text, ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB",
+                          masked.pixels, masked.psnr, masked.ssim, full.psnr);
+            scoreText = text;
+        }
         report["frames"].push_back(entry);
         if (!o.json)
-            std::printf("%s (cpu %.2f ms, gpu %.2f ms)\n", path.string().c_str(),
-                        frame->stats.cpuMs, frame->stats.gpuMs);
+            std::printf("%s (cpu %.2f ms, gpu %.2f ms%s)\n", path.string().c_str(), frame->stats.cpuMs,
+                        frame->stats.gpuMs, scoreText.c_str());
     }
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);
