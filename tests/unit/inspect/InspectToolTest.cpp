@@ -2,9 +2,11 @@
 #include "support/TestSupport.h"
 
 #include "engine/anim/Pose.h"
+#include "engine/capture/Image.h"
 #include "engine/asset/GltfLoader.h"
 #include "engine/deform/CpuDeformer.h"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -179,6 +181,38 @@ TEST(InspectTool, CesiumManPlyHasEveryVertex) {
     for (std::size_t v = 0; v < ply.count; v += 97)
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(ply.values[v * 6 + std::size_t(c)], float(world.positions[v][c]), 1e-5f);
+}
+
+} // namespace
+
+namespace {
+
+const std::string kCompare = std::string(GLASS_BIN_DIR) + "/glass-compare";
+
+TEST(CompareTool, ScoresTwoImagesOverAMask) {
+    test::TempDir dir;
+    capture::Image a{16, 16, std::vector<std::uint8_t>(16 * 16 * 4, 100)};
+    capture::Image b = a;
+    for (int i = 0; i < 16; ++i)
+        b.rgba[std::size_t(i) * 4] = 140; // first row differs
+    capture::Image mask{16, 16, std::vector<std::uint8_t>(16 * 16 * 4, 0)};
+    for (std::size_t i = 16 * 8; i < 16 * 16; ++i)
+        mask.rgba[i * 4] = 255; // bottom half
+    ASSERT_TRUE(capture::writePng(dir / "a.png", a).ok());
+    ASSERT_TRUE(capture::writePng(dir / "b.png", b).ok());
+    ASSERT_TRUE(capture::writePng(dir / "m.png", mask).ok());
+    std::string out;
+    ASSERT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " + (dir / "b.png").string() +
+                                   " --mask " + (dir / "m.png").string() + " --json --heatmap " +
+                                   (dir / "h.png").string(), &out), 0) << out;
+    const auto j = nlohmann::json::parse(out);
+    EXPECT_EQ(j["mask"]["psnr"], 99.0); // the differing row is outside the mask
+    EXPECT_EQ(j["mask"]["pixels"], 128);
+    // One row of 16x16 off by 40 in one channel: MSE = 40^2 / (16 * 3).
+    EXPECT_NEAR(j["image"]["psnr"].get<double>(), 10 * std::log10(255.0 * 255.0 * 48.0 / 1600.0), 1e-6);
+    EXPECT_TRUE(std::filesystem::exists(dir / "h.png"));
+    EXPECT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string(), &out), 2);
+    EXPECT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " + (dir / "nope.png").string(), &out), 1);
 }
 
 } // namespace

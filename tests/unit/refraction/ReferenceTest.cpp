@@ -1,0 +1,102 @@
+// The Embree reference, limited to two interfaces, against the closed-form image of the exact
+// sphere; and its basic behaviour (misses see the environment, trapped paths are counted).
+#include "support/TestSupport.h"
+
+#include "engine/asset/ModelLoader.h"
+#include "engine/capture/Metrics.h"
+#include "engine/render/Environment.h"
+#include "refraction/RefractionPlugin.h"
+#include "refraction/ReferenceTracer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace {
+
+constexpr int kSize = 96;
+
+/** Closed form, supersampled on an 8x8 grid per pixel: exact Fresnel at the entry with the
+ *  reflected environment, then the exact exit through the unit sphere. */
+std::vector<float> closedForm(const render::Camera& camera, const asset::HdrImage& env, double ior) {
+    std::vector<float> rgba(std::size_t(kSize) * kSize * 4, 0.0f);
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            glm::dvec3 sum(0.0);
+            int hits = 0;
+            for (int s = 0; s < 64; ++s) {
+                const double ndcX = (x + (s % 8 + 0.5) / 8) / kSize * 2 - 1;
+                const double ndcY = (kSize - 1 - row + (s / 8 + 0.5) / 8) / kSize * 2 - 1;
+                const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1), f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
+                const glm::dvec3 o = glm::dvec3(n) / n.w, d = glm::normalize(glm::dvec3(f) / f.w - o);
+                const double b = glm::dot(o, d), c = glm::dot(o, o) - 1, disc = b * b - c;
+                if (disc <= 0) {
+                    sum += refraction::sampleEnvironment(env, 0, 1, d);
+                    continue;
+                }
+                ++hits;
+                const glm::dvec3 p1 = o + d * (-b - std::sqrt(disc));
+                const double cosI = -glm::dot(d, p1), eta = 1 / ior;
+                const double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+                const double rs = (eta * cosI - cosT) / (eta * cosI + cosT), rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+                const double fresnel = 0.5 * (rs * rs + rp * rp);
+                const glm::dvec3 t1 = glm::refract(d, p1, eta);
+                const glm::dvec3 p2 = p1 + t1 * (-2 * glm::dot(p1, t1));
+                const glm::dvec3 t2 = glm::normalize(glm::refract(t1, -p2, ior));
+                sum += fresnel * refraction::sampleEnvironment(env, 0, 1, glm::reflect(d, p1)) +
+                       (1 - fresnel) * refraction::sampleEnvironment(env, 0, 1, t2);
+            }
+            float* out = &rgba[(std::size_t(row) * kSize + std::size_t(x)) * 4];
+            for (int k = 0; k < 3; ++k)
+                out[k] = float(sum[k] / 64);
+            out[3] = float(hits) / 64.0f;
+        }
+    return rgba;
+}
+
+capture::Image display(const std::vector<float>& hdr) { return {kSize, kSize, refraction::tonemap(hdr, 1.0f)}; }
+
+TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
+    const scene::Model sphere = asset::makeSphere(256);
+    const asset::HdrImage env = render::Environment::proceduralSky(512);
+    const render::Camera camera = render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.6f, 0.3f, 0.2f, 1.15f);
+    render::RenderSettings settings;
+    settings.size = {kSize, kSize};
+    for (double ior : {1.2, 1.5}) {
+        auto glass = refraction::createPlugin()->parameters();
+        ASSERT_TRUE(glass.set("ior", std::to_string(ior)).ok());
+        refraction::ReferenceOptions options;
+        options.samplesPerPixel = 64;
+        options.twoInterfaces = true;
+        auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings, glass, options);
+        ASSERT_TRUE(traced.ok()) << traced.error().message;
+        const auto exact = closedForm(camera, env, ior);
+        std::vector<bool> mask(std::size_t(kSize) * kSize);
+        for (std::size_t i = 0; i < mask.size(); ++i)
+            mask[i] = traced->rgba[i * 4 + 3] == 1.0f && exact[i * 4 + 3] == 1.0f;
+        const auto scores = capture::score(display(traced->rgba), display(exact), &mask);
+        std::printf("reference vs closed form, sphere IOR %.1f: masked PSNR %.2f dB, SSIM %.4f over %zu pixels\n", ior,
+                    scores.psnr, scores.ssim, scores.pixels);
+        EXPECT_GT(scores.pixels, 1000u);
+        EXPECT_GE(scores.psnr, 35.0);
+    }
+}
+
+TEST(Reference, RefusesSceneContentItDoesNotTrace) {
+    const scene::Model sphere = asset::makeSphere(32);
+    const asset::HdrImage env = render::Environment::proceduralSky(64);
+    const render::Camera camera = render::frameBounds(render::animatedBounds(sphere, -1), 1.0f);
+    render::RenderSettings settings;
+    settings.size = {8, 8};
+    settings.ground = true;
+    auto glass = refraction::createPlugin()->parameters();
+    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings, glass, {});
+    ASSERT_FALSE(traced.ok());
+    EXPECT_NE(traced.error().message.find("ground plane"), std::string::npos);
+    settings.ground = false;
+    ASSERT_TRUE(glass.set("method", "opaque").ok());
+    traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings, glass, {});
+    ASSERT_FALSE(traced.ok());
+    EXPECT_NE(traced.error().message.find("is opaque; the reference traces glass only"), std::string::npos);
+}
+
+} // namespace
