@@ -1,9 +1,11 @@
-// Embree reference tracer.
+// Embree reference tracer: glass with real TIR, the opaque scene and the ground shaded like the
+// GPU's opaque pass, the environment sampled like the GPU's.
 #include "refraction/ReferenceTracer.h"
 
 #include "Optics.h"
 
 #include "engine/deform/CpuDeformer.h"
+#include "engine/render/Environment.h"
 
 #include <embree3/rtcore.h>
 
@@ -15,33 +17,139 @@
 #include <unistd.h>
 
 namespace refraction {
-namespace {
 
+using glm::dvec2;
 using glm::dvec3;
 
-/** The environment exactly as the GPU samples it at mip level 0 (see sampleEnvironment). */
-class EnvironmentLookup {
-public:
-    EnvironmentLookup(const asset::HdrImage& image, float rotation, float intensity)
-        : mImage(image), mRotation(rotation), mIntensity(intensity) {}
-    dvec3 operator()(dvec3 d) const { return sampleEnvironment(mImage, mRotation, mIntensity, d); }
+// ---- Environment, as render/prefilter.comp.glsl and common/environment.glsl leave it
 
-private:
-    const asset::HdrImage& mImage;
-    float mRotation, mIntensity;
-};
+EnvironmentSampler::EnvironmentSampler(const asset::HdrImage& image, float rotation, float intensity)
+    : mRotation(rotation), mIntensity(intensity) {
+    Level level{image.width, image.height, std::vector<float>(std::size_t(image.width) * std::size_t(image.height) * 4, 1.0f)};
+    for (std::size_t i = 0; i < std::size_t(image.width) * std::size_t(image.height); ++i)
+        for (int c = 0; c < 3; ++c)
+            level.rgba[i * 4 + std::size_t(c)] = image.rgb[i * 3 + std::size_t(c)];
+    mLevels.push_back(std::move(level));
+    mIrradiance = Level{1, 1, {0.0f, 0.0f, 0.0f, 1.0f}};
+}
+
+EnvironmentSampler EnvironmentSampler::fromGpu(const render::Environment& environment, float rotation, float intensity) {
+    EnvironmentSampler s;
+    s.mRotation = rotation;
+    s.mIntensity = intensity;
+    const gl::Texture& prefiltered = environment.prefiltered();
+    for (int level = 0; level < prefiltered.levels(); ++level)
+        s.mLevels.push_back({prefiltered.size(level).x, prefiltered.size(level).y, prefiltered.downloadFloat(level)});
+    const gl::Texture& irradiance = environment.irradiance();
+    s.mIrradiance = {irradiance.size().x, irradiance.size().y, irradiance.downloadFloat(0)};
+    return s;
+}
+
+dvec3 EnvironmentSampler::rotate(dvec3 d) const {
+    const double c = std::cos(mRotation), s = std::sin(mRotation);
+    return glm::normalize(dvec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
+}
+
+dvec3 EnvironmentSampler::bilinear(const Level& level, dvec2 uv) {
+    const double x = uv.x * level.width - 0.5, y = uv.y * level.height - 0.5;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    dvec3 sum(0.0);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) { // GL_REPEAT on both axes, as the GPU samples it
+            const int xi = ((x0 + i) % level.width + level.width) % level.width;
+            const int yi = ((y0 + j) % level.height + level.height) % level.height;
+            const float* p = &level.rgba[(std::size_t(yi) * std::size_t(level.width) + std::size_t(xi)) * 4];
+            sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * dvec3(p[0], p[1], p[2]);
+        }
+    return sum;
+}
+
+namespace {
+
+dvec2 equirectUv(dvec3 d) {
+    return {0.5 + std::atan2(d.x, -d.z) / (2.0 * M_PI), std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI};
+}
+
+} // namespace
+
+dvec3 EnvironmentSampler::radiance(dvec3 direction, double roughness) const {
+    const dvec2 uv = equirectUv(rotate(direction));
+    const double lod = std::clamp(roughness, 0.0, 1.0) * double(mLevels.size() - 1);
+    const int l0 = int(std::floor(lod));
+    const int l1 = std::min(l0 + 1, int(mLevels.size()) - 1);
+    const double f = lod - l0;
+    const dvec3 a = bilinear(mLevels[std::size_t(l0)], uv);
+    return double(mIntensity) * (f > 0.0 ? glm::mix(a, bilinear(mLevels[std::size_t(l1)], uv), f) : a);
+}
+
+dvec3 EnvironmentSampler::irradiance(dvec3 normal) const {
+    return double(mIntensity) * bilinear(mIrradiance, equirectUv(rotate(normal)));
+}
+
+namespace {
+
+// ---- Shading shared with render/pbr.frag.glsl and common/brdf.glsl
+
+dvec2 environmentBrdf(double NoV, double roughness) {
+    const glm::dvec4 c0(-1.0, -0.0275, -0.572, 0.022), c1(1.0, 0.0425, 1.04, -0.04);
+    const glm::dvec4 r = roughness * c0 + c1;
+    const double a004 = std::min(r.x * r.x, std::exp2(-9.28 * NoV)) * r.x + r.y;
+    return dvec2(-1.04, 1.04) * a004 + dvec2(r.z, r.w);
+}
+
+dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double metallic, double roughness, dvec3 N,
+                             dvec3 V) {
+    const double NoV = std::clamp(glm::dot(N, V), 1e-4, 1.0);
+    const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
+    const dvec2 ab = environmentBrdf(NoV, roughness);
+    const dvec3 specular = env.radiance(glm::reflect(-V, N), roughness) * (f0 * ab.x + ab.y);
+    const dvec3 diffuse = env.irradiance(N) * base * (1.0 - metallic);
+    return diffuse + specular;
+}
+
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+/** Bilinear RGBA of a glTF image at uv with wrapping (level 0; the GPU's mip filtering of
+ *  distant texels is not reproduced). */
+glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
+    if (image.pixels.empty() || image.width <= 0)
+        return glm::dvec4(1.0);
+    const double x = uv.x * image.width - 0.5, y = uv.y * image.height - 0.5;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    const std::size_t bytes = image.bitsPerChannel == 16 ? 2 : 1;
+    glm::dvec4 sum(0.0);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            const int xi = ((x0 + i) % image.width + image.width) % image.width;
+            const int yi = ((y0 + j) % image.height + image.height) % image.height;
+            const std::size_t at = (std::size_t(yi) * std::size_t(image.width) + std::size_t(xi)) * 4 * bytes;
+            glm::dvec4 texel;
+            for (int c = 0; c < 4; ++c)
+                texel[c] = double(image.pixels[at + std::size_t(c) * bytes + (bytes - 1)]) / 255.0;
+            if (srgb)
+                for (int c = 0; c < 3; ++c)
+                    texel[c] = srgbToLinear(texel[c]);
+            sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * texel;
+        }
+    return sum;
+}
 
 struct Surface {
-
     std::vector<dvec3> positions, normals; // world
+    std::vector<dvec2> uv;
     std::vector<std::uint32_t> indices;
-    Optics optics;
+    bool glass = true;
+    const scene::Material* material = nullptr; // opaque surfaces
+    Optics optics;                              // glass surfaces
 };
 
 struct Hit {
-    bool hit = false;
-    double t = 0.0;
-    dvec3 point, shadingNormal, geometricNormal;
+    bool hit = false, ground = false;
+    double t = 1e300;
+    dvec3 point, shadingNormal;
+    dvec2 uv{0.0};
     const Surface* surface = nullptr;
 };
 
@@ -78,23 +186,21 @@ double random01(std::uint32_t& state) {
 
 class Tracer {
 public:
-    Tracer(const std::vector<Surface>& surfaces, const EnvironmentLookup& env,
+    Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env, const render::GroundPlane* ground,
            const ReferenceOptions& options, const std::string& fresnelMode, double epsilon)
-        : mSurfaces(surfaces), mEnv(env), mOptions(options), mFresnel(fresnelMode),
+        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options), mFresnel(fresnelMode),
           mEpsilon(epsilon) {
         mDevice = rtcNewDevice(nullptr);
         mScene = rtcNewScene(mDevice);
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                        3 * sizeof(float), s.positions.size()));
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                  3 * sizeof(float), s.positions.size()));
             for (std::size_t i = 0; i < s.positions.size(); ++i)
                 for (int c = 0; c < 3; ++c)
                     v[i * 3 + std::size_t(c)] = float(s.positions[i][c]);
-            auto* idx = static_cast<std::uint32_t*>(
-                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                        3 * sizeof(std::uint32_t), s.indices.size() / 3));
+            auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), s.indices.size() / 3));
             std::copy(s.indices.begin(), s.indices.end(), idx);
             rtcCommitGeometry(g);
             rtcAttachGeometry(mScene, g);
@@ -109,7 +215,9 @@ public:
     Tracer(const Tracer&) = delete;
     Tracer& operator=(const Tracer&) = delete;
 
+    /** Nearest surface along the ray: a triangle of the scene or the ground square. */
     Hit intersect(const dvec3& origin, const dvec3& dir) const {
+        Hit h;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit rh{};
@@ -124,28 +232,74 @@ public:
         rh.ray.mask = 0xFFFFFFFFu;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(mScene, &context, &rh);
-        Hit h;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-            return h;
-        const Surface& s = mSurfaces[rh.hit.geomID];
-        const std::uint32_t* tri = &s.indices[std::size_t(rh.hit.primID) * 3];
-        const double u = rh.hit.u, v = rh.hit.v;
-        h.hit = true;
-        h.t = rh.ray.tfar;
-        h.surface = &s;
-        h.point =
-            (1 - u - v) * s.positions[tri[0]] + u * s.positions[tri[1]] + v * s.positions[tri[2]];
-        h.shadingNormal = glm::normalize((1 - u - v) * s.normals[tri[0]] + u * s.normals[tri[1]] +
-                                         v * s.normals[tri[2]]);
-        h.geometricNormal = glm::normalize(glm::cross(s.positions[tri[1]] - s.positions[tri[0]],
-                                                      s.positions[tri[2]] - s.positions[tri[0]]));
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            const Surface& s = mSurfaces[rh.hit.geomID];
+            const std::uint32_t* tri = &s.indices[std::size_t(rh.hit.primID) * 3];
+            const double u = rh.hit.u, v = rh.hit.v, w = 1 - u - v;
+            h.hit = true;
+            h.t = rh.ray.tfar;
+            h.surface = &s;
+            h.point = w * s.positions[tri[0]] + u * s.positions[tri[1]] + v * s.positions[tri[2]];
+            h.shadingNormal = glm::normalize(w * s.normals[tri[0]] + u * s.normals[tri[1]] + v * s.normals[tri[2]]);
+            if (!s.uv.empty())
+                h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
+        }
+        if (mGround && std::abs(dir.y) > 1e-12) {
+            const double t = (double(mGround->height) - origin.y) / dir.y;
+            const dvec3 p = origin + t * dir;
+            if (t > mEpsilon && t < h.t && std::abs(p.x - mGround->center.x) <= mGround->halfSize &&
+                std::abs(p.z - mGround->center.z) <= mGround->halfSize) {
+                h = Hit{};
+                h.hit = h.ground = true;
+                h.t = t;
+                h.point = p;
+                h.shadingNormal = dvec3(0, 1, 0);
+            }
+        }
         return h;
     }
 
-    /** Radiance of channel `c` along a ray entering glass at `h` (refracted), through the glass
-     *  with real TIR, and on after it leaves. */
-    double inside(const Hit& entry, const dvec3& dir, int c, int depth, std::uint32_t& rng,
-                  std::size_t& trapped) const {
+    /** An opaque surface or the ground, lit like render/pbr.frag.glsl or ground.frag.glsl. */
+    dvec3 shadeOpaque(const Hit& h, const dvec3& dir) const {
+        const dvec3 V = -dir;
+        if (h.ground) {
+            const double tile = mGround->halfSize / 8.0;
+            const double checker = std::fmod(std::floor(h.point.x / tile) + std::floor(h.point.z / tile), 2.0);
+            const dvec3 base = glm::mix(dvec3(0.30), dvec3(0.42), std::abs(checker));
+            return shadeMetallicRoughness(mEnv, base, 0.0, 0.8, dvec3(0, 1, 0), V);
+        }
+        const scene::Material* m = h.surface->material;
+        glm::dvec4 base = m ? glm::dvec4(m->baseColorFactor) : glm::dvec4(1.0);
+        double metallic = m ? m->metallicFactor : 1.0, roughness = m ? m->roughnessFactor : 1.0;
+        dvec3 emissive = m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
+        if (m && mModel) {
+            auto image = [&](const scene::TextureRef& t) -> const scene::Image* {
+                if (!t.present() || t.texCoord != 0)
+                    return nullptr;
+                const int i = mModel->textures[std::size_t(t.texture)].image;
+                return i >= 0 ? &mModel->images[std::size_t(i)] : nullptr;
+            };
+            if (const auto* img = image(m->baseColorTexture))
+                base *= sampleImage(*img, h.uv, true);
+            if (const auto* img = image(m->metallicRoughnessTexture)) {
+                const glm::dvec4 mr = sampleImage(*img, h.uv, false);
+                roughness *= mr.g;
+                metallic *= mr.b;
+            }
+            if (const auto* img = image(m->emissiveTexture))
+                emissive *= dvec3(sampleImage(*img, h.uv, true));
+        }
+        dvec3 N = h.shadingNormal;
+        if (glm::dot(N, V) < 0)
+            N = -N;
+        return shadeMetallicRoughness(mEnv, dvec3(base), std::clamp(metallic, 0.0, 1.0), std::clamp(roughness, 0.03, 1.0),
+                                      N, V) +
+               emissive;
+    }
+
+    /** Radiance of channel `c` along a ray entering glass at `entry` (refracted), through the
+     *  glass with real TIR, and on after it leaves. */
+    double inside(const Hit& entry, const dvec3& dir, int c, int depth, std::uint32_t& rng, std::size_t& trapped) const {
         const Optics& o = entry.surface->optics;
         const double ior = o.ior[c], sigma = o.sigma[c];
         dvec3 n = entry.shadingNormal;
@@ -159,8 +313,10 @@ public:
         for (int bounce = 0;; ++bounce) {
             const Hit h = intersect(p, d);
             if (!h.hit) // an open mesh: the ray leaves through the hole
-                return mEnv(d)[c] * std::exp(-sigma * length);
+                return mEnv.radiance(d, 0.0)[c] * std::exp(-sigma * length);
             length += h.t;
+            if (h.ground || !h.surface->glass)
+                return shadeOpaque(h, d)[c] * std::exp(-sigma * length);
             dvec3 out = h.shadingNormal;
             if (glm::dot(out, d) < 0)
                 out = -out;
@@ -180,10 +336,12 @@ public:
     double outside(const dvec3& origin, const dvec3& dir, int c, int depth, std::uint32_t& rng,
                    std::size_t& trapped) const {
         if (mOptions.twoInterfaces || depth > 2 * mOptions.maxBounces)
-            return mEnv(dir)[c];
+            return mEnv.radiance(dir, 0.0)[c];
         const Hit h = intersect(origin, dir);
         if (!h.hit)
-            return mEnv(dir)[c];
+            return mEnv.radiance(dir, 0.0)[c];
+        if (h.ground || !h.surface->glass)
+            return shadeOpaque(h, dir)[c];
         dvec3 n = h.shadingNormal;
         if (glm::dot(n, dir) > 0)
             n = -n;
@@ -194,29 +352,32 @@ public:
         return o.baseColor[c] * inside(h, dir, c, depth + 1, rng, trapped);
     }
 
-    /** Colour of one camera ray; `glass` reports whether it hit glass. */
-    dvec3 primary(const dvec3& origin, const dvec3& dir, bool& glass, std::uint32_t& rng,
-                  std::size_t& trapped) const {
+    /** Colour of one camera ray; `glass` reports whether it hit glass first. */
+    dvec3 primary(const dvec3& origin, const dvec3& dir, bool& glass, std::uint32_t& rng, std::size_t& trapped) const {
         const Hit h = intersect(origin, dir);
-        glass = h.hit;
+        glass = h.hit && !h.ground && h.surface->glass;
         if (!h.hit)
-            return mEnv(dir);
+            return mEnv.radiance(dir, 0.0);
+        if (!glass)
+            return shadeOpaque(h, dir);
         const Optics& o = h.surface->optics;
         dvec3 n = h.shadingNormal;
         if (glm::dot(n, dir) > 0)
             n = -n;
         const double f = fresnelEntry(mFresnel, -glm::dot(dir, n), 1.0 / o.ior.g);
-        const dvec3 reflected = mEnv(glm::reflect(dir, n));
+        const dvec3 reflected = mEnv.radiance(glm::reflect(dir, n), o.roughness);
         dvec3 transmitted;
         for (int c = 0; c < 3; ++c)
             transmitted[c] = inside(h, dir, c, 0, rng, trapped);
-        const dvec3 glassColor = f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted;
-        return double(o.transmission) * glassColor;
+        return double(o.transmission) * (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
     }
+
+    const scene::Model* mModel = nullptr;
 
 private:
     const std::vector<Surface>& mSurfaces;
-    const EnvironmentLookup& mEnv;
+    const EnvironmentSampler& mEnv;
+    const render::GroundPlane* mGround;
     const ReferenceOptions& mOptions;
     std::string mFresnel;
     double mEpsilon;
@@ -226,32 +387,27 @@ private:
 
 } // namespace
 
-core::Result<ReferenceImage>
-traceReference(const scene::Model& model, const anim::Pose& pose, const render::Camera& camera,
-               const asset::HdrImage& environment, const render::RenderSettings& settings,
-               const plugin::ParameterSet& glass, const ReferenceOptions& options) {
-    const std::string where = "refraction::traceReference(): ";
-    if (settings.ground)
-        return core::Error{where + "the ground plane is not traced; render without --ground"};
+core::Result<ReferenceImage> traceReference(const scene::Model& model, const anim::Pose& pose,
+                                            const render::Camera& camera, const EnvironmentSampler& environment,
+                                            const render::RenderSettings& settings, const render::GroundPlane& ground,
+                                            const plugin::ParameterSet& glass, const ReferenceOptions& options) {
     std::vector<Surface> surfaces;
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const auto& instance : deform::deformScene(model, pose)) {
         const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
         for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
             const scene::Primitive& primitive = mesh.primitives[p];
-            if (!isGlass(glass, model, primitive))
-                return core::Error{where + model.sourceName + ": node " +
-                                   std::to_string(instance.node) + " primitive " +
-                                   std::to_string(p) +
-                                   " is opaque; the reference traces glass only (use --glass all)"};
             const auto world = deform::toWorld(instance.primitives[p], instance.meshToWorld);
             Surface s;
             s.positions = world.positions;
             s.normals = world.normals;
             s.indices = primitive.indices;
+            for (const glm::vec2& uv : primitive.uv0)
+                s.uv.emplace_back(uv);
             const int material = primitive.material;
-            s.optics =
-                opticsFor(glass, material >= 0 ? &model.materials[std::size_t(material)] : nullptr);
+            s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+            s.glass = isGlass(glass, model, primitive);
+            s.optics = opticsFor(glass, s.material);
             if (!s.optics.dispersion)
                 s.optics.ior = glm::vec3(s.optics.ior.g);
             for (const auto& v : s.positions) {
@@ -261,10 +417,9 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
             surfaces.push_back(std::move(s));
         }
     }
-    const EnvironmentLookup env(environment, settings.environmentRotation,
-                                settings.environmentIntensity);
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
-    const Tracer tracer(surfaces, env, options, glass.choice("fresnel"), epsilon);
+    Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options, glass.choice("fresnel"), epsilon);
+    tracer.mModel = &model;
 
     ReferenceImage image;
     image.size = settings.size;
@@ -276,8 +431,7 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
     const bool stratified = grid * grid == spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::size_t> trapped{0};
-    const unsigned threads =
-        options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     const bool bar = options.progress && isatty(2);
     auto work = [&] {
         std::size_t localTrapped = 0;
@@ -286,15 +440,14 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
                 dvec3 sum(0.0);
                 int glassSamples = 0;
                 for (int s = 0; s < spp; ++s) {
-                    std::uint32_t rng = std::uint32_t(row * 73856093) ^
-                                        std::uint32_t(x * 19349663) ^ std::uint32_t(s * 83492791);
+                    std::uint32_t rng = std::uint32_t(row * 73856093) ^ std::uint32_t(x * 19349663) ^
+                                        std::uint32_t(s * 83492791);
                     double jx = random01(rng), jy = random01(rng);
                     if (stratified) {
                         jx = (double(s % grid) + jx) / grid;
                         jy = (double(s / grid) + jy) / grid;
                     }
-                    const double ndcX = (x + jx) / w * 2.0 - 1.0,
-                                 ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;
+                    const double ndcX = (x + jx) / w * 2.0 - 1.0, ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;
                     const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
                     const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
                     const dvec3 origin = dvec3(nearPoint) / nearPoint.w;
@@ -310,8 +463,8 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
             }
             const int done = ++rowsDone;
             if (bar && (done % 8 == 0 || done == h))
-                std::fprintf(stderr, "\rreference: [%-40s] %3d%%",
-                             std::string(std::size_t(40 * done / h), '#').c_str(), 100 * done / h);
+                std::fprintf(stderr, "\rreference: [%-40s] %3d%%", std::string(std::size_t(40 * done / h), '#').c_str(),
+                             100 * done / h);
         }
         trapped += localTrapped;
     };
@@ -324,29 +477,6 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
         std::fprintf(stderr, "\n");
     image.trappedSamples = trapped.load();
     return image;
-}
-
-using dvec3 = glm::dvec3;
-
-glm::dvec3 sampleEnvironment(const asset::HdrImage& image, float rotation, float intensity,
-                             glm::dvec3 d) {
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    d = glm::normalize(dvec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
-    const double u = 0.5 + std::atan2(d.x, -d.z) / (2.0 * M_PI);
-    const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI;
-    const double x = u * image.width - 0.5, y = v * image.height - 0.5;
-    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    const double fx = x - x0, fy = y - y0;
-    dvec3 sum(0.0);
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-            const int xi = ((x0 + i) % image.width + image.width) % image.width;
-            const int yi = std::clamp(y0 + j, 0, image.height - 1);
-            const float* p =
-                &image.rgb[(std::size_t(yi) * std::size_t(image.width) + std::size_t(xi)) * 3];
-            sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * dvec3(p[0], p[1], p[2]);
-        }
-    return sum * double(intensity);
 }
 
 std::vector<std::uint8_t> tonemap(const std::vector<float>& rgba, float exposure) {

@@ -75,7 +75,7 @@ CaptureSession::create(const SessionOptions& options) {
     }
     s->mBounds = render::animatedBounds(s->mModel, s->mClip);
     const float radius = s->mBounds.radius();
-    s->mRenderer->setGround(s->mBounds.min.y, s->mBounds.center(), 3.0f * radius);
+    s->mRenderer->setGround({s->mBounds.min.y, s->mBounds.center(), 3.0f * radius});
     return s;
 }
 
@@ -140,8 +140,11 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
 core::Result<RenderedFrame> CaptureSession::renderReference(double time, const refraction::ReferenceOptions& options) {
     const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     const auto start = std::chrono::steady_clock::now();
-    auto traced = refraction::traceReference(mModel, pose, cameraAt(pose), mEnvironment, settings(),
-                                             mRefraction->parameters(), options);
+    const render::RenderSettings frameSettings = settings();
+    const auto environment = refraction::EnvironmentSampler::fromGpu(
+        mRenderer->environment(), frameSettings.environmentRotation, frameSettings.environmentIntensity);
+    auto traced = refraction::traceReference(mModel, pose, cameraAt(pose), environment, frameSettings,
+                                             mRenderer->ground(), mRefraction->parameters(), options);
     if (!traced)
         return traced.error();
     RenderedFrame frame;

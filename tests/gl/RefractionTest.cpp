@@ -50,6 +50,7 @@ public:
     }
     const render::Camera& camera() const { return mCamera; }
     const asset::HdrImage& environment() const { return mEnvironment; }
+    const render::Renderer& renderer() const { return *mRenderer; }
     const plugin::ParameterSet& parameters() const { return mPlugin->parameters(); }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
 
@@ -241,7 +242,8 @@ TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
     settings.size = {kSize, kSize};
     refraction::ReferenceOptions options;
     options.samplesPerPixel = 16;
-    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), rig.camera(), rig.environment(), settings,
+    const auto environment = refraction::EnvironmentSampler::fromGpu(rig.renderer().environment(), 0.0f, 1.0f);
+    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), rig.camera(), environment, settings, {},
                                              rig.parameters(), options);
     ASSERT_TRUE(traced.ok()) << traced.error().message;
     const capture::Image reference{kSize, kSize, refraction::tonemap(traced->rgba, 1.0f)};

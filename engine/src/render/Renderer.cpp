@@ -130,12 +130,6 @@ core::Status Renderer::addPlugin(plugin::Plugin* p) {
     return {};
 }
 
-void Renderer::setGround(float height, const glm::vec3& center, float halfSize) {
-    mGroundHeight = height;
-    mGroundCenter = center;
-    mGroundHalfSize = halfSize;
-}
-
 core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
@@ -152,9 +146,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     frame.camera = camera;
     frame.settings = settings;
     frame.time = time;
-    frame.groundHeight = mGroundHeight;
-    frame.groundCenter = mGroundCenter;
-    frame.groundHalfSize = mGroundHalfSize;
+    frame.ground = mGroundPlane;
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;
@@ -210,10 +202,10 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
                                    frame.settings.environmentIntensity);
                 mGround.set("uViewProjection", frame.camera.viewProjection());
                 mGround.set("uCameraPosition", frame.camera.position);
-                mGround.set("uCenter", frame.groundCenter);
-                mGround.set("uHalfSize", frame.groundHalfSize);
-                mGround.set("uHeight", frame.groundHeight);
-                mGround.set("uTileSize", frame.groundHalfSize / 8.0f);
+                mGround.set("uCenter", frame.ground.center);
+                mGround.set("uHalfSize", frame.ground.halfSize);
+                mGround.set("uHeight", frame.ground.height);
+                mGround.set("uTileSize", frame.ground.halfSize / 8.0f);
                 mEmptyVao.bind();
                 gl::drawArrays(6);
             });

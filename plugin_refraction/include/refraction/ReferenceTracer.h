@@ -13,7 +13,38 @@
 
 #include <vector>
 
+namespace render {
+class Environment;
+}
+
 namespace refraction {
+
+/** The environment as the GPU samples it: the prefiltered equirectangular levels (level 0 is
+ *  the source; roughness r reads level r * (levels - 1), trilinear, both axes wrapping), the
+ *  diffuse irradiance map, rotation about +y and intensity. */
+class EnvironmentSampler {
+public:
+    /** One level from an image (no prefiltered levels: any roughness reads level 0; irradiance
+     *  unavailable, black). */
+    EnvironmentSampler(const asset::HdrImage& image, float rotation, float intensity);
+    /** Reads the renderer's environment textures back (needs its GL context current). */
+    static EnvironmentSampler fromGpu(const render::Environment& environment, float rotation, float intensity);
+
+    glm::dvec3 radiance(glm::dvec3 direction, double roughness) const;
+    glm::dvec3 irradiance(glm::dvec3 normal) const;
+
+private:
+    EnvironmentSampler() = default;
+    struct Level {
+        int width = 0, height = 0;
+        std::vector<float> rgba;
+    };
+    static glm::dvec3 bilinear(const Level& level, glm::dvec2 uv);
+    glm::dvec3 rotate(glm::dvec3 d) const;
+    std::vector<Level> mLevels;
+    Level mIrradiance;
+    float mRotation = 0.0f, mIntensity = 1.0f;
+};
 
 struct ReferenceOptions {
     int samplesPerPixel = 16; ///< jittered in a stratified grid when a square
@@ -31,21 +62,19 @@ struct ReferenceImage {
     std::size_t trappedSamples = 0;  ///< paths still inside after maxBounces reflections (black)
 };
 
-/** Traces `model` in `pose` like the GPU frame of `settings` (size, environment rotation and
- *  intensity) with the glass configured by `glass` (the refraction plugin's parameters:
+/** Traces `model` in `pose` like the GPU frame of `settings` (size, ground plane) lit by
+ *  `environment`, with the glass configured by `glass` (the refraction plugin's parameters:
  *  ior, dispersion, tint, absorption, Fresnel at the entry, glass auto|all). Shading matches the
  *  GPU's: Fresnel-weighted environment reflection at the first entry, transmission tinted by the
  *  base colour, Beer-Lambert over the in-glass path, per-channel paths with dispersion; later
- *  entries into glass choose reflection or refraction by Fresnel. Fails on scene content it does
- *  not trace (opaque primitives, the ground plane), naming it. */
+ *  entries into glass choose reflection or refraction by Fresnel. Opaque primitives and the
+ *  ground plane are traced and shaded like the GPU's opaque pass (metallic-roughness with the
+ *  split-sum environment lighting; base colour, metallic-roughness and emissive textures at
+ *  level 0; no normal or occlusion maps), so exit rays meet the real nearby scene. */
 core::Result<ReferenceImage> traceReference(const scene::Model& model, const anim::Pose& pose,
-                                            const render::Camera& camera, const asset::HdrImage& environment,
-                                            const render::RenderSettings& settings,
+                                            const render::Camera& camera, const EnvironmentSampler& environment,
+                                            const render::RenderSettings& settings, const render::GroundPlane& ground,
                                             const plugin::ParameterSet& glass, const ReferenceOptions& options);
-
-/** The environment radiance along world direction `d` exactly as the GPU samples it at mip
- *  level 0 (equirectangular, bilinear, u wrapping, rotation about +y, intensity). */
-glm::dvec3 sampleEnvironment(const asset::HdrImage& image, float rotation, float intensity, glm::dvec3 d);
 
 /** The display image of an HDR image, exactly as render/tonemap.frag.glsl makes it. */
 std::vector<std::uint8_t> tonemap(const std::vector<float>& rgba, float exposure);

@@ -20,6 +20,14 @@ namespace render {
 class Environment;
 class MaterialTextures;
 
+/** The ground plane drawn when RenderSettings::ground is on: a square at `height`, centred
+ *  under `center`, 2 * halfSize wide, world units. */
+struct GroundPlane {
+    float height = 0.0f;
+    glm::vec3 center{0.0f};
+    float halfSize = 1.0f;
+};
+
 /** Display and scene settings of a frame. */
 struct RenderSettings {
     glm::ivec2 size{256, 256};
@@ -46,10 +54,7 @@ struct FrameInfo {
     Camera camera;
     RenderSettings settings;
     double time = 0.0;
-    /** Ground plane (when settings.ground): height, centre and half size in world units. */
-    float groundHeight = 0.0f;
-    glm::vec3 groundCenter{0.0f};
-    float groundHalfSize = 1.0f;
+    GroundPlane ground; ///< drawn when settings.ground
 };
 
 } // namespace render

@@ -58,7 +58,9 @@ public:
     std::vector<float> readHdrOutput() const;
 
     /** Sets where the ground plane is drawn when settings.ground is on. */
-    void setGround(float height, const glm::vec3& center, float halfSize);
+    void setGround(const GroundPlane& ground) { mGroundPlane = ground; }
+    const GroundPlane& ground() const { return mGroundPlane; }
+    const Environment& environment() const { return *mEnvironment; }
 
     gl::ShaderLibrary& shaders() { return mShaders; }
     const deform::GpuDeformer& geometry() const { return *mDeformer; }
@@ -82,8 +84,7 @@ private:
     std::vector<gl::VertexArray> mVaos; // per instance primitive, flattened
     gl::Texture mOutput;
     gl::Framebuffer mFramebuffer;
-    float mGroundHeight = 0.0f, mGroundHalfSize = 1.0f;
-    glm::vec3 mGroundCenter{0.0f};
+    GroundPlane mGroundPlane;
 };
 
 } // namespace render
