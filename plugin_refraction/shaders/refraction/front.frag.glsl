@@ -161,6 +161,7 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
 // enabled), else the environment.
 vec3 lookup(vec3 P, vec3 dir) {
     if (uNearby != 0) {
+        float previous = 0.0;
         for (int i = 1; i <= 24; ++i) {
             float t = uNearbyDistance * float(i * i) / 576.0;
             vec3 Q = P + dir * t;
@@ -169,13 +170,25 @@ vec3 lookup(vec3 P, vec3 dir) {
             vec2 uv = projectToUv(Q);
             if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0))))
                 break;
-            ivec2 texel = ivec2(uv * uViewportSize);
-            float d = texelFetch(uSceneDepth, texel, 0).r;
-            if (d >= 1.0)
-                continue;
-            float sceneZ = linearDepth(d);
-            if (-Q.z > sceneZ && -Q.z - sceneZ < 0.125 * uNearbyDistance)
-                return texelFetch(uSceneColor, texel, 0).rgb;
+            float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
+            if (d < 1.0 && -Q.z > linearDepth(d) && -Q.z - linearDepth(d) < 0.125 * uNearbyDistance) {
+                // Refine the crossing between the last step in front and this one (binary search),
+                // so the lookup does not band with the step size.
+                float lo = previous, hi = t;
+                for (int k = 0; k < 6; ++k) {
+                    float mid = 0.5 * (lo + hi);
+                    vec3 M = P + dir * mid;
+                    vec2 muv = projectToUv(M);
+                    float md = texelFetch(uSceneDepth, ivec2(clamp(muv, vec2(0.0), vec2(0.9999)) * uViewportSize), 0).r;
+                    if (md < 1.0 && -M.z > linearDepth(md))
+                        hi = mid;
+                    else
+                        lo = mid;
+                }
+                vec2 hitUv = clamp(projectToUv(P + dir * hi), vec2(0.0), vec2(0.9999));
+                return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
+            }
+            previous = t;
         }
     }
     return environmentRadiance(uViewToWorld * dir, uRoughness);
