@@ -440,8 +440,8 @@ core::Result<ReferenceImage> traceReference(const scene::Model& model, const ani
                 dvec3 sum(0.0);
                 int glassSamples = 0;
                 for (int s = 0; s < spp; ++s) {
-                    std::uint32_t rng = std::uint32_t(row * 73856093) ^ std::uint32_t(x * 19349663) ^
-                                        std::uint32_t(s * 83492791);
+                    std::uint32_t rng = std::uint32_t(row) * 73856093u ^ std::uint32_t(x) * 19349663u ^
+                                        std::uint32_t(s) * 83492791u;
                     double jx = random01(rng), jy = random01(rng);
                     if (stratified) {
                         jx = (double(s % grid) + jx) / grid;
