@@ -1,5 +1,6 @@
 // Opaque metallic-roughness surface lit by the environment (glTF core material model).
 #include "common/brdf.glsl"
+#include "common/normal_map.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -33,13 +34,8 @@ void main() {
     vec3 V = normalize(uCameraPosition - vWorldPosition);
     if (!gl_FrontFacing)
         N = -N;
-    if (uHasNormalTexture != 0) {
-        vec3 T = normalize(vWorldTangent.xyz - N * dot(N, vWorldTangent.xyz));
-        vec3 B = cross(N, T) * vWorldTangent.w;
-        vec3 n = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
-        n.xy *= uNormalScale;
-        N = normalize(mat3(T, B, N) * n);
-    }
+    if (uHasNormalTexture != 0)
+        N = perturbNormal(N, vWorldTangent, uNormalTexture, vUv, uNormalScale);
     float occlusion = 1.0;
     if (uHasOcclusionTexture != 0)
         occlusion = mix(1.0, texture(uOcclusionTexture, vUv).r, uOcclusionStrength);

@@ -6,6 +6,7 @@
 //   ISR (Wyman 2005): P2 ~ P1 + d T1, d interpolated between d_V and d_N by theta_t / theta_i.
 //   DIR (Oliveira & Brauwers 2007): T1 intersected with the back-face depth map, in texture space.
 #include "common/brdf.glsl"
+#include "common/normal_map.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/search.glsl"
 
@@ -204,11 +205,7 @@ void main() {
     if (dot(N1, V) > 0.0)
         N1 = -N1;
     if (uHasNormalTexture != 0) {
-        vec3 T = normalize(vViewTangent.xyz - N1 * dot(N1, vViewTangent.xyz));
-        vec3 B = cross(N1, T) * vViewTangent.w;
-        vec3 n = texture(uNormalTexture, vUv).xyz * 2.0 - 1.0;
-        n.xy *= uNormalScale;
-        vec3 mapped = normalize(mat3(T, B, N1) * n);
+        vec3 mapped = perturbNormal(N1, vViewTangent, uNormalTexture, vUv, uNormalScale);
         N1 = dot(mapped, V) < 0.0 ? mapped : N1;
     }
 
