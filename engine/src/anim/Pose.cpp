@@ -92,15 +92,32 @@ void updateWorld(const scene::Model& model, Pose& pose) {
     }
 }
 
-std::vector<glm::dmat4> skinMatrices(const scene::Model& model, const Pose& pose, int meshNode) {
+namespace {
+
+/** skinMatrix[j] = inverse(world(meshNode)) * world(joint j) * inverseBind[j], as M. */
+template <class M>
+void fillSkinMatrices(const scene::Model& model, const Pose& pose, int meshNode,
+                      std::vector<M>& out) {
     const scene::Node& node = model.nodes[std::size_t(meshNode)];
     ENGINE_CHECK(node.skin >= 0, "skinMatrices() needs a skinned mesh node");
     const scene::Skin& skin = model.skins[std::size_t(node.skin)];
     const glm::dmat4 worldToMesh = glm::inverse(pose.world[std::size_t(meshNode)]);
-    std::vector<glm::dmat4> result(skin.joints.size());
+    out.resize(skin.joints.size());
     for (std::size_t j = 0; j < skin.joints.size(); ++j)
-        result[j] = worldToMesh * pose.world[std::size_t(skin.joints[j])] * skin.inverseBind[j];
+        out[j] = M(worldToMesh * pose.world[std::size_t(skin.joints[j])] * skin.inverseBind[j]);
+}
+
+} // namespace
+
+std::vector<glm::dmat4> skinMatrices(const scene::Model& model, const Pose& pose, int meshNode) {
+    std::vector<glm::dmat4> result;
+    fillSkinMatrices(model, pose, meshNode, result);
     return result;
+}
+
+void skinMatrices(const scene::Model& model, const Pose& pose, int meshNode,
+                  std::vector<glm::mat4>& out) {
+    fillSkinMatrices(model, pose, meshNode, out);
 }
 
 Pose evaluate(const scene::Model& model, int clip, double time) {

@@ -124,8 +124,7 @@ void GpuDeformer::update(const anim::Pose& pose) {
         instance.meshToWorld = glm::mat4(pose.world[std::size_t(instance.node)]);
         const bool skinned = node.skin >= 0;
         if (skinned) {
-            const auto matrices = anim::skinMatrices(model, pose, instance.node);
-            mScratchMatrices.assign(matrices.begin(), matrices.end());
+            anim::skinMatrices(model, pose, instance.node, mScratchMatrices);
             mSkinMatrices[i].update(std::span<const glm::mat4>(mScratchMatrices));
         }
         const auto& weights = pose.weights[std::size_t(instance.node)];

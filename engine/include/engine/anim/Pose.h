@@ -38,6 +38,10 @@ void updateWorld(const scene::Model& model, Pose& pose);
  *  space to the mesh node's space. */
 std::vector<glm::dmat4> skinMatrices(const scene::Model& model, const Pose& pose, int meshNode);
 
+/** The same into `out` (resized; no allocation once it is large enough), in single precision
+ *  for upload. */
+void skinMatrices(const scene::Model& model, const Pose& pose, int meshNode, std::vector<glm::mat4>& out);
+
 /** restPose + applyClip + updateWorld in one call (clip -1: rest pose). */
 Pose evaluate(const scene::Model& model, int clip, double time);
 
