@@ -11,7 +11,7 @@ namespace refraction {
 
 /** Per-primitive optics from the material and the global overrides. */
 struct Optics {
-    glm::vec3 ior;         ///< per channel (R, G, B): the KHR_materials_dispersion spread
+    glm::vec3 ior; ///< per channel (R, G, B): the KHR_materials_dispersion spread
     bool dispersion = false;
     glm::vec3 sigma{0.0f}; ///< Beer-Lambert absorption per world unit
     float transmission = 1.0f;
@@ -24,6 +24,7 @@ struct Optics {
 Optics opticsFor(const plugin::ParameterSet& parameters, const scene::Material* material);
 
 /** True when `primitive` renders as glass under `parameters` (method, glass auto|all). */
-bool isGlass(const plugin::ParameterSet& parameters, const scene::Model& model, const scene::Primitive& primitive);
+bool isGlass(const plugin::ParameterSet& parameters, const scene::Model& model,
+             const scene::Primitive& primitive);
 
 } // namespace refraction

@@ -23,9 +23,11 @@ using glm::dvec3;
 
 // ---- Environment, as render/prefilter.comp.glsl and common/environment.glsl leave it
 
-EnvironmentSampler::EnvironmentSampler(const asset::HdrImage& image, float rotation, float intensity)
+EnvironmentSampler::EnvironmentSampler(const asset::HdrImage& image, float rotation,
+                                       float intensity)
     : mRotation(rotation), mIntensity(intensity) {
-    Level level{image.width, image.height, std::vector<float>(std::size_t(image.width) * std::size_t(image.height) * 4, 1.0f)};
+    Level level{image.width, image.height,
+                std::vector<float>(std::size_t(image.width) * std::size_t(image.height) * 4, 1.0f)};
     for (std::size_t i = 0; i < std::size_t(image.width) * std::size_t(image.height); ++i)
         for (int c = 0; c < 3; ++c)
             level.rgba[i * 4 + std::size_t(c)] = image.rgb[i * 3 + std::size_t(c)];
@@ -33,13 +35,15 @@ EnvironmentSampler::EnvironmentSampler(const asset::HdrImage& image, float rotat
     mIrradiance = Level{1, 1, {0.0f, 0.0f, 0.0f, 1.0f}};
 }
 
-EnvironmentSampler EnvironmentSampler::fromGpu(const render::Environment& environment, float rotation, float intensity) {
+EnvironmentSampler EnvironmentSampler::fromGpu(const render::Environment& environment,
+                                               float rotation, float intensity) {
     EnvironmentSampler s;
     s.mRotation = rotation;
     s.mIntensity = intensity;
     const gl::Texture& prefiltered = environment.prefiltered();
     for (int level = 0; level < prefiltered.levels(); ++level)
-        s.mLevels.push_back({prefiltered.size(level).x, prefiltered.size(level).y, prefiltered.downloadFloat(level)});
+        s.mLevels.push_back({prefiltered.size(level).x, prefiltered.size(level).y,
+                             prefiltered.downloadFloat(level)});
     const gl::Texture& irradiance = environment.irradiance();
     s.mIrradiance = {irradiance.size().x, irradiance.size().y, irradiance.downloadFloat(0)};
     return s;
@@ -59,7 +63,8 @@ dvec3 EnvironmentSampler::bilinear(const Level& level, dvec2 uv) {
         for (int i = 0; i < 2; ++i) { // GL_REPEAT on both axes, as the GPU samples it
             const int xi = ((x0 + i) % level.width + level.width) % level.width;
             const int yi = ((y0 + j) % level.height + level.height) % level.height;
-            const float* p = &level.rgba[(std::size_t(yi) * std::size_t(level.width) + std::size_t(xi)) * 4];
+            const float* p =
+                &level.rgba[(std::size_t(yi) * std::size_t(level.width) + std::size_t(xi)) * 4];
             sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * dvec3(p[0], p[1], p[2]);
         }
     return sum;
@@ -68,7 +73,8 @@ dvec3 EnvironmentSampler::bilinear(const Level& level, dvec2 uv) {
 namespace {
 
 dvec2 equirectUv(dvec3 d) {
-    return {0.5 + std::atan2(d.x, -d.z) / (2.0 * M_PI), std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI};
+    return {0.5 + std::atan2(d.x, -d.z) / (2.0 * M_PI),
+            std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI};
 }
 
 } // namespace
@@ -80,7 +86,8 @@ dvec3 EnvironmentSampler::radiance(dvec3 direction, double roughness) const {
     const int l1 = std::min(l0 + 1, int(mLevels.size()) - 1);
     const double f = lod - l0;
     const dvec3 a = bilinear(mLevels[std::size_t(l0)], uv);
-    return double(mIntensity) * (f > 0.0 ? glm::mix(a, bilinear(mLevels[std::size_t(l1)], uv), f) : a);
+    return double(mIntensity) *
+           (f > 0.0 ? glm::mix(a, bilinear(mLevels[std::size_t(l1)], uv), f) : a);
 }
 
 dvec3 EnvironmentSampler::irradiance(dvec3 normal) const {
@@ -98,8 +105,8 @@ dvec2 environmentBrdf(double NoV, double roughness) {
     return dvec2(-1.04, 1.04) * a004 + dvec2(r.z, r.w);
 }
 
-dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double metallic, double roughness, dvec3 N,
-                             dvec3 V) {
+dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double metallic,
+                             double roughness, dvec3 N, dvec3 V) {
     const double NoV = std::clamp(glm::dot(N, V), 1e-4, 1.0);
     const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
     const dvec2 ab = environmentBrdf(NoV, roughness);
@@ -108,7 +115,9 @@ dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double m
     return diffuse + specular;
 }
 
-double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double srgbToLinear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
 
 /** Bilinear RGBA of a glTF image at uv with wrapping (level 0; the GPU's mip filtering of
  *  distant texels is not reproduced). */
@@ -124,7 +133,8 @@ glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
         for (int i = 0; i < 2; ++i) {
             const int xi = ((x0 + i) % image.width + image.width) % image.width;
             const int yi = ((y0 + j) % image.height + image.height) % image.height;
-            const std::size_t at = (std::size_t(yi) * std::size_t(image.width) + std::size_t(xi)) * 4 * bytes;
+            const std::size_t at =
+                (std::size_t(yi) * std::size_t(image.width) + std::size_t(xi)) * 4 * bytes;
             glm::dvec4 texel;
             for (int c = 0; c < 4; ++c)
                 texel[c] = double(image.pixels[at + std::size_t(c) * bytes + (bytes - 1)]) / 255.0;
@@ -142,7 +152,7 @@ struct Surface {
     std::vector<std::uint32_t> indices;
     bool glass = true;
     const scene::Material* material = nullptr; // opaque surfaces
-    Optics optics;                              // glass surfaces
+    Optics optics;                             // glass surfaces
 };
 
 struct Hit {
@@ -186,21 +196,24 @@ double random01(std::uint32_t& state) {
 
 class Tracer {
 public:
-    Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env, const render::GroundPlane* ground,
-           const ReferenceOptions& options, const std::string& fresnelMode, double epsilon)
+    Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
+           const render::GroundPlane* ground, const ReferenceOptions& options,
+           const std::string& fresnelMode, double epsilon)
         : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options), mFresnel(fresnelMode),
           mEpsilon(epsilon) {
         mDevice = rtcNewDevice(nullptr);
         mScene = rtcNewScene(mDevice);
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                  3 * sizeof(float), s.positions.size()));
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        3 * sizeof(float), s.positions.size()));
             for (std::size_t i = 0; i < s.positions.size(); ++i)
                 for (int c = 0; c < 3; ++c)
                     v[i * 3 + std::size_t(c)] = float(s.positions[i][c]);
-            auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), s.indices.size() / 3));
+            auto* idx = static_cast<std::uint32_t*>(
+                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(std::uint32_t), s.indices.size() / 3));
             std::copy(s.indices.begin(), s.indices.end(), idx);
             rtcCommitGeometry(g);
             rtcAttachGeometry(mScene, g);
@@ -240,7 +253,8 @@ public:
             h.t = rh.ray.tfar;
             h.surface = &s;
             h.point = w * s.positions[tri[0]] + u * s.positions[tri[1]] + v * s.positions[tri[2]];
-            h.shadingNormal = glm::normalize(w * s.normals[tri[0]] + u * s.normals[tri[1]] + v * s.normals[tri[2]]);
+            h.shadingNormal = glm::normalize(w * s.normals[tri[0]] + u * s.normals[tri[1]] +
+                                             v * s.normals[tri[2]]);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
         }
@@ -264,7 +278,8 @@ public:
         const dvec3 V = -dir;
         if (h.ground) {
             const double tile = mGround->halfSize / 8.0;
-            const double checker = std::fmod(std::floor(h.point.x / tile) + std::floor(h.point.z / tile), 2.0);
+            const double checker =
+                std::fmod(std::floor(h.point.x / tile) + std::floor(h.point.z / tile), 2.0);
             const dvec3 base = glm::mix(dvec3(0.30), dvec3(0.42), std::abs(checker));
             return shadeMetallicRoughness(mEnv, base, 0.0, 0.8, dvec3(0, 1, 0), V);
         }
@@ -292,14 +307,15 @@ public:
         dvec3 N = h.shadingNormal;
         if (glm::dot(N, V) < 0)
             N = -N;
-        return shadeMetallicRoughness(mEnv, dvec3(base), std::clamp(metallic, 0.0, 1.0), std::clamp(roughness, 0.03, 1.0),
-                                      N, V) +
+        return shadeMetallicRoughness(mEnv, dvec3(base), std::clamp(metallic, 0.0, 1.0),
+                                      std::clamp(roughness, 0.03, 1.0), N, V) +
                emissive;
     }
 
     /** Radiance of channel `c` along a ray entering glass at `entry` (refracted), through the
      *  glass with real TIR, and on after it leaves. */
-    double inside(const Hit& entry, const dvec3& dir, int c, int depth, std::uint32_t& rng, std::size_t& trapped) const {
+    double inside(const Hit& entry, const dvec3& dir, int c, int depth, std::uint32_t& rng,
+                  std::size_t& trapped) const {
         const Optics& o = entry.surface->optics;
         const double ior = o.ior[c], sigma = o.sigma[c];
         dvec3 n = entry.shadingNormal;
@@ -353,7 +369,8 @@ public:
     }
 
     /** Colour of one camera ray; `glass` reports whether it hit glass first. */
-    dvec3 primary(const dvec3& origin, const dvec3& dir, bool& glass, std::uint32_t& rng, std::size_t& trapped) const {
+    dvec3 primary(const dvec3& origin, const dvec3& dir, bool& glass, std::uint32_t& rng,
+                  std::size_t& trapped) const {
         const Hit h = intersect(origin, dir);
         glass = h.hit && !h.ground && h.surface->glass;
         if (!h.hit)
@@ -369,7 +386,8 @@ public:
         dvec3 transmitted;
         for (int c = 0; c < 3; ++c)
             transmitted[c] = inside(h, dir, c, 0, rng, trapped);
-        return double(o.transmission) * (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
+        return double(o.transmission) *
+               (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
     }
 
     const scene::Model* mModel = nullptr;
@@ -387,10 +405,11 @@ private:
 
 } // namespace
 
-core::Result<ReferenceImage> traceReference(const scene::Model& model, const anim::Pose& pose,
-                                            const render::Camera& camera, const EnvironmentSampler& environment,
-                                            const render::RenderSettings& settings, const render::GroundPlane& ground,
-                                            const plugin::ParameterSet& glass, const ReferenceOptions& options) {
+core::Result<ReferenceImage>
+traceReference(const scene::Model& model, const anim::Pose& pose, const render::Camera& camera,
+               const EnvironmentSampler& environment, const render::RenderSettings& settings,
+               const render::GroundPlane& ground, const plugin::ParameterSet& glass,
+               const ReferenceOptions& options) {
     std::vector<Surface> surfaces;
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const auto& instance : deform::deformScene(model, pose)) {
@@ -418,7 +437,8 @@ core::Result<ReferenceImage> traceReference(const scene::Model& model, const ani
         }
     }
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
-    Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options, glass.choice("fresnel"), epsilon);
+    Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
+                  glass.choice("fresnel"), epsilon);
     tracer.mModel = &model;
 
     ReferenceImage image;
@@ -431,7 +451,8 @@ core::Result<ReferenceImage> traceReference(const scene::Model& model, const ani
     const bool stratified = grid * grid == spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::size_t> trapped{0};
-    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads =
+        options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     const bool bar = options.progress && isatty(2);
     auto work = [&] {
         std::size_t localTrapped = 0;
@@ -440,14 +461,15 @@ core::Result<ReferenceImage> traceReference(const scene::Model& model, const ani
                 dvec3 sum(0.0);
                 int glassSamples = 0;
                 for (int s = 0; s < spp; ++s) {
-                    std::uint32_t rng = std::uint32_t(row) * 73856093u ^ std::uint32_t(x) * 19349663u ^
-                                        std::uint32_t(s) * 83492791u;
+                    std::uint32_t rng = std::uint32_t(row) * 73856093u ^
+                                        std::uint32_t(x) * 19349663u ^ std::uint32_t(s) * 83492791u;
                     double jx = random01(rng), jy = random01(rng);
                     if (stratified) {
                         jx = (double(s % grid) + jx) / grid;
                         jy = (double(s / grid) + jy) / grid;
                     }
-                    const double ndcX = (x + jx) / w * 2.0 - 1.0, ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;
+                    const double ndcX = (x + jx) / w * 2.0 - 1.0,
+                                 ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;
                     const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
                     const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
                     const dvec3 origin = dvec3(nearPoint) / nearPoint.w;
@@ -463,8 +485,8 @@ core::Result<ReferenceImage> traceReference(const scene::Model& model, const ani
             }
             const int done = ++rowsDone;
             if (bar && (done % 8 == 0 || done == h))
-                std::fprintf(stderr, "\rreference: [%-40s] %3d%%", std::string(std::size_t(40 * done / h), '#').c_str(),
-                             100 * done / h);
+                std::fprintf(stderr, "\rreference: [%-40s] %3d%%",
+                             std::string(std::size_t(40 * done / h), '#').c_str(), 100 * done / h);
         }
         trapped += localTrapped;
     };

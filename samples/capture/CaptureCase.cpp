@@ -8,15 +8,7 @@
 #include <sstream>
 
 namespace capture {
-namespace {
-
-std::string seconds(double t) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%.3f", t);
-    return s;
-}
-
-} // namespace
+namespace {} // namespace
 
 core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
     const std::string where = "glass-capture: " + path.string() + ": ";
@@ -97,7 +89,7 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
 }
 
 std::filesystem::path goldenPath(const CaseFile& c, double time) {
-    return c.path.parent_path() / (c.path.stem().string() + ".t" + seconds(time) + ".png");
+    return c.path.parent_path() / (c.path.stem().string() + ".t" + secondsText(time) + ".png");
 }
 
 core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem::path& outDir) {
@@ -120,13 +112,13 @@ core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem:
         }
         auto expected = readPng(golden);
         if (!expected)
-            return core::Error{"glass-capture: no golden for t=" + seconds(time) + " (" +
+            return core::Error{"glass-capture: no golden for t=" + secondsText(time) + " (" +
                                expected.error().message + "); run with --update to create it"};
         const Comparison cmp = compare(frame->image, *expected, c.tolerance);
         char line[256];
         std::snprintf(line, sizeof line,
                       "%s t=%s: %s (max abs diff %d, failing pixels %zu = %.4f%%, allowed %.4f%%)",
-                      c.path.stem().string().c_str(), seconds(time).c_str(),
+                      c.path.stem().string().c_str(), secondsText(time).c_str(),
                       !cmp.sizeMatches ? "SIZE MISMATCH"
                       : cmp.passed     ? "match"
                                        : "MISMATCH",
@@ -138,7 +130,7 @@ core::Result<int> runCase(const CaseFile& c, bool update, const std::filesystem:
             continue;
         allMatch = false;
         std::filesystem::create_directories(outDir);
-        const std::string stem = c.path.stem().string() + ".t" + seconds(time);
+        const std::string stem = c.path.stem().string() + ".t" + secondsText(time);
         auto a = writePng(outDir / (stem + ".actual.png"), frame->image);
         if (!a)
             return a.error();

@@ -10,8 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -45,7 +45,6 @@ CaptureSession::create(const SessionOptions& options) {
     if (!context)
         return context.error();
     s->mContext = std::move(*context);
-    s->mEnvironment = environment;
     auto renderer = render::Renderer::create(s->mModel, environment, *s->mContext);
     if (!renderer)
         return renderer.error();
@@ -102,8 +101,8 @@ render::Camera CaptureSession::cameraAt(const anim::Pose& pose) const {
         camera.zfar = distance * 100.0f;
         camera.projection = glm::perspective(camera.yfov, aspect, camera.znear, camera.zfar);
     } else if (mOptions.camera) {
-        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov, mOptions.camera->azimuth,
-                                     mOptions.camera->elevation);
+        camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov,
+                                     mOptions.camera->azimuth, mOptions.camera->elevation);
     } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
         camera = *gltf;
     } else {
@@ -133,24 +132,30 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
     frame.image = Image{mOptions.size.x, mOptions.size.y, mRenderer->readOutput()};
     gl::checkErrors("glass-capture frame");
     if (gl::errorCount() != errorsBefore)
-        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) + " (see log)"};
+        return core::Error{"glass-capture: GL errors while rendering t=" + std::to_string(time) +
+                           " (see log)"};
     return frame;
 }
 
-core::Result<RenderedFrame> CaptureSession::renderReference(double time, const refraction::ReferenceOptions& options) {
+core::Result<RenderedFrame>
+CaptureSession::renderReference(double time, const refraction::ReferenceOptions& options) {
     const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     const auto start = std::chrono::steady_clock::now();
     const render::RenderSettings frameSettings = settings();
     const auto environment = refraction::EnvironmentSampler::fromGpu(
-        mRenderer->environment(), frameSettings.environmentRotation, frameSettings.environmentIntensity);
-    auto traced = refraction::traceReference(mModel, pose, cameraAt(pose), environment, frameSettings,
-                                             mRenderer->ground(), mRefraction->parameters(), options);
+        mRenderer->environment(), frameSettings.environmentRotation,
+        frameSettings.environmentIntensity);
+    auto traced =
+        refraction::traceReference(mModel, pose, cameraAt(pose), environment, frameSettings,
+                                   mRenderer->ground(), mRefraction->parameters(), options);
     if (!traced)
         return traced.error();
     RenderedFrame frame;
     frame.time = time;
-    frame.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    frame.image = Image{mOptions.size.x, mOptions.size.y, refraction::tonemap(traced->rgba, mOptions.exposure)};
+    frame.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frame.image = Image{mOptions.size.x, mOptions.size.y,
+                        refraction::tonemap(traced->rgba, mOptions.exposure)};
     for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
         frame.glassMask.push_back(traced->rgba[i] > 0.5f);
     if (traced->trappedSamples > 0)
@@ -159,10 +164,14 @@ core::Result<RenderedFrame> CaptureSession::renderReference(double time, const r
     return frame;
 }
 
+std::string secondsText(double time) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", time);
+    return text;
+}
+
 std::string frameFileName(const std::string& modelStem, const std::string& clipLabel, double time) {
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.3f", time);
-    return modelStem + "_" + clipLabel + "_t" + seconds + ".png";
+    return modelStem + "_" + clipLabel + "_t" + secondsText(time) + ".png";
 }
 
 nlohmann::json statsJson(const render::FrameStats& stats) {

@@ -49,7 +49,7 @@ struct RenderedFrame {
     Image image;
     render::FrameStats stats;
     std::vector<bool> glassMask; ///< reference frames: pixels whose camera rays hit glass
-    double milliseconds = 0.0;    ///< reference frames: tracing time
+    double milliseconds = 0.0;   ///< reference frames: tracing time
 };
 
 class CaptureSession {
@@ -60,7 +60,8 @@ public:
 
     core::Result<RenderedFrame> render(double time);
     /** The Embree reference of the same frame, tonemapped like the GPU output. */
-    core::Result<RenderedFrame> renderReference(double time, const refraction::ReferenceOptions& options);
+    core::Result<RenderedFrame> renderReference(double time,
+                                                const refraction::ReferenceOptions& options);
 
     const scene::Model& model() const { return mModel; }
     int clip() const { return mClip; }
@@ -75,11 +76,13 @@ private:
     int mClip = -1;
     std::unique_ptr<gl::Context> mContext;
     std::unique_ptr<plugin::Plugin> mRefraction;
-    asset::HdrImage mEnvironment;
     std::vector<plugin::LoadedPlugin> mPlugins;
     std::unique_ptr<render::Renderer> mRenderer;
     render::Bounds mBounds;
 };
+
+/** A time as file names spell it: seconds with 3 decimals ("1.250"). */
+std::string secondsText(double time);
 
 /** Deterministic file name of a frame: "<model>_<clip>_t<seconds with 3 decimals>.png". */
 std::string frameFileName(const std::string& modelStem, const std::string& clipLabel, double time);

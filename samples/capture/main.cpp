@@ -4,8 +4,8 @@
 #include "CaptureSession.h"
 
 #include "engine/capture/Metrics.h"
-#include "refraction/RefractionPlugin.h"
 #include "refraction/ReferenceTracer.h"
+#include "refraction/RefractionPlugin.h"
 
 #include <cmath>
 #include <cstdio>
@@ -117,9 +117,11 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             const auto v = next();
             double n = 0;
             const double limit = arg == "--spp" ? 4096 : 64;
-            if (!v || !parseDouble(*v, n) || n != std::floor(n) || n < (arg == "--spp" ? 1 : 0) || n > limit)
+            if (!v || !parseDouble(*v, n) || n != std::floor(n) || n < (arg == "--spp" ? 1 : 0) ||
+                n > limit)
                 return usageError(arg + " needs an integer up to " + std::to_string(int(limit)));
-            (arg == "--spp" ? o.referenceOptions.samplesPerPixel : o.referenceOptions.maxBounces) = int(n);
+            (arg == "--spp" ? o.referenceOptions.samplesPerPixel : o.referenceOptions.maxBounces) =
+                int(n);
         } else if (arg == "--method" || arg == "--glass" || arg == "--ior" ||
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
@@ -277,7 +279,8 @@ int main(int argc, char** argv) {
         }
         if (i == 0 && o.dumpGraph)
             std::fprintf(stderr, "%s", frame->stats.graph.c_str());
-        const auto path = std::filesystem::path(o.out) / capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
+        const auto path = std::filesystem::path(o.out) /
+                          capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
         if (auto written = capture::writePng(path, frame->image); !written) {
             std::fprintf(stderr, "%s\n", written.error().message.c_str());
             return 1;
@@ -294,16 +297,17 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "%s\n", reference.error().message.c_str());
                 return 1;
             }
-            const auto masked = capture::score(frame->image, reference->image, &reference->glassMask);
+            const auto masked =
+                capture::score(frame->image, reference->image, &reference->glassMask);
             const auto full = capture::score(frame->image, reference->image);
             auto sibling = [&](const char* suffix) {
                 auto p = path;
                 return p.replace_extension(std::string(suffix) + ".png");
             };
-            for (const auto& [file, image] : {std::pair{sibling(".reference"), reference->image},
-                                              std::pair{sibling(".heatmap"),
-                                                        capture::heatmap(frame->image, reference->image, 64,
-                                                                         &reference->glassMask)}})
+            for (const auto& [file, image] :
+                 {std::pair{sibling(".reference"), reference->image},
+                  std::pair{sibling(".heatmap"), capture::heatmap(frame->image, reference->image,
+                                                                  64, &reference->glassMask)}})
                 if (auto written = capture::writePng(file, image); !written) {
                     std::fprintf(stderr, "%s\n", written.error().message.c_str());
                     return 1;
@@ -311,17 +315,19 @@ int main(int argc, char** argv) {
             entry["reference_file"] = sibling(".reference").string();
             entry["heatmap_file"] = sibling(".heatmap").string();
             entry["reference_ms"] = reference->milliseconds;
-            entry["scores"] = {{"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
-                               {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
+            entry["scores"] = {
+                {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
+                {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
             char text[160];
-            std::snprintf(text, sizeof text, ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB",
+            std::snprintf(text, sizeof text,
+                          ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB",
                           masked.pixels, masked.psnr, masked.ssim, full.psnr);
             scoreText = text;
         }
         report["frames"].push_back(entry);
         if (!o.json)
-            std::printf("%s (cpu %.2f ms, gpu %.2f ms%s)\n", path.string().c_str(), frame->stats.cpuMs,
-                        frame->stats.gpuMs, scoreText.c_str());
+            std::printf("%s (cpu %.2f ms, gpu %.2f ms%s)\n", path.string().c_str(),
+                        frame->stats.cpuMs, frame->stats.gpuMs, scoreText.c_str());
     }
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);

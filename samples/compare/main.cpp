@@ -10,7 +10,8 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: glass-compare A.png B.png [--mask M.png] [--heatmap OUT.png] [--json]
+constexpr const char* kUsage =
+    R"(usage: glass-compare A.png B.png [--mask M.png] [--heatmap OUT.png] [--json]
 
 Scores image A against image B (same size): PSNR over RGB and mean SSIM of luminance (8x8
 windows), over every pixel and, with --mask, over the pixels where M is not black. --heatmap
@@ -57,8 +58,8 @@ int main(int argc, char** argv) {
             return 1;
         }
     if (a->width != b->width || a->height != b->height) {
-        std::fprintf(stderr, "glass-compare: %s is %dx%d but %s is %dx%d\n", images[0].c_str(), a->width, a->height,
-                     images[1].c_str(), b->width, b->height);
+        std::fprintf(stderr, "glass-compare: %s is %dx%d but %s is %dx%d\n", images[0].c_str(),
+                     a->width, a->height, images[1].c_str(), b->width, b->height);
         return 1;
     }
     std::optional<std::vector<bool>> mask;
@@ -76,21 +77,25 @@ int main(int argc, char** argv) {
     const auto full = capture::score(*a, *b);
     const capture::Scores masked = mask ? capture::score(*a, *b, &*mask) : capture::Scores{};
     if (heatmapPath) {
-        auto written = capture::writePng(*heatmapPath, capture::heatmap(*a, *b, 64, mask ? &*mask : nullptr));
+        auto written =
+            capture::writePng(*heatmapPath, capture::heatmap(*a, *b, 64, mask ? &*mask : nullptr));
         if (!written) {
             std::fprintf(stderr, "glass-compare: %s\n", written.error().message.c_str());
             return 1;
         }
     }
     if (json) {
-        nlohmann::json j = {{"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
+        nlohmann::json j = {
+            {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
         if (mask)
             j["mask"] = {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}};
         std::printf("%s\n", j.dump(2).c_str());
     } else {
-        std::printf("image: PSNR %.2f dB, SSIM %.4f over %zu pixels\n", full.psnr, full.ssim, full.pixels);
+        std::printf("image: PSNR %.2f dB, SSIM %.4f over %zu pixels\n", full.psnr, full.ssim,
+                    full.pixels);
         if (mask)
-            std::printf("mask:  PSNR %.2f dB, SSIM %.4f over %zu pixels\n", masked.psnr, masked.ssim, masked.pixels);
+            std::printf("mask:  PSNR %.2f dB, SSIM %.4f over %zu pixels\n", masked.psnr,
+                        masked.ssim, masked.pixels);
     }
     return 0;
 }

@@ -6,10 +6,10 @@
 #include "NormalDistance.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
-#include "engine/render/Renderer.h"
 #include "engine/capture/Metrics.h"
-#include "refraction/RefractionPlugin.h"
+#include "engine/render/Renderer.h"
 #include "refraction/ReferenceTracer.h"
+#include "refraction/RefractionPlugin.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -26,9 +26,9 @@ constexpr int kSize = 128;
  *  an HDR image (rows top to bottom). */
 class RefractionRig {
 public:
-    RefractionRig(const scene::Model& model, gl::Context& context)
-        : mModel(model), mEnvironment(render::Environment::proceduralSky(128)) {
-        auto renderer = render::Renderer::create(model, mEnvironment, context);
+    RefractionRig(const scene::Model& model, gl::Context& context) : mModel(model) {
+        auto renderer =
+            render::Renderer::create(model, render::Environment::proceduralSky(128), context);
         EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
         mRenderer = std::move(*renderer);
         mPlugin = refraction::createPlugin();
@@ -49,14 +49,12 @@ public:
         return mRenderer->readHdrOutput();
     }
     const render::Camera& camera() const { return mCamera; }
-    const asset::HdrImage& environment() const { return mEnvironment; }
     const render::Renderer& renderer() const { return *mRenderer; }
     const plugin::ParameterSet& parameters() const { return mPlugin->parameters(); }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
 
 private:
     const scene::Model& mModel;
-    asset::HdrImage mEnvironment;
     std::unique_ptr<render::Renderer> mRenderer;
     std::unique_ptr<plugin::Plugin> mPlugin;
     render::Camera mCamera;
@@ -242,9 +240,10 @@ TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
     settings.size = {kSize, kSize};
     refraction::ReferenceOptions options;
     options.samplesPerPixel = 16;
-    const auto environment = refraction::EnvironmentSampler::fromGpu(rig.renderer().environment(), 0.0f, 1.0f);
-    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), rig.camera(), environment, settings, {},
-                                             rig.parameters(), options);
+    const auto environment =
+        refraction::EnvironmentSampler::fromGpu(rig.renderer().environment(), 0.0f, 1.0f);
+    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), rig.camera(),
+                                             environment, settings, {}, rig.parameters(), options);
     ASSERT_TRUE(traced.ok()) << traced.error().message;
     const capture::Image reference{kSize, kSize, refraction::tonemap(traced->rgba, 1.0f)};
     std::vector<bool> mask(std::size_t(kSize) * kSize);
@@ -255,10 +254,12 @@ TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
         rig.set("search-steps", steps);
         const capture::Image image{kSize, kSize, refraction::tonemap(rig.render(), 1.0f)};
         const double p = capture::score(image, reference, &mask).psnr;
-        std::printf("sphere IOR 1.5 vs reference: %s (%s steps) masked PSNR %.2f dB\n", method, steps, p);
+        std::printf("sphere IOR 1.5 vs reference: %s (%s steps) masked PSNR %.2f dB\n", method,
+                    steps, p);
         return p;
     };
-    const double sir = psnr("sir", "5"), isr = psnr("isr", "5"), dir5 = psnr("dir", "5"), dir8 = psnr("dir", "8");
+    const double sir = psnr("sir", "5"), isr = psnr("isr", "5"), dir5 = psnr("dir", "5"),
+                 dir8 = psnr("dir", "8");
     EXPECT_GT(isr, sir + 5.0);
     EXPECT_GT(dir5, sir + 10.0);
     EXPECT_GE(dir8, dir5 - 0.5);

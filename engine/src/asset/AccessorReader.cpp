@@ -104,10 +104,6 @@ const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string&
     return mModel.accessors[std::size_t(index)];
 }
 
-std::size_t AccessorReader::count(int index, const std::string& what) const {
-    return accessor(index, what).count;
-}
-
 std::vector<double> AccessorReader::decode(int index, int components, bool allowFloat,
                                            bool allowSigned, const std::string& what) const {
     const tinygltf::Accessor& a = accessor(index, what);

@@ -24,9 +24,6 @@ public:
     /** Reads an unsigned-integer accessor (UNSIGNED_BYTE/SHORT/INT) of `components` per element. */
     std::vector<std::uint32_t> readUints(int index, int components, const std::string& what) const;
 
-    /** Element count of accessor `index`, after checking the index. */
-    std::size_t count(int index, const std::string& what) const;
-
 private:
     const tinygltf::Accessor& accessor(int index, const std::string& what) const;
     /** Decodes every component of the accessor as double (sparse applied), checked. */

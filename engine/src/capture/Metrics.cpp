@@ -12,14 +12,16 @@ namespace {
 std::vector<double> luminance(const Image& image) {
     std::vector<double> y(std::size_t(image.width) * std::size_t(image.height));
     for (std::size_t i = 0; i < y.size(); ++i)
-        y[i] = 0.2126 * image.rgba[i * 4] + 0.7152 * image.rgba[i * 4 + 1] + 0.0722 * image.rgba[i * 4 + 2];
+        y[i] = 0.2126 * image.rgba[i * 4] + 0.7152 * image.rgba[i * 4 + 1] +
+               0.0722 * image.rgba[i * 4 + 2];
     return y;
 }
 
 } // namespace
 
 Scores score(const Image& a, const Image& b, const std::vector<bool>* mask) {
-    ENGINE_CHECK(a.width == b.width && a.height == b.height, "score() of images of different sizes");
+    ENGINE_CHECK(a.width == b.width && a.height == b.height,
+                 "score() of images of different sizes");
     const std::size_t n = std::size_t(a.width) * std::size_t(a.height);
     ENGINE_CHECK(!mask || mask->size() == n, "mask size differs from the image");
     Scores s;
@@ -29,7 +31,8 @@ Scores score(const Image& a, const Image& b, const std::vector<bool>* mask) {
             continue;
         ++s.pixels;
         for (int c = 0; c < 3; ++c) {
-            const double d = double(a.rgba[i * 4 + std::size_t(c)]) - double(b.rgba[i * 4 + std::size_t(c)]);
+            const double d =
+                double(a.rgba[i * 4 + std::size_t(c)]) - double(b.rgba[i * 4 + std::size_t(c)]);
             squared += d * d;
         }
     }
@@ -51,7 +54,8 @@ Scores score(const Image& a, const Image& b, const std::vector<bool>* mask) {
             int count = 0;
             for (int dy = -4; dy < 4; ++dy)
                 for (int dx = -4; dx < 4; ++dx) {
-                    const int xx = std::clamp(x + dx, 0, a.width - 1), yy = std::clamp(y + dy, 0, a.height - 1);
+                    const int xx = std::clamp(x + dx, 0, a.width - 1),
+                              yy = std::clamp(y + dy, 0, a.height - 1);
                     const std::size_t j = std::size_t(yy) * std::size_t(a.width) + std::size_t(xx);
                     ma += ya[j];
                     mb += yb[j];
@@ -65,19 +69,22 @@ Scores score(const Image& a, const Image& b, const std::vector<bool>* mask) {
             vaa = vaa / count - ma * ma;
             vbb = vbb / count - mb * mb;
             vab = vab / count - ma * mb;
-            sum += ((2 * ma * mb + c1) * (2 * vab + c2)) / ((ma * ma + mb * mb + c1) * (vaa + vbb + c2));
+            sum += ((2 * ma * mb + c1) * (2 * vab + c2)) /
+                   ((ma * ma + mb * mb + c1) * (vaa + vbb + c2));
         }
     s.ssim = sum / double(s.pixels);
     return s;
 }
 
 Image heatmap(const Image& a, const Image& b, int fullScale, const std::vector<bool>* mask) {
-    ENGINE_CHECK(a.width == b.width && a.height == b.height, "heatmap() of images of different sizes");
+    ENGINE_CHECK(a.width == b.width && a.height == b.height,
+                 "heatmap() of images of different sizes");
     Image out{a.width, a.height, std::vector<std::uint8_t>(a.rgba.size())};
     for (std::size_t i = 0; i < a.rgba.size() / 4; ++i) {
         int worst = 0;
         for (int c = 0; c < 3; ++c)
-            worst = std::max(worst, std::abs(int(a.rgba[i * 4 + std::size_t(c)]) - int(b.rgba[i * 4 + std::size_t(c)])));
+            worst = std::max(worst, std::abs(int(a.rgba[i * 4 + std::size_t(c)]) -
+                                             int(b.rgba[i * 4 + std::size_t(c)])));
         const double t = std::min(1.0, double(worst) / double(fullScale));
         // black -> blue -> yellow -> red
         double r, g, bl;

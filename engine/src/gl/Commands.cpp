@@ -34,10 +34,6 @@ void apply(const PipelineState& s) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void viewport(glm::ivec2 origin, glm::ivec2 size) {
-    glViewport(origin.x, origin.y, size.x, size.y);
-}
-
 void clearColor(int index, const glm::vec4& color) {
     glColorMaski(GLuint(index), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearBufferfv(GL_COLOR, index, &color.x);
@@ -62,12 +58,6 @@ void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
 
 void bindStorage(std::uint32_t binding, const Buffer& buffer) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
-}
-
-void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset,
-                      std::size_t bytes) {
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer.id(), GLintptr(offset),
-                      GLsizeiptr(bytes));
 }
 
 void bindTexture(std::uint32_t unit, const Texture& texture) {

@@ -50,23 +50,6 @@ int fullChain(glm::ivec2 size) {
 
 } // namespace
 
-int bytesPerTexel(Format f) {
-    switch (f) {
-    case Format::RGBA8:
-    case Format::SRGB8_A8:
-    case Format::R32F:
-    case Format::R32UI:
-    case Format::Depth32F:
-        return 4;
-    case Format::RGBA16F:
-    case Format::RG32F:
-        return 8;
-    case Format::RGBA32F:
-        return 16;
-    }
-    return 4;
-}
-
 bool isDepth(Format f) {
     return f == Format::Depth32F;
 }

@@ -68,14 +68,15 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     auto env = std::make_unique<Environment>();
     const glm::ivec2 size(image.width, image.height);
     env->mSource = gl::Texture({size, gl::Format::RGBA16F, 0});
-    env->mSource.upload(0, toRgba(image).data());
+    const std::vector<float> rgba = toRgba(image);
+    env->mSource.upload(0, rgba.data());
     env->mSource.generateMipmaps();
     env->mSource.setSampling(gl::Filter::LinearMipmap, gl::Wrap::Repeat);
     const int levels = std::min(kPrefilterLevels, env->mSource.levels());
     env->mPrefiltered = gl::Texture({size, gl::Format::RGBA16F, levels});
     env->mPrefiltered.setSampling(gl::Filter::LinearMipmap, gl::Wrap::Repeat);
     // Level 0 is the source itself (mirror-sharp); every other level is GGX-convolved.
-    env->mPrefiltered.upload(0, toRgba(image).data());
+    env->mPrefiltered.upload(0, rgba.data());
     prefilter->use();
     gl::bindTexture(0, env->mSource);
     prefilter->set("uSource", 0);

@@ -28,7 +28,8 @@ public:
      *  unavailable, black). */
     EnvironmentSampler(const asset::HdrImage& image, float rotation, float intensity);
     /** Reads the renderer's environment textures back (needs its GL context current). */
-    static EnvironmentSampler fromGpu(const render::Environment& environment, float rotation, float intensity);
+    static EnvironmentSampler fromGpu(const render::Environment& environment, float rotation,
+                                      float intensity);
 
     glm::dvec3 radiance(glm::dvec3 direction, double roughness) const;
     glm::dvec3 irradiance(glm::dvec3 normal) const;
@@ -52,14 +53,14 @@ struct ReferenceOptions {
     /** Follow only the entry and one exit (no further surfaces after leaving the glass): the
      *  closed-form two-interface model, for checking the tracer itself. */
     bool twoInterfaces = false;
-    unsigned threads = 0;     ///< 0: all cores
-    bool progress = false;    ///< a progress bar on stderr
+    unsigned threads = 0;  ///< 0: all cores
+    bool progress = false; ///< a progress bar on stderr
 };
 
 struct ReferenceImage {
     glm::ivec2 size{0};
-    std::vector<float> rgba;         ///< HDR, rows top to bottom; alpha: glass coverage (0..1)
-    std::size_t trappedSamples = 0;  ///< paths still inside after maxBounces reflections (black)
+    std::vector<float> rgba;        ///< HDR, rows top to bottom; alpha: glass coverage (0..1)
+    std::size_t trappedSamples = 0; ///< paths still inside after maxBounces reflections (black)
 };
 
 /** Traces `model` in `pose` like the GPU frame of `settings` (size, ground plane) lit by
@@ -71,10 +72,11 @@ struct ReferenceImage {
  *  ground plane are traced and shaded like the GPU's opaque pass (metallic-roughness with the
  *  split-sum environment lighting; base colour, metallic-roughness and emissive textures at
  *  level 0; no normal or occlusion maps), so exit rays meet the real nearby scene. */
-core::Result<ReferenceImage> traceReference(const scene::Model& model, const anim::Pose& pose,
-                                            const render::Camera& camera, const EnvironmentSampler& environment,
-                                            const render::RenderSettings& settings, const render::GroundPlane& ground,
-                                            const plugin::ParameterSet& glass, const ReferenceOptions& options);
+core::Result<ReferenceImage>
+traceReference(const scene::Model& model, const anim::Pose& pose, const render::Camera& camera,
+               const EnvironmentSampler& environment, const render::RenderSettings& settings,
+               const render::GroundPlane& ground, const plugin::ParameterSet& glass,
+               const ReferenceOptions& options);
 
 /** The display image of an HDR image, exactly as render/tonemap.frag.glsl makes it. */
 std::vector<std::uint8_t> tonemap(const std::vector<float>& rgba, float exposure);

@@ -2,8 +2,8 @@
 #include "support/TestSupport.h"
 
 #include "engine/anim/Pose.h"
-#include "engine/capture/Image.h"
 #include "engine/asset/GltfLoader.h"
+#include "engine/capture/Image.h"
 #include "engine/deform/CpuDeformer.h"
 
 #include <cmath>
@@ -202,17 +202,25 @@ TEST(CompareTool, ScoresTwoImagesOverAMask) {
     ASSERT_TRUE(capture::writePng(dir / "b.png", b).ok());
     ASSERT_TRUE(capture::writePng(dir / "m.png", mask).ok());
     std::string out;
-    ASSERT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " + (dir / "b.png").string() +
-                                   " --mask " + (dir / "m.png").string() + " --json --heatmap " +
-                                   (dir / "h.png").string(), &out), 0) << out;
+    ASSERT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " +
+                                   (dir / "b.png").string() + " --mask " +
+                                   (dir / "m.png").string() + " --json --heatmap " +
+                                   (dir / "h.png").string(),
+                               &out),
+              0)
+        << out;
     const auto j = nlohmann::json::parse(out);
     EXPECT_EQ(j["mask"]["psnr"], 99.0); // the differing row is outside the mask
     EXPECT_EQ(j["mask"]["pixels"], 128);
     // One row of 16x16 off by 40 in one channel: MSE = 40^2 / (16 * 3).
-    EXPECT_NEAR(j["image"]["psnr"].get<double>(), 10 * std::log10(255.0 * 255.0 * 48.0 / 1600.0), 1e-6);
+    EXPECT_NEAR(j["image"]["psnr"].get<double>(), 10 * std::log10(255.0 * 255.0 * 48.0 / 1600.0),
+                1e-6);
     EXPECT_TRUE(std::filesystem::exists(dir / "h.png"));
     EXPECT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string(), &out), 2);
-    EXPECT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " + (dir / "nope.png").string(), &out), 1);
+    EXPECT_EQ(test::runCommand(kCompare + " " + (dir / "a.png").string() + " " +
+                                   (dir / "nope.png").string(),
+                               &out),
+              1);
 }
 
 } // namespace

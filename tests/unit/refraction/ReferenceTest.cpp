@@ -5,8 +5,8 @@
 #include "engine/asset/ModelLoader.h"
 #include "engine/capture/Metrics.h"
 #include "engine/render/Environment.h"
-#include "refraction/RefractionPlugin.h"
 #include "refraction/ReferenceTracer.h"
+#include "refraction/RefractionPlugin.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -16,7 +16,8 @@ constexpr int kSize = 96;
 
 /** Closed form, supersampled on an 8x8 grid per pixel: exact Fresnel at the entry with the
  *  reflected environment, then the exact exit through the unit sphere. */
-std::vector<float> closedForm(const render::Camera& camera, const refraction::EnvironmentSampler& env, double ior) {
+std::vector<float> closedForm(const render::Camera& camera,
+                              const refraction::EnvironmentSampler& env, double ior) {
     std::vector<float> rgba(std::size_t(kSize) * kSize * 4, 0.0f);
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
     for (int row = 0; row < kSize; ++row)
@@ -26,8 +27,10 @@ std::vector<float> closedForm(const render::Camera& camera, const refraction::En
             for (int s = 0; s < 64; ++s) {
                 const double ndcX = (x + (s % 8 + 0.5) / 8) / kSize * 2 - 1;
                 const double ndcY = (kSize - 1 - row + (s / 8 + 0.5) / 8) / kSize * 2 - 1;
-                const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1), f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
-                const glm::dvec3 o = glm::dvec3(n) / n.w, d = glm::normalize(glm::dvec3(f) / f.w - o);
+                const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1),
+                                 f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
+                const glm::dvec3 o = glm::dvec3(n) / n.w,
+                                 d = glm::normalize(glm::dvec3(f) / f.w - o);
                 const double b = glm::dot(o, d), c = glm::dot(o, o) - 1, disc = b * b - c;
                 if (disc <= 0) {
                     sum += env.radiance(d, 0.0);
@@ -37,7 +40,8 @@ std::vector<float> closedForm(const render::Camera& camera, const refraction::En
                 const glm::dvec3 p1 = o + d * (-b - std::sqrt(disc));
                 const double cosI = -glm::dot(d, p1), eta = 1 / ior;
                 const double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
-                const double rs = (eta * cosI - cosT) / (eta * cosI + cosT), rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+                const double rs = (eta * cosI - cosT) / (eta * cosI + cosT),
+                             rp = (cosI - eta * cosT) / (cosI + eta * cosT);
                 const double fresnel = 0.5 * (rs * rs + rp * rp);
                 const glm::dvec3 t1 = glm::refract(d, p1, eta);
                 const glm::dvec3 p2 = p1 + t1 * (-2 * glm::dot(p1, t1));
@@ -53,12 +57,15 @@ std::vector<float> closedForm(const render::Camera& camera, const refraction::En
     return rgba;
 }
 
-capture::Image display(const std::vector<float>& hdr) { return {kSize, kSize, refraction::tonemap(hdr, 1.0f)}; }
+capture::Image display(const std::vector<float>& hdr) {
+    return {kSize, kSize, refraction::tonemap(hdr, 1.0f)};
+}
 
 TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
     const scene::Model sphere = asset::makeSphere(256);
     const refraction::EnvironmentSampler env(render::Environment::proceduralSky(512), 0.0f, 1.0f);
-    const render::Camera camera = render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.6f, 0.3f, 0.2f, 1.15f);
+    const render::Camera camera =
+        render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.6f, 0.3f, 0.2f, 1.15f);
     render::RenderSettings settings;
     settings.size = {kSize, kSize};
     for (double ior : {1.2, 1.5}) {
@@ -67,16 +74,17 @@ TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
         refraction::ReferenceOptions options;
         options.samplesPerPixel = 64;
         options.twoInterfaces = true;
-        auto traced =
-            refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings, {}, glass, options);
+        auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env,
+                                                 settings, {}, glass, options);
         ASSERT_TRUE(traced.ok()) << traced.error().message;
         const auto exact = closedForm(camera, env, ior);
         std::vector<bool> mask(std::size_t(kSize) * kSize);
         for (std::size_t i = 0; i < mask.size(); ++i)
             mask[i] = traced->rgba[i * 4 + 3] == 1.0f && exact[i * 4 + 3] == 1.0f;
         const auto scores = capture::score(display(traced->rgba), display(exact), &mask);
-        std::printf("reference vs closed form, sphere IOR %.1f: masked PSNR %.2f dB, SSIM %.4f over %zu pixels\n", ior,
-                    scores.psnr, scores.ssim, scores.pixels);
+        std::printf("reference vs closed form, sphere IOR %.1f: masked PSNR %.2f dB, SSIM %.4f "
+                    "over %zu pixels\n",
+                    ior, scores.psnr, scores.ssim, scores.pixels);
         EXPECT_GT(scores.pixels, 1000u);
         EXPECT_GE(scores.psnr, 35.0);
     }
@@ -85,14 +93,16 @@ TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
 TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
     const scene::Model sphere = asset::makeSphere(32);
     const refraction::EnvironmentSampler env(render::Environment::proceduralSky(64), 0.0f, 1.0f);
-    const render::Camera camera = render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.7f, 0.0f, 0.5f);
+    const render::Camera camera =
+        render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.7f, 0.0f, 0.5f);
     render::RenderSettings settings;
     settings.size = {16, 16};
     settings.ground = true;
     const render::GroundPlane ground{-1.0f, glm::vec3(0.0f), 4.0f};
     auto glass = refraction::createPlugin()->parameters();
     ASSERT_TRUE(glass.set("method", "opaque").ok()); // the sphere is an opaque mesh now
-    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings, ground, glass, {});
+    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings,
+                                             ground, glass, {});
     ASSERT_TRUE(traced.ok()) << traced.error().message;
     float coverage = 0.0f;
     for (std::size_t i = 0; i < traced->rgba.size(); i += 4) {

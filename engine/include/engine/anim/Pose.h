@@ -40,7 +40,8 @@ std::vector<glm::dmat4> skinMatrices(const scene::Model& model, const Pose& pose
 
 /** The same into `out` (resized; no allocation once it is large enough), in single precision
  *  for upload. */
-void skinMatrices(const scene::Model& model, const Pose& pose, int meshNode, std::vector<glm::mat4>& out);
+void skinMatrices(const scene::Model& model, const Pose& pose, int meshNode,
+                  std::vector<glm::mat4>& out);
 
 /** restPose + applyClip + updateWorld in one call (clip -1: rest pose). */
 Pose evaluate(const scene::Model& model, int clip, double time);

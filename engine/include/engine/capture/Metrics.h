@@ -21,6 +21,7 @@ Scores score(const Image& a, const Image& b, const std::vector<bool>* mask = nul
 
 /** Per-pixel absolute error (max over RGB) as a colour ramp: black (0) -> blue -> yellow -> red
  *  (>= `fullScale` in 1/255); pixels outside `mask` dimmed. */
-Image heatmap(const Image& a, const Image& b, int fullScale = 64, const std::vector<bool>* mask = nullptr);
+Image heatmap(const Image& a, const Image& b, int fullScale = 64,
+              const std::vector<bool>* mask = nullptr);
 
 } // namespace capture

@@ -25,7 +25,6 @@ struct PipelineState {
 
 void apply(const PipelineState& state);
 
-void viewport(glm::ivec2 origin, glm::ivec2 size);
 /** Clears the bound framebuffer's colour attachment `index` to `color`. */
 void clearColor(int index, const glm::vec4& color);
 void clearDepth(float depth);
@@ -53,8 +52,6 @@ void drawArrays(std::uint32_t vertexCount);
 void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
 
 void bindStorage(std::uint32_t binding, const Buffer& buffer);
-void bindStorageRange(std::uint32_t binding, const Buffer& buffer, std::size_t offset,
-                      std::size_t bytes);
 void bindTexture(std::uint32_t unit, const Texture& texture);
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
 

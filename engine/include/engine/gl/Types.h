@@ -18,8 +18,6 @@ enum class Format : std::uint8_t {
     Depth32F,
 };
 
-/** Bytes per texel of a format. */
-int bytesPerTexel(Format format);
 bool isDepth(Format format);
 
 /** What a 2D texture is: size, format, mip levels (0 = the full chain). */
