@@ -13,6 +13,9 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET GLOBAL epoxy)
 # libglfw3-dev: windows (GL 4.5 core) for the viewer
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)
+# libimgui-dev: Dear ImGui with its GLFW and OpenGL3 backends, unmodified (the viewer's panel and
+# the plugins' panel hooks)
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET GLOBAL imgui)
 # libembree-dev: the reference ray tracer (plugin_refraction only)
 find_package(embree 3 REQUIRED)
 # nlohmann-json3-dev: JSON output of the tools and parsing in tests (tinygltf uses it too)

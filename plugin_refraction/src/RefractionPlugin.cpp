@@ -12,8 +12,10 @@
 #include "engine/render/MaterialTextures.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <imgui.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -155,6 +157,38 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         *target = std::move(*program);
     }
     return {};
+}
+
+void RefractionPlugin::drawPanel(void* imguiContext) {
+    // Refractive index n_d and Abbe number V_d (dispersion = 20 / V_d, as in
+    // KHR_materials_dispersion) of common transparent materials.
+    struct Preset {
+        const char* name;
+        double ior, abbe;
+    };
+    static constexpr Preset kPresets[] = {
+        {"water", 1.333, 55.7},           {"ice", 1.309, 56.0},
+        {"acrylic (PMMA)", 1.491, 57.2},  {"glass (crown, BK7)", 1.517, 64.2},
+        {"fused quartz", 1.458, 67.8},    {"polycarbonate", 1.585, 30.0},
+        {"flint glass (F2)", 1.620, 36.4}, {"sapphire", 1.770, 72.2},
+        {"cubic zirconia", 2.150, 33.8},  {"diamond", 2.417, 55.3},
+    };
+    ImGui::SetCurrentContext(static_cast<ImGuiContext*>(imguiContext));
+    if (ImGui::BeginCombo("Material preset", "sets IOR and dispersion")) {
+        if (ImGui::Selectable("the material's own")) {
+            mParameters.setNumber("ior", 0.0);
+            mParameters.setNumber("dispersion", -1.0);
+        }
+        for (const Preset& preset : kPresets) {
+            char label[64];
+            std::snprintf(label, sizeof label, "%s  %.3f", preset.name, preset.ior);
+            if (ImGui::Selectable(label)) {
+                mParameters.setNumber("ior", preset.ior);
+                mParameters.setNumber("dispersion", 20.0 / preset.abbe);
+            }
+        }
+        ImGui::EndCombo();
+    }
 }
 
 bool RefractionPlugin::isGlass(const scene::Model& model, const scene::Primitive& primitive) const {

@@ -244,6 +244,21 @@ void Framebuffer::bindDefault(glm::ivec2 size) {
     glViewport(0, 0, size.x, size.y);
 }
 
+void Framebuffer::blitToDefault(glm::ivec4 source) const {
+    const glm::ivec2 end{source.x + source.z, source.y + source.w};
+    glBlitNamedFramebuffer(mId, 0, source.x, source.y, end.x, end.y, source.x, source.y, end.x,
+                           end.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+std::vector<std::uint8_t> Framebuffer::readDefault(glm::ivec2 size) {
+    std::vector<std::uint8_t> pixels(std::size_t(size.x) * std::size_t(size.y) * 4u);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    return flipRows(std::move(pixels), size);
+}
+
 // ---- VertexArray
 
 VertexArray::VertexArray() {

@@ -55,16 +55,6 @@ struct TargetData {
     fg::TextureHandle color, depth;
 };
 
-/** GL rows run bottom to top; images are read top to bottom. */
-template <class T> std::vector<T> flipRows(std::vector<T> pixels, glm::ivec2 size) {
-    const std::size_t row = std::size_t(size.x) * 4u;
-    for (int y = 0; y < size.y / 2; ++y)
-        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
-                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
-    return pixels;
-}
-
 gl::Cull cullFor(const scene::Model& model, int material) {
     return material >= 0 && model.materials[std::size_t(material)].doubleSided ? gl::Cull::None
                                                                                : gl::Cull::Back;
@@ -302,12 +292,26 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     return stats;
 }
 
+void Renderer::presentOutput(glm::ivec4 source) const {
+    auto status = mPresent.attach("present", {&mOutput}, nullptr);
+    ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+    mPresent.blitToDefault(source);
+}
+
+core::Status Renderer::setEnvironment(const asset::HdrImage& environment) {
+    auto env = Environment::create(environment, mShaders);
+    if (!env)
+        return env.error();
+    mEnvironment = std::move(*env);
+    return {};
+}
+
 std::vector<std::uint8_t> Renderer::readOutput() const {
-    return flipRows(mOutput.downloadRgba8(), mOutput.size());
+    return gl::flipRows(mOutput.downloadRgba8(), mOutput.size());
 }
 
 std::vector<float> Renderer::readHdrOutput() const {
-    return flipRows(mOutput.downloadFloat(), mOutput.size());
+    return gl::flipRows(mOutput.downloadFloat(), mOutput.size());
 }
 
 } // namespace render

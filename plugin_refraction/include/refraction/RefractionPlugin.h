@@ -33,6 +33,8 @@ public:
     bool drawsPrimitive(const scene::Model& model, int node,
                         const scene::Primitive& primitive) const override;
     plugin::ParameterSet& parameters() override { return mParameters; }
+    /** IOR presets of common materials (water 1.333 ... diamond 2.417). */
+    void drawPanel(void* imguiContext) override;
 
 private:
     struct Gpu;

@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -45,5 +46,15 @@ private:
     std::uint32_t mId = 0;
     TextureDesc mDesc;
 };
+
+/** Reverses the row order of RGBA pixels: GL rows run bottom to top, images top to bottom. */
+template <class T> std::vector<T> flipRows(std::vector<T> pixels, glm::ivec2 size) {
+    const std::size_t row = std::size_t(size.x) * 4u;
+    for (int y = 0; y < size.y / 2; ++y)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(std::size_t(y) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(y + 1) * row),
+                         pixels.begin() + std::ptrdiff_t(std::size_t(size.y - 1 - y) * row));
+    return pixels;
+}
 
 } // namespace gl

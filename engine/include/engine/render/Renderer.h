@@ -57,6 +57,13 @@ public:
     /** The output of an hdrOutput frame as RGBA floats, rows top to bottom (synchronises). */
     std::vector<float> readHdrOutput() const;
 
+    /** Shows the last output() in the window: rectangle `source` (x, y, width, height, GL's
+     *  bottom-up rows) of it to the same place in the default framebuffer. */
+    void presentOutput(glm::ivec4 source) const;
+
+    /** Replaces the environment (prefiltered again); on failure the previous one stays. */
+    core::Status setEnvironment(const asset::HdrImage& environment);
+
     /** Sets where the ground plane is drawn when settings.ground is on. */
     void setGround(const GroundPlane& ground) { mGroundPlane = ground; }
     const GroundPlane& ground() const { return mGroundPlane; }
@@ -84,6 +91,7 @@ private:
     std::vector<gl::VertexArray> mVaos; // per instance primitive, flattened
     gl::Texture mOutput;
     gl::Framebuffer mFramebuffer;
+    mutable gl::Framebuffer mPresent;
     GroundPlane mGroundPlane;
 };
 

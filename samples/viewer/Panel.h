@@ -1,0 +1,35 @@
+// glass-viewer's Dear ImGui panel: model, animation, camera, environment, every plugin's
+// parameters (from its ParameterSet, then its own panel hook), A/B split, timings, presets and
+// screenshots.
+#pragma once
+
+#include "engine/plugin/ParameterSet.h"
+
+namespace viewer {
+
+class Viewer;
+
+class Panel {
+public:
+    /** Draws the panel for this frame (between ImGui::NewFrame and ImGui::Render). */
+    static void draw(Viewer& viewer);
+    /** The panel's width in a window `windowWidth` pixels wide (docked at the right edge). */
+    static int width(int windowWidth);
+
+private:
+    static void model(Viewer& v);
+    static void animation(Viewer& v);
+    static void camera(Viewer& v);
+    static void environment(Viewer& v);
+    static void plugins(Viewer& v);
+    static void split(Viewer& v);
+    static void timings(Viewer& v);
+    static void presets(Viewer& v);
+    static void screenshot(Viewer& v);
+};
+
+/** One widget for one parameter, chosen by its type: slider (logarithmic over wide ranges),
+ *  checkbox, combo or colour editor, with its help as a tooltip. True when it changed. */
+bool parameterWidget(plugin::ParameterSet& parameters, const plugin::Parameter& parameter);
+
+} // namespace viewer

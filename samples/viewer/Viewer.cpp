@@ -1,0 +1,544 @@
+// glass-viewer's window, scene and frame loop (the panel is in Panel.cpp).
+#include "Viewer.h"
+
+#include "Panel.h"
+#include "engine/anim/Pose.h"
+#include "engine/asset/HdrImage.h"
+#include "engine/asset/ModelLoader.h"
+#include "engine/capture/Image.h"
+#include "engine/gl/Debug.h"
+#include "engine/gl/Framebuffer.h"
+#include "refraction/RefractionPlugin.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+namespace viewer {
+namespace {
+
+constexpr double kFixedStep = 1.0 / 30.0;
+
+void dropCallback(GLFWwindow* window, int count, const char** paths) {
+    auto* events = static_cast<WindowEvents*>(glfwGetWindowUserPointer(window));
+    for (int i = 0; i < count; ++i)
+        events->dropped.emplace_back(paths[i]);
+}
+
+// Keys are queued as events: Dear ImGui 1.86 keeps only whether a key is down at each frame,
+// so a press and release within one (slow) frame would be lost.
+void keyCallback(GLFWwindow* window, int key, int, int action, int mods) {
+    if (action == GLFW_PRESS || action == GLFW_REPEAT)
+        static_cast<WindowEvents*>(glfwGetWindowUserPointer(window))
+            ->keys.push_back({key, mods, action == GLFW_REPEAT});
+}
+
+std::vector<std::string> clipNames(const scene::Model& model) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < model.animations.size(); ++i) {
+        std::string name = model.animations[i].name.empty() ? "clip " + std::to_string(i)
+                                                            : model.animations[i].name;
+        // Enum choices must be unique: a repeated name gets its index.
+        if (std::find(names.begin(), names.end(), name) != names.end())
+            name += " #" + std::to_string(i);
+        names.push_back(std::move(name));
+    }
+    return names;
+}
+
+} // namespace
+
+std::filesystem::path lastSessionPath() {
+    if (const char* config = std::getenv("XDG_CONFIG_HOME"); config && *config)
+        return std::filesystem::path(config) / "glass-viewer" / "last-session.json";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::filesystem::path(home) / ".config" / "glass-viewer" / "last-session.json";
+    return {};
+}
+
+std::filesystem::path assetsDir() {
+    if (const char* dir = std::getenv("GLASS_ASSETS_DIR"); dir && *dir)
+        return dir;
+    return GLASS_ASSETS_DIR;
+}
+
+core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& options) {
+    std::unique_ptr<Viewer> v(new Viewer());
+    v->mOptions = options;
+
+    v->mEnvironments.push_back({"procedural sky", ""});
+    std::vector<std::filesystem::path> found;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(assetsDir() / "env", ec))
+        if (entry.path().extension() == ".hdr")
+            found.push_back(entry.path());
+    std::sort(found.begin(), found.end());
+    for (const std::string& env : options.environments)
+        found.emplace_back(env);
+    for (const auto& path : found) {
+        const bool known =
+            std::any_of(v->mEnvironments.begin(), v->mEnvironments.end(),
+                        [&](const EnvironmentEntry& e) { return e.path == path.string(); });
+        if (!known) {
+            std::string name = path.stem().string();
+            for (const EnvironmentEntry& e : v->mEnvironments)
+                if (e.name == name)
+                    name = path.string();
+            v->mEnvironments.push_back({name, path.string()});
+        }
+    }
+
+    gl::ContextOptions contextOptions;
+    contextOptions.windowSize = options.windowSize;
+    contextOptions.title = "glass-viewer";
+    contextOptions.vsync = !options.frames; // scripted runs go as fast as they can
+    auto context = gl::createWindowContext(contextOptions);
+    if (!context)
+        return core::Error{"glass-viewer needs a display (" + context.error().message +
+                           "); without one use glass-capture, or run under xvfb-run"};
+    v->mContext = std::move(*context);
+    auto* window = static_cast<GLFWwindow*>(v->mContext->nativeWindow());
+    glfwSetWindowUserPointer(window, &v->mEvents);
+    glfwSetDropCallback(window, dropCallback);
+    glfwSetKeyCallback(window, keyCallback); // before ImGui's, which calls it after its own
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // the layout is fixed; settings live in presets
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+
+    v->mRefraction = refraction::createPlugin();
+    for (const std::string& path : options.plugins) {
+        auto loaded = plugin::loadPlugin(path);
+        if (!loaded)
+            return loaded.error();
+        v->mPlugins.push_back(std::move(*loaded));
+    }
+
+    const std::string model =
+        options.model ? *options.model : (assetsDir() / "models" / "glass_figure.glb").string();
+    auto scene = v->loadScene(model);
+    if (!scene)
+        return scene.error();
+    v->mScene = std::move(*scene);
+    const glm::ivec2 size = v->mContext->framebufferSize();
+    v->mViewport = {size.x - Panel::width(size.x), size.y};
+    v->mCamera.frame(v->mScene.bounds, v->viewportAspect());
+
+    std::vector<std::string> environmentNames;
+    for (const EnvironmentEntry& e : v->mEnvironments)
+        environmentNames.push_back(e.name);
+    v->mSettings = viewerParameters(clipNames(*v->mScene.model), environmentNames,
+                                    v->methodPlugin()->parameters().find("method")->choices);
+    // Start on the first project HDR (the default environment), or the sky.
+    v->mSettings.setNumber("environment", v->mEnvironments.size() > 1 ? 1.0 : 0.0);
+    v->mSettings.setNumber("split-method", 0.0);
+
+    Orbit orbit = v->mCamera.orbitState();
+    const std::filesystem::path session = lastSessionPath();
+    if (options.restoreSession && !session.empty() && std::filesystem::exists(session)) {
+        auto preset = readPreset(session);
+        auto applied = preset ? applyPreset(*preset, v->scopes(), orbit, session.string())
+                              : core::Status(preset.error());
+        if (!applied)
+            std::fprintf(stderr, "glass-viewer: last session not restored: %s\n",
+                         applied.error().message.c_str());
+    }
+    if (!options.environments.empty()) {
+        const auto it = std::find_if(
+            v->mEnvironments.begin(), v->mEnvironments.end(),
+            [&](const EnvironmentEntry& e) { return e.path == options.environments.front(); });
+        v->mSettings.setNumber("environment", double(it - v->mEnvironments.begin()));
+    }
+    if (options.preset) {
+        auto preset = readPreset(*options.preset);
+        if (!preset)
+            return preset.error();
+        auto applied = applyPreset(*preset, v->scopes(), orbit, *options.preset);
+        if (!applied)
+            return applied.error();
+    }
+    for (const std::string& assignment : options.assignments)
+        if (auto set = setAssignment(v->scopes(), assignment); !set)
+            return set.error();
+    v->mCamera.setOrbit(orbit);
+    if (auto env = v->applyEnvironment(); !env)
+        return env.error();
+    return v;
+}
+
+Viewer::~Viewer() {
+    mScene = {};
+    if (ImGui::GetCurrentContext()) {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+}
+
+core::Result<LoadedScene> Viewer::loadScene(const std::string& path) {
+    LoadedScene scene;
+    scene.path = path;
+    auto model = asset::loadModel(path);
+    if (!model)
+        return model.error();
+    scene.model = std::make_unique<scene::Model>(std::move(*model));
+    auto renderer =
+        render::Renderer::create(*scene.model, render::Environment::proceduralSky(), *mContext);
+    if (!renderer)
+        return renderer.error();
+    scene.renderer = std::move(*renderer);
+    for (plugin::Plugin* p : [&] {
+             std::vector<plugin::Plugin*> all{mRefraction.get()};
+             for (const auto& loaded : mPlugins)
+                 all.push_back(loaded.get());
+             return all;
+         }())
+        if (auto added = scene.renderer->addPlugin(p); !added)
+            return added.error();
+    scene.bounds = render::animatedBounds(*scene.model, scene.model->animations.empty() ? -1 : 0);
+    const float radius = std::max(scene.bounds.radius(), 1e-3f);
+    scene.renderer->setGround({scene.bounds.min.y, scene.bounds.center(), 3.0f * radius});
+    return scene;
+}
+
+void Viewer::openModel(const std::string& path) {
+    auto scene = loadScene(path);
+    if (!scene) {
+        // The current scene is untouched (plugins initialised again for the failed renderer
+        // are prepared again for ours on the next frame).
+        mMessage = scene.error().message;
+        mMessageIsError = true;
+        std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
+        return;
+    }
+    mScene = std::move(*scene);
+    mEnvironmentShown = -1; // the new renderer starts with the sky
+    mCamera.frame(mScene.bounds, viewportAspect());
+    plugin::ParameterSet settings = viewerParameters(
+        clipNames(*mScene.model),
+        [&] {
+            std::vector<std::string> names;
+            for (const EnvironmentEntry& e : mEnvironments)
+                names.push_back(e.name);
+            return names;
+        }(),
+        methodPlugin()->parameters().find("method")->choices);
+    copyValues(mSettings, settings);
+    mSettings = std::move(settings);
+    mTime = 0.0;
+    mMessage = "opened " + path;
+    mMessageIsError = false;
+}
+
+core::Status Viewer::applyEnvironment() {
+    const int wanted = int(mSettings.number("environment"));
+    if (wanted == mEnvironmentShown)
+        return {};
+    const EnvironmentEntry& entry = mEnvironments[std::size_t(wanted)];
+    asset::HdrImage image = render::Environment::proceduralSky();
+    if (!entry.path.empty()) {
+        auto hdr = asset::loadHdr(entry.path);
+        if (!hdr)
+            return hdr.error();
+        image = std::move(*hdr);
+    }
+    if (auto set = mScene.renderer->setEnvironment(image); !set)
+        return set;
+    mEnvironmentShown = wanted;
+    return {};
+}
+
+std::vector<Scope> Viewer::scopes() {
+    std::vector<Scope> all{{"viewer", &mSettings},
+                           {mRefraction->name(), &mRefraction->parameters()}};
+    for (const auto& loaded : mPlugins)
+        all.push_back({loaded->name(), &loaded->parameters()});
+    return all;
+}
+
+plugin::Plugin* Viewer::methodPlugin() const {
+    return mRefraction.get();
+}
+
+void Viewer::handleInput(double dt) {
+    (void)dt;
+    ImGuiIO& io = ImGui::GetIO();
+    plugin::ParameterSet& glass = methodPlugin()->parameters();
+    const std::size_t methods = glass.find("method")->choices.size();
+    for (const KeyEvent& key : std::exchange(mEvents.keys, {})) {
+        if (io.WantCaptureKeyboard)
+            continue;
+        auto toggle = [&](const char* name) { mSettings.setNumber(name, !mSettings.flag(name)); };
+        if (key.key == GLFW_KEY_RIGHT || key.key == GLFW_KEY_LEFT) {
+            mSettings.setNumber("playing", 0.0);
+            advance(key.key == GLFW_KEY_RIGHT ? kFixedStep : -kFixedStep);
+        }
+        if (key.repeat)
+            continue;
+        if (key.key >= GLFW_KEY_1 && key.key < GLFW_KEY_1 + int(std::min<std::size_t>(methods, 9)))
+            glass.setNumber("method", double(key.key - GLFW_KEY_1));
+        switch (key.key) {
+        case GLFW_KEY_SPACE:
+            toggle("playing");
+            break;
+        case GLFW_KEY_M:
+            glass.setNumber("method", double((std::size_t(glass.number("method")) + 1) % methods));
+            break;
+        case GLFW_KEY_F:
+            mCamera.frame(mScene.bounds, viewportAspect());
+            break;
+        case GLFW_KEY_R:
+            mCamera.reset();
+            break;
+        case GLFW_KEY_G:
+            toggle("ground");
+            break;
+        case GLFW_KEY_B:
+            toggle("split");
+            break;
+        case GLFW_KEY_TAB:
+            mShowPanel = !mShowPanel;
+            break;
+        case GLFW_KEY_F12:
+        case GLFW_KEY_P:
+            mPendingScreenshot = nextScreenshotPath();
+            mPendingScreenshotSize.reset();
+            mPendingScreenshotPanel = false;
+            break;
+        case GLFW_KEY_ESCAPE:
+            mQuit = true;
+            break;
+        case GLFW_KEY_Q:
+            if (key.mods & GLFW_MOD_CONTROL)
+                mQuit = true;
+            break;
+        default:
+            break;
+        }
+    }
+    const float viewportWidth = float(std::max(mViewport.x, 1));
+    const float dividerX = float(mSettings.number("split-position")) * viewportWidth;
+    if (mDraggingDivider) {
+        mSettings.setNumber("split-position", io.MousePos.x / viewportWidth);
+        if (!ImGui::IsMouseDown(0))
+            mDraggingDivider = false;
+        return;
+    }
+    if (io.WantCaptureMouse || io.MousePos.x >= viewportWidth)
+        return;
+    if (mSettings.flag("split") && ImGui::IsMouseClicked(0) &&
+        std::abs(io.MousePos.x - dividerX) < 6.0f) {
+        mDraggingDivider = true;
+        return;
+    }
+    const glm::vec2 delta{io.MouseDelta.x, io.MouseDelta.y};
+    const bool panning =
+        ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
+    if (panning)
+        mCamera.pan(delta, io.DisplaySize.y);
+    else if (ImGui::IsMouseDown(0))
+        mCamera.orbit(delta, io.DisplaySize.y);
+    if (io.MouseWheel != 0.0f)
+        mCamera.zoom(io.MouseWheel);
+}
+
+void Viewer::advance(double dt) {
+    if (mScene.model->animations.empty())
+        return;
+    const double duration =
+        mScene.model->animations[std::size_t(mSettings.number("clip"))].duration;
+    mTime += dt;
+    if (duration <= 0.0) {
+        mTime = 0.0;
+    } else if (mSettings.flag("loop")) {
+        mTime = std::fmod(mTime, duration);
+        if (mTime < 0.0)
+            mTime += duration;
+    } else if (mTime >= duration || mTime < 0.0) {
+        mTime = std::clamp(mTime, 0.0, duration);
+        if (dt > 0.0 && mTime >= duration)
+            mSettings.setNumber("playing", 0.0);
+    }
+}
+
+render::RenderSettings Viewer::settings(glm::ivec2 size) const {
+    render::RenderSettings s;
+    s.size = size;
+    s.exposure = float(mSettings.number("exposure"));
+    s.environmentRotation = float(glm::radians(mSettings.number("env-rotation")));
+    s.ground = mSettings.flag("ground");
+    s.exactPassTimes = mSettings.flag("exact-timings");
+    return s;
+}
+
+core::Status Viewer::renderView(glm::ivec2 size) {
+    if (auto env = applyEnvironment(); !env) {
+        mMessage = env.error().message;
+        mMessageIsError = true;
+        mSettings.setNumber("environment", double(std::max(mEnvironmentShown, 0)));
+    }
+    const scene::Model& model = *mScene.model;
+    const int clip = model.animations.empty() ? -1 : int(mSettings.number("clip"));
+    const anim::Pose pose = anim::evaluate(model, clip, mTime);
+    const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
+    render::Renderer& renderer = *mScene.renderer;
+    auto stats = renderer.render(pose, camera, settings(size), mTime);
+    if (!stats)
+        return stats.error();
+    mStats = std::move(*stats);
+    const bool split = mSettings.flag("split");
+    const int divider =
+        split ? int(std::lround(mSettings.number("split-position") * size.x)) : size.x;
+    renderer.presentOutput({0, 0, divider, size.y});
+    if (split && divider < size.x) {
+        plugin::ParameterSet& glass = methodPlugin()->parameters();
+        const double methodA = glass.number("method");
+        glass.setNumber("method", mSettings.number("split-method"));
+        auto right = renderer.render(pose, camera, settings(size), mTime);
+        glass.setNumber("method", methodA);
+        if (!right)
+            return right.error();
+        renderer.presentOutput({divider, 0, size.x - divider, size.y});
+    }
+    return {};
+}
+
+core::Status Viewer::screenshot(const std::filesystem::path& path, std::optional<glm::ivec2> size,
+                                bool withPanel) {
+    capture::Image image;
+    if (size) {
+        // Offscreen at the chosen resolution: the left (A) method, no panel.
+        const scene::Model& model = *mScene.model;
+        const int clip = model.animations.empty() ? -1 : int(mSettings.number("clip"));
+        const anim::Pose pose = anim::evaluate(model, clip, mTime);
+        auto stats = mScene.renderer->render(pose, mCamera.camera(float(size->x) / float(size->y)),
+                                             settings(*size), mTime);
+        if (!stats)
+            return stats.error();
+        image = {size->x, size->y, mScene.renderer->readOutput()};
+    } else {
+        // The view (left of the panel) or the whole window with the panel.
+        const glm::ivec2 window = withPanel ? mContext->framebufferSize() : mViewport;
+        image = {window.x, window.y, gl::Framebuffer::readDefault(window)};
+        for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+            image.rgba[i] = 255; // the window's alpha is not part of the picture
+    }
+    if (auto written = capture::writePng(path, image); !written)
+        return written;
+    mMessage = "screenshot " + path.string();
+    mMessageIsError = false;
+    std::printf("glass-viewer: wrote %s (%dx%d)\n", path.string().c_str(), image.width,
+                image.height);
+    std::fflush(stdout);
+    return {};
+}
+
+std::filesystem::path Viewer::nextScreenshotPath() const {
+    for (int n = 1;; ++n) {
+        char name[64];
+        std::snprintf(name, sizeof name, "glass-viewer-%04d.png", n);
+        std::filesystem::path path = mOptions.screenshotDir / name;
+        if (!std::filesystem::exists(path))
+            return path;
+    }
+}
+
+void Viewer::saveSession() {
+    const std::filesystem::path path = lastSessionPath();
+    if (path.empty())
+        return;
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    if (auto written = writePreset(path, presetJson(scopes(), mCamera.orbitState())); !written)
+        std::fprintf(stderr, "glass-viewer: session not saved: %s\n",
+                     written.error().message.c_str());
+}
+
+int Viewer::run() {
+    int status = 0;
+    int frame = 0;
+    auto last = std::chrono::steady_clock::now();
+    while (!mQuit && !mContext->shouldClose()) {
+        mContext->pollEvents();
+        for (const std::string& path : std::exchange(mEvents.dropped, {}))
+            openModel(path);
+        const auto now = std::chrono::steady_clock::now();
+        const double wallMs = std::chrono::duration<double, std::milli>(now - last).count();
+        last = now;
+        mFrameMs = frame == 0 ? wallMs : 0.9 * mFrameMs + 0.1 * wallMs;
+        const bool scripted = mOptions.frames && frame < *mOptions.frames;
+        const double dt = scripted ? kFixedStep : std::min(wallMs * 1e-3, 0.25);
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        handleInput(dt);
+        if (mSettings.flag("playing"))
+            advance(dt * mSettings.number("speed"));
+        if (scripted && frame + 1 == *mOptions.frames && mOptions.screenshot) {
+            mPendingScreenshot = *mOptions.screenshot;
+            mPendingScreenshotSize = mOptions.screenshotSize;
+            mPendingScreenshotPanel = mOptions.screenshotPanel;
+        }
+
+        const glm::ivec2 size = mContext->framebufferSize();
+        mViewport = {size.x - (mShowPanel ? Panel::width(size.x) : 0), size.y};
+        gl::Framebuffer::bindDefault(size);
+        gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        if (mViewport.x > 0 && mViewport.y > 0) {
+            if (auto drawn = renderView(mViewport); !drawn) {
+                mMessage = drawn.error().message;
+                mMessageIsError = true;
+                std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
+                if (scripted)
+                    return 1;
+            }
+        }
+        gl::Framebuffer::bindDefault(size);
+        if (mShowPanel)
+            Panel::draw(*this);
+        ImGui::Render();
+        auto takeScreenshot = [&] {
+            const auto path = *std::exchange(mPendingScreenshot, std::nullopt);
+            if (auto shot = screenshot(path, mPendingScreenshotSize, mPendingScreenshotPanel);
+                !shot) {
+                mMessage = shot.error().message;
+                mMessageIsError = true;
+                std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
+                if (scripted)
+                    status = 1;
+            }
+            gl::Framebuffer::bindDefault(size);
+        };
+        if (mPendingScreenshot && !mPendingScreenshotPanel)
+            takeScreenshot();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (mPendingScreenshot)
+            takeScreenshot();
+        mContext->swapBuffers();
+        gl::checkErrors("glass-viewer frame");
+        ++frame;
+        if (mOptions.frames && frame == *mOptions.frames && mOptions.exitAfterFrames)
+            break;
+    }
+    if (!mOptions.exitAfterFrames)
+        saveSession();
+    const std::uint64_t errors = gl::errorCount();
+    std::printf("glass-viewer: %d frames, %llu GL errors\n", frame,
+                static_cast<unsigned long long>(errors));
+    return errors > 0 ? 1 : status;
+}
+
+} // namespace viewer

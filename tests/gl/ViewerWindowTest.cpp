@@ -1,0 +1,194 @@
+// glass-viewer in a real window: an X server from xvfb-run, GLX on Mesa, real input events from
+// xdotool (tests/viewer/drive_viewer.sh). Skipped where xvfb-run or xdotool is missing
+// (scripts/deps installs both).
+#include "support/TestSupport.h"
+
+#include "engine/capture/Image.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+namespace {
+
+const std::string kViewer = std::string(GLASS_BIN_DIR) + "/glass-viewer";
+const std::string kCapture = std::string(GLASS_BIN_DIR) + "/glass-capture";
+const std::string kDrive = std::string(GLASS_SOURCE_DIR) + "/tests/viewer/drive_viewer.sh";
+// A window small enough for a fast test; the panel takes 45% of it, up to 380 pixels.
+const std::string kWindow = "--size 640x400";
+const int kViewWidth = 640 - 640 * 45 / 100;
+
+class ViewerWindow : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (test::runCommand("command -v xvfb-run >/dev/null && command -v xdotool >/dev/null") !=
+            0)
+            GTEST_SKIP() << "xvfb-run and xdotool are needed (scripts/deps installs them)";
+    }
+    /** Runs `command` in a fresh X server (1024x768) with a private config folder. */
+    int inX(const std::string& command, std::string* output) {
+        return test::runCommand("XDG_CONFIG_HOME='" + mConfig.path().string() +
+                                    "' xvfb-run -a -s '-screen 0 1024x768x24' " + command,
+                                output);
+    }
+    test::TempDir mConfig, mOut;
+};
+
+capture::Image load(const std::filesystem::path& path) {
+    auto image = capture::readPng(path);
+    EXPECT_TRUE(image.ok()) << (image.ok() ? "" : image.error().message);
+    return image.ok() ? *image : capture::Image{};
+}
+
+double luminance(const capture::Image& image, int x, int y) {
+    const std::uint8_t* p =
+        &image.rgba[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 4];
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/** Pixels of the rectangle [x0, x1) x [0, height) that differ by more than 8 in any channel. */
+std::size_t differingPixels(const capture::Image& a, const capture::Image& b, int x0, int x1) {
+    std::size_t count = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const std::size_t i =
+                    (std::size_t(y) * std::size_t(a.width) + std::size_t(x)) * 4 + std::size_t(c);
+                if (std::abs(int(a.rgba[i]) - int(b.rgba[i])) > 8) {
+                    ++count;
+                    break;
+                }
+            }
+    return count;
+}
+
+TEST_F(ViewerWindow, ScriptedRunDrawsTheCharacterAndThePanel) {
+    std::string out;
+    const auto shot = mOut / "window.png";
+    ASSERT_EQ(inX(kViewer + " builtin:sphere " + kWindow +
+                      " --no-restore --frames 3 --screenshot " + shot.string() +
+                      " --screenshot-panel --exit",
+                  &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("3 frames, 0 GL errors"), std::string::npos) << out;
+    const capture::Image image = load(shot);
+    ASSERT_EQ(image.width, 640);
+    ASSERT_EQ(image.height, 400);
+    // The panel: a dark window with light text.
+    double panelSum = 0.0;
+    std::size_t text = 0, panelPixels = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = kViewWidth + 4; x < image.width - 4; ++x, ++panelPixels) {
+            const double l = luminance(image, x, y);
+            panelSum += l;
+            text += l > 180.0;
+        }
+    EXPECT_LT(panelSum / double(panelPixels), 60.0);
+    EXPECT_GT(text, 500u) << "no text in the panel";
+    // The view: the sphere in the middle differs from the sky at the same height at the edge.
+    const int cx = kViewWidth / 2, cy = image.height / 2;
+    EXPECT_GT(std::abs(luminance(image, cx, cy - 30) - luminance(image, 4, cy - 30)) +
+                  std::abs(luminance(image, cx, cy + 30) - luminance(image, 4, cy + 30)),
+              10.0);
+}
+
+TEST_F(ViewerWindow, OffscreenScreenshotMatchesGlassCapture) {
+    std::string out;
+    const auto shot = mOut / "viewer.png";
+    ASSERT_EQ(inX(kViewer + " builtin:sphere " + kWindow +
+                      " --no-restore --set 'environment=procedural sky' --frames 2"
+                      " --screenshot " +
+                      shot.string() + " --screenshot-size 176x200 --exit",
+                  &out),
+              0)
+        << out;
+    // The view's aspect (352x400), so that both frame the sphere alike.
+    ASSERT_EQ(test::runCommand(kCapture + " builtin:sphere --size 176x200 --ground --out " +
+                                   (mOut / "capture").string(),
+                               &out),
+              0)
+        << out;
+    const capture::Image viewer = load(shot);
+    const capture::Image reference = load(mOut / "capture" / "builtin_sphere_rest_t0.000.png");
+    const capture::Comparison c = capture::compare(viewer, reference, {2, 0.0});
+    EXPECT_TRUE(c.passed) << c.failingPixels << " pixels differ, max " << c.maxAbsDiff;
+}
+
+TEST_F(ViewerWindow, RealInputEventsChangeTheImageAndEscapeQuits) {
+    std::string out;
+    const int status = inX(kDrive + " " + kViewer + " " + mOut.path().string() +
+                               " builtin:sphere " + kWindow + " --no-restore --set method=opaque",
+                           &out);
+    ASSERT_EQ(status, 0) << out;
+    EXPECT_NE(out.find("0 GL errors"), std::string::npos) << out;
+    const capture::Image first = load(mOut / "glass-viewer-0001.png");
+    const capture::Image again = load(mOut / "glass-viewer-0002.png");
+    const capture::Image method = load(mOut / "glass-viewer-0003.png");
+    const capture::Image orbited = load(mOut / "glass-viewer-0004.png");
+    ASSERT_EQ(first.width, kViewWidth);
+    const std::size_t area = std::size_t(first.width) * std::size_t(first.height);
+    EXPECT_EQ(differingPixels(first, again, 0, first.width), 0u) << "no input, same image";
+    EXPECT_GT(differingPixels(again, method, 0, first.width), area / 100)
+        << "the M key switches opaque -> sir";
+    EXPECT_GT(differingPixels(method, orbited, 0, first.width), area / 100)
+        << "a drag orbits the camera";
+}
+
+TEST_F(ViewerWindow, QuittingSavesTheSessionAndTheNextStartRestoresIt) {
+    std::string out;
+    // An interactive run, ended with the Escape key, saves its settings.
+    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere " + kWindow +
+                      " --set method=sir --set ior=1.77 & pid=$!;"
+                      " w=$(timeout 60 xdotool search --sync --name ^glass-viewer$ | head -n 1);"
+                      " xdotool mousemove --window $w 40 40; xdotool windowfocus --sync $w;"
+                      " xdotool key Escape; wait $pid'",
+                  &out),
+              0)
+        << out;
+    const auto session = mConfig / "glass-viewer" / "last-session.json";
+    ASSERT_TRUE(std::filesystem::exists(session)) << out;
+    // The next run starts from it...
+    const auto restored = mOut / "restored.png", explicitly = mOut / "explicit.png",
+               fresh = mOut / "fresh.png";
+    const std::string scripted = " builtin:sphere " + kWindow + " --frames 1 --exit --screenshot ";
+    ASSERT_EQ(inX(kViewer + scripted + restored.string(), &out), 0) << out;
+    ASSERT_EQ(inX(kViewer + scripted + explicitly.string() +
+                      " --no-restore --set method=sir --set ior=1.77",
+                  &out),
+              0)
+        << out;
+    ASSERT_EQ(inX(kViewer + scripted + fresh.string() + " --no-restore", &out), 0) << out;
+    const capture::Image a = load(restored), b = load(explicitly), c = load(fresh);
+    EXPECT_EQ(differingPixels(a, b, 0, a.width), 0u);
+    EXPECT_GT(differingPixels(a, c, 0, a.width), 100u) << "sir at 1.77 differs from the default";
+}
+
+TEST_F(ViewerWindow, BadInputFailsClearlyWithoutOutput) {
+    std::string out;
+    const auto shot = mOut / "never.png";
+    struct Case {
+        std::string arguments, message;
+    };
+    std::ofstream(mOut / "bad-preset.json") << R"({"format": "glass-viewer-preset/1", "x": 1})";
+    for (const Case& c :
+         {Case{(mOut / "missing.glb").string(), "missing.glb"},
+          Case{"builtin:sphere --preset " + (mOut / "bad-preset.json").string(),
+               "bad-preset.json: unknown key 'x'"},
+          Case{"builtin:sphere --set nosuch=1", "--set nosuch: no such parameter"},
+          Case{"builtin:sphere --plugin " + (mOut / "nothing.so").string(), "nothing.so"}}) {
+        EXPECT_EQ(inX(kViewer + " " + c.arguments + " " + kWindow +
+                          " --no-restore --frames 1 --exit --screenshot " + shot.string(),
+                      &out),
+                  1)
+            << c.arguments << "\n"
+            << out;
+        EXPECT_NE(out.find(c.message), std::string::npos) << out;
+        EXPECT_FALSE(std::filesystem::exists(shot));
+    }
+    EXPECT_EQ(test::runCommand(kViewer + " --frames 0", &out), 2);
+    EXPECT_EQ(test::runCommand(kViewer + " --screenshot x.png", &out), 2);
+}
+
+} // namespace
