@@ -1,6 +1,9 @@
 // Test helpers: shared-asset lookup, temporary directories, glTF writing, commands.
 #include "support/TestSupport.h"
 
+#include "engine/asset/Glb.h"
+#include "engine/asset/HdrImage.h"
+
 #include <stb_image_write.h>
 
 #include <array>
@@ -33,10 +36,6 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 void writeBytes(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
     out.write(bytes.data(), std::streamsize(bytes.size()));
-}
-
-void appendU32(std::string& s, std::uint32_t v) {
-    s.append(reinterpret_cast<const char*>(&v), 4);
 }
 
 } // namespace
@@ -121,22 +120,8 @@ std::filesystem::path GltfBuilder::save(const std::filesystem::path& directory,
         }
         writeBytes(path, out.dump(2));
     } else {
-        std::string json = out.dump();
-        while (json.size() % 4)
-            json += ' ';
-        std::string glb = "glTF";
-        appendU32(glb, 2);
-        const std::size_t total = 12 + 8 + json.size() + (hasBuffer ? 8 + padded.size() : 0);
-        appendU32(glb, std::uint32_t(total));
-        appendU32(glb, std::uint32_t(json.size()));
-        appendU32(glb, 0x4E4F534Au); // JSON
-        glb += json;
-        if (hasBuffer) {
-            appendU32(glb, std::uint32_t(padded.size()));
-            appendU32(glb, 0x004E4942u); // BIN
-            glb.append(padded.begin(), padded.end());
-        }
-        writeBytes(path, glb);
+        const std::vector<std::uint8_t> glb = asset::encodeGlb(out.dump(), padded);
+        writeBytes(path, std::string(glb.begin(), glb.end()));
     }
     return path;
 }
@@ -214,10 +199,11 @@ std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_
 }
 
 void writeHdr(const std::filesystem::path& path, int width, int height, float r, float g, float b) {
-    std::vector<float> pixels;
+    asset::HdrImage image{width, height, {}};
     for (int i = 0; i < width * height; ++i)
-        pixels.insert(pixels.end(), {r, g, b});
-    stbi_write_hdr(path.c_str(), width, height, 3, pixels.data());
+        image.rgb.insert(image.rgb.end(), {r, g, b});
+    const std::vector<std::uint8_t> bytes = asset::encodeHdr(image);
+    writeBytes(path, std::string(bytes.begin(), bytes.end()));
 }
 
 int runCommand(const std::string& command, std::string* output) {

@@ -5,6 +5,7 @@
 #include "engine/core/Limits.h"
 
 #include <stb_image.h>
+#include <stb_image_write.h>
 
 #include <cmath>
 
@@ -43,6 +44,18 @@ core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
         if (!std::isfinite(v) || v < 0.0f)
             v = 0.0f;
     return image;
+}
+
+std::vector<std::uint8_t> encodeHdr(const HdrImage& image) {
+    std::vector<std::uint8_t> bytes;
+    stbi_write_hdr_to_func(
+        [](void* context, void* data, int size) {
+            auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+            const auto* begin = static_cast<const std::uint8_t*>(data);
+            out->insert(out->end(), begin, begin + size);
+        },
+        &bytes, image.width, image.height, 3, image.rgb.data());
+    return bytes;
 }
 
 } // namespace asset

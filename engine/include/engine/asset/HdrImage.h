@@ -3,6 +3,7 @@
 
 #include "engine/core/Result.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -17,5 +18,8 @@ struct HdrImage {
 /** Decodes an HDR image. Fails naming the file when it is missing, does not decode, is not
  *  2:1-ish (width < height) or is over core::limits::kMaxTextureSize. */
 core::Result<HdrImage> loadHdr(const std::filesystem::path& path);
+
+/** Encodes `image` as a Radiance RGBE file's bytes (what loadHdr reads back). */
+std::vector<std::uint8_t> encodeHdr(const HdrImage& image);
 
 } // namespace asset
