@@ -18,7 +18,7 @@ namespace {
 constexpr const char* kUsage =
     R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
-                     [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph]
+                     [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG]
                      [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
@@ -61,6 +61,7 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --max-bounces N     total internal reflections the reference follows (default 8)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
+  --contact-sheet PNG also write the frames side by side in one picture (4 per row)
   --dump-graph        print the compiled frame graph of the first frame to stderr
   --case FILE.json    render a frame-capture case and compare with its goldens (exit 0 match,
                       1 mismatch; .actual.png, .diff.png and a report go to --out, default the
@@ -89,6 +90,7 @@ struct Options {
     bool reference = false, compare = false;
     refraction::ReferenceOptions referenceOptions;
     std::string caseFile;
+    std::string contactSheet;
 };
 
 std::optional<int> parse(int argc, char** argv, Options& o) {
@@ -140,6 +142,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.session.refraction.emplace_back(arg.substr(2), *v);
         } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" ||
                    arg == "--env" || arg == "--out" || arg == "--exposure" || arg == "--plugin" ||
+                   arg == "--contact-sheet" ||
                    arg == "--set" || arg == "--case") {
             const auto v = next();
             if (!v)
@@ -178,6 +181,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                 o.session.size = {w, h};
             } else if (arg == "--env") {
                 o.session.environment = *v;
+            } else if (arg == "--contact-sheet") {
+                o.contactSheet = *v;
             } else if (arg == "--out") {
                 o.out = *v;
                 o.outGiven = true;
@@ -270,6 +275,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     o.referenceOptions.progress = !o.json;
+    std::vector<capture::Image> sheetFrames;
     for (std::size_t i = 0; i < o.times.size(); ++i) {
         auto frame = o.reference ? (*session)->renderReference(o.times[i], o.referenceOptions)
                                  : (*session)->render(o.times[i]);
@@ -325,9 +331,23 @@ int main(int argc, char** argv) {
             scoreText = text;
         }
         report["frames"].push_back(entry);
+        if (!o.contactSheet.empty())
+            sheetFrames.push_back(frame->image);
         if (!o.json)
             std::printf("%s (cpu %.2f ms, gpu %.2f ms%s)\n", path.string().c_str(),
                         frame->stats.cpuMs, frame->stats.gpuMs, scoreText.c_str());
+    }
+    if (!o.contactSheet.empty()) {
+        const int cell = std::min(o.session.size.x, 320);
+        const capture::Image sheet = capture::contactSheet(sheetFrames, 4, cell);
+        if (auto written = capture::writePng(o.contactSheet, sheet); !written) {
+            std::fprintf(stderr, "%s\n", written.error().message.c_str());
+            return 1;
+        }
+        report["contact_sheet"] = o.contactSheet;
+        if (!o.json)
+            std::printf("%s (contact sheet, %d frames)\n", o.contactSheet.c_str(),
+                        int(sheetFrames.size()));
     }
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);

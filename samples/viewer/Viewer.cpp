@@ -469,6 +469,7 @@ void Viewer::saveSession() {
 int Viewer::run() {
     int status = 0;
     int frame = 0;
+    std::vector<double> frameTimes; // wall-clock ms per frame, for the exit summary
     auto last = std::chrono::steady_clock::now();
     while (!mQuit && !mContext->shouldClose()) {
         mContext->pollEvents();
@@ -478,6 +479,8 @@ int Viewer::run() {
         const double wallMs = std::chrono::duration<double, std::milli>(now - last).count();
         last = now;
         mFrameMs = frame == 0 ? wallMs : 0.9 * mFrameMs + 0.1 * wallMs;
+        if (frame > 0)
+            frameTimes.push_back(wallMs);
         const bool scripted = mOptions.frames && frame < *mOptions.frames;
         const double dt = scripted ? kFixedStep : std::min(wallMs * 1e-3, 0.25);
 
@@ -536,7 +539,10 @@ int Viewer::run() {
     if (!mOptions.exitAfterFrames)
         saveSession();
     const std::uint64_t errors = gl::errorCount();
-    std::printf("glass-viewer: %d frames, %llu GL errors\n", frame,
+    std::sort(frameTimes.begin(), frameTimes.end());
+    const double median = frameTimes.empty() ? 0.0 : frameTimes[frameTimes.size() / 2];
+    std::printf("glass-viewer: %d frames, median frame %.1f ms (%dx%d window), %llu GL errors\n",
+                frame, median, mContext->framebufferSize().x, mContext->framebufferSize().y,
                 static_cast<unsigned long long>(errors));
     return errors > 0 ? 1 : status;
 }

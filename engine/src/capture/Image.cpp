@@ -69,4 +69,32 @@ Comparison compare(const Image& actual, const Image& expected, const Tolerance& 
     return result;
 }
 
+Image contactSheet(const std::vector<Image>& images, int columns, int cellWidth, int gap) {
+    if (images.empty() || columns < 1 || cellWidth < 1)
+        return {};
+    const int cellHeight = std::max(1, cellWidth * images[0].height / std::max(images[0].width, 1));
+    const int rows = (int(images.size()) + columns - 1) / columns;
+    const int used = std::min(columns, int(images.size()));
+    Image sheet{gap + used * (cellWidth + gap), gap + rows * (cellHeight + gap), {}};
+    sheet.rgba.assign(std::size_t(sheet.width) * std::size_t(sheet.height) * 4u, 0);
+    for (std::size_t i = 0; i < sheet.rgba.size(); i += 4)
+        sheet.rgba[i] = sheet.rgba[i + 1] = sheet.rgba[i + 2] = 24, sheet.rgba[i + 3] = 255;
+    for (std::size_t n = 0; n < images.size(); ++n) {
+        const Image& image = images[n];
+        const int x0 = gap + int(n % std::size_t(columns)) * (cellWidth + gap);
+        const int y0 = gap + int(n / std::size_t(columns)) * (cellHeight + gap);
+        for (int y = 0; y < cellHeight; ++y)
+            for (int x = 0; x < cellWidth; ++x) {
+                const int sx = std::min(image.width - 1, x * image.width / cellWidth);
+                const int sy = std::min(image.height - 1, y * image.height / cellHeight);
+                const std::size_t from = (std::size_t(sy) * std::size_t(image.width) + std::size_t(sx)) * 4u;
+                const std::size_t to =
+                    (std::size_t(y0 + y) * std::size_t(sheet.width) + std::size_t(x0 + x)) * 4u;
+                std::copy_n(image.rgba.begin() + std::ptrdiff_t(from), 4,
+                            sheet.rgba.begin() + std::ptrdiff_t(to));
+            }
+    }
+    return sheet;
+}
+
 } // namespace capture

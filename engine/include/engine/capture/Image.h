@@ -20,6 +20,10 @@ core::Status writePng(const std::filesystem::path& path, const Image& image);
 /** Reads a PNG (any channel count, expanded to RGBA8); fails naming the file. */
 core::Result<Image> readPng(const std::filesystem::path& path);
 
+/** The images in a grid of `columns` (rows as needed), left to right then top to bottom, each
+ *  scaled to `cellWidth` wide (height by its aspect, nearest texel) with a `gap` of dark grey. */
+Image contactSheet(const std::vector<Image>& images, int columns, int cellWidth, int gap = 4);
+
 struct Tolerance {
     int maxAbsDiff = 5;                ///< per channel, in 1/255
     double maxFailingFraction = 0.001; ///< of all pixels
