@@ -9,6 +9,8 @@ find_package(glm REQUIRED)
 find_package(TinyGLTF REQUIRED)
 # libstb-dev: image decoding (PNG/JPEG in glTF, HDR environments) and PNG writing
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
+# zlib1g-dev: checks PNG image data before stb inflates it (asset/ImageChecks)
+find_package(ZLIB REQUIRED)
 # libepoxy-dev: GL and EGL entry points (only engine/src/gl includes it)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET GLOBAL epoxy)
 # libglfw3-dev: windows (GL 4.5 core) for the viewer

@@ -5,6 +5,7 @@
 
 #include "AccessorReader.h"
 #include "GltfConvert.h"
+#include "ImageChecks.h"
 #include "LoadError.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
@@ -44,6 +45,13 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
                 std::to_string(core::limits::kMaxTextureSize);
         return false;
     }
+    auto refuse = detail::implausibleSize(width, height, std::size_t(size));
+    if (!refuse)
+        refuse = detail::checkPngStream(std::span(bytes, std::size_t(size)));
+    if (refuse) {
+        *err += "image " + std::to_string(index) + ": " + *refuse;
+        return false;
+    }
     image->width = width;
     image->height = height;
     image->component = 4;
@@ -69,7 +77,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     return true;
 }
 
-std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::size_t offset) {
+std::uint32_t readU32(std::span<const std::uint8_t> bytes, std::size_t offset) {
     std::uint32_t v;
     std::memcpy(&v, bytes.data() + offset, 4);
     return v; // GLB is little-endian, as is every platform this engine builds for
@@ -77,7 +85,7 @@ std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::size_t offset
 
 /** GLB container checks (glTF §4.4) that tinygltf leaves out or reports vaguely: version 2,
  *  declared length equal to the file size, chunks inside the file, JSON first, BIN second. */
-void checkGlbContainer(const std::vector<std::uint8_t>& bytes) {
+void checkGlbContainer(std::span<const std::uint8_t> bytes) {
     if (bytes.size() < 20)
         fail("GLB is truncated: " + n(bytes.size()) + " bytes, the header alone needs 20");
     const std::uint32_t version = readU32(bytes, 4);
@@ -296,14 +304,21 @@ scene::Camera convertCamera(const tinygltf::Model& m, int index) {
 } // namespace detail
 
 core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
+    auto bytes = core::readFile(path);
+    if (!bytes)
+        return core::Error{"asset::loadGltf(): " + path.filename().string() + ": cannot read " +
+                           path.string() + " (" + bytes.error().message + ")"};
+    return loadGltfFromMemory(*bytes, path.filename().string(), path.parent_path(), options);
+}
+
+core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data,
+                                              const std::string& file,
+                                              const std::filesystem::path& baseDirectory,
+                                              const LoadOptions& options) {
     using namespace detail;
-    const std::string file = path.filename().string();
     const std::string prefix = "asset::loadGltf(): " + file + ": ";
     try {
-        auto bytes = core::readFile(path);
-        if (!bytes)
-            return core::Error{prefix + "cannot read " + path.string() + " (" +
-                               bytes.error().message + ")"};
+        const std::span<const std::uint8_t>* bytes = &data;
         if (bytes->size() > 0xFFFFFFFFu)
             return core::Error{prefix + "file is over 4 GiB"};
 
@@ -312,7 +327,7 @@ core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const Loa
         parser.SetImageLoader(decodeImage, &decode);
         tinygltf::Model src;
         std::string err, warn;
-        const std::string baseDir = path.parent_path().string();
+        const std::string baseDir = baseDirectory.string();
         const bool isBinary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
         if (isBinary)
             checkGlbContainer(*bytes);

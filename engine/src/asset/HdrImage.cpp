@@ -1,6 +1,7 @@
 // HDR environment decoding through stb_image (loadf).
 #include "engine/asset/HdrImage.h"
 
+#include "ImageChecks.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
 
@@ -12,10 +13,16 @@
 namespace asset {
 
 core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
-    const std::string prefix = "asset::loadHdr(): " + path.filename().string() + ": ";
     auto bytes = core::readFile(path, std::uint64_t(1) << 30);
     if (!bytes)
-        return core::Error{prefix + bytes.error().message};
+        return core::Error{"asset::loadHdr(): " + path.filename().string() + ": " +
+                           bytes.error().message};
+    return decodeHdr(*bytes, path.filename().string());
+}
+
+core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::string& file) {
+    const std::string prefix = "asset::loadHdr(): " + file + ": ";
+    const std::span<const std::uint8_t>* bytes = &data;
     if (bytes->size() > std::size_t(INT32_MAX))
         return core::Error{prefix + "file too large"};
     int width = 0, height = 0, components = 0;
@@ -28,6 +35,10 @@ core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is over the texture limit of " +
                            std::to_string(core::limits::kMaxTextureSize)};
+    if (auto refuse = detail::implausibleSize(width, height, bytes->size()))
+        return core::Error{prefix + *refuse};
+    if (auto refuse = detail::checkPngStream(*bytes))
+        return core::Error{prefix + *refuse};
     if (width < height || height < 2)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is not an equirectangular (2:1) environment"};

@@ -3,6 +3,7 @@
 #include "support/TestSupport.h"
 
 #include "engine/asset/GltfLoader.h"
+#include "engine/core/Limits.h"
 
 #include <fstream>
 #include <functional>
@@ -17,6 +18,48 @@ struct MalformedCase {
     std::vector<std::string> expected; ///< substrings the message must contain
     test::GltfFormat format = test::GltfFormat::DataUri;
 };
+
+/** Embeds `bytes` as the model's only image (a PNG by its MIME type). */
+void addImage(test::GltfBuilder& b, const std::vector<std::uint8_t>& bytes) {
+    const int view = b.addView(bytes.data(), bytes.size());
+    b.doc["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}}};
+}
+
+/** A 4x34 PNG whose 12-byte zlib stream never ends (found by fuzz_image: stb's inflater kept
+ *  doubling its buffer past 1.6 GB on it). */
+std::vector<std::uint8_t> endlessPng() {
+    return {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
+            0x44, 0x52, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x22, 0x08, 0x06, 0x00, 0x00,
+            0x00, 0x7f, 0xa8, 0x00, 0x00, 0x63, 0x00, 0x7d, 0x12, 0x49, 0x44, 0x41, 0x54, 0x78,
+            0x9c, 0x63, 0x3f, 0xcd, 0x46, 0x16, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae,
+            0x42, 0x60, 0x82};
+}
+
+/** A valid 64x64 PNG whose IDAT chunk is cut to half its zlib data (lengths kept consistent). */
+std::vector<std::uint8_t> truncatedIdatPng() {
+    std::vector<std::uint8_t> png(test::makePng(64, 64, {10, 20, 30, 255}));
+    const std::string text(png.begin(), png.end());
+    const std::size_t type = text.find("IDAT");
+    const std::size_t at = type - 4;
+    const std::uint32_t length = std::uint32_t(png[at]) << 24 | std::uint32_t(png[at + 1]) << 16 |
+                                 std::uint32_t(png[at + 2]) << 8 | png[at + 3];
+    const std::uint32_t kept = length / 2;
+    for (int i = 0; i < 4; ++i)
+        png[at + std::size_t(i)] = std::uint8_t(kept >> (24 - 8 * i));
+    png.erase(png.begin() + std::ptrdiff_t(type + 4 + kept),
+              png.begin() + std::ptrdiff_t(type + 4 + length));
+    return png;
+}
+
+/** A valid 1x1 PNG whose header then claims `width` x `height`. */
+std::vector<std::uint8_t> pngClaiming(std::uint32_t width, std::uint32_t height) {
+    std::vector<std::uint8_t> png = test::makePng(1, 1, {1, 2, 3, 255});
+    for (int i = 0; i < 4; ++i) {
+        png[16 + std::size_t(i)] = std::uint8_t(width >> (24 - 8 * i));
+        png[20 + std::size_t(i)] = std::uint8_t(height >> (24 - 8 * i));
+    }
+    return png;
+}
 
 const std::vector<MalformedCase>& cases() {
     static const std::vector<MalformedCase> all = {
@@ -159,6 +202,34 @@ const std::vector<MalformedCase>& cases() {
         {"InverseBindTooShort",
          [](auto& b) { b.doc["accessors"][6]["count"] = 1; },
          {"skin 0 inverseBindMatrices has 1 matrices for 2 joints"}},
+        {"ImageNotDecodable",
+         [](auto& b) { addImage(b, {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'}); },
+         {"image 0 could not be decoded"},
+         test::GltfFormat::Glb},
+        {"ImageZlibStreamNeverEnds",
+         [](auto& b) { addImage(b, endlessPng()); },
+         {"image 0: a PNG chunk runs past the end of the data"},
+         test::GltfFormat::Glb},
+        {"ImageZlibStreamCutShort",
+         [](auto& b) { addImage(b, truncatedIdatPng()); },
+         {"image 0: PNG image data is not a complete zlib stream"},
+         test::GltfFormat::Glb},
+        {"ImageHeaderClaimsGigapixels",
+         [](auto& b) { addImage(b, pngClaiming(16000, 16000)); },
+         {"image 0: 16000x16000 pixels cannot come from"},
+         test::GltfFormat::Glb},
+        {"ImageOverTextureLimit",
+         [](auto& b) { addImage(b, test::makePng(16385, 1, {9, 9, 9, 255})); },
+         {"image 0 is 16385x1, over the limit of 16384"},
+         test::GltfFormat::Glb},
+        {"TooManyMorphTargets",
+         [](auto& b) {
+             auto& targets = b.doc["meshes"][0]["primitives"][0]["targets"];
+             while (targets.size() <= core::limits::kMaxMorphTargets)
+                 targets.push_back(targets[0]);
+             b.doc["meshes"][0].erase("weights");
+         },
+         {"mesh 0 primitive 0", "4097 morph targets", "4096"}},
         {"BadIor",
          [](auto& b) {
              b.doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};

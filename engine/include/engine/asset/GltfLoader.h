@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <set>
+#include <span>
 #include <string>
 
 namespace asset {
@@ -25,6 +26,13 @@ struct LoadOptions {
  *  missing and tangents where a normal map needs them. Never throws. */
 core::Result<scene::Model> loadGltf(const std::filesystem::path& path,
                                     const LoadOptions& options = {});
+
+/** loadGltf() over bytes already in memory: `file` names them in errors, external buffers and
+ *  images resolve against `baseDirectory`. */
+core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> bytes,
+                                              const std::string& file,
+                                              const std::filesystem::path& baseDirectory,
+                                              const LoadOptions& options = {});
 
 /** Extensions a file may list in extensionsRequired. */
 const std::set<std::string>& supportedRequiredExtensions();

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace asset {
@@ -18,6 +20,8 @@ struct HdrImage {
 /** Decodes an HDR image. Fails naming the file when it is missing, does not decode, is not
  *  2:1-ish (width < height) or is over core::limits::kMaxTextureSize. */
 core::Result<HdrImage> loadHdr(const std::filesystem::path& path);
+/** loadHdr() over bytes in memory; `file` names them in errors. */
+core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> bytes, const std::string& file);
 
 /** Encodes `image` as a Radiance RGBE file's bytes (what loadHdr reads back). */
 std::vector<std::uint8_t> encodeHdr(const HdrImage& image);

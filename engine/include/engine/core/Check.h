@@ -2,14 +2,21 @@
 // reported through core::Error instead (see Result.h).
 #pragma once
 
-#include <source_location>
 #include <string_view>
 
 namespace core {
 
+/** Where a check is written (std::source_location is not usable with clang 14 on libstdc++ 12,
+ *  which the fuzz build uses; the compilers' builtins behind it are). */
+struct SourceLocation {
+    const char* file = __builtin_FILE();
+    int line = __builtin_LINE();
+    const char* function = __builtin_FUNCTION();
+};
+
 /** Prints "file:line: function(): check `expr` failed: message" to stderr and aborts. */
 [[noreturn]] void checkFailed(std::string_view expression, std::string_view message,
-                              std::source_location where = std::source_location::current());
+                              SourceLocation where = {});
 
 } // namespace core
 

@@ -1,0 +1,90 @@
+// Checks on encoded images before decoding.
+#include "ImageChecks.h"
+
+#include <zlib.h>
+
+#include <array>
+#include <cstring>
+#include <vector>
+
+namespace asset::detail {
+namespace {
+
+std::uint32_t bigEndian32(const std::uint8_t* p) {
+    return std::uint32_t(p[0]) << 24 | std::uint32_t(p[1]) << 16 | std::uint32_t(p[2]) << 8 |
+           std::uint32_t(p[3]);
+}
+
+} // namespace
+
+std::optional<std::string> implausibleSize(int width, int height, std::size_t encodedBytes) {
+    const std::uint64_t pixels = std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));
+    if (pixels <= 16384u * std::uint64_t(encodedBytes) + 65536u)
+        return std::nullopt;
+    return std::to_string(width) + "x" + std::to_string(height) + " pixels cannot come from " +
+           std::to_string(encodedBytes) + " bytes of image data (corrupt header)";
+}
+
+std::optional<std::string> checkPngStream(std::span<const std::uint8_t> bytes) {
+    static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P', 'N', 'G',
+                                                               '\r', '\n', 0x1A, '\n'};
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature.data(), 8) != 0)
+        return std::nullopt;
+    std::uint64_t width = 0, height = 0, bitsPerPixel = 0;
+    bool interlaced = false;
+    std::vector<std::uint8_t> stream;
+    for (std::size_t at = 8; at + 12 <= bytes.size();) {
+        const std::uint32_t length = bigEndian32(&bytes[at]);
+        if (length > bytes.size() - at - 12)
+            return "a PNG chunk runs past the end of the data";
+        const std::uint8_t* type = &bytes[at + 4];
+        const std::uint8_t* data = &bytes[at + 8];
+        if (std::memcmp(type, "IHDR", 4) == 0 && length >= 13) {
+            width = bigEndian32(data);
+            height = bigEndian32(data + 4);
+            const std::uint64_t depth = data[8];
+            const int colour = data[9];
+            const std::uint64_t channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+            bitsPerPixel = depth * channels;
+            interlaced = data[12] != 0;
+        } else if (std::memcmp(type, "IDAT", 4) == 0) {
+            stream.insert(stream.end(), data, data + length);
+        } else if (std::memcmp(type, "IEND", 4) == 0) {
+            break;
+        }
+        at += 12 + std::size_t(length);
+    }
+    if (width == 0 || height == 0 || bitsPerPixel == 0)
+        return "a PNG without a valid IHDR chunk";
+    // Filtered scanlines: a filter byte per row; interlacing adds at most a row per pass.
+    const std::uint64_t rowBytes = (width * bitsPerPixel + 7) / 8;
+    const std::uint64_t expected = height * (rowBytes + 1) + (interlaced ? 7 * (height + rowBytes + 2) : 0);
+
+    z_stream z{};
+    if (inflateInit(&z) != Z_OK)
+        return "zlib could not start";
+    std::array<std::uint8_t, 16384> scratch{};
+    z.next_in = stream.data();
+    z.avail_in = uInt(stream.size());
+    std::uint64_t produced = 0;
+    int status = Z_OK;
+    while (status == Z_OK) {
+        z.next_out = scratch.data();
+        z.avail_out = uInt(scratch.size());
+        status = inflate(&z, Z_NO_FLUSH);
+        produced += scratch.size() - z.avail_out;
+        if (produced > expected) {
+            inflateEnd(&z);
+            return "PNG image data inflates past the " + std::to_string(expected) +
+                   " bytes its header needs";
+        }
+        if (status == Z_BUF_ERROR && z.avail_in == 0)
+            break; // the input ended before the stream did
+    }
+    inflateEnd(&z);
+    if (status != Z_STREAM_END)
+        return "PNG image data is not a complete zlib stream";
+    return std::nullopt;
+}
+
+} // namespace asset::detail

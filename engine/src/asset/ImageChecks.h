@@ -1,0 +1,24 @@
+// Checks on encoded images before stb decodes them: stb trusts a file's header and its zlib
+// streams, so a tiny file could otherwise make it allocate gigabytes.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace asset::detail {
+
+/** Refuses a width x height that no file of `encodedBytes` could hold. Real images stay far
+ *  below the bound (16384 pixels per encoded byte: past deflate's 1032:1 limit on 8-bit PNG
+ *  data and the run-length limit of Radiance files); a header that claims more is a lie that
+ *  would cost an allocation of that size. Returns the reason, or nullopt when plausible. */
+std::optional<std::string> implausibleSize(int width, int height, std::size_t encodedBytes);
+
+/** For PNG data: inflates the concatenated IDAT chunks with zlib, without keeping the output,
+ *  and refuses a stream that is corrupt, ends early, or inflates to more than the header's
+ *  size can need (stb's own inflater would keep growing its buffer on such input). Returns
+ *  the reason, or nullopt when the data is not PNG or is sound. */
+std::optional<std::string> checkPngStream(std::span<const std::uint8_t> bytes);
+
+} // namespace asset::detail
