@@ -18,7 +18,7 @@ namespace {
 constexpr const char* kUsage =
     R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
-                     [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG]
+                     [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
                      [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
@@ -61,6 +61,8 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --max-bounces N     total internal reflections the reference follows (default 8)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
+  --force             replace output files that exist (without it, an existing file is an
+                      error and nothing is written); a run that fails removes what it wrote
   --contact-sheet PNG also write the frames side by side in one picture (4 per row)
   --dump-graph        print the compiled frame graph of the first frame to stderr
   --case FILE.json    render a frame-capture case and compare with its goldens (exit 0 match,
@@ -91,6 +93,39 @@ struct Options {
     refraction::ReferenceOptions referenceOptions;
     std::string caseFile;
     std::string contactSheet;
+    bool force = false;
+};
+
+/** The files one run writes: refuses existing ones without --force before anything is written,
+ *  and removes what was written when the run fails (no partial output). */
+class Outputs {
+public:
+    explicit Outputs(bool force) : mForce(force) {}
+    ~Outputs() {
+        if (!mCommitted)
+            for (const auto& path : mWritten)
+                std::filesystem::remove(path);
+    }
+    /** Fails naming the first planned file that exists (unless forced). */
+    core::Status check(const std::vector<std::filesystem::path>& planned) const {
+        if (!mForce)
+            for (const auto& path : planned)
+                if (std::filesystem::exists(path))
+                    return core::Error{"glass-capture: " + path.string() +
+                                       " exists (use --force to replace it); nothing written"};
+        return {};
+    }
+    core::Status write(const std::filesystem::path& path, const capture::Image& image) {
+        auto written = capture::writePng(path, image);
+        if (written)
+            mWritten.push_back(path);
+        return written;
+    }
+    void commit() { mCommitted = true; }
+
+private:
+    bool mForce = false, mCommitted = false;
+    std::vector<std::filesystem::path> mWritten;
 };
 
 std::optional<int> parse(int argc, char** argv, Options& o) {
@@ -113,6 +148,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.dumpGraph = true;
         } else if (arg == "--update") {
             o.update = true;
+        } else if (arg == "--force") {
+            o.force = true;
         } else if (arg == "--compare-reference") {
             o.compare = true;
         } else if (arg == "--spp" || arg == "--max-bounces") {
@@ -142,8 +179,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.session.refraction.emplace_back(arg.substr(2), *v);
         } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" ||
                    arg == "--env" || arg == "--out" || arg == "--exposure" || arg == "--plugin" ||
-                   arg == "--contact-sheet" ||
-                   arg == "--set" || arg == "--case") {
+                   arg == "--contact-sheet" || arg == "--set" || arg == "--case") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -275,6 +311,27 @@ int main(int argc, char** argv) {
         return 1;
     }
     o.referenceOptions.progress = !o.json;
+    auto frameFile = [&](double time) {
+        return std::filesystem::path(o.out) /
+               capture::frameFileName(stem, (*session)->clipLabel(), time);
+    };
+    auto sibling = [](std::filesystem::path path, const char* suffix) {
+        return path.replace_extension(std::string(suffix) + ".png");
+    };
+    Outputs outputs(o.force);
+    std::vector<std::filesystem::path> planned;
+    for (double time : o.times) {
+        planned.push_back(frameFile(time));
+        if (o.compare)
+            for (const char* suffix : {".reference", ".heatmap"})
+                planned.push_back(sibling(frameFile(time), suffix));
+    }
+    if (!o.contactSheet.empty())
+        planned.emplace_back(o.contactSheet);
+    if (auto free = outputs.check(planned); !free) {
+        std::fprintf(stderr, "%s\n", free.error().message.c_str());
+        return 1;
+    }
     std::vector<capture::Image> sheetFrames;
     for (std::size_t i = 0; i < o.times.size(); ++i) {
         auto frame = o.reference ? (*session)->renderReference(o.times[i], o.referenceOptions)
@@ -285,9 +342,8 @@ int main(int argc, char** argv) {
         }
         if (i == 0 && o.dumpGraph)
             std::fprintf(stderr, "%s", frame->stats.graph.c_str());
-        const auto path = std::filesystem::path(o.out) /
-                          capture::frameFileName(stem, (*session)->clipLabel(), frame->time);
-        if (auto written = capture::writePng(path, frame->image); !written) {
+        const auto path = frameFile(frame->time);
+        if (auto written = outputs.write(path, frame->image); !written) {
             std::fprintf(stderr, "%s\n", written.error().message.c_str());
             return 1;
         }
@@ -306,20 +362,17 @@ int main(int argc, char** argv) {
             const auto masked =
                 capture::score(frame->image, reference->image, &reference->glassMask);
             const auto full = capture::score(frame->image, reference->image);
-            auto sibling = [&](const char* suffix) {
-                auto p = path;
-                return p.replace_extension(std::string(suffix) + ".png");
-            };
             for (const auto& [file, image] :
-                 {std::pair{sibling(".reference"), reference->image},
-                  std::pair{sibling(".heatmap"), capture::heatmap(frame->image, reference->image,
-                                                                  64, &reference->glassMask)}})
-                if (auto written = capture::writePng(file, image); !written) {
+                 {std::pair{sibling(path, ".reference"), reference->image},
+                  std::pair{
+                      sibling(path, ".heatmap"),
+                      capture::heatmap(frame->image, reference->image, 64, &reference->glassMask)}})
+                if (auto written = outputs.write(file, image); !written) {
                     std::fprintf(stderr, "%s\n", written.error().message.c_str());
                     return 1;
                 }
-            entry["reference_file"] = sibling(".reference").string();
-            entry["heatmap_file"] = sibling(".heatmap").string();
+            entry["reference_file"] = sibling(path, ".reference").string();
+            entry["heatmap_file"] = sibling(path, ".heatmap").string();
             entry["reference_ms"] = reference->milliseconds;
             entry["scores"] = {
                 {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
@@ -340,7 +393,7 @@ int main(int argc, char** argv) {
     if (!o.contactSheet.empty()) {
         const int cell = std::min(o.session.size.x, 320);
         const capture::Image sheet = capture::contactSheet(sheetFrames, 4, cell);
-        if (auto written = capture::writePng(o.contactSheet, sheet); !written) {
+        if (auto written = outputs.write(o.contactSheet, sheet); !written) {
             std::fprintf(stderr, "%s\n", written.error().message.c_str());
             return 1;
         }
@@ -349,6 +402,7 @@ int main(int argc, char** argv) {
             std::printf("%s (contact sheet, %d frames)\n", o.contactSheet.c_str(),
                         int(sheetFrames.size()));
     }
+    outputs.commit();
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);
         std::printf("%s\n", report.dump(2).c_str());

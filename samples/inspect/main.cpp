@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -34,6 +35,7 @@ _volume, _ior, _dispersion) of a .gltf or .glb file.
                   and write its vertices to --out
   --vertices gpu  the same through the engine's GPU deform pass (headless EGL context), read back
   --out FILE.ply  PLY file to write (atomically: no partial file on failure)
+  --force         replace FILE.ply when it exists (otherwise that is an error)
   --time T        clip time in seconds (default 0)
   --clip C        clip name or index (default: the first clip; the rest pose if none)
   --ascii         ASCII PLY instead of binary little-endian
@@ -60,6 +62,7 @@ struct Options {
     double time = 0.0;
     std::optional<std::string> clip;
     bool ascii = false;
+    bool force = false;
 };
 
 /** Parses argv; returns an exit code when the program should stop (help or bad arguments). */
@@ -79,6 +82,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.json = true;
         } else if (arg == "--ascii") {
             o.ascii = true;
+        } else if (arg == "--force") {
+            o.force = true;
         } else if (arg == "--vertices" || arg == "--out" || arg == "--time" || arg == "--clip") {
             const auto v = value(arg.c_str());
             if (!v)
@@ -112,6 +117,11 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
         return usageError("--vertices and --out go together");
     if (o.json && o.vertices)
         return usageError("--json and --vertices are separate modes");
+    if (o.out && !o.force && std::filesystem::exists(*o.out)) {
+        std::fprintf(stderr, "glass-inspect: %s exists (use --force to replace it)\n",
+                     o.out->c_str());
+        return 1;
+    }
     return std::nullopt;
 }
 

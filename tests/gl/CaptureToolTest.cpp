@@ -222,3 +222,46 @@ TEST(CaptureTool, RefractionPluginLoads) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(CaptureTool, ExistingOutputIsKeptWithoutForceAndAFailedRunLeavesNothing) {
+    test::TempDir dir;
+    std::string out;
+    const std::string args = "builtin:sphere?segments=16 --size 32x32 --frames 0:0.5:0.5 --out " +
+                             (dir / "frames").string();
+    const int first = capture(args, &out);
+    SKIP_WITHOUT_GL(out);
+    ASSERT_EQ(first, 0) << out;
+    const auto frame = dir / "frames" / "builtin_sphere_segments_16_rest_t0.500.png";
+    ASSERT_TRUE(std::filesystem::exists(frame)) << out;
+    const auto before = std::filesystem::last_write_time(frame);
+    // A second run refuses before writing anything...
+    EXPECT_EQ(capture(args + " --contact-sheet " + (dir / "sheet.png").string(), &out), 1);
+    EXPECT_NE(out.find("exists (use --force to replace it); nothing written"), std::string::npos)
+        << out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "sheet.png"));
+    EXPECT_EQ(std::filesystem::last_write_time(frame), before);
+    // ... and --force replaces.
+    EXPECT_EQ(capture(args + " --force --contact-sheet " + (dir / "sheet.png").string(), &out), 0)
+        << out;
+    EXPECT_TRUE(std::filesystem::exists(dir / "sheet.png"));
+
+    // A run that fails on its second frame (the contact sheet's folder is a file, so writing it
+    // fails last) removes the frames it wrote.
+    std::ofstream(dir / "blocker") << "a file, not a folder";
+    EXPECT_EQ(capture("builtin:sphere?segments=16 --size 32x32 --frames 0:0.5:0.5 --out " +
+                          (dir / "second").string() + " --contact-sheet " +
+                          (dir / "blocker" / "sheet.png").string(),
+                      &out),
+              1)
+        << out;
+    std::size_t left = 0;
+    if (std::filesystem::exists(dir / "second"))
+        for ([[maybe_unused]] const auto& entry :
+             std::filesystem::directory_iterator(dir / "second"))
+            ++left;
+    EXPECT_EQ(left, 0u) << "files left by a failed run";
+}
+
+} // namespace
