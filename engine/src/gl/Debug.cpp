@@ -41,6 +41,20 @@ void installDebugOutput() {
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }
 
+LiveObjects liveObjects(std::uint32_t maxName) {
+    LiveObjects live;
+    for (GLuint name = 1; name <= maxName; ++name) {
+        live.buffers += glIsBuffer(name) ? 1 : 0;
+        live.textures += glIsTexture(name) ? 1 : 0;
+        live.framebuffers += glIsFramebuffer(name) ? 1 : 0;
+        live.vertexArrays += glIsVertexArray(name) ? 1 : 0;
+        live.programs += glIsProgram(name) ? 1 : 0;
+        live.shaders += glIsShader(name) ? 1 : 0;
+        live.queries += glIsQuery(name) ? 1 : 0;
+    }
+    return live;
+}
+
 std::uint64_t errorCount() {
     return gErrors.load();
 }

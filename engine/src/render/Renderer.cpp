@@ -288,6 +288,9 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
         stats.gpuMs += p.gpuMs;
     }
     stats.graph = graph.dump();
+    // Unbind our framebuffers before the pool deletes idle textures: deleting a texture
+    // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
+    gl::Framebuffer::bindDefault(settings.size);
     mPool->endFrame();
     return stats;
 }

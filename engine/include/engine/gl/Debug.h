@@ -14,6 +14,18 @@ std::uint64_t errorCount();
 /** Polls glGetError until clear; each error is logged and counted. Returns how many it found. */
 int checkErrors(const char* where);
 
+/** Live GL objects of the current context, counted by asking the driver about every name up
+ *  to `maxName` (glIsBuffer, glIsTexture, ...): independent of the engine's own bookkeeping,
+ *  for leak checks (the soak test). */
+struct LiveObjects {
+    int buffers = 0, textures = 0, framebuffers = 0, vertexArrays = 0, programs = 0,
+        shaders = 0, queries = 0;
+    int total() const {
+        return buffers + textures + framebuffers + vertexArrays + programs + shaders + queries;
+    }
+};
+LiveObjects liveObjects(std::uint32_t maxName = 16384);
+
 /** Human-readable GL_VERSION / GL_RENDERER of the current context. */
 const char* versionString();
 const char* rendererString();

@@ -1,0 +1,213 @@
+// glass-soak: renders many frames headless while the clip loops, the glass method switches and
+// the viewport resizes, and reports the process's resident memory and the context's live GL
+// objects along the way; fails when either still grows after the first full cycle.
+#include "engine/anim/Pose.h"
+#include "engine/asset/ModelLoader.h"
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Debug.h"
+#include "engine/render/Renderer.h"
+#include "refraction/RefractionPlugin.h"
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* const kUsage =
+    R"(usage: glass-soak [MODEL] [--frames N] [--switch-every S] [--resize-every R]
+                  [--report-every K] [--json]
+
+Renders MODEL (default: builtin:sphere) headless for N frames (default 10000): the first clip
+loops; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
+TIR reflect); every R frames (default 300) the viewport takes the next of 4 sizes (around
+128x128). Every K frames (default 220) it prints the frame, resident memory (RSS, from
+/proc/self/statm) and the live GL objects (counted by asking the driver about every name).
+
+Warm-up: two full cycles of methods and sizes (every lazily created object exists by then). It
+fails (exit 1) when a report after the warm-up counts more live GL objects than any report
+during it, when RSS at the end is more than 8 MiB over its warm-up maximum, or on any GL error;
+exit 2 when the run is too short to have a report after the warm-up.
+--json prints the reports as JSON. --inject-leak keeps one more GL buffer alive at every report
+(the test that shows the check fails on a leak).
+)";
+
+long residentKiB() {
+    std::ifstream statm("/proc/self/statm");
+    long pages = 0, resident = 0;
+    statm >> pages >> resident;
+    return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+struct Report {
+    int frame = 0;
+    long rssKiB = 0;
+    gl::LiveObjects live;
+    std::string method;
+    glm::ivec2 size{0};
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string modelPath = "builtin:sphere";
+    int frames = 10000, switchEvery = 100, resizeEvery = 300, reportEvery = 220;
+    bool json = false, injectLeak = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        int* target = arg == "--frames"         ? &frames
+                      : arg == "--switch-every" ? &switchEvery
+                      : arg == "--resize-every" ? &resizeEvery
+                      : arg == "--report-every" ? &reportEvery
+                                                : nullptr;
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (arg == "--json") {
+            json = true;
+        } else if (arg == "--inject-leak") {
+            injectLeak = true;
+        } else if (target && i + 1 < argc) {
+            *target = std::atoi(argv[++i]);
+            if (*target < 1) {
+                std::fprintf(stderr, "glass-soak: %s needs a positive count\n", arg.c_str());
+                return 2;
+            }
+        } else if (!arg.empty() && arg[0] != '-') {
+            modelPath = arg;
+        } else {
+            std::fprintf(stderr, "glass-soak: unexpected '%s'\n\n%s", arg.c_str(), kUsage);
+            return 2;
+        }
+    }
+    auto model = asset::loadModel(modelPath);
+    if (!model) {
+        std::fprintf(stderr, "glass-soak: %s\n", model.error().message.c_str());
+        return 1;
+    }
+    auto context = gl::createHeadlessContext();
+    if (!context) {
+        std::fprintf(stderr, "glass-soak: %s\n", context.error().message.c_str());
+        return 1;
+    }
+    auto renderer =
+        render::Renderer::create(*model, render::Environment::proceduralSky(256), **context);
+    if (!renderer) {
+        std::fprintf(stderr, "glass-soak: %s\n", renderer.error().message.c_str());
+        return 1;
+    }
+    const auto plugin = refraction::createPlugin();
+    if (auto added = (*renderer)->addPlugin(plugin.get()); !added) {
+        std::fprintf(stderr, "glass-soak: %s\n", added.error().message.c_str());
+        return 1;
+    }
+    (void)plugin->parameters().set("glass", "all");
+    const int clip = model->animations.empty() ? -1 : 0;
+    const double duration = clip < 0 ? 1.0 : model->animations[0].duration;
+    const render::Bounds bounds = render::animatedBounds(*model, clip);
+    (*renderer)->setGround({bounds.min.y, bounds.center(), 3.0f * bounds.radius()});
+    const std::vector<std::pair<std::string, std::string>> methods = {{"opaque", "clamp"},
+                                                                      {"sir", "clamp"},
+                                                                      {"isr", "clamp"},
+                                                                      {"dir", "clamp"},
+                                                                      {"dir", "reflect"}};
+    const std::vector<glm::ivec2> sizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
+    const int cycle = std::max(switchEvery * int(methods.size()), resizeEvery * int(sizes.size()));
+
+    std::vector<Report> reports;
+    std::vector<gl::Buffer> leaked; // --inject-leak: one more live buffer per report
+    for (int frame = 0; frame < frames; ++frame) {
+        const auto& [method, tir] = methods[std::size_t(frame / switchEvery) % methods.size()];
+        const glm::ivec2 size = sizes[std::size_t(frame / resizeEvery) % sizes.size()];
+        (void)plugin->parameters().set("method", method);
+        (void)plugin->parameters().set("tir", tir);
+        const double time = std::fmod(frame / 30.0, duration);
+        const anim::Pose pose = anim::evaluate(*model, clip, time);
+        render::RenderSettings settings;
+        settings.size = size;
+        settings.ground = true;
+        auto stats = (*renderer)->render(
+            pose, render::frameBounds(bounds, float(size.x) / float(size.y)), settings, time);
+        if (!stats) {
+            std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
+                         stats.error().message.c_str());
+            return 1;
+        }
+        if ((frame + 1) % reportEvery == 0 || frame + 1 == frames) {
+            if (injectLeak)
+                leaked.emplace_back(std::size_t(1) << 16);
+            gl::finish();
+            Report r{frame + 1, residentKiB(), gl::liveObjects(), method + "/" + tir, size};
+            reports.push_back(r);
+            if (!json)
+                std::printf("frame %6d  rss %7ld KiB  GL objects %4d (buffers %d, textures %d, "
+                            "framebuffers %d, vertex arrays %d, programs %d, queries %d)  %s "
+                            "%dx%d\n",
+                            r.frame, r.rssKiB, r.live.total(), r.live.buffers, r.live.textures,
+                            r.live.framebuffers, r.live.vertexArrays, r.live.programs,
+                            r.live.queries, r.method.c_str(), size.x, size.y);
+            std::fflush(stdout);
+        }
+    }
+    gl::checkErrors("glass-soak");
+
+    // Warm-up: two full cycles of methods and sizes, so that every lazily created object (a
+    // pass's timer query, ISR's BVH buffers, the pool's textures for each size) exists. After
+    // it, neither the live GL objects nor RSS may pass their warm-up maximum (RSS: by 8 MiB).
+    const int warmup = 2 * cycle;
+    int warmObjects = 0, maxObjects = 0;
+    long warmRss = 0, lastRss = 0;
+    bool pastWarmup = false;
+    for (const Report& r : reports) {
+        if (r.frame <= warmup) {
+            warmObjects = std::max(warmObjects, r.live.total());
+            warmRss = std::max(warmRss, r.rssKiB);
+        } else {
+            pastWarmup = true;
+            maxObjects = std::max(maxObjects, r.live.total());
+            lastRss = r.rssKiB;
+        }
+    }
+    const bool objectsStable = maxObjects <= warmObjects;
+    const bool rssStable = lastRss - warmRss <= 8 * 1024;
+    const std::uint64_t errors = gl::errorCount();
+    if (json) {
+        nlohmann::json out = {{"model", modelPath},
+                              {"frames", frames},
+                              {"cycle", cycle},
+                              {"gl_errors", errors},
+                              {"reports", nlohmann::json::array()}};
+        for (const Report& r : reports)
+            out["reports"].push_back({{"frame", r.frame},
+                                      {"rss_kib", r.rssKiB},
+                                      {"gl_objects", r.live.total()},
+                                      {"method", r.method},
+                                      {"size", {r.size.x, r.size.y}}});
+        std::printf("%s\n", out.dump(2).c_str());
+    }
+    std::printf("glass-soak: %d frames; warm-up (first %d): max %d GL objects, max RSS %ld KiB; "
+                "after: max %d GL objects, last RSS %ld KiB; %llu GL errors\n",
+                frames, warmup, warmObjects, warmRss, maxObjects, lastRss,
+                static_cast<unsigned long long>(errors));
+    if (!pastWarmup) {
+        std::fprintf(stderr, "glass-soak: no report after the warm-up of %d frames: run longer\n",
+                     warmup);
+        return 2;
+    }
+    if (!objectsStable || !rssStable || errors > 0) {
+        std::fprintf(stderr, "glass-soak: %s\n",
+                     !objectsStable ? "live GL objects grew after warm-up"
+                     : !rssStable   ? "resident memory grew by more than 8 MiB after warm-up"
+                                    : "GL errors");
+        return 1;
+    }
+    return 0;
+}
