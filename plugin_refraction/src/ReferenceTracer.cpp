@@ -198,11 +198,10 @@ class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
-           const std::string& fresnelMode, double epsilon)
-        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options), mFresnel(fresnelMode),
-          mEpsilon(epsilon) {
-        mDevice = rtcNewDevice(nullptr);
-        mScene = rtcNewScene(mDevice);
+           std::string fresnelMode, double epsilon)
+        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options),
+          mFresnel(std::move(fresnelMode)), mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)),
+          mScene(rtcNewScene(mDevice)) {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto* v = static_cast<float*>(
@@ -466,7 +465,9 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
                     double jx = random01(rng), jy = random01(rng);
                     if (stratified) {
                         jx = (double(s % grid) + jx) / grid;
-                        jy = (double(s / grid) + jy) / grid;
+                        const int stratum =
+                            s / grid; // integer division: the sample's row in the grid
+                        jy = (stratum + jy) / grid;
                     }
                     const double ndcX = (x + jx) / w * 2.0 - 1.0,
                                  ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;

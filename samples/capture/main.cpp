@@ -1,5 +1,6 @@
 // glass-capture: renders a glTF character headless (EGL) at given times to PNG, with per-pass
 // CPU/GPU timings; or runs a frame-capture test case against its goldens.
+#include "../common/ToolMain.h"
 #include "CaptureCase.h"
 #include "CaptureSession.h"
 
@@ -283,7 +284,7 @@ int runCase(const Options& o) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     Options o;
     if (const auto code = parse(argc, argv, o))
         return *code;
@@ -408,4 +409,8 @@ int main(int argc, char** argv) {
         std::printf("%s\n", report.dump(2).c_str());
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-capture", run, argc, argv);
 }

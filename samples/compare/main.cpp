@@ -1,4 +1,5 @@
 // glass-compare: PSNR and SSIM between two images (over a mask if given) and an error heatmap.
+#include "../common/ToolMain.h"
 #include "engine/capture/Image.h"
 #include "engine/capture/Metrics.h"
 
@@ -27,7 +28,7 @@ int usageError(const std::string& message) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     std::vector<std::string> images;
     std::optional<std::string> maskPath, heatmapPath;
     bool json = false;
@@ -98,4 +99,8 @@ int main(int argc, char** argv) {
                         masked.ssim, masked.pixels);
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-compare", run, argc, argv);
 }

@@ -1,5 +1,6 @@
 // glass-cpu-bench: load time of models and the time to sample + deform one frame on the CPU
 // reference path (median of many runs). A benchmark, not a test: it asserts nothing.
+#include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/deform/CpuDeformer.h"
@@ -26,7 +27,7 @@ double median(std::vector<double> v) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     if (argc < 2 || std::string(argv[1]) == "--help") {
         std::fprintf(stderr, "usage: glass-cpu-bench MODEL... [--runs N]\n"
                              "Prints, per model, the median load time (with and without image\n"
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
         if (std::string(argv[i]) == "--runs" && i + 1 < argc)
             runs = std::max(1, std::atoi(argv[++i]));
         else
-            models.push_back(argv[i]);
+            models.emplace_back(argv[i]);
     }
     for (const std::string& path : models) {
         std::vector<double> loads, geometryLoads;
@@ -81,4 +82,8 @@ int main(int argc, char** argv) {
                     vertices, runs);
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-cpu-bench", run, argc, argv);
 }

@@ -71,16 +71,17 @@ std::vector<JointSpec> skeleton() {
         const int shoulder = side == 0 ? LShoulder : RShoulder;
         j[std::size_t(shoulder)] = {std::string(prefix) + "shoulder", Chest,
                                     dvec3(0.06, 1.43, 0.0) * mirror};
-        j[std::size_t(shoulder + 1)] = {std::string(prefix) + "upper_arm", shoulder,
-                                        kShoulder * mirror};
-        j[std::size_t(shoulder + 2)] = {std::string(prefix) + "forearm", shoulder + 1,
-                                        kShoulder * mirror + arm * kUpperArm};
-        j[std::size_t(shoulder + 3)] = {std::string(prefix) + "hand", shoulder + 2,
-                                        kShoulder * mirror + arm * (kUpperArm + kForearm)};
+        j[(std::size_t(shoulder) + 1)] = {std::string(prefix) + "upper_arm", shoulder,
+                                          kShoulder * mirror};
+        j[(std::size_t(shoulder) + 2)] = {std::string(prefix) + "forearm", shoulder + 1,
+                                          kShoulder * mirror + arm * kUpperArm};
+        j[(std::size_t(shoulder) + 3)] = {std::string(prefix) + "hand", shoulder + 2,
+                                          kShoulder * mirror + arm * (kUpperArm + kForearm)};
         const int thigh = side == 0 ? LThigh : RThigh;
         j[std::size_t(thigh)] = {std::string(prefix) + "thigh", Hips, {0.1 * s, 0.90, 0.0}};
-        j[std::size_t(thigh + 1)] = {std::string(prefix) + "shin", thigh, {0.1 * s, 0.50, 0.0}};
-        j[std::size_t(thigh + 2)] = {std::string(prefix) + "foot", thigh + 1, {0.1 * s, 0.09, 0.0}};
+        j[(std::size_t(thigh) + 1)] = {std::string(prefix) + "shin", thigh, {0.1 * s, 0.50, 0.0}};
+        j[(std::size_t(thigh) + 2)] = {
+            std::string(prefix) + "foot", thigh + 1, {0.1 * s, 0.09, 0.0}};
     }
     return j;
 }
@@ -135,9 +136,9 @@ std::vector<Shape> bodyShapes(const std::vector<JointSpec>& joints) {
     for (int side = 0; side < 2; ++side) {
         const int shoulder = side == 0 ? LShoulder : RShoulder;
         const int thigh = side == 0 ? LThigh : RThigh;
-        const dvec3 pShoulder = joints[std::size_t(shoulder + 1)].position;
-        const dvec3 elbow = joints[std::size_t(shoulder + 2)].position;
-        const dvec3 wrist = joints[std::size_t(shoulder + 3)].position;
+        const dvec3 pShoulder = joints[(std::size_t(shoulder) + 1)].position;
+        const dvec3 elbow = joints[(std::size_t(shoulder) + 2)].position;
+        const dvec3 wrist = joints[(std::size_t(shoulder) + 3)].position;
         const dvec3 arm = glm::normalize(wrist - elbow);
         s.push_back(
             capsule(joints[std::size_t(shoulder)].position, pShoulder, 0.055, shoulder, 1.0, 0.05));
@@ -146,8 +147,8 @@ std::vector<Shape> bodyShapes(const std::vector<JointSpec>& joints) {
         s.push_back(
             capsule(wrist + arm * 0.02, wrist + arm * kHand, 0.034, shoulder + 3, 0.6, 0.02));
         const dvec3 hip = joints[std::size_t(thigh)].position;
-        const dvec3 knee = joints[std::size_t(thigh + 1)].position;
-        const dvec3 ankle = joints[std::size_t(thigh + 2)].position;
+        const dvec3 knee = joints[(std::size_t(thigh) + 1)].position;
+        const dvec3 ankle = joints[(std::size_t(thigh) + 2)].position;
         s.push_back(capsule(hip, knee, 0.074, thigh, 1.0, 0.05));
         s.push_back(capsule(knee, ankle, 0.053, thigh + 1, 1.0, 0.03));
         s.push_back(capsule(ankle + dvec3(0.0, -0.04, -0.03), ankle + dvec3(0.0, -0.05, 0.13),
@@ -400,12 +401,12 @@ std::vector<Clip> clips() {
                       const double swing = -0.42 * sign * s;
                       const double knee = 0.08 + 0.7 * std::pow(std::max(0.0, sign * c), 2.0);
                       p.rotation[std::size_t(thigh)] = rotation(swing, 0.0, 0.0);
-                      p.rotation[std::size_t(thigh + 1)] = rotation(knee, 0.0, 0.0);
-                      p.rotation[std::size_t(thigh + 2)] =
+                      p.rotation[(std::size_t(thigh) + 1)] = rotation(knee, 0.0, 0.0);
+                      p.rotation[(std::size_t(thigh) + 2)] =
                           rotation(-0.8 * (swing + knee), 0.0, 0.0);
-                      p.rotation[std::size_t(shoulder + 1)] =
+                      p.rotation[(std::size_t(shoulder) + 1)] =
                           rotation(0.35 * sign * s, 0.0, -0.3 * sign);
-                      p.rotation[std::size_t(shoulder + 2)] =
+                      p.rotation[(std::size_t(shoulder) + 2)] =
                           rotation(-0.25 - 0.2 * std::max(0.0, -sign * s), 0.0, 0.0);
                   }
                   p.breath = 0.5 + 0.5 * s;
@@ -426,8 +427,8 @@ std::vector<Clip> clips() {
                   p.rotation[LForearm] = rotation(-0.3, 0.0, 0.0);
                   for (int thigh : {LThigh, RThigh}) {
                       p.rotation[std::size_t(thigh)] = rotation(-0.04, 0.0, 0.0);
-                      p.rotation[std::size_t(thigh + 1)] = rotation(0.08, 0.0, 0.0);
-                      p.rotation[std::size_t(thigh + 2)] = rotation(-0.04, 0.0, 0.0);
+                      p.rotation[(std::size_t(thigh) + 1)] = rotation(0.08, 0.0, 0.0);
+                      p.rotation[(std::size_t(thigh) + 2)] = rotation(-0.04, 0.0, 0.0);
                   }
                   p.breath = 0.5 + 0.5 * std::sin(kTau * t / 1.2);
                   return p;
@@ -441,9 +442,9 @@ std::vector<Clip> clips() {
                   p.rotation[Head] = rotation(0.04 * std::sin(kTau * t / 1.5), 0.15 * slow, 0.0);
                   for (int shoulder : {LShoulder, RShoulder}) {
                       const double sign = shoulder == LShoulder ? 1.0 : -1.0;
-                      p.rotation[std::size_t(shoulder + 1)] =
+                      p.rotation[(std::size_t(shoulder) + 1)] =
                           rotation(0.03 * slow, 0.0, sign * (-0.3 + 0.03 * slow));
-                      p.rotation[std::size_t(shoulder + 2)] = rotation(-0.2, 0.0, 0.0);
+                      p.rotation[(std::size_t(shoulder) + 2)] = rotation(-0.2, 0.0, 0.0);
                   }
                   p.breath = 0.5 + 0.5 * std::sin(kTau * t / 1.5);
                   return p;
@@ -453,7 +454,8 @@ std::vector<Clip> clips() {
 
 // ---- The glTF document
 
-class Document {
+class Document { // NOLINT(bugprone-exception-escape): json members may throw; guardedMain reports
+                 // it
 public:
     nlohmann::json gltf;
     std::vector<std::uint8_t> bin;

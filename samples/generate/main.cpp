@@ -1,4 +1,5 @@
 // glass-generate-assets: writes the project's default character and environment into assets/.
+#include "../common/ToolMain.h"
 #include "Figure.h"
 #include "Sky.h"
 
@@ -29,7 +30,7 @@ Exit status: 0 written, 1 a write failed or a file exists without --force, 2 bad
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     std::filesystem::path out = "assets";
     bool force = false;
     for (int i = 1; i < argc; ++i) {
@@ -67,4 +68,8 @@ int main(int argc, char** argv) {
         std::printf("%s (%zu bytes)\n", path.string().c_str(), bytes->size());
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-generate-assets", run, argc, argv);
 }

@@ -1,5 +1,6 @@
 // glass-inspect: what a glTF character contains (meshes, skins, morph targets, clips, glass
 // materials), as text or JSON, and its deformed vertices at a given time as PLY.
+#include "../common/ToolMain.h"
 #include "InspectJson.h"
 #include "Ply.h"
 
@@ -235,7 +236,7 @@ int writeVertices(const scene::Model& model, const Options& o) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     Options options;
     if (const auto exitCode = parse(argc, argv, options))
         return *exitCode;
@@ -253,4 +254,8 @@ int main(int argc, char** argv) {
     else
         printText(*model);
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-inspect", run, argc, argv);
 }

@@ -1,6 +1,7 @@
 // glass-soak: renders many frames headless while the clip loops, the glass method switches and
 // the viewport resizes, and reports the process's resident memory and the context's live GL
 // objects along the way; fails when either still grows after the first full cycle.
+#include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/gl/Buffer.h"
@@ -57,7 +58,7 @@ struct Report {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     std::string modelPath = "builtin:sphere";
     int frames = 10000, switchEvery = 100, resizeEvery = 300, reportEvery = 220;
     bool json = false, injectLeak = false;
@@ -177,7 +178,7 @@ int main(int argc, char** argv) {
         }
     }
     const bool objectsStable = maxObjects <= warmObjects;
-    const bool rssStable = lastRss - warmRss <= 8 * 1024;
+    const bool rssStable = lastRss - warmRss <= 8L * 1024L;
     const std::uint64_t errors = gl::errorCount();
     if (json) {
         nlohmann::json out = {{"model", modelPath},
@@ -210,4 +211,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-soak", run, argc, argv);
 }

@@ -126,8 +126,8 @@ core::Result<Orbit> orbitFrom(const nlohmann::json& camera, Orbit orbit, const s
 core::Status applyPreset(const nlohmann::json& preset, const std::vector<Scope>& scopes,
                          Orbit& orbit, const std::string& source) {
     if (!preset.is_object() || preset.value("format", "") != kPresetFormat)
-        return core::Error{source + ": not a glass-viewer preset (\"format\" must be \"" +
-                           kPresetFormat + "\")"};
+        return core::Error{source + R"(: not a glass-viewer preset ("format" must be ")" +
+                           kPresetFormat + R"("))"};
     for (const auto& [key, value] : preset.items())
         if (key != "format" && key != "parameters" && key != "camera")
             return core::Error{source + ": unknown key '" + key + "'"};

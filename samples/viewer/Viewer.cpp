@@ -199,12 +199,10 @@ core::Result<LoadedScene> Viewer::loadScene(const std::string& path) {
     if (!renderer)
         return renderer.error();
     scene.renderer = std::move(*renderer);
-    for (plugin::Plugin* p : [&] {
-             std::vector<plugin::Plugin*> all{mRefraction.get()};
-             for (const auto& loaded : mPlugins)
-                 all.push_back(loaded.get());
-             return all;
-         }())
+    std::vector<plugin::Plugin*> plugins{mRefraction.get()};
+    for (const auto& loaded : mPlugins)
+        plugins.push_back(loaded.get());
+    for (plugin::Plugin* p : plugins)
         if (auto added = scene.renderer->addPlugin(p); !added)
             return added.error();
     scene.bounds = render::animatedBounds(*scene.model, scene.model->animations.empty() ? -1 : 0);

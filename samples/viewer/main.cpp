@@ -1,4 +1,5 @@
 // glass-viewer: plays glTF characters as glass in a window; every parameter live in a panel.
+#include "../common/ToolMain.h"
 #include "Viewer.h"
 
 #include <cstdio>
@@ -130,7 +131,7 @@ std::optional<int> parse(int argc, char** argv, viewer::ViewerOptions& o) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     viewer::ViewerOptions options;
     if (const auto exit = parse(argc, argv, options))
         return *exit;
@@ -140,4 +141,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     return (*viewer)->run();
+}
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-viewer", run, argc, argv);
 }

@@ -80,7 +80,7 @@ TEST_F(GlLayer, DebugOutputCountsErrors) {
 
 TEST_F(GlLayer, TextureRoundTrip) {
     gl::Texture t({{4, 2}, gl::Format::RGBA8, 1});
-    std::vector<std::uint8_t> pixels(4 * 2 * 4);
+    std::vector<std::uint8_t> pixels(std::size_t(4 * 2 * 4));
     for (std::size_t i = 0; i < pixels.size(); ++i)
         pixels[i] = std::uint8_t(i * 7);
     t.upload(0, pixels.data());

@@ -49,10 +49,17 @@ std::filesystem::path sharedDir() {
     return {};
 }
 
-TempDir::TempDir() {
+namespace {
+
+std::filesystem::path freshTempName() {
     std::random_device random;
-    mPath = std::filesystem::temp_directory_path() /
-            ("glass-test-" + std::to_string(random()) + std::to_string(random()));
+    return std::filesystem::temp_directory_path() /
+           ("glass-test-" + std::to_string(random()) + std::to_string(random()));
+}
+
+} // namespace
+
+TempDir::TempDir() : mPath(freshTempName()) {
     std::filesystem::create_directories(mPath);
 }
 
@@ -61,12 +68,11 @@ TempDir::~TempDir() {
     std::filesystem::remove_all(mPath, ec);
 }
 
-GltfBuilder::GltfBuilder() {
-    doc = {{"asset", {{"version", "2.0"}, {"generator", "glass tests"}}},
+GltfBuilder::GltfBuilder()
+    : doc({{"asset", {{"version", "2.0"}, {"generator", "glass tests"}}},
            {"buffers", nlohmann::json::array()},
            {"bufferViews", nlohmann::json::array()},
-           {"accessors", nlohmann::json::array()}};
-}
+           {"accessors", nlohmann::json::array()}}) {}
 
 int GltfBuilder::componentsOf(const std::string& type) {
     if (type == "SCALAR")
@@ -107,7 +113,7 @@ std::filesystem::path GltfBuilder::save(const std::filesystem::path& directory,
         out["buffers"].push_back({{"byteLength", padded.size()}});
     if (hasBuffer && !out["buffers"][0].contains("byteLength"))
         out["buffers"][0]["byteLength"] = padded.size();
-    const std::filesystem::path path =
+    std::filesystem::path path =
         directory / (name + (format == GltfFormat::Glb ? ".glb" : ".gltf"));
     if (format == GltfFormat::DataUri) {
         if (hasBuffer && !out["buffers"][0].contains("uri"))

@@ -110,9 +110,9 @@ core::Result<std::unique_ptr<Context>> createHeadlessContext(const ContextOption
             }
         }
         if (count == 0)
-            tried.push_back("EGL_EXT_platform_device: no devices");
+            tried.emplace_back("EGL_EXT_platform_device: no devices");
     } else {
-        tried.push_back("EGL_EXT_platform_device: not supported");
+        tried.emplace_back("EGL_EXT_platform_device: not supported");
     }
     if (hasClientExtension("EGL_MESA_platform_surfaceless")) {
         EGLDisplay display =
@@ -122,7 +122,7 @@ core::Result<std::unique_ptr<Context>> createHeadlessContext(const ContextOption
             return context;
         tried.push_back(context.error().message);
     } else {
-        tried.push_back("EGL_MESA_platform_surfaceless: not supported");
+        tried.emplace_back("EGL_MESA_platform_surfaceless: not supported");
     }
     std::string message = "gl::createHeadlessContext(): no headless OpenGL 4.5 core context:";
     for (const std::string& t : tried)

@@ -68,7 +68,8 @@ core::Result<std::uint32_t> compile(GLenum stage, const std::string& name,
     return std::uint32_t(shader);
 }
 
-core::Status link(const std::string& name, std::vector<std::uint32_t> shaders, std::uint32_t& out) {
+core::Status link(const std::string& name, const std::vector<std::uint32_t>& shaders,
+                  std::uint32_t& out) {
     out = glCreateProgram();
     for (std::uint32_t s : shaders)
         glAttachShader(out, s);

@@ -8,7 +8,7 @@
 
 namespace {
 
-scene::Model loadTwoJoint(test::GltfBuilder builder = test::twoJointModel()) {
+scene::Model loadTwoJoint(const test::GltfBuilder& builder = test::twoJointModel()) {
     test::TempDir dir;
     auto model = asset::loadGltf(builder.save(dir.path(), "twojoint"));
     EXPECT_TRUE(model.ok()) << model.error().message;

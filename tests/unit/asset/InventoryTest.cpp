@@ -24,7 +24,7 @@ std::vector<std::string> inventoryModels() {
         for (const auto& m : inv["models"])
             names.push_back(m["name"].get<std::string>());
     if (names.empty())
-        names.push_back("NoSharedAssets");
+        names.emplace_back("NoSharedAssets");
     return names;
 }
 

@@ -15,7 +15,9 @@ public:
     void* allocate(const gl::TextureDesc&) override {
         ++allocations;
         ++live;
-        return reinterpret_cast<void*>(std::uintptr_t(++next) * 16);
+        // A fake handle, never dereferenced: the allocator under test only stores it.
+        const std::uintptr_t handle = std::uintptr_t(++next) * 16;
+        return reinterpret_cast<void*>(handle); // NOLINT(performance-no-int-to-ptr)
     }
     void release(void*) override { --live; }
     int allocations = 0, live = 0;
@@ -51,10 +53,10 @@ TEST(FrameGraph, CulledPassNeverExecutes) {
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
     const auto& a = graph.addPass<One>(
         "a", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("a.out", kColor)); },
-        [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("a"); });
+        [&](const fg::Resources&, const One&, gl::Context&) { ran.emplace_back("a"); });
     graph.addPass<One>(
         "unused", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("unused.out", kColor)); },
-        [&](const fg::Resources&, const One&, gl::Context&) { ran.push_back("unused"); });
+        [&](const fg::Resources&, const One&, gl::Context&) { ran.emplace_back("unused"); });
     graph.addPass<InOut>(
         "present",
         [&](fg::Builder& b, InOut& d) {
@@ -63,7 +65,7 @@ TEST(FrameGraph, CulledPassNeverExecutes) {
         },
         [&](const fg::Resources& r, const InOut& d, gl::Context&) {
             EXPECT_NE(r.object(d.in), nullptr);
-            ran.push_back("present");
+            ran.emplace_back("present");
         });
     ASSERT_TRUE(graph.compile().ok());
     graph.execute(context);

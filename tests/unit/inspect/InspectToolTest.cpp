@@ -191,13 +191,13 @@ const std::string kCompare = std::string(GLASS_BIN_DIR) + "/glass-compare";
 
 TEST(CompareTool, ScoresTwoImagesOverAMask) {
     test::TempDir dir;
-    capture::Image a{16, 16, std::vector<std::uint8_t>(16 * 16 * 4, 100)};
+    capture::Image a{16, 16, std::vector<std::uint8_t>(std::size_t(16 * 16 * 4), 100)};
     capture::Image b = a;
     for (int i = 0; i < 16; ++i)
         b.rgba[std::size_t(i) * 4] = 140; // first row differs
-    capture::Image mask{16, 16, std::vector<std::uint8_t>(16 * 16 * 4, 0)};
-    for (std::size_t i = 16 * 8; i < 16 * 16; ++i)
-        mask.rgba[i * 4] = 255; // bottom half
+    capture::Image mask{16, 16, std::vector<std::uint8_t>(std::size_t(16 * 16 * 4), 0)};
+    for (std::size_t i = std::size_t(128); i < std::size_t(256); ++i) // the lower half
+        mask.rgba[i * 4] = 255;                                       // bottom half
     ASSERT_TRUE(capture::writePng(dir / "a.png", a).ok());
     ASSERT_TRUE(capture::writePng(dir / "b.png", b).ok());
     ASSERT_TRUE(capture::writePng(dir / "m.png", mask).ok());

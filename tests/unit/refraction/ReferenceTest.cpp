@@ -26,7 +26,8 @@ std::vector<float> closedForm(const render::Camera& camera,
             int hits = 0;
             for (int s = 0; s < 64; ++s) {
                 const double ndcX = (x + (s % 8 + 0.5) / 8) / kSize * 2 - 1;
-                const double ndcY = (kSize - 1 - row + (s / 8 + 0.5) / 8) / kSize * 2 - 1;
+                const int stratum = s / 8; // integer division: the sample's row in an 8x8 grid
+                const double ndcY = (kSize - 1 - row + (stratum + 0.5) / 8) / kSize * 2 - 1;
                 const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1),
                                  f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
                 const glm::dvec3 o = glm::dvec3(n) / n.w,
