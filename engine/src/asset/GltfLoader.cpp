@@ -32,6 +32,11 @@ std::string n(std::size_t v) {
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void* userData) {
     const bool decode = *static_cast<const bool*>(userData);
+    const detail::ImageKind kind = detail::imageKind(std::span(bytes, std::size_t(size)));
+    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg) {
+        *err += "image " + std::to_string(index) + " is neither PNG nor JPEG";
+        return false;
+    }
     int width = 0, height = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
         *err += "image " + std::to_string(index) + " could not be decoded: " +

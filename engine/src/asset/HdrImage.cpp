@@ -25,6 +25,9 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     const std::span<const std::uint8_t>* bytes = &data;
     if (bytes->size() > std::size_t(INT32_MAX))
         return core::Error{prefix + "file too large"};
+    const detail::ImageKind kind = detail::imageKind(*bytes);
+    if (kind == detail::ImageKind::Other)
+        return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
     int width = 0, height = 0, components = 0;
     const int size = int(bytes->size());
     if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components))
@@ -42,15 +45,33 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     if (width < height || height < 2)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is not an equirectangular (2:1) environment"};
-    float* pixels = stbi_loadf_from_memory(bytes->data(), size, &width, &height, &components, 3);
-    if (!pixels)
-        return core::Error{prefix + "decoding failed (" +
-                           (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") + ")"};
     HdrImage image;
     image.width = width;
     image.height = height;
-    image.rgb.assign(pixels, pixels + std::size_t(width) * std::size_t(height) * 3u);
-    stbi_image_free(pixels);
+    const std::size_t values = std::size_t(width) * std::size_t(height) * 3u;
+    if (kind == detail::ImageKind::Radiance) {
+        float* pixels = stbi_loadf_from_memory(bytes->data(), size, &width, &height, &components, 3);
+        if (!pixels)
+            return core::Error{prefix + "decoding failed (" +
+                               (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") +
+                               ")"};
+        image.rgb.assign(pixels, pixels + values);
+        stbi_image_free(pixels);
+    } else {
+        // An 8-bit environment (PNG, JPEG): decoded as bytes and linearised here. stb's own
+        // conversion path (stbi_loadf on such files) crashed under fuzzing on a JPEG.
+        stbi_uc* pixels = stbi_load_from_memory(bytes->data(), size, &width, &height, &components, 3);
+        if (!pixels)
+            return core::Error{prefix + "decoding failed (" +
+                               (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") +
+                               ")"};
+        image.rgb.resize(values);
+        for (std::size_t i = 0; i < values; ++i) {
+            const float c = float(pixels[i]) / 255.0f;
+            image.rgb[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+        }
+        stbi_image_free(pixels);
+    }
     for (float& v : image.rgb)
         if (!std::isfinite(v) || v < 0.0f)
             v = 0.0f;

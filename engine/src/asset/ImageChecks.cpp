@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstring>
+#include <string_view>
 #include <vector>
 
 namespace asset::detail {
@@ -16,6 +17,20 @@ std::uint32_t bigEndian32(const std::uint8_t* p) {
 }
 
 } // namespace
+
+ImageKind imageKind(std::span<const std::uint8_t> bytes) {
+    auto startsWith = [&](std::string_view magic) {
+        return bytes.size() >= magic.size() &&
+               std::memcmp(bytes.data(), magic.data(), magic.size()) == 0;
+    };
+    if (startsWith("\x89PNG\r\n\x1a\n"))
+        return ImageKind::Png;
+    if (startsWith("\xff\xd8\xff"))
+        return ImageKind::Jpeg;
+    if (startsWith("#?RADIANCE") || startsWith("#?RGBE"))
+        return ImageKind::Radiance;
+    return ImageKind::Other;
+}
 
 std::optional<std::string> implausibleSize(int width, int height, std::size_t encodedBytes) {
     const std::uint64_t pixels = std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));

@@ -9,6 +9,13 @@
 
 namespace asset::detail {
 
+/** The encodings the engine decodes, by their signature: glTF images must be PNG or JPEG (the
+ *  core spec's two MIME types), environments Radiance HDR, PNG or JPEG. Everything else is
+ *  refused before stb sees it: its other decoders (PNM, PSD, TGA, GIF, ...) are not needed,
+ *  and fuzzing found a heap overflow through its 16-bit PNM path. */
+enum class ImageKind { Png, Jpeg, Radiance, Other };
+ImageKind imageKind(std::span<const std::uint8_t> bytes);
+
 /** Refuses a width x height that no file of `encodedBytes` could hold. Real images stay far
  *  below the bound (16384 pixels per encoded byte: past deflate's 1032:1 limit on 8-bit PNG
  *  data and the run-length limit of Radiance files); a header that claims more is a lie that
