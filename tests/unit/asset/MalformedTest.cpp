@@ -28,11 +28,11 @@ void addImage(test::GltfBuilder& b, const std::vector<std::uint8_t>& bytes) {
 /** A 4x34 PNG whose 12-byte zlib stream never ends (found by fuzz_image: stb's inflater kept
  *  doubling its buffer past 1.6 GB on it). */
 std::vector<std::uint8_t> endlessPng() {
-    return {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
-            0x44, 0x52, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x22, 0x08, 0x06, 0x00, 0x00,
-            0x00, 0x7f, 0xa8, 0x00, 0x00, 0x63, 0x00, 0x7d, 0x12, 0x49, 0x44, 0x41, 0x54, 0x78,
-            0x9c, 0x63, 0x3f, 0xcd, 0x46, 0x16, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae,
-            0x42, 0x60, 0x82};
+    return {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d,
+            0x49, 0x48, 0x44, 0x52, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x22,
+            0x08, 0x06, 0x00, 0x00, 0x00, 0x7f, 0xa8, 0x00, 0x00, 0x63, 0x00, 0x7d,
+            0x12, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x3f, 0xcd, 0x46, 0x16,
+            0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
 }
 
 /** A valid 64x64 PNG whose IDAT chunk is cut to half its zlib data (lengths kept consistent). */
@@ -203,11 +203,17 @@ const std::vector<MalformedCase>& cases() {
          [](auto& b) { b.doc["accessors"][6]["count"] = 1; },
          {"skin 0 inverseBindMatrices has 1 matrices for 2 joints"}},
         {"ImageNotDecodable",
-         [](auto& b) { addImage(b, {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'}); },
+         [](auto& b) {
+             // A PNG signature, then no valid chunk.
+             addImage(b,
+                      {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 'n', 'o', 't', ' ', 'a', 'n'});
+         },
          {"image 0 could not be decoded"},
          test::GltfFormat::Glb},
         {"ImageNeitherPngNorJpeg",
-         [](auto& b) { addImage(b, {'P', '5', '\n', '5', '5', '\n', '6', '7', '6', '7'}); },
+         [](auto& b) {
+             addImage(b, {'P', '5', '\n', '5', '5', '\n', '6', '7', '6', '7'});
+         },
          {"image 0 is neither PNG nor JPEG"},
          test::GltfFormat::Glb},
         {"ImageZlibStreamNeverEnds",
@@ -223,7 +229,9 @@ const std::vector<MalformedCase>& cases() {
          {"image 0: 16000x16000 pixels cannot come from"},
          test::GltfFormat::Glb},
         {"ImageOverTextureLimit",
-         [](auto& b) { addImage(b, test::makePng(16385, 1, {9, 9, 9, 255})); },
+         [](auto& b) {
+             addImage(b, test::makePng(16385, 1, {9, 9, 9, 255}));
+         },
          {"image 0 is 16385x1, over the limit of 16384"},
          test::GltfFormat::Glb},
         {"TooManyMorphTargets",
