@@ -288,6 +288,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
         stats.gpuMs += p.gpuMs;
     }
     stats.graph = graph.dump();
+    stats.transientBytes = mPool->allocatedBytes();
     // Unbind our framebuffers before the pool deletes idle textures: deleting a texture
     // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
     gl::Framebuffer::bindDefault(settings.size);

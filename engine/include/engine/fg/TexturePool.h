@@ -36,6 +36,13 @@ public:
     /** Most textures ever allocated at once. */
     std::size_t peakCount() const { return mPeak; }
     std::size_t inUseCount() const;
+    /** GPU memory of every pooled texture (gl::TextureDesc::bytes). */
+    std::size_t allocatedBytes() const {
+        std::size_t total = 0;
+        for (const Entry& e : mEntries)
+            total += e.desc.bytes();
+        return total;
+    }
 
 private:
     struct Entry {

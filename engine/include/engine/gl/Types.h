@@ -3,6 +3,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 
 namespace gl {
@@ -20,12 +21,37 @@ enum class Format : std::uint8_t {
 
 bool isDepth(Format format);
 
+constexpr std::size_t bytesPerTexel(Format format) {
+    switch (format) {
+    case Format::RGBA8:
+    case Format::SRGB8_A8:
+    case Format::R32F:
+    case Format::R32UI:
+    case Format::Depth32F:
+        return 4;
+    case Format::RGBA16F:
+    case Format::RG32F:
+        return 8;
+    case Format::RGBA32F:
+        return 16;
+    }
+    return 0;
+}
+
 /** What a 2D texture is: size, format, mip levels (0 = the full chain). */
 struct TextureDesc {
     glm::ivec2 size{1, 1};
     Format format = Format::RGBA8;
     int levels = 1;
     bool operator==(const TextureDesc&) const = default;
+    /** GPU memory of the texture's texels, all mip levels (the driver's padding aside). */
+    std::size_t bytes() const {
+        std::size_t total = 0;
+        glm::ivec2 level = size;
+        for (int i = 0; i < levels; ++i, level = glm::max(level / 2, glm::ivec2(1)))
+            total += std::size_t(level.x) * std::size_t(level.y) * bytesPerTexel(format);
+        return total;
+    }
 };
 
 enum class Filter : std::uint8_t { Nearest, Linear, LinearMipmap };

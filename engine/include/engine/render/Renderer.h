@@ -32,6 +32,7 @@ struct FrameStats {
     std::vector<PassStats> passes;
     double cpuMs = 0.0; ///< whole frame on the CPU (record, compile, execute)
     double gpuMs = 0.0; ///< sum of the passes' GPU times
+    std::size_t transientBytes = 0; ///< GPU memory of the frame graph's pooled textures
     std::string graph;  ///< the compiled frame graph as text
 };
 

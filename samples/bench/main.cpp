@@ -1,0 +1,320 @@
+// glass-bench: frame time of each glass method on one model, the methods interleaved frame by
+// frame so that their ratios hold on a noisy machine.
+#include "../common/ToolMain.h"
+#include "engine/anim/Pose.h"
+#include "engine/asset/ModelLoader.h"
+#include "engine/core/Files.h"
+#include "engine/deform/CpuDeformer.h"
+#include "engine/gl/Commands.h"
+#include "engine/gl/Debug.h"
+#include "engine/render/Renderer.h"
+#include "refraction/RefractionPlugin.h"
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* const kUsage =
+    R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0] [--size WxH]
+                   [--frames N] [--warmup W] [--glass all|auto] [--json FILE [--force]]
+
+Renders MODEL headless (EGL) with each method, interleaved frame by frame (opaque, sir, isr,
+dir, opaque, ...) while the first clip plays (1/30 s per round), after W warm-up rounds
+(default 10), for N measured rounds (default 60), at WxH (default 512x512). Per method: median
+and p95 frame time (render + finish, wall clock), each pass's median GPU and CPU time (every
+pass finished before its end timestamp), triangles, pixels the model covers (CPU coverage of
+the deformed triangles at the middle of the clip) and the GPU memory of the frame graph's
+pooled textures. --glass all (default) plays every mesh as glass.
+
+--subdiv takes level 0 only for now: OpenSubdiv refinement is not built yet (a level above 0 is
+an error, not a silent fallback).
+
+Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON
+(atomically; an existing FILE needs --force). Exit status: 0, 1 a load or render error, 2 bad
+arguments.
+)";
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "glass-bench: %s\n\n%s", message.c_str(), kUsage);
+    return 2;
+}
+
+std::vector<std::string> split(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');)
+        out.push_back(item);
+    return out;
+}
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t i =
+        std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5));
+    return values[i];
+}
+
+/** Pixels covered by the deformed triangles at `size` (any facing), by edge functions at pixel
+ *  centres: the share of the image the glass pass works on. */
+std::size_t coveredPixels(const scene::Model& model, const anim::Pose& pose,
+                          const render::Camera& camera, glm::ivec2 size) {
+    std::vector<std::uint8_t> covered(std::size_t(size.x) * std::size_t(size.y), 0);
+    const glm::dmat4 viewProjection(camera.viewProjection());
+    for (const deform::DeformedInstance& instance : deform::deformScene(model, pose)) {
+        const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
+        for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+            std::vector<glm::dvec3> screen;
+            bool behind = false;
+            for (const glm::dvec3& v : instance.primitives[p].positions) {
+                const glm::dvec4 clip = viewProjection * instance.meshToWorld * glm::dvec4(v, 1.0);
+                behind = behind || clip.w <= 0.0;
+                screen.emplace_back((clip.x / clip.w * 0.5 + 0.5) * size.x,
+                                    (clip.y / clip.w * 0.5 + 0.5) * size.y, 0.0);
+            }
+            if (behind)
+                continue; // the benchmark frames the whole model; nothing is behind the camera
+            const auto& indices = mesh.primitives[p].indices;
+            for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+                const glm::dvec3 a = screen[indices[t]], b = screen[indices[t + 1]],
+                                 c = screen[indices[t + 2]];
+                const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+                if (area == 0.0)
+                    continue;
+                const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
+                const int x1 = std::min(size.x - 1, int(std::ceil(std::max({a.x, b.x, c.x}))));
+                const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}))));
+                const int y1 = std::min(size.y - 1, int(std::ceil(std::max({a.y, b.y, c.y}))));
+                for (int y = y0; y <= y1; ++y)
+                    for (int x = x0; x <= x1; ++x) {
+                        const double px = x + 0.5, py = y + 0.5;
+                        const double w0 = (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
+                        const double w1 = (c.x - b.x) * (py - b.y) - (c.y - b.y) * (px - b.x);
+                        const double w2 = (a.x - c.x) * (py - c.y) - (a.y - c.y) * (px - c.x);
+                        if ((w0 >= 0 && w1 >= 0 && w2 >= 0) || (w0 <= 0 && w1 <= 0 && w2 <= 0))
+                            covered[std::size_t(y) * std::size_t(size.x) + std::size_t(x)] = 1;
+                    }
+            }
+        }
+    }
+    return std::size_t(std::count(covered.begin(), covered.end(), std::uint8_t(1)));
+}
+
+struct MethodRun {
+    std::string method;
+    std::vector<double> frameMs;
+    std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> passes;
+    std::vector<std::string> passOrder;
+    std::size_t transientBytes = 0;
+};
+
+int run(int argc, char** argv) {
+    std::string model, jsonPath, glass = "all";
+    std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
+    std::vector<int> levels = {0};
+    glm::ivec2 size{512, 512};
+    int frames = 60, warmup = 10;
+    bool force = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const bool hasValue = i + 1 < argc;
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (arg == "--force") {
+            force = true;
+        } else if (arg == "--methods" && hasValue) {
+            methods = split(argv[++i]);
+        } else if (arg == "--subdiv" && hasValue) {
+            levels.clear();
+            for (const std::string& level : split(argv[++i]))
+                levels.push_back(std::atoi(level.c_str()));
+        } else if (arg == "--size" && hasValue) {
+            char extra = 0;
+            if (std::sscanf(argv[++i], "%dx%d%c", &size.x, &size.y, &extra) != 2 || size.x < 16 ||
+                size.y < 16 || size.x > 8192 || size.y > 8192)
+                return usageError("--size needs WxH within 16..8192");
+        } else if ((arg == "--frames" || arg == "--warmup") && hasValue) {
+            (arg == "--frames" ? frames : warmup) = std::atoi(argv[++i]);
+            if (frames < 1 || warmup < 0)
+                return usageError(arg + " needs a count");
+        } else if (arg == "--json" && hasValue) {
+            jsonPath = argv[++i];
+        } else if (arg == "--glass" && hasValue) {
+            glass = argv[++i];
+        } else if (!arg.empty() && arg[0] != '-' && model.empty()) {
+            model = arg;
+        } else {
+            return usageError("unexpected '" + arg + "'");
+        }
+    }
+    if (model.empty())
+        return usageError("no model given");
+    for (int level : levels)
+        if (level != 0)
+            return usageError("--subdiv " + std::to_string(level) +
+                              ": OpenSubdiv refinement is not built yet; only level 0 runs");
+    if (!jsonPath.empty() && !force && std::filesystem::exists(jsonPath)) {
+        std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
+                     jsonPath.c_str());
+        return 1;
+    }
+    const auto plugin = refraction::createPlugin();
+    for (const std::string& method : methods)
+        if (auto ok = plugin::ParameterSet(plugin->parameters()).set("method", method); !ok)
+            return usageError("--methods: " + ok.error().message);
+    if (auto ok = plugin->parameters().set("glass", glass); !ok)
+        return usageError("--glass: " + ok.error().message);
+
+    auto loaded = asset::loadModel(model);
+    if (!loaded) {
+        std::fprintf(stderr, "glass-bench: %s\n", loaded.error().message.c_str());
+        return 1;
+    }
+    auto context = gl::createHeadlessContext();
+    if (!context) {
+        std::fprintf(stderr, "glass-bench: %s\n", context.error().message.c_str());
+        return 1;
+    }
+    auto renderer =
+        render::Renderer::create(*loaded, render::Environment::proceduralSky(), **context);
+    if (!renderer) {
+        std::fprintf(stderr, "glass-bench: %s\n", renderer.error().message.c_str());
+        return 1;
+    }
+    if (auto added = (*renderer)->addPlugin(plugin.get()); !added) {
+        std::fprintf(stderr, "glass-bench: %s\n", added.error().message.c_str());
+        return 1;
+    }
+    const int clip = loaded->animations.empty() ? -1 : 0;
+    const double duration = clip < 0 ? 1.0 : std::max(loaded->animations[0].duration, 1e-3);
+    const render::Bounds bounds = render::animatedBounds(*loaded, clip);
+    const render::Camera camera = render::frameBounds(bounds, float(size.x) / float(size.y));
+    std::size_t triangles = 0;
+    for (const scene::Mesh& mesh : loaded->meshes)
+        for (const scene::Primitive& primitive : mesh.primitives)
+            triangles += primitive.indices.size() / 3;
+    const std::size_t covered =
+        coveredPixels(*loaded, anim::evaluate(*loaded, clip, 0.5 * duration), camera, size);
+
+    std::vector<MethodRun> runs;
+    for (const std::string& method : methods)
+        runs.push_back({method, {}, {}, {}, 0});
+    render::RenderSettings settings;
+    settings.size = size;
+    settings.exactPassTimes = true;
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    const int rounds = warmup + frames;
+    for (int round = 0; round < rounds; ++round) {
+        const double time = std::fmod(round / 30.0, duration);
+        const anim::Pose pose = anim::evaluate(*loaded, clip, time);
+        for (MethodRun& r : runs) {
+            (void)plugin->parameters().set("method", r.method);
+            const auto start = std::chrono::steady_clock::now();
+            auto stats = (*renderer)->render(pose, camera, settings, time);
+            gl::finish();
+            const double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            if (!stats) {
+                std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
+                return 1;
+            }
+            if (round < warmup)
+                continue;
+            r.frameMs.push_back(ms);
+            r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
+            for (const render::PassStats& p : stats->passes) {
+                if (!r.passes.count(p.name))
+                    r.passOrder.push_back(p.name);
+                r.passes[p.name].first.push_back(p.gpuMs);
+                r.passes[p.name].second.push_back(p.cpuMs);
+            }
+        }
+        if (terminal)
+            std::fprintf(stderr, "\rglass-bench: %s round %d/%d",
+                         round < warmup ? "warm-up" : "measured", round + 1, rounds);
+    }
+    if (terminal)
+        std::fprintf(stderr, "\n");
+    if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
+        std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
+        return 1;
+    }
+
+    const double opaqueMedian = [&] {
+        for (const MethodRun& r : runs)
+            if (r.method == "opaque")
+                return percentile(r.frameMs, 0.5);
+        return 0.0;
+    }();
+    std::printf("%s, %dx%d, %zu triangles, %zu covered pixels, %d rounds after %d warm-up (%s)\n",
+                loaded->sourceName.c_str(), size.x, size.y, triangles, covered, frames, warmup,
+                gl::rendererString());
+    std::printf("| method | level | median ms | p95 ms | x opaque | transients MiB | slowest "
+                "passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---|\n");
+    nlohmann::json report = {{"model", model},
+                             {"renderer", gl::rendererString()},
+                             {"size", {size.x, size.y}},
+                             {"frames", frames},
+                             {"warmup", warmup},
+                             {"triangles", triangles},
+                             {"covered_pixels", covered},
+                             {"results", nlohmann::json::array()}};
+    for (const MethodRun& r : runs) {
+        const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
+        std::vector<std::pair<double, std::string>> slowest;
+        nlohmann::json passes = nlohmann::json::array();
+        for (const std::string& name : r.passOrder) {
+            const auto& [gpu, cpu] = r.passes.at(name);
+            slowest.emplace_back(percentile(gpu, 0.5), name);
+            passes.push_back({{"name", name},
+                              {"gpu_ms", percentile(gpu, 0.5)},
+                              {"cpu_ms", percentile(cpu, 0.5)}});
+        }
+        std::sort(slowest.rbegin(), slowest.rend());
+        std::string top;
+        for (std::size_t i = 0; i < std::min<std::size_t>(3, slowest.size()); ++i) {
+            char item[96];
+            std::snprintf(item, sizeof item, "%s%s %.1f", i ? ", " : "", slowest[i].second.c_str(),
+                          slowest[i].first);
+            top += item;
+        }
+        const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
+        std::printf("| %s | 0 | %.2f | %.2f | %.2f | %.1f | %s |\n", r.method.c_str(), median, p95,
+                    ratio, double(r.transientBytes) / 1048576.0, top.c_str());
+        report["results"].push_back({{"method", r.method},
+                                     {"level", 0},
+                                     {"triangles", triangles},
+                                     {"median_ms", median},
+                                     {"p95_ms", p95},
+                                     {"ratio_to_opaque", ratio},
+                                     {"transient_bytes", r.transientBytes},
+                                     {"passes", passes}});
+    }
+    if (!jsonPath.empty())
+        if (auto written = core::writeFileAtomic(jsonPath, report.dump(2) + "\n"); !written) {
+            std::fprintf(stderr, "glass-bench: %s\n", written.error().message.c_str());
+            return 1;
+        }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    return tool::guardedMain("glass-bench", run, argc, argv);
+}
