@@ -27,7 +27,8 @@ namespace {
 
 const char* const kUsage =
     R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0] [--size WxH]
-                   [--frames N] [--warmup W] [--glass all|auto] [--json FILE [--force]]
+                   [--frames N] [--warmup W] [--glass all|auto] [--set KEY=VALUE]...
+                   [--json FILE [--force]]
 
 Renders MODEL headless (EGL) with each method, interleaved frame by frame (opaque, sir, isr,
 dir, opaque, ...) while the first clip plays (1/30 s per round), after W warm-up rounds
@@ -35,7 +36,8 @@ dir, opaque, ...) while the first clip plays (1/30 s per round), after W warm-up
 and p95 frame time (render + finish, wall clock), each pass's median GPU and CPU time (every
 pass finished before its end timestamp), triangles, pixels the model covers (CPU coverage of
 the deformed triangles at the middle of the clip) and the GPU memory of the frame graph's
-pooled textures. --glass all (default) plays every mesh as glass.
+pooled textures. --glass all (default) plays every mesh as glass; --set sets any other
+refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
 
 --subdiv takes level 0 only for now: OpenSubdiv refinement is not built yet (a level above 0 is
 an error, not a silent fallback).
@@ -127,6 +129,7 @@ int run(int argc, char** argv) {
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
     bool force = false;
+    std::vector<std::pair<std::string, std::string>> assignments;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool hasValue = i + 1 < argc;
@@ -154,6 +157,12 @@ int run(int argc, char** argv) {
             jsonPath = argv[++i];
         } else if (arg == "--glass" && hasValue) {
             glass = argv[++i];
+        } else if (arg == "--set" && hasValue) {
+            const std::string assignment = argv[++i];
+            const std::size_t equals = assignment.find('=');
+            if (equals == std::string::npos)
+                return usageError("--set needs KEY=VALUE");
+            assignments.emplace_back(assignment.substr(0, equals), assignment.substr(equals + 1));
         } else if (!arg.empty() && arg[0] != '-' && model.empty()) {
             model = arg;
         } else {
@@ -177,6 +186,9 @@ int run(int argc, char** argv) {
             return usageError("--methods: " + ok.error().message);
     if (auto ok = plugin->parameters().set("glass", glass); !ok)
         return usageError("--glass: " + ok.error().message);
+    for (const auto& [key, value] : assignments)
+        if (auto ok = plugin->parameters().set(key, value); !ok)
+            return usageError("--set " + key + ": " + ok.error().message);
 
     auto loaded = asset::loadModel(model);
     if (!loaded) {

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <map>
 
@@ -27,26 +28,40 @@ public:
     void release(void* object) override { delete static_cast<gl::Texture*>(object); }
 };
 
-/** A timer query per pass name, reused across frames. */
+/** Timer queries per pass name, a ring of kFrames sets reused across frames. With exact pass
+ *  times the frame waits for its own results; otherwise it reads the newest earlier frame's
+ *  that are ready, so timing never stalls the CPU on the GPU. */
 class Renderer::Timer final : public fg::PassObserver {
 public:
+    static constexpr std::size_t kFrames = 4;
     bool exact = false;
-    void beginPass(const std::string& name) override { mQueries[name].begin(); }
+    void beginFrame() { mSlot = (mSlot + 1) % kFrames; }
+    void beginPass(const std::string& name) override { mQueries[name][mSlot].begin(); }
     void endPass(const std::string& name) override {
         if (exact)
             gl::finish();
-        mQueries[name].end();
+        mQueries[name][mSlot].end();
     }
-    double milliseconds(const std::string& name) const {
+    double milliseconds(const std::string& name) {
         const auto it = mQueries.find(name);
         if (it == mQueries.end())
             return 0.0;
-        const auto ns = it->second.resultNs(true);
-        return ns ? double(*ns) * 1e-6 : 0.0;
+        if (exact) {
+            const auto ns = it->second[mSlot].resultNs(true);
+            return ns ? double(*ns) * 1e-6 : 0.0;
+        }
+        for (std::size_t age = 1; age < kFrames; ++age) {
+            const auto ns = it->second[(mSlot + kFrames - age) % kFrames].resultNs(false);
+            if (ns)
+                return mLatest[name] = double(*ns) * 1e-6;
+        }
+        return mLatest[name];
     }
 
 private:
-    std::map<std::string, gl::TimerQuery> mQueries;
+    std::map<std::string, std::array<gl::TimerQuery, kFrames>> mQueries;
+    std::map<std::string, double> mLatest;
+    std::size_t mSlot = 0;
 };
 
 namespace {
@@ -278,6 +293,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
         return compiled.error();
     FrameStats stats;
     mTimer->exact = settings.exactPassTimes;
+    mTimer->beginFrame();
     for (const fg::PassTiming& t : graph.execute(*mContext, mTimer.get()))
         stats.passes.push_back({t.name, t.cpuMs, 0.0});
     stats.cpuMs =

@@ -21,7 +21,9 @@
 
 namespace render {
 
-/** One executed pass: CPU time of its execute callback, GPU time from a timer query. */
+/** One executed pass: CPU time of its execute callback, GPU time from a timer query: this
+ *  frame's with RenderSettings::exactPassTimes, else the newest earlier frame's that the GPU
+ *  has finished (up to 3 frames old; reading it never waits). */
 struct PassStats {
     std::string name;
     double cpuMs = 0.0;
