@@ -1,5 +1,6 @@
 // glass-bench: frame time of each glass method on one model, the methods interleaved frame by
 // frame so that their ratios hold on a noisy machine.
+#include "../common/HeadlessScene.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
@@ -180,39 +181,29 @@ int run(int argc, char** argv) {
                      jsonPath.c_str());
         return 1;
     }
-    const auto plugin = refraction::createPlugin();
+    // Checked on a copy of the parameters first: bad arguments exit 2 before any loading.
+    plugin::ParameterSet parameters = refraction::createPlugin()->parameters();
     for (const std::string& method : methods)
-        if (auto ok = plugin::ParameterSet(plugin->parameters()).set("method", method); !ok)
+        if (auto ok = plugin::ParameterSet(parameters).set("method", method); !ok)
             return usageError("--methods: " + ok.error().message);
-    if (auto ok = plugin->parameters().set("glass", glass); !ok)
-        return usageError("--glass: " + ok.error().message);
+    assignments.insert(assignments.begin(), {"glass", glass});
     for (const auto& [key, value] : assignments)
-        if (auto ok = plugin->parameters().set(key, value); !ok)
-            return usageError("--set " + key + ": " + ok.error().message);
+        if (auto ok = parameters.set(key, value); !ok)
+            return usageError("--" + std::string(key == "glass" ? "glass" : "set " + key) + ": " +
+                              ok.error().message);
 
-    auto loaded = asset::loadModel(model);
-    if (!loaded) {
-        std::fprintf(stderr, "glass-bench: %s\n", loaded.error().message.c_str());
+    auto opened = tool::openHeadlessScene(model);
+    if (!opened) {
+        std::fprintf(stderr, "glass-bench: %s\n", opened.error().message.c_str());
         return 1;
     }
-    auto context = gl::createHeadlessContext();
-    if (!context) {
-        std::fprintf(stderr, "glass-bench: %s\n", context.error().message.c_str());
-        return 1;
-    }
-    auto renderer =
-        render::Renderer::create(*loaded, render::Environment::proceduralSky(), **context);
-    if (!renderer) {
-        std::fprintf(stderr, "glass-bench: %s\n", renderer.error().message.c_str());
-        return 1;
-    }
-    if (auto added = (*renderer)->addPlugin(plugin.get()); !added) {
-        std::fprintf(stderr, "glass-bench: %s\n", added.error().message.c_str());
-        return 1;
-    }
-    const int clip = loaded->animations.empty() ? -1 : 0;
-    const double duration = clip < 0 ? 1.0 : std::max(loaded->animations[0].duration, 1e-3);
-    const render::Bounds bounds = render::animatedBounds(*loaded, clip);
+    tool::HeadlessScene& headless = *opened;
+    scene::Model* const loaded = headless.model.get();
+    plugin::Plugin* const plugin = headless.glass.get();
+    plugin->parameters() = parameters;
+    const int clip = headless.clip;
+    const double duration = headless.duration;
+    const render::Bounds bounds = headless.bounds;
     const render::Camera camera = render::frameBounds(bounds, float(size.x) / float(size.y));
     std::size_t triangles = 0;
     for (const scene::Mesh& mesh : loaded->meshes)
@@ -235,7 +226,7 @@ int run(int argc, char** argv) {
         for (MethodRun& r : runs) {
             (void)plugin->parameters().set("method", r.method);
             const auto start = std::chrono::steady_clock::now();
-            auto stats = (*renderer)->render(pose, camera, settings, time);
+            auto stats = headless.renderer->render(pose, camera, settings, time);
             gl::finish();
             const double ms =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

@@ -1,6 +1,7 @@
 // glass-soak: renders many frames headless while the clip loops, the glass method switches and
 // the viewport resizes, and reports the process's resident memory and the context's live GL
 // objects along the way; fails when either still grows after the first full cycle.
+#include "../common/HeadlessScene.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
@@ -89,32 +90,17 @@ int run(int argc, char** argv) {
             return 2;
         }
     }
-    auto model = asset::loadModel(modelPath);
-    if (!model) {
-        std::fprintf(stderr, "glass-soak: %s\n", model.error().message.c_str());
+    auto opened = tool::openHeadlessScene(modelPath, 256);
+    if (!opened) {
+        std::fprintf(stderr, "glass-soak: %s\n", opened.error().message.c_str());
         return 1;
     }
-    auto context = gl::createHeadlessContext();
-    if (!context) {
-        std::fprintf(stderr, "glass-soak: %s\n", context.error().message.c_str());
-        return 1;
-    }
-    auto renderer =
-        render::Renderer::create(*model, render::Environment::proceduralSky(256), **context);
-    if (!renderer) {
-        std::fprintf(stderr, "glass-soak: %s\n", renderer.error().message.c_str());
-        return 1;
-    }
-    const auto plugin = refraction::createPlugin();
-    if (auto added = (*renderer)->addPlugin(plugin.get()); !added) {
-        std::fprintf(stderr, "glass-soak: %s\n", added.error().message.c_str());
-        return 1;
-    }
+    tool::HeadlessScene& headless = *opened;
+    plugin::Plugin* const plugin = headless.glass.get();
     (void)plugin->parameters().set("glass", "all");
-    const int clip = model->animations.empty() ? -1 : 0;
-    const double duration = clip < 0 ? 1.0 : model->animations[0].duration;
-    const render::Bounds bounds = render::animatedBounds(*model, clip);
-    (*renderer)->setGround({bounds.min.y, bounds.center(), 3.0f * bounds.radius()});
+    const int clip = headless.clip;
+    const double duration = headless.duration;
+    const render::Bounds bounds = headless.bounds;
     const std::vector<std::pair<std::string, std::string>> methods = {{"opaque", "clamp"},
                                                                       {"sir", "clamp"},
                                                                       {"isr", "clamp"},
@@ -131,11 +117,11 @@ int run(int argc, char** argv) {
         (void)plugin->parameters().set("method", method);
         (void)plugin->parameters().set("tir", tir);
         const double time = std::fmod(frame / 30.0, duration);
-        const anim::Pose pose = anim::evaluate(*model, clip, time);
+        const anim::Pose pose = anim::evaluate(*headless.model, clip, time);
         render::RenderSettings settings;
         settings.size = size;
         settings.ground = true;
-        auto stats = (*renderer)->render(
+        auto stats = headless.renderer->render(
             pose, render::frameBounds(bounds, float(size.x) / float(size.y)), settings, time);
         if (!stats) {
             std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
