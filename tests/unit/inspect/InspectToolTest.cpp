@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace {
@@ -121,8 +122,9 @@ TEST(InspectTool, PlyHoldsTheCpuDeformation) {
     for (const char* format : {"", " --ascii"}) {
         const auto ply = dir / "out.ply";
         std::string out;
+        // The second format replaces the first one's file: --force.
         ASSERT_EQ(test::runCommand(kInspect + " " + path.string() +
-                                       " --vertices cpu --time 1 --clip bend --out " +
+                                       " --vertices cpu --time 1 --clip bend --force --out " +
                                        ply.string() + format,
                                    &out),
                   0)
@@ -221,6 +223,22 @@ TEST(CompareTool, ScoresTwoImagesOverAMask) {
                                    (dir / "nope.png").string(),
                                &out),
               1);
+}
+
+TEST(InspectTool, AnExistingPlyIsKeptWithoutForce) {
+    test::TempDir dir;
+    const auto path = test::twoJointModel().save(dir.path(), "twojoint");
+    const auto ply = dir / "out.ply";
+    std::ofstream(ply) << "keep me";
+    std::string out;
+    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --out " +
+                                   ply.string(),
+                               &out),
+              1);
+    EXPECT_NE(out.find("exists (use --force to replace it)"), std::string::npos) << out;
+    std::ifstream in(ply);
+    const std::string kept{std::istreambuf_iterator<char>(in), {}};
+    EXPECT_EQ(kept, "keep me");
 }
 
 } // namespace
