@@ -145,8 +145,10 @@ TEST_F(ViewerWindow, QuittingSavesTheSessionAndTheNextStartRestoresIt) {
     // An interactive run, ended with the Escape key, saves its settings.
     ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere " + kWindow +
                       " --set method=sir --set ior=1.77 & pid=$!;"
-                      " w=$(timeout 60 xdotool search --sync --name ^glass-viewer$ | head -n 1);"
-                      " xdotool mousemove --window $w 40 40; xdotool windowfocus --sync $w;"
+                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
+                      "head -n 1);"
+                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
+                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
                       " xdotool key Escape; wait $pid'",
                   &out),
               0)

@@ -31,11 +31,18 @@ screenshot() {
     fail "no screenshot $1 after 60 s"
 }
 
-window=$(timeout 60 xdotool search --sync --name '^glass-viewer$' | head -n 1)
-[ -n "$window" ] || fail "no glass-viewer window after 60 s"
+# The window exists before it is mapped; focusing an unmapped window is an X error (BadMatch),
+# so wait until it is viewable (slow starts: sanitizer builds).
+window=$(timeout 60 xdotool search --sync --onlyvisible --name '^glass-viewer$' | head -n 1)
+[ -n "$window" ] || fail "no visible glass-viewer window after 60 s"
 # No window manager: put the pointer over the window and give it the keyboard focus.
-xdotool mousemove --window "$window" 40 40
-xdotool windowfocus --sync "$window" || fail "cannot focus the viewer window"
+focused=0
+for _ in $(seq 50); do
+    xdotool mousemove --window "$window" 40 40 2>/dev/null &&
+        xdotool windowfocus --sync "$window" 2>/dev/null && focused=1 && break
+    sleep 0.1
+done
+[ "$focused" = 1 ] || fail "cannot focus the viewer window"
 
 screenshot 1
 screenshot 2
