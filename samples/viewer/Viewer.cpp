@@ -270,8 +270,7 @@ plugin::Plugin* Viewer::methodPlugin() const {
     return mRefraction.get();
 }
 
-void Viewer::handleInput(double dt) {
-    (void)dt;
+void Viewer::handleInput() {
     ImGuiIO& io = ImGui::GetIO();
     plugin::ParameterSet& glass = methodPlugin()->parameters();
     const std::size_t methods = glass.find("method")->choices.size();
@@ -485,7 +484,7 @@ int Viewer::run() {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
-        handleInput(dt);
+        handleInput();
         if (mSettings.flag("playing"))
             advance(dt * mSettings.number("speed"));
         if (scripted && frame + 1 == *mOptions.frames && mOptions.screenshot) {

@@ -84,7 +84,7 @@ private:
     plugin::Plugin* methodPlugin() const;
     float viewportAspect() const { return float(mViewport.x) / float(std::max(mViewport.y, 1)); }
 
-    void handleInput(double dt);
+    void handleInput();
     void advance(double dt);
     render::RenderSettings settings(glm::ivec2 size) const;
     core::Status renderView(glm::ivec2 size);
