@@ -219,6 +219,7 @@ void Panel::timings(Viewer& v) {
         ImGui::EndTable();
     }
     widget(v.mSettings, "exact-timings");
+    widget(v.mSettings, "render-scale");
 }
 
 void Panel::presets(Viewer& v) {

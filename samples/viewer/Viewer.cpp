@@ -143,6 +143,9 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
                                     v->methodPlugin()->parameters().find("method")->choices);
     // Start on the first project HDR (the default environment), or the sky.
     v->mSettings.setNumber("environment", v->mEnvironments.size() > 1 ? 1.0 : 0.0);
+    // On a CPU rasteriser, half resolution keeps the glass interactive.
+    if (std::string(gl::rendererString()).find("llvmpipe") != std::string::npos)
+        v->mSettings.setNumber("render-scale", 0.5);
     v->mSettings.setNumber("split-method", 0.0);
 
     Orbit orbit = v->mCamera.orbitState();
@@ -391,23 +394,28 @@ core::Status Viewer::renderView(glm::ivec2 size) {
     const anim::Pose pose = anim::evaluate(model, clip, mTime);
     const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
     render::Renderer& renderer = *mScene.renderer;
-    auto stats = renderer.render(pose, camera, settings(size), mTime);
+    // Rendered at render-scale of the view and scaled up when shown.
+    const double scale = mSettings.number("render-scale");
+    const glm::ivec2 internal = glm::max(glm::ivec2(glm::round(glm::dvec2(size) * scale)), 1);
+    auto stats = renderer.render(pose, camera, settings(internal), mTime);
     if (!stats)
         return stats.error();
     mStats = std::move(*stats);
     const bool split = mSettings.flag("split");
-    const int divider =
-        split ? int(std::lround(mSettings.number("split-position") * size.x)) : size.x;
-    renderer.presentOutput({0, 0, divider, size.y});
+    const double at = split ? mSettings.number("split-position") : 1.0;
+    const int divider = int(std::lround(at * size.x));
+    const int dividerInternal = int(std::lround(at * internal.x));
+    renderer.presentOutput({0, 0, dividerInternal, internal.y}, {0, 0, divider, size.y});
     if (split && divider < size.x) {
         plugin::ParameterSet& glass = methodPlugin()->parameters();
         const double methodA = glass.number("method");
         glass.setNumber("method", mSettings.number("split-method"));
-        auto right = renderer.render(pose, camera, settings(size), mTime);
+        auto right = renderer.render(pose, camera, settings(internal), mTime);
         glass.setNumber("method", methodA);
         if (!right)
             return right.error();
-        renderer.presentOutput({divider, 0, size.x - divider, size.y});
+        renderer.presentOutput({dividerInternal, 0, internal.x - dividerInternal, internal.y},
+                               {divider, 0, size.x - divider, size.y});
     }
     return {};
 }

@@ -244,10 +244,12 @@ void Framebuffer::bindDefault(glm::ivec2 size) {
     glViewport(0, 0, size.x, size.y);
 }
 
-void Framebuffer::blitToDefault(glm::ivec4 source) const {
-    const glm::ivec2 end{source.x + source.z, source.y + source.w};
-    glBlitNamedFramebuffer(mId, 0, source.x, source.y, end.x, end.y, source.x, source.y, end.x,
-                           end.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+void Framebuffer::blitToDefault(glm::ivec4 source, glm::ivec4 destination) const {
+    const bool scaled = source.z != destination.z || source.w != destination.w;
+    glBlitNamedFramebuffer(mId, 0, source.x, source.y, source.x + source.z, source.y + source.w,
+                           destination.x, destination.y, destination.x + destination.z,
+                           destination.y + destination.w, GL_COLOR_BUFFER_BIT,
+                           scaled ? GL_LINEAR : GL_NEAREST);
 }
 
 std::vector<std::uint8_t> Framebuffer::readDefault(glm::ivec2 size) {

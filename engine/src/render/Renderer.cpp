@@ -312,10 +312,10 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     return stats;
 }
 
-void Renderer::presentOutput(glm::ivec4 source) const {
+void Renderer::presentOutput(glm::ivec4 source, glm::ivec4 destination) const {
     auto status = mPresent.attach("present", {&mOutput}, nullptr);
     ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
-    mPresent.blitToDefault(source);
+    mPresent.blitToDefault(source, destination);
 }
 
 core::Status Renderer::setEnvironment(const asset::HdrImage& environment) {

@@ -27,8 +27,9 @@ public:
     /** Binds the default framebuffer (the window) with the given viewport. */
     static void bindDefault(glm::ivec2 size);
     /** Copies rectangle `source` (x, y, width, height; GL's bottom-up rows) of colour
-     *  attachment 0 to the same rectangle of the window, unfiltered. */
-    void blitToDefault(glm::ivec4 source) const;
+     *  attachment 0 to rectangle `destination` of the window: unfiltered when the sizes match,
+     *  bilinear when scaling. */
+    void blitToDefault(glm::ivec4 source, glm::ivec4 destination) const;
     /** The window's back buffer as RGBA8, rows top to bottom (synchronises). */
     static std::vector<std::uint8_t> readDefault(glm::ivec2 size);
 

@@ -61,8 +61,9 @@ public:
     std::vector<float> readHdrOutput() const;
 
     /** Shows the last output() in the window: rectangle `source` (x, y, width, height, GL's
-     *  bottom-up rows) of it to the same place in the default framebuffer. */
-    void presentOutput(glm::ivec4 source) const;
+     *  bottom-up rows) of it to rectangle `destination` of the default framebuffer (scaled
+     *  bilinearly when the sizes differ). */
+    void presentOutput(glm::ivec4 source, glm::ivec4 destination) const;
 
     /** Replaces the environment (prefiltered again); on failure the previous one stays. */
     core::Status setEnvironment(const asset::HdrImage& environment);
