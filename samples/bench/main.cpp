@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -66,7 +67,7 @@ double percentile(std::vector<double> values, double p) {
         return 0.0;
     std::sort(values.begin(), values.end());
     const std::size_t i =
-        std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5));
+        std::min(values.size() - 1, std::size_t(std::lround(p * double(values.size() - 1))));
     return values[i];
 }
 
