@@ -136,11 +136,7 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
     v->mViewport = {size.x - Panel::width(size.x), size.y};
     v->mCamera.frame(v->mScene.bounds, v->viewportAspect());
 
-    std::vector<std::string> environmentNames;
-    for (const EnvironmentEntry& e : v->mEnvironments)
-        environmentNames.push_back(e.name);
-    v->mSettings = viewerParameters(clipNames(*v->mScene.model), environmentNames,
-                                    v->methodPlugin()->parameters().find("method")->choices);
+    v->mSettings = v->settingsForScene();
     // Start on the first project HDR (the default environment), or the sky.
     v->mSettings.setNumber("environment", v->mEnvironments.size() > 1 ? 1.0 : 0.0);
     // On a CPU rasteriser, half resolution keeps the glass interactive.
@@ -227,15 +223,7 @@ void Viewer::openModel(const std::string& path) {
     mScene = std::move(*scene);
     mEnvironmentShown = -1; // the new renderer starts with the sky
     mCamera.frame(mScene.bounds, viewportAspect());
-    plugin::ParameterSet settings = viewerParameters(
-        clipNames(*mScene.model),
-        [&] {
-            std::vector<std::string> names;
-            for (const EnvironmentEntry& e : mEnvironments)
-                names.push_back(e.name);
-            return names;
-        }(),
-        methodPlugin()->parameters().find("method")->choices);
+    plugin::ParameterSet settings = settingsForScene();
     copyValues(mSettings, settings);
     mSettings = std::move(settings);
     mTime = 0.0;
@@ -271,6 +259,14 @@ std::vector<Scope> Viewer::scopes() {
 
 plugin::Plugin* Viewer::methodPlugin() const {
     return mRefraction.get();
+}
+
+plugin::ParameterSet Viewer::settingsForScene() const {
+    std::vector<std::string> environments;
+    for (const EnvironmentEntry& e : mEnvironments)
+        environments.push_back(e.name);
+    return viewerParameters(clipNames(*mScene.model), environments,
+                            methodPlugin()->parameters().find("method")->choices);
 }
 
 void Viewer::handleInput() {

@@ -82,6 +82,8 @@ private:
     core::Status applyEnvironment();
     std::vector<Scope> scopes();
     plugin::Plugin* methodPlugin() const;
+    /** The viewer's settings, at their defaults, for the current model's clips. */
+    plugin::ParameterSet settingsForScene() const;
     float viewportAspect() const { return float(mViewport.x) / float(std::max(mViewport.y, 1)); }
 
     void handleInput();
