@@ -18,6 +18,19 @@ pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)
 # libimgui-dev: Dear ImGui with its GLFW and OpenGL3 backends, unmodified (the viewer's panel and
 # the plugins' panel hooks)
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET GLOBAL imgui)
+# libosd-dev: OpenSubdiv 3.5 (Far topology refinement and stencils, Osd CPU and GL compute
+# evaluators; only engine/src/deform includes it). Debian's CMake config for it names static
+# libraries the package does not ship, so the two shared libraries are found directly.
+find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/osd/glComputeEvaluator.h REQUIRED)
+find_library(OPENSUBDIV_CPU_LIBRARY osdCPU REQUIRED)
+find_library(OPENSUBDIV_GPU_LIBRARY osdGPU REQUIRED)
+foreach(part CPU GPU)
+    add_library(OpenSubdiv::osd${part} SHARED IMPORTED)
+    set_target_properties(OpenSubdiv::osd${part} PROPERTIES
+        IMPORTED_LOCATION ${OPENSUBDIV_${part}_LIBRARY}
+        INTERFACE_INCLUDE_DIRECTORIES ${OPENSUBDIV_INCLUDE_DIR}
+        INTERFACE_COMPILE_DEFINITIONS "OPENSUBDIV_HAS_OPENGL;OPENSUBDIV_HAS_GLSL_COMPUTE")
+endforeach()
 # libembree-dev: the reference ray tracer (plugin_refraction only)
 find_package(embree 3 REQUIRED)
 # nlohmann-json3-dev: JSON output of the tools and parsing in tests (tinygltf uses it too)

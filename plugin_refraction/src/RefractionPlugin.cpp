@@ -31,7 +31,7 @@ struct RefractionPlugin::Gpu {
     gl::VertexArray emptyVao;
     gl::Buffer range{4 * sizeof(std::uint32_t)};
     const scene::Model* model = nullptr;
-    const void* geometry = nullptr;
+    std::uint64_t geometry = 0; // GpuDeformer::serial() the caches below belong to
     std::vector<gl::VertexArray> vaos; // per instance primitive, flattened
     std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<NormalDistance>> distances;
 };
@@ -205,14 +205,14 @@ bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int,
     return mGpu && isGlass(model, primitive);
 }
 
-void RefractionPlugin::prepare(const scene::Model& model, const void* geometry) {
-    if (mGpu->model == &model && mGpu->geometry == geometry)
+void RefractionPlugin::prepare(const scene::Model& model, const deform::GpuDeformer& geometry) {
+    if (mGpu->model == &model && mGpu->geometry == geometry.serial())
         return;
     mGpu->model = &model;
-    mGpu->geometry = geometry;
+    mGpu->geometry = geometry.serial();
     mGpu->vaos.clear();
     mGpu->distances.clear();
-    const auto& instances = static_cast<const deform::GpuDeformer*>(geometry)->instances();
+    const auto& instances = geometry.instances();
     for (const auto& instance : instances)
         for (const auto& primitive : instance.primitives) {
             gl::VertexArray vao;
@@ -242,7 +242,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         return;
     const render::FrameInfo* frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
     const scene::Model& model = *frame->model;
-    prepare(model, frame->geometry);
+    prepare(model, *frame->geometry);
     bool anyGlass = false;
     for (const auto& instance : frame->geometry->instances())
         for (const auto& primitive : instance.primitives)
@@ -384,7 +384,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                             continue;
                         auto& distance = g.distances[{instanceIndex, p}];
                         if (!distance)
-                            distance = std::make_unique<NormalDistance>(*primitive.source);
+                            distance = std::make_unique<NormalDistance>(*primitive.topology);
                         distance->update(primitive.deformed, *primitive.indices, g.refit,
                                          g.normalDistance);
                     }

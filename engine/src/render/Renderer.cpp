@@ -114,16 +114,32 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
             return core::Error{"render::Renderer::create(): " + program.error().message};
         *spec.target = std::move(*program);
     }
-    for (const auto& instance : r->mDeformer->instances())
-        for (const auto& primitive : instance.primitives) {
-            gl::VertexArray vao;
-            vao.setIndexBuffer(*primitive.indices);
-            r->mVaos.push_back(std::move(vao));
-        }
+    r->makeVertexArrays();
     r->mAllocator = std::make_unique<Allocator>();
     r->mPool = std::make_unique<fg::TexturePool>(*r->mAllocator);
     r->mTimer = std::make_unique<Timer>();
     return r;
+}
+
+void Renderer::makeVertexArrays() {
+    mVaos.clear();
+    for (const auto& instance : mDeformer->instances())
+        for (const auto& primitive : instance.primitives) {
+            gl::VertexArray vao;
+            vao.setIndexBuffer(*primitive.indices);
+            mVaos.push_back(std::move(vao));
+        }
+}
+
+core::Status Renderer::setSubdivisionLevel(int level) {
+    if (level == mDeformer->subdivisionLevel())
+        return {};
+    auto deformer = deform::GpuDeformer::create(*mModel, mShaders, level);
+    if (!deformer)
+        return deformer.error();
+    mDeformer = std::move(*deformer);
+    makeVertexArrays();
+    return {};
 }
 
 core::Status Renderer::addPlugin(plugin::Plugin* p) {

@@ -13,6 +13,10 @@
 #include <memory>
 #include <vector>
 
+namespace deform {
+class GpuDeformer;
+}
+
 namespace refraction {
 
 class NormalDistance;
@@ -39,7 +43,7 @@ public:
 private:
     struct Gpu;
     bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
-    void prepare(const scene::Model& model, const void* geometry);
+    void prepare(const scene::Model& model, const deform::GpuDeformer& geometry);
     plugin::ParameterSet mParameters;
     std::unique_ptr<Gpu> mGpu;
 };

@@ -33,4 +33,12 @@ inline constexpr int kMaxTextureSize = 16384;
  *  against counts that no file of this size could justify. */
 inline constexpr std::uint64_t kMaxModelBytes = std::uint64_t(8) << 30;
 
+/** Subdivision levels (OpenSubdiv uniform refinement): each level multiplies the triangles by
+ *  four, so level 4 turns a 10k-triangle character into 2.6M triangles. */
+inline constexpr int kMaxSubdivisionLevel = 4;
+
+/** Triangles one primitive may have after refinement: the stencil tables grow with them
+ *  (about 100 bytes a refined vertex at level 4) and are built on the CPU. */
+inline constexpr std::size_t kMaxRefinedTriangles = std::size_t(1) << 23;
+
 } // namespace core::limits

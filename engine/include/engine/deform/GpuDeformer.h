@@ -1,10 +1,13 @@
 // GPU deformation: per frame, per mesh node, one compute pass per primitive applies morph
-// deltas and skinning and writes one deformed vertex buffer that every later pass reads.
+// deltas and skinning and writes one deformed vertex buffer that every later pass reads. With a
+// subdivision level, OpenSubdiv's GL compute evaluator then refines that deformed cage into the
+// dense buffer the passes read instead.
 #pragma once
 
 #include "engine/anim/Pose.h"
 #include "engine/core/Result.h"
 #include "engine/deform/CpuDeformer.h"
+#include "engine/deform/Subdivision.h"
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Program.h"
 #include "engine/scene/Model.h"
@@ -16,12 +19,14 @@
 
 namespace deform {
 
-/** GPU buffers of one primitive of one mesh node. `deformed` holds vertexCount DeformedVertex
- *  (common/vertex.glsl: position, normal, tangent as vec4, mesh-node space), rewritten by
- *  every update(); `uv0` and `indices` are static, shared by the mesh's instances and owned by
- *  the deformer. */
+/** GPU buffers of one primitive of one mesh node, as drawn. `deformed` holds vertexCount
+ *  DeformedVertex (common/vertex.glsl: position, normal, tangent as vec4, mesh-node space),
+ *  rewritten by every update(); `uv0` and `indices` are static, shared by the mesh's instances
+ *  and owned by the deformer. With subdivision all of them are the refined mesh's. */
 struct GpuPrimitive {
-    const scene::Primitive* source = nullptr;
+    const scene::Primitive* source = nullptr; ///< the file's primitive (material, skin)
+    /** The mesh drawn, at rest: `source` itself, or the refined mesh (Subdivision::rest). */
+    const scene::Primitive* topology = nullptr;
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;
     gl::Buffer deformed;
@@ -40,31 +45,50 @@ struct GpuInstance {
 class GpuDeformer {
 public:
     /** Uploads rest attributes, influences and morph deltas of every mesh node of the default
-     *  scene and compiles the deform programs. Needs a current GL context. */
-    static core::Result<std::unique_ptr<GpuDeformer>> create(const scene::Model& model,
-                                                             const gl::ShaderLibrary& shaders);
+     *  scene and compiles the deform programs; with `subdivisionLevel` > 0 also builds each
+     *  primitive's OpenSubdiv refinement (Loop) once and its GPU stencil tables. Needs a
+     *  current GL context. Fails naming the mesh and primitive OpenSubdiv cannot refine. */
+    static core::Result<std::unique_ptr<GpuDeformer>>
+    create(const scene::Model& model, const gl::ShaderLibrary& shaders, int subdivisionLevel = 0);
+    ~GpuDeformer();
 
     /** Uploads this pose's skin matrices and morph weights and runs the deform passes (one
-     *  dispatch per primitive, plus one for flat normals where the file had none). Issues a
-     *  barrier so draws and later compute passes see the result. No allocation, no sync. */
+     *  dispatch per primitive, plus one for flat normals where the file had none), then the
+     *  refinement of each deformed cage (stencils to the refined vertices, to their limit
+     *  positions and tangents, face-varying tangents, one pack dispatch). Issues a barrier so
+     *  draws and later compute passes see the result. No allocation, no sync. */
     void update(const anim::Pose& pose);
 
     const std::vector<GpuInstance>& instances() const { return mInstances; }
+    int subdivisionLevel() const { return mLevel; }
+    /** Differs between any two deformers of a process (plugins key their caches on it). */
+    std::uint64_t serial() const { return mSerial; }
 
-    /** Reads primitive `p` of instance `i` back (synchronises: tests and tools only). */
+    /** Reads primitive `p` of instance `i` back as drawn (synchronises: tests and tools only). */
     DeformedPrimitive download(std::size_t i, std::size_t p) const;
+    /** The deformed cage (the file's vertices) before refinement; download() at level 0. */
+    DeformedPrimitive downloadCage(std::size_t i, std::size_t p) const;
+    /** The refinement of instance `i`'s primitive `p`; null at level 0. */
+    const Subdivision* subdivision(std::size_t i, std::size_t p) const;
 
 private:
     GpuDeformer() = default;
-    struct Static; // per mesh primitive: rest, influences, morph deltas
+    void refine(); // the subdivision passes of update()
+    struct Static;     // per mesh primitive: rest, influences, morph deltas, refinement tables
+    struct Refined;    // per instance primitive: the cage and the evaluators' outputs
+    struct Evaluators; // OpenSubdiv's GL compute evaluators, one per buffer layout
     const scene::Model* mModel = nullptr;
+    int mLevel = 0;
+    std::uint64_t mSerial = 0;
+    std::unique_ptr<Evaluators> mEvaluators;
+    std::vector<std::vector<Refined>> mRefined; // [instance][primitive], empty at level 0
     std::vector<GpuInstance> mInstances;
     std::vector<std::vector<std::shared_ptr<Static>>> mStatic; // [mesh][primitive]
     std::vector<gl::Buffer> mSkinMatrices;                     // per instance (empty: unskinned)
     std::vector<gl::Buffer> mMorphWeights;                     // per instance
     std::vector<glm::mat4> mScratchMatrices;
     std::vector<float> mScratchWeights;
-    gl::Program mDeform, mFlatNormals;
+    gl::Program mDeform, mFlatNormals, mPack;
 };
 
 } // namespace deform

@@ -68,6 +68,12 @@ public:
     /** Replaces the environment (prefiltered again); on failure the previous one stays. */
     core::Status setEnvironment(const asset::HdrImage& environment);
 
+    /** Rebuilds the deformed geometry with OpenSubdiv refinement to `level` (0: the file's
+     *  meshes as they are; up to core::limits::kMaxSubdivisionLevel). On failure (a topology
+     *  OpenSubdiv rejects, a limit) the current geometry stays and the error names the mesh. */
+    core::Status setSubdivisionLevel(int level);
+    int subdivisionLevel() const { return mDeformer->subdivisionLevel(); }
+
     /** Sets where the ground plane is drawn when settings.ground is on. */
     void setGround(const GroundPlane& ground) { mGroundPlane = ground; }
     const GroundPlane& ground() const { return mGroundPlane; }
@@ -78,6 +84,7 @@ public:
 
 private:
     Renderer() = default;
+    void makeVertexArrays();
     class Allocator;
     class Timer;
     const scene::Model* mModel = nullptr;

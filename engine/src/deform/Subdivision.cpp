@@ -1,0 +1,308 @@
+// Loop refinement of a triangle primitive with OpenSubdiv: weld, refine uniformly, stencil
+// tables for the refined vertices, their limit and the face-varying values; the rest mesh.
+#include "engine/deform/Subdivision.h"
+
+#include "engine/core/Limits.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/osd/cpuEvaluator.h>
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <unordered_map>
+
+namespace deform {
+namespace {
+
+using namespace OpenSubdiv;
+
+// OpenSubdiv reports through global callbacks that print by default; keep this thread's last
+// error for the message we return. Its warnings (e.g. a non-manifold edge, which it refines
+// anyway) are not errors of ours and are dropped.
+thread_local std::string tLastOsdMessage;
+
+void recordError(Far::ErrorType, const char* message) {
+    tLastOsdMessage = message;
+}
+void ignoreWarning(const char*) {}
+
+/** A sparse combination of source vertices: the primvar PrimvarRefiner::Limit() accumulates
+ *  when asked for the limit masks themselves rather than limit values. */
+struct Combination {
+    std::vector<std::pair<int, float>> terms;
+    void Clear() { terms.clear(); }
+    void AddWithWeight(const Combination& source, float weight) {
+        for (const auto& [index, w] : source.terms)
+            terms.emplace_back(index, w * weight);
+    }
+};
+
+struct Uv {
+    glm::vec2 value{0.0f};
+    void Clear() { value = glm::vec2(0.0f); }
+    void AddWithWeight(const Uv& source, float weight) { value += weight * source.value; }
+};
+
+/** Far::StencilTable's arrays as our Stencils, source indices mapped through `sourceIndex`
+ *  (empty: unchanged). */
+Stencils copyTable(const Far::StencilTable& table, const std::vector<std::uint32_t>& sourceIndex) {
+    Stencils s;
+    s.sizes = table.GetSizes();
+    s.offsets = table.GetOffsets();
+    s.indices = table.GetControlIndices();
+    s.weights = table.GetWeights();
+    if (!sourceIndex.empty())
+        for (int& i : s.indices)
+            i = int(sourceIndex[std::size_t(i)]);
+    return s;
+}
+
+struct Vec3Key {
+    std::uint32_t x, y, z;
+    bool operator==(const Vec3Key&) const = default;
+};
+struct Vec3KeyHash {
+    std::size_t operator()(const Vec3Key& k) const {
+        return std::size_t(k.x) * 73856093u ^ std::size_t(k.y) * 19349663u ^
+               std::size_t(k.z) * 83492791u;
+    }
+};
+
+Vec3Key keyOf(glm::vec3 p) {
+    p += glm::vec3(0.0f); // -0 and +0 weld
+    Vec3Key k;
+    std::memcpy(&k.x, &p.x, 4);
+    std::memcpy(&k.y, &p.y, 4);
+    std::memcpy(&k.z, &p.z, 4);
+    return k;
+}
+
+} // namespace
+
+core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, int level,
+                                           const std::string& what) {
+    const std::string where = "deform::buildSubdivision(): " + what + ": ";
+    if (level < 1 || level > core::limits::kMaxSubdivisionLevel)
+        return core::Error{where + "level " + std::to_string(level) + " is outside 1.." +
+                           std::to_string(core::limits::kMaxSubdivisionLevel)};
+    const std::size_t refinedTriangles = primitive.triangleCount() << (2 * level);
+    if (refinedTriangles > core::limits::kMaxRefinedTriangles)
+        return core::Error{where + std::to_string(primitive.triangleCount()) +
+                           " triangles refine to " + std::to_string(refinedTriangles) +
+                           " at level " + std::to_string(level) + ", over the limit of " +
+                           std::to_string(core::limits::kMaxRefinedTriangles)};
+
+    Subdivision sub;
+    sub.level = level;
+    // Weld by position.
+    std::vector<int> welded(primitive.vertexCount());
+    {
+        std::unordered_map<Vec3Key, int, Vec3KeyHash> index;
+        for (std::size_t v = 0; v < primitive.vertexCount(); ++v) {
+            const auto [it, added] =
+                index.emplace(keyOf(primitive.positions[v]), int(sub.representative.size()));
+            if (added)
+                sub.representative.push_back(std::uint32_t(v));
+            welded[v] = it->second;
+        }
+    }
+    std::vector<int> faceVertices, faceValues;
+    for (std::size_t t = 0; t < primitive.triangleCount(); ++t) {
+        const std::uint32_t* c = &primitive.indices[3 * t];
+        const int a = welded[c[0]], b = welded[c[1]], d = welded[c[2]];
+        if (a == b || b == d || a == d) {
+            ++sub.degenerateTriangles;
+            continue;
+        }
+        faceVertices.insert(faceVertices.end(), {a, b, d});
+        faceValues.insert(faceValues.end(), {int(c[0]), int(c[1]), int(c[2])});
+    }
+    if (faceVertices.empty())
+        return core::Error{where + "no triangle with three distinct corners"};
+    const int faceCount = int(faceVertices.size() / 3);
+    std::vector<int> verticesPerFace(std::size_t(faceCount), 3);
+
+    Far::TopologyDescriptor::FVarChannel channel;
+    channel.numValues = int(primitive.vertexCount());
+    channel.valueIndices = faceValues.data();
+    Far::TopologyDescriptor descriptor;
+    descriptor.numVertices = int(sub.representative.size());
+    descriptor.numFaces = faceCount;
+    descriptor.numVertsPerFace = verticesPerFace.data();
+    descriptor.vertIndicesPerFace = faceVertices.data();
+    descriptor.numFVarChannels = 1;
+    descriptor.fvarChannels = &channel;
+
+    Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_ONLY);
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    Far::SetErrorCallback(recordError);
+    Far::SetWarningCallback(ignoreWarning);
+    tLastOsdMessage.clear();
+    std::unique_ptr<Far::TopologyRefiner> refiner(
+        Factory::Create(descriptor, Factory::Options(Sdc::SCHEME_LOOP, sdc)));
+    if (!refiner)
+        return core::Error{where + "OpenSubdiv rejects the topology" +
+                           (tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage)};
+    Far::TopologyRefiner::UniformOptions uniform(level);
+    uniform.fullTopologyInLastLevel = true; // the limit masks need the last level's neighbours
+    refiner->RefineUniform(uniform);
+
+    Far::StencilTableFactory::Options options;
+    options.generateIntermediateLevels = false;
+    options.generateOffsets = true;
+    std::unique_ptr<const Far::StencilTable> vertexTable(
+        Far::StencilTableFactory::Create(*refiner, options));
+    options.interpolationMode = Far::StencilTableFactory::INTERPOLATE_FACE_VARYING;
+    std::unique_ptr<const Far::StencilTable> valueTable(
+        Far::StencilTableFactory::Create(*refiner, options));
+    if (!vertexTable || !valueTable)
+        return core::Error{where + "OpenSubdiv built no stencil table" +
+                           (tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage)};
+    sub.refine = copyTable(*vertexTable, sub.representative);
+    sub.faceVarying = copyTable(*valueTable, {});
+
+    // Limit masks of the last level: PrimvarRefiner::Limit() over unit combinations.
+    const Far::TopologyLevel& last = refiner->GetLevel(level);
+    const int refinedCount = last.GetNumVertices();
+    const Far::PrimvarRefiner primvars(*refiner);
+    {
+        const std::size_t n = std::size_t(refinedCount);
+        std::vector<Combination> unit(n), position(n), du(n), dv(n);
+        for (int v = 0; v < refinedCount; ++v)
+            unit[std::size_t(v)].terms = {{v, 1.0f}};
+        primvars.Limit(unit, position, du, dv);
+        Stencils& s = sub.limit;
+        std::vector<int> order;
+        for (int v = 0; v < refinedCount; ++v) {
+            // Merge the three masks into one stencil over the union of their vertices.
+            order.clear();
+            for (const Combination* c : {&position[std::size_t(v)], &du[std::size_t(v)],
+                                         &dv[std::size_t(v)]})
+                for (const auto& term : c->terms)
+                    order.push_back(term.first);
+            std::sort(order.begin(), order.end());
+            order.erase(std::unique(order.begin(), order.end()), order.end());
+            s.offsets.push_back(int(s.indices.size()));
+            s.sizes.push_back(int(order.size()));
+            const std::size_t base = s.weights.size();
+            s.indices.insert(s.indices.end(), order.begin(), order.end());
+            s.weights.resize(base + order.size(), 0.0f);
+            s.duWeights.resize(base + order.size(), 0.0f);
+            s.dvWeights.resize(base + order.size(), 0.0f);
+            auto accumulate = [&](const Combination& c, std::vector<float>& weights) {
+                for (const auto& [index, w] : c.terms) {
+                    const auto at = std::lower_bound(order.begin(), order.end(), index);
+                    weights[base + std::size_t(at - order.begin())] += w;
+                }
+            };
+            accumulate(position[std::size_t(v)], s.weights);
+            accumulate(du[std::size_t(v)], s.duWeights);
+            accumulate(dv[std::size_t(v)], s.dvWeights);
+        }
+    }
+    if (!tLastOsdMessage.empty())
+        return core::Error{where + "OpenSubdiv: " + tLastOsdMessage};
+
+    // Output vertices: one per (refined vertex, face-varying value) used by a refined face.
+    std::unordered_map<std::uint64_t, std::uint32_t> cornerIndex;
+    std::vector<std::uint32_t> indices;
+    indices.reserve(std::size_t(last.GetNumFaces()) * 3);
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        const Far::ConstIndexArray vertices = last.GetFaceVertices(f);
+        const Far::ConstIndexArray values = last.GetFaceFVarValues(f);
+        for (int k = 0; k < 3; ++k) {
+            const RefinedCorner corner{std::uint32_t(vertices[k]), std::uint32_t(values[k])};
+            const std::uint64_t key = std::uint64_t(corner.vertex) << 32 | corner.faceVarying;
+            const auto [it, added] = cornerIndex.emplace(key, std::uint32_t(sub.corners.size()));
+            if (added)
+                sub.corners.push_back(corner);
+            indices.push_back(it->second);
+        }
+    }
+
+    // The rest mesh: the stencils applied to the rest cage, as the GPU will apply them.
+    std::vector<float> restCage(primitive.vertexCount() * 3);
+    std::memcpy(restCage.data(), primitive.positions.data(), restCage.size() * sizeof(float));
+    const Evaluated refined = evaluateOnCpu(sub.refine, restCage.data(), 0, 3, 3);
+    const Evaluated limit = evaluateOnCpu(sub.limit, refined.values.data(), 0, 3, 3);
+    std::vector<Uv> values(std::size_t(last.GetNumFVarValues()));
+    {
+        std::vector<float> uv0(primitive.vertexCount() * 2, 0.0f);
+        if (!primitive.uv0.empty())
+            std::memcpy(uv0.data(), primitive.uv0.data(), uv0.size() * sizeof(float));
+        const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uv0.data(), 0, 2, 2);
+        std::vector<Uv> refinedValues(values.size());
+        for (std::size_t i = 0; i < values.size(); ++i)
+            refinedValues[i].value = {refinedUv.values[2 * i], refinedUv.values[2 * i + 1]};
+        primvars.LimitFaceVarying(refinedValues, values);
+    }
+    auto vec3At = [](const std::vector<float>& a, std::size_t i) {
+        return glm::vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+    };
+    // Orientation: du x dv against the refined faces' winding, over the whole mesh.
+    std::vector<glm::vec3> faceNormalSum(std::size_t(refinedCount), glm::vec3(0.0f));
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        const Far::ConstIndexArray v = last.GetFaceVertices(f);
+        const glm::vec3 a = vec3At(refined.values, std::size_t(v[0])),
+                        b = vec3At(refined.values, std::size_t(v[1])),
+                        c = vec3At(refined.values, std::size_t(v[2]));
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k)
+            faceNormalSum[std::size_t(v[k])] += n;
+    }
+    double agreement = 0.0;
+    for (std::size_t v = 0; v < std::size_t(refinedCount); ++v)
+        agreement += glm::dot(glm::cross(vec3At(limit.du, v), vec3At(limit.dv, v)),
+                              faceNormalSum[v]) > 0.0f
+                         ? 1.0
+                         : -1.0;
+    sub.flipNormals = agreement < 0.0;
+
+    scene::Primitive& rest = sub.rest;
+    rest.material = primitive.material;
+    rest.indices = std::move(indices);
+    rest.sourceVertexCount = sub.corners.size();
+    for (const RefinedCorner& c : sub.corners) {
+        const glm::vec3 du = vec3At(limit.du, c.vertex), dv = vec3At(limit.dv, c.vertex);
+        glm::vec3 n = sub.flipNormals ? glm::cross(dv, du) : glm::cross(du, dv);
+        if (glm::length(n) <= 0.0f)
+            n = faceNormalSum[c.vertex];
+        rest.positions.push_back(vec3At(limit.values, c.vertex));
+        rest.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1));
+        rest.uv0.push_back(values[c.faceVarying].value);
+    }
+    return sub;
+}
+
+Evaluated evaluateOnCpu(const Stencils& stencils, const float* source, int offset, int width,
+                        int stride) {
+    Evaluated out;
+    const int count = int(stencils.count());
+    out.values.assign(std::size_t(count) * std::size_t(width), 0.0f);
+    const Osd::BufferDescriptor sourceDesc(offset, width, stride), packed(0, width, width);
+    if (stencils.duWeights.empty()) {
+        Osd::CpuEvaluator::EvalStencils(source, sourceDesc, out.values.data(), packed,
+                                        stencils.sizes.data(), stencils.offsets.data(),
+                                        stencils.indices.data(), stencils.weights.data(), 0,
+                                        count);
+        return out;
+    }
+    out.du.assign(out.values.size(), 0.0f);
+    out.dv.assign(out.values.size(), 0.0f);
+    Osd::CpuEvaluator::EvalStencils(source, sourceDesc, out.values.data(), packed, out.du.data(),
+                                    packed, out.dv.data(), packed, stencils.sizes.data(),
+                                    stencils.offsets.data(), stencils.indices.data(),
+                                    stencils.weights.data(), stencils.duWeights.data(),
+                                    stencils.dvWeights.data(), 0, count);
+    return out;
+}
+
+} // namespace deform
