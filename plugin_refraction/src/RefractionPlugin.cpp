@@ -27,6 +27,7 @@ using Type = plugin::Parameter::Type;
 
 struct RefractionPlugin::Gpu {
     gl::Program surface, front, composite, depthRange, refit, normalDistance;
+    gl::Program surfaces, resolve, deferred; // the single-geometry-pass path
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer range{4 * sizeof(std::uint32_t)};
@@ -108,6 +109,17 @@ RefractionPlugin::RefractionPlugin() {
                0,
                {"farthest", "first"},
                "which back face the depth map keeps (ISR paper §3.2)"});
+    p.declare({"geometry-passes",
+               "Geometry passes",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"one", "two"},
+               "one: front and back surfaces gathered in one pass (MAX blending), refracted in a "
+               "full-screen pass; two: the papers' back-face pass, then a front-face pass. One "
+               "needs a single glass material without a normal map and back-surface=farthest; "
+               "otherwise two runs"});
     p.declare({"nearby",
                "Nearby scene",
                Type::Bool,
@@ -141,7 +153,11 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
          {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
           Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
           Spec{&mGpu->composite, "render/fullscreen.vert.glsl",
-               "refraction/composite.frag.glsl"}}) {
+               "refraction/composite.frag.glsl"},
+          Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
+          Spec{&mGpu->resolve, "render/fullscreen.vert.glsl", "refraction/resolve.frag.glsl"},
+          Spec{&mGpu->deferred, "render/fullscreen.vert.glsl",
+               "refraction/deferred.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
         if (!program)
             return program.error();
@@ -234,6 +250,8 @@ struct CompositeData {
     fg::TextureHandle scene, glass, out;
 };
 
+constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets' clear value
+
 } // namespace
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
@@ -256,12 +274,46 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     const glm::ivec2 size = frame->settings.size;
     const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1},
         normalDesc{size, gl::Format::RGBA16F, 0}, zDesc{size, gl::Format::Depth32F, 1},
-        colorDesc{size, gl::Format::RGBA16F, 1};
+        colorDesc{size, gl::Format::RGBA16F, 1}, gatherDesc{size, gl::Format::RGBA32F, 1},
+        frontDesc{size, gl::Format::RG32F, 1};
     Gpu& gpu = *mGpu;
 
+    // The single geometry pass needs what one full-screen pass can shade: one glass material,
+    // no normal map (no UV or tangent is gathered), the farthest back surface (MAX blending).
+    const scene::Material* glassMaterial = nullptr;
+    int glassMaterialIndex = -2;
+    bool oneMaterial = true;
+    for (const auto& instance : frame->geometry->instances())
+        for (const auto& primitive : instance.primitives) {
+            if (!isGlass(model, *primitive.source))
+                continue;
+            const int m = primitive.source->material;
+            oneMaterial = oneMaterial && (glassMaterialIndex == -2 || glassMaterialIndex == m);
+            glassMaterialIndex = m;
+            glassMaterial = m >= 0 ? &model.materials[std::size_t(m)] : nullptr;
+        }
+    const bool onePass = mParameters.choice("geometry-passes") == "one" && oneMaterial &&
+                         !firstBack && !(glassMaterial && glassMaterial->normalTexture.present());
+
+    // Material and optics uniforms of the glass shading (glass_shading.glsl).
+    auto setMaterial = [this, frame, &model](const gl::Program& program, int material) {
+        const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+        frame->materials->bind(program, model, material, 8);
+        const Optics o = opticsFor(mParameters, m);
+        program.set("uIor", o.ior);
+        program.set("uDispersion", o.dispersion ? 1 : 0);
+        program.set("uSigma", o.sigma);
+        program.set("uTransmission", o.transmission);
+        program.set("uBaseColor", o.baseColor);
+        program.set("uRoughness", o.roughness);
+        program.set("uMetallic", o.metallic);
+        program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
+    };
+
     // Draws every glass primitive with `program` (glass.vert.glsl), setting per-primitive state.
-    auto drawGlass = [this, frame, &model](const gl::Program& program,
-                                           const gl::PipelineState& state, bool front) {
+    auto drawGlass = [this, frame, &model, setMaterial](const gl::Program& program,
+                                                        const gl::PipelineState& state,
+                                                        bool front) {
         Gpu& g = *mGpu;
         program.use();
         program.set("uProjection", frame->camera.projection);
@@ -284,22 +336,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                     gl::bindStorage(2, distance->second->distances());
                 else
                     gl::bindStorage(2, primitive.deformed); // unread; keeps the binding valid
-                if (front) {
-                    const int material = primitive.source->material;
-                    const scene::Material* m =
-                        material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-                    frame->materials->bind(program, model, material, 8);
-                    const Optics o = opticsFor(mParameters, m);
-                    program.set("uIor", o.ior);
-                    program.set("uDispersion", o.dispersion ? 1 : 0);
-                    program.set("uSigma", o.sigma);
-                    program.set("uTransmission", o.transmission);
-                    program.set("uBaseColor", o.baseColor);
-                    program.set("uRoughness", o.roughness);
-                    program.set("uMetallic", o.metallic);
-                    program.set("uEmissive",
-                                m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
-                }
+                if (front)
+                    setMaterial(program, primitive.source->material);
                 gl::apply(state);
                 g.vaos[vao].bind();
                 gl::drawIndexed(primitive.indexCount);
@@ -308,7 +346,34 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         }
     };
 
-    // 1. Back faces (DIR §3.1): farthest (GREATER, cleared to 0) or first (LESS, cleared to 1).
+    // d_N per deformed vertex, every frame (ISR only).
+    if (method == "isr") {
+        struct Empty {};
+        graph.addPass<Empty>(
+            "refraction.normal_distance", [](fg::Builder& b, Empty&) { b.after("deform"); },
+            [this, frame, &model](const fg::Resources&, const Empty&, gl::Context&) {
+                Gpu& g = *mGpu;
+                std::size_t instanceIndex = 0;
+                for (const auto& instance : frame->geometry->instances()) {
+                    for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+                        const auto& primitive = instance.primitives[p];
+                        if (!isGlass(model, *primitive.source))
+                            continue;
+                        auto& distance = g.distances[{instanceIndex, p}];
+                        if (!distance)
+                            distance = std::make_unique<NormalDistance>(*primitive.topology);
+                        distance->update(primitive.deformed, *primitive.indices, g.refit,
+                                         g.normalDistance);
+                    }
+                    ++instanceIndex;
+                }
+            });
+    }
+
+    // 1. The surfaces the searches read. Two geometry passes (the papers): back faces (DIR
+    //    §3.1), farthest (GREATER, cleared to 0) or first (LESS, cleared to 1), and for TIR
+    //    reflection the front faces. One geometry pass: both gathered by MAX blending, then
+    //    unpacked into the same maps.
     auto surfacePass = [&](const char* name, bool backFaces, bool nearest) -> const SurfaceData& {
         return graph.addPass<SurfaceData>(
             name,
@@ -334,13 +399,99 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
             });
     };
-    // SIR reads neither the back faces nor their range.
     const bool twoInterfaces = method != "sir";
     SurfaceData back, front;
-    if (twoInterfaces)
-        back = surfacePass("refraction.back_faces", true, firstBack);
-    if (reflect)
-        front = surfacePass("refraction.front_depth", false, true);
+    fg::TextureHandle resolvedColor, glassMask; // one pass: the composite so far, its mask
+    if (onePass) {
+        struct GatherData {
+            fg::TextureHandle nearTargets, farTargets;
+        };
+        const auto& gathered = graph.addPass<GatherData>(
+            "refraction.surfaces",
+            [&](fg::Builder& b, GatherData& d) {
+                b.after("deform");
+                if (method == "isr")
+                    b.after("refraction.normal_distance");
+                d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
+                d.farTargets = b.write(b.create("refraction.surfaces.far", gatherDesc));
+            },
+            [&gpu, drawGlass, frame](const fg::Resources& r, const GatherData& d, gl::Context&) {
+                auto status = gpu.framebuffer.attach(
+                    "refraction.surfaces",
+                    {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
+                ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+                gpu.framebuffer.bind();
+                gl::clearColor(0, glm::vec4(kNoSurface));
+                gl::clearColor(1, glm::vec4(kNoSurface));
+                gpu.surfaces.use();
+                gpu.surfaces.set("uKeyNear", frame->camera.znear);
+                gpu.surfaces.set("uKeyLogRange",
+                                 std::log2(frame->camera.zfar / frame->camera.znear));
+                drawGlass(gpu.surfaces,
+                          {.cull = gl::Cull::None,
+                           .depthTest = false,
+                           .depthWrite = false,
+                           .blend = gl::Blend::Max},
+                          false);
+            });
+        struct ResolveData {
+            fg::TextureHandle nearTargets, farTargets, scene, sceneDepth, backDepth, backNormal,
+                front, frontNormal, color, mask;
+        };
+        const fg::TextureHandle sceneIn = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+        const fg::TextureHandle sceneDepthIn =
+            blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+        const auto& resolved = graph.addPass<ResolveData>(
+            "refraction.resolve",
+            [&](fg::Builder& b, ResolveData& d) {
+                d.nearTargets = b.read(gathered.nearTargets);
+                d.farTargets = b.read(gathered.farTargets);
+                d.scene = b.read(sceneIn);
+                d.sceneDepth = b.read(sceneDepthIn);
+                d.backDepth = b.write(b.create("refraction.back.depth", depthDesc));
+                d.backNormal = b.write(b.create("refraction.back.normal", normalDesc));
+                d.front = b.write(b.create("refraction.front.depth", frontDesc));
+                d.frontNormal = b.write(b.create("refraction.front.normal", normalDesc));
+                d.color = b.write(b.create("refraction.scene_color", colorDesc));
+                d.mask = b.write(b.create("refraction.glass_mask", zDesc));
+            },
+            [&gpu, frame](const fg::Resources& r, const ResolveData& d, gl::Context&) {
+                auto status = gpu.framebuffer.attach(
+                    "refraction.resolve",
+                    {&r.texture(d.backDepth), &r.texture(d.backNormal), &r.texture(d.front),
+                     &r.texture(d.frontNormal), &r.texture(d.color)},
+                    &r.texture(d.mask));
+                ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+                gpu.framebuffer.bind();
+                gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
+                gpu.resolve.use();
+                const std::pair<const char*, fg::TextureHandle> inputs[] = {
+                    {"uGatherNear", d.nearTargets},
+                    {"uGatherFar", d.farTargets},
+                    {"uSceneColor", d.scene},
+                    {"uSceneDepth", d.sceneDepth}};
+                int unit = 0;
+                for (const auto& [uniform, handle] : inputs) {
+                    gl::bindTexture(std::uint32_t(unit), r.texture(handle));
+                    gpu.resolve.set(uniform, unit++);
+                }
+                gpu.resolve.set("uNear", frame->camera.znear);
+                gpu.resolve.set("uFar", frame->camera.zfar);
+                gpu.emptyVao.bind();
+                gl::drawArrays(3);
+                r.texture(d.backNormal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+                r.texture(d.frontNormal).generateMipmaps();
+            });
+        resolvedColor = resolved.color;
+        glassMask = resolved.mask;
+        back = {resolved.backDepth, resolved.backNormal, {}};
+        front = {resolved.front, resolved.frontNormal, {}};
+    } else {
+        if (twoInterfaces)
+            back = surfacePass("refraction.back_faces", true, firstBack);
+        if (reflect)
+            front = surfacePass("refraction.front_depth", false, true);
+    }
 
     // 2. Depth range of the valid back (and front) texels: a compute reduction.
     struct RangeData {
@@ -369,94 +520,110 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 gl::memoryBarrier(gl::BarrierStorage);
             });
 
-    // 3. d_N per deformed vertex, every frame (ISR only).
-    if (method == "isr") {
-        struct Empty {};
-        graph.addPass<Empty>(
-            "refraction.normal_distance", [](fg::Builder& b, Empty&) { b.after("deform"); },
-            [this, frame, &model](const fg::Resources&, const Empty&, gl::Context&) {
-                Gpu& g = *mGpu;
-                std::size_t instanceIndex = 0;
-                for (const auto& instance : frame->geometry->instances()) {
-                    for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-                        const auto& primitive = instance.primitives[p];
-                        if (!isGlass(model, *primitive.source))
-                            continue;
-                        auto& distance = g.distances[{instanceIndex, p}];
-                        if (!distance)
-                            distance = std::make_unique<NormalDistance>(*primitive.topology);
-                        distance->update(primitive.deformed, *primitive.indices, g.refit,
-                                         g.normalDistance);
-                    }
-                    ++instanceIndex;
-                }
+    // 3. Shade: uniforms common to both paths.
+    auto setShading = [this, &gpu, frame, size](const gl::Program& f, const FrontData& d,
+                                                const fg::Resources& r) {
+        f.use();
+        const std::string chosen = mParameters.choice("method");
+        f.set("uMethod", chosen == "sir" ? 1 : chosen == "isr" ? 2 : 3);
+        f.set("uSteps", int(mParameters.number("search-steps")));
+        f.set("uTirPolicy", mParameters.choice("tir") == "reflect" ? 1 : 0);
+        f.set("uBounces", int(mParameters.number("tir-bounces")));
+        const std::string fresnel = mParameters.choice("fresnel");
+        f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
+        f.set("uNearby", mParameters.flag("nearby") ? 1 : 0);
+        f.set("uDebug", int(mParameters.number("debug")));
+        f.set("uViewportSize", glm::vec2(size));
+        f.set("uNear", frame->camera.znear);
+        f.set("uFar", frame->camera.zfar);
+        f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+        const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
+        f.set("uViewToWorld", glm::mat3(viewToWorld));
+        f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+        f.set("uNormalLod", 1.0f);
+        frame->environment->bind(f, 0, frame->settings.environmentRotation,
+                                 frame->settings.environmentIntensity);
+        const std::pair<const char*, fg::TextureHandle> samplers[] = {
+            {"uBackDepth", d.backDepth},   {"uBackNormal", d.backNormal},
+            {"uFrontDepth", d.frontDepth}, {"uFrontNormal", d.frontNormal},
+            {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
+        int unit = 2;
+        for (const auto& [uniform, handle] : samplers) {
+            // Maps this method does not read are absent: the scene depth stands in (unread).
+            gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
+            f.set(uniform, unit++);
+        }
+        gl::bindStorage(3, gpu.range);
+    };
+    const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+    auto readInputs = [&](fg::Builder& b, FrontData& d) {
+        if (twoInterfaces) {
+            b.after("refraction.depth_range");
+            d.backDepth = b.read(back.depth);
+            d.backNormal = b.read(back.normal);
+        }
+        if (method == "isr")
+            b.after("refraction.normal_distance");
+        if (reflect || onePass) {
+            d.frontDepth = b.read(front.depth);
+            d.frontNormal = b.read(front.normal);
+        }
+        d.sceneColor = b.read(sceneColor);
+        d.sceneDepth = b.read(sceneDepth);
+    };
+
+    if (onePass) {
+        // 4. One full-screen pass shades the glass pixels (the mask's early depth test skips
+        //    the others) over the scene colour the resolve pass wrote.
+        struct ShadeData : FrontData {
+            fg::TextureHandle mask;
+        };
+        const auto& shaded = graph.addPass<ShadeData>(
+            "refraction.shade",
+            [&](fg::Builder& b, ShadeData& d) {
+                readInputs(b, d);
+                d.mask = b.read(glassMask);
+                d.glass = b.write(resolvedColor);
+            },
+            [&gpu, setShading, setMaterial, frame, glassMaterialIndex](
+                const fg::Resources& r, const ShadeData& d, gl::Context&) {
+                auto status = gpu.framebuffer.attach("refraction.shade", {&r.texture(d.glass)},
+                                                     &r.texture(d.mask));
+                ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+                gpu.framebuffer.bind();
+                // The triangle lies at depth 1: it passes only where the mask holds 0.
+                gl::apply({.cull = gl::Cull::None,
+                           .depthWrite = false,
+                           .depthFunc = gl::DepthFunc::Greater});
+                setShading(gpu.deferred, d, r);
+                setMaterial(gpu.deferred, glassMaterialIndex);
+                gpu.deferred.set("uProjection", frame->camera.projection);
+                gpu.deferred.set("uInverseProjection", glm::inverse(frame->camera.projection));
+                gpu.emptyVao.bind();
+                gl::drawArrays(3);
             });
+        blackboard.put(plugin::kSceneColor, shaded.glass);
+        return;
     }
 
     // 4. Front faces: refract, find the exit, shade.
-    const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
-    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
     const auto& shaded = graph.addPass<FrontData>(
         "refraction.front_faces",
         [&](fg::Builder& b, FrontData& d) {
-            if (twoInterfaces) {
-                b.after("refraction.depth_range");
-                d.backDepth = b.read(back.depth);
-                d.backNormal = b.read(back.normal);
-            }
-            if (method == "isr")
-                b.after("refraction.normal_distance");
-            if (reflect) {
-                d.frontDepth = b.read(front.depth);
-                d.frontNormal = b.read(front.normal);
-            }
-            d.sceneColor = b.read(sceneColor);
-            d.sceneDepth = b.read(sceneDepth);
+            readInputs(b, d);
             d.glass = b.write(b.create("refraction.glass", colorDesc));
             d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc));
         },
-        [this, &gpu, drawGlass, frame, size](const fg::Resources& r, const FrontData& d,
-                                             gl::Context&) {
+        [&gpu, drawGlass, setShading](const fg::Resources& r, const FrontData& d, gl::Context&) {
             auto status = gpu.framebuffer.attach("refraction.front_faces", {&r.texture(d.glass)},
                                                  &r.texture(d.zbuffer));
             ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
             gpu.framebuffer.bind();
             gl::clearColor(0, glm::vec4(0.0f));
             gl::clearDepth(1.0f);
-            const gl::Program& f = gpu.front;
-            f.use();
-            const std::string chosen = mParameters.choice("method");
-            f.set("uMethod", chosen == "sir" ? 1 : chosen == "isr" ? 2 : 3);
-            f.set("uSteps", int(mParameters.number("search-steps")));
-            f.set("uTirPolicy", mParameters.choice("tir") == "reflect" ? 1 : 0);
-            f.set("uBounces", int(mParameters.number("tir-bounces")));
-            const std::string fresnel = mParameters.choice("fresnel");
-            f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
-            f.set("uNearby", mParameters.flag("nearby") ? 1 : 0);
-            f.set("uDebug", int(mParameters.number("debug")));
-            f.set("uViewportSize", glm::vec2(size));
-            f.set("uNear", frame->camera.znear);
-            f.set("uFar", frame->camera.zfar);
-            f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
-            const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
-            f.set("uViewToWorld", glm::mat3(viewToWorld));
-            f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
-            f.set("uNormalLod", 1.0f);
-            frame->environment->bind(f, 0, frame->settings.environmentRotation,
-                                     frame->settings.environmentIntensity);
-            const std::pair<const char*, fg::TextureHandle> samplers[] = {
-                {"uBackDepth", d.backDepth},   {"uBackNormal", d.backNormal},
-                {"uFrontDepth", d.frontDepth}, {"uFrontNormal", d.frontNormal},
-                {"uSceneColor", d.sceneColor}, {"uSceneDepth", d.sceneDepth}};
-            int unit = 2;
-            for (const auto& [uniform, handle] : samplers) {
-                // Maps this method does not read are absent: the scene depth stands in (unread).
-                gl::bindTexture(std::uint32_t(unit),
-                                r.texture(handle.valid() ? handle : d.sceneDepth));
-                f.set(uniform, unit++);
-            }
-            gl::bindStorage(3, gpu.range);
-            drawGlass(f, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less}, true);
+            setShading(gpu.front, d, r);
+            drawGlass(gpu.front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less}, true);
         });
 
     // 5. Glass over the scene colour.

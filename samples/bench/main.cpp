@@ -5,6 +5,7 @@
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/core/Files.h"
+#include "engine/core/Limits.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/gl/Commands.h"
 #include "engine/gl/Debug.h"
@@ -28,21 +29,20 @@
 namespace {
 
 const char* const kUsage =
-    R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0] [--size WxH]
+    R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0,1,2] [--size WxH]
                    [--frames N] [--warmup W] [--glass all|auto] [--set KEY=VALUE]...
                    [--json FILE [--force]]
 
-Renders MODEL headless (EGL) with each method, interleaved frame by frame (opaque, sir, isr,
-dir, opaque, ...) while the first clip plays (1/30 s per round), after W warm-up rounds
-(default 10), for N measured rounds (default 60), at WxH (default 512x512). Per method: median
-and p95 frame time (render + finish, wall clock), each pass's median GPU and CPU time (every
-pass finished before its end timestamp), triangles, pixels the model covers (CPU coverage of
-the deformed triangles at the middle of the clip) and the GPU memory of the frame graph's
-pooled textures. --glass all (default) plays every mesh as glass; --set sets any other
-refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
-
---subdiv takes level 0 only for now: OpenSubdiv refinement is not built yet (a level above 0 is
-an error, not a silent fallback).
+Renders MODEL headless (EGL) at each OpenSubdiv level of --subdiv (default 0: the file's
+triangles; 0..4, refined every frame on the GPU from the deformed mesh) with each method,
+interleaved frame by frame (opaque, sir, isr, dir, opaque, ...) while the first clip plays
+(1/30 s per round), after W warm-up rounds (default 10), for N measured rounds (default 60), at
+WxH (default 512x512). Per method and level: median and p95 frame time (render + finish, wall
+clock), each pass's median GPU and CPU time (every pass finished before its end timestamp),
+triangles drawn, pixels the model covers (CPU coverage of the deformed file triangles at the
+middle of the clip) and the GPU memory of the frame graph's pooled textures. --glass all
+(default) plays every mesh as glass; --set sets any other refraction parameter for every method
+(e.g. --set nearby=off, --set search-steps=8).
 
 Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON
 (atomically; an existing FILE needs --force). Exit status: 0, 1 a load or render error, 2 bad
@@ -124,6 +124,51 @@ struct MethodRun {
     std::size_t transientBytes = 0;
 };
 
+/** Prints one table row per run of `level` and returns them as JSON; ratios are to the opaque
+ *  run of the same level. */
+std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
+                                      std::size_t triangles) {
+    double opaqueMedian = 0.0;
+    for (const MethodRun& r : runs)
+        if (r.method == "opaque")
+            opaqueMedian = percentile(r.frameMs, 0.5);
+    std::vector<nlohmann::json> rows;
+    for (const MethodRun& r : runs) {
+        const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
+        std::vector<std::pair<double, std::string>> slowest;
+        nlohmann::json passes = nlohmann::json::array();
+        for (const std::string& name : r.passOrder) {
+            const auto& [gpu, cpu] = r.passes.at(name);
+            slowest.emplace_back(percentile(gpu, 0.5), name);
+            passes.push_back({{"name", name},
+                              {"gpu_ms", percentile(gpu, 0.5)},
+                              {"cpu_ms", percentile(cpu, 0.5)}});
+        }
+        std::sort(slowest.rbegin(), slowest.rend());
+        std::string top;
+        for (std::size_t i = 0; i < std::min<std::size_t>(3, slowest.size()); ++i) {
+            char item[96];
+            std::snprintf(item, sizeof item, "%s%s %.1f", i ? ", " : "", slowest[i].second.c_str(),
+                          slowest[i].first);
+            top += item;
+        }
+        const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
+        std::printf("| %s | %d | %zu | %.2f | %.2f | %.2f | %.1f | %s |\n", r.method.c_str(), level,
+                    triangles, median, p95, ratio, double(r.transientBytes) / 1048576.0,
+                    top.c_str());
+        std::fflush(stdout);
+        rows.push_back({{"method", r.method},
+                        {"level", level},
+                        {"triangles", triangles},
+                        {"median_ms", median},
+                        {"p95_ms", p95},
+                        {"ratio_to_opaque", ratio},
+                        {"transient_bytes", r.transientBytes},
+                        {"passes", passes}});
+    }
+    return rows;
+}
+
 int run(int argc, char** argv) {
     std::string model, jsonPath, glass = "all";
     std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
@@ -144,8 +189,16 @@ int run(int argc, char** argv) {
             methods = split(argv[++i]);
         } else if (arg == "--subdiv" && hasValue) {
             levels.clear();
-            for (const std::string& level : split(argv[++i]))
-                levels.push_back(std::atoi(level.c_str()));
+            for (const std::string& level : split(argv[++i])) {
+                char* end = nullptr;
+                const long n = std::strtol(level.c_str(), &end, 10);
+                if (level.empty() || *end != '\0' || n < 0 ||
+                    n > core::limits::kMaxSubdivisionLevel)
+                    return usageError("--subdiv needs levels 0.." +
+                                      std::to_string(core::limits::kMaxSubdivisionLevel) +
+                                      ", got '" + level + "'");
+                levels.push_back(int(n));
+            }
         } else if (arg == "--size" && hasValue) {
             char extra = 0;
             if (std::sscanf(argv[++i], "%dx%d%c", &size.x, &size.y, &extra) != 2 || size.x < 16 ||
@@ -173,10 +226,6 @@ int run(int argc, char** argv) {
     }
     if (model.empty())
         return usageError("no model given");
-    for (int level : levels)
-        if (level != 0)
-            return usageError("--subdiv " + std::to_string(level) +
-                              ": OpenSubdiv refinement is not built yet; only level 0 runs");
     if (!jsonPath.empty() && !force && std::filesystem::exists(jsonPath)) {
         std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
                      jsonPath.c_str());
@@ -206,108 +255,79 @@ int run(int argc, char** argv) {
     const double duration = headless.duration;
     const render::Bounds bounds = headless.bounds;
     const render::Camera camera = render::frameBounds(bounds, float(size.x) / float(size.y));
-    std::size_t triangles = 0;
-    for (const scene::Mesh& mesh : loaded->meshes)
-        for (const scene::Primitive& primitive : mesh.primitives)
-            triangles += primitive.indices.size() / 3;
     const std::size_t covered =
         coveredPixels(*loaded, anim::evaluate(*loaded, clip, 0.5 * duration), camera, size);
-
-    std::vector<MethodRun> runs;
-    for (const std::string& method : methods)
-        runs.push_back({method, {}, {}, {}, 0});
     render::RenderSettings settings;
     settings.size = size;
     settings.exactPassTimes = true;
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const int rounds = warmup + frames;
-    for (int round = 0; round < rounds; ++round) {
-        const double time = std::fmod(round / 30.0, duration);
-        const anim::Pose pose = anim::evaluate(*loaded, clip, time);
-        for (MethodRun& r : runs) {
-            (void)plugin->parameters().set("method", r.method);
-            const auto start = std::chrono::steady_clock::now();
-            auto stats = headless.renderer->render(pose, camera, settings, time);
-            gl::finish();
-            const double ms =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count();
-            if (!stats) {
-                std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
-                return 1;
-            }
-            if (round < warmup)
-                continue;
-            r.frameMs.push_back(ms);
-            r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
-            for (const render::PassStats& p : stats->passes) {
-                if (!r.passes.count(p.name))
-                    r.passOrder.push_back(p.name);
-                r.passes[p.name].first.push_back(p.gpuMs);
-                r.passes[p.name].second.push_back(p.cpuMs);
-            }
-        }
-        if (terminal)
-            std::fprintf(stderr, "\rglass-bench: %s round %d/%d",
-                         round < warmup ? "warm-up" : "measured", round + 1, rounds);
-    }
-    if (terminal)
-        std::fprintf(stderr, "\n");
-    if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
-        std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
-        return 1;
-    }
 
-    const double opaqueMedian = [&] {
-        for (const MethodRun& r : runs)
-            if (r.method == "opaque")
-                return percentile(r.frameMs, 0.5);
-        return 0.0;
-    }();
-    std::printf("%s, %dx%d, %zu triangles, %zu covered pixels, %d rounds after %d warm-up (%s)\n",
-                loaded->sourceName.c_str(), size.x, size.y, triangles, covered, frames, warmup,
+    std::printf("%s, %dx%d, %zu covered pixels, %d rounds after %d warm-up (%s)\n",
+                loaded->sourceName.c_str(), size.x, size.y, covered, frames, warmup,
                 gl::rendererString());
-    std::printf("| method | level | median ms | p95 ms | x opaque | transients MiB | slowest "
-                "passes (GPU ms) |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---|\n");
+    std::printf("| method | level | triangles | median ms | p95 ms | x opaque | transients MiB | "
+                "slowest passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---|\n");
     nlohmann::json report = {{"model", model},
                              {"renderer", gl::rendererString()},
                              {"size", {size.x, size.y}},
                              {"frames", frames},
                              {"warmup", warmup},
-                             {"triangles", triangles},
                              {"covered_pixels", covered},
+                             {"settings", assignments},
                              {"results", nlohmann::json::array()}};
-    for (const MethodRun& r : runs) {
-        const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
-        std::vector<std::pair<double, std::string>> slowest;
-        nlohmann::json passes = nlohmann::json::array();
-        for (const std::string& name : r.passOrder) {
-            const auto& [gpu, cpu] = r.passes.at(name);
-            slowest.emplace_back(percentile(gpu, 0.5), name);
-            passes.push_back({{"name", name},
-                              {"gpu_ms", percentile(gpu, 0.5)},
-                              {"cpu_ms", percentile(cpu, 0.5)}});
+    for (int level : levels) {
+        if (auto refined = headless.renderer->setSubdivisionLevel(level); !refined) {
+            std::fprintf(stderr, "glass-bench: %s: %s\n", model.c_str(),
+                         refined.error().message.c_str());
+            return 1;
         }
-        std::sort(slowest.rbegin(), slowest.rend());
-        std::string top;
-        for (std::size_t i = 0; i < std::min<std::size_t>(3, slowest.size()); ++i) {
-            char item[96];
-            std::snprintf(item, sizeof item, "%s%s %.1f", i ? ", " : "", slowest[i].second.c_str(),
-                          slowest[i].first);
-            top += item;
+        std::size_t triangles = 0;
+        for (const auto& instance : headless.renderer->geometry().instances())
+            for (const auto& primitive : instance.primitives)
+                triangles += primitive.indexCount / 3;
+        std::vector<MethodRun> runs;
+        for (const std::string& method : methods)
+            runs.push_back({method, {}, {}, {}, 0});
+        for (int round = 0; round < rounds; ++round) {
+            const double time = std::fmod(round / 30.0, duration);
+            const anim::Pose pose = anim::evaluate(*loaded, clip, time);
+            for (MethodRun& r : runs) {
+                (void)plugin->parameters().set("method", r.method);
+                const auto start = std::chrono::steady_clock::now();
+                auto stats = headless.renderer->render(pose, camera, settings, time);
+                gl::finish();
+                const double ms = std::chrono::duration<double, std::milli>(
+                                      std::chrono::steady_clock::now() - start)
+                                      .count();
+                if (!stats) {
+                    std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
+                    return 1;
+                }
+                if (round < warmup)
+                    continue;
+                r.frameMs.push_back(ms);
+                r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
+                for (const render::PassStats& p : stats->passes) {
+                    if (!r.passes.count(p.name))
+                        r.passOrder.push_back(p.name);
+                    r.passes[p.name].first.push_back(p.gpuMs);
+                    r.passes[p.name].second.push_back(p.cpuMs);
+                }
+            }
+            if (terminal)
+                std::fprintf(stderr, "\rglass-bench: level %d, %s round %d/%d   ", level,
+                             round < warmup ? "warm-up" : "measured", round + 1, rounds);
         }
-        const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
-        std::printf("| %s | 0 | %.2f | %.2f | %.2f | %.1f | %s |\n", r.method.c_str(), median, p95,
-                    ratio, double(r.transientBytes) / 1048576.0, top.c_str());
-        report["results"].push_back({{"method", r.method},
-                                     {"level", 0},
-                                     {"triangles", triangles},
-                                     {"median_ms", median},
-                                     {"p95_ms", p95},
-                                     {"ratio_to_opaque", ratio},
-                                     {"transient_bytes", r.transientBytes},
-                                     {"passes", passes}});
+        if (terminal)
+            std::fprintf(stderr, "\n");
+        if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
+            std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
+            return 1;
+        }
+        for (nlohmann::json& row : summarise(runs, level, triangles))
+            report["results"].push_back(std::move(row));
     }
     if (!jsonPath.empty())
         if (auto written = core::writeFileAtomic(jsonPath, report.dump(2) + "\n"); !written) {

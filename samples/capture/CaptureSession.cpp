@@ -49,6 +49,8 @@ CaptureSession::create(const SessionOptions& options) {
     if (!renderer)
         return renderer.error();
     s->mRenderer = std::move(*renderer);
+    if (auto refined = s->mRenderer->setSubdivisionLevel(options.subdivision); !refined)
+        return core::Error{"glass-capture: " + options.model + ": " + refined.error().message};
     s->mRefraction = refraction::createPlugin();
     for (const auto& [key, value] : options.refraction) {
         auto set = s->mRefraction->parameters().set(key, value);

@@ -34,6 +34,7 @@ struct SessionOptions {
     glm::ivec2 size{256, 256};
     bool ground = false;
     float exposure = 1.0f;
+    int subdivision = 0; ///< OpenSubdiv level of every mesh (Renderer::setSubdivisionLevel)
     std::optional<CameraOverride> camera; ///< default: glTF camera, else framing
     struct PluginSpec {
         std::string path;

@@ -5,6 +5,7 @@
 #include "CaptureSession.h"
 
 #include "engine/capture/Metrics.h"
+#include "engine/core/Limits.h"
 #include "refraction/ReferenceTracer.h"
 #include "refraction/RefractionPlugin.h"
 
@@ -19,11 +20,13 @@ namespace {
 constexpr const char* kUsage =
     R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
+                     [--subdiv N]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
                      [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
+                     [--geometry-passes one|two]
                      [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR]
 
@@ -37,6 +40,8 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --env HDR           equirectangular environment (default: a procedural sky)
   --ground            draw a ground plane under the character
   --exposure E        exposure multiplier before tonemapping (default 1)
+  --subdiv N          OpenSubdiv refinement level 0..4 of every mesh, refined each frame from
+                      the deformed mesh on the GPU (default 0: the file's triangles)
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
   Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
   --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
@@ -51,6 +56,10 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --tir P             clamp (the papers, default) or reflect; --tir-bounces B (default 2)
   --back-surface S    farthest (default) or first back face
   --nearby on|off     exit rays see the opaque scene before the environment (default on)
+  --geometry-passes G one (default): front and back surfaces gathered in one geometry pass
+                      (MAX blending) and refracted in a full-screen pass; two: the papers'
+                      back-face pass then front-face pass (also used where one cannot: several
+                      glass materials, a normal map, --back-surface first)
   --debug VIEW        none, back-depth, back-normal, dv, dn, exit-uv, steps, tir, exit-point,
                       exit-direction
   Reference (Embree, on the CPU, all cores; glass-only scenes without --ground):
@@ -153,6 +162,14 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.force = true;
         } else if (arg == "--compare-reference") {
             o.compare = true;
+        } else if (arg == "--subdiv") {
+            const auto v = next();
+            double n = 0;
+            if (!v || !parseDouble(*v, n) || n != std::floor(n) || n < 0 ||
+                n > core::limits::kMaxSubdivisionLevel)
+                return usageError("--subdiv needs a level 0.." +
+                                  std::to_string(core::limits::kMaxSubdivisionLevel));
+            o.session.subdivision = int(n);
         } else if (arg == "--spp" || arg == "--max-bounces") {
             const auto v = next();
             double n = 0;
@@ -166,7 +183,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
-                   arg == "--debug") {
+                   arg == "--geometry-passes" || arg == "--debug") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -249,6 +266,9 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
     }
     if (o.reference && o.compare)
         return usageError("--method reference and --compare-reference are exclusive");
+    if ((o.reference || o.compare) && o.session.subdivision > 0)
+        return usageError("the reference traces the file's triangles: --subdiv goes without "
+                          "--method reference and --compare-reference");
     if (haveTime && haveFrames)
         return usageError("--time and --frames are exclusive");
     if (o.caseFile.empty() && o.session.model.empty())

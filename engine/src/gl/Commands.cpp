@@ -23,7 +23,7 @@ void apply(const PipelineState& s) {
         glDisable(GL_BLEND);
     } else {
         glEnable(GL_BLEND);
-        glBlendEquation(GL_FUNC_ADD);
+        glBlendEquation(s.blend == Blend::Max ? GL_MAX : GL_FUNC_ADD);
         if (s.blend == Blend::Alpha)
             glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
                                 GL_ONE_MINUS_SRC_ALPHA);

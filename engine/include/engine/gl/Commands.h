@@ -12,7 +12,9 @@ namespace gl {
 
 enum class Cull : std::uint8_t { None, Back, Front };
 enum class DepthFunc : std::uint8_t { Always, Less, LessEqual, Greater, GreaterEqual, Equal };
-enum class Blend : std::uint8_t { None, Alpha, Additive };
+/** Alpha: over; Additive: one + one; Max: per-channel maximum of source and destination (min/max
+ *  gathering, e.g. the nearest and farthest surface of a pixel in one pass). */
+enum class Blend : std::uint8_t { None, Alpha, Additive, Max };
 
 /** Fixed-function state for a draw; apply() sets all of it, so passes never inherit state. */
 struct PipelineState {

@@ -1,0 +1,253 @@
+// Glass shading shared by the front-face pass (front.frag.glsl, the papers' two geometry passes)
+// and the deferred pass (deferred.frag.glsl, after the single geometry pass): refract at the
+// entry (with the normal map), find the exit point by the chosen method, refract again (TIR
+// policy), look up what the exit ray sees (the nearby scene in screen space, else the
+// environment) and shade with Fresnel, transmission, absorption and dispersion.
+//   SIR: the entry refraction alone.
+//   ISR (Wyman 2005): P2 ~ P1 + d T1, d interpolated between d_V and d_N by theta_t / theta_i.
+//   DIR (Oliveira & Brauwers 2007): T1 intersected with the back-face depth map, in texture space.
+#ifndef REFRACTION_GLASS_SHADING_GLSL
+#define REFRACTION_GLASS_SHADING_GLSL
+#include "common/brdf.glsl"
+#include "common/normal_map.glsl"
+#include "refraction/optics.glsl"
+#include "refraction/search.glsl"
+
+float gNormalDistance = -1.0; // ISR: d_N at this pixel in view units (-1: no far side)
+
+const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
+const int TIR_CLAMP = 0, TIR_REFLECT = 1;
+
+uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uNearby, uDebug;
+uniform vec3 uIor;            // per channel (dispersion); all equal without it
+uniform int uDispersion;      // 1: one search per channel
+uniform float uTransmission;
+uniform vec4 uBaseColor;
+uniform float uRoughness, uMetallic;
+uniform vec3 uSigma;          // Beer-Lambert absorption per world unit
+uniform vec3 uEmissive;
+uniform int uHasNormalTexture;
+uniform sampler2D uNormalTexture;
+uniform float uNormalScale;
+uniform sampler2D uBackDepth, uBackNormal, uFrontDepth, uFrontNormal;
+uniform float uNormalLod;
+uniform sampler2D uSceneColor, uSceneDepth;
+uniform float uNear, uFar, uNearbyDistance;
+uniform mat3 uViewToWorld;    // rotation part of the inverse view matrix
+uniform vec3 uViewOriginWorld;
+
+layout(std430, binding = 3) readonly buffer Range { uint range[]; }; // back min/max, front min/max
+
+struct Path {
+    vec3 exitPoint;   // view space
+    vec3 exitDir;     // view space, unit
+    vec3 firstExit;   // P2 of the first exit search
+    vec2 exitUv;
+    float length;     // in glass, view units (= world units)
+    bool tir;
+    bool fallback;    // exit normal from the silhouette fallback
+    int steps;
+};
+
+float linearDepth(float d) {
+    float z = d * 2.0 - 1.0;
+    return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
+}
+
+// Wyman's exit normal where P2 leaves the silhouette: T1 projected on the plane perpendicular
+// to the look-at direction (view space: -z).
+vec3 fallbackNormal(vec3 T1) {
+    vec3 n = vec3(T1.xy, 0.0);
+    return length(n) > 1e-6 ? normalize(n) : vec3(0.0, 0.0, -1.0);
+}
+
+vec3 mapNormal(sampler2D normals, vec2 uv) {
+    vec3 n = textureLod(normals, uv, uNormalLod).xyz;
+    return length(n) > 1e-4 ? normalize(n) : vec3(0.0);
+}
+
+Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
+    Path path;
+    path.tir = false;
+    path.fallback = false;
+    path.steps = 0;
+    path.length = 0.0;
+    vec3 T1;
+    refractRay(V, N1, 1.0 / ior, T1); // entering the denser medium never reflects totally
+    if (uMethod == METHOD_SIR) {
+        path.exitPoint = P1;
+        path.exitDir = T1;
+        path.firstExit = P1;
+        path.exitUv = projectToUv(P1);
+        return path;
+    }
+    float zBackMin = uintBitsToFloat(range[0]), zBackMax = uintBitsToFloat(range[1]);
+    vec3 P2;
+    vec2 uv;
+    bool valid = false;
+    if (uMethod == METHOD_ISR) {
+        float back = storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize);
+        float dV = back > 0.0 ? max(back + P1.z, 0.0) / max(-V.z, 1e-4) : 0.0;
+        float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
+        float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
+        float ratio = thetaI > 1e-4 ? thetaT / thetaI : 1.0 / ior;
+        float dN = gNormalDistance >= 0.0 ? gNormalDistance : dV;
+        float d = ratio * dV + (1.0 - ratio) * dN;
+        P2 = P1 + d * T1;
+        uv = projectToUv(P2);
+        valid = storedDepth(uBackDepth, uv) > 0.0;
+    } else if (T1.z < -1e-6 && zBackMax > 0.0) {
+        Hit hit = searchDepthMap(uBackDepth, P1, T1, zBackMin, zBackMax, true, uSteps);
+        P2 = hit.point;
+        uv = hit.uv;
+        valid = hit.valid;
+        path.steps = hit.steps;
+    } else {
+        // T1 does not go deeper: it cannot meet the back surface in the depth map.
+        P2 = P1;
+        uv = projectToUv(P1);
+    }
+    vec3 No = valid ? mapNormal(uBackNormal, uv) : vec3(0.0);
+    if (!valid || dot(No, T1) <= 0.0) {
+        No = fallbackNormal(T1);
+        path.fallback = true;
+    }
+    path.firstExit = P2;
+    path.exitUv = uv;
+    path.length = length(P2 - P1);
+
+    vec3 dir = T1, P = P2;
+    float zFrontMin = uintBitsToFloat(range[2]);
+    for (int bounce = 0;; ++bounce) {
+        vec3 T2;
+        if (refractRay(dir, -No, ior, T2)) {
+            path.exitPoint = P;
+            path.exitDir = T2;
+            return path;
+        }
+        path.tir = true;
+        if (uTirPolicy == TIR_CLAMP || bounce >= uBounces) {
+            path.exitPoint = P;
+            path.exitDir = tangentExit(dir, No);
+            return path;
+        }
+        // Reflect inside and search the surface the reflected ray meets next.
+        dir = reflect(dir, No);
+        Hit hit;
+        bool towardBack = dir.z < 0.0;
+        if (towardBack && zBackMax > 0.0)
+            hit = searchDepthMap(uBackDepth, P, dir, -P.z, zBackMax, true, uSteps);
+        else if (!towardBack && zFrontMin > 0.0 && zFrontMin < 3.0e38)
+            hit = searchDepthMap(uFrontDepth, P, dir, -P.z, zFrontMin, false, uSteps);
+        else
+            hit.valid = false;
+        if (!hit.valid) {
+            path.exitPoint = P;
+            path.exitDir = dir;
+            return path;
+        }
+        path.steps += hit.steps;
+        path.length += length(hit.point - P);
+        P = hit.point;
+        No = towardBack ? mapNormal(uBackNormal, hit.uv) : mapNormal(uFrontNormal, hit.uv);
+        if (dot(No, dir) <= 0.0)
+            No = fallbackNormal(dir);
+    }
+}
+
+// What a ray leaving the glass sees: the opaque scene where the ray meets it on screen (when
+// enabled), else the environment.
+vec3 lookup(vec3 P, vec3 dir) {
+    if (uNearby != 0) {
+        float previous = 0.0;
+        for (int i = 1; i <= 24; ++i) {
+            float t = uNearbyDistance * float(i * i) / 576.0;
+            vec3 Q = P + dir * t;
+            if (-Q.z < uNear)
+                break;
+            vec2 uv = projectToUv(Q);
+            if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0))))
+                break;
+            float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
+            if (d < 1.0 && -Q.z > linearDepth(d) && -Q.z - linearDepth(d) < 0.125 * uNearbyDistance) {
+                // Refine the crossing between the last step in front and this one (binary search),
+                // so the lookup does not band with the step size.
+                float lo = previous, hi = t;
+                for (int k = 0; k < 6; ++k) {
+                    float mid = 0.5 * (lo + hi);
+                    vec3 M = P + dir * mid;
+                    vec2 muv = projectToUv(M);
+                    float md = texelFetch(uSceneDepth, ivec2(clamp(muv, vec2(0.0), vec2(0.9999)) * uViewportSize), 0).r;
+                    if (md < 1.0 && -M.z > linearDepth(md))
+                        hi = mid;
+                    else
+                        lo = mid;
+                }
+                vec2 hitUv = clamp(projectToUv(P + dir * hi), vec2(0.0), vec2(0.9999));
+                return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
+            }
+            previous = t;
+        }
+    }
+    return environmentRadiance(uViewToWorld * dir, uRoughness);
+}
+
+// The glass colour at the entry point P1 (view space) with the interpolated normal N (and, for
+// the normal map, the tangent and UV), for the pixel at gl_FragCoord.
+vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
+    vec3 V = normalize(P1);
+    vec3 N1 = normalize(N);
+    if (dot(N1, V) > 0.0)
+        N1 = -N1;
+    if (uHasNormalTexture != 0) {
+        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, uv, uNormalScale);
+        N1 = dot(mapped, V) < 0.0 ? mapped : N1;
+    }
+
+    Path path = trace(P1, V, N1, uIor.g);
+    vec3 transmitted;
+    bool anyTir = path.tir;
+    if (uDispersion != 0 && uMethod != 0) {
+        // Each channel runs its own search with its own index of refraction.
+        Path red = trace(P1, V, N1, uIor.r);
+        Path blue = trace(P1, V, N1, uIor.b);
+        transmitted = vec3(lookup(red.exitPoint, red.exitDir).r * exp(-uSigma.r * red.length),
+                           lookup(path.exitPoint, path.exitDir).g * exp(-uSigma.g * path.length),
+                           lookup(blue.exitPoint, blue.exitDir).b * exp(-uSigma.b * blue.length));
+        anyTir = anyTir || red.tir || blue.tir;
+    } else {
+        transmitted = lookup(path.exitPoint, path.exitDir) * exp(-uSigma * path.length);
+    }
+
+    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / uIor.g);
+    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), uRoughness);
+    vec3 glass = F * reflected + (1.0 - F) * uBaseColor.rgb * transmitted;
+    vec3 opaque = shadeMetallicRoughness(uBaseColor.rgb, uMetallic, max(uRoughness, 0.03), 1.0,
+                                         uViewToWorld * N1, uViewToWorld * -V);
+    vec3 color = mix(opaque, glass, uTransmission) + uEmissive;
+
+    float zBackMax = uintBitsToFloat(range[1]);
+    float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;
+    // SIR has no back-face maps: its two-interface views stay black.
+    int view = uMethod == METHOD_SIR && uDebug >= 1 && uDebug <= 6 ? -1 : uDebug;
+    switch (view) {
+    case -1: color = vec3(0.0); break;
+    case 1: color = vec3(storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize) * scale); break;
+    case 2: color = mapNormal(uBackNormal, gl_FragCoord.xy / uViewportSize) * 0.5 + 0.5; break;
+    case 3: {
+        float back = storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize);
+        color = vec3(back > 0.0 ? max(back + P1.z, 0.0) * scale : 0.0);
+        break;
+    }
+    case 4: color = vec3(max(gNormalDistance, 0.0) * scale); break;
+    case 5: color = vec3(path.exitUv, path.fallback ? 1.0 : 0.0); break;
+    case 6: color = vec3(float(path.steps) / float(max(uSteps, 1)), path.fallback ? 1.0 : 0.0, 0.0); break;
+    case 7: color = anyTir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case 8: color = uViewToWorld * path.firstExit + uViewOriginWorld; break;
+    case 9: color = uViewToWorld * path.exitDir; break;
+    default: break;
+    }
+    return color;
+}
+
+#endif

@@ -1,0 +1,27 @@
+// The single geometry pass (surfaces.glsl): front and back fragments of the glass into the
+// MAX-blended targets; no depth test, no culling.
+#include "refraction/surfaces.glsl"
+
+in vec3 vViewPosition;
+in vec3 vViewNormal;
+in vec4 vViewTangent;
+in vec2 vUv;
+in float vNormalDistance;
+
+layout(location = 0) out vec4 outNear;
+layout(location = 1) out vec4 outFar;
+
+void main() {
+    float z = -vViewPosition.z;
+    vec2 n = octEncode(normalize(vViewNormal));
+    uvec2 q = uvec2(quantise10(n.x), quantise10(n.y));
+    if (gl_FrontFacing) {
+        // d_N relative to the depth, 0 for none.
+        uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 1022.0)) : 0u;
+        outNear = vec4(-z, kNoSurface, -surfaceKey(z, q.x), -surfaceKey(z, q.y));
+        outFar = vec4(kNoSurface, kNoSurface, -surfaceKey(z, d), kNoSurface);
+    } else {
+        outNear = vec4(kNoSurface, z, kNoSurface, kNoSurface);
+        outFar = vec4(surfaceKey(z, q.x), surfaceKey(z, q.y), kNoSurface, kNoSurface);
+    }
+}

@@ -1,0 +1,45 @@
+// One geometry pass for both interfaces: every glass fragment, front- or back-facing, is
+// blended with MAX into two RGBA32F targets, so each channel keeps the nearest front or the
+// farthest back fragment. Exact depths sit in their own channels; normals and d_N ride in the
+// low 10 bits of a depth key (1.0 <= key < 2.0: 13 bits of log depth, then the payload), so
+// the fragment that wins the depth also wins the payload.
+//   target 0: -z front, z back, -key(front, normal.x), -key(front, normal.y)
+//   target 1: key(back, normal.x), key(back, normal.y), -key(front, d_N), unused
+#ifndef REFRACTION_SURFACES_GLSL
+#define REFRACTION_SURFACES_GLSL
+
+const float kNoSurface = -3.0e38; // the clear value: MAX keeps any fragment over it
+
+uniform float uKeyNear;     // log depth range of the keys: near plane ...
+uniform float uKeyLogRange; // ... and log2(far / near)
+
+float surfaceKey(float z, uint payload) {
+    float t = clamp(log2(max(z, uKeyNear) / uKeyNear) / uKeyLogRange, 0.0, 1.0);
+    uint q = min(uint(t * 8192.0), 8191u);
+    return uintBitsToFloat(0x3F800000u | (q << 10) | (payload & 1023u));
+}
+
+uint keyPayload(float key) {
+    return floatBitsToUint(abs(key)) & 1023u;
+}
+
+uint quantise10(float x) {
+    return uint(round(clamp(x, 0.0, 1.0) * 1023.0));
+}
+
+// Octahedral map of a unit vector to [0,1]^2 and back.
+vec2 octEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return e * 0.5 + 0.5;
+}
+
+vec3 octDecode(vec2 e) {
+    e = e * 2.0 - 1.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0)
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
+#endif
