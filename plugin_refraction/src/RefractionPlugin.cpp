@@ -27,14 +27,22 @@ using Type = plugin::Parameter::Type;
 
 struct RefractionPlugin::Gpu {
     gl::Program surface, front, composite, depthRange, refit, normalDistance;
-    gl::Program surfaces, resolve, deferred; // the single-geometry-pass path
+    gl::Program surfaces, resolve, deferred, rectangleGrow; // the single-geometry-pass path
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer range{4 * sizeof(std::uint32_t)};
+    gl::Buffer rectangle{4 * sizeof(std::int32_t)}; // the glass's pixel rectangle (surfaces.glsl)
     const scene::Model* model = nullptr;
     std::uint64_t geometry = 0; // GpuDeformer::serial() the caches below belong to
     std::vector<gl::VertexArray> vaos; // per instance primitive, flattened
-    std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<NormalDistance>> distances;
+    /** d_N of one glass primitive: measured on the deformed cage (the file's triangles); with
+     *  subdivision carried to the drawn vertices by the refinement stencils. */
+    struct Distance {
+        std::unique_ptr<NormalDistance> cage;
+        gl::Buffer drawn; // with subdivision: one float per drawn vertex
+        const gl::Buffer& values() const { return drawn ? drawn : cage->distances(); }
+    };
+    std::map<std::pair<std::size_t, std::size_t>, Distance> distances;
 };
 
 RefractionPlugin::RefractionPlugin() {
@@ -155,8 +163,8 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
           Spec{&mGpu->composite, "render/fullscreen.vert.glsl",
                "refraction/composite.frag.glsl"},
           Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
-          Spec{&mGpu->resolve, "render/fullscreen.vert.glsl", "refraction/resolve.frag.glsl"},
-          Spec{&mGpu->deferred, "render/fullscreen.vert.glsl",
+          Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
+          Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl",
                "refraction/deferred.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
         if (!program)
@@ -166,6 +174,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     for (auto [target, name] :
          {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
           std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
+          std::pair{&mGpu->rectangleGrow, "refraction/rectangle.comp.glsl"},
           std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"}}) {
         auto program = gl::Program::compute(shaders, name);
         if (!program)
@@ -251,6 +260,9 @@ struct CompositeData {
 };
 
 constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets' clear value
+// Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-13 the
+// material's textures, then the gathered far target of the single geometry pass.
+constexpr std::uint32_t kGatherFarUnit = 14;
 
 } // namespace
 
@@ -274,8 +286,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     const glm::ivec2 size = frame->settings.size;
     const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1},
         normalDesc{size, gl::Format::RGBA16F, 0}, zDesc{size, gl::Format::Depth32F, 1},
-        colorDesc{size, gl::Format::RGBA16F, 1}, gatherDesc{size, gl::Format::RGBA32F, 1},
-        frontDesc{size, gl::Format::RG32F, 1};
+        colorDesc{size, gl::Format::RGBA16F, 1}, gatherDesc{size, gl::Format::RGBA32F, 1};
     Gpu& gpu = *mGpu;
 
     // The single geometry pass needs what one full-screen pass can shade: one glass material,
@@ -333,7 +344,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                     distance != g.distances.end() && mParameters.choice("method") == "isr";
                 program.set("uHasNormalDistance", hasDistance ? 1 : 0);
                 if (hasDistance)
-                    gl::bindStorage(2, distance->second->distances());
+                    gl::bindStorage(2, distance->second.values());
                 else
                     gl::bindStorage(2, primitive.deformed); // unread; keeps the binding valid
                 if (front)
@@ -360,10 +371,20 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                         if (!isGlass(model, *primitive.source))
                             continue;
                         auto& distance = g.distances[{instanceIndex, p}];
-                        if (!distance)
-                            distance = std::make_unique<NormalDistance>(*primitive.topology);
-                        distance->update(primitive.deformed, *primitive.indices, g.refit,
-                                         g.normalDistance);
+                        const bool refined = frame->geometry->subdivisionLevel() > 0;
+                        if (!distance.cage) {
+                            distance.cage = std::make_unique<NormalDistance>(*primitive.source);
+                            if (refined)
+                                distance.drawn =
+                                    gl::Buffer(std::size_t(primitive.vertexCount) * sizeof(float));
+                        }
+                        const auto cage = frame->geometry->cage(instanceIndex, p);
+                        distance.cage->update(cage.vertices, cage.indices, g.refit,
+                                              g.normalDistance);
+                        if (refined)
+                            frame->geometry->refineScalar(instanceIndex, p,
+                                                          distance.cage->distances(),
+                                                          distance.drawn);
                     }
                     ++instanceIndex;
                 }
@@ -401,7 +422,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     };
     const bool twoInterfaces = method != "sir";
     SurfaceData back, front;
-    fg::TextureHandle resolvedColor, glassMask; // one pass: the composite so far, its mask
+    // One pass: the gathered far target (back normals, d_N keys) and the shading mask.
+    fg::TextureHandle gatheredFar, glassMask;
     if (onePass) {
         struct GatherData {
             fg::TextureHandle nearTargets, farTargets;
@@ -415,7 +437,29 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
                 d.farTargets = b.write(b.create("refraction.surfaces.far", gatherDesc));
             },
-            [&gpu, drawGlass, frame](const fg::Resources& r, const GatherData& d, gl::Context&) {
+            [this, &gpu, drawGlass, frame, &model](const fg::Resources& r, const GatherData& d,
+                                                   gl::Context&) {
+                // The glass rectangle from the deformed cages (rectangle.comp.glsl).
+                const std::int32_t empty[4] = {INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN};
+                gpu.rectangle.update(0, sizeof empty, empty);
+                gpu.rectangleGrow.use();
+                gpu.rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
+                gl::bindStorage(4, gpu.rectangle);
+                const auto& instances = frame->geometry->instances();
+                for (std::size_t i = 0; i < instances.size(); ++i)
+                    for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
+                        const auto& primitive = instances[i].primitives[p];
+                        if (!isGlass(model, *primitive.source))
+                            continue;
+                        gpu.rectangleGrow.set(
+                            "uModelViewProjection",
+                            frame->camera.viewProjection() * instances[i].meshToWorld);
+                        const int count = int(primitive.source->vertexCount());
+                        gpu.rectangleGrow.set("uVertexCount", count);
+                        gl::bindStorage(0, frame->geometry->cage(i, p).vertices);
+                        gl::dispatch(std::uint32_t((count + 63) / 64));
+                    }
+                gl::memoryBarrier(gl::BarrierStorage);
                 auto status = gpu.framebuffer.attach(
                     "refraction.surfaces",
                     {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
@@ -435,40 +479,41 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                           false);
             });
         struct ResolveData {
-            fg::TextureHandle nearTargets, farTargets, scene, sceneDepth, backDepth, backNormal,
-                front, frontNormal, color, mask;
+            fg::TextureHandle farTargets, sceneDepth, backNormal, frontDepth, frontNormal, mask;
         };
-        const fg::TextureHandle sceneIn = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
         const fg::TextureHandle sceneDepthIn =
             blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
         const auto& resolved = graph.addPass<ResolveData>(
             "refraction.resolve",
             [&](fg::Builder& b, ResolveData& d) {
-                d.nearTargets = b.read(gathered.nearTargets);
+                b.read(gathered.nearTargets);
                 d.farTargets = b.read(gathered.farTargets);
-                d.scene = b.read(sceneIn);
                 d.sceneDepth = b.read(sceneDepthIn);
-                d.backDepth = b.write(b.create("refraction.back.depth", depthDesc));
                 d.backNormal = b.write(b.create("refraction.back.normal", normalDesc));
-                d.front = b.write(b.create("refraction.front.depth", frontDesc));
-                d.frontNormal = b.write(b.create("refraction.front.normal", normalDesc));
-                d.color = b.write(b.create("refraction.scene_color", colorDesc));
+                if (reflect) {
+                    d.frontDepth = b.write(b.create("refraction.front.depth", depthDesc));
+                    d.frontNormal = b.write(b.create("refraction.front.normal", normalDesc));
+                }
                 d.mask = b.write(b.create("refraction.glass_mask", zDesc));
             },
-            [&gpu, frame](const fg::Resources& r, const ResolveData& d, gl::Context&) {
-                auto status = gpu.framebuffer.attach(
-                    "refraction.resolve",
-                    {&r.texture(d.backDepth), &r.texture(d.backNormal), &r.texture(d.front),
-                     &r.texture(d.frontNormal), &r.texture(d.color)},
-                    &r.texture(d.mask));
+            [&gpu, frame, size, reflect, near = gathered.nearTargets](
+                const fg::Resources& r, const ResolveData& d, gl::Context&) {
+                std::vector<const gl::Texture*> targets{&r.texture(d.backNormal)};
+                if (reflect)
+                    targets.insert(targets.end(),
+                                   {&r.texture(d.frontDepth), &r.texture(d.frontNormal)});
+                auto status =
+                    gpu.framebuffer.attach("refraction.resolve", targets, &r.texture(d.mask));
                 ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
                 gpu.framebuffer.bind();
+                // Outside the glass rectangle: no surface, and the mask rejects.
+                for (int i = 0; i < int(targets.size()); ++i)
+                    gl::clearColor(i, glm::vec4(0.0f));
+                gl::clearDepth(1.0f);
                 gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
                 gpu.resolve.use();
                 const std::pair<const char*, fg::TextureHandle> inputs[] = {
-                    {"uGatherNear", d.nearTargets},
-                    {"uGatherFar", d.farTargets},
-                    {"uSceneColor", d.scene},
+                    {"uGatherNear", near}, {"uGatherFar", d.farTargets},
                     {"uSceneDepth", d.sceneDepth}};
                 int unit = 0;
                 for (const auto& [uniform, handle] : inputs) {
@@ -477,15 +522,19 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 }
                 gpu.resolve.set("uNear", frame->camera.znear);
                 gpu.resolve.set("uFar", frame->camera.zfar);
+                gpu.resolve.set("uViewportSize", glm::vec2(size));
+                gl::bindStorage(4, gpu.rectangle);
                 gpu.emptyVao.bind();
-                gl::drawArrays(3);
+                gl::drawArrays(6);
                 r.texture(d.backNormal).generateMipmaps(); // DIR §3.1: mip-filtered normals
-                r.texture(d.frontNormal).generateMipmaps();
+                if (reflect) // only TIR bounces toward the front read its normals' mips
+                    r.texture(d.frontNormal).generateMipmaps();
             });
-        resolvedColor = resolved.color;
+        back = {gathered.nearTargets, resolved.backNormal, {}};
+        if (reflect)
+            front = {resolved.frontDepth, resolved.frontNormal, {}};
+        gatheredFar = gathered.farTargets;
         glassMask = resolved.mask;
-        back = {resolved.backDepth, resolved.backNormal, {}};
-        front = {resolved.front, resolved.frontNormal, {}};
     } else {
         if (twoInterfaces)
             back = surfacePass("refraction.back_faces", true, firstBack);
@@ -505,11 +554,16 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 if (reflect)
                     d.front = b.read(front.depth);
             },
-            [&gpu, size](const fg::Resources& r, const RangeData& d, gl::Context&) {
+            [&gpu, size, onePass](const fg::Resources& r, const RangeData& d, gl::Context&) {
                 const std::uint32_t reset[4] = {0x7F7FFFFFu, 0u, 0x7F7FFFFFu, 0u};
                 gpu.range.update(0, sizeof reset, reset);
+                if (!onePass) { // the separate passes grow no glass rectangle: the screen
+                    const std::int32_t screen[4] = {0, 0, size.x - 1, size.y - 1};
+                    gpu.rectangle.update(0, sizeof screen, screen);
+                }
                 gpu.depthRange.use();
                 gl::bindStorage(0, gpu.range);
+                gl::bindStorage(1, gpu.rectangle);
                 for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
                     gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
                     gpu.depthRange.set("uDepth", 0);
@@ -531,7 +585,9 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         f.set("uBounces", int(mParameters.number("tir-bounces")));
         const std::string fresnel = mParameters.choice("fresnel");
         f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
-        f.set("uNearby", mParameters.flag("nearby") ? 1 : 0);
+        // Without opaque geometry the walk could only find the background, which is the
+        // environment the lookup falls back to: skip it (the same image, cheaper).
+        f.set("uNearby", mParameters.flag("nearby") && frame->opaqueGeometry ? 1 : 0);
         f.set("uDebug", int(mParameters.number("debug")));
         f.set("uViewportSize", glm::vec2(size));
         f.set("uNear", frame->camera.znear);
@@ -560,12 +616,13 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     auto readInputs = [&](fg::Builder& b, FrontData& d) {
         if (twoInterfaces) {
             b.after("refraction.depth_range");
-            d.backDepth = b.read(back.depth);
             d.backNormal = b.read(back.normal);
         }
+        if (twoInterfaces || onePass) // one pass: the gathered near target, front surface too
+            d.backDepth = b.read(back.depth);
         if (method == "isr")
             b.after("refraction.normal_distance");
-        if (reflect || onePass) {
+        if (reflect) {
             d.frontDepth = b.read(front.depth);
             d.frontNormal = b.read(front.normal);
         }
@@ -574,34 +631,39 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     };
 
     if (onePass) {
-        // 4. One full-screen pass shades the glass pixels (the mask's early depth test skips
-        //    the others) over the scene colour the resolve pass wrote.
+        // 4. The scene colour copied, then one pass over the glass rectangle shades the glass
+        //    pixels (the mask's early depth test skips the others).
         struct ShadeData : FrontData {
-            fg::TextureHandle mask;
+            fg::TextureHandle mask, gatheredFar;
         };
         const auto& shaded = graph.addPass<ShadeData>(
             "refraction.shade",
             [&](fg::Builder& b, ShadeData& d) {
                 readInputs(b, d);
                 d.mask = b.read(glassMask);
-                d.glass = b.write(resolvedColor);
+                d.gatheredFar = b.read(gatheredFar);
+                d.glass = b.write(b.create("refraction.scene_color", colorDesc));
             },
             [&gpu, setShading, setMaterial, frame, glassMaterialIndex](
                 const fg::Resources& r, const ShadeData& d, gl::Context&) {
+                gl::copyTexture(r.texture(d.sceneColor), r.texture(d.glass));
                 auto status = gpu.framebuffer.attach("refraction.shade", {&r.texture(d.glass)},
                                                      &r.texture(d.mask));
                 ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
                 gpu.framebuffer.bind();
-                // The triangle lies at depth 1: it passes only where the mask holds 0.
+                // The rectangle lies at depth 1: it passes only where the mask holds 0.
                 gl::apply({.cull = gl::Cull::None,
                            .depthWrite = false,
                            .depthFunc = gl::DepthFunc::Greater});
                 setShading(gpu.deferred, d, r);
                 setMaterial(gpu.deferred, glassMaterialIndex);
+                gl::bindTexture(kGatherFarUnit, r.texture(d.gatheredFar));
+                gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
                 gpu.deferred.set("uProjection", frame->camera.projection);
                 gpu.deferred.set("uInverseProjection", glm::inverse(frame->camera.projection));
+                gl::bindStorage(4, gpu.rectangle);
                 gpu.emptyVao.bind();
-                gl::drawArrays(3);
+                gl::drawArrays(6);
             });
         blackboard.put(plugin::kSceneColor, shaded.glass);
         return;

@@ -30,7 +30,7 @@ namespace {
 
 const char* const kUsage =
     R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0,1,2] [--size WxH]
-                   [--frames N] [--warmup W] [--glass all|auto] [--set KEY=VALUE]...
+                   [--frames N] [--warmup W] [--glass all|auto] [--ground] [--set KEY=VALUE]...
                    [--json FILE [--force]]
 
 Renders MODEL headless (EGL) at each OpenSubdiv level of --subdiv (default 0: the file's
@@ -41,8 +41,9 @@ WxH (default 512x512). Per method and level: median and p95 frame time (render +
 clock), each pass's median GPU and CPU time (every pass finished before its end timestamp),
 triangles drawn, pixels the model covers (CPU coverage of the deformed file triangles at the
 middle of the clip) and the GPU memory of the frame graph's pooled textures. --glass all
-(default) plays every mesh as glass; --set sets any other refraction parameter for every method
-(e.g. --set nearby=off, --set search-steps=8).
+(default) plays every mesh as glass; --ground draws the ground plane (opaque geometry the glass
+sees through its nearby-scene walk; without opaque geometry the walk is skipped); --set sets any
+other refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
 
 Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON
 (atomically; an existing FILE needs --force). Exit status: 0, 1 a load or render error, 2 bad
@@ -175,7 +176,7 @@ int run(int argc, char** argv) {
     std::vector<int> levels = {0};
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
-    bool force = false;
+    bool force = false, ground = false;
     std::vector<std::pair<std::string, std::string>> assignments;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -185,6 +186,8 @@ int run(int argc, char** argv) {
             return 0;
         } else if (arg == "--force") {
             force = true;
+        } else if (arg == "--ground") {
+            ground = true;
         } else if (arg == "--methods" && hasValue) {
             methods = split(argv[++i]);
         } else if (arg == "--subdiv" && hasValue) {
@@ -260,6 +263,7 @@ int run(int argc, char** argv) {
     render::RenderSettings settings;
     settings.size = size;
     settings.exactPassTimes = true;
+    settings.ground = ground;
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const int rounds = warmup + frames;
 
@@ -276,6 +280,7 @@ int run(int argc, char** argv) {
                              {"warmup", warmup},
                              {"covered_pixels", covered},
                              {"settings", assignments},
+                             {"ground", ground},
                              {"results", nlohmann::json::array()}};
     for (int level : levels) {
         if (auto refined = headless.renderer->setSubdivisionLevel(level); !refined) {

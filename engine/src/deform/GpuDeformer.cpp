@@ -49,6 +49,7 @@ struct GpuStencils {
 
 struct GpuDeformer::Static {
     gl::Buffer rest, influences, deltas, indices, uv0;
+    gl::Buffer cageIndices; // with subdivision: the file's triangles (indices: the refined)
     std::uint32_t targetCount = 0;
     // With subdivision: the tables, the drawn mesh's static buffers (indices and uv0 above are
     // then the refined ones) and the corners the pack pass reads.
@@ -63,6 +64,7 @@ struct GpuDeformer::Refined {
     gl::Buffer refined;        // 3 floats per refined vertex
     gl::Buffer limit, du, dv;  // 3 floats per refined vertex
     gl::Buffer tangents;       // 4 floats per refined face-varying value
+    mutable gl::Buffer scalarRefined, scalarLimit; // refineScalar(): 1 float per refined vertex
 };
 
 struct GpuDeformer::Evaluators {
@@ -71,8 +73,8 @@ struct GpuDeformer::Evaluators {
     static constexpr int kStride = int(sizeof(VertexGpu) / sizeof(float));
     // cage positions -> refined positions; refined -> limit + du + dv; cage tangents -> refined
     const Desc cagePosition{0, 3, kStride}, cageTangent{8, 4, kStride}, packed3{0, 3, 3},
-        packed4{0, 4, 4};
-    std::unique_ptr<Evaluator> refine, limit, faceVarying;
+        packed4{0, 4, 4}, packed1{0, 1, 1};
+    std::unique_ptr<Evaluator> refine, limit, faceVarying, scalar;
 };
 
 GpuDeformer::~GpuDeformer() = default;
@@ -102,13 +104,18 @@ GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
         if (!packProgram)
             return core::Error{"deform::GpuDeformer::create(): " + packProgram.error().message};
         d->mPack = std::move(*packProgram);
+        auto gatherProgram = gl::Program::compute(shaders, "deform/corner_gather.comp.glsl");
+        if (!gatherProgram)
+            return core::Error{"deform::GpuDeformer::create(): " + gatherProgram.error().message};
+        d->mGather = std::move(*gatherProgram);
         auto e = std::make_unique<Evaluators>();
         const OpenSubdiv::Osd::BufferDescriptor none;
         e->refine.reset(Evaluators::Evaluator::Create(e->cagePosition, e->packed3, none, none));
         e->limit.reset(
             Evaluators::Evaluator::Create(e->packed3, e->packed3, e->packed3, e->packed3));
         e->faceVarying.reset(Evaluators::Evaluator::Create(e->cageTangent, e->packed4, none, none));
-        if (!e->refine || !e->limit || !e->faceVarying)
+        e->scalar.reset(Evaluators::Evaluator::Create(e->packed1, e->packed1, none, none));
+        if (!e->refine || !e->limit || !e->faceVarying || !e->scalar)
             return core::Error{"deform::GpuDeformer::create(): OpenSubdiv's GL compute "
                                "evaluator did not compile"};
         d->mEvaluators = std::move(e);
@@ -172,6 +179,7 @@ GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
                     s->limit = std::make_unique<GpuStencils>(sd.limit);
                     s->faceVarying = std::make_unique<GpuStencils>(sd.faceVarying);
                     s->corners = gl::Buffer(std::span<const RefinedCorner>(sd.corners));
+                    s->cageIndices = std::move(s->indices);
                     s->indices = gl::Buffer(std::span<const std::uint32_t>(sd.rest.indices));
                     s->uv0 = gl::Buffer(std::span<const glm::vec2>(sd.rest.uv0));
                 }
@@ -204,6 +212,8 @@ GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
                 r.du = gl::Buffer(vertices * 3 * sizeof(float));
                 r.dv = gl::Buffer(vertices * 3 * sizeof(float));
                 r.tangents = gl::Buffer(values * 4 * sizeof(float));
+                r.scalarRefined = gl::Buffer(vertices * sizeof(float));
+                r.scalarLimit = gl::Buffer(vertices * sizeof(float));
                 refined.push_back(std::move(r));
             }
         }
@@ -316,6 +326,41 @@ void GpuDeformer::refine() {
         mPack.set("uFlipNormals", s.subdivision->flipNormals ? 1 : 0);
         gl::dispatch(groups(gp.vertexCount));
     });
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
+}
+
+GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
+    const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
+    if (mLevel == 0)
+        return {gp.deformed, *gp.indices};
+    return {mRefined.at(i).at(p).cage,
+            mStatic.at(std::size_t(mInstances[i].mesh)).at(p)->cageIndices};
+}
+
+void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
+                               const gl::Buffer& drawnValues) const {
+    ENGINE_CHECK(mLevel > 0, "GpuDeformer::refineScalar() needs a subdivision level");
+    const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
+    const Static& s = *mStatic.at(std::size_t(mInstances[i].mesh)).at(p);
+    const Refined& r = mRefined.at(i).at(p);
+    const Evaluators& e = *mEvaluators;
+    const OpenSubdiv::Osd::BufferDescriptor none;
+    const GpuStencils& t = *s.refine;
+    e.scalar->EvalStencils(cageValues.id(), e.packed1, r.scalarRefined.id(), e.packed1, 0, none, 0,
+                           none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0,
+                           0, 0, t.count);
+    gl::memoryBarrier(gl::BarrierStorage);
+    const GpuStencils& l = *s.limit;
+    e.scalar->EvalStencils(r.scalarRefined.id(), e.packed1, r.scalarLimit.id(), e.packed1, 0, none,
+                           0, none, l.sizes.id(), l.offsets.id(), l.indices.id(), l.weights.id(),
+                           0, 0, 0, l.count);
+    gl::memoryBarrier(gl::BarrierStorage);
+    mGather.use();
+    gl::bindStorage(0, s.corners);
+    gl::bindStorage(1, r.scalarLimit);
+    gl::bindStorage(2, drawnValues);
+    mGather.set("uCornerCount", int(gp.vertexCount));
+    gl::dispatch(groups(gp.vertexCount));
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
 }
 

@@ -1,6 +1,8 @@
 // Pipeline state, draws, dispatches, bindings and barriers.
 #include "engine/gl/Commands.h"
 
+#include "engine/core/Check.h"
+
 #include <epoxy/gl.h>
 
 namespace gl {
@@ -62,6 +64,14 @@ void bindStorage(std::uint32_t binding, const Buffer& buffer) {
 
 void bindTexture(std::uint32_t unit, const Texture& texture) {
     glBindTextureUnit(unit, texture.id());
+}
+
+void copyTexture(const Texture& source, const Texture& destination) {
+    ENGINE_CHECK(source.desc().size == destination.desc().size &&
+                     source.desc().format == destination.desc().format,
+                 "gl::copyTexture(): the textures differ in size or format");
+    glCopyImageSubData(source.id(), GL_TEXTURE_2D, 0, 0, 0, 0, destination.id(), GL_TEXTURE_2D, 0,
+                       0, 0, 0, source.desc().size.x, source.desc().size.y, 1);
 }
 
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write) {

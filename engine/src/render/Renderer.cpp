@@ -168,6 +168,14 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     frame.settings = settings;
     frame.time = time;
     frame.ground = mGroundPlane;
+    frame.opaqueGeometry = settings.ground;
+    for (const auto& instance : mDeformer->instances())
+        for (const auto& primitive : instance.primitives)
+            frame.opaqueGeometry =
+                frame.opaqueGeometry ||
+                std::none_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
+                    return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
+                });
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;

@@ -6,6 +6,8 @@ layout(local_size_x = 16, local_size_y = 16) in;
 uniform sampler2D uDepth;
 uniform int uSlot; // 0: back map, 1: front map
 layout(std430, binding = 0) buffer Range { uint range[]; }; // [slot*2] min bits, [slot*2+1] max bits
+// Texels outside this rectangle hold no surface: min x, min y, max x, max y (surfaces.glsl).
+layout(std430, binding = 1) readonly buffer GlassRectangle { int glassRectangle[]; };
 
 shared float sMin[256];
 shared float sMax[256];
@@ -17,7 +19,10 @@ void main() {
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) {
             ivec2 texel = base + ivec2(x, y);
-            float d = all(lessThan(texel, size)) ? texelFetch(uDepth, texel, 0).r : 0.0;
+            bool inside = all(lessThan(texel, size)) &&
+                          all(greaterThanEqual(texel, ivec2(glassRectangle[0], glassRectangle[1]))) &&
+                          all(lessThanEqual(texel, ivec2(glassRectangle[2], glassRectangle[3])));
+            float d = inside ? texelFetch(uDepth, texel, 0).r : 0.0;
             if (d > 0.0) {
                 lo = min(lo, d);
                 hi = max(hi, d);

@@ -159,31 +159,38 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
 // enabled), else the environment.
 vec3 lookup(vec3 P, vec3 dir) {
     if (uNearby != 0) {
+        // March in clip space: the point P + t dir projects to C0 + t Cd (linear in t), so each
+        // step costs a few multiply-adds, not a matrix product; depths compare in window space
+        // (no division per step but the perspective one).
+        vec4 C0 = uProjection * vec4(P, 1.0);
+        vec4 Cd = uProjection * vec4(dir, 0.0);
         float previous = 0.0;
-        for (int i = 1; i <= 24; ++i) {
-            float t = uNearbyDistance * float(i * i) / 576.0;
-            vec3 Q = P + dir * t;
-            if (-Q.z < uNear)
+        for (int i = 1; i <= 16; ++i) {
+            float t = uNearbyDistance * float(i * i) / 256.0;
+            vec4 C = C0 + t * Cd;
+            if (C.w < uNear)
                 break;
-            vec2 uv = projectToUv(Q);
-            if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0))))
+            vec3 ndc = C.xyz / C.w;
+            if (any(greaterThanEqual(abs(ndc.xy), vec2(1.0))))
                 break;
+            vec2 uv = ndc.xy * 0.5 + 0.5;
             float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
-            if (d < 1.0 && -Q.z > linearDepth(d) && -Q.z - linearDepth(d) < 0.125 * uNearbyDistance) {
+            if (d < 1.0 && ndc.z * 0.5 + 0.5 > d && C.w - linearDepth(d) < 0.125 * uNearbyDistance) {
                 // Refine the crossing between the last step in front and this one (binary search),
                 // so the lookup does not band with the step size.
                 float lo = previous, hi = t;
                 for (int k = 0; k < 6; ++k) {
                     float mid = 0.5 * (lo + hi);
-                    vec3 M = P + dir * mid;
-                    vec2 muv = projectToUv(M);
-                    float md = texelFetch(uSceneDepth, ivec2(clamp(muv, vec2(0.0), vec2(0.9999)) * uViewportSize), 0).r;
-                    if (md < 1.0 && -M.z > linearDepth(md))
+                    vec4 M = C0 + mid * Cd;
+                    vec2 muv = clamp(M.xy / M.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
+                    float md = texelFetch(uSceneDepth, ivec2(muv * uViewportSize), 0).r;
+                    if (md < 1.0 && M.z / M.w * 0.5 + 0.5 > md)
                         hi = mid;
                     else
                         lo = mid;
                 }
-                vec2 hitUv = clamp(projectToUv(P + dir * hi), vec2(0.0), vec2(0.9999));
+                vec4 H = C0 + hi * Cd;
+                vec2 hitUv = clamp(H.xy / H.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
                 return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
             }
             previous = t;
@@ -222,9 +229,12 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
     float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / uIor.g);
     vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), uRoughness);
     vec3 glass = F * reflected + (1.0 - F) * uBaseColor.rgb * transmitted;
-    vec3 opaque = shadeMetallicRoughness(uBaseColor.rgb, uMetallic, max(uRoughness, 0.03), 1.0,
-                                         uViewToWorld * N1, uViewToWorld * -V);
-    vec3 color = mix(opaque, glass, uTransmission) + uEmissive;
+    vec3 color = glass;
+    if (uTransmission < 1.0) // a uniform branch: fully transmissive glass skips the opaque term
+        color = mix(shadeMetallicRoughness(uBaseColor.rgb, uMetallic, max(uRoughness, 0.03), 1.0,
+                                           uViewToWorld * N1, uViewToWorld * -V),
+                    glass, uTransmission);
+    color += uEmissive;
 
     float zBackMax = uintBitsToFloat(range[1]);
     float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;

@@ -18,10 +18,10 @@ void main() {
     if (gl_FrontFacing) {
         // d_N relative to the depth, 0 for none.
         uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 1022.0)) : 0u;
-        outNear = vec4(-z, kNoSurface, -surfaceKey(z, q.x), -surfaceKey(z, q.y));
+        outNear = vec4(kNoSurface, -z, -surfaceKey(z, q.x), -surfaceKey(z, q.y));
         outFar = vec4(kNoSurface, kNoSurface, -surfaceKey(z, d), kNoSurface);
     } else {
-        outNear = vec4(kNoSurface, z, kNoSurface, kNoSurface);
+        outNear = vec4(z, kNoSurface, kNoSurface, kNoSurface);
         outFar = vec4(surfaceKey(z, q.x), surfaceKey(z, q.y), kNoSurface, kNoSurface);
     }
 }

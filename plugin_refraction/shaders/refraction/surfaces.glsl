@@ -3,8 +3,11 @@
 // farthest back fragment. Exact depths sit in their own channels; normals and d_N ride in the
 // low 10 bits of a depth key (1.0 <= key < 2.0: 13 bits of log depth, then the payload), so
 // the fragment that wins the depth also wins the payload.
-//   target 0: -z front, z back, -key(front, normal.x), -key(front, normal.y)
+//   target 0: z back, -z front, -key(front, normal.x), -key(front, normal.y)
 //   target 1: key(back, normal.x), key(back, normal.y), -key(front, d_N), unused
+// Target 0's red channel is the back-face depth map itself (search.glsl reads .r; no surface is
+// negative). Before it, rectangle.comp.glsl finds the screen rectangle of the glass
+// (GlassRectangle), so the full-screen passes after it rasterise only that rectangle.
 #ifndef REFRACTION_SURFACES_GLSL
 #define REFRACTION_SURFACES_GLSL
 
@@ -40,6 +43,14 @@ vec3 octDecode(vec2 e) {
     if (n.z < 0.0)
         n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
     return normalize(n);
+}
+
+// Pixel rectangle the glass covers this frame: min x, min y, max x, max y (inclusive); reset to
+// an empty one (min > max) before the geometry pass.
+layout(std430, binding = 4) buffer GlassRectangle { int glassRectangle[]; };
+
+vec3 octDecodePayload(float keyX, float keyY) {
+    return octDecode(vec2(keyPayload(keyX), keyPayload(keyY)) / 1023.0);
 }
 
 #endif

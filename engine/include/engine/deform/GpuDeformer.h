@@ -68,6 +68,19 @@ public:
     DeformedPrimitive download(std::size_t i, std::size_t p) const;
     /** The deformed cage (the file's vertices) before refinement; download() at level 0. */
     DeformedPrimitive downloadCage(std::size_t i, std::size_t p) const;
+    /** The deformed cage of instance `i`'s primitive `p`, as update() left it: the file's
+     *  vertices (DeformedVertex) and triangles. The drawn buffers themselves at level 0. */
+    struct Cage {
+        const gl::Buffer& vertices;
+        const gl::Buffer& indices;
+    };
+    Cage cage(std::size_t i, std::size_t p) const;
+    /** Carries one float per cage vertex (`cageValues`, e.g. a distance measured on the
+     *  deformed cage) to the drawn vertices through the same stencils as the positions
+     *  (refined, then limit): `drawnValues` gets one float per drawn vertex. No sync. Only
+     *  with a subdivision level (at level 0 the cage is what is drawn). */
+    void refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
+                      const gl::Buffer& drawnValues) const;
     /** The refinement of instance `i`'s primitive `p`; null at level 0. */
     const Subdivision* subdivision(std::size_t i, std::size_t p) const;
 
@@ -88,7 +101,7 @@ private:
     std::vector<gl::Buffer> mMorphWeights;                     // per instance
     std::vector<glm::mat4> mScratchMatrices;
     std::vector<float> mScratchWeights;
-    gl::Program mDeform, mFlatNormals, mPack;
+    gl::Program mDeform, mFlatNormals, mPack, mGather;
 };
 
 } // namespace deform

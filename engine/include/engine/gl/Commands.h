@@ -56,6 +56,8 @@ void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
 void bindStorage(std::uint32_t binding, const Buffer& buffer);
 void bindTexture(std::uint32_t unit, const Texture& texture);
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
+/** Copies level 0 of `source` into `destination` (same size and format): a copy, no draw. */
+void copyTexture(const Texture& source, const Texture& destination);
 
 enum Barrier : std::uint32_t {
     BarrierStorage = 1u << 0,     ///< SSBO writes -> SSBO reads

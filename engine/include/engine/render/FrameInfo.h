@@ -55,6 +55,10 @@ struct FrameInfo {
     RenderSettings settings;
     double time = 0.0;
     GroundPlane ground; ///< drawn when settings.ground
+    /** Whether the opaque pass draws anything besides the background: the ground, or a
+     *  primitive no plugin claims. Screen-space effects that look for nearby geometry can skip
+     *  their search when it is false (the background alone is the environment). */
+    bool opaqueGeometry = false;
 };
 
 } // namespace render

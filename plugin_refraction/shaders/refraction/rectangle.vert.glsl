@@ -1,0 +1,15 @@
+// The glass rectangle (surfaces.glsl) as two triangles, for the full-screen passes that only
+// matter where the glass is; an empty rectangle draws nothing.
+#include "refraction/surfaces.glsl"
+
+uniform vec2 uViewportSize;
+
+void main() {
+    const vec2 corners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+    vec2 lo = vec2(glassRectangle[0], glassRectangle[1]);
+    vec2 hi = vec2(glassRectangle[2], glassRectangle[3]) + 1.0;
+    if (any(greaterThan(lo, hi)))
+        hi = lo; // empty
+    vec2 pixel = mix(lo, hi, corners[gl_VertexID]);
+    gl_Position = vec4(pixel / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+}
