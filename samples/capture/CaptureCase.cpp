@@ -46,6 +46,7 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
             c.session.environment = resolve(j["env"].get<std::string>());
         c.session.ground = j.value("ground", false);
         c.session.exposure = j.value("exposure", 1.0f);
+        c.session.subdivision = j.value("subdiv", 0);
         if (j.contains("camera") && j["camera"].is_object()) {
             const auto& cam = j["camera"];
             CameraOverride o;

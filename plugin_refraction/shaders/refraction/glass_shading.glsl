@@ -165,8 +165,8 @@ vec3 lookup(vec3 P, vec3 dir) {
         vec4 C0 = uProjection * vec4(P, 1.0);
         vec4 Cd = uProjection * vec4(dir, 0.0);
         float previous = 0.0;
-        for (int i = 1; i <= 16; ++i) {
-            float t = uNearbyDistance * float(i * i) / 256.0;
+        for (int i = 1; i <= 24; ++i) {
+            float t = uNearbyDistance * float(i * i) / 576.0;
             vec4 C = C0 + t * Cd;
             if (C.w < uNear)
                 break;
