@@ -440,8 +440,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
             [this, &gpu, drawGlass, frame, &model](const fg::Resources& r, const GatherData& d,
                                                    gl::Context&) {
                 // The glass rectangle from the deformed cages (rectangle.comp.glsl).
-                const std::int32_t empty[4] = {INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN};
-                gpu.rectangle.update(0, sizeof empty, empty);
+                gpu.rectangle.fill(0, 2, std::uint32_t(INT32_MAX)); // empty: min > max
+                gpu.rectangle.fill(8, 2, std::uint32_t(INT32_MIN));
                 gpu.rectangleGrow.use();
                 gpu.rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
                 gl::bindStorage(4, gpu.rectangle);
@@ -555,11 +555,14 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                     d.front = b.read(front.depth);
             },
             [&gpu, size, onePass](const fg::Resources& r, const RangeData& d, gl::Context&) {
-                const std::uint32_t reset[4] = {0x7F7FFFFFu, 0u, 0x7F7FFFFFu, 0u};
-                gpu.range.update(0, sizeof reset, reset);
+                for (std::size_t slot = 0; slot < 2; ++slot) { // min: FLT_MAX bits, max: 0
+                    gpu.range.fill(8 * slot, 1, 0x7F7FFFFFu);
+                    gpu.range.fill(8 * slot + 4, 1, 0u);
+                }
                 if (!onePass) { // the separate passes grow no glass rectangle: the screen
-                    const std::int32_t screen[4] = {0, 0, size.x - 1, size.y - 1};
-                    gpu.rectangle.update(0, sizeof screen, screen);
+                    gpu.rectangle.fill(0, 2, 0u);
+                    gpu.rectangle.fill(8, 1, std::uint32_t(size.x - 1));
+                    gpu.rectangle.fill(12, 1, std::uint32_t(size.y - 1));
                 }
                 gpu.depthRange.use();
                 gl::bindStorage(0, gpu.range);

@@ -92,6 +92,14 @@ void Buffer::update(std::size_t offset, std::size_t bytes, const void* data) {
         glNamedBufferSubData(mId, GLintptr(offset), GLsizeiptr(bytes), data);
 }
 
+void Buffer::fill(std::size_t offset, std::size_t count, std::uint32_t value) {
+    ENGINE_CHECK(offset % 4 == 0 && offset <= mSize && count * 4 <= mSize - offset,
+                 "Buffer::fill() past the end or unaligned");
+    if (count)
+        glClearNamedBufferSubData(mId, GL_R32UI, GLintptr(offset), GLsizeiptr(count * 4),
+                                  GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+}
+
 std::vector<std::uint8_t> Buffer::download(std::size_t offset, std::size_t bytes) const {
     ENGINE_CHECK(offset <= mSize, "Buffer::download() past the end");
     bytes = std::min(bytes, mSize - offset);
