@@ -31,6 +31,15 @@ plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
                0.0,
                {},
                "environment rotation about the vertical axis"});
+    p.declare({"subdiv",
+               "Subdivision",
+               Type::Int,
+               0,
+               4,
+               0,
+               {},
+               "OpenSubdiv level of every mesh, refined each frame from the deformed mesh on the "
+               "GPU (0: the file's triangles; each level has four times the triangles)"});
     p.declare({"exposure", "Exposure", Type::Float, 0.05, 8.0, 1.0, {}, "before tonemapping"});
     p.declare({"ground", "Ground plane", Type::Bool, 0, 1, 1, {}, "a plane under the character"});
     p.declare({"split", "A/B split", Type::Bool, 0, 1, 0, {}, "compare two methods side by side"});

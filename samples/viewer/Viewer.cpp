@@ -385,11 +385,18 @@ core::Status Viewer::renderView(glm::ivec2 size) {
         mMessageIsError = true;
         mSettings.setNumber("environment", double(std::max(mEnvironmentShown, 0)));
     }
+    render::Renderer& renderer = *mScene.renderer;
+    if (const int level = int(mSettings.number("subdiv")); level != renderer.subdivisionLevel()) {
+        if (auto refined = renderer.setSubdivisionLevel(level); !refined) {
+            mMessage = refined.error().message;
+            mMessageIsError = true;
+            mSettings.setNumber("subdiv", double(renderer.subdivisionLevel()));
+        }
+    }
     const scene::Model& model = *mScene.model;
     const int clip = model.animations.empty() ? -1 : int(mSettings.number("clip"));
     const anim::Pose pose = anim::evaluate(model, clip, mTime);
     const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
-    render::Renderer& renderer = *mScene.renderer;
     // Rendered at render-scale of the view and scaled up when shown.
     const double scale = mSettings.number("render-scale");
     const glm::ivec2 internal = glm::max(glm::ivec2(glm::round(glm::dvec2(size) * scale)), 1);

@@ -33,6 +33,8 @@ protected:
                                     "' xvfb-run -a -s '-screen 0 1024x768x24' " + command,
                                 output);
     }
+    void expectViewerMatchesCapture(const std::string& viewerArguments,
+                                    const std::string& captureArguments);
     test::TempDir mConfig, mOut;
 };
 
@@ -40,6 +42,35 @@ capture::Image load(const std::filesystem::path& path) {
     auto image = capture::readPng(path);
     EXPECT_TRUE(image.ok()) << (image.ok() ? "" : image.error().message);
     return image.ok() ? *image : capture::Image{};
+}
+
+/** The viewer's offscreen screenshot of the default character after three frames of 1/30 s
+ *  (the walk at t = 0.1 s) against glass-capture's frame; `viewerArguments` and
+ *  `captureArguments` add the same setting to each. */
+void ViewerWindow::expectViewerMatchesCapture(const std::string& viewerArguments,
+                                              const std::string& captureArguments) {
+    const std::filesystem::path outDir = mOut.path();
+    std::string out;
+    const auto shot = outDir / "viewer.png";
+    ASSERT_EQ(inX(kViewer + " " + kWindow + " --no-restore --frames 3 --screenshot " +
+                      shot.string() + " --screenshot-size 176x200 --exit " + viewerArguments,
+                  &out),
+              0)
+        << out;
+    // The view's aspect (352x400), so that both frame the character alike.
+    const std::string assets = std::string(GLASS_SOURCE_DIR) + "/assets";
+    ASSERT_EQ(test::runCommand(kCapture + " " + assets + "/models/glass_figure.glb --env " +
+                                   assets +
+                                   "/env/sunset_sky.hdr --time 0.1 --size 176x200 --ground --out " +
+                                   (outDir / "capture").string() + " --force " +
+                                   captureArguments,
+                               &out),
+              0)
+        << out;
+    const capture::Image viewer = load(shot);
+    const capture::Image reference = load(outDir / "capture" / "glass_figure_walk_t0.100.png");
+    const capture::Comparison c = capture::compare(viewer, reference, {2, 0.0});
+    EXPECT_TRUE(c.passed) << c.failingPixels << " pixels differ, max " << c.maxAbsDiff;
 }
 
 double luminance(const capture::Image& image, int x, int y) {
@@ -97,27 +128,11 @@ TEST_F(ViewerWindow, ScriptedRunDrawsTheCharacterAndThePanel) {
 }
 
 TEST_F(ViewerWindow, OffscreenScreenshotOfTheDefaultCharacterMatchesGlassCapture) {
-    std::string out;
-    const auto shot = mOut / "viewer.png";
-    // Three frames of 1/30 s: the walk at t = 0.1 s.
-    ASSERT_EQ(inX(kViewer + " " + kWindow + " --no-restore --frames 3 --screenshot " +
-                      shot.string() + " --screenshot-size 176x200 --exit",
-                  &out),
-              0)
-        << out;
-    // The view's aspect (352x400), so that both frame the sphere alike.
-    const std::string assets = std::string(GLASS_SOURCE_DIR) + "/assets";
-    ASSERT_EQ(test::runCommand(kCapture + " " + assets + "/models/glass_figure.glb --env " +
-                                   assets +
-                                   "/env/sunset_sky.hdr --time 0.1 --size 176x200 --ground --out " +
-                                   (mOut / "capture").string(),
-                               &out),
-              0)
-        << out;
-    const capture::Image viewer = load(shot);
-    const capture::Image reference = load(mOut / "capture" / "glass_figure_walk_t0.100.png");
-    const capture::Comparison c = capture::compare(viewer, reference, {2, 0.0});
-    EXPECT_TRUE(c.passed) << c.failingPixels << " pixels differ, max " << c.maxAbsDiff;
+    expectViewerMatchesCapture("", "");
+}
+
+TEST_F(ViewerWindow, SubdivisionSliderRefinesLikeGlassCapture) {
+    expectViewerMatchesCapture("--set subdiv=1", "--subdiv 1");
 }
 
 TEST_F(ViewerWindow, RealInputEventsChangeTheImageAndEscapeQuits) {
