@@ -1,9 +1,12 @@
 // glass-bench: frame time of each glass method on one model, the methods interleaved frame by
 // frame so that their ratios hold on a noisy machine.
+#include "Plot.h"
+
 #include "../common/HeadlessScene.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
+#include "engine/capture/Image.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
 #include "engine/deform/CpuDeformer.h"
@@ -31,7 +34,7 @@ namespace {
 const char* const kUsage =
     R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0,1,2] [--size WxH]
                    [--frames N] [--warmup W] [--glass all|auto] [--ground] [--set KEY=VALUE]...
-                   [--json FILE [--force]]
+                   [--json FILE] [--plot PNG] [--force]
 
 Renders MODEL headless (EGL) at each OpenSubdiv level of --subdiv (default 0: the file's
 triangles; 0..4, refined every frame on the GPU from the deformed mesh) with each method,
@@ -45,8 +48,9 @@ middle of the clip) and the GPU memory of the frame graph's pooled textures. --g
 sees through its nearby-scene walk; without opaque geometry the walk is skipped); --set sets any
 other refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
 
-Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON
-(atomically; an existing FILE needs --force). Exit status: 0, 1 a load or render error, 2 bad
+Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON,
+--plot PNG a chart of each method's median frame time against the triangles drawn (both
+atomically; an existing file needs --force). Exit status: 0, 1 a load or render error, 2 bad
 arguments.
 )";
 
@@ -170,8 +174,35 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
     return rows;
 }
 
+/** The chart of a report: one line per method through its (triangles, median ms) per level. */
+capture::Image plot(const nlohmann::json& report) {
+    static const std::map<std::string, std::array<std::uint8_t, 3>> colors = {
+        {"opaque", {120, 120, 120}}, {"sir", {52, 101, 164}},
+        {"isr", {230, 126, 34}},     {"dir", {46, 139, 87}}};
+    bench::Chart chart;
+    const std::string name =
+        std::filesystem::path(report["model"].get<std::string>()).filename().string();
+    chart.title = name + " " + std::to_string(report["size"][0].get<int>()) + "x" +
+                  std::to_string(report["size"][1].get<int>()) + ": median frame time";
+    chart.xLabel = "triangles drawn (subdivision levels)";
+    chart.yLabel = "ms per frame";
+    for (const nlohmann::json& row : report["results"]) {
+        const std::string method = row["method"];
+        auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                               [&](const bench::Series& s) { return s.name == method; });
+        if (it == chart.series.end()) {
+            const auto color = colors.find(method);
+            chart.series.push_back(
+                {method, color != colors.end() ? color->second : std::array<std::uint8_t, 3>{0, 0, 0}, {}});
+            it = std::prev(chart.series.end());
+        }
+        it->points.emplace_back(row["triangles"].get<double>(), row["median_ms"].get<double>());
+    }
+    return bench::drawChart(chart);
+}
+
 int run(int argc, char** argv) {
-    std::string model, jsonPath, glass = "all";
+    std::string model, jsonPath, plotPath, glass = "all";
     std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
     std::vector<int> levels = {0};
     glm::ivec2 size{512, 512};
@@ -213,6 +244,8 @@ int run(int argc, char** argv) {
                 return usageError(arg + " needs a count");
         } else if (arg == "--json" && hasValue) {
             jsonPath = argv[++i];
+        } else if (arg == "--plot" && hasValue) {
+            plotPath = argv[++i];
         } else if (arg == "--glass" && hasValue) {
             glass = argv[++i];
         } else if (arg == "--set" && hasValue) {
@@ -229,11 +262,12 @@ int run(int argc, char** argv) {
     }
     if (model.empty())
         return usageError("no model given");
-    if (!jsonPath.empty() && !force && std::filesystem::exists(jsonPath)) {
-        std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
-                     jsonPath.c_str());
-        return 1;
-    }
+    for (const std::string& path : {jsonPath, plotPath})
+        if (!path.empty() && !force && std::filesystem::exists(path)) {
+            std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
+                         path.c_str());
+            return 1;
+        }
     // Checked on a copy of the parameters first: bad arguments exit 2 before any loading.
     plugin::ParameterSet parameters = refraction::createPlugin()->parameters();
     for (const std::string& method : methods)
@@ -336,6 +370,11 @@ int run(int argc, char** argv) {
     }
     if (!jsonPath.empty())
         if (auto written = core::writeFileAtomic(jsonPath, report.dump(2) + "\n"); !written) {
+            std::fprintf(stderr, "glass-bench: %s\n", written.error().message.c_str());
+            return 1;
+        }
+    if (!plotPath.empty())
+        if (auto written = capture::writePng(plotPath, plot(report)); !written) {
             std::fprintf(stderr, "glass-bench: %s\n", written.error().message.c_str());
             return 1;
         }
