@@ -392,7 +392,8 @@ TEST_F(Refraction, OneGeometryPassGivesTheTwoPassImageWithinQuantisation) {
                     differing += worst > 0.1f;
                     changed += one[i] != two[i] || one[i + 1] != two[i + 1];
                 }
-                const double fraction = double(differing) / double(one.size() / 4);
+                const std::size_t pixels = one.size() / 4;
+                const double fraction = double(differing) / double(pixels);
                 std::printf("one vs two geometry passes, %s %s tir %s: %.3f%% of pixels differ "
                             "by over 10%%\n",
                             model->sourceName.c_str(), method, tir, 100.0 * fraction);

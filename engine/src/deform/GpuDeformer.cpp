@@ -64,7 +64,7 @@ struct GpuDeformer::Refined {
     gl::Buffer refined;        // 3 floats per refined vertex
     gl::Buffer limit, du, dv;  // 3 floats per refined vertex
     gl::Buffer tangents;       // 4 floats per refined face-varying value
-    mutable gl::Buffer scalarRefined, scalarLimit; // refineScalar(): 1 float per refined vertex
+    gl::Buffer scalarRefined, scalarLimit; // refineScalar(): 1 float per refined vertex
 };
 
 struct GpuDeformer::Evaluators {
