@@ -187,22 +187,36 @@ double bruteForceDistance(const deform::DeformedPrimitive& mesh,
     return best;
 }
 
+/** CesiumMan with the engine's and the plugin's shaders and ISR's d_N programs. */
+struct DistanceRig {
+    scene::Model model;
+    gl::ShaderLibrary library;
+    gl::Program refit, cast;
+    void open(const gl::ShaderLibrary& engineShaders) {
+        auto loaded =
+            asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        model = std::move(*loaded);
+        library = engineShaders;
+        library.add(refractionShaderFiles());
+        auto r = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
+        auto c = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
+        ASSERT_TRUE(r.ok() && c.ok());
+        refit = std::move(*r);
+        cast = std::move(*c);
+    }
+};
+
 TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     GLASS_REQUIRE_SHARED();
-    const auto model =
-        asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
-    ASSERT_TRUE(model.ok()) << model.error().message;
-    gl::ShaderLibrary library = shaders();
-    library.add(refractionShaderFiles());
-    auto refit = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
-    auto cast = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
-    ASSERT_TRUE(refit.ok() && cast.ok());
-    auto deformer = deform::GpuDeformer::create(*model, library);
+    DistanceRig rig;
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders()));
+    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
     ASSERT_TRUE(deformer.ok());
-    (*deformer)->update(anim::evaluate(*model, 0, 1.0));
+    (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
     const auto& primitive = (*deformer)->instances()[0].primitives[0];
     refraction::NormalDistance distance(*primitive.source);
-    distance.update(primitive.deformed, *primitive.indices, *refit, *cast);
+    distance.update(primitive.deformed, *primitive.indices, rig.refit, rig.cast);
     const auto bytes = distance.distances().download();
     std::vector<float> gpu(primitive.vertexCount);
     std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
@@ -243,21 +257,15 @@ TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
  *  by the stencils: how far that is from casting on the refined surface itself. */
 TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) {
     GLASS_REQUIRE_SHARED();
-    const auto model =
-        asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
-    ASSERT_TRUE(model.ok()) << model.error().message;
-    gl::ShaderLibrary library = shaders();
-    library.add(refractionShaderFiles());
-    auto refit = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
-    auto cast = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
-    ASSERT_TRUE(refit.ok() && cast.ok());
-    auto deformer = deform::GpuDeformer::create(*model, library, 2);
+    DistanceRig rig;
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders()));
+    auto deformer = deform::GpuDeformer::create(rig.model, rig.library, 2);
     ASSERT_TRUE(deformer.ok()) << deformer.error().message;
-    (*deformer)->update(anim::evaluate(*model, 0, 1.0));
+    (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
     const auto& primitive = (*deformer)->instances()[0].primitives[0];
     refraction::NormalDistance distance(*primitive.source);
     const auto cage = (*deformer)->cage(0, 0);
-    distance.update(cage.vertices, cage.indices, *refit, *cast);
+    distance.update(cage.vertices, cage.indices, rig.refit, rig.cast);
     gl::Buffer drawn(std::size_t(primitive.vertexCount) * sizeof(float));
     (*deformer)->refineScalar(0, 0, distance.distances(), drawn);
     const auto bytes = drawn.download();

@@ -1,12 +1,7 @@
 // Front faces of the glass, the papers' second geometry pass: shades each fragment in front of
 // the opaque scene (glass_shading.glsl).
 #include "refraction/glass_shading.glsl"
-
-in vec3 vViewPosition;
-in vec3 vViewNormal;
-in vec4 vViewTangent;
-in vec2 vUv;
-in float vNormalDistance; // ISR: d_N in view units (-1: no far side)
+#include "refraction/glass_inputs.glsl"
 
 out vec4 outColor;
 

@@ -1,11 +1,7 @@
 // Back faces (DIR §3.1, ISR §3.2) or front faces (for TIR reflection): linear view depth
 // (positive) and the outward view-space normal of the kept surface. Texels no surface covers
 // keep the clear value 0 (invalid).
-in vec3 vViewPosition;
-in vec3 vViewNormal;
-in vec4 vViewTangent;
-in vec2 vUv;
-in float vNormalDistance;
+#include "refraction/glass_inputs.glsl"
 
 layout(location = 0) out float outDepth;
 layout(location = 1) out vec4 outNormal;

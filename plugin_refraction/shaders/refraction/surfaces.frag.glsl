@@ -1,12 +1,7 @@
 // The single geometry pass (surfaces.glsl): front and back fragments of the glass into the
 // MAX-blended targets; no depth test, no culling.
 #include "refraction/surfaces.glsl"
-
-in vec3 vViewPosition;
-in vec3 vViewNormal;
-in vec4 vViewTangent;
-in vec2 vUv;
-in float vNormalDistance;
+#include "refraction/glass_inputs.glsl"
 
 layout(location = 0) out vec4 outNear;
 layout(location = 1) out vec4 outFar;

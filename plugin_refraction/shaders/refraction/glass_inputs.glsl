@@ -1,0 +1,9 @@
+// What glass.vert.glsl passes to the fragment shaders drawn with it (view space).
+#ifndef REFRACTION_GLASS_INPUTS_GLSL
+#define REFRACTION_GLASS_INPUTS_GLSL
+in vec3 vViewPosition;
+in vec3 vViewNormal;
+in vec4 vViewTangent;
+in vec2 vUv;
+in float vNormalDistance; // ISR: d_N in view units (-1: no far side)
+#endif
