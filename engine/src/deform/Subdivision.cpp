@@ -51,7 +51,8 @@ struct Uv {
 
 /** Far::StencilTable's arrays as our Stencils, source indices mapped through `sourceIndex`
  *  (empty: unchanged). */
-Stencils copyTable(const Far::StencilTable& table, const std::vector<std::uint32_t>& sourceIndex) {
+Stencils copyTable(const Far::StencilTableReal<float>& table,
+                   const std::vector<std::uint32_t>& sourceIndex) {
     Stencils s;
     s.sizes = table.GetSizes();
     s.offsets = table.GetOffsets();
@@ -155,14 +156,17 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     uniform.fullTopologyInLastLevel = true; // the limit masks need the last level's neighbours
     refiner->RefineUniform(uniform);
 
-    Far::StencilTableFactory::Options options;
+    // The float factory template itself: Far::StencilTableFactory::Create() downcasts what it
+    // returns to a StencilTable it never constructed (undefined behaviour UBSan reports).
+    using TableFactory = Far::StencilTableFactoryReal<float>;
+    TableFactory::Options options;
     options.generateIntermediateLevels = false;
     options.generateOffsets = true;
-    std::unique_ptr<const Far::StencilTable> vertexTable(
-        Far::StencilTableFactory::Create(*refiner, options));
-    options.interpolationMode = Far::StencilTableFactory::INTERPOLATE_FACE_VARYING;
-    std::unique_ptr<const Far::StencilTable> valueTable(
-        Far::StencilTableFactory::Create(*refiner, options));
+    std::unique_ptr<const Far::StencilTableReal<float>> vertexTable(
+        TableFactory::Create(*refiner, options));
+    options.interpolationMode = TableFactory::INTERPOLATE_FACE_VARYING;
+    std::unique_ptr<const Far::StencilTableReal<float>> valueTable(
+        TableFactory::Create(*refiner, options));
     if (!vertexTable || !valueTable)
         return core::Error{where + "OpenSubdiv built no stencil table" +
                            (tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage)};
