@@ -74,6 +74,16 @@ RefractionPlugin::RefractionPlugin() {
                -1.0,
                {},
                "20 / Abbe number (KHR_materials_dispersion); -1: the material's"});
+    p.declare({"dispersion-search",
+               "Dispersion search",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"shared", "per-channel"},
+               "shared: one exit search, red and blue bent from green's exit point by their own "
+               "indices; per-channel: red, green and blue each search their exit (three "
+               "searches and lookups)"});
     p.declare(
         {"tint", "Tint", Type::Color, 0.0, 1.0, 1.0, {}, "multiplies the attenuation colour"});
     p.declare({"absorption-distance",
@@ -592,6 +602,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         // environment the lookup falls back to: skip it (the same image, cheaper).
         f.set("uNearby", mParameters.flag("nearby") && frame->opaqueGeometry ? 1 : 0);
         f.set("uDebug", int(mParameters.number("debug")));
+        f.set("uSharedDispersion", mParameters.choice("dispersion-search") == "shared" ? 1 : 0);
         f.set("uViewportSize", glm::vec2(size));
         f.set("uNear", frame->camera.znear);
         f.set("uFar", frame->camera.zfar);

@@ -26,7 +26,7 @@ constexpr const char* kUsage =
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
-                     [--geometry-passes one|two]
+                     [--geometry-passes one|two] [--dispersion-search shared|per-channel]
                      [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR]
 
@@ -49,6 +49,8 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --glass auto|all    auto: transmissive materials (default); all: play every mesh as glass
   --ior N             index of refraction, 0 = the material's (default)
   --dispersion D      20/Abbe number, -1 = the material's (default)
+  --dispersion-search shared (default): one exit search, red and blue refracted from green's
+                      exit point; per-channel: each colour channel searches its own exit
   --tint R,G,B        multiplies the attenuation colour; --absorption-distance D sets where
                       light reaches it (0 = the material's)
   --fresnel M         exact (default), schlick or off
@@ -183,7 +185,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
-                   arg == "--geometry-passes" || arg == "--debug") {
+                   arg == "--geometry-passes" || arg == "--dispersion-search" ||
+                   arg == "--debug") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");

@@ -20,7 +20,8 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 
 uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uNearby, uDebug;
 uniform vec3 uIor;            // per channel (dispersion); all equal without it
-uniform int uDispersion;      // 1: one search per channel
+uniform int uDispersion;      // 1: per-channel indices (uIor)
+uniform int uSharedDispersion; // 1: one exit search shared by the channels, 0: one each
 uniform float uTransmission;
 uniform vec4 uBaseColor;
 uniform float uRoughness, uMetallic;
@@ -42,6 +43,9 @@ struct Path {
     vec3 exitPoint;   // view space
     vec3 exitDir;     // view space, unit
     vec3 firstExit;   // P2 of the first exit search
+    vec3 entryDir;    // view space: the refracted direction at the entry (T1)
+    vec3 exitIncoming;// view space: the direction in the glass arriving at exitPoint ...
+    vec3 exitNormal;  // ... and the surface normal there (outward)
     vec2 exitUv;
     float length;     // in glass, view units (= world units)
     bool tir;
@@ -74,11 +78,14 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
     path.length = 0.0;
     vec3 T1;
     refractRay(V, N1, 1.0 / ior, T1); // entering the denser medium never reflects totally
+    path.entryDir = T1;
     if (uMethod == METHOD_SIR) {
         path.exitPoint = P1;
         path.exitDir = T1;
         path.firstExit = P1;
         path.exitUv = projectToUv(P1);
+        path.exitIncoming = T1;
+        path.exitNormal = -N1;
         return path;
     }
     float zBackMin = uintBitsToFloat(range[0]), zBackMax = uintBitsToFloat(range[1]);
@@ -120,6 +127,8 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
     float zFrontMin = uintBitsToFloat(range[2]);
     for (int bounce = 0;; ++bounce) {
         vec3 T2;
+        path.exitIncoming = dir;
+        path.exitNormal = No;
         if (refractRay(dir, -No, ior, T2)) {
             path.exitPoint = P;
             path.exitDir = T2;
@@ -157,7 +166,8 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
 
 // What a ray leaving the glass sees: the opaque scene where the ray meets it on screen (when
 // enabled), else the environment.
-vec3 lookup(vec3 P, vec3 dir) {
+vec3 lookup(vec3 P, vec3 dir, out float hitT) {
+    hitT = -1.0;
     if (uNearby != 0) {
         // March in clip space: the point P + t dir projects to C0 + t Cd (linear in t), so each
         // step costs a few multiply-adds, not a matrix product; depths compare in window space
@@ -189,6 +199,7 @@ vec3 lookup(vec3 P, vec3 dir) {
                     else
                         lo = mid;
                 }
+                hitT = hi;
                 vec4 H = C0 + hi * Cd;
                 vec2 hitUv = clamp(H.xy / H.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
                 return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
@@ -214,16 +225,38 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
     Path path = trace(P1, V, N1, uIor.g);
     vec3 transmitted;
     bool anyTir = path.tir;
-    if (uDispersion != 0 && uMethod != 0) {
+    float hitT;
+    vec3 green = lookup(path.exitPoint, path.exitDir, hitT);
+    if (uDispersion != 0 && uMethod != METHOD_SIR && uSharedDispersion != 0) {
+        // One search: red and blue leave from green's exit point, each bent by its own index at
+        // both interfaces, and see the scene where green's ray met it (or the environment).
+        transmitted.g = green.g * exp(-uSigma.g * path.length);
+        for (int c = 0; c < 3; c += 2) {
+            vec3 T1c, T2c;
+            refractRay(V, N1, 1.0 / uIor[c], T1c);
+            vec3 incoming = normalize(path.exitIncoming + (T1c - path.entryDir));
+            if (!refractRay(incoming, -path.exitNormal, uIor[c], T2c))
+                T2c = path.exitDir;
+            vec3 seen;
+            if (hitT >= 0.0) {
+                vec2 uv = clamp(projectToUv(path.exitPoint + T2c * hitT), vec2(0.0), vec2(0.9999));
+                seen = texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+            } else {
+                seen = environmentRadiance(uViewToWorld * T2c, uRoughness);
+            }
+            transmitted[c] = seen[c] * exp(-uSigma[c] * path.length);
+        }
+    } else if (uDispersion != 0 && uMethod != 0) {
         // Each channel runs its own search with its own index of refraction.
         Path red = trace(P1, V, N1, uIor.r);
         Path blue = trace(P1, V, N1, uIor.b);
-        transmitted = vec3(lookup(red.exitPoint, red.exitDir).r * exp(-uSigma.r * red.length),
-                           lookup(path.exitPoint, path.exitDir).g * exp(-uSigma.g * path.length),
-                           lookup(blue.exitPoint, blue.exitDir).b * exp(-uSigma.b * blue.length));
+        float unused;
+        transmitted = vec3(lookup(red.exitPoint, red.exitDir, unused).r * exp(-uSigma.r * red.length),
+                           green.g * exp(-uSigma.g * path.length),
+                           lookup(blue.exitPoint, blue.exitDir, unused).b * exp(-uSigma.b * blue.length));
         anyTir = anyTir || red.tir || blue.tir;
     } else {
-        transmitted = lookup(path.exitPoint, path.exitDir) * exp(-uSigma * path.length);
+        transmitted = green * exp(-uSigma * path.length);
     }
 
     float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / uIor.g);
