@@ -270,6 +270,9 @@ struct CompositeData {
 };
 
 constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets' clear value
+// The mip level the searches read the surface normals at (DIR §3.1: mip-filtered normals); the
+// normal maps need no level above it.
+constexpr int kNormalLod = 1;
 // Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-13 the
 // material's textures, then the gathered far target of the single geometry pass.
 constexpr std::uint32_t kGatherFarUnit = 14;
@@ -295,7 +298,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     const bool firstBack = mParameters.choice("back-surface") == "first";
     const glm::ivec2 size = frame->settings.size;
     const gl::TextureDesc depthDesc{size, gl::Format::R32F, 1},
-        normalDesc{size, gl::Format::RGBA16F, 0}, zDesc{size, gl::Format::Depth32F, 1},
+        normalDesc{size, gl::Format::RGBA16F, kNormalLod + 1},
+        zDesc{size, gl::Format::Depth32F, 1},
         colorDesc{size, gl::Format::RGBA16F, 1}, gatherDesc{size, gl::Format::RGBA32F, 1};
     Gpu& gpu = *mGpu;
 
@@ -610,7 +614,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
         f.set("uViewToWorld", glm::mat3(viewToWorld));
         f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
-        f.set("uNormalLod", 1.0f);
+        f.set("uNormalLod", float(kNormalLod));
         frame->environment->bind(f, 0, frame->settings.environmentRotation,
                                  frame->settings.environmentIntensity);
         const std::pair<const char*, fg::TextureHandle> samplers[] = {
