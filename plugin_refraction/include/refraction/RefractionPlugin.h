@@ -1,7 +1,8 @@
 // The refraction plugin: renders the engine's deforming glTF characters as glass through two
 // interfaces, with no preprocessing (DIR), with per-frame d_N (ISR), or through one (SIR).
-// Passes, per frame (ARCHITECTURE.md): back faces -> depth range -> [d_N] -> [front depth, for
-// TIR reflection] -> front faces -> composite over the scene colour.
+// Passes, per frame (ARCHITECTURE.md): [d_N] -> the glass surfaces in one gathered geometry pass
+// (or the papers' back-face and front-depth passes) -> depth range -> shading over the scene
+// colour (deferred over the glass pixels, or per front fragment and a composite).
 #pragma once
 
 #include "engine/gl/Buffer.h"
@@ -19,13 +20,13 @@ class GpuDeformer;
 
 namespace refraction {
 
-class NormalDistance;
+struct GpuState;
 
 /** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,
  *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
  *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
  *  search-steps 1..16, tir clamp|reflect, tir-bounces, back-surface farthest|first,
- *  nearby on|off, debug
+ *  geometry-passes one|two, dispersion-search shared|per-channel, nearby on|off, debug
  * none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction. */
 class RefractionPlugin final : public plugin::Plugin {
 public:
@@ -41,11 +42,10 @@ public:
     void drawPanel(void* imguiContext) override;
 
 private:
-    struct Gpu;
     bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
     void prepare(const scene::Model& model, const deform::GpuDeformer& geometry);
     plugin::ParameterSet mParameters;
-    std::unique_ptr<Gpu> mGpu;
+    std::unique_ptr<GpuState> mGpu;
 };
 
 /** For hosts that link the plugin statically instead of loading the module. */

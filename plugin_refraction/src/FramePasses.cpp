@@ -1,0 +1,468 @@
+// The refraction passes of one frame.
+#include "FramePasses.h"
+
+#include "Optics.h"
+
+#include "engine/deform/GpuDeformer.h"
+#include "engine/render/Environment.h"
+#include "engine/render/MaterialTextures.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+namespace refraction {
+namespace {
+
+constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets' clear value
+// The mip level the searches read the surface normals at (DIR §3.1: mip-filtered normals); the
+// normal maps need no level above it.
+constexpr int kNormalLod = 1;
+// Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-13 the
+// material's textures, then the gathered far target of the single geometry pass.
+constexpr std::uint32_t kMaterialUnit = 8, kGatherFarUnit = 14;
+
+gl::TextureDesc depthDesc(glm::ivec2 size) {
+    return {size, gl::Format::R32F, 1};
+}
+gl::TextureDesc normalDesc(glm::ivec2 size) {
+    return {size, gl::Format::RGBA16F, kNormalLod + 1};
+}
+gl::TextureDesc zDesc(glm::ivec2 size) {
+    return {size, gl::Format::Depth32F, 1};
+}
+gl::TextureDesc colorDesc(glm::ivec2 size) {
+    return {size, gl::Format::RGBA16F, 1};
+}
+
+void attach(GpuState& gpu, const char* pass, const std::vector<const gl::Texture*>& colors,
+            const gl::Texture* depth) {
+    auto status = gpu.framebuffer.attach(pass, colors, depth);
+    ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+    gpu.framebuffer.bind();
+}
+
+/** What a shading pass reads. */
+struct ShadeData {
+    SurfaceMaps maps;
+    fg::TextureHandle sceneColor, sceneDepth, out, zbuffer;
+};
+
+/** Uniforms and maps of glass_shading.glsl common to both shading paths. */
+void setShading(const FrameContext& c, const gl::Program& f, const ShadeData& d,
+                const fg::Resources& r) {
+    const plugin::ParameterSet& p = *c.parameters;
+    const render::FrameInfo& frame = *c.frame;
+    f.use();
+    f.set("uMethod", c.method == "sir" ? 1 : c.method == "isr" ? 2 : 3);
+    f.set("uSteps", int(p.number("search-steps")));
+    f.set("uTirPolicy", c.reflect ? 1 : 0);
+    f.set("uBounces", int(p.number("tir-bounces")));
+    const std::string fresnel = p.choice("fresnel");
+    f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
+    // Without opaque geometry the walk could only find the background, which is the
+    // environment the lookup falls back to: skip it (the same image, cheaper).
+    f.set("uNearby", p.flag("nearby") && frame.opaqueGeometry ? 1 : 0);
+    f.set("uDebug", int(p.number("debug")));
+    f.set("uSharedDispersion", p.choice("dispersion-search") == "shared" ? 1 : 0);
+    f.set("uViewportSize", glm::vec2(frame.settings.size));
+    f.set("uNear", frame.camera.znear);
+    f.set("uFar", frame.camera.zfar);
+    f.set("uNearbyDistance", 0.5f * (frame.camera.zfar - frame.camera.znear));
+    const glm::mat4 viewToWorld = glm::inverse(frame.camera.view);
+    f.set("uViewToWorld", glm::mat3(viewToWorld));
+    f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+    f.set("uNormalLod", float(kNormalLod));
+    frame.environment->bind(f, 0, frame.settings.environmentRotation,
+                            frame.settings.environmentIntensity);
+    const std::pair<const char*, fg::TextureHandle> samplers[] = {
+        {"uBackDepth", d.maps.backDepth},   {"uBackNormal", d.maps.backNormal},
+        {"uFrontDepth", d.maps.frontDepth}, {"uFrontNormal", d.maps.frontNormal},
+        {"uSceneColor", d.sceneColor},      {"uSceneDepth", d.sceneDepth}};
+    int unit = 2;
+    for (const auto& [uniform, handle] : samplers) {
+        // Maps this method does not read are absent: the scene depth stands in (unread).
+        gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
+        f.set(uniform, unit++);
+    }
+    gl::bindStorage(3, c.gpu->range);
+}
+
+} // namespace
+
+bool isGlassPrimitive(const plugin::ParameterSet& parameters, const scene::Model& model,
+                      const scene::Primitive& primitive) {
+    if (parameters.choice("method") == "opaque")
+        return false;
+    if (parameters.choice("glass") == "all")
+        return true;
+    return primitive.material >= 0 &&
+           model.materials[std::size_t(primitive.material)].isTransmissive();
+}
+
+bool FrameContext::isGlass(const scene::Primitive& primitive) const {
+    return isGlassPrimitive(*parameters, *frame->model, primitive);
+}
+
+void FrameContext::setMaterial(const gl::Program& program, int material) const {
+    const scene::Model& model = *frame->model;
+    const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+    frame->materials->bind(program, model, material, kMaterialUnit);
+    const Optics o = opticsFor(*parameters, m);
+    program.set("uIor", o.ior);
+    program.set("uDispersion", o.dispersion ? 1 : 0);
+    program.set("uSigma", o.sigma);
+    program.set("uTransmission", o.transmission);
+    program.set("uBaseColor", o.baseColor);
+    program.set("uRoughness", o.roughness);
+    program.set("uMetallic", o.metallic);
+    program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
+}
+
+void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState& state,
+                             bool front) const {
+    program.use();
+    program.set("uProjection", frame->camera.projection);
+    std::size_t vao = 0, instanceIndex = 0;
+    for (const auto& instance : frame->geometry->instances()) {
+        const glm::mat4 modelView = frame->camera.view * instance.meshToWorld;
+        program.set("uModelView", modelView);
+        program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
+        for (std::size_t p = 0; p < instance.primitives.size(); ++p, ++vao) {
+            const auto& primitive = instance.primitives[p];
+            if (!isGlass(*primitive.source))
+                continue;
+            gl::bindStorage(0, primitive.deformed);
+            gl::bindStorage(1, *primitive.uv0);
+            const auto distance = gpu->distances.find({instanceIndex, p});
+            const bool hasDistance = distance != gpu->distances.end() && method == "isr";
+            program.set("uHasNormalDistance", hasDistance ? 1 : 0);
+            // Without d_N the binding still needs a buffer: the vertices stand in (unread).
+            gl::bindStorage(2, hasDistance ? distance->second.values() : primitive.deformed);
+            if (front)
+                setMaterial(program, primitive.source->material);
+            gl::apply(state);
+            gpu->vaos[vao].bind();
+            gl::drawIndexed(primitive.indexCount);
+        }
+        ++instanceIndex;
+    }
+}
+
+void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c) {
+    struct Empty {};
+    graph.addPass<Empty>(
+        "refraction.normal_distance", [](fg::Builder& b, Empty&) { b.after("deform"); },
+        [c](const fg::Resources&, const Empty&, gl::Context&) {
+            const deform::GpuDeformer& geometry = *c.frame->geometry;
+            const bool refined = geometry.subdivisionLevel() > 0;
+            for (std::size_t i = 0; i < geometry.instances().size(); ++i)
+                for (std::size_t p = 0; p < geometry.instances()[i].primitives.size(); ++p) {
+                    const auto& primitive = geometry.instances()[i].primitives[p];
+                    if (!c.isGlass(*primitive.source))
+                        continue;
+                    auto& distance = c.gpu->distances[{i, p}];
+                    if (!distance.cage) {
+                        distance.cage = std::make_unique<NormalDistance>(*primitive.source);
+                        if (refined)
+                            distance.drawn =
+                                gl::Buffer(std::size_t(primitive.vertexCount) * sizeof(float));
+                    }
+                    const auto cage = geometry.cage(i, p);
+                    distance.cage->update(cage.vertices, cage.indices, c.gpu->refit,
+                                          c.gpu->normalDistance);
+                    if (refined)
+                        geometry.refineScalar(i, p, distance.cage->distances(), distance.drawn);
+                }
+        });
+}
+
+SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
+                                     bool firstBack) {
+    struct SurfaceData {
+        fg::TextureHandle depth, normal, zbuffer;
+    };
+    const glm::ivec2 size = c.frame->settings.size;
+    // Farthest: GREATER from 0; nearest: LESS from 1.
+    auto surfacePass = [&](const char* name, bool backFaces, bool nearest) -> const SurfaceData& {
+        return graph.addPass<SurfaceData>(
+            name,
+            [&](fg::Builder& b, SurfaceData& d) {
+                b.after("deform");
+                d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc(size)));
+                d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
+                d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc(size)));
+            },
+            [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
+                                          gl::Context&) {
+                attach(*c.gpu, name, {&r.texture(d.depth), &r.texture(d.normal)},
+                       &r.texture(d.zbuffer));
+                gl::clearColor(0, glm::vec4(0.0f));
+                gl::clearColor(1, glm::vec4(0.0f));
+                gl::clearDepth(nearest ? 1.0f : 0.0f);
+                c.drawGlass(c.gpu->surface,
+                            {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
+                             .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater},
+                            false);
+                r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+            });
+    };
+    SurfaceMaps maps;
+    if (c.twoInterfaces) {
+        const SurfaceData& back = surfacePass("refraction.back_faces", true, firstBack);
+        maps.backDepth = back.depth;
+        maps.backNormal = back.normal;
+    }
+    if (c.reflect) {
+        const SurfaceData& front = surfacePass("refraction.front_depth", false, true);
+        maps.frontDepth = front.depth;
+        maps.frontNormal = front.normal;
+    }
+    return maps;
+}
+
+SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                     const FrameContext& c) {
+    const glm::ivec2 size = c.frame->settings.size;
+    struct GatherData {
+        fg::TextureHandle nearTargets, farTargets;
+    };
+    const gl::TextureDesc gatherDesc{size, gl::Format::RGBA32F, 1};
+    const auto& gathered = graph.addPass<GatherData>(
+        "refraction.surfaces",
+        [&](fg::Builder& b, GatherData& d) {
+            b.after("deform");
+            if (c.method == "isr")
+                b.after("refraction.normal_distance");
+            d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
+            d.farTargets = b.write(b.create("refraction.surfaces.far", gatherDesc));
+        },
+        [c](const fg::Resources& r, const GatherData& d, gl::Context&) {
+            GpuState& gpu = *c.gpu;
+            const render::FrameInfo& frame = *c.frame;
+            // The glass rectangle from the deformed cages (rectangle.comp.glsl).
+            gpu.rectangle.fill(0, 2, std::uint32_t(INT32_MAX)); // empty: min > max
+            gpu.rectangle.fill(8, 2, std::uint32_t(INT32_MIN));
+            gpu.rectangleGrow.use();
+            gpu.rectangleGrow.set("uViewportSize", glm::vec2(frame.settings.size));
+            gl::bindStorage(4, gpu.rectangle);
+            const auto& instances = frame.geometry->instances();
+            for (std::size_t i = 0; i < instances.size(); ++i)
+                for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
+                    const auto& primitive = instances[i].primitives[p];
+                    if (!c.isGlass(*primitive.source))
+                        continue;
+                    gpu.rectangleGrow.set("uModelViewProjection",
+                                          frame.camera.viewProjection() * instances[i].meshToWorld);
+                    const int count = int(primitive.source->vertexCount());
+                    gpu.rectangleGrow.set("uVertexCount", count);
+                    gl::bindStorage(0, frame.geometry->cage(i, p).vertices);
+                    gl::dispatch(std::uint32_t((count + 63) / 64));
+                }
+            gl::memoryBarrier(gl::BarrierStorage);
+            attach(gpu, "refraction.surfaces",
+                   {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
+            gl::clearColor(0, glm::vec4(kNoSurface));
+            gl::clearColor(1, glm::vec4(kNoSurface));
+            gpu.surfaces.use();
+            gpu.surfaces.set("uKeyNear", frame.camera.znear);
+            gpu.surfaces.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
+            c.drawGlass(gpu.surfaces,
+                        {.cull = gl::Cull::None,
+                         .depthTest = false,
+                         .depthWrite = false,
+                         .blend = gl::Blend::Max},
+                        false);
+        });
+
+    struct ResolveData {
+        fg::TextureHandle nearTargets, farTargets, sceneDepth, backNormal, frontDepth,
+            frontNormal, mask;
+    };
+    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+    const auto& resolved = graph.addPass<ResolveData>(
+        "refraction.resolve",
+        [&](fg::Builder& b, ResolveData& d) {
+            d.nearTargets = b.read(gathered.nearTargets);
+            d.farTargets = b.read(gathered.farTargets);
+            d.sceneDepth = b.read(sceneDepth);
+            d.backNormal = b.write(b.create("refraction.back.normal", normalDesc(size)));
+            if (c.reflect) {
+                d.frontDepth = b.write(b.create("refraction.front.depth", depthDesc(size)));
+                d.frontNormal = b.write(b.create("refraction.front.normal", normalDesc(size)));
+            }
+            d.mask = b.write(b.create("refraction.glass_mask", zDesc(size)));
+        },
+        [c](const fg::Resources& r, const ResolveData& d, gl::Context&) {
+            GpuState& gpu = *c.gpu;
+            std::vector<const gl::Texture*> targets{&r.texture(d.backNormal)};
+            if (c.reflect)
+                targets.insert(targets.end(),
+                               {&r.texture(d.frontDepth), &r.texture(d.frontNormal)});
+            attach(gpu, "refraction.resolve", targets, &r.texture(d.mask));
+            // Outside the glass rectangle: no surface, and the mask rejects.
+            for (int i = 0; i < int(targets.size()); ++i)
+                gl::clearColor(i, glm::vec4(0.0f));
+            gl::clearDepth(1.0f);
+            gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
+            gpu.resolve.use();
+            const std::pair<const char*, fg::TextureHandle> inputs[] = {
+                {"uGatherNear", d.nearTargets},
+                {"uGatherFar", d.farTargets},
+                {"uSceneDepth", d.sceneDepth}};
+            int unit = 0;
+            for (const auto& [uniform, handle] : inputs) {
+                gl::bindTexture(std::uint32_t(unit), r.texture(handle));
+                gpu.resolve.set(uniform, unit++);
+            }
+            gpu.resolve.set("uNear", c.frame->camera.znear);
+            gpu.resolve.set("uFar", c.frame->camera.zfar);
+            gpu.resolve.set("uViewportSize", glm::vec2(c.frame->settings.size));
+            gl::bindStorage(4, gpu.rectangle);
+            gpu.emptyVao.bind();
+            gl::drawArrays(6);
+            r.texture(d.backNormal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+            if (c.reflect) // only TIR bounces toward the front read its normals' mips
+                r.texture(d.frontNormal).generateMipmaps();
+        });
+    SurfaceMaps maps;
+    maps.backDepth = gathered.nearTargets; // back depth in .r (surfaces.glsl)
+    maps.backNormal = resolved.backNormal;
+    maps.frontDepth = resolved.frontDepth;
+    maps.frontNormal = resolved.frontNormal;
+    maps.gatheredFar = gathered.farTargets;
+    maps.mask = resolved.mask;
+    return maps;
+}
+
+void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps) {
+    struct RangeData {
+        fg::TextureHandle back, front;
+    };
+    graph.addPass<RangeData>(
+        "refraction.depth_range",
+        [&](fg::Builder& b, RangeData& d) {
+            d.back = b.read(maps.backDepth);
+            if (c.reflect)
+                d.front = b.read(maps.frontDepth);
+        },
+        [c](const fg::Resources& r, const RangeData& d, gl::Context&) {
+            GpuState& gpu = *c.gpu;
+            const glm::ivec2 size = c.frame->settings.size;
+            for (std::size_t slot = 0; slot < 2; ++slot) { // min: FLT_MAX bits, max: 0
+                gpu.range.fill(8 * slot, 1, 0x7F7FFFFFu);
+                gpu.range.fill(8 * slot + 4, 1, 0u);
+            }
+            if (!c.onePass) { // the separate passes grow no glass rectangle: the screen
+                gpu.rectangle.fill(0, 2, 0u);
+                gpu.rectangle.fill(8, 1, std::uint32_t(size.x - 1));
+                gpu.rectangle.fill(12, 1, std::uint32_t(size.y - 1));
+            }
+            gpu.depthRange.use();
+            gl::bindStorage(0, gpu.range);
+            gl::bindStorage(1, gpu.rectangle);
+            for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
+                gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
+                gpu.depthRange.set("uDepth", 0);
+                gpu.depthRange.set("uSlot", slot);
+                gl::dispatch(std::uint32_t((size.x + 63) / 64), std::uint32_t((size.y + 63) / 64));
+            }
+            gl::memoryBarrier(gl::BarrierStorage);
+        });
+}
+
+fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                   const FrameContext& c, const SurfaceMaps& maps) {
+    const glm::ivec2 size = c.frame->settings.size;
+    const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+    auto readInputs = [&](fg::Builder& b, ShadeData& d) {
+        if (c.twoInterfaces)
+            b.after("refraction.depth_range");
+        if (c.method == "isr")
+            b.after("refraction.normal_distance");
+        for (auto [from, to] : {std::pair{maps.backDepth, &d.maps.backDepth},
+                                std::pair{maps.backNormal, &d.maps.backNormal},
+                                std::pair{maps.frontDepth, &d.maps.frontDepth},
+                                std::pair{maps.frontNormal, &d.maps.frontNormal},
+                                std::pair{maps.gatheredFar, &d.maps.gatheredFar},
+                                std::pair{maps.mask, &d.maps.mask}})
+            if (from.valid())
+                *to = b.read(from);
+        d.sceneColor = b.read(sceneColor);
+        d.sceneDepth = b.read(sceneDepth);
+    };
+
+    if (c.onePass) {
+        // The scene colour copied, then one pass over the glass rectangle shades the glass
+        // pixels (the mask's early depth test skips the others).
+        const auto& shaded = graph.addPass<ShadeData>(
+            "refraction.shade",
+            [&](fg::Builder& b, ShadeData& d) {
+                readInputs(b, d);
+                d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+            },
+            [c](const fg::Resources& r, const ShadeData& d, gl::Context&) {
+                GpuState& gpu = *c.gpu;
+                gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
+                attach(gpu, "refraction.shade", {&r.texture(d.out)}, &r.texture(d.maps.mask));
+                // The rectangle lies at depth 1: it passes only where the mask holds 0.
+                gl::apply({.cull = gl::Cull::None,
+                           .depthWrite = false,
+                           .depthFunc = gl::DepthFunc::Greater});
+                setShading(c, gpu.deferred, d, r);
+                c.setMaterial(gpu.deferred, c.glassMaterial);
+                gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
+                gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
+                gpu.deferred.set("uProjection", c.frame->camera.projection);
+                gpu.deferred.set("uInverseProjection", glm::inverse(c.frame->camera.projection));
+                gl::bindStorage(4, gpu.rectangle);
+                gpu.emptyVao.bind();
+                gl::drawArrays(6);
+            });
+        return shaded.out;
+    }
+
+    // Front faces: refract, find the exit, shade; then the glass over the scene colour.
+    const auto& shaded = graph.addPass<ShadeData>(
+        "refraction.front_faces",
+        [&](fg::Builder& b, ShadeData& d) {
+            readInputs(b, d);
+            d.out = b.write(b.create("refraction.glass", colorDesc(size)));
+            d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc(size)));
+        },
+        [c](const fg::Resources& r, const ShadeData& d, gl::Context&) {
+            attach(*c.gpu, "refraction.front_faces", {&r.texture(d.out)}, &r.texture(d.zbuffer));
+            gl::clearColor(0, glm::vec4(0.0f));
+            gl::clearDepth(1.0f);
+            setShading(c, c.gpu->front, d, r);
+            c.drawGlass(c.gpu->front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
+                        true);
+        });
+    struct CompositeData {
+        fg::TextureHandle scene, glass, out;
+    };
+    const auto& composite = graph.addPass<CompositeData>(
+        "refraction.composite",
+        [&](fg::Builder& b, CompositeData& d) {
+            d.scene = b.read(sceneColor);
+            d.glass = b.read(shaded.out);
+            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+        },
+        [c](const fg::Resources& r, const CompositeData& d, gl::Context&) {
+            GpuState& gpu = *c.gpu;
+            attach(gpu, "refraction.composite", {&r.texture(d.out)}, nullptr);
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            gpu.composite.use();
+            gl::bindTexture(0, r.texture(d.scene));
+            gl::bindTexture(1, r.texture(d.glass));
+            gpu.composite.set("uScene", 0);
+            gpu.composite.set("uGlass", 1);
+            gpu.emptyVao.bind();
+            gl::drawArrays(3);
+        });
+    return composite.out;
+}
+
+} // namespace refraction

@@ -1,0 +1,65 @@
+// The refraction passes of one frame, recorded into the frame graph (ARCHITECTURE.md, "One
+// frame"): d_N, the surfaces (one gathered geometry pass or the papers' two), the depth range,
+// and the shading (deferred over the glass pixels, or per front fragment plus a composite).
+// Private to the plugin.
+#pragma once
+
+#include "GpuState.h"
+
+#include "engine/fg/Blackboard.h"
+#include "engine/fg/FrameGraph.h"
+#include "engine/plugin/ParameterSet.h"
+#include "engine/plugin/Plugin.h"
+#include "engine/render/FrameInfo.h"
+
+#include <string>
+
+namespace refraction {
+
+/** Whether `primitive` is drawn as glass with these parameters (method, glass). */
+bool isGlassPrimitive(const plugin::ParameterSet& parameters, const scene::Model& model,
+                      const scene::Primitive& primitive);
+
+/** A frame's decisions and what its passes share, copied into every pass's callback (the
+ *  callbacks run after addPasses() returns). */
+struct FrameContext {
+    GpuState* gpu = nullptr;
+    const plugin::ParameterSet* parameters = nullptr;
+    const render::FrameInfo* frame = nullptr;
+    std::string method;         ///< sir, isr or dir
+    bool twoInterfaces = false; ///< isr, dir: the back surface is needed
+    bool reflect = false;       ///< TIR reflect: the front surface is searched too
+    bool onePass = false;       ///< the single gathered geometry pass
+    int glassMaterial = -1;     ///< one pass: the one material of every glass primitive
+
+    bool isGlass(const scene::Primitive& primitive) const;
+    /** Draws every glass primitive with `program` (glass.vert.glsl); `front` sets each one's
+     *  material for the shading. */
+    void drawGlass(const gl::Program& program, const gl::PipelineState& state, bool front) const;
+    /** Material and optics uniforms of glass_shading.glsl. */
+    void setMaterial(const gl::Program& program, int material) const;
+};
+
+/** The maps the searches read. */
+struct SurfaceMaps {
+    fg::TextureHandle backDepth, backNormal;   ///< DIR §3.1 (one pass: the gathered near target)
+    fg::TextureHandle frontDepth, frontNormal; ///< TIR reflection only
+    fg::TextureHandle gatheredFar, mask;       ///< one pass: d_N keys; the glass pixels
+};
+
+/** ISR: d_N of every deformed vertex, cast on the cage every frame. */
+void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c);
+/** The papers' geometry passes: back faces (farthest or `firstBack`), and front faces for TIR
+ *  reflection. */
+SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
+                                     bool firstBack);
+/** One geometry pass (MAX blending) over the glass rectangle, then the resolve pass. */
+SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                     const FrameContext& c);
+/** The depth range of the back (and front) maps, into GpuState::range. */
+void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps);
+/** The shading, composited over the scene colour: returns the new scene colour. */
+fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                   const FrameContext& c, const SurfaceMaps& maps);
+
+} // namespace refraction

@@ -1,0 +1,43 @@
+// The refraction plugin's GL objects and per-geometry caches, kept across frames. Private to
+// the plugin.
+#pragma once
+
+#include "NormalDistance.h"
+
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Commands.h"
+#include "engine/gl/Framebuffer.h"
+#include "engine/gl/Program.h"
+#include "engine/scene/Model.h"
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace refraction {
+
+struct GpuState {
+    // The papers' two geometry passes, and what both paths share.
+    gl::Program surface, front, composite, depthRange, refit, normalDistance;
+    // The single geometry pass.
+    gl::Program surfaces, resolve, deferred, rectangleGrow;
+    gl::Framebuffer framebuffer;
+    gl::VertexArray emptyVao;
+    gl::Buffer range{4 * sizeof(std::uint32_t)};    // depth_range.comp.glsl's min/max
+    gl::Buffer rectangle{4 * sizeof(std::int32_t)}; // the glass's pixel rectangle (surfaces.glsl)
+    const scene::Model* model = nullptr;
+    std::uint64_t geometry = 0;        // GpuDeformer::serial() the caches below belong to
+    std::vector<gl::VertexArray> vaos; // per instance primitive, flattened
+    /** d_N of one glass primitive: measured on the deformed cage (the file's triangles); with
+     *  subdivision carried to the drawn vertices by the refinement stencils. */
+    struct Distance {
+        std::unique_ptr<NormalDistance> cage;
+        gl::Buffer drawn; // with subdivision: one float per drawn vertex
+        const gl::Buffer& values() const { return drawn ? drawn : cage->distances(); }
+    };
+    std::map<std::pair<std::size_t, std::size_t>, Distance> distances; // (instance, primitive)
+};
+
+} // namespace refraction
