@@ -100,7 +100,6 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
                            std::to_string(core::limits::kMaxRefinedTriangles)};
 
     Subdivision sub;
-    sub.level = level;
     // Weld by position.
     std::vector<int> welded(primitive.vertexCount());
     {
@@ -273,7 +272,6 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     scene::Primitive& rest = sub.rest;
     rest.material = primitive.material;
     rest.indices = std::move(indices);
-    rest.sourceVertexCount = sub.corners.size();
     for (const RefinedCorner& c : sub.corners) {
         const glm::vec3 du = vec3At(limit.du, c.vertex), dv = vec3At(limit.dv, c.vertex);
         glm::vec3 n = sub.flipNormals ? glm::cross(dv, du) : glm::cross(du, dv);

@@ -123,11 +123,13 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
 
 void Renderer::makeVertexArrays() {
     mVaos.clear();
+    mClaimed.clear();
     for (const auto& instance : mDeformer->instances())
         for (const auto& primitive : instance.primitives) {
             gl::VertexArray vao;
             vao.setIndexBuffer(*primitive.indices);
             mVaos.push_back(std::move(vao));
+            mClaimed.push_back(0);
         }
 }
 
@@ -168,14 +170,18 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     frame.settings = settings;
     frame.time = time;
     frame.ground = mGroundPlane;
+    // Which primitives a plugin draws instead of the opaque pass, asked once a frame.
+    std::size_t flat = 0;
     frame.opaqueGeometry = settings.ground;
     for (const auto& instance : mDeformer->instances())
-        for (const auto& primitive : instance.primitives)
-            frame.opaqueGeometry =
-                frame.opaqueGeometry ||
-                std::none_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
+        for (const auto& primitive : instance.primitives) {
+            const bool claimed =
+                std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
                     return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
                 });
+            mClaimed[flat++] = claimed;
+            frame.opaqueGeometry = frame.opaqueGeometry || !claimed;
+        }
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;
@@ -262,11 +268,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
                 mOpaque.set("uNormalMatrix",
                             glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
                 for (const auto& primitive : instance.primitives) {
-                    const bool claimed =
-                        std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
-                            return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
-                        });
-                    if (claimed) {
+                    if (mClaimed[vao]) {
                         ++vao;
                         continue;
                     }

@@ -5,14 +5,9 @@
 // colour (deferred over the glass pixels, or per front fragment and a composite).
 #pragma once
 
-#include "engine/gl/Buffer.h"
-#include "engine/gl/Commands.h"
-#include "engine/gl/Framebuffer.h"
-#include "engine/gl/Program.h"
 #include "engine/plugin/Plugin.h"
 
 #include <memory>
-#include <vector>
 
 namespace deform {
 class GpuDeformer;

@@ -29,7 +29,6 @@ struct RefinedCorner {
 };
 
 struct Subdivision {
-    int level = 0;
     /** Cage vertices welded by position (glTF splits vertices at UV and normal seams; the
      *  refiner must see one vertex there or the surface tears): the primitive's vertex that
      *  stands for each welded vertex. Stencil indices below already name these vertices. */

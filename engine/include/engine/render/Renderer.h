@@ -100,6 +100,7 @@ private:
     gl::Program mBackground, mOpaque, mGround, mTonemap;
     gl::VertexArray mEmptyVao;
     std::vector<gl::VertexArray> mVaos; // per instance primitive, flattened
+    std::vector<char> mClaimed;         // same order: a plugin draws it (this frame)
     gl::Texture mOutput;
     gl::Framebuffer mFramebuffer;
     mutable gl::Framebuffer mPresent;
