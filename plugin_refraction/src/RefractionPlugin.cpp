@@ -7,7 +7,7 @@
 
 #include "engine/deform/GpuDeformer.h"
 
-#include <imgui.h>
+#include "engine/core/Check.h"
 
 #include <cstdio>
 
@@ -16,6 +16,38 @@ std::span<const gl::ShaderFile> refractionShaderFiles();
 namespace refraction {
 
 using Type = plugin::Parameter::Type;
+
+namespace {
+
+/** Presets of common transparent materials: refractive index n_d and Abbe number V_d
+ *  (dispersion = 20 / V_d, as in KHR_materials_dispersion); the first restores the model's. */
+void addMaterialPresets(plugin::ParameterSet& parameters) {
+    struct Material {
+        const char* name;
+        double ior, abbe;
+    };
+    static constexpr Material kMaterials[] = {
+        {"water", 1.333, 55.7},           {"ice", 1.309, 56.0},
+        {"acrylic (PMMA)", 1.491, 57.2},  {"glass (crown, BK7)", 1.517, 64.2},
+        {"fused quartz", 1.458, 67.8},    {"polycarbonate", 1.585, 30.0},
+        {"flint glass (F2)", 1.620, 36.4}, {"sapphire", 1.770, 72.2},
+        {"cubic zirconia", 2.150, 33.8},  {"diamond", 2.417, 55.3},
+    };
+    auto add = [&](std::string name, std::string ior, std::string dispersion) {
+        const core::Status added =
+            parameters.addPreset({std::move(name), {{"ior", ior}, {"dispersion", dispersion}}});
+        ENGINE_CHECK(added, "refraction material presets fit their parameters");
+    };
+    add("the material's own", "0", "-1");
+    for (const Material& m : kMaterials) {
+        char ior[16], dispersion[16];
+        std::snprintf(ior, sizeof ior, "%.3f", m.ior);
+        std::snprintf(dispersion, sizeof dispersion, "%.4f", 20.0 / m.abbe);
+        add(std::string(m.name) + "  " + ior, ior, dispersion);
+    }
+}
+
+} // namespace
 
 RefractionPlugin::RefractionPlugin() {
     auto& p = mParameters;
@@ -127,6 +159,7 @@ RefractionPlugin::RefractionPlugin() {
                {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
                 "exit-point", "exit-direction"},
                ""});
+    addMaterialPresets(p);
 }
 
 RefractionPlugin::~RefractionPlugin() = default;
@@ -164,38 +197,6 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         *target = std::move(*program);
     }
     return {};
-}
-
-void RefractionPlugin::drawPanel(void* imguiContext) {
-    // Refractive index n_d and Abbe number V_d (dispersion = 20 / V_d, as in
-    // KHR_materials_dispersion) of common transparent materials.
-    struct Preset {
-        const char* name;
-        double ior, abbe;
-    };
-    static constexpr Preset kPresets[] = {
-        {"water", 1.333, 55.7},           {"ice", 1.309, 56.0},
-        {"acrylic (PMMA)", 1.491, 57.2},  {"glass (crown, BK7)", 1.517, 64.2},
-        {"fused quartz", 1.458, 67.8},    {"polycarbonate", 1.585, 30.0},
-        {"flint glass (F2)", 1.620, 36.4}, {"sapphire", 1.770, 72.2},
-        {"cubic zirconia", 2.150, 33.8},  {"diamond", 2.417, 55.3},
-    };
-    ImGui::SetCurrentContext(static_cast<ImGuiContext*>(imguiContext));
-    if (ImGui::BeginCombo("Material preset", "sets IOR and dispersion")) {
-        if (ImGui::Selectable("the material's own")) {
-            mParameters.setNumber("ior", 0.0);
-            mParameters.setNumber("dispersion", -1.0);
-        }
-        for (const Preset& preset : kPresets) {
-            char label[64];
-            std::snprintf(label, sizeof label, "%s  %.3f", preset.name, preset.ior);
-            if (ImGui::Selectable(label)) {
-                mParameters.setNumber("ior", preset.ior);
-                mParameters.setNumber("dispersion", 20.0 / preset.abbe);
-            }
-        }
-        ImGui::EndCombo();
-    }
 }
 
 bool RefractionPlugin::isGlass(const scene::Model& model, const scene::Primitive& primitive) const {

@@ -151,8 +151,13 @@ void printText(const scene::Model& model) {
                     model.skins[s].joints.size());
     for (const auto& clip : j["animation_list"]) {
         std::string modes;
-        for (const auto& mode : clip["interpolation"])
-            modes += (modes.empty() ? "" : ",") + mode.get<std::string>();
+        for (const auto& mode : clip["interpolation"]) {
+            // appended in two steps: `(cond ? "" : ",") + std::string` trips GCC 12's
+            // -Wrestrict false positive at -O3 (GCC bug 105329)
+            if (!modes.empty())
+                modes += ',';
+            modes += mode.get<std::string>();
+        }
         std::printf("  clip '%s': %.3f s, %zu channels, %s\n",
                     clip["name"].get<std::string>().c_str(), clip["duration_s"].get<double>(),
                     clip["channels"].get<std::size_t>(), modes.c_str());

@@ -23,6 +23,22 @@ void widget(plugin::ParameterSet& set, const char* name) {
         parameterWidget(set, *p);
 }
 
+/** The set's presets (plugin data, e.g. the refraction plugin's materials) as one combo. */
+void presetCombo(plugin::ParameterSet& set) {
+    if (set.presets().empty() || !ImGui::BeginCombo("Preset", "sets several values"))
+        return;
+    for (const plugin::ParameterPreset& preset : set.presets()) {
+        std::string values;
+        for (const auto& [name, value] : preset.values)
+            values += (values.empty() ? "" : ", ") + name + ' ' + value;
+        if (ImGui::Selectable(preset.name.c_str()))
+            (void)set.applyPreset(preset.name); // listed from presets(): always found
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s", values.c_str());
+    }
+    ImGui::EndCombo();
+}
+
 } // namespace
 
 bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
@@ -165,6 +181,7 @@ void Panel::plugins(Viewer& v) {
         if (!section(("Plugin: " + scope.name).c_str()))
             continue;
         ImGui::PushID(scope.name.c_str());
+        presetCombo(*scope.parameters);
         for (const plugin::Parameter& p : scope.parameters->declarations())
             parameterWidget(*scope.parameters, p);
         plugin::Plugin* owner =

@@ -158,4 +158,29 @@ std::string ParameterSet::text(const std::string& name) const {
     return {};
 }
 
+core::Status ParameterSet::addPreset(ParameterPreset preset) {
+    for (const ParameterPreset& existing : mPresets)
+        if (existing.name == preset.name)
+            return core::Error{"preset '" + preset.name + "' declared twice"};
+    ParameterSet trial = *this; // set() on a copy: this set's values stay as they are
+    for (const auto& [name, value] : preset.values)
+        if (auto checked = trial.set(name, value); !checked)
+            return core::Error{"preset '" + preset.name + "': " + checked.error().message};
+    mPresets.push_back(std::move(preset));
+    return {};
+}
+
+core::Status ParameterSet::applyPreset(const std::string& name) {
+    for (const ParameterPreset& preset : mPresets)
+        if (preset.name == name) {
+            for (const auto& [parameter, value] : preset.values)
+                ENGINE_CHECK(set(parameter, value), "preset '" + name + "' checked when added");
+            return {};
+        }
+    std::string known;
+    for (const ParameterPreset& preset : mPresets)
+        known += (known.empty() ? "" : ", ") + preset.name;
+    return core::Error{"unknown preset '" + name + "' (known: " + known + ")"};
+}
+
 } // namespace plugin

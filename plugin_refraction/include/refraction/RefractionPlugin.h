@@ -32,9 +32,8 @@ public:
     void addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) override;
     bool drawsPrimitive(const scene::Model& model, int node,
                         const scene::Primitive& primitive) const override;
+    /** Also holds presets of common materials (water 1.333 ... diamond 2.417) as data. */
     plugin::ParameterSet& parameters() override { return mParameters; }
-    /** IOR presets of common materials (water 1.333 ... diamond 2.417). */
-    void drawPanel(void* imguiContext) override;
 
 private:
     bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;

@@ -1,11 +1,13 @@
 // A plugin's tunable parameters: declarations (name, type, range, default, choices) and current
-// values, settable from text ("--set ior=1.5", presets) with range and type checks.
+// values, settable from text ("--set ior=1.5", presets) with range and type checks, and named
+// presets of values a panel offers as one choice.
 #pragma once
 
 #include "engine/core/Result.h"
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace plugin {
@@ -19,6 +21,13 @@ struct Parameter {
     double defaultValue = 0.0;   ///< Enum: index into choices; Bool: 0 or 1; Color: grey level
     std::vector<std::string> choices;
     std::string help;
+};
+
+/** A named group of values a host offers as one choice (a material: its IOR and dispersion).
+ *  Plain data, so that a plugin describes its presets without any UI library. */
+struct ParameterPreset {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> values; ///< parameter, text set() accepts
 };
 
 class ParameterSet {
@@ -46,10 +55,18 @@ public:
 
     const Parameter* find(const std::string& name) const;
 
+    /** Adds a preset. Fails, naming the preset and the value, when a name is taken or a value
+     *  would not set (unknown parameter, bad text, out of range), so applying it cannot fail. */
+    core::Status addPreset(ParameterPreset preset);
+    const std::vector<ParameterPreset>& presets() const { return mPresets; }
+    /** Sets every value of preset `name`; fails naming it when there is none. */
+    core::Status applyPreset(const std::string& name);
+
 private:
     std::size_t index(const std::string& name) const;
     std::vector<Parameter> mDeclarations;
     std::vector<std::array<double, 3>> mValues;
+    std::vector<ParameterPreset> mPresets;
 };
 
 } // namespace plugin

@@ -1,5 +1,6 @@
 // The plugin interface: a plugin adds passes to the engine's frame graph at declared stages,
-// reads named resources from the blackboard and exposes parameters and a panel hook.
+// reads named resources from the blackboard and exposes parameters (with presets) and a panel
+// hook. This header is the contract between the engine and a plugin built separately.
 #pragma once
 
 #include "engine/core/Result.h"
@@ -20,22 +21,57 @@ struct Model;
 struct Primitive;
 } // namespace scene
 
+/** The contract, in full.
+ *
+ *  Lifetime. A host constructs the plugin (statically, or `glass_plugin_create` of a module),
+ *  sets parameters, then calls `initialize` once, with the GL context current, before any
+ *  frame; `addPasses` every frame; the destructor (or `glass_plugin_destroy`) runs with the
+ *  same context still current, so GL objects the plugin owns may be released there. The host
+ *  keeps the plugin until its renderer is gone; a module stays loaded while a LoadedPlugin copy
+ *  lives.
+ *
+ *  Frames. `addPasses(stage, graph, blackboard)` only records: it declares passes with
+ *  `graph.addPass<Data>(name, setup, execute)`, whose execute callbacks run later in the same
+ *  frame, in an order the graph derives from reads and writes. Stages run in enum order; at
+ *  each stage the blackboard holds the keys below. A plugin that replaces the scene colour
+ *  writes a new texture and puts its handle back under kSceneColor; later stages and the
+ *  tonemap read that. Handles and the FrameInfo pointer are valid for that frame only.
+ *  `drawsPrimitive` is asked once a frame per primitive before recording: true keeps the
+ *  primitive out of the opaque pass (the plugin draws it).
+ *
+ *  Threading. Every call, execute callbacks included, comes from the one thread that owns the
+ *  GL context, never concurrently. A plugin may use threads of its own inside a call if it
+ *  joins them before returning and makes no GL call from them.
+ *
+ *  Errors. `initialize` returns an error (a shader that will not link, say) and the host
+ *  refuses the plugin; GL errors are caught by the host's KHR_debug callback (tests fail on
+ *  any). Parameters are checked by ParameterSet: bad text is an error naming the parameter.
+ *
+ *  Versioning. kInterfaceVersion names this contract. It changes whenever a plugin built
+ *  against the old headers could misbehave with the new engine: any change to the Plugin class
+ *  (virtual functions, their signatures or order), to the types a plugin receives or reads
+ *  (ParameterSet, Parameter, ParameterPreset, render::FrameInfo and what it points to,
+ *  fg::FrameGraph, fg::Blackboard, gl:: objects), to the blackboard keys or their value types,
+ *  to the stages or to the module entry points. Adding engine functions a plugin may call does
+ *  not change it. Plugins are C++ with the engine's ABI: build them with the same compiler
+ *  family and standard library as the engine (Debian 12's GCC 12 for the package). */
 namespace plugin {
 
-/** Checked when a plugin is loaded: a plugin built against another interface is refused. */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/1";
+/** Checked when a plugin is loaded: a plugin built against another interface is refused.
+ *  History: 1 first interface; 2 ParameterSet gained presets. */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/2";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
-    AfterOpaque,   ///< the opaque scene colour and depth are complete
-    BeforeTonemap, ///< last HDR stage
+    AfterOpaque,   ///< the background, the opaque scene and the ground are in the scene colour
+    BeforeTonemap, ///< last HDR stage: after every plugin's AfterOpaque passes
 };
 
 /** Blackboard keys the engine fills for plugins each frame (see ARCHITECTURE.md):
- *  "scene.color" fg::TextureHandle (HDR, RGBA16F), "scene.depth" fg::TextureHandle (Depth32F),
- *  "frame" const render::FrameInfo* (camera, size, time, model, deformed geometry, environment,
- *  shaders). A plugin that changes the scene colour puts its new version back under
- *  "scene.color". */
+ *  "scene.color" fg::TextureHandle (HDR, RGBA16F, the frame's size), "scene.depth"
+ *  fg::TextureHandle (Depth32F, the opaque scene's depth), "frame" const render::FrameInfo*
+ *  (camera, settings and size, time, model, deformed geometry, environment, materials, shaders).
+ *  A plugin that changes the scene colour puts its new version back under "scene.color". */
 inline constexpr const char* kSceneColor = "scene.color";
 inline constexpr const char* kSceneDepth = "scene.depth";
 inline constexpr const char* kFrame = "frame";
@@ -44,7 +80,9 @@ class Plugin {
 public:
     virtual ~Plugin() = default;
     virtual const char* name() const = 0;
-    /** Called once with a current GL context: add shaders to `shaders`, create GPU objects. */
+    /** Called once with a current GL context, before the first frame: add shaders to
+     *  `shaders` (names under a directory of the plugin's own, e.g. "tint/..."), create GPU
+     *  objects. An error refuses the plugin. */
     virtual core::Status initialize(gl::ShaderLibrary& shaders) = 0;
     /** Adds this plugin's passes for `stage` (may add none). */
     virtual void addPasses(Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) = 0;
@@ -55,9 +93,12 @@ public:
         (void)model, (void)node, (void)primitive;
         return false;
     }
-    /** Parameters the host may list, set from the command line and show in a panel. */
+    /** Parameters (and presets) the host may list, set from the command line and show in a
+     *  panel; the host sets them between frames only. */
     virtual ParameterSet& parameters() = 0;
-    /** Draws extra panel widgets; `imguiContext` is the viewer's ImGuiContext*. */
+    /** Draws extra panel widgets; `imguiContext` is the viewer's ImGuiContext*. Optional: the
+     *  host's panel already shows every parameter and the presets of parameters(); only a
+     *  plugin that links Dear ImGui itself (the same version as the host) overrides this. */
     virtual void drawPanel(void* imguiContext) { (void)imguiContext; }
 };
 
