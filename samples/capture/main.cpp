@@ -28,7 +28,7 @@ constexpr const char* kUsage =
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
                      [--geometry-passes one|two] [--dispersion-search shared|per-channel]
                      [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
-       glass-capture --case FILE.json [--update] [--out DIR]
+       glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
 
 Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
 DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals).
@@ -79,7 +79,8 @@ DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals
   --dump-graph        print the compiled frame graph of the first frame to stderr
   --case FILE.json    render a frame-capture case and compare with its goldens (exit 0 match,
                       1 mismatch; .actual.png, .diff.png and a report go to --out, default the
-                      case's folder); --update regenerates the goldens instead
+                      case's folder); --update regenerates the goldens instead; --plugin
+                      modules given here load after the case's own "plugins"
 
 Exit status: 0 success, 1 the model or environment could not be loaded (nothing written) or a
 case mismatched, 2 bad arguments, 77 a case whose model is missing and marked skip_if_missing.
@@ -295,6 +296,9 @@ int runCase(const Options& o) {
                     o.caseFile.c_str(), c->session.model.c_str());
         return capture::kCaseSkipped;
     }
+    // plugins named on the command line (build artefacts, say) come after the case's own
+    c->session.plugins.insert(c->session.plugins.end(), o.session.plugins.begin(),
+                              o.session.plugins.end());
     const std::filesystem::path outDir =
         o.outGiven ? std::filesystem::path(o.out) : c->path.parent_path();
     auto result = capture::runCase(*c, o.update, outDir);

@@ -68,6 +68,14 @@ std::filesystem::path lastSessionPath() {
 std::filesystem::path assetsDir() {
     if (const char* dir = std::getenv("GLASS_ASSETS_DIR"); dir && *dir)
         return dir;
+    // installed: PREFIX/bin/glass-viewer beside PREFIX/share/glass/assets
+    std::error_code ec;
+    const auto executable = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const auto installed = executable.parent_path().parent_path() / "share/glass/assets";
+        if (std::filesystem::is_directory(installed, ec))
+            return installed;
+    }
     return GLASS_ASSETS_DIR;
 }
 

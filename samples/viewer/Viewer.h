@@ -123,7 +123,8 @@ private:
  *  (or ~/.config/...). */
 std::filesystem::path lastSessionPath();
 
-/** The project's assets folder: $GLASS_ASSETS_DIR, else the one the build was configured with. */
+/** The project's assets folder: $GLASS_ASSETS_DIR, else PREFIX/share/glass/assets when the
+ *  viewer runs installed (PREFIX/bin), else the source tree's the build was configured with. */
 std::filesystem::path assetsDir();
 
 } // namespace viewer

@@ -1,6 +1,7 @@
-// A small test plugin: multiplies the HDR scene colour by a tint in its own pass, to exercise
-// the plugin interface end to end (module loading, parameters, stages, blackboard, shaders).
-// Built twice: as itself, and with TINT_WRONG_INTERFACE to test the version check.
+// A minimal plugin: multiplies the HDR scene colour by a tint in a pass of its own, which shows
+// the whole plugin interface (module entry points, parameters, stages, blackboard, shaders).
+// This project builds it against the installed package; the engine's own tests build it too,
+// once more with TINT_WRONG_INTERFACE, as a module that claims another interface version.
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
 #include "engine/gl/Commands.h"
