@@ -60,27 +60,28 @@ int main(int argc, char** argv) {
     auto context = gl::createHeadlessContext();
     if (!context)
         return fail(context.error().message);
-    auto renderer =
-        render::Renderer::create(*model, render::Environment::proceduralSky(), **context);
-    if (!renderer)
-        return fail(renderer.error().message);
-
-    // The refraction plugin, every mesh as glass, searched exits (DIR).
+    // The plugins outlive the renderer that calls them (declared first, destroyed last but
+    // for the context): the refraction plugin, every mesh as glass, searched exits (DIR), and
+    // the module given, if any.
     auto glass = refraction::createPlugin();
     for (const auto& [key, value] : {std::pair{"method", "dir"}, std::pair{"glass", "all"}})
         if (auto set = glass->parameters().set(key, value); !set)
             return fail(set.error().message);
-    if (auto added = (*renderer)->addPlugin(glass.get()); !added)
-        return fail(added.error().message);
     plugin::LoadedPlugin extra;
     if (!modulePath.empty()) {
         auto loaded = plugin::loadPlugin(modulePath);
         if (!loaded)
             return fail(loaded.error().message);
         extra = std::move(*loaded);
-        if (auto added = (*renderer)->addPlugin(extra.get()); !added)
-            return fail(added.error().message);
     }
+    auto renderer =
+        render::Renderer::create(*model, render::Environment::proceduralSky(), **context);
+    if (!renderer)
+        return fail(renderer.error().message);
+    for (plugin::Plugin* added : {glass.get(), extra.get()})
+        if (added)
+            if (auto status = (*renderer)->addPlugin(added); !status)
+                return fail(status.error().message);
 
     const int clip = model->animations.empty() ? -1 : 0;
     const anim::Pose pose = anim::evaluate(*model, clip, time);

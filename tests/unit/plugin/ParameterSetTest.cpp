@@ -1,4 +1,4 @@
-// Plugin parameters: declaration, typed parsing, ranges, errors.
+// Plugin parameters: declaration, typed parsing, ranges, errors, presets.
 #include "engine/plugin/ParameterSet.h"
 
 #include <gtest/gtest.h>
@@ -55,6 +55,37 @@ TEST(ParameterSet, SetNumberClamps) {
     EXPECT_DOUBLE_EQ(p.number("ior"), 3.0);
     p.setNumber("method", 7.0);
     EXPECT_EQ(p.choice("method"), "dir");
+}
+
+TEST(ParameterSet, PresetSetsAllItsValues) {
+    auto p = make();
+    ASSERT_TRUE(p.addPreset({"water", {{"ior", "1.333"}, {"method", "sir"}}}).ok());
+    ASSERT_EQ(p.presets().size(), 1u);
+    EXPECT_DOUBLE_EQ(p.number("ior"), 1.5); // adding one changes nothing yet
+    ASSERT_TRUE(p.applyPreset("water").ok());
+    EXPECT_DOUBLE_EQ(p.number("ior"), 1.333);
+    EXPECT_EQ(p.choice("method"), "sir");
+    EXPECT_EQ(p.number("steps"), 5.0); // values the preset does not name stay
+}
+
+TEST(ParameterSet, PresetsAreCheckedWhenAdded) {
+    auto p = make();
+    auto s = p.addPreset({"lead glass", {{"ior", "1.6"}, {"steps", "40"}}});
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message, "preset 'lead glass': parameter 'steps' must lie in [1, 16], got 40");
+    s = p.addPreset({"ghost", {{"opacity", "0"}}});
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("preset 'ghost': unknown parameter 'opacity'"),
+              std::string::npos);
+    EXPECT_TRUE(p.presets().empty());
+    EXPECT_DOUBLE_EQ(p.number("ior"), 1.5); // a refused preset set nothing
+    ASSERT_TRUE(p.addPreset({"water", {{"ior", "1.333"}}}).ok());
+    s = p.addPreset({"water", {{"ior", "1.34"}}});
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message, "preset 'water' declared twice");
+    s = p.applyPreset("oil");
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message, "unknown preset 'oil' (known: water)");
 }
 
 } // namespace
