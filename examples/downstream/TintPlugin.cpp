@@ -66,8 +66,10 @@ public:
                 d.out =
                     b.write(b.create("tint.color", {frame->settings.size, gl::Format::RGBA16F, 1}));
             },
-            [this, red](const fg::Resources& r, const Data& d, gl::Context&) {
-                (void)mFramebuffer->attach("tint", {&r.texture(d.out)}, nullptr);
+            [this, red](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+                if (auto attached = mFramebuffer->attach("tint", {&r.texture(d.out)}, nullptr);
+                    !attached)
+                    return attached; // ends the frame with this error, naming the pass
                 mFramebuffer->bind();
                 gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
                 mProgram.use();
@@ -76,6 +78,7 @@ public:
                 mProgram.set("uTint", glm::vec3(red, 1.0f, 1.0f));
                 mVao->bind();
                 gl::drawArrays(3);
+                return {};
             });
         blackboard.put(plugin::kSceneColor, data.out);
     }

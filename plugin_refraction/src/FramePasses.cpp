@@ -36,11 +36,13 @@ gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
 }
 
-void attach(GpuState& gpu, const char* pass, const std::vector<const gl::Texture*>& colors,
-            const gl::Texture* depth) {
-    auto status = gpu.framebuffer.attach(pass, colors, depth);
-    ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
+/** Attaches and binds a pass's targets; an incomplete framebuffer is the pass's error. */
+core::Status attach(GpuState& gpu, const char* pass, const std::vector<const gl::Texture*>& colors,
+                    const gl::Texture* depth) {
+    if (auto attached = gpu.framebuffer.attach(pass, colors, depth); !attached)
+        return attached;
     gpu.framebuffer.bind();
+    return {};
 }
 
 /** What a shading pass reads. */
@@ -90,6 +92,16 @@ void setShading(const FrameContext& c, const gl::Program& f, const ShadeData& d,
 }
 
 } // namespace
+
+FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                           GpuState& gpu) {
+    FrameBuffers buffers;
+    buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
+    buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
+    buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
+    buffers.range = graph.importBuffer("refraction.depth_range", &gpu.range);
+    return buffers;
+}
 
 bool isGlassPrimitive(const plugin::ParameterSet& parameters, const scene::Model& model,
                       const scene::Primitive& primitive) {
@@ -150,11 +162,17 @@ void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState
     }
 }
 
-void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c) {
-    struct Empty {};
-    graph.addPass<Empty>(
-        "refraction.normal_distance", [](fg::Builder& b, Empty&) { b.after("deform"); },
-        [c](const fg::Resources&, const Empty&, gl::Context&) {
+void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
+    struct Data {
+        fg::BufferHandle distances;
+    };
+    buffers.distances = graph.addPass<Data>(
+        "refraction.normal_distance",
+        [&](fg::Builder& b, Data& d) {
+            b.read(buffers.vertices);
+            d.distances = b.write(buffers.distances);
+        },
+        [c](const fg::Resources&, const Data&, gl::Context&) {
             const deform::GpuDeformer& geometry = *c.frame->geometry;
             const bool refined = geometry.subdivisionLevel() > 0;
             for (std::size_t i = 0; i < geometry.instances().size(); ++i)
@@ -175,11 +193,11 @@ void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c) {
                     if (refined)
                         geometry.refineScalar(i, p, distance.cage->distances(), distance.drawn);
                 }
-        });
+        }).distances;
 }
 
 SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
-                                     bool firstBack) {
+                                     const FrameBuffers& buffers, bool firstBack) {
     struct SurfaceData {
         fg::TextureHandle depth, normal, zbuffer;
     };
@@ -189,15 +207,19 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
         return graph.addPass<SurfaceData>(
             name,
             [&](fg::Builder& b, SurfaceData& d) {
-                b.after("deform");
+                b.read(buffers.vertices);
+                if (c.method == "isr")
+                    b.read(buffers.distances);
                 d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc(size)));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
                 d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc(size)));
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
-                                          gl::Context&) {
-                attach(*c.gpu, name, {&r.texture(d.depth), &r.texture(d.normal)},
-                       &r.texture(d.zbuffer));
+                                          gl::Context&) -> core::Status {
+                if (auto bound = attach(*c.gpu, name, {&r.texture(d.depth), &r.texture(d.normal)},
+                                        &r.texture(d.zbuffer));
+                    !bound)
+                    return bound;
                 gl::clearColor(0, glm::vec4(0.0f));
                 gl::clearColor(1, glm::vec4(0.0f));
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
@@ -206,6 +228,7 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
                              .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater},
                             false);
                 r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+                return {};
             });
     };
     SurfaceMaps maps;
@@ -223,22 +246,24 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
 }
 
 SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
-                                     const FrameContext& c) {
+                                     const FrameContext& c, FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;
     struct GatherData {
         fg::TextureHandle nearTargets, farTargets;
+        fg::BufferHandle rectangle;
     };
     const gl::TextureDesc gatherDesc{size, gl::Format::RGBA32F, 1};
     const auto& gathered = graph.addPass<GatherData>(
         "refraction.surfaces",
         [&](fg::Builder& b, GatherData& d) {
-            b.after("deform");
+            b.read(buffers.vertices);
             if (c.method == "isr")
-                b.after("refraction.normal_distance");
+                b.read(buffers.distances);
+            d.rectangle = b.write(buffers.rectangle);
             d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
             d.farTargets = b.write(b.create("refraction.surfaces.far", gatherDesc));
         },
-        [c](const fg::Resources& r, const GatherData& d, gl::Context&) {
+        [c](const fg::Resources& r, const GatherData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const render::FrameInfo& frame = *c.frame;
             // The glass rectangle from the deformed cages (rectangle.comp.glsl).
@@ -261,8 +286,10 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
                     gl::dispatch(std::uint32_t((count + 63) / 64));
                 }
             gl::memoryBarrier(gl::BarrierStorage);
-            attach(gpu, "refraction.surfaces",
-                   {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
+            if (auto bound = attach(gpu, "refraction.surfaces",
+                                    {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
+                !bound)
+                return bound;
             gl::clearColor(0, glm::vec4(kNoSurface));
             gl::clearColor(1, glm::vec4(kNoSurface));
             gpu.surfaces.use();
@@ -274,7 +301,9 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
                          .depthWrite = false,
                          .blend = gl::Blend::Max},
                         false);
+            return {};
         });
+    buffers.rectangle = gathered.rectangle;
 
     struct ResolveData {
         fg::TextureHandle nearTargets, farTargets, sceneDepth, backNormal, frontDepth,
@@ -284,6 +313,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.resolve",
         [&](fg::Builder& b, ResolveData& d) {
+            b.read(buffers.rectangle);
             d.nearTargets = b.read(gathered.nearTargets);
             d.farTargets = b.read(gathered.farTargets);
             d.sceneDepth = b.read(sceneDepth);
@@ -294,13 +324,14 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
             }
             d.mask = b.write(b.create("refraction.glass_mask", zDesc(size)));
         },
-        [c](const fg::Resources& r, const ResolveData& d, gl::Context&) {
+        [c](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             std::vector<const gl::Texture*> targets{&r.texture(d.backNormal)};
             if (c.reflect)
                 targets.insert(targets.end(),
                                {&r.texture(d.frontDepth), &r.texture(d.frontNormal)});
-            attach(gpu, "refraction.resolve", targets, &r.texture(d.mask));
+            if (auto bound = attach(gpu, "refraction.resolve", targets, &r.texture(d.mask)); !bound)
+                return bound;
             // Outside the glass rectangle: no surface, and the mask rejects.
             for (int i = 0; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(0.0f));
@@ -325,6 +356,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
             r.texture(d.backNormal).generateMipmaps(); // DIR §3.1: mip-filtered normals
             if (c.reflect) // only TIR bounces toward the front read its normals' mips
                 r.texture(d.frontNormal).generateMipmaps();
+            return {};
         });
     SurfaceMaps maps;
     maps.backDepth = gathered.nearTargets; // back depth in .r (surfaces.glsl)
@@ -336,13 +368,18 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
     return maps;
 }
 
-void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps) {
+void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps,
+                       FrameBuffers& buffers) {
     struct RangeData {
         fg::TextureHandle back, front;
+        fg::BufferHandle rectangle, range;
     };
-    graph.addPass<RangeData>(
+    const auto& ranged = graph.addPass<RangeData>(
         "refraction.depth_range",
         [&](fg::Builder& b, RangeData& d) {
+            // reads the glass rectangle, or (separate passes) sets it to the screen
+            d.rectangle = b.write(buffers.rectangle);
+            d.range = b.write(buffers.range);
             d.back = b.read(maps.backDepth);
             if (c.reflect)
                 d.front = b.read(maps.frontDepth);
@@ -370,18 +407,24 @@ void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const Surfa
             }
             gl::memoryBarrier(gl::BarrierStorage);
         });
+    buffers.rectangle = ranged.rectangle;
+    buffers.range = ranged.range;
 }
 
 fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
-                                   const FrameContext& c, const SurfaceMaps& maps) {
+                                   const FrameContext& c, const SurfaceMaps& maps,
+                                   const FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;
     const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
     const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
     auto readInputs = [&](fg::Builder& b, ShadeData& d) {
+        if (!c.onePass) // the front faces are drawn again; one pass shades the maps alone
+            b.read(buffers.vertices);
+        b.read(buffers.rectangle);
         if (c.twoInterfaces)
-            b.after("refraction.depth_range");
+            b.read(buffers.range);
         if (c.method == "isr")
-            b.after("refraction.normal_distance");
+            b.read(buffers.distances);
         for (auto [from, to] : {std::pair{maps.backDepth, &d.maps.backDepth},
                                 std::pair{maps.backNormal, &d.maps.backNormal},
                                 std::pair{maps.frontDepth, &d.maps.frontDepth},
@@ -403,10 +446,13 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                 readInputs(b, d);
                 d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
             },
-            [c](const fg::Resources& r, const ShadeData& d, gl::Context&) {
+            [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
                 GpuState& gpu = *c.gpu;
                 gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
-                attach(gpu, "refraction.shade", {&r.texture(d.out)}, &r.texture(d.maps.mask));
+                if (auto bound = attach(gpu, "refraction.shade", {&r.texture(d.out)},
+                                        &r.texture(d.maps.mask));
+                    !bound)
+                    return bound;
                 // The rectangle lies at depth 1: it passes only where the mask holds 0.
                 gl::apply({.cull = gl::Cull::None,
                            .depthWrite = false,
@@ -420,6 +466,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                 gl::bindStorage(4, gpu.rectangle);
                 gpu.emptyVao.bind();
                 gl::drawArrays(6);
+                return {};
             });
         return shaded.out;
     }
@@ -432,13 +479,17 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             d.out = b.write(b.create("refraction.glass", colorDesc(size)));
             d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc(size)));
         },
-        [c](const fg::Resources& r, const ShadeData& d, gl::Context&) {
-            attach(*c.gpu, "refraction.front_faces", {&r.texture(d.out)}, &r.texture(d.zbuffer));
+        [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
+            if (auto bound = attach(*c.gpu, "refraction.front_faces", {&r.texture(d.out)},
+                                    &r.texture(d.zbuffer));
+                !bound)
+                return bound;
             gl::clearColor(0, glm::vec4(0.0f));
             gl::clearDepth(1.0f);
             setShading(c, c.gpu->front, d, r);
             c.drawGlass(c.gpu->front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
                         true);
+            return {};
         });
     struct CompositeData {
         fg::TextureHandle scene, glass, out;
@@ -450,9 +501,11 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             d.glass = b.read(shaded.out);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
         },
-        [c](const fg::Resources& r, const CompositeData& d, gl::Context&) {
+        [c](const fg::Resources& r, const CompositeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
-            attach(gpu, "refraction.composite", {&r.texture(d.out)}, nullptr);
+            if (auto bound = attach(gpu, "refraction.composite", {&r.texture(d.out)}, nullptr);
+                !bound)
+                return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gpu.composite.use();
             gl::bindTexture(0, r.texture(d.scene));
@@ -461,6 +514,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             gpu.composite.set("uGlass", 1);
             gpu.emptyVao.bind();
             gl::drawArrays(3);
+            return {};
         });
     return composite.out;
 }

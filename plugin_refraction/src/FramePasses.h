@@ -40,6 +40,13 @@ struct FrameContext {
     void setMaterial(const gl::Program& program, int material) const;
 };
 
+/** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
+ *  and the plugin's own (GpuState: d_N, the glass rectangle, the depth range), imported each
+ *  frame. A pass that writes one leaves the new version here for the passes after it. */
+struct FrameBuffers {
+    fg::BufferHandle vertices, distances, rectangle, range;
+};
+
 /** The maps the searches read. */
 struct SurfaceMaps {
     fg::TextureHandle backDepth, backNormal;   ///< DIR §3.1 (one pass: the gathered near target)
@@ -47,19 +54,23 @@ struct SurfaceMaps {
     fg::TextureHandle gatheredFar, mask;       ///< one pass: d_N keys; the glass pixels
 };
 
+/** The frame's buffers: the engine's vertices from the blackboard, the plugin's imported. */
+FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu);
 /** ISR: d_N of every deformed vertex, cast on the cage every frame. */
-void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c);
+void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 /** The papers' geometry passes: back faces (farthest or `firstBack`), and front faces for TIR
  *  reflection. */
 SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
-                                     bool firstBack);
+                                     const FrameBuffers& buffers, bool firstBack);
 /** One geometry pass (MAX blending) over the glass rectangle, then the resolve pass. */
 SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
-                                     const FrameContext& c);
+                                     const FrameContext& c, FrameBuffers& buffers);
 /** The depth range of the back (and front) maps, into GpuState::range. */
-void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps);
+void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps,
+                       FrameBuffers& buffers);
 /** The shading, composited over the scene colour: returns the new scene colour. */
 fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
-                                   const FrameContext& c, const SurfaceMaps& maps);
+                                   const FrameContext& c, const SurfaceMaps& maps,
+                                   const FrameBuffers& buffers);
 
 } // namespace refraction

@@ -257,13 +257,14 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.onePass = mParameters.choice("geometry-passes") == "one" && oneMaterial && !normalMap &&
                 !firstBack;
 
+    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
     if (c.method == "isr")
-        addNormalDistancePass(graph, c);
-    const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c)
-                                       : addSeparateSurfacePasses(graph, c, firstBack);
+        addNormalDistancePass(graph, c, buffers);
+    const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c, buffers)
+                                       : addSeparateSurfacePasses(graph, c, buffers, firstBack);
     if (c.twoInterfaces)
-        addDepthRangePass(graph, c, maps);
-    blackboard.put(plugin::kSceneColor, addShadingPasses(graph, blackboard, c, maps));
+        addDepthRangePass(graph, c, maps, buffers);
+    blackboard.put(plugin::kSceneColor, addShadingPasses(graph, blackboard, c, maps, buffers));
 }
 
 std::unique_ptr<plugin::Plugin> createPlugin() {

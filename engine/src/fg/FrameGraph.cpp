@@ -14,16 +14,16 @@ struct FrameGraph::Pass {
     std::vector<std::uint32_t> reads;   // nodes
     std::vector<std::uint32_t> writes;  // nodes (new versions)
     std::vector<std::uint32_t> creates; // resources
-    std::vector<std::string> after;
     bool sideEffect = false;
     bool culled = false;
-    std::function<void(const Resources&, gl::Context&)> execute;
+    std::function<core::Status(const Resources&, gl::Context&)> execute;
 };
 
 struct FrameGraph::Resource {
     std::string name;
-    gl::TextureDesc desc;
+    gl::TextureDesc desc; // textures only
     bool imported = false;
+    bool buffer = false;
     void* object = nullptr; // imported object, or the pooled one while alive
     std::uint32_t latestNode = UINT32_MAX;
     int firstUse = -1, lastUse = -1; // positions in mOrder
@@ -46,7 +46,7 @@ std::uint32_t FrameGraph::addPassNode(const std::string& name) {
 }
 
 void FrameGraph::setExecute(std::uint32_t pass,
-                            std::function<void(const Resources&, gl::Context&)> fn) {
+                            std::function<core::Status(const Resources&, gl::Context&)> fn) {
     mPasses[pass].execute = std::move(fn);
 }
 
@@ -65,46 +65,66 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
     return "'" + mResources[n.resource].name + "' (version " + std::to_string(n.version) + ")";
 }
 
+std::uint32_t FrameGraph::addImported(const std::string& name, bool buffer,
+                                       const gl::TextureDesc& desc, void* object) {
+    ENGINE_CHECK(!mCompiled, "importing '" + name + "' after compile()");
+    Resource resource{name, desc, true, buffer, object};
+    mResources.push_back(std::move(resource));
+    return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
+}
+
 TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc,
                                         void* object) {
-    ENGINE_CHECK(!mCompiled, "importTexture() after compile()");
-    mResources.push_back(Resource{name, desc, true, object});
-    return TextureHandle{addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX)};
+    return TextureHandle{addImported(name, false, desc, object)};
+}
+
+BufferHandle FrameGraph::importBuffer(const std::string& name, void* object) {
+    return BufferHandle{addImported(name, true, {}, object)};
 }
 
 TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
-    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, nullptr});
+    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, false, nullptr});
     const auto resource = std::uint32_t(mGraph.mResources.size() - 1);
     mGraph.mPasses[mPass].creates.push_back(resource);
     return TextureHandle{mGraph.addNode(resource, 0, UINT32_MAX)};
 }
 
-TextureHandle Builder::read(TextureHandle handle) {
-    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(),
-                 "read() of an invalid handle");
-    mGraph.mPasses[mPass].reads.push_back(handle.node);
-    return handle;
+std::uint32_t Builder::read(std::uint32_t node) {
+    ENGINE_CHECK(node < mGraph.mNodes.size(), "read() of an invalid handle");
+    mGraph.mPasses[mPass].reads.push_back(node);
+    return node;
 }
 
-TextureHandle Builder::write(TextureHandle handle) {
-    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(),
-                 "write() of an invalid handle");
-    const FrameGraph::Node previous = mGraph.mNodes[handle.node];
+std::uint32_t Builder::write(std::uint32_t node) {
+    ENGINE_CHECK(node < mGraph.mNodes.size(), "write() of an invalid handle");
+    const FrameGraph::Node previous = mGraph.mNodes[node];
     // A written version keeps the previous content (draws accumulate), so writing on top of a
     // written or imported version also reads it.
     if (previous.version > 0 || mGraph.mResources[previous.resource].imported)
-        mGraph.mPasses[mPass].reads.push_back(handle.node);
-    const std::uint32_t node = mGraph.addNode(previous.resource, previous.version + 1, mPass);
-    mGraph.mPasses[mPass].writes.push_back(node);
-    return TextureHandle{node};
+        mGraph.mPasses[mPass].reads.push_back(node);
+    const std::uint32_t next = mGraph.addNode(previous.resource, previous.version + 1, mPass);
+    mGraph.mPasses[mPass].writes.push_back(next);
+    return next;
+}
+
+TextureHandle Builder::read(TextureHandle handle) {
+    return TextureHandle{read(handle.node)};
+}
+
+TextureHandle Builder::write(TextureHandle handle) {
+    return TextureHandle{write(handle.node)};
+}
+
+BufferHandle Builder::read(BufferHandle handle) {
+    return BufferHandle{read(handle.node)};
+}
+
+BufferHandle Builder::write(BufferHandle handle) {
+    return BufferHandle{write(handle.node)};
 }
 
 void Builder::sideEffect() {
     mGraph.mPasses[mPass].sideEffect = true;
-}
-
-void Builder::after(const std::string& pass) {
-    mGraph.mPasses[mPass].after.push_back(pass);
 }
 
 void* Resources::object(TextureHandle handle) const {
@@ -116,6 +136,11 @@ void* Resources::object(TextureHandle handle) const {
 
 const gl::TextureDesc& Resources::desc(TextureHandle handle) const {
     return mGraph.mResources[mGraph.mNodes[handle.node].resource].desc;
+}
+
+void* Resources::object(BufferHandle handle) const {
+    ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "invalid buffer handle");
+    return mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
 }
 
 core::Status FrameGraph::compile() {
@@ -140,8 +165,7 @@ core::Status FrameGraph::compile() {
                                    std::to_string(n.version - 1) + " was already written on)"};
         }
     // 2. Dependency edges: writer of a read version -> reader; readers of a version -> the
-    //    writer of the next version; explicit after().
-    //    Only data edges and after() keep a pass alive (`consumes`); all of them order.
+    //    writer of the next version. Only data edges keep a pass alive (`consumes`); both order.
     std::vector<std::vector<std::uint32_t>> successors(passCount);
     std::vector<std::vector<std::uint32_t>> consumes(passCount);
     auto edge = [&](std::uint32_t from, std::uint32_t to, bool data) {
@@ -159,14 +183,6 @@ core::Status FrameGraph::compile() {
                     if (mNodes[w].resource == mNodes[node].resource &&
                         mNodes[w].version == mNodes[node].version + 1)
                         edge(p, q, false);
-        }
-        for (const std::string& name : mPasses[p].after) {
-            const auto it = std::find_if(mPasses.begin(), mPasses.end(),
-                                         [&](const Pass& x) { return x.name == name; });
-            if (it == mPasses.end())
-                return core::Error{where + "pass '" + mPasses[p].name + "' runs after '" + name +
-                                   "', which is not a pass of this graph"};
-            edge(std::uint32_t(it - mPasses.begin()), p, true);
         }
     }
     // 3. Culling: keep side-effect passes and writers of imported resources, then everything
@@ -193,7 +209,9 @@ core::Status FrameGraph::compile() {
     }
     for (std::uint32_t p = 0; p < passCount; ++p)
         mPasses[p].culled = !needed[p];
-    // 4. Order (Kahn, lowest declaration index first); what remains forms a cycle.
+    // 4. Order (Kahn, lowest declaration index first). Handles exist only once their version
+    //    is declared, so edges run from earlier passes to later ones; a cycle would be a bug
+    //    here, reported rather than left to hang.
     std::vector<int> inDegree(passCount, 0);
     for (std::uint32_t p = 0; p < passCount; ++p)
         if (needed[p])
@@ -243,7 +261,8 @@ core::Status FrameGraph::compile() {
     return {};
 }
 
-std::vector<PassTiming> FrameGraph::execute(gl::Context& context, PassObserver* observer) {
+core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
+                                                          PassObserver* observer) {
     ENGINE_CHECK(mCompiled, "execute() before a successful compile()");
     std::vector<PassTiming> timings;
     const Resources resources(*this);
@@ -255,18 +274,20 @@ std::vector<PassTiming> FrameGraph::execute(gl::Context& context, PassObserver* 
         if (observer)
             observer->beginPass(pass.name);
         const auto start = std::chrono::steady_clock::now();
-        if (pass.execute)
-            pass.execute(resources, context);
+        const core::Status status = pass.execute ? pass.execute(resources, context) : core::Status{};
         const auto end = std::chrono::steady_clock::now();
         if (observer)
             observer->endPass(pass.name);
         timings.push_back(
             {pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
         for (Resource& r : mResources)
-            if (!r.imported && r.lastUse == int(i)) {
+            if (!r.imported && r.object && (r.lastUse == int(i) || !status)) {
                 mPool.release(r.object);
                 r.object = nullptr;
             }
+        if (!status)
+            return core::Error{"fg::FrameGraph::execute(): pass '" + pass.name + "': " +
+                               status.error().message};
     }
     return timings;
 }

@@ -1,13 +1,15 @@
-// The scene renderer's frame: passes recorded into a frame graph, executed, timed.
+// The scene renderer: its GPU objects, and each frame's passes (render/passes/, one file each)
+// recorded into a frame graph with the plugins', executed and timed.
 #include "engine/render/Renderer.h"
+
+#include "RenderGpu.h"
+#include "passes/Passes.h"
 
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
 #include "engine/gl/Debug.h"
 #include "engine/gl/Query.h"
 #include "engine/gl/Shaders.h"
-
-#include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
 #include <array>
@@ -64,19 +66,6 @@ private:
     std::size_t mSlot = 0;
 };
 
-namespace {
-
-struct TargetData {
-    fg::TextureHandle color, depth;
-};
-
-gl::Cull cullFor(const scene::Model& model, int material) {
-    return material >= 0 && model.materials[std::size_t(material)].doubleSided ? gl::Cull::None
-                                                                               : gl::Cull::Back;
-}
-
-} // namespace
-
 Renderer::~Renderer() = default;
 
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& model,
@@ -85,30 +74,32 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
     std::unique_ptr<Renderer> r(new Renderer());
     r->mModel = &model;
     r->mContext = &context;
+    r->mGpu = std::make_unique<RenderGpu>();
+    RenderGpu& gpu = *r->mGpu;
     r->mShaders.add(engineShaderFiles());
     auto deformer = deform::GpuDeformer::create(model, r->mShaders);
     if (!deformer)
         return deformer.error();
-    r->mDeformer = std::move(*deformer);
+    gpu.deformer = std::move(*deformer);
     auto env = Environment::create(environment, r->mShaders);
     if (!env)
         return env.error();
-    r->mEnvironment = std::move(*env);
+    gpu.environment = std::move(*env);
     auto materials = MaterialTextures::create(model);
     if (!materials)
         return materials.error();
-    r->mMaterials = std::make_unique<MaterialTextures>(std::move(*materials));
+    gpu.materials = std::make_unique<MaterialTextures>(std::move(*materials));
     struct ProgramSpec {
         gl::Program* target;
         const char* vertex;
         const char* fragment;
     };
     for (const ProgramSpec& spec :
-         {ProgramSpec{&r->mBackground, "render/fullscreen.vert.glsl",
+         {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
-          ProgramSpec{&r->mOpaque, "render/mesh.vert.glsl", "render/pbr.frag.glsl"},
-          ProgramSpec{&r->mGround, "render/ground.vert.glsl", "render/ground.frag.glsl"},
-          ProgramSpec{&r->mTonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
+          ProgramSpec{&gpu.opaque, "render/mesh.vert.glsl", "render/pbr.frag.glsl"},
+          ProgramSpec{&gpu.ground, "render/ground.vert.glsl", "render/ground.frag.glsl"},
+          ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
         if (!program)
             return core::Error{"render::Renderer::create(): " + program.error().message};
@@ -122,26 +113,38 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
 }
 
 void Renderer::makeVertexArrays() {
-    mVaos.clear();
-    mClaimed.clear();
-    for (const auto& instance : mDeformer->instances())
+    mGpu->vaos.clear();
+    mGpu->claimed.clear();
+    for (const auto& instance : mGpu->deformer->instances())
         for (const auto& primitive : instance.primitives) {
             gl::VertexArray vao;
             vao.setIndexBuffer(*primitive.indices);
-            mVaos.push_back(std::move(vao));
-            mClaimed.push_back(0);
+            mGpu->vaos.push_back(std::move(vao));
+            mGpu->claimed.push_back(0);
         }
 }
 
 core::Status Renderer::setSubdivisionLevel(int level) {
-    if (level == mDeformer->subdivisionLevel())
+    if (level == mGpu->deformer->subdivisionLevel())
         return {};
     auto deformer = deform::GpuDeformer::create(*mModel, mShaders, level);
     if (!deformer)
         return deformer.error();
-    mDeformer = std::move(*deformer);
+    mGpu->deformer = std::move(*deformer);
     makeVertexArrays();
     return {};
+}
+
+int Renderer::subdivisionLevel() const {
+    return mGpu->deformer->subdivisionLevel();
+}
+
+const Environment& Renderer::environment() const {
+    return *mGpu->environment;
+}
+
+const deform::GpuDeformer& Renderer::geometry() const {
+    return *mGpu->deformer;
 }
 
 core::Status Renderer::addPlugin(plugin::Plugin* p) {
@@ -160,11 +163,12 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     if (!mOutput || mOutput.desc().size != settings.size || mOutput.desc().format != outputFormat)
         mOutput = gl::Texture({settings.size, outputFormat, 1});
 
+    RenderGpu& gpu = *mGpu;
     FrameInfo frame;
     frame.model = mModel;
-    frame.geometry = mDeformer.get();
-    frame.environment = mEnvironment.get();
-    frame.materials = mMaterials.get();
+    frame.geometry = gpu.deformer.get();
+    frame.environment = gpu.environment.get();
+    frame.materials = gpu.materials.get();
     frame.shaders = &mShaders;
     frame.camera = camera;
     frame.settings = settings;
@@ -173,146 +177,36 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     // Which primitives a plugin draws instead of the opaque pass, asked once a frame.
     std::size_t flat = 0;
     frame.opaqueGeometry = settings.ground;
-    for (const auto& instance : mDeformer->instances())
+    for (const auto& instance : gpu.deformer->instances())
         for (const auto& primitive : instance.primitives) {
             const bool claimed =
                 std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
                     return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
                 });
-            mClaimed[flat++] = claimed;
+            gpu.claimed[flat++] = claimed;
             frame.opaqueGeometry = frame.opaqueGeometry || !claimed;
         }
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;
-    const gl::TextureDesc colorDesc{settings.size, gl::Format::RGBA16F, 1};
-    const gl::TextureDesc depthDesc{settings.size, gl::Format::Depth32F, 1};
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
-
-    struct Empty {};
-    graph.addPass<Empty>(
-        "deform", [](fg::Builder& b, Empty&) { b.sideEffect(); },
-        [this, &pose](const fg::Resources&, const Empty&, gl::Context&) {
-            mDeformer->update(pose);
-        });
-
-    const auto& background = graph.addPass<TargetData>(
-        "background",
-        [&](fg::Builder& b, TargetData& d) {
-            d.color = b.write(b.create("scene.color", colorDesc));
-            d.depth = b.write(b.create("scene.depth", depthDesc));
-        },
-        [this, &frame](const fg::Resources& r, const TargetData& d, gl::Context&) {
-            auto status =
-                mFramebuffer.attach("background", {&r.texture(d.color)}, &r.texture(d.depth));
-            ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
-            mFramebuffer.bind();
-            gl::clearDepth(1.0f);
-            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            mBackground.use();
-            mEnvironment->bind(mBackground, 0, frame.settings.environmentRotation,
-                               frame.settings.environmentIntensity);
-            mBackground.set("uInverseViewProjection", glm::inverse(frame.camera.viewProjection()));
-            mBackground.set("uBackgroundBlur", frame.settings.backgroundBlur);
-            mEmptyVao.bind();
-            gl::drawArrays(3);
-        });
-
-    TargetData scene = background;
-    if (settings.ground) {
-        scene = graph.addPass<TargetData>(
-            "ground",
-            [&](fg::Builder& b, TargetData& d) {
-                d.color = b.write(scene.color);
-                d.depth = b.write(scene.depth);
-            },
-            [this, &frame](const fg::Resources& r, const TargetData& d, gl::Context&) {
-                auto status =
-                    mFramebuffer.attach("ground", {&r.texture(d.color)}, &r.texture(d.depth));
-                ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
-                mFramebuffer.bind();
-                gl::apply({.cull = gl::Cull::None});
-                mGround.use();
-                mEnvironment->bind(mGround, 0, frame.settings.environmentRotation,
-                                   frame.settings.environmentIntensity);
-                mGround.set("uViewProjection", frame.camera.viewProjection());
-                mGround.set("uCameraPosition", frame.camera.position);
-                mGround.set("uCenter", frame.ground.center);
-                mGround.set("uHalfSize", frame.ground.halfSize);
-                mGround.set("uHeight", frame.ground.height);
-                mGround.set("uTileSize", frame.ground.halfSize / 8.0f);
-                mEmptyVao.bind();
-                gl::drawArrays(6);
-            });
-    }
-
-    scene = graph.addPass<TargetData>(
-        "opaque",
-        [&](fg::Builder& b, TargetData& d) {
-            b.after("deform");
-            d.color = b.write(scene.color);
-            d.depth = b.write(scene.depth);
-        },
-        [this, &frame](const fg::Resources& r, const TargetData& d, gl::Context&) {
-            auto status = mFramebuffer.attach("opaque", {&r.texture(d.color)}, &r.texture(d.depth));
-            ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
-            mFramebuffer.bind();
-            mOpaque.use();
-            mEnvironment->bind(mOpaque, 0, frame.settings.environmentRotation,
-                               frame.settings.environmentIntensity);
-            mOpaque.set("uViewProjection", frame.camera.viewProjection());
-            mOpaque.set("uCameraPosition", frame.camera.position);
-            std::size_t vao = 0;
-            for (const auto& instance : mDeformer->instances()) {
-                mOpaque.set("uModel", instance.meshToWorld);
-                mOpaque.set("uNormalMatrix",
-                            glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
-                for (const auto& primitive : instance.primitives) {
-                    if (mClaimed[vao]) {
-                        ++vao;
-                        continue;
-                    }
-                    const int material = primitive.source->material;
-                    gl::apply({.cull = cullFor(*mModel, material)});
-                    mMaterials->bind(mOpaque, *mModel, material, 2);
-                    gl::bindStorage(0, primitive.deformed);
-                    gl::bindStorage(1, *primitive.uv0);
-                    mVaos[vao++].bind();
-                    gl::drawIndexed(primitive.indexCount);
-                }
-            }
-        });
+    const fg::BufferHandle vertices =
+        passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", gpu.deformer.get()),
+                          pose);
+    passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
+    if (settings.ground)
+        scene = passes::addGround(graph, gpu, frame, scene);
+    scene = passes::addOpaque(graph, gpu, frame, scene, vertices);
 
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
+    blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(stage, graph, blackboard);
-
-    struct TonemapData {
-        fg::TextureHandle scene, output;
-    };
-    const fg::TextureHandle finalColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
-    graph.addPass<TonemapData>(
-        "tonemap",
-        [&](fg::Builder& b, TonemapData& d) {
-            d.scene = b.read(finalColor);
-            d.output = b.write(output);
-        },
-        [this, &frame](const fg::Resources& r, const TonemapData& d, gl::Context&) {
-            auto status = mFramebuffer.attach("tonemap", {&r.texture(d.output)}, nullptr);
-            ENGINE_CHECK(status.ok(), status.ok() ? "" : status.error().message);
-            mFramebuffer.bind();
-            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            mTonemap.use();
-            gl::bindTexture(0, r.texture(d.scene));
-            mTonemap.set("uScene", 0);
-            mTonemap.set("uExposure", frame.settings.exposure);
-            mTonemap.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
-            mEmptyVao.bind();
-            gl::drawArrays(3);
-        });
+    passes::addTonemap(graph, gpu, frame, blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
+                       output);
 
     auto compiled = graph.compile();
     if (!compiled)
@@ -320,7 +214,15 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     FrameStats stats;
     mTimer->exact = settings.exactPassTimes;
     mTimer->beginFrame();
-    for (const fg::PassTiming& t : graph.execute(*mContext, mTimer.get()))
+    auto executed = graph.execute(*mContext, mTimer.get());
+    // Unbind our framebuffers before the pool deletes idle textures: deleting a texture
+    // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
+    gl::Framebuffer::bindDefault(settings.size);
+    if (!executed) {
+        mPool->endFrame();
+        return core::Error{"render::Renderer::render(): " + executed.error().message};
+    }
+    for (const fg::PassTiming& t : *executed)
         stats.passes.push_back({t.name, t.cpuMs, 0.0});
     stats.cpuMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
@@ -331,9 +233,6 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     }
     stats.graph = graph.dump();
     stats.transientBytes = mPool->allocatedBytes();
-    // Unbind our framebuffers before the pool deletes idle textures: deleting a texture
-    // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
-    gl::Framebuffer::bindDefault(settings.size);
     mPool->endFrame();
     return stats;
 }
@@ -348,7 +247,7 @@ core::Status Renderer::setEnvironment(const asset::HdrImage& environment) {
     auto env = Environment::create(environment, mShaders);
     if (!env)
         return env.error();
-    mEnvironment = std::move(*env);
+    mGpu->environment = std::move(*env);
     return {};
 }
 

@@ -1,6 +1,7 @@
-// The frame graph: passes declare the textures they create, read and write; compile() orders
-// them, culls what nobody consumes and rejects bad graphs; execute() runs them with transient
-// textures from a pool. No GL calls here: GPU objects come through TexturePool's allocator.
+// The frame graph: passes declare the textures they create, read and write, and the buffers
+// they read and write; compile() orders them, culls what nobody consumes and rejects bad graphs;
+// execute() runs them with transient textures from a pool and stops at a pass that fails. No GL
+// calls here: GPU objects come through TexturePool's allocator or are imported.
 #pragma once
 
 #include "engine/core/Result.h"
@@ -11,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace gl {
@@ -20,13 +22,20 @@ class Texture;
 
 namespace fg {
 
-/** A version of a texture resource. Every write() yields a new handle; reads name the version
- *  they consume. Default-constructed handles are invalid. */
-struct TextureHandle {
+/** A version of a resource. Every write() yields a new handle; reads name the version they
+ *  consume. Default-constructed handles are invalid. `Kind` keeps textures and buffers apart. */
+template <class Kind>
+struct Handle {
     std::uint32_t node = UINT32_MAX;
     bool valid() const { return node != UINT32_MAX; }
-    bool operator==(const TextureHandle&) const = default;
+    bool operator==(const Handle&) const = default;
 };
+struct TextureKind {};
+struct BufferKind {};
+using TextureHandle = Handle<TextureKind>;
+/** A buffer the graph orders passes by (deformed vertices, per-vertex distances, a depth
+ *  range): always imported, its GPU object owned outside the graph. */
+using BufferHandle = Handle<BufferKind>;
 
 class FrameGraph;
 
@@ -39,14 +48,17 @@ public:
     TextureHandle read(TextureHandle handle);
     /** Declares that the pass writes (on top of) this version; returns the new version. */
     TextureHandle write(TextureHandle handle);
+    /** The same for buffers: the pass runs after the version's writer and before its next. */
+    BufferHandle read(BufferHandle handle);
+    BufferHandle write(BufferHandle handle);
     /** The pass is never culled (it has effects outside the graph). */
     void sideEffect();
-    /** The pass runs after the pass named `pass` (ordering without a resource between them). */
-    void after(const std::string& pass);
 
 private:
     friend class FrameGraph;
     Builder(FrameGraph& graph, std::uint32_t pass) : mGraph(graph), mPass(pass) {}
+    std::uint32_t read(std::uint32_t node);
+    std::uint32_t write(std::uint32_t node);
     FrameGraph& mGraph;
     std::uint32_t mPass;
 };
@@ -60,6 +72,8 @@ public:
         return *static_cast<gl::Texture*>(object(handle));
     }
     const gl::TextureDesc& desc(TextureHandle handle) const;
+    /** The object an imported buffer was given with. */
+    void* object(BufferHandle handle) const;
 
 private:
     friend class FrameGraph;
@@ -88,17 +102,28 @@ public:
     FrameGraph(const FrameGraph&) = delete;
     FrameGraph& operator=(const FrameGraph&) = delete;
 
-    /** Adds a pass: `setup` runs now and declares resources into `Data`; `execute` runs at
-     *  execute() time if the pass survives culling. Returns the pass's data. */
-    template <class Data>
+    /** Adds a pass: `setup` runs now and declares resources into `Data`; `execute(resources,
+     *  data, context)` runs at execute() time if the pass survives culling, returning void or
+     *  a core::Status (an error stops the frame). Returns the pass's data. */
+    template <class Data, class Execute>
     const Data& addPass(const std::string& name, std::function<void(Builder&, Data&)> setup,
-                        std::function<void(const Resources&, const Data&, gl::Context&)> execute) {
+                        Execute execute) {
+        using Returned =
+            std::invoke_result_t<Execute&, const Resources&, const Data&, gl::Context&>;
+        static_assert(std::is_void_v<Returned> || std::is_same_v<Returned, core::Status>,
+                      "a pass's execute returns void or core::Status");
         auto data = std::make_shared<Data>();
         const std::uint32_t pass = addPassNode(name);
         Builder builder(*this, pass);
         setup(builder, *data);
-        setExecute(pass, [data, execute = std::move(execute)](const Resources& r, gl::Context& c) {
-            execute(r, *data, c);
+        setExecute(pass, [data, execute = std::move(execute)](const Resources& r,
+                                                             gl::Context& c) -> core::Status {
+            if constexpr (std::is_void_v<Returned>) {
+                execute(r, *data, c);
+                return {};
+            } else {
+                return execute(r, *data, c);
+            }
         });
         return *data;
     }
@@ -106,16 +131,20 @@ public:
     /** A texture that lives outside the graph (the backbuffer, history textures). Version 0
      *  counts as written; passes that write it are never culled. */
     TextureHandle importTexture(const std::string& name, const gl::TextureDesc& desc, void* object);
+    /** A buffer (or a set of buffers: `object` is whatever its passes need) that lives outside
+     *  the graph. Version 0 counts as written; passes that write it are never culled. */
+    BufferHandle importBuffer(const std::string& name, void* object);
 
     /** Orders passes (dependencies, then declaration order), culls passes whose outputs nobody
-     *  consumes, computes transient lifetimes. Fails on a read of something never written, a
-     *  write to an outdated version, an unknown `after` pass or a cycle, naming passes and
-     *  resources. */
+     *  consumes, computes transient lifetimes. Fails on a read of something never written or a
+     *  write to an outdated version, naming passes and resources. */
     core::Status compile();
 
     /** Runs the compiled passes in order; transient textures are acquired before their first
-     *  use and released after their last. Returns each executed pass's CPU time. */
-    std::vector<PassTiming> execute(gl::Context& context, PassObserver* observer = nullptr);
+     *  use and released after their last. Returns each executed pass's CPU time, or the first
+     *  pass error, naming the pass (the passes after it do not run; transients go back). */
+    core::Result<std::vector<PassTiming>> execute(gl::Context& context,
+                                                  PassObserver* observer = nullptr);
 
     /** The compiled graph as text: passes in order (culled ones marked) with their reads and
      *  writes, and each transient's lifetime. */
@@ -131,7 +160,10 @@ private:
     struct Resource;
     struct Node;
     std::uint32_t addPassNode(const std::string& name);
-    void setExecute(std::uint32_t pass, std::function<void(const Resources&, gl::Context&)> fn);
+    void setExecute(std::uint32_t pass,
+                    std::function<core::Status(const Resources&, gl::Context&)> fn);
+    std::uint32_t addImported(const std::string& name, bool buffer, const gl::TextureDesc& desc,
+                              void* object);
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
 

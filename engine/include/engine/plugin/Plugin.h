@@ -32,7 +32,8 @@ struct Primitive;
  *
  *  Frames. `addPasses(stage, graph, blackboard)` only records: it declares passes with
  *  `graph.addPass<Data>(name, setup, execute)`, whose execute callbacks run later in the same
- *  frame, in an order the graph derives from reads and writes. Stages run in enum order; at
+ *  frame, in an order the graph derives from reads and writes (of textures and buffers); an
+ *  execute callback may return a core::Status, and an error ends the frame with it. Stages run in enum order; at
  *  each stage the blackboard holds the keys below. A plugin that replaces the scene colour
  *  writes a new texture and puts its handle back under kSceneColor; later stages and the
  *  tonemap read that. Handles and the FrameInfo pointer are valid for that frame only.
@@ -58,7 +59,8 @@ struct Primitive;
 namespace plugin {
 
 /** Checked when a plugin is loaded: a plugin built against another interface is refused.
- *  History: 1 first interface; 2 ParameterSet gained presets. */
+ *  History: 1 first interface; 2 ParameterSet presets, buffer resources in the frame graph
+ *  ("scene.vertices"), execute callbacks that may return a core::Status. */
 inline constexpr const char* kInterfaceVersion = "glass.plugin/2";
 
 /** Where in the frame a plugin's passes go. */
@@ -69,11 +71,14 @@ enum class Stage {
 
 /** Blackboard keys the engine fills for plugins each frame (see ARCHITECTURE.md):
  *  "scene.color" fg::TextureHandle (HDR, RGBA16F, the frame's size), "scene.depth"
- *  fg::TextureHandle (Depth32F, the opaque scene's depth), "frame" const render::FrameInfo*
+ *  fg::TextureHandle (Depth32F, the opaque scene's depth), "scene.vertices" fg::BufferHandle
+ *  (this frame's deformed vertices, FrameInfo::geometry: a pass that draws or reads them
+ *  declares a read, which orders it after the deform pass), "frame" const render::FrameInfo*
  *  (camera, settings and size, time, model, deformed geometry, environment, materials, shaders).
  *  A plugin that changes the scene colour puts its new version back under "scene.color". */
 inline constexpr const char* kSceneColor = "scene.color";
 inline constexpr const char* kSceneDepth = "scene.depth";
+inline constexpr const char* kSceneVertices = "scene.vertices";
 inline constexpr const char* kFrame = "frame";
 
 class Plugin {

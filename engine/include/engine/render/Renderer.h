@@ -1,5 +1,6 @@
-// The scene renderer: deform -> background -> opaque (+ ground) -> plugin stages -> tonemap,
-// recorded into a frame graph every frame, executed, timed per pass on CPU and GPU.
+// The scene renderer: deform -> background -> (ground) -> opaque -> plugin stages -> tonemap,
+// recorded into a frame graph every frame (one file per pass: src/render/passes/), executed,
+// timed per pass on CPU and GPU.
 #pragma once
 
 #include "engine/anim/Pose.h"
@@ -20,6 +21,8 @@
 #include <vector>
 
 namespace render {
+
+struct RenderGpu;
 
 /** One executed pass: CPU time of its execute callback, GPU time from a timer query: this
  *  frame's with RenderSettings::exactPassTimes, else the newest earlier frame's that the GPU
@@ -72,15 +75,15 @@ public:
      *  meshes as they are; up to core::limits::kMaxSubdivisionLevel). On failure (a topology
      *  OpenSubdiv rejects, a limit) the current geometry stays and the error names the mesh. */
     core::Status setSubdivisionLevel(int level);
-    int subdivisionLevel() const { return mDeformer->subdivisionLevel(); }
+    int subdivisionLevel() const;
 
     /** Sets where the ground plane is drawn when settings.ground is on. */
     void setGround(const GroundPlane& ground) { mGroundPlane = ground; }
     const GroundPlane& ground() const { return mGroundPlane; }
-    const Environment& environment() const { return *mEnvironment; }
+    const Environment& environment() const;
 
     gl::ShaderLibrary& shaders() { return mShaders; }
-    const deform::GpuDeformer& geometry() const { return *mDeformer; }
+    const deform::GpuDeformer& geometry() const;
 
 private:
     Renderer() = default;
@@ -90,19 +93,12 @@ private:
     const scene::Model* mModel = nullptr;
     gl::Context* mContext = nullptr;
     gl::ShaderLibrary mShaders;
-    std::unique_ptr<deform::GpuDeformer> mDeformer;
-    std::unique_ptr<Environment> mEnvironment;
-    std::unique_ptr<MaterialTextures> mMaterials;
+    std::unique_ptr<RenderGpu> mGpu; // what the passes draw with
     std::unique_ptr<Allocator> mAllocator;
     std::unique_ptr<fg::TexturePool> mPool;
     std::unique_ptr<Timer> mTimer;
     std::vector<plugin::Plugin*> mPlugins;
-    gl::Program mBackground, mOpaque, mGround, mTonemap;
-    gl::VertexArray mEmptyVao;
-    std::vector<gl::VertexArray> mVaos; // per instance primitive, flattened
-    std::vector<char> mClaimed;         // same order: a plugin draws it (this frame)
     gl::Texture mOutput;
-    gl::Framebuffer mFramebuffer;
     mutable gl::Framebuffer mPresent;
     GroundPlane mGroundPlane;
 };

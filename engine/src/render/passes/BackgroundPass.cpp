@@ -1,0 +1,37 @@
+// `background`: the scene targets are created here, with the environment drawn behind all.
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+namespace render::passes {
+
+SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame) {
+    const gl::TextureDesc colorDesc{frame.settings.size, gl::Format::RGBA16F, 1};
+    const gl::TextureDesc depthDesc{frame.settings.size, gl::Format::Depth32F, 1};
+    return graph.addPass<SceneTargets>(
+        "background",
+        [&](fg::Builder& b, SceneTargets& d) {
+            d.color = b.write(b.create("scene.color", colorDesc));
+            d.depth = b.write(b.create("scene.depth", depthDesc));
+        },
+        [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
+                       gl::Context&) -> core::Status {
+            if (auto bound = bindTargets(gpu, "background", {&r.texture(d.color)},
+                                         &r.texture(d.depth));
+                !bound)
+                return bound;
+            gl::clearDepth(1.0f);
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            gpu.background.use();
+            gpu.environment->bind(gpu.background, 0, frame.settings.environmentRotation,
+                                  frame.settings.environmentIntensity);
+            gpu.background.set("uInverseViewProjection",
+                               glm::inverse(frame.camera.viewProjection()));
+            gpu.background.set("uBackgroundBlur", frame.settings.backgroundBlur);
+            gpu.emptyVao.bind();
+            gl::drawArrays(3);
+            return {};
+        });
+}
+
+} // namespace render::passes

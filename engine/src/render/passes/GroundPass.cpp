@@ -1,0 +1,39 @@
+// `ground`: a tiled plane under the characters, lit by the environment.
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+namespace render::passes {
+
+SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                       SceneTargets scene) {
+    return graph.addPass<SceneTargets>(
+        "ground",
+        [&](fg::Builder& b, SceneTargets& d) {
+            d.color = b.write(scene.color);
+            d.depth = b.write(scene.depth);
+        },
+        [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
+                       gl::Context&) -> core::Status {
+            if (auto bound =
+                    bindTargets(gpu, "ground", {&r.texture(d.color)}, &r.texture(d.depth));
+                !bound)
+                return bound;
+            gl::apply({.cull = gl::Cull::None});
+            gl::Program& p = gpu.ground;
+            p.use();
+            gpu.environment->bind(p, 0, frame.settings.environmentRotation,
+                                  frame.settings.environmentIntensity);
+            p.set("uViewProjection", frame.camera.viewProjection());
+            p.set("uCameraPosition", frame.camera.position);
+            p.set("uCenter", frame.ground.center);
+            p.set("uHalfSize", frame.ground.halfSize);
+            p.set("uHeight", frame.ground.height);
+            p.set("uTileSize", frame.ground.halfSize / 8.0f);
+            gpu.emptyVao.bind();
+            gl::drawArrays(6);
+            return {};
+        });
+}
+
+} // namespace render::passes

@@ -1,0 +1,40 @@
+// The renderer's own passes, one file each, recorded by Renderer::render in this order:
+// deform -> background -> ground (optional) -> opaque -> [plugin stages] -> tonemap.
+#pragma once
+
+#include "../RenderGpu.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/fg/FrameGraph.h"
+#include "engine/render/FrameInfo.h"
+
+namespace render::passes {
+
+/** The HDR scene colour and depth as the passes hand them on. */
+struct SceneTargets {
+    fg::TextureHandle color, depth;
+};
+
+/** `deform`: `pose` into the deformed vertex buffers (GpuDeformer::update); writes
+ *  `vertices` (the imported resource standing for all of them), returns the new version. */
+fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices,
+                           const anim::Pose& pose);
+/** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
+ *  environment behind everything. */
+SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
+/** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
+SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                       SceneTargets scene);
+/** `opaque`: every primitive no plugin claimed, metallic-roughness with image-based lighting,
+ *  from the deformed vertices. */
+SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                       SceneTargets scene, fg::BufferHandle vertices);
+/** `tonemap`: exposure, ACES fit and sRGB (or the raw HDR colour) into `output`. */
+void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                fg::TextureHandle scene, fg::TextureHandle output);
+
+/** Attaches and binds the pass's targets; an incomplete framebuffer is the pass's error. */
+core::Status bindTargets(RenderGpu& gpu, const char* pass,
+                         const std::vector<const gl::Texture*>& colors, const gl::Texture* depth);
+
+} // namespace render::passes

@@ -1,0 +1,34 @@
+// `tonemap`: the HDR scene colour to the display output (exposure, ACES fit, sRGB).
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+namespace render::passes {
+
+void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                fg::TextureHandle scene, fg::TextureHandle output) {
+    struct Data {
+        fg::TextureHandle scene, output;
+    };
+    graph.addPass<Data>(
+        "tonemap",
+        [&](fg::Builder& b, Data& d) {
+            d.scene = b.read(scene);
+            d.output = b.write(output);
+        },
+        [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            if (auto bound = bindTargets(gpu, "tonemap", {&r.texture(d.output)}, nullptr); !bound)
+                return bound;
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            gpu.tonemap.use();
+            gl::bindTexture(0, r.texture(d.scene));
+            gpu.tonemap.set("uScene", 0);
+            gpu.tonemap.set("uExposure", frame.settings.exposure);
+            gpu.tonemap.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
+            gpu.emptyVao.bind();
+            gl::drawArrays(3);
+            return {};
+        });
+}
+
+} // namespace render::passes
