@@ -54,20 +54,19 @@ struct ShadeData {
 /** Uniforms and maps of glass_shading.glsl common to both shading paths. */
 void setShading(const FrameContext& c, const gl::Program& f, const ShadeData& d,
                 const fg::Resources& r) {
-    const plugin::ParameterSet& p = *c.parameters;
+    const Settings& s = c.settings;
     const render::FrameInfo& frame = *c.frame;
     f.use();
-    f.set("uMethod", c.method == "sir" ? 1 : c.method == "isr" ? 2 : 3);
-    f.set("uSteps", int(p.number("search-steps")));
+    f.set("uMethod", int(s.method)); // glass_shading.glsl: 1 sir, 2 isr, 3 dir
+    f.set("uSteps", s.searchSteps);
     f.set("uTirPolicy", c.reflect ? 1 : 0);
-    f.set("uBounces", int(p.number("tir-bounces")));
-    const std::string fresnel = p.choice("fresnel");
-    f.set("uFresnelMode", fresnel == "exact" ? 0 : fresnel == "schlick" ? 1 : 2);
+    f.set("uBounces", s.tirBounces);
+    f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off
     // Without opaque geometry the walk could only find the background, which is the
     // environment the lookup falls back to: skip it (the same image, cheaper).
-    f.set("uNearby", p.flag("nearby") && frame.opaqueGeometry ? 1 : 0);
-    f.set("uDebug", int(p.number("debug")));
-    f.set("uSharedDispersion", p.choice("dispersion-search") == "shared" ? 1 : 0);
+    f.set("uNearby", s.nearby && frame.opaqueGeometry ? 1 : 0);
+    f.set("uDebug", s.debug);
+    f.set("uSharedDispersion", s.dispersionSearch == Settings::DispersionSearch::Shared ? 1 : 0);
     f.set("uViewportSize", glm::vec2(frame.settings.size));
     f.set("uNear", frame.camera.znear);
     f.set("uFar", frame.camera.zfar);
@@ -103,25 +102,15 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     return buffers;
 }
 
-bool isGlassPrimitive(const plugin::ParameterSet& parameters, const scene::Model& model,
-                      const scene::Primitive& primitive) {
-    if (parameters.choice("method") == "opaque")
-        return false;
-    if (parameters.choice("glass") == "all")
-        return true;
-    return primitive.material >= 0 &&
-           model.materials[std::size_t(primitive.material)].isTransmissive();
-}
-
 bool FrameContext::isGlass(const scene::Primitive& primitive) const {
-    return isGlassPrimitive(*parameters, *frame->model, primitive);
+    return settings.isGlass(*frame->model, primitive);
 }
 
 void FrameContext::setMaterial(const gl::Program& program, int material) const {
     const scene::Model& model = *frame->model;
     const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
     frame->materials->bind(program, model, material, kMaterialUnit);
-    const Optics o = opticsFor(*parameters, m);
+    const Optics o = opticsFor(settings, m);
     program.set("uIor", o.ior);
     program.set("uDispersion", o.dispersion ? 1 : 0);
     program.set("uSigma", o.sigma);
@@ -148,7 +137,7 @@ void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState
             gl::bindStorage(0, primitive.deformed);
             gl::bindStorage(1, *primitive.uv0);
             const auto distance = gpu->distances.find({instanceIndex, p});
-            const bool hasDistance = distance != gpu->distances.end() && method == "isr";
+            const bool hasDistance = distance != gpu->distances.end() && isr;
             program.set("uHasNormalDistance", hasDistance ? 1 : 0);
             // Without d_N the binding still needs a buffer: the vertices stand in (unread).
             gl::bindStorage(2, hasDistance ? distance->second.values() : primitive.deformed);
@@ -208,7 +197,7 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
             name,
             [&](fg::Builder& b, SurfaceData& d) {
                 b.read(buffers.vertices);
-                if (c.method == "isr")
+                if (c.isr)
                     b.read(buffers.distances);
                 d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc(size)));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
@@ -257,7 +246,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
         "refraction.surfaces",
         [&](fg::Builder& b, GatherData& d) {
             b.read(buffers.vertices);
-            if (c.method == "isr")
+            if (c.isr)
                 b.read(buffers.distances);
             d.rectangle = b.write(buffers.rectangle);
             d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
@@ -423,7 +412,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
         b.read(buffers.rectangle);
         if (c.twoInterfaces)
             b.read(buffers.range);
-        if (c.method == "isr")
+        if (c.isr)
             b.read(buffers.distances);
         for (auto [from, to] : {std::pair{maps.backDepth, &d.maps.backDepth},
                                 std::pair{maps.backNormal, &d.maps.backNormal},

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "GpuState.h"
+#include "Settings.h"
 
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
@@ -12,23 +13,17 @@
 #include "engine/plugin/Plugin.h"
 #include "engine/render/FrameInfo.h"
 
-#include <string>
-
 namespace refraction {
-
-/** Whether `primitive` is drawn as glass with these parameters (method, glass). */
-bool isGlassPrimitive(const plugin::ParameterSet& parameters, const scene::Model& model,
-                      const scene::Primitive& primitive);
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
 struct FrameContext {
     GpuState* gpu = nullptr;
-    const plugin::ParameterSet* parameters = nullptr;
+    Settings settings; ///< the parameters, decoded once this frame
     const render::FrameInfo* frame = nullptr;
-    std::string method;         ///< sir, isr or dir
     bool twoInterfaces = false; ///< isr, dir: the back surface is needed
     bool reflect = false;       ///< TIR reflect: the front surface is searched too
+    bool isr = false;           ///< d_N is measured and read
     bool onePass = false;       ///< the single gathered geometry pass
     int glassMaterial = -1;     ///< one pass: the one material of every glass primitive
 

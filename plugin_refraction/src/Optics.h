@@ -1,8 +1,9 @@
-// Private to the plugin: which primitives are glass and their optical constants, shared by the
-// GPU passes and the reference tracer so both read the same settings.
+// Private to the plugin: the optical constants of a glass primitive, shared by the GPU passes
+// and the reference tracer so both read the same settings.
 #pragma once
 
-#include "engine/plugin/ParameterSet.h"
+#include "Settings.h"
+
 #include "engine/scene/Model.h"
 
 #include <glm/glm.hpp>
@@ -21,10 +22,6 @@ struct Optics {
     float roughness = 0.0f, metallic = 0.0f;
 };
 
-Optics opticsFor(const plugin::ParameterSet& parameters, const scene::Material* material);
-
-/** True when `primitive` renders as glass under `parameters` (method, glass auto|all). */
-bool isGlass(const plugin::ParameterSet& parameters, const scene::Model& model,
-             const scene::Primitive& primitive);
+Optics opticsFor(const Settings& settings, const scene::Material* material);
 
 } // namespace refraction

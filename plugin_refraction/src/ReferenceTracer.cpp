@@ -163,10 +163,10 @@ struct Hit {
     const Surface* surface = nullptr;
 };
 
-double fresnelEntry(const std::string& mode, double cosI, double eta) {
-    if (mode == "off")
+double fresnelEntry(Settings::Fresnel mode, double cosI, double eta) {
+    if (mode == Settings::Fresnel::Off)
         return 0.0;
-    if (mode == "schlick") {
+    if (mode == Settings::Fresnel::Schlick) {
         const double f0 = ((1 - eta) / (1 + eta)) * ((1 - eta) / (1 + eta));
         return f0 + (1 - f0) * std::pow(1 - std::clamp(cosI, 0.0, 1.0), 5.0);
     }
@@ -198,9 +198,9 @@ class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
-           std::string fresnelMode, double epsilon)
+           Settings::Fresnel fresnelMode, double epsilon)
         : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options),
-          mFresnel(std::move(fresnelMode)), mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)),
+          mFresnel(fresnelMode), mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)),
           mScene(rtcNewScene(mDevice)) {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -396,7 +396,7 @@ private:
     const EnvironmentSampler& mEnv;
     const render::GroundPlane* mGround;
     const ReferenceOptions& mOptions;
-    std::string mFresnel;
+    Settings::Fresnel mFresnel;
     double mEpsilon;
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
@@ -409,6 +409,7 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
                const EnvironmentSampler& environment, const render::RenderSettings& settings,
                const render::GroundPlane& ground, const plugin::ParameterSet& glass,
                const ReferenceOptions& options) {
+    const Settings decoded = Settings::decode(glass);
     std::vector<Surface> surfaces;
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const auto& instance : deform::deformScene(model, pose)) {
@@ -424,8 +425,8 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
                 s.uv.emplace_back(uv);
             const int material = primitive.material;
             s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-            s.glass = isGlass(glass, model, primitive);
-            s.optics = opticsFor(glass, s.material);
+            s.glass = decoded.isGlass(model, primitive);
+            s.optics = opticsFor(decoded, s.material);
             if (!s.optics.dispersion)
                 s.optics.ior = glm::vec3(s.optics.ior.g);
             for (const auto& v : s.positions) {
@@ -437,7 +438,7 @@ traceReference(const scene::Model& model, const anim::Pose& pose, const render::
     }
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
-                  glass.choice("fresnel"), epsilon);
+                  decoded.fresnel, epsilon);
     tracer.mModel = &model;
 
     ReferenceImage image;

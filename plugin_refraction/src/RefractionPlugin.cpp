@@ -199,13 +199,17 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     return {};
 }
 
-bool RefractionPlugin::isGlass(const scene::Model& model, const scene::Primitive& primitive) const {
-    return isGlassPrimitive(mParameters, model, primitive);
+const Settings& RefractionPlugin::settings() const {
+    if (!mSettings || mSettingsRevision != mParameters.revision()) {
+        mSettings = std::make_unique<Settings>(Settings::decode(mParameters));
+        mSettingsRevision = mParameters.revision();
+    }
+    return *mSettings;
 }
 
 bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int,
                                       const scene::Primitive& primitive) const {
-    return mGpu && isGlass(model, primitive);
+    return mGpu && settings().isGlass(model, primitive);
 }
 
 void RefractionPlugin::prepare(const scene::Model& model, const deform::GpuDeformer& geometry) {
@@ -226,11 +230,13 @@ void RefractionPlugin::prepare(const scene::Model& model, const deform::GpuDefor
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                                  fg::Blackboard& blackboard) {
-    if (stage != plugin::Stage::AfterOpaque || !mGpu || mParameters.choice("method") == "opaque")
+    if (stage != plugin::Stage::AfterOpaque || !mGpu)
         return;
     FrameContext c;
+    c.settings = settings();
+    if (c.settings.method == Settings::Method::Opaque)
+        return;
     c.gpu = mGpu.get();
-    c.parameters = &mParameters;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
     prepare(*c.frame->model, *c.frame->geometry);
 
@@ -250,15 +256,15 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     const scene::Model& model = *c.frame->model;
     const bool normalMap = c.glassMaterial >= 0 &&
                            model.materials[std::size_t(c.glassMaterial)].normalTexture.present();
-    const bool firstBack = mParameters.choice("back-surface") == "first";
-    c.method = mParameters.choice("method");
-    c.twoInterfaces = c.method != "sir";
-    c.reflect = mParameters.choice("tir") == "reflect" && c.twoInterfaces;
-    c.onePass = mParameters.choice("geometry-passes") == "one" && oneMaterial && !normalMap &&
-                !firstBack;
+    const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
+    c.twoInterfaces = c.settings.twoInterfaces();
+    c.isr = c.settings.method == Settings::Method::Isr;
+    c.reflect = c.settings.tir == Settings::Tir::Reflect && c.twoInterfaces;
+    c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
+                !normalMap && !firstBack;
 
     FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
-    if (c.method == "isr")
+    if (c.isr)
         addNormalDistancePass(graph, c, buffers);
     const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c, buffers)
                                        : addSeparateSurfacePasses(graph, c, buffers, firstBack);

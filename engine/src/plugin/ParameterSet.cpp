@@ -34,6 +34,13 @@ std::size_t ParameterSet::index(const std::string& name) const {
 }
 
 core::Status ParameterSet::set(const std::string& name, const std::string& value) {
+    core::Status assigned = assign(name, value);
+    if (assigned)
+        ++mRevision;
+    return assigned;
+}
+
+core::Status ParameterSet::assign(const std::string& name, const std::string& value) {
     const Parameter* p = find(name);
     if (!p) {
         std::string known;
@@ -117,6 +124,7 @@ void ParameterSet::setNumber(const std::string& name, double value) {
     if (p.type == Parameter::Type::Bool)
         value = value != 0.0 ? 1.0 : 0.0;
     mValues[i] = {value, value, value};
+    ++mRevision;
 }
 
 double ParameterSet::number(const std::string& name) const {

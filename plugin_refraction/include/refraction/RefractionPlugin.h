@@ -16,6 +16,7 @@ class GpuDeformer;
 namespace refraction {
 
 struct GpuState;
+struct Settings;
 
 /** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,
  *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
@@ -36,9 +37,12 @@ public:
     plugin::ParameterSet& parameters() override { return mParameters; }
 
 private:
-    bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
+    /** The parameters decoded, again only after they change. */
+    const Settings& settings() const;
     void prepare(const scene::Model& model, const deform::GpuDeformer& geometry);
     plugin::ParameterSet mParameters;
+    mutable std::unique_ptr<Settings> mSettings;
+    mutable std::uint64_t mSettingsRevision = 0;
     std::unique_ptr<GpuState> mGpu;
 };
 

@@ -57,6 +57,18 @@ TEST(ParameterSet, SetNumberClamps) {
     EXPECT_EQ(p.choice("method"), "dir");
 }
 
+TEST(ParameterSet, RevisionChangesWithEveryValueSet) {
+    auto p = make();
+    const auto start = p.revision();
+    ASSERT_FALSE(p.set("ior", "9").ok());
+    EXPECT_EQ(p.revision(), start); // a refused value changes nothing
+    ASSERT_TRUE(p.set("ior", "1.4").ok());
+    const auto afterSet = p.revision();
+    EXPECT_NE(afterSet, start);
+    p.setNumber("steps", 3.0);
+    EXPECT_NE(p.revision(), afterSet);
+}
+
 TEST(ParameterSet, PresetSetsAllItsValues) {
     auto p = make();
     ASSERT_TRUE(p.addPreset({"water", {{"ior", "1.333"}, {"method", "sir"}}}).ok());

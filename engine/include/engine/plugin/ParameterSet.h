@@ -6,6 +6,7 @@
 #include "engine/core/Result.h"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,9 @@ public:
     std::string text(const std::string& name) const;
 
     const Parameter* find(const std::string& name) const;
+    /** Changes with every value set: a consumer that decodes the values keeps its decoding
+     *  while this stays the same. */
+    std::uint64_t revision() const { return mRevision; }
 
     /** Adds a preset. Fails, naming the preset and the value, when a name is taken or a value
      *  would not set (unknown parameter, bad text, out of range), so applying it cannot fail. */
@@ -64,9 +68,11 @@ public:
 
 private:
     std::size_t index(const std::string& name) const;
+    core::Status assign(const std::string& name, const std::string& value);
     std::vector<Parameter> mDeclarations;
     std::vector<std::array<double, 3>> mValues;
     std::vector<ParameterPreset> mPresets;
+    std::uint64_t mRevision = 0;
 };
 
 } // namespace plugin

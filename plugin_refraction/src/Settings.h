@@ -1,0 +1,48 @@
+// Private to the plugin: its parameters decoded into types once per frame (or per reference
+// image), which the GPU passes and the reference tracer read, so that no frame compares strings.
+#pragma once
+
+#include "engine/plugin/ParameterSet.h"
+#include "engine/scene/Model.h"
+
+#include <glm/glm.hpp>
+
+namespace refraction {
+
+struct Settings {
+    // Each enum lists its parameter's choices in declaration order (RefractionPlugin.cpp).
+    enum class Method { Opaque, Sir, Isr, Dir };
+    enum class Glass { Auto, All };
+    enum class Fresnel { Exact, Schlick, Off };
+    enum class Tir { Clamp, Reflect };
+    enum class BackSurface { Farthest, First };
+    enum class GeometryPasses { One, Two };
+    enum class DispersionSearch { Shared, PerChannel };
+
+    Method method = Method::Dir;
+    Glass glass = Glass::Auto;
+    double ior = 0.0;                ///< 0: the material's
+    double dispersion = -1.0;        ///< 20 / Abbe number; negative: the material's
+    glm::dvec3 tint{1.0};            ///< multiplies the attenuation colour
+    double absorptionDistance = 0.0; ///< 0: the material's
+    Fresnel fresnel = Fresnel::Exact;
+    int searchSteps = 5;
+    Tir tir = Tir::Clamp;
+    int tirBounces = 2;
+    BackSurface backSurface = BackSurface::Farthest;
+    GeometryPasses geometryPasses = GeometryPasses::One;
+    DispersionSearch dispersionSearch = DispersionSearch::Shared;
+    bool nearby = true;
+    int debug = 0; ///< index into the "debug" parameter's choices (glass_shading.glsl)
+
+    /** Reads every parameter of the refraction plugin's set (which must declare them all). */
+    static Settings decode(const plugin::ParameterSet& parameters);
+
+    /** Isr and Dir search an exit through a back surface; Sir refracts once. */
+    bool twoInterfaces() const { return method == Method::Isr || method == Method::Dir; }
+    /** Whether `primitive` renders as glass: never with Opaque, every mesh with Glass::All,
+     *  else materials with KHR_materials_transmission. */
+    bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
+};
+
+} // namespace refraction
