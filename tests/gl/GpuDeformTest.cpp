@@ -21,30 +21,35 @@ protected:
         for (double time : times) {
             const anim::Pose pose = anim::evaluate(model, clip, time);
             (*deformer)->update(pose);
-            const auto cpu = deform::deformScene(model, pose);
-            ASSERT_EQ(cpu.size(), (*deformer)->instances().size());
-            for (std::size_t i = 0; i < cpu.size(); ++i)
-                for (std::size_t p = 0; p < cpu[i].primitives.size(); ++p) {
-                    const auto gpu = (*deformer)->download(i, p);
-                    const auto& ref = cpu[i].primitives[p];
-                    glm::dvec3 lo(1e300), hi(-1e300);
-                    for (const auto& v : ref.positions) {
-                        lo = glm::min(lo, v);
-                        hi = glm::max(hi, v);
-                    }
-                    const double diagonal = std::max(glm::length(hi - lo), 1e-12);
-                    double position = 0.0, normal = 0.0;
-                    for (std::size_t v = 0; v < ref.positions.size(); ++v) {
-                        position =
-                            std::max(position, glm::length(gpu.positions[v] - ref.positions[v]));
-                        normal = std::max(normal, glm::length(gpu.normals[v] - ref.normals[v]));
-                    }
-                    SCOPED_TRACE(model.sourceName + " t=" + std::to_string(time) + " instance " +
-                                 std::to_string(i) + " primitive " + std::to_string(p));
-                    EXPECT_LE(position / diagonal, 1e-4);
-                    EXPECT_LE(normal, 1e-3);
-                }
+            expectMatchesCpu(**deformer, model, pose, time);
         }
+    }
+
+    /** `deformer`'s buffers as `pose` left them, against the CPU oracle. */
+    void expectMatchesCpu(const deform::GpuDeformer& deformer, const scene::Model& model,
+                          const anim::Pose& pose, double time) {
+        const auto cpu = deform::deformScene(model, pose);
+        ASSERT_EQ(cpu.size(), deformer.instances().size());
+        for (std::size_t i = 0; i < cpu.size(); ++i)
+            for (std::size_t p = 0; p < cpu[i].primitives.size(); ++p) {
+                const auto gpu = deformer.download(i, p);
+                const auto& ref = cpu[i].primitives[p];
+                glm::dvec3 lo(1e300), hi(-1e300);
+                for (const auto& v : ref.positions) {
+                    lo = glm::min(lo, v);
+                    hi = glm::max(hi, v);
+                }
+                const double diagonal = std::max(glm::length(hi - lo), 1e-12);
+                double position = 0.0, normal = 0.0;
+                for (std::size_t v = 0; v < ref.positions.size(); ++v) {
+                    position = std::max(position, glm::length(gpu.positions[v] - ref.positions[v]));
+                    normal = std::max(normal, glm::length(gpu.normals[v] - ref.normals[v]));
+                }
+                SCOPED_TRACE(model.sourceName + " t=" + std::to_string(time) + " instance " +
+                             std::to_string(i) + " primitive " + std::to_string(p));
+                EXPECT_LE(position / diagonal, 1e-4);
+                EXPECT_LE(normal, 1e-3);
+            }
     }
 };
 
@@ -53,6 +58,36 @@ TEST_F(GpuDeform, TwoJointModelMatchesCpu) {
     auto model = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
     ASSERT_TRUE(model.ok());
     compare(*model, 0, {0.0, 0.3, 0.77, 1.0});
+}
+
+TEST_F(GpuDeform, PlacementsOfOneUploadDeformIndependently) {
+    test::TempDir dir;
+    auto model = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
+    ASSERT_TRUE(model.ok());
+    auto uploaded = deform::GpuModel::create(*model);
+    ASSERT_TRUE(uploaded.ok()) << uploaded.error().message;
+    auto first = deform::GpuDeformer::create(*uploaded, shaders());
+    auto second = deform::GpuDeformer::create(*uploaded, shaders());
+    ASSERT_TRUE(first.ok() && second.ok());
+    // The static buffers are the upload's, once; the deformed ones each placement's own.
+    const auto& a = (*first)->instances()[0].primitives[0];
+    const auto& b = (*second)->instances()[0].primitives[0];
+    EXPECT_EQ(a.indices, b.indices);
+    EXPECT_EQ(a.uv0, b.uv0);
+    EXPECT_NE(&a.deformed, &b.deformed);
+    const anim::Pose early = anim::evaluate(*model, 0, 0.2), late = anim::evaluate(*model, 0, 0.9);
+    (*first)->update(early);
+    (*second)->update(late);
+    expectMatchesCpu(**first, *model, early, 0.2);
+    expectMatchesCpu(**second, *model, late, 0.9);
+    // Not vacuous: the two poses differ where the oracle says they do.
+    const auto cpuEarly = deform::deformScene(*model, early);
+    const auto cpuLate = deform::deformScene(*model, late);
+    double moved = 0.0;
+    for (std::size_t v = 0; v < cpuEarly[0].primitives[0].positions.size(); ++v)
+        moved = std::max(moved, glm::length(cpuEarly[0].primitives[0].positions[v] -
+                                            cpuLate[0].primitives[0].positions[v]));
+    EXPECT_GT(moved, 1e-3);
 }
 
 TEST_F(GpuDeform, EverySharedSkinnedOrMorphingModelMatchesCpu) {

@@ -1,8 +1,10 @@
-// GPU deformation: static per-primitive buffers, per-instance per-frame uploads, dispatches;
-// then OpenSubdiv's GL compute evaluator on the deformed cages.
+// GPU deformation of one placement of an uploaded model (GpuModel): its deformed buffers and
+// per-frame uploads, the deform dispatches, then OpenSubdiv's GL compute evaluator on the
+// deformed cages.
 #include "engine/deform/GpuDeformer.h"
 
-#include "engine/core/Limits.h"
+#include "GpuModelData.h"
+
 #include "engine/gl/Commands.h"
 
 #include <opensubdiv/osd/glComputeEvaluator.h>
@@ -13,50 +15,13 @@
 namespace deform {
 namespace {
 
-/** std430 layout of common/vertex.glsl's DeformedVertex. */
-struct VertexGpu {
-    glm::vec4 position, normal, tangent;
-};
-
-/** std430 layout of deform.comp.glsl's Influence. */
-struct InfluenceGpu {
-    glm::uvec4 joints0{0}, joints1{0};
-    glm::vec4 weights0{0.0f}, weights1{0.0f};
-};
-
 constexpr std::uint32_t kGroupSize = 64;
 
 std::uint32_t groups(std::size_t n) {
     return std::uint32_t((n + kGroupSize - 1) / kGroupSize);
 }
 
-/** Stencils on the GPU, in the layout Osd::GLComputeEvaluator reads. */
-struct GpuStencils {
-    gl::Buffer sizes, offsets, indices, weights, duWeights, dvWeights;
-    int count = 0;
-    explicit GpuStencils(const Stencils& s)
-        : sizes(std::span<const int>(s.sizes)), offsets(std::span<const int>(s.offsets)),
-          indices(std::span<const int>(s.indices)), weights(std::span<const float>(s.weights)),
-          count(int(s.count())) {
-        if (!s.duWeights.empty()) {
-            duWeights = gl::Buffer(std::span<const float>(s.duWeights));
-            dvWeights = gl::Buffer(std::span<const float>(s.dvWeights));
-        }
-    }
-};
-
 } // namespace
-
-struct GpuDeformer::Static {
-    gl::Buffer rest, influences, deltas, indices, uv0;
-    gl::Buffer cageIndices; // with subdivision: the file's triangles (indices: the refined)
-    std::uint32_t targetCount = 0;
-    // With subdivision: the tables, the drawn mesh's static buffers (indices and uv0 above are
-    // then the refined ones) and the corners the pack pass reads.
-    std::unique_ptr<Subdivision> subdivision;
-    std::unique_ptr<GpuStencils> refine, limit, faceVarying;
-    gl::Buffer corners;
-};
 
 /** Per instance primitive with subdivision: the deformed cage and the evaluators' outputs. */
 struct GpuDeformer::Refined {
@@ -82,15 +47,21 @@ GpuDeformer::~GpuDeformer() = default;
 core::Result<std::unique_ptr<GpuDeformer>>
 GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
                     int subdivisionLevel) {
+    auto uploaded = GpuModel::create(model, subdivisionLevel);
+    if (!uploaded)
+        return uploaded.error();
+    return create(std::move(*uploaded), shaders);
+}
+
+core::Result<std::unique_ptr<GpuDeformer>>
+GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLibrary& shaders) {
     static std::atomic<std::uint64_t> serials{0};
     std::unique_ptr<GpuDeformer> d(new GpuDeformer());
-    d->mModel = &model;
+    const scene::Model& model = uploaded->model();
+    const int subdivisionLevel = uploaded->subdivisionLevel();
+    d->mUpload = std::move(uploaded);
     d->mSerial = ++serials;
     d->mLevel = subdivisionLevel;
-    if (subdivisionLevel < 0 || subdivisionLevel > core::limits::kMaxSubdivisionLevel)
-        return core::Error{"deform::GpuDeformer::create(): subdivision level " +
-                           std::to_string(subdivisionLevel) + " is outside 0.." +
-                           std::to_string(core::limits::kMaxSubdivisionLevel)};
     auto deformProgram = gl::Program::compute(shaders, "deform/deform.comp.glsl");
     if (!deformProgram)
         return core::Error{"deform::GpuDeformer::create(): " + deformProgram.error().message};
@@ -121,78 +92,17 @@ GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
         d->mEvaluators = std::move(e);
     }
 
-    d->mStatic.resize(model.meshes.size());
+    // The placement: per mesh node, deformed buffers and the per-frame uploads' buffers.
     for (int node : model.meshNodes()) {
         const scene::Node& n = model.nodes[std::size_t(node)];
-        auto& statics = d->mStatic[std::size_t(n.mesh)];
         const scene::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
-        if (statics.empty()) {
-            for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
-                const scene::Primitive& p = mesh.primitives[pi];
-                auto s = std::make_shared<Static>();
-                const std::size_t count = p.vertexCount();
-                std::vector<VertexGpu> rest(count);
-                for (std::size_t v = 0; v < count; ++v)
-                    rest[v] = {glm::vec4(p.positions[v], 1.0f), glm::vec4(p.normals[v], 0.0f),
-                               p.tangents.empty() ? glm::vec4(1, 0, 0, 1) : p.tangents[v]};
-                s->rest = gl::Buffer(std::span<const VertexGpu>(rest));
-                std::vector<InfluenceGpu> influences(p.isSkinned() ? count : 1);
-                for (std::size_t v = 0; p.isSkinned() && v < count; ++v) {
-                    influences[v].joints0 = p.joints[0][v];
-                    influences[v].weights0 = p.weights[0][v];
-                    if (p.influenceSets() > 1) {
-                        influences[v].joints1 = p.joints[1][v];
-                        influences[v].weights1 = p.weights[1][v];
-                    }
-                }
-                s->influences = gl::Buffer(std::span<const InfluenceGpu>(influences));
-                s->targetCount = std::uint32_t(p.targets.size());
-                std::vector<glm::vec4> deltas(
-                    std::max<std::size_t>(1, p.targets.size() * count * 3), glm::vec4(0.0f));
-                for (std::size_t t = 0; t < p.targets.size(); ++t) {
-                    const scene::MorphTarget& target = p.targets[t];
-                    for (std::size_t v = 0; v < count; ++v) {
-                        glm::vec4* out = &deltas[(t * count + v) * 3];
-                        if (!target.positions.empty())
-                            out[0] = glm::vec4(target.positions[v], 0.0f);
-                        if (!target.normals.empty())
-                            out[1] = glm::vec4(target.normals[v], 0.0f);
-                        if (!target.tangents.empty())
-                            out[2] = glm::vec4(target.tangents[v], 0.0f);
-                    }
-                }
-                s->deltas = gl::Buffer(std::span<const glm::vec4>(deltas));
-                s->indices = gl::Buffer(std::span<const std::uint32_t>(p.indices));
-                std::vector<glm::vec2> uv =
-                    p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f)) : p.uv0;
-                s->uv0 = gl::Buffer(std::span<const glm::vec2>(uv));
-                if (subdivisionLevel > 0) {
-                    auto sub = buildSubdivision(
-                        p, subdivisionLevel,
-                        "mesh " + std::to_string(n.mesh) + " '" + mesh.name + "' primitive " +
-                            std::to_string(pi));
-                    if (!sub)
-                        return sub.error();
-                    s->subdivision = std::make_unique<Subdivision>(std::move(*sub));
-                    const Subdivision& sd = *s->subdivision;
-                    s->refine = std::make_unique<GpuStencils>(sd.refine);
-                    s->limit = std::make_unique<GpuStencils>(sd.limit);
-                    s->faceVarying = std::make_unique<GpuStencils>(sd.faceVarying);
-                    s->corners = gl::Buffer(std::span<const RefinedCorner>(sd.corners));
-                    s->cageIndices = std::move(s->indices);
-                    s->indices = gl::Buffer(std::span<const std::uint32_t>(sd.rest.indices));
-                    s->uv0 = gl::Buffer(std::span<const glm::vec2>(sd.rest.uv0));
-                }
-                statics.push_back(std::move(s));
-            }
-        }
         GpuInstance instance;
         instance.node = node;
         instance.mesh = n.mesh;
         std::vector<Refined> refined;
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const scene::Primitive& p = mesh.primitives[i];
-            const Static& s = *statics[i];
+            const GpuModel::Primitive& s = d->mUpload->primitive(n.mesh, i);
             GpuPrimitive gp;
             gp.source = &p;
             gp.topology = s.subdivision ? &s.subdivision->rest : &p;
@@ -229,7 +139,7 @@ GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
 }
 
 void GpuDeformer::update(const anim::Pose& pose) {
-    const scene::Model& model = *mModel;
+    const scene::Model& model = mUpload->model();
     mDeform.use();
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
@@ -249,7 +159,7 @@ void GpuDeformer::update(const anim::Pose& pose) {
         gl::bindStorage(4, mSkinMatrices[i]);
         for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
             GpuPrimitive& gp = instance.primitives[p];
-            const Static& s = *mStatic[std::size_t(instance.mesh)][p];
+            const GpuModel::Primitive& s = mUpload->primitive(instance.mesh, p);
             gl::bindStorage(0, s.rest);
             gl::bindStorage(1, s.influences);
             gl::bindStorage(2, s.deltas);
@@ -291,11 +201,11 @@ void GpuDeformer::refine() {
     auto each = [this](auto&& f) {
         for (std::size_t i = 0; i < mInstances.size(); ++i)
             for (std::size_t p = 0; p < mInstances[i].primitives.size(); ++p)
-                f(*mStatic[std::size_t(mInstances[i].mesh)][p], mRefined[i][p],
+                f(mUpload->primitive(mInstances[i].mesh, p), mRefined[i][p],
                   mInstances[i].primitives[p]);
     };
     const OpenSubdiv::Osd::BufferDescriptor none;
-    each([&](const Static& s, Refined& r, GpuPrimitive&) {
+    each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive&) {
         const GpuStencils& t = *s.refine;
         e.refine->EvalStencils(r.cage.id(), e.cagePosition, r.refined.id(), e.packed3, 0, none, 0,
                                none, t.sizes.id(), t.offsets.id(), t.indices.id(),
@@ -306,7 +216,7 @@ void GpuDeformer::refine() {
                                     fv.indices.id(), fv.weights.id(), 0, 0, 0, fv.count);
     });
     gl::memoryBarrier(gl::BarrierStorage);
-    each([&](const Static& s, Refined& r, GpuPrimitive&) {
+    each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive&) {
         const GpuStencils& t = *s.limit;
         e.limit->EvalStencils(r.refined.id(), e.packed3, r.limit.id(), e.packed3, r.du.id(),
                               e.packed3, r.dv.id(), e.packed3, t.sizes.id(), t.offsets.id(),
@@ -315,7 +225,7 @@ void GpuDeformer::refine() {
     });
     gl::memoryBarrier(gl::BarrierStorage);
     mPack.use();
-    each([&](const Static& s, Refined& r, GpuPrimitive& gp) {
+    each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive& gp) {
         gl::bindStorage(0, s.corners);
         gl::bindStorage(1, r.limit);
         gl::bindStorage(2, r.du);
@@ -333,15 +243,14 @@ GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
     if (mLevel == 0)
         return {gp.deformed, *gp.indices};
-    return {mRefined.at(i).at(p).cage,
-            mStatic.at(std::size_t(mInstances[i].mesh)).at(p)->cageIndices};
+    return {mRefined.at(i).at(p).cage, mUpload->primitive(mInstances.at(i).mesh, p).cageIndices};
 }
 
 void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
                                const gl::Buffer& drawnValues) const {
     ENGINE_CHECK(mLevel > 0, "GpuDeformer::refineScalar() needs a subdivision level");
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    const Static& s = *mStatic.at(std::size_t(mInstances[i].mesh)).at(p);
+    const GpuModel::Primitive& s = mUpload->primitive(mInstances[i].mesh, p);
     const Refined& r = mRefined.at(i).at(p);
     const Evaluators& e = *mEvaluators;
     const OpenSubdiv::Osd::BufferDescriptor none;
@@ -365,7 +274,7 @@ void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& c
 }
 
 const Subdivision* GpuDeformer::subdivision(std::size_t i, std::size_t p) const {
-    return mStatic.at(std::size_t(mInstances.at(i).mesh)).at(p)->subdivision.get();
+    return mUpload->subdivision(mInstances.at(i).mesh, p);
 }
 
 namespace {

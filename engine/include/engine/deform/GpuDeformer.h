@@ -1,12 +1,14 @@
-// GPU deformation: per frame, per mesh node, one compute pass per primitive applies morph
-// deltas and skinning and writes one deformed vertex buffer that every later pass reads. With a
-// subdivision level, OpenSubdiv's GL compute evaluator then refines that deformed cage into the
-// dense buffer the passes read instead.
+// GPU deformation of one placement of an uploaded model (GpuModel, shared by every placement):
+// per frame, per mesh node, one compute pass per primitive applies morph deltas and skinning and
+// writes one deformed vertex buffer that every later pass reads. With a subdivision level,
+// OpenSubdiv's GL compute evaluator then refines that deformed cage into the dense buffer the
+// passes read instead.
 #pragma once
 
 #include "engine/anim/Pose.h"
 #include "engine/core/Result.h"
 #include "engine/deform/CpuDeformer.h"
+#include "engine/deform/GpuModel.h"
 #include "engine/deform/Subdivision.h"
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Program.h"
@@ -22,7 +24,8 @@ namespace deform {
 /** GPU buffers of one primitive of one mesh node, as drawn. `deformed` holds vertexCount
  *  DeformedVertex (common/vertex.glsl: position, normal, tangent as vec4, mesh-node space),
  *  rewritten by every update(); `uv0` and `indices` are static, shared by the mesh's instances
- *  and owned by the deformer. With subdivision all of them are the refined mesh's. */
+ *  and by every placement of the model, owned by the GpuModel. With subdivision all of them are
+ *  the refined mesh's. */
 struct GpuPrimitive {
     const scene::Primitive* source = nullptr; ///< the file's primitive (material, skin)
     /** The mesh drawn, at rest: `source` itself, or the refined mesh (Subdivision::rest). */
@@ -44,10 +47,12 @@ struct GpuInstance {
 
 class GpuDeformer {
 public:
-    /** Uploads rest attributes, influences and morph deltas of every mesh node of the default
-     *  scene and compiles the deform programs; with `subdivisionLevel` > 0 also builds each
-     *  primitive's OpenSubdiv refinement (Loop) once and its GPU stencil tables. Needs a
-     *  current GL context. Fails naming the mesh and primitive OpenSubdiv cannot refine. */
+    /** Places `model` once more: deformed buffers of every mesh node of the default scene and
+     *  the buffers of its per-frame uploads (skin matrices, morph weights), over the shared
+     *  static data, and the deform programs. Needs a current GL context. */
+    static core::Result<std::unique_ptr<GpuDeformer>>
+    create(std::shared_ptr<const GpuModel> model, const gl::ShaderLibrary& shaders);
+    /** Uploads `model` (GpuModel::create, failing as it does) and places it. */
     static core::Result<std::unique_ptr<GpuDeformer>>
     create(const scene::Model& model, const gl::ShaderLibrary& shaders, int subdivisionLevel = 0);
     ~GpuDeformer();
@@ -61,6 +66,8 @@ public:
 
     const std::vector<GpuInstance>& instances() const { return mInstances; }
     int subdivisionLevel() const { return mLevel; }
+    /** The uploaded model this placement deforms. */
+    const std::shared_ptr<const GpuModel>& model() const { return mUpload; }
     /** Differs between any two deformers of a process (plugins key their caches on it). */
     std::uint64_t serial() const { return mSerial; }
 
@@ -87,18 +94,16 @@ public:
 private:
     GpuDeformer() = default;
     void refine(); // the subdivision passes of update()
-    struct Static;     // per mesh primitive: rest, influences, morph deltas, refinement tables
     struct Refined;    // per instance primitive: the cage and the evaluators' outputs
     struct Evaluators; // OpenSubdiv's GL compute evaluators, one per buffer layout
-    const scene::Model* mModel = nullptr;
+    std::shared_ptr<const GpuModel> mUpload;
     int mLevel = 0;
     std::uint64_t mSerial = 0;
     std::unique_ptr<Evaluators> mEvaluators;
     std::vector<std::vector<Refined>> mRefined; // [instance][primitive], empty at level 0
     std::vector<GpuInstance> mInstances;
-    std::vector<std::vector<std::shared_ptr<Static>>> mStatic; // [mesh][primitive]
-    std::vector<gl::Buffer> mSkinMatrices;                     // per instance (empty: unskinned)
-    std::vector<gl::Buffer> mMorphWeights;                     // per instance
+    std::vector<gl::Buffer> mSkinMatrices; // per instance (empty: unskinned)
+    std::vector<gl::Buffer> mMorphWeights; // per instance
     std::vector<glm::mat4> mScratchMatrices;
     std::vector<float> mScratchWeights;
     gl::Program mDeform, mFlatNormals, mPack, mGather;
