@@ -25,6 +25,7 @@ install(EXPORT GlassReferenceTargets NAMESPACE Glass:: DESTINATION ${GLASS_INSTA
 
 install(FILES assets/models/glass_figure.glb DESTINATION ${GLASS_INSTALL_ASSETSDIR}/models)
 install(FILES assets/env/sunset_sky.hdr DESTINATION ${GLASS_INSTALL_ASSETSDIR}/env)
+install(FILES assets/scenes/walk_past.json DESTINATION ${GLASS_INSTALL_ASSETSDIR}/scenes)
 install(FILES README.md ARCHITECTURE.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 configure_package_config_file(cmake/GlassConfig.cmake.in

@@ -41,4 +41,12 @@ inline constexpr int kMaxSubdivisionLevel = 4;
  *  (about 100 bytes a refined vertex at level 4) and are built on the CPU. */
 inline constexpr std::size_t kMaxRefinedTriangles = std::size_t(1) << 23;
 
+/** Characters in one scene: each costs a deform dispatch per primitive and a draw per glass
+ *  or opaque primitive every frame; a crowd larger than this is not real time anywhere. */
+inline constexpr std::size_t kMaxCharacters = 4096;
+
+/** Deformed vertices of a whole scene (every character's, counted at level 0): the GPU holds
+ *  a 48-byte deformed vertex for each, so 2^26 of them is 3 GiB before any refinement. */
+inline constexpr std::size_t kMaxSceneVertices = std::size_t(1) << 26;
+
 } // namespace core::limits

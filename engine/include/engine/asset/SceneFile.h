@@ -1,0 +1,38 @@
+// Scene files: a JSON world of characters (README "Scene files"). Reading loads each model
+// once, however many characters place it; writing is atomic.
+#pragma once
+
+#include "engine/asset/GltfLoader.h"
+#include "engine/core/Result.h"
+#include "engine/scene/World.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace asset {
+
+/** Reads a scene file: optional "environment" (an HDR path relative to the file), "ground"
+ *  (bool), "camera" ({"position", "target", "yfov"}), and a "characters" array, each with
+ *  "model" (a path relative to the file, or builtin:...), "translation" [x, y, z], "rotation"
+ *  [x, y, z, w], "scale" [x, y, z], "clip" (name or index), "time_offset", "speed", "loop",
+ *  "glass" (auto, all, none), "ior", "tint" [r, g, b], "dispersion" and "name". Keys it does
+ *  not know are reported as warnings (core::logWarning), not refused. Fails, naming the file
+ *  and the key (`crowd.json: characters[3].clip: "Jump" not in Fox.glb (clips: Survey, Walk,
+ *  Run)`), on bad JSON, a wrong type or value, a model that does not load (naming the
+ *  character and the path), more than core::limits::kMaxCharacters characters or
+ *  kMaxSceneVertices vertices in all. */
+core::Result<scene::World> loadScene(const std::filesystem::path& path,
+                                     const LoadOptions& options = {});
+
+/** True for a path the tools treat as a scene file rather than a model (a .json file). */
+bool isSceneFile(const std::filesystem::path& path);
+
+/** The scene file text of `world`, with model and environment paths written relative to
+ *  `sceneDirectory` where they lie below it (as characters name them otherwise). */
+std::string encodeScene(const scene::World& world, const std::filesystem::path& sceneDirectory);
+
+/** Writes encodeScene(world) to `path` atomically (no half-written file on failure). */
+core::Status saveScene(const std::filesystem::path& path, const scene::World& world);
+
+} // namespace asset

@@ -1,0 +1,69 @@
+// A world of characters: loaded models placed any number of times, each with its own transform,
+// clip, timing and glass mode. Plain data; the scene file format (asset::loadScene) fills it.
+#pragma once
+
+#include "engine/scene/Model.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace scene {
+
+/** How a character's primitives are chosen as glass: as the file's materials say
+ *  (KHR_materials_transmission), every primitive, or none. */
+enum class GlassMode { Auto, All, None };
+
+/** Per-character overrides of the glass plugin's material values; unset: the material's. */
+struct GlassOverrides {
+    std::optional<float> ior;
+    std::optional<glm::vec3> tint;
+    std::optional<float> dispersion; ///< 20 / Abbe number
+    bool operator==(const GlassOverrides&) const = default;
+};
+
+/** One placement of a model. The model is shared by every character that places it. */
+struct Character {
+    std::string name;                   ///< for lists and errors
+    std::shared_ptr<const Model> model; ///< never null in a loaded world
+    /** The model's path as loaded (a scene file's relative paths resolved against its folder)
+     *  or builtin:...; saving writes it relative to the new file's folder. */
+    std::string modelPath;
+    // World transform, as glTF nodes spell it: translation, rotation (x, y, z, w), scale.
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec3 scale{1.0f};
+    int clip = -1;            ///< index into model->animations; -1: the rest pose
+    double timeOffset = 0.0;  ///< seconds added to the scene time
+    double speed = 1.0;       ///< clip seconds per scene second (negative plays backwards)
+    bool loop = true;         ///< else the clip holds its ends
+    GlassMode glass = GlassMode::Auto;
+    GlassOverrides overrides;
+
+    /** The character's world matrix (translation * rotation * scale). */
+    glm::mat4 transform() const;
+    /** The clip time at scene time `sceneTime`: (sceneTime + timeOffset) * speed, wrapped into
+     *  the clip when looping, else clamped to it; 0 without a clip. */
+    double clipTime(double sceneTime) const;
+};
+
+/** A camera a scene file places: at `position`, looking at `target`, vertical field of view
+ *  `yfov` in radians. */
+struct WorldCamera {
+    glm::vec3 position{0.0f, 1.0f, 4.0f};
+    glm::vec3 target{0.0f};
+    float yfov = 0.7f;
+};
+
+struct World {
+    std::vector<Character> characters;
+    std::optional<std::string> environment; ///< an HDR path (absolute once loaded); else the sky
+    bool ground = false;
+    std::optional<WorldCamera> camera; ///< else the tools frame every character
+};
+
+} // namespace scene

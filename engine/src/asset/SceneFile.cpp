@@ -1,0 +1,343 @@
+// Scene files: JSON to scene::World (models loaded once each) and back.
+#include "engine/asset/SceneFile.h"
+
+#include "engine/asset/ModelLoader.h"
+#include "engine/core/Files.h"
+#include "engine/core/Limits.h"
+#include "engine/core/Log.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+namespace asset {
+namespace {
+
+using Json = nlohmann::json;
+
+/** A scene file error at a key: carries "key: message" up to loadScene, which names the file. */
+struct SceneError {
+    std::string message;
+};
+
+[[noreturn]] void fail(const std::string& key, const std::string& message) {
+    throw SceneError{key + ": " + message};
+}
+
+double number(const Json& j, const std::string& key) {
+    if (!j.is_number())
+        fail(key, "expected a number, got " + j.dump());
+    const double value = j.get<double>();
+    if (!std::isfinite(value))
+        fail(key, "expected a finite number");
+    return value;
+}
+
+template <int N>
+glm::vec<N, float> vector(const Json& j, const std::string& key) {
+    if (!j.is_array() || j.size() != std::size_t(N))
+        fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + j.dump());
+    glm::vec<N, float> v;
+    for (int i = 0; i < N; ++i)
+        v[i] = float(number(j[std::size_t(i)], key + "[" + std::to_string(i) + "]"));
+    return v;
+}
+
+bool boolean(const Json& j, const std::string& key) {
+    if (!j.is_boolean())
+        fail(key, "expected true or false, got " + j.dump());
+    return j.get<bool>();
+}
+
+std::string text(const Json& j, const std::string& key) {
+    if (!j.is_string())
+        fail(key, "expected a string, got " + j.dump());
+    return j.get<std::string>();
+}
+
+void warnUnknownKeys(const Json& object, std::initializer_list<const char*> known,
+                     const std::string& where) {
+    for (const auto& [key, value] : object.items()) {
+        bool found = false;
+        for (const char* k : known)
+            found = found || key == k;
+        if (!found)
+            core::logWarning(where + key + ": not a key of scene files, ignored");
+    }
+}
+
+std::string clipList(const scene::Model& model) {
+    std::string list;
+    for (std::size_t i = 0; i < model.animations.size(); ++i) {
+        if (!list.empty())
+            list += ", ";
+        list += model.animations[i].name.empty() ? std::to_string(i) : model.animations[i].name;
+    }
+    return list.empty() ? "none" : list;
+}
+
+std::string fileName(const std::string& path) {
+    return path.rfind("builtin:", 0) == 0 ? path : std::filesystem::path(path).filename().string();
+}
+
+/** Resolves a model path of the scene file: builtin: names as they are, files relative to it. */
+std::string resolve(const std::filesystem::path& directory, const std::string& path) {
+    if (path.rfind("builtin:", 0) == 0)
+        return path;
+    return (directory / path).lexically_normal().string();
+}
+
+scene::Character readCharacter(const Json& j, const std::string& key, const std::string& where,
+                               const std::filesystem::path& directory,
+                               std::map<std::string, std::shared_ptr<const scene::Model>>& models,
+                               const LoadOptions& options) {
+    if (!j.is_object())
+        fail(key, "expected an object, got " + j.dump());
+    warnUnknownKeys(j,
+                    {"name", "model", "translation", "rotation", "scale", "clip", "time_offset",
+                     "speed", "loop", "glass", "ior", "tint", "dispersion"},
+                    where + key + ".");
+    scene::Character c;
+    if (!j.contains("model"))
+        fail(key + ".model", "missing (a model path relative to the scene file)");
+    c.modelPath = text(j["model"], key + ".model");
+    const std::string resolved = resolve(directory, c.modelPath);
+    auto& model = models[resolved];
+    if (!model) {
+        auto loaded = loadModel(resolved, options);
+        if (!loaded)
+            fail(key + ".model", "cannot load \"" + c.modelPath + "\" (" +
+                                     loaded.error().message + ")");
+        model = std::make_shared<const scene::Model>(std::move(*loaded));
+    }
+    c.model = model;
+    c.name = j.contains("name") ? text(j["name"], key + ".name") : key;
+    if (j.contains("translation"))
+        c.translation = vector<3>(j["translation"], key + ".translation");
+    if (j.contains("rotation")) {
+        const glm::vec4 q = vector<4>(j["rotation"], key + ".rotation");
+        const float length = glm::length(q);
+        if (std::abs(length - 1.0f) > 1e-3f)
+            fail(key + ".rotation", "expected a unit quaternion [x, y, z, w], its length is " +
+                                        Json(length).dump());
+        c.rotation = glm::normalize(glm::quat(q.w, q.x, q.y, q.z));
+    }
+    if (j.contains("scale")) {
+        c.scale = vector<3>(j["scale"], key + ".scale");
+        if (c.scale.x == 0.0f || c.scale.y == 0.0f || c.scale.z == 0.0f)
+            fail(key + ".scale", "a scale of 0 flattens the character");
+    }
+    const scene::Model& m = *c.model;
+    c.clip = m.animations.empty() ? -1 : 0;
+    if (j.contains("clip")) {
+        const Json& clip = j["clip"];
+        if (clip.is_number_integer()) {
+            const auto index = clip.get<long long>();
+            if (index < 0 || index >= (long long)m.animations.size())
+                fail(key + ".clip", "clip " + std::to_string(index) + " not in " +
+                                        fileName(c.modelPath) + " (clips: " + clipList(m) + ")");
+            c.clip = int(index);
+        } else {
+            const std::string name = text(clip, key + ".clip");
+            int found = -1;
+            for (std::size_t i = 0; i < m.animations.size() && found < 0; ++i)
+                if (m.animations[i].name == name)
+                    found = int(i);
+            if (found < 0)
+                fail(key + ".clip", "\"" + name + "\" not in " + fileName(c.modelPath) +
+                                        " (clips: " + clipList(m) + ")");
+            c.clip = found;
+        }
+    }
+    if (j.contains("time_offset"))
+        c.timeOffset = number(j["time_offset"], key + ".time_offset");
+    if (j.contains("speed"))
+        c.speed = number(j["speed"], key + ".speed");
+    if (j.contains("loop"))
+        c.loop = boolean(j["loop"], key + ".loop");
+    if (j.contains("glass")) {
+        const std::string mode = text(j["glass"], key + ".glass");
+        if (mode == "auto")
+            c.glass = scene::GlassMode::Auto;
+        else if (mode == "all")
+            c.glass = scene::GlassMode::All;
+        else if (mode == "none")
+            c.glass = scene::GlassMode::None;
+        else
+            fail(key + ".glass", "expected auto, all or none, got \"" + mode + "\"");
+    }
+    if (j.contains("ior")) {
+        const double ior = number(j["ior"], key + ".ior");
+        if (ior < 1.0 || ior > 4.0)
+            fail(key + ".ior", "expected an index of refraction in [1, 4], got " + j["ior"].dump());
+        c.overrides.ior = float(ior);
+    }
+    if (j.contains("tint")) {
+        const glm::vec3 tint = vector<3>(j["tint"], key + ".tint");
+        if (glm::any(glm::lessThan(tint, glm::vec3(0.0f))) ||
+            glm::any(glm::greaterThan(tint, glm::vec3(1.0f))))
+            fail(key + ".tint", "expected components in [0, 1], got " + j["tint"].dump());
+        c.overrides.tint = tint;
+    }
+    if (j.contains("dispersion")) {
+        const double dispersion = number(j["dispersion"], key + ".dispersion");
+        if (dispersion < 0.0 || dispersion > 10.0)
+            fail(key + ".dispersion",
+                 "expected 20 / Abbe number in [0, 10], got " + j["dispersion"].dump());
+        c.overrides.dispersion = float(dispersion);
+    }
+    return c;
+}
+
+std::size_t vertexCount(const scene::Model& model) {
+    std::size_t count = 0;
+    for (int node : model.meshNodes())
+        for (const scene::Primitive& p :
+             model.meshes[std::size_t(model.nodes[std::size_t(node)].mesh)].primitives)
+            count += p.vertexCount();
+    return count;
+}
+
+/** The world of scene file `path`; `where` prefixes warnings (function and file). */
+scene::World readWorld(const Json& root, const std::filesystem::path& path,
+                       const std::string& where, const LoadOptions& options) {
+    const std::filesystem::path directory = path.parent_path();
+    if (!root.is_object())
+        fail("(root)", "expected an object with a \"characters\" array");
+    warnUnknownKeys(root, {"environment", "ground", "camera", "characters"}, where);
+    scene::World world;
+    if (root.contains("environment") && !root["environment"].is_null())
+        world.environment = resolve(directory, text(root["environment"], "environment"));
+    if (root.contains("ground"))
+        world.ground = boolean(root["ground"], "ground");
+    if (root.contains("camera")) {
+        const Json& cam = root["camera"];
+        if (!cam.is_object())
+            fail("camera", "expected an object with position, target and yfov");
+        warnUnknownKeys(cam, {"position", "target", "yfov"}, where + "camera.");
+        scene::WorldCamera camera;
+        if (cam.contains("position"))
+            camera.position = vector<3>(cam["position"], "camera.position");
+        if (cam.contains("target"))
+            camera.target = vector<3>(cam["target"], "camera.target");
+        if (cam.contains("yfov")) {
+            camera.yfov = float(number(cam["yfov"], "camera.yfov"));
+            if (camera.yfov <= 0.0f || camera.yfov >= 3.1f)
+                fail("camera.yfov", "expected radians in (0, 3.1), got " + cam["yfov"].dump());
+        }
+        if (glm::length(camera.target - camera.position) <= 0.0f)
+            fail("camera", "position and target coincide");
+        world.camera = camera;
+    }
+    if (!root.contains("characters") || !root["characters"].is_array())
+        fail("characters", "missing (an array of characters)");
+    const Json& characters = root["characters"];
+    if (characters.size() > core::limits::kMaxCharacters)
+        fail("characters", std::to_string(characters.size()) + " characters, the limit is " +
+                               std::to_string(core::limits::kMaxCharacters));
+    std::map<std::string, std::shared_ptr<const scene::Model>> models;
+    std::size_t vertices = 0;
+    for (std::size_t i = 0; i < characters.size(); ++i) {
+        world.characters.push_back(readCharacter(characters[i],
+                                                 "characters[" + std::to_string(i) + "]", where,
+                                                 directory, models, options));
+        vertices += vertexCount(*world.characters.back().model);
+        if (vertices > core::limits::kMaxSceneVertices)
+            fail("characters[" + std::to_string(i) + "]",
+                 "the scene reaches " + std::to_string(vertices) +
+                     " vertices with this character, the limit is " +
+                     std::to_string(core::limits::kMaxSceneVertices));
+    }
+    return world;
+}
+
+/** `path` relative to `directory` when it lies below it, else as it is. */
+std::string relativeTo(const std::string& path, const std::filesystem::path& directory) {
+    if (path.rfind("builtin:", 0) == 0 || directory.empty())
+        return path;
+    const auto relative = std::filesystem::path(path).lexically_relative(directory);
+    if (relative.empty() || *relative.begin() == "..")
+        return path;
+    return relative.generic_string();
+}
+
+} // namespace
+
+bool isSceneFile(const std::filesystem::path& path) {
+    return path.extension() == ".json";
+}
+
+core::Result<scene::World> loadScene(const std::filesystem::path& path,
+                                     const LoadOptions& options) {
+    const std::string where = "asset::loadScene(): " + path.string() + ": ";
+    std::ifstream in(path);
+    if (!in)
+        return core::Error{where + "cannot open the scene file"};
+    Json root;
+    try {
+        root = Json::parse(in);
+    } catch (const std::exception& e) {
+        return core::Error{where + "not valid JSON (" + e.what() + ")"};
+    }
+    try {
+        scene::World world = readWorld(root, path, where, options);
+        // From here on the paths are the resolved ones (saveScene makes them relative again).
+        for (scene::Character& c : world.characters)
+            c.modelPath = resolve(path.parent_path(), c.modelPath);
+        return world;
+    } catch (const SceneError& e) {
+        return core::Error{where + e.message};
+    }
+}
+
+std::string encodeScene(const scene::World& world, const std::filesystem::path& sceneDirectory) {
+    Json root;
+    if (world.environment)
+        root["environment"] = relativeTo(*world.environment, sceneDirectory);
+    root["ground"] = world.ground;
+    if (world.camera)
+        root["camera"] = {
+            {"position", {world.camera->position.x, world.camera->position.y,
+                          world.camera->position.z}},
+            {"target", {world.camera->target.x, world.camera->target.y, world.camera->target.z}},
+            {"yfov", world.camera->yfov}};
+    root["characters"] = Json::array();
+    for (const scene::Character& c : world.characters) {
+        Json j;
+        j["name"] = c.name;
+        j["model"] = relativeTo(c.modelPath, sceneDirectory);
+        j["translation"] = {c.translation.x, c.translation.y, c.translation.z};
+        j["rotation"] = {c.rotation.x, c.rotation.y, c.rotation.z, c.rotation.w};
+        j["scale"] = {c.scale.x, c.scale.y, c.scale.z};
+        if (c.clip >= 0 && c.model && c.clip < int(c.model->animations.size()) &&
+            !c.model->animations[std::size_t(c.clip)].name.empty())
+            j["clip"] = c.model->animations[std::size_t(c.clip)].name;
+        else if (c.clip >= 0)
+            j["clip"] = c.clip;
+        j["time_offset"] = c.timeOffset;
+        j["speed"] = c.speed;
+        j["loop"] = c.loop;
+        j["glass"] = c.glass == scene::GlassMode::All    ? "all"
+                     : c.glass == scene::GlassMode::None ? "none"
+                                                         : "auto";
+        if (c.overrides.ior)
+            j["ior"] = *c.overrides.ior;
+        if (c.overrides.tint)
+            j["tint"] = {c.overrides.tint->x, c.overrides.tint->y, c.overrides.tint->z};
+        if (c.overrides.dispersion)
+            j["dispersion"] = *c.overrides.dispersion;
+        root["characters"].push_back(std::move(j));
+    }
+    return root.dump(2) + "\n";
+}
+
+core::Status saveScene(const std::filesystem::path& path, const scene::World& world) {
+    auto written = core::writeFileAtomic(path, encodeScene(world, path.parent_path()));
+    if (!written)
+        return core::Error{"asset::saveScene(): " + written.error().message};
+    return {};
+}
+
+} // namespace asset

@@ -1,0 +1,238 @@
+// Scene files: one test per error, each naming the file and the key; a valid scene with
+// shared models; character clocks and transforms; the round trip through saveScene.
+#include "support/TestSupport.h"
+
+#include "engine/asset/SceneFile.h"
+#include "engine/core/Limits.h"
+
+#include <fstream>
+
+namespace {
+
+using Json = nlohmann::json;
+
+/** A folder with the two-joint model (one clip, "bend", 1 s) as models/twojoint.glb. */
+class SceneDir {
+public:
+    SceneDir() {
+        std::filesystem::create_directories(dir / "models");
+        test::twoJointModel().save(dir.path() / "models", "twojoint", test::GltfFormat::Glb);
+    }
+    std::filesystem::path write(const std::string& name, const std::string& text) const {
+        const auto path = dir / name;
+        std::ofstream(path) << text;
+        return path;
+    }
+    test::TempDir dir;
+};
+
+Json character(Json extra = Json::object()) {
+    Json c = {{"model", "models/twojoint.glb"}};
+    c.update(extra);
+    return c;
+}
+
+struct BadScene {
+    const char* name;
+    std::string text;     ///< the scene file
+    std::string expected; ///< what follows "asset::loadScene(): <path>: "
+};
+
+std::vector<BadScene> badScenes() {
+    auto scene = [](Json characters, Json extra = Json::object()) {
+        Json root = {{"characters", std::move(characters)}};
+        root.update(extra);
+        return root.dump();
+    };
+    return {
+        {"NotJson", "{\"characters\": [", "not valid JSON"},
+        {"NotAnObject", "[1, 2]", "(root): expected an object with a \"characters\" array"},
+        {"NoCharacters", "{}", "characters: missing (an array of characters)"},
+        {"CharacterNotAnObject", scene({7}), "characters[0]: expected an object, got 7"},
+        {"NoModel", scene({Json::object()}),
+         "characters[0].model: missing (a model path relative to the scene file)"},
+        {"MissingModel", scene({character(), character({{"model", "models/ghost.glb"}})}),
+         "characters[1].model: cannot load \"models/ghost.glb\" ("},
+        {"UnknownClip", scene({character(), character({{"clip", "Jump"}})}),
+         "characters[1].clip: \"Jump\" not in twojoint.glb (clips: bend)"},
+        {"ClipIndexOutOfRange", scene({character({{"clip", 3}})}),
+         "characters[0].clip: clip 3 not in twojoint.glb (clips: bend)"},
+        {"TranslationOfTwo", scene({character({{"translation", {1, 2}}})}),
+         "characters[0].translation: expected an array of 3 numbers, got [1,2]"},
+        {"TranslationNotNumbers", scene({character({{"translation", {1, "up", 3}}})}),
+         "characters[0].translation[1]: expected a number, got \"up\""},
+        {"RotationNotUnit", scene({character({{"rotation", {0, 0, 0, 2}}})}),
+         "characters[0].rotation: expected a unit quaternion [x, y, z, w], its length is 2"},
+        {"ZeroScale", scene({character({{"scale", {1, 0, 1}}})}),
+         "characters[0].scale: a scale of 0 flattens the character"},
+        {"SpeedNotANumber", scene({character({{"speed", "fast"}})}),
+         "characters[0].speed: expected a number, got \"fast\""},
+        {"LoopNotABool", scene({character({{"loop", "yes"}})}),
+         "characters[0].loop: expected true or false, got \"yes\""},
+        {"UnknownGlassMode", scene({character({{"glass", "glassy"}})}),
+         "characters[0].glass: expected auto, all or none, got \"glassy\""},
+        {"IorBelowOne", scene({character({{"ior", 0.5}})}),
+         "characters[0].ior: expected an index of refraction in [1, 4], got 0.5"},
+        {"TintOutOfRange", scene({character({{"tint", {1, 2, 0}}})}),
+         "characters[0].tint: expected components in [0, 1], got [1,2,0]"},
+        {"DispersionNegative", scene({character({{"dispersion", -1}})}),
+         "characters[0].dispersion: expected 20 / Abbe number in [0, 10], got -1"},
+        {"CameraFovZero", scene({character()}, {{"camera", {{"yfov", 0}}}}),
+         "camera.yfov: expected radians in (0, 3.1), got 0"},
+        {"CameraOnItsTarget",
+         scene({character()}, {{"camera", {{"position", {1, 1, 1}}, {"target", {1, 1, 1}}}}}),
+         "camera: position and target coincide"},
+        {"GroundNotABool", scene({character()}, {{"ground", 1}}),
+         "ground: expected true or false, got 1"},
+        {"TooManyCharacters",
+         scene(Json(std::vector<Json>(core::limits::kMaxCharacters + 1, character()))),
+         "characters: 4097 characters, the limit is 4096"},
+        {"TooManyVertices",
+         scene(Json(std::vector<Json>(200, character({{"model", "builtin:sphere?segments=1024"}})))),
+         "vertices with this character, the limit is 67108864"},
+    };
+}
+
+class BadSceneFile : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneFile, FailsNamingFileAndKey) {
+    SceneDir dir;
+    const auto path = dir.write("bad.json", GetParam().text);
+    const auto world = asset::loadScene(path);
+    ASSERT_FALSE(world.ok());
+    const std::string prefix = "asset::loadScene(): " + path.string() + ": ";
+    EXPECT_EQ(world.error().message.rfind(prefix, 0), 0u) << world.error().message;
+    EXPECT_NE(world.error().message.find(GetParam().expected), std::string::npos)
+        << world.error().message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scene, BadSceneFile, ::testing::ValuesIn(badScenes()),
+                         [](const auto& testInfo) { return std::string(testInfo.param.name); });
+
+TEST(SceneFile, TheExampleSceneLoads) {
+    const auto world = asset::loadScene(std::filesystem::path(GLASS_SOURCE_DIR) /
+                                        "assets/scenes/walk_past.json");
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    ASSERT_EQ(world->characters.size(), 3u);
+    EXPECT_EQ(world->characters[0].model, world->characters[2].model);
+    EXPECT_NE(world->characters[0].clip, world->characters[2].clip); // walk, wave
+    EXPECT_TRUE(world->environment && std::filesystem::exists(*world->environment));
+}
+
+TEST(SceneFile, MissingFileFailsNamingIt) {
+    const auto world = asset::loadScene("/nonexistent/crowd.json");
+    ASSERT_FALSE(world.ok());
+    EXPECT_EQ(world.error().message,
+              "asset::loadScene(): /nonexistent/crowd.json: cannot open the scene file");
+}
+
+TEST(SceneFile, ValidSceneSharesModelsAndKeepsEveryKey) {
+    SceneDir dir;
+    const Json root = {
+        {"environment", "env/sky.hdr"},
+        {"ground", true},
+        {"camera", {{"position", {0, 1, 5}}, {"target", {0, 1, 0}}, {"yfov", 0.6}}},
+        {"characters",
+         {character({{"name", "walker"},
+                     {"translation", {1, 0, 0}},
+                     {"rotation", {0, 0.7071068, 0, 0.7071068}},
+                     {"scale", {2, 2, 2}},
+                     {"clip", "bend"},
+                     {"time_offset", 0.25},
+                     {"speed", 0.5},
+                     {"glass", "all"},
+                     {"ior", 1.33},
+                     {"tint", {1, 0.5, 0.25}},
+                     {"dispersion", 0.4},
+                     {"written_by", "another tool"}}), // unknown: a warning, not an error
+          character({{"clip", 0}, {"loop", false}, {"glass", "none"}}),
+          {{"model", "builtin:sphere?segments=16"}}}}};
+    const auto path = dir.write("crowd.json", root.dump());
+    const auto world = asset::loadScene(path);
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    ASSERT_EQ(world->characters.size(), 3u);
+    const scene::Character& a = world->characters[0];
+    const scene::Character& b = world->characters[1];
+    const scene::Character& sphere = world->characters[2];
+    EXPECT_EQ(a.model, b.model); // one model, loaded once, placed twice
+    EXPECT_NE(a.model, sphere.model);
+    EXPECT_EQ(a.name, "walker");
+    EXPECT_EQ(b.name, "characters[1]");
+    EXPECT_EQ(a.modelPath, (dir.dir / "models/twojoint.glb").string());
+    EXPECT_EQ(sphere.modelPath, "builtin:sphere?segments=16");
+    EXPECT_EQ(*world->environment, (dir.dir / "env/sky.hdr").string());
+    EXPECT_TRUE(world->ground);
+    ASSERT_TRUE(world->camera);
+    EXPECT_FLOAT_EQ(world->camera->yfov, 0.6f);
+    EXPECT_EQ(a.clip, 0);
+    EXPECT_EQ(a.glass, scene::GlassMode::All);
+    EXPECT_EQ(b.glass, scene::GlassMode::None);
+    EXPECT_EQ(sphere.glass, scene::GlassMode::Auto);
+    EXPECT_FLOAT_EQ(*a.overrides.ior, 1.33f);
+    EXPECT_EQ(*a.overrides.tint, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_FALSE(b.overrides.ior);
+    EXPECT_EQ(sphere.clip, -1); // no clips: the rest pose
+    // Transform: scale 2, a quarter turn about +y, then the translation.
+    const glm::vec4 x = a.transform() * glm::vec4(1, 0, 0, 1);
+    EXPECT_NEAR(x.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(x.z, -2.0f, 1e-5f);
+    // Clocks: (t + offset) * speed, wrapped when looping, clamped otherwise.
+    EXPECT_NEAR(a.clipTime(1.65), 0.95, 1e-12); // (1.65 + 0.25) * 0.5
+    EXPECT_NEAR(a.clipTime(2.15), 0.2, 1e-12);  // 1.2 wraps to 0.2
+    EXPECT_NEAR(b.clipTime(-0.5), 0.0, 1e-12);  // clamped at the start
+    EXPECT_NEAR(b.clipTime(7.0), 1.0, 1e-12);   // and at the end
+    EXPECT_EQ(sphere.clipTime(3.0), 0.0);
+}
+
+TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
+    SceneDir dir;
+    const Json root = {
+        {"ground", true},
+        {"characters",
+         {character({{"translation", {-1, 0, 0.5}},
+                     {"rotation", {0, 0, 0.3826834, 0.9238795}},
+                     {"clip", "bend"},
+                     {"time_offset", 0.3},
+                     {"speed", -1.5},
+                     {"loop", false},
+                     {"glass", "all"},
+                     {"tint", {0.5, 0.5, 1}}}),
+          {{"model", "builtin:sphere"}, {"scale", {0.5, 0.5, 0.5}}, {"dispersion", 1.0}}}}};
+    const auto first = asset::loadScene(dir.write("a.json", root.dump()));
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    std::filesystem::create_directories(dir.dir / "saved");
+    const auto saved = dir.dir / "saved/b.json";
+    ASSERT_TRUE(asset::saveScene(saved, *first).ok());
+    // Paths are written relative to the new file's folder where they lie below it.
+    std::ifstream in(saved);
+    const Json written = Json::parse(in);
+    EXPECT_EQ(written["characters"][0]["model"], (dir.dir / "models/twojoint.glb").string());
+    EXPECT_EQ(written["characters"][0]["clip"], "bend");
+    const auto second = asset::loadScene(saved);
+    ASSERT_TRUE(second.ok()) << second.error().message;
+    ASSERT_EQ(second->characters.size(), first->characters.size());
+    EXPECT_EQ(second->ground, first->ground);
+    for (std::size_t i = 0; i < first->characters.size(); ++i) {
+        const scene::Character& a = first->characters[i];
+        const scene::Character& b = second->characters[i];
+        SCOPED_TRACE(a.name);
+        EXPECT_EQ(b.modelPath, a.modelPath);
+        EXPECT_EQ(b.translation, a.translation);
+        EXPECT_NEAR(glm::length(glm::vec4(b.rotation.x, b.rotation.y, b.rotation.z, b.rotation.w) -
+                                glm::vec4(a.rotation.x, a.rotation.y, a.rotation.z, a.rotation.w)),
+                    0.0f, 1e-6f);
+        EXPECT_EQ(b.scale, a.scale);
+        EXPECT_EQ(b.clip, a.clip);
+        EXPECT_EQ(b.timeOffset, a.timeOffset);
+        EXPECT_EQ(b.speed, a.speed);
+        EXPECT_EQ(b.loop, a.loop);
+        EXPECT_EQ(b.glass, a.glass);
+        EXPECT_EQ(b.overrides, a.overrides);
+    }
+    // A save below the models' folder writes them relative to it.
+    ASSERT_TRUE(asset::saveScene(dir.dir / "c.json", *first).ok());
+    std::ifstream inC(dir.dir / "c.json");
+    EXPECT_EQ(Json::parse(inC)["characters"][0]["model"], "models/twojoint.glb");
+}
+
+} // namespace
