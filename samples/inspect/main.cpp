@@ -1,11 +1,13 @@
 // glass-inspect: what a glTF character contains (meshes, skins, morph targets, clips, glass
-// materials), as text or JSON, and its deformed vertices at a given time as PLY.
+// materials), or a scene's characters, as text or JSON, and the deformed vertices at a given
+// time as PLY.
 #include "../common/ToolMain.h"
 #include "InspectJson.h"
 #include "Ply.h"
 
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
+#include "engine/asset/SceneFile.h"
 #include "engine/core/Files.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/GpuDeformer.h"
@@ -17,17 +19,19 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: glass-inspect MODEL [--json]
-       glass-inspect MODEL --vertices cpu|gpu --out FILE.ply [--time T] [--clip C] [--ascii]
+constexpr const char* kUsage = R"(usage: glass-inspect MODEL|SCENE [--json]
+       glass-inspect MODEL|SCENE --vertices cpu|gpu --out FILE.ply [--time T] [--clip C] [--ascii]
 
 Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
 animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
-_volume, _ior, _dispersion) of a .gltf or .glb file.
+_volume, _ior, _dispersion) of a .gltf or .glb file. For a scene file (.json, README "Scene
+files"): each character's model, clip, timing, glass mode and counts, and the totals.
 
   --json          print the same as one JSON object (keys as in shared/assets/INVENTORY.json:
                   meshes, primitives, triangles, vertices, skins, joints_per_skin,
@@ -37,15 +41,18 @@ _volume, _ior, _dispersion) of a .gltf or .glb file.
   --vertices gpu  the same through the engine's GPU deform pass (headless EGL context), read back
   --out FILE.ply  PLY file to write (atomically: no partial file on failure)
   --force         replace FILE.ply when it exists (otherwise that is an error)
-  --time T        clip time in seconds (default 0)
-  --clip C        clip name or index (default: the first clip; the rest pose if none)
+  --time T        clip time in seconds (default 0); for a scene, the scene time
+  --clip C        clip name or index (default: the first clip; the rest pose if none); not
+                  with a scene, whose characters name their own
   --ascii         ASCII PLY instead of binary little-endian
 
 PLY layout: one vertex element with float properties x y z nx ny nz, in world space. Vertices
 come mesh node by mesh node of the default scene in depth-first order (children in file order),
 then primitive by primitive in file order, then in the primitive's vertex order (the file's
 order; a primitive without NORMAL is unwelded, three vertices per triangle in index order). A
-header comment per primitive gives its node, mesh, primitive, first vertex and count.
+scene writes its characters in the file's order, each in that order, placed in the world. A
+header comment per primitive gives its (character,) node, mesh, primitive, first vertex and
+count.
 
 Exit status: 0 success, 1 the model could not be loaded or the output written, 2 bad arguments.
 )";
@@ -176,60 +183,95 @@ void printText(const scene::Model& model) {
         std::printf("  cameras %zu\n", model.cameras.size());
 }
 
-/** The GPU deform pass's result for `pose`, per mesh node and primitive (mesh-node space). */
-core::Result<std::vector<std::vector<deform::DeformedPrimitive>>>
-deformOnGpu(const scene::Model& model, const anim::Pose& pose) {
+/** The world to deform: a scene file's, or one model as a character at the origin playing its
+ *  first clip, whose clock is the clip time itself (held at the clip's ends). */
+core::Result<scene::World> worldOf(const Options& o, const asset::LoadOptions& loadOptions) {
+    if (asset::isSceneFile(o.model))
+        return asset::loadScene(o.model, loadOptions);
+    auto model = asset::loadModel(o.model, loadOptions);
+    if (!model)
+        return model.error();
+    scene::Character c;
+    c.model = std::make_shared<const scene::Model>(std::move(*model));
+    c.modelPath = o.model;
+    c.name = c.model->sourceName;
+    c.clip = c.model->animations.empty() ? -1 : 0;
+    c.loop = false;
+    scene::World world;
+    world.characters.push_back(std::move(c));
+    return world;
+}
+
+/** Every character deformed at scene time `time` (meshToWorld includes its placement); with
+ *  `onGpu` the primitives are the GPU deform pass's, read back: one upload per model, one
+ *  placement per character, as the renderer does. */
+core::Result<std::vector<std::vector<deform::DeformedInstance>>>
+deformWorld(const scene::World& world, double time, bool onGpu) {
+    std::vector<std::vector<deform::DeformedInstance>> characters;
+    for (const scene::Character& c : world.characters)
+        characters.push_back(deform::deformCharacter(c, time));
+    if (!onGpu)
+        return characters;
     auto context = gl::createHeadlessContext();
     if (!context)
         return context.error();
     gl::ShaderLibrary shaders;
     shaders.add(engineShaderFiles());
-    auto deformer = deform::GpuDeformer::create(model, shaders);
-    if (!deformer)
-        return deformer.error();
-    (*deformer)->update(pose);
-    std::vector<std::vector<deform::DeformedPrimitive>> result((*deformer)->instances().size());
-    for (std::size_t i = 0; i < result.size(); ++i)
-        for (std::size_t p = 0; p < (*deformer)->instances()[i].primitives.size(); ++p)
-            result[i].push_back((*deformer)->download(i, p));
+    std::map<const scene::Model*, std::shared_ptr<const deform::GpuModel>> uploads;
+    for (std::size_t ci = 0; ci < world.characters.size(); ++ci) {
+        const scene::Character& c = world.characters[ci];
+        auto& upload = uploads[c.model.get()];
+        if (!upload) {
+            auto created = deform::GpuModel::create(*c.model);
+            if (!created)
+                return created.error();
+            upload = std::move(*created);
+        }
+        auto deformer = deform::GpuDeformer::create(upload, shaders);
+        if (!deformer)
+            return deformer.error();
+        (*deformer)->update(anim::evaluate(*c.model, c.clip, c.clipTime(time)));
+        auto& instances = characters[ci];
+        for (std::size_t i = 0; i < instances.size(); ++i)
+            for (std::size_t p = 0; p < instances[i].primitives.size(); ++p)
+                instances[i].primitives[p] = (*deformer)->download(i, p);
+    }
     if (gl::checkErrors("glass-inspect --vertices gpu") > 0 || gl::errorCount() > 0)
         return core::Error{"glass-inspect: GL errors during GPU deformation (see log)"};
-    return result;
+    return characters;
 }
 
-int writeVertices(const scene::Model& model, const Options& o) {
-    int clip = model.animations.empty() ? -1 : 0;
-    if (o.clip) {
-        const auto found = model.findAnimation(*o.clip);
-        if (!found)
-            return usageError(model.sourceName + " has no clip '" + *o.clip + "'");
-        clip = *found;
+int writeVertices(const scene::World& world, const Options& o) {
+    const bool isScene = asset::isSceneFile(o.model);
+    auto characters = deformWorld(world, o.time, *o.vertices == "gpu");
+    if (!characters) {
+        std::fprintf(stderr, "glass-inspect: %s\n", characters.error().message.c_str());
+        return 1;
     }
-    const anim::Pose pose = anim::evaluate(model, clip, o.time);
-    auto instances = deform::deformScene(model, pose);
-    if (*o.vertices == "gpu") {
-        auto gpu = deformOnGpu(model, pose);
-        if (!gpu) {
-            std::fprintf(stderr, "glass-inspect: %s\n", gpu.error().message.c_str());
-            return 1;
-        }
-        for (std::size_t i = 0; i < instances.size(); ++i)
-            instances[i].primitives = std::move((*gpu)[i]);
-    }
-    std::vector<deform::DeformedPrimitive> world;
+    std::vector<deform::DeformedPrimitive> placed;
     std::vector<std::string> labels;
-    for (const auto& instance : instances)
-        for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-            world.push_back(deform::toWorld(instance.primitives[p], instance.meshToWorld));
-            labels.push_back("node " + std::to_string(instance.node) + " mesh " +
-                             std::to_string(instance.mesh) + " primitive " + std::to_string(p));
-        }
+    for (std::size_t ci = 0; ci < characters->size(); ++ci)
+        for (const auto& instance : (*characters)[ci])
+            for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+                placed.push_back(deform::toWorld(instance.primitives[p], instance.meshToWorld));
+                const std::string character =
+                    isScene ? "character " + std::to_string(ci) + " '" +
+                                  world.characters[ci].name + "' "
+                            : std::string();
+                labels.push_back(character + "node " + std::to_string(instance.node) + " mesh " +
+                                 std::to_string(instance.mesh) + " primitive " +
+                                 std::to_string(p));
+            }
     std::vector<inspect::PlyBlock> blocks;
-    for (std::size_t i = 0; i < world.size(); ++i)
-        blocks.push_back({labels[i], &world[i]});
-    const std::string comment = "glass-inspect " + model.sourceName + " clip " +
-                                std::to_string(clip) + " time " + std::to_string(o.time) +
-                                " vertices " + *o.vertices + ", world space";
+    for (std::size_t i = 0; i < placed.size(); ++i)
+        blocks.push_back({labels[i], &placed[i]});
+    const scene::Character& first = world.characters.front();
+    const std::string what =
+        isScene ? "scene " + o.model + " time " + std::to_string(o.time)
+                : first.model->sourceName + " clip " + std::to_string(first.clip) + " time " +
+                      std::to_string(o.time);
+    const std::string comment =
+        "glass-inspect " + what + " vertices " + *o.vertices + ", world space";
     const core::Status written =
         core::writeFileAtomic(*o.out, inspect::makePly(blocks, comment, o.ascii));
     if (!written) {
@@ -237,6 +279,55 @@ int writeVertices(const scene::Model& model, const Options& o) {
         return 1;
     }
     return 0;
+}
+
+const char* glassModeName(scene::GlassMode mode) {
+    return mode == scene::GlassMode::All ? "all" : mode == scene::GlassMode::None ? "none" : "auto";
+}
+
+/** A scene's characters (model, clip, timing, glass, counts) and totals, as JSON. */
+nlohmann::ordered_json describeScene(const scene::World& world) {
+    nlohmann::ordered_json characters = nlohmann::ordered_json::array();
+    std::size_t vertices = 0, triangles = 0;
+    for (const scene::Character& c : world.characters) {
+        const auto model = inspect::describe(*c.model);
+        vertices += model["vertices"].get<std::size_t>();
+        triangles += model["triangles"].get<std::size_t>();
+        characters.push_back(
+            {{"name", c.name},
+             {"model", c.modelPath},
+             {"clip", c.clip >= 0 ? c.model->animations[std::size_t(c.clip)].name : ""},
+             {"time_offset", c.timeOffset},
+             {"speed", c.speed},
+             {"loop", c.loop},
+             {"glass", glassModeName(c.glass)},
+             {"vertices", model["vertices"]},
+             {"triangles", model["triangles"]}});
+    }
+    std::map<const scene::Model*, int> models;
+    for (const scene::Character& c : world.characters)
+        ++models[c.model.get()];
+    return {{"characters", characters},
+            {"models", models.size()},
+            {"vertices", vertices},
+            {"triangles", triangles}};
+}
+
+void printScene(const std::string& path, const scene::World& world) {
+    const auto j = describeScene(world);
+    std::printf("%s\n  characters %zu, models %zu, vertices %zu, triangles %zu\n", path.c_str(),
+                j["characters"].size(), j["models"].get<std::size_t>(),
+                j["vertices"].get<std::size_t>(), j["triangles"].get<std::size_t>());
+    for (std::size_t i = 0; i < world.characters.size(); ++i) {
+        const auto& c = j["characters"][i];
+        std::printf("  [%zu] '%s': %s, clip '%s' (offset %.3g s, speed %.3g, %s), glass %s, %zu "
+                    "vertices, %zu triangles\n",
+                    i, c["name"].get<std::string>().c_str(), c["model"].get<std::string>().c_str(),
+                    c["clip"].get<std::string>().c_str(), c["time_offset"].get<double>(),
+                    c["speed"].get<double>(), c["loop"].get<bool>() ? "looping" : "clamped",
+                    c["glass"].get<std::string>().c_str(), c["vertices"].get<std::size_t>(),
+                    c["triangles"].get<std::size_t>());
+    }
 }
 
 } // namespace
@@ -247,17 +338,31 @@ int run(int argc, char** argv) {
         return *exitCode;
     asset::LoadOptions loadOptions;
     loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
-    auto model = asset::loadModel(options.model, loadOptions);
-    if (!model) {
-        std::fprintf(stderr, "glass-inspect: %s\n", model.error().message.c_str());
+    const bool isScene = asset::isSceneFile(options.model);
+    if (isScene && options.clip)
+        return usageError("--clip goes with a model; a scene's characters name their clips");
+    auto world = worldOf(options, loadOptions);
+    if (!world) {
+        std::fprintf(stderr, "glass-inspect: %s\n", world.error().message.c_str());
         return 1;
     }
+    if (options.clip) {
+        scene::Character& only = world->characters.front();
+        const auto found = only.model->findAnimation(*options.clip);
+        if (!found)
+            return usageError(only.model->sourceName + " has no clip '" + *options.clip + "'");
+        only.clip = *found;
+    }
     if (options.vertices)
-        return writeVertices(*model, options);
-    if (options.json)
-        std::printf("%s\n", inspect::describe(*model).dump(2).c_str());
+        return writeVertices(*world, options);
+    if (isScene && options.json)
+        std::printf("%s\n", describeScene(*world).dump(2).c_str());
+    else if (isScene)
+        printScene(options.model, *world);
+    else if (options.json)
+        std::printf("%s\n", inspect::describe(*world->characters[0].model).dump(2).c_str());
     else
-        printText(*model);
+        printText(*world->characters[0].model);
     return 0;
 }
 

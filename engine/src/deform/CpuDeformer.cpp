@@ -107,6 +107,18 @@ std::vector<DeformedInstance> deformScene(const scene::Model& model, const anim:
     return result;
 }
 
+std::vector<DeformedInstance> deformCharacter(const scene::Character& character,
+                                              double sceneTime) {
+    ENGINE_CHECK(character.model != nullptr, "deformCharacter() of a character without a model");
+    const anim::Pose pose =
+        anim::evaluate(*character.model, character.clip, character.clipTime(sceneTime));
+    std::vector<DeformedInstance> instances = deformScene(*character.model, pose);
+    const glm::dmat4 placement(character.transform());
+    for (DeformedInstance& instance : instances)
+        instance.meshToWorld = placement * instance.meshToWorld;
+    return instances;
+}
+
 DeformedPrimitive toWorld(const DeformedPrimitive& primitive, const glm::dmat4& meshToWorld) {
     DeformedPrimitive out = primitive;
     const glm::dmat3 normalMatrix = glm::inverseTranspose(glm::dmat3(meshToWorld));

@@ -3,6 +3,7 @@
 
 #include "engine/anim/Pose.h"
 #include "engine/asset/GltfLoader.h"
+#include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
 #include "engine/deform/CpuDeformer.h"
 
@@ -161,6 +162,81 @@ TEST(InspectTool, GpuPlyMatchesCpuPly) {
     ASSERT_EQ(cpu.count, gpu.count);
     for (std::size_t i = 0; i < cpu.values.size(); ++i)
         EXPECT_NEAR(cpu.values[i], gpu.values[i], 1e-5f) << i;
+}
+
+TEST(InspectTool, SceneCharactersDeformOnTheGpuAsTheCpuOracleSays) {
+    test::TempDir dir;
+    test::twoJointModel().save(dir.path(), "twojoint", test::GltfFormat::Glb);
+    // Two characters of one model at other times, speeds and transforms.
+    const nlohmann::json scene = {
+        {"characters",
+         {{{"model", "twojoint.glb"}, {"translation", {-2, 0, 0}}, {"time_offset", 0.1}},
+          {{"model", "twojoint.glb"},
+           {"translation", {2, 1, 0}},
+           {"rotation", {0, 0.7071068, 0, 0.7071068}},
+           {"scale", {1.5, 1.5, 1.5}},
+           {"time_offset", 0.35},
+           {"speed", 1.4}}}}};
+    const auto scenePath = dir / "pair.json";
+    std::ofstream(scenePath) << scene.dump();
+    std::string out;
+    const std::string base = kInspect + " " + scenePath.string() + " --time 0.2 --out ";
+    ASSERT_EQ(test::runCommand(base + (dir / "cpu.ply").string() + " --vertices cpu", &out), 0)
+        << out;
+    const int gpuStatus =
+        test::runCommand(base + (dir / "gpu.ply").string() + " --vertices gpu", &out);
+    if (gpuStatus != 0 && out.find("no headless OpenGL") != std::string::npos)
+        GTEST_SKIP() << out;
+    ASSERT_EQ(gpuStatus, 0) << out;
+    const Ply cpu = readPly(dir / "cpu.ply"), gpu = readPly(dir / "gpu.ply");
+    // The oracle: each character deformed on the CPU and placed, in the scene's order.
+    const auto world = asset::loadScene(scenePath);
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    std::vector<float> oracle;
+    for (const scene::Character& c : world->characters)
+        for (const auto& instance : deform::deformCharacter(c, 0.2))
+            for (const auto& primitive : instance.primitives) {
+                const auto placed = deform::toWorld(primitive, instance.meshToWorld);
+                for (std::size_t v = 0; v < placed.positions.size(); ++v)
+                    for (const glm::dvec3& x : {placed.positions[v], placed.normals[v]})
+                        oracle.insert(oracle.end(), {float(x.x), float(x.y), float(x.z)});
+            }
+    ASSERT_EQ(cpu.count * 6, oracle.size());
+    ASSERT_EQ(gpu.count, cpu.count);
+    for (std::size_t i = 0; i < oracle.size(); ++i) {
+        EXPECT_NEAR(cpu.values[i], oracle[i], 1e-5f) << i;
+        EXPECT_NEAR(gpu.values[i], oracle[i], 1e-4f) << i;
+    }
+    // Not vacuous: the second character is not the first one moved (other time, rotation).
+    const std::size_t half = cpu.count / 2;
+    double differs = 0.0;
+    for (std::size_t v = 0; v < half; ++v) {
+        const glm::dvec3 a(cpu.values[6 * v], cpu.values[6 * v + 1], cpu.values[6 * v + 2]);
+        const glm::dvec3 b(cpu.values[6 * (v + half)], cpu.values[6 * (v + half) + 1],
+                           cpu.values[6 * (v + half) + 2]);
+        differs = std::max(differs, glm::length((b - glm::dvec3(2, 1, 0)) / 1.5 -
+                                                (a - glm::dvec3(-2, 0, 0))));
+    }
+    EXPECT_GT(differs, 1e-2);
+}
+
+TEST(InspectTool, BadSceneExitsOneNamingTheKeyAndWritesNothing) {
+    test::TempDir dir;
+    test::twoJointModel().save(dir.path(), "twojoint", test::GltfFormat::Glb);
+    const auto scenePath = dir / "crowd.json";
+    std::ofstream(scenePath)
+        << R"({"characters": [{"model": "twojoint.glb"}, {"model": "twojoint.glb", "clip": "Jump"}]})";
+    std::string out;
+    const auto ply = dir / "out.ply";
+    EXPECT_EQ(test::runCommand(kInspect + " " + scenePath.string() + " --vertices cpu --out " +
+                                   ply.string(),
+                               &out),
+              1);
+    EXPECT_NE(out.find("crowd.json: characters[1].clip: \"Jump\" not in twojoint.glb (clips: bend)"),
+              std::string::npos)
+        << out;
+    EXPECT_FALSE(std::filesystem::exists(ply));
+    EXPECT_EQ(test::runCommand(kInspect + " " + scenePath.string() + " --clip bend", &out), 2);
 }
 
 TEST(InspectTool, CesiumManPlyHasEveryVertex) {

@@ -4,6 +4,7 @@
 
 #include "engine/anim/Pose.h"
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <glm/glm.hpp>
 
@@ -39,6 +40,12 @@ struct DeformedInstance {
 
 /** Deforms every mesh node of the default scene (Model::meshNodes() order) for `pose`. */
 std::vector<DeformedInstance> deformScene(const scene::Model& model, const anim::Pose& pose);
+
+/** A character of a world at scene time `sceneTime`: its model deformed in the pose of its clip
+ *  at Character::clipTime(sceneTime), each instance's meshToWorld including the character's
+ *  transform (so toWorld() gives the character's vertices in the world). */
+std::vector<DeformedInstance> deformCharacter(const scene::Character& character,
+                                              double sceneTime);
 
 /** Positions and normals of `instance` taken to world space (normals renormalised). */
 DeformedPrimitive toWorld(const DeformedPrimitive& primitive, const glm::dmat4& meshToWorld);
