@@ -60,6 +60,32 @@ TEST_F(GpuDeform, TwoJointModelMatchesCpu) {
     compare(*model, 0, {0.0, 0.3, 0.77, 1.0});
 }
 
+TEST_F(GpuDeform, FileWithTwoSkinsMatchesCpu) {
+    // The two-joint model with a second mesh node and a second skin over the same joints in the
+    // other order (its JOINTS_0 indices then name the other joint): two skins, two results.
+    test::GltfBuilder builder = test::twoJointModel();
+    const auto inverseBind = builder.doc["skins"][0]["inverseBindMatrices"];
+    builder.doc["skins"].push_back({{"joints", {2, 1}}, {"inverseBindMatrices", inverseBind}});
+    builder.doc["nodes"].push_back(
+        {{"name", "second"}, {"mesh", 0}, {"skin", 1}, {"translation", {0.0, 2.0, 0.0}}});
+    builder.doc["scenes"][0]["nodes"].push_back(3);
+    test::TempDir dir;
+    auto model = asset::loadGltf(builder.save(dir.path(), "twoskins"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->skins.size(), 2u);
+    compare(*model, 0, {0.0, 0.4, 0.9});
+    // Not vacuous: in the world (where one skin over the same joints would put both copies in
+    // the same place, glTF skinning ignoring the mesh node's transform) the copies differ.
+    const auto cpu = deform::deformScene(*model, anim::evaluate(*model, 0, 0.9));
+    ASSERT_EQ(cpu.size(), 2u);
+    const auto first = deform::toWorld(cpu[0].primitives[0], cpu[0].meshToWorld);
+    const auto second = deform::toWorld(cpu[1].primitives[0], cpu[1].meshToWorld);
+    double differs = 0.0;
+    for (std::size_t v = 0; v < first.positions.size(); ++v)
+        differs = std::max(differs, glm::length(first.positions[v] - second.positions[v]));
+    EXPECT_GT(differs, 1e-3);
+}
+
 TEST_F(GpuDeform, PlacementsOfOneUploadDeformIndependently) {
     test::TempDir dir;
     auto model = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
