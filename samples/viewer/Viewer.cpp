@@ -72,7 +72,7 @@ std::filesystem::path assetsDir() {
     std::error_code ec;
     const auto executable = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec) {
-        const auto installed = executable.parent_path().parent_path() / "share/glass/assets";
+        auto installed = executable.parent_path().parent_path() / "share/glass/assets";
         if (std::filesystem::is_directory(installed, ec))
             return installed;
     }

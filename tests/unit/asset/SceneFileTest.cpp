@@ -19,14 +19,14 @@ public:
         test::twoJointModel().save(dir.path() / "models", "twojoint", test::GltfFormat::Glb);
     }
     std::filesystem::path write(const std::string& name, const std::string& text) const {
-        const auto path = dir / name;
+        auto path = dir / name;
         std::ofstream(path) << text;
         return path;
     }
     test::TempDir dir;
 };
 
-Json character(Json extra = Json::object()) {
+Json character(const Json& extra = Json::object()) {
     Json c = {{"model", "models/twojoint.glb"}};
     c.update(extra);
     return c;
@@ -39,7 +39,7 @@ struct BadScene {
 };
 
 std::vector<BadScene> badScenes() {
-    auto scene = [](Json characters, Json extra = Json::object()) {
+    auto scene = [](Json characters, const Json& extra = Json::object()) {
         Json root = {{"characters", std::move(characters)}};
         root.update(extra);
         return root.dump();
