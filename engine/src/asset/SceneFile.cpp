@@ -9,7 +9,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 
 namespace asset {
@@ -200,10 +199,9 @@ std::size_t vertexCount(const scene::Model& model) {
     return count;
 }
 
-/** The world of scene file `path`; `where` prefixes warnings (function and file). */
-scene::World readWorld(const Json& root, const std::filesystem::path& path,
+/** The world of a scene file in `directory`; `where` prefixes warnings (function and file). */
+scene::World readWorld(const Json& root, const std::filesystem::path& directory,
                        const std::string& where, const LoadOptions& options) {
-    const std::filesystem::path directory = path.parent_path();
     if (!root.is_object())
         fail("(root)", "expected an object with a \"characters\" array");
     warnUnknownKeys(root, {"environment", "ground", "camera", "characters"}, where);
@@ -271,21 +269,29 @@ bool isSceneFile(const std::filesystem::path& path) {
 
 core::Result<scene::World> loadScene(const std::filesystem::path& path,
                                      const LoadOptions& options) {
-    const std::string where = "asset::loadScene(): " + path.string() + ": ";
-    std::ifstream in(path);
-    if (!in)
-        return core::Error{where + "cannot open the scene file"};
+    if (!std::filesystem::is_regular_file(path))
+        return core::Error{"asset::loadScene(): " + path.string() + ": cannot open the scene file"};
+    auto text = core::readFile(path, core::limits::kMaxSceneFileBytes);
+    if (!text)
+        return core::Error{"asset::loadScene(): " + text.error().message};
+    return parseScene(std::string_view(reinterpret_cast<const char*>(text->data()), text->size()),
+                      path.parent_path(), path.string(), options);
+}
+
+core::Result<scene::World> parseScene(std::string_view text, const std::filesystem::path& directory,
+                                      const std::string& name, const LoadOptions& options) {
+    const std::string where = "asset::loadScene(): " + name + ": ";
     Json root;
     try {
-        root = Json::parse(in);
+        root = Json::parse(text);
     } catch (const std::exception& e) {
         return core::Error{where + "not valid JSON (" + e.what() + ")"};
     }
     try {
-        scene::World world = readWorld(root, path, where, options);
+        scene::World world = readWorld(root, directory, where, options);
         // From here on the paths are the resolved ones (saveScene makes them relative again).
         for (scene::Character& c : world.characters)
-            c.modelPath = resolve(path.parent_path(), c.modelPath);
+            c.modelPath = resolve(directory, c.modelPath);
         return world;
     } catch (const SceneError& e) {
         return core::Error{where + e.message};

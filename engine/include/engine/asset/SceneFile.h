@@ -8,7 +8,7 @@
 
 #include <filesystem>
 #include <string>
-#include <vector>
+#include <string_view>
 
 namespace asset {
 
@@ -24,6 +24,11 @@ namespace asset {
  *  kMaxSceneVertices vertices in all. */
 core::Result<scene::World> loadScene(const std::filesystem::path& path,
                                      const LoadOptions& options = {});
+
+/** loadScene() of scene file text already in memory: `name` stands for the file in messages and
+ *  relative paths resolve against `directory`. */
+core::Result<scene::World> parseScene(std::string_view text, const std::filesystem::path& directory,
+                                      const std::string& name, const LoadOptions& options = {});
 
 /** True for a path the tools treat as a scene file rather than a model (a .json file). */
 bool isSceneFile(const std::filesystem::path& path);
