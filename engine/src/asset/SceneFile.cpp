@@ -114,18 +114,19 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
     c.model = model;
     c.name = j.contains("name") ? text(j["name"], key + ".name") : key;
     if (j.contains("translation"))
-        c.translation = vector<3>(j["translation"], key + ".translation");
+        c.placement.translation = vector<3>(j["translation"], key + ".translation");
     if (j.contains("rotation")) {
         const glm::vec4 q = vector<4>(j["rotation"], key + ".rotation");
         const float length = glm::length(q);
         if (std::abs(length - 1.0f) > 1e-3f)
             fail(key + ".rotation", "expected a unit quaternion [x, y, z, w], its length is " +
                                         Json(length).dump());
-        c.rotation = glm::normalize(glm::quat(q.w, q.x, q.y, q.z));
+        c.placement.rotation = glm::normalize(glm::dquat(q.w, q.x, q.y, q.z));
     }
     if (j.contains("scale")) {
-        c.scale = vector<3>(j["scale"], key + ".scale");
-        if (c.scale.x == 0.0f || c.scale.y == 0.0f || c.scale.z == 0.0f)
+        const glm::vec3 scale = vector<3>(j["scale"], key + ".scale");
+        c.placement.scale = scale;
+        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
             fail(key + ".scale", "a scale of 0 flattens the character");
     }
     const scene::Model& m = *c.model;
@@ -314,9 +315,10 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
         Json j;
         j["name"] = c.name;
         j["model"] = relativeTo(c.modelPath, sceneDirectory);
-        j["translation"] = {c.translation.x, c.translation.y, c.translation.z};
-        j["rotation"] = {c.rotation.x, c.rotation.y, c.rotation.z, c.rotation.w};
-        j["scale"] = {c.scale.x, c.scale.y, c.scale.z};
+        const scene::Trs& t = c.placement;
+        j["translation"] = {t.translation.x, t.translation.y, t.translation.z};
+        j["rotation"] = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
+        j["scale"] = {t.scale.x, t.scale.y, t.scale.z};
         if (c.clip >= 0 && c.model && c.clip < int(c.model->animations.size()) &&
             !c.model->animations[std::size_t(c.clip)].name.empty())
             j["clip"] = c.model->animations[std::size_t(c.clip)].name;

@@ -113,7 +113,7 @@ std::vector<DeformedInstance> deformCharacter(const scene::Character& character,
     const anim::Pose pose =
         anim::evaluate(*character.model, character.clip, character.clipTime(sceneTime));
     std::vector<DeformedInstance> instances = deformScene(*character.model, pose);
-    const glm::dmat4 placement(character.transform());
+    const glm::dmat4 placement = character.transform();
     for (DeformedInstance& instance : instances)
         instance.meshToWorld = placement * instance.meshToWorld;
     return instances;

@@ -1,19 +1,10 @@
-// A character's transform and clock.
+// A character's clock.
 #include "engine/scene/World.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace scene {
-
-glm::mat4 Character::transform() const {
-    glm::mat4 m = glm::mat4_cast(rotation);
-    m[0] *= scale.x;
-    m[1] *= scale.y;
-    m[2] *= scale.z;
-    m[3] = glm::vec4(translation, 1.0f);
-    return m;
-}
 
 double Character::clipTime(double sceneTime) const {
     if (!model || clip < 0 || clip >= int(model->animations.size()))

@@ -173,9 +173,9 @@ TEST(SceneFile, ValidSceneSharesModelsAndKeepsEveryKey) {
     EXPECT_FALSE(b.overrides.ior);
     EXPECT_EQ(sphere.clip, -1); // no clips: the rest pose
     // Transform: scale 2, a quarter turn about +y, then the translation.
-    const glm::vec4 x = a.transform() * glm::vec4(1, 0, 0, 1);
-    EXPECT_NEAR(x.x, 1.0f, 1e-5f);
-    EXPECT_NEAR(x.z, -2.0f, 1e-5f);
+    const glm::dvec4 x = a.transform() * glm::dvec4(1, 0, 0, 1);
+    EXPECT_NEAR(x.x, 1.0, 1e-6);
+    EXPECT_NEAR(x.z, -2.0, 1e-6);
     // Clocks: (t + offset) * speed, wrapped when looping, clamped otherwise.
     EXPECT_NEAR(a.clipTime(1.65), 0.95, 1e-12); // (1.65 + 0.25) * 0.5
     EXPECT_NEAR(a.clipTime(2.15), 0.2, 1e-12);  // 1.2 wraps to 0.2
@@ -217,11 +217,13 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
         const scene::Character& b = second->characters[i];
         SCOPED_TRACE(a.name);
         EXPECT_EQ(b.modelPath, a.modelPath);
-        EXPECT_EQ(b.translation, a.translation);
-        EXPECT_NEAR(glm::length(glm::vec4(b.rotation.x, b.rotation.y, b.rotation.z, b.rotation.w) -
-                                glm::vec4(a.rotation.x, a.rotation.y, a.rotation.z, a.rotation.w)),
-                    0.0f, 1e-6f);
-        EXPECT_EQ(b.scale, a.scale);
+        EXPECT_EQ(b.placement.translation, a.placement.translation);
+        EXPECT_NEAR(glm::length(glm::dvec4(b.placement.rotation.x, b.placement.rotation.y,
+                                           b.placement.rotation.z, b.placement.rotation.w) -
+                                glm::dvec4(a.placement.rotation.x, a.placement.rotation.y,
+                                           a.placement.rotation.z, a.placement.rotation.w)),
+                    0.0, 1e-6);
+        EXPECT_EQ(b.placement.scale, a.placement.scale);
         EXPECT_EQ(b.clip, a.clip);
         EXPECT_EQ(b.timeOffset, a.timeOffset);
         EXPECT_EQ(b.speed, a.speed);

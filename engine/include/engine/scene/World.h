@@ -3,9 +3,9 @@
 #pragma once
 
 #include "engine/scene/Model.h"
+#include "engine/scene/Node.h"
 
 #include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include <memory>
 #include <optional>
@@ -33,10 +33,8 @@ struct Character {
     /** The model's path as loaded (a scene file's relative paths resolved against its folder)
      *  or builtin:...; saving writes it relative to the new file's folder. */
     std::string modelPath;
-    // World transform, as glTF nodes spell it: translation, rotation (x, y, z, w), scale.
-    glm::vec3 translation{0.0f};
-    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
-    glm::vec3 scale{1.0f};
+    /** Model space to world space, as glTF nodes spell it (translation, rotation, scale). */
+    Trs placement;
     int clip = -1;            ///< index into model->animations; -1: the rest pose
     double timeOffset = 0.0;  ///< seconds added to the scene time
     double speed = 1.0;       ///< clip seconds per scene second (negative plays backwards)
@@ -45,7 +43,7 @@ struct Character {
     GlassOverrides overrides;
 
     /** The character's world matrix (translation * rotation * scale). */
-    glm::mat4 transform() const;
+    glm::dmat4 transform() const { return placement.matrix(); }
     /** The clip time at scene time `sceneTime`: (sceneTime + timeOffset) * speed, wrapped into
      *  the clip when looping, else clamped to it; 0 without a clip. */
     double clipTime(double sceneTime) const;
