@@ -93,6 +93,10 @@ std::vector<BadScene> badScenes() {
     };
 }
 
+void PrintTo(const BadScene& c, std::ostream* os) {
+    *os << c.name;
+}
+
 class BadSceneFile : public ::testing::TestWithParam<BadScene> {};
 
 TEST_P(BadSceneFile, FailsNamingFileAndKey) {
