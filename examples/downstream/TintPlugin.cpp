@@ -67,10 +67,9 @@ public:
                     b.write(b.create("tint.color", {frame->settings.size, gl::Format::RGBA16F, 1}));
             },
             [this, red](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
-                if (auto attached = mFramebuffer->attach("tint", {&r.texture(d.out)}, nullptr);
-                    !attached)
-                    return attached; // ends the frame with this error, naming the pass
-                mFramebuffer->bind();
+                if (auto bound = mFramebuffer->bindTargets("tint", {&r.texture(d.out)}, nullptr);
+                    !bound)
+                    return bound; // ends the frame with this error, naming the pass
                 gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
                 mProgram.use();
                 gl::bindTexture(0, r.texture(d.in));

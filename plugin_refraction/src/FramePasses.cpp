@@ -36,15 +36,6 @@ gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
 }
 
-/** Attaches and binds a pass's targets; an incomplete framebuffer is the pass's error. */
-core::Status attach(GpuState& gpu, const char* pass, const std::vector<const gl::Texture*>& colors,
-                    const gl::Texture* depth) {
-    if (auto attached = gpu.framebuffer.attach(pass, colors, depth); !attached)
-        return attached;
-    gpu.framebuffer.bind();
-    return {};
-}
-
 /** What a shading pass reads. */
 struct ShadeData {
     SurfaceMaps maps;
@@ -92,8 +83,7 @@ void setShading(const FrameContext& c, const gl::Program& f, const ShadeData& d,
 
 } // namespace
 
-FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
-                           GpuState& gpu) {
+FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu) {
     FrameBuffers buffers;
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
     buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
@@ -137,7 +127,8 @@ void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState
             gl::bindStorage(0, primitive.deformed);
             gl::bindStorage(1, *primitive.uv0);
             const auto distance = gpu->distances.find({instanceIndex, p});
-            const bool hasDistance = distance != gpu->distances.end() && isr;
+            const bool hasDistance =
+                distance != gpu->distances.end() && settings.usesNormalDistance();
             program.set("uHasNormalDistance", hasDistance ? 1 : 0);
             // Without d_N the binding still needs a buffer: the vertices stand in (unread).
             gl::bindStorage(2, hasDistance ? distance->second.values() : primitive.deformed);
@@ -155,7 +146,7 @@ void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
     struct Data {
         fg::BufferHandle distances;
     };
-    buffers.distances = graph.addPass<Data>(
+    const Data& pass = graph.addPass<Data>(
         "refraction.normal_distance",
         [&](fg::Builder& b, Data& d) {
             b.read(buffers.vertices);
@@ -182,7 +173,8 @@ void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
                     if (refined)
                         geometry.refineScalar(i, p, distance.cage->distances(), distance.drawn);
                 }
-        }).distances;
+        });
+    buffers.distances = pass.distances;
 }
 
 SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
@@ -197,7 +189,7 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
             name,
             [&](fg::Builder& b, SurfaceData& d) {
                 b.read(buffers.vertices);
-                if (c.isr)
+                if (c.settings.usesNormalDistance())
                     b.read(buffers.distances);
                 d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc(size)));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
@@ -205,8 +197,8 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
                                           gl::Context&) -> core::Status {
-                if (auto bound = attach(*c.gpu, name, {&r.texture(d.depth), &r.texture(d.normal)},
-                                        &r.texture(d.zbuffer));
+                if (auto bound = c.gpu->framebuffer.bindTargets(
+                        name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
                     !bound)
                     return bound;
                 gl::clearColor(0, glm::vec4(0.0f));
@@ -221,7 +213,7 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
             });
     };
     SurfaceMaps maps;
-    if (c.twoInterfaces) {
+    if (c.settings.twoInterfaces()) {
         const SurfaceData& back = surfacePass("refraction.back_faces", true, firstBack);
         maps.backDepth = back.depth;
         maps.backNormal = back.normal;
@@ -246,7 +238,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
         "refraction.surfaces",
         [&](fg::Builder& b, GatherData& d) {
             b.read(buffers.vertices);
-            if (c.isr)
+            if (c.settings.usesNormalDistance())
                 b.read(buffers.distances);
             d.rectangle = b.write(buffers.rectangle);
             d.nearTargets = b.write(b.create("refraction.surfaces.near", gatherDesc));
@@ -275,8 +267,9 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
                     gl::dispatch(std::uint32_t((count + 63) / 64));
                 }
             gl::memoryBarrier(gl::BarrierStorage);
-            if (auto bound = attach(gpu, "refraction.surfaces",
-                                    {&r.texture(d.nearTargets), &r.texture(d.farTargets)}, nullptr);
+            if (auto bound = gpu.framebuffer.bindTargets(
+                    "refraction.surfaces", {&r.texture(d.nearTargets), &r.texture(d.farTargets)},
+                    nullptr);
                 !bound)
                 return bound;
             gl::clearColor(0, glm::vec4(kNoSurface));
@@ -295,8 +288,8 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
     buffers.rectangle = gathered.rectangle;
 
     struct ResolveData {
-        fg::TextureHandle nearTargets, farTargets, sceneDepth, backNormal, frontDepth,
-            frontNormal, mask;
+        fg::TextureHandle nearTargets, farTargets, sceneDepth, backNormal, frontDepth, frontNormal,
+            mask;
     };
     const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
     const auto& resolved = graph.addPass<ResolveData>(
@@ -319,7 +312,9 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
             if (c.reflect)
                 targets.insert(targets.end(),
                                {&r.texture(d.frontDepth), &r.texture(d.frontNormal)});
-            if (auto bound = attach(gpu, "refraction.resolve", targets, &r.texture(d.mask)); !bound)
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("refraction.resolve", targets, &r.texture(d.mask));
+                !bound)
                 return bound;
             // Outside the glass rectangle: no surface, and the mask rejects.
             for (int i = 0; i < int(targets.size()); ++i)
@@ -410,16 +405,16 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
         if (!c.onePass) // the front faces are drawn again; one pass shades the maps alone
             b.read(buffers.vertices);
         b.read(buffers.rectangle);
-        if (c.twoInterfaces)
+        if (c.settings.twoInterfaces())
             b.read(buffers.range);
-        if (c.isr)
+        if (c.settings.usesNormalDistance())
             b.read(buffers.distances);
-        for (auto [from, to] : {std::pair{maps.backDepth, &d.maps.backDepth},
-                                std::pair{maps.backNormal, &d.maps.backNormal},
-                                std::pair{maps.frontDepth, &d.maps.frontDepth},
-                                std::pair{maps.frontNormal, &d.maps.frontNormal},
-                                std::pair{maps.gatheredFar, &d.maps.gatheredFar},
-                                std::pair{maps.mask, &d.maps.mask}})
+        for (auto [from, to] :
+             {std::pair{maps.backDepth, &d.maps.backDepth},
+              std::pair{maps.backNormal, &d.maps.backNormal},
+              std::pair{maps.frontDepth, &d.maps.frontDepth},
+              std::pair{maps.frontNormal, &d.maps.frontNormal},
+              std::pair{maps.gatheredFar, &d.maps.gatheredFar}, std::pair{maps.mask, &d.maps.mask}})
             if (from.valid())
                 *to = b.read(from);
         d.sceneColor = b.read(sceneColor);
@@ -438,8 +433,8 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
                 GpuState& gpu = *c.gpu;
                 gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
-                if (auto bound = attach(gpu, "refraction.shade", {&r.texture(d.out)},
-                                        &r.texture(d.maps.mask));
+                if (auto bound = gpu.framebuffer.bindTargets(
+                        "refraction.shade", {&r.texture(d.out)}, &r.texture(d.maps.mask));
                     !bound)
                     return bound;
                 // The rectangle lies at depth 1: it passes only where the mask holds 0.
@@ -469,8 +464,8 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             d.zbuffer = b.write(b.create("refraction.glass_zbuffer", zDesc(size)));
         },
         [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
-            if (auto bound = attach(*c.gpu, "refraction.front_faces", {&r.texture(d.out)},
-                                    &r.texture(d.zbuffer));
+            if (auto bound = c.gpu->framebuffer.bindTargets(
+                    "refraction.front_faces", {&r.texture(d.out)}, &r.texture(d.zbuffer));
                 !bound)
                 return bound;
             gl::clearColor(0, glm::vec4(0.0f));
@@ -492,7 +487,8 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
         },
         [c](const fg::Resources& r, const CompositeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
-            if (auto bound = attach(gpu, "refraction.composite", {&r.texture(d.out)}, nullptr);
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.composite",
+                                                         {&r.texture(d.out)}, nullptr);
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});

@@ -21,11 +21,9 @@ struct FrameContext {
     GpuState* gpu = nullptr;
     Settings settings; ///< the parameters, decoded once this frame
     const render::FrameInfo* frame = nullptr;
-    bool twoInterfaces = false; ///< isr, dir: the back surface is needed
-    bool reflect = false;       ///< TIR reflect: the front surface is searched too
-    bool isr = false;           ///< d_N is measured and read
-    bool onePass = false;       ///< the single gathered geometry pass
-    int glassMaterial = -1;     ///< one pass: the one material of every glass primitive
+    bool reflect = false;   ///< TIR reflect (two interfaces): the front surface is searched too
+    bool onePass = false;   ///< the single gathered geometry pass
+    int glassMaterial = -1; ///< one pass: the one material of every glass primitive
 
     bool isGlass(const scene::Primitive& primitive) const;
     /** Draws every glass primitive with `program` (glass.vert.glsl); `front` sets each one's

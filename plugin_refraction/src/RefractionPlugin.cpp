@@ -27,11 +27,16 @@ void addMaterialPresets(plugin::ParameterSet& parameters) {
         double ior, abbe;
     };
     static constexpr Material kMaterials[] = {
-        {"water", 1.333, 55.7},           {"ice", 1.309, 56.0},
-        {"acrylic (PMMA)", 1.491, 57.2},  {"glass (crown, BK7)", 1.517, 64.2},
-        {"fused quartz", 1.458, 67.8},    {"polycarbonate", 1.585, 30.0},
-        {"flint glass (F2)", 1.620, 36.4}, {"sapphire", 1.770, 72.2},
-        {"cubic zirconia", 2.150, 33.8},  {"diamond", 2.417, 55.3},
+        {"water", 1.333, 55.7},
+        {"ice", 1.309, 56.0},
+        {"acrylic (PMMA)", 1.491, 57.2},
+        {"glass (crown, BK7)", 1.517, 64.2},
+        {"fused quartz", 1.458, 67.8},
+        {"polycarbonate", 1.585, 30.0},
+        {"flint glass (F2)", 1.620, 36.4},
+        {"sapphire", 1.770, 72.2},
+        {"cubic zirconia", 2.150, 33.8},
+        {"diamond", 2.417, 55.3},
     };
     auto add = [&](std::string name, std::string ior, std::string dispersion) {
         const core::Status added =
@@ -175,8 +180,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     for (const Spec& spec :
          {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
           Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
-          Spec{&mGpu->composite, "render/fullscreen.vert.glsl",
-               "refraction/composite.frag.glsl"},
+          Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"},
           Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
           Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
           Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl",
@@ -247,7 +251,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         for (const auto& primitive : instance.primitives) {
             if (!c.isGlass(*primitive.source))
                 continue;
-            oneMaterial = oneMaterial && (!anyGlass || c.glassMaterial == primitive.source->material);
+            oneMaterial =
+                oneMaterial && (!anyGlass || c.glassMaterial == primitive.source->material);
             c.glassMaterial = primitive.source->material;
             anyGlass = true;
         }
@@ -257,18 +262,16 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     const bool normalMap = c.glassMaterial >= 0 &&
                            model.materials[std::size_t(c.glassMaterial)].normalTexture.present();
     const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
-    c.twoInterfaces = c.settings.twoInterfaces();
-    c.isr = c.settings.method == Settings::Method::Isr;
-    c.reflect = c.settings.tir == Settings::Tir::Reflect && c.twoInterfaces;
+    c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
                 !normalMap && !firstBack;
 
     FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
-    if (c.isr)
+    if (c.settings.usesNormalDistance())
         addNormalDistancePass(graph, c, buffers);
     const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c, buffers)
                                        : addSeparateSurfacePasses(graph, c, buffers, firstBack);
-    if (c.twoInterfaces)
+    if (c.settings.twoInterfaces())
         addDepthRangePass(graph, c, maps, buffers);
     blackboard.put(plugin::kSceneColor, addShadingPasses(graph, blackboard, c, maps, buffers));
 }

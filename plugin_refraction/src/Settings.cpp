@@ -20,8 +20,8 @@ E choose(const plugin::ParameterSet& p, const char* parameter,
             return E(index);
         ++index;
     }
-    ENGINE_CHECK(false, std::string("refraction settings do not know ") + parameter + " '" +
-                            chosen + "'");
+    ENGINE_CHECK(false,
+                 std::string("refraction settings do not know ") + parameter + " '" + chosen + "'");
     return E(0);
 }
 

@@ -40,6 +40,8 @@ struct Settings {
 
     /** Isr and Dir search an exit through a back surface; Sir refracts once. */
     bool twoInterfaces() const { return method == Method::Isr || method == Method::Dir; }
+    /** Isr measures d_N every frame and reads it. */
+    bool usesNormalDistance() const { return method == Method::Isr; }
     /** Whether `primitive` renders as glass: never with Opaque, every mesh with Glass::All,
      *  else materials with KHR_materials_transmission. */
     bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;

@@ -208,18 +208,18 @@ core::Result<scene::World> worldOf(const Options& o, const asset::LoadOptions& l
 core::Result<std::vector<std::vector<deform::DeformedInstance>>>
 deformWorld(const scene::World& world, double time, bool onGpu) {
     std::vector<std::vector<deform::DeformedInstance>> characters;
-    for (const scene::Character& c : world.characters)
-        characters.push_back(deform::deformCharacter(c, time));
-    if (!onGpu)
+    if (!onGpu) {
+        for (const scene::Character& c : world.characters)
+            characters.push_back(deform::deformCharacter(c, time));
         return characters;
+    }
     auto context = gl::createHeadlessContext();
     if (!context)
         return context.error();
     gl::ShaderLibrary shaders;
     shaders.add(engineShaderFiles());
     std::map<const scene::Model*, std::shared_ptr<const deform::GpuModel>> uploads;
-    for (std::size_t ci = 0; ci < world.characters.size(); ++ci) {
-        const scene::Character& c = world.characters[ci];
+    for (const scene::Character& c : world.characters) {
         auto& upload = uploads[c.model.get()];
         if (!upload) {
             auto created = deform::GpuModel::create(*c.model);
@@ -231,10 +231,16 @@ deformWorld(const scene::World& world, double time, bool onGpu) {
         if (!deformer)
             return deformer.error();
         (*deformer)->update(anim::evaluate(*c.model, c.clip, c.clipTime(time)));
-        auto& instances = characters[ci];
-        for (std::size_t i = 0; i < instances.size(); ++i)
-            for (std::size_t p = 0; p < instances[i].primitives.size(); ++p)
-                instances[i].primitives[p] = (*deformer)->download(i, p);
+        std::vector<deform::DeformedInstance>& instances = characters.emplace_back();
+        const auto& placed = (*deformer)->instances();
+        for (std::size_t i = 0; i < placed.size(); ++i) {
+            deform::DeformedInstance& instance = instances.emplace_back();
+            instance.node = placed[i].node;
+            instance.mesh = placed[i].mesh;
+            instance.meshToWorld = c.transform() * glm::dmat4(placed[i].meshToWorld);
+            for (std::size_t p = 0; p < placed[i].primitives.size(); ++p)
+                instance.primitives.push_back((*deformer)->download(i, p));
+        }
     }
     if (gl::checkErrors("glass-inspect --vertices gpu") > 0 || gl::errorCount() > 0)
         return core::Error{"glass-inspect: GL errors during GPU deformation (see log)"};
@@ -254,22 +260,20 @@ int writeVertices(const scene::World& world, const Options& o) {
         for (const auto& instance : (*characters)[ci])
             for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
                 placed.push_back(deform::toWorld(instance.primitives[p], instance.meshToWorld));
-                const std::string character =
-                    isScene ? "character " + std::to_string(ci) + " '" +
-                                  world.characters[ci].name + "' "
-                            : std::string();
+                const std::string character = isScene ? "character " + std::to_string(ci) + " '" +
+                                                            world.characters[ci].name + "' "
+                                                      : std::string();
                 labels.push_back(character + "node " + std::to_string(instance.node) + " mesh " +
-                                 std::to_string(instance.mesh) + " primitive " +
-                                 std::to_string(p));
+                                 std::to_string(instance.mesh) + " primitive " + std::to_string(p));
             }
     std::vector<inspect::PlyBlock> blocks;
     for (std::size_t i = 0; i < placed.size(); ++i)
         blocks.push_back({labels[i], &placed[i]});
     const scene::Character& first = world.characters.front();
-    const std::string what =
-        isScene ? "scene " + o.model + " time " + std::to_string(o.time)
-                : first.model->sourceName + " clip " + std::to_string(first.clip) + " time " +
-                      std::to_string(o.time);
+    const std::string what = isScene
+                                 ? "scene " + o.model + " time " + std::to_string(o.time)
+                                 : first.model->sourceName + " clip " + std::to_string(first.clip) +
+                                       " time " + std::to_string(o.time);
     const std::string comment =
         "glass-inspect " + what + " vertices " + *o.vertices + ", world space";
     const core::Status written =

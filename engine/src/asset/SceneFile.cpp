@@ -34,8 +34,7 @@ double number(const Json& j, const std::string& key) {
     return value;
 }
 
-template <int N>
-glm::vec<N, float> vector(const Json& j, const std::string& key) {
+template <int N> glm::vec<N, float> vector(const Json& j, const std::string& key) {
     if (!j.is_array() || j.size() != std::size_t(N))
         fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + j.dump());
     glm::vec<N, float> v;
@@ -107,8 +106,8 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
     if (!model) {
         auto loaded = loadModel(resolved, options);
         if (!loaded)
-            fail(key + ".model", "cannot load \"" + c.modelPath + "\" (" +
-                                     loaded.error().message + ")");
+            fail(key + ".model",
+                 "cannot load \"" + c.modelPath + "\" (" + loaded.error().message + ")");
         model = std::make_shared<const scene::Model>(std::move(*loaded));
     }
     c.model = model;
@@ -119,8 +118,8 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
         const glm::vec4 q = vector<4>(j["rotation"], key + ".rotation");
         const float length = glm::length(q);
         if (std::abs(length - 1.0f) > 1e-3f)
-            fail(key + ".rotation", "expected a unit quaternion [x, y, z, w], its length is " +
-                                        Json(length).dump());
+            fail(key + ".rotation",
+                 "expected a unit quaternion [x, y, z, w], its length is " + Json(length).dump());
         c.placement.rotation = glm::normalize(glm::dquat(q.w, q.x, q.y, q.z));
     }
     if (j.contains("scale")) {
@@ -306,8 +305,8 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
     root["ground"] = world.ground;
     if (world.camera)
         root["camera"] = {
-            {"position", {world.camera->position.x, world.camera->position.y,
-                          world.camera->position.z}},
+            {"position",
+             {world.camera->position.x, world.camera->position.y, world.camera->position.z}},
             {"target", {world.camera->target.x, world.camera->target.y, world.camera->target.z}},
             {"yfov", world.camera->yfov}};
     root["characters"] = Json::array();

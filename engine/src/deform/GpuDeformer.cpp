@@ -61,7 +61,6 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
     const int subdivisionLevel = uploaded->subdivisionLevel();
     d->mUpload = std::move(uploaded);
     d->mSerial = ++serials;
-    d->mLevel = subdivisionLevel;
     auto deformProgram = gl::Program::compute(shaders, "deform/deform.comp.glsl");
     if (!deformProgram)
         return core::Error{"deform::GpuDeformer::create(): " + deformProgram.error().message};
@@ -163,14 +162,14 @@ void GpuDeformer::update(const anim::Pose& pose) {
             gl::bindStorage(0, s.rest);
             gl::bindStorage(1, s.influences);
             gl::bindStorage(2, s.deltas);
-            gl::bindStorage(5, mLevel > 0 ? mRefined[i][p].cage : gp.deformed);
+            gl::bindStorage(5, subdivisionLevel() > 0 ? mRefined[i][p].cage : gp.deformed);
             mDeform.set("uVertexCount", int(gp.source->vertexCount()));
             mDeform.set("uTargetCount", int(std::min<std::size_t>(s.targetCount, weights.size())));
             mDeform.set("uSkinned", skinned && gp.source->isSkinned() ? 1 : 0);
             gl::dispatch(groups(gp.source->vertexCount()));
         }
     }
-    if (mLevel > 0) {
+    if (subdivisionLevel() > 0) {
         refine();
         return;
     }
@@ -241,14 +240,14 @@ void GpuDeformer::refine() {
 
 GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    if (mLevel == 0)
+    if (subdivisionLevel() == 0)
         return {gp.deformed, *gp.indices};
     return {mRefined.at(i).at(p).cage, mUpload->primitive(mInstances.at(i).mesh, p).cageIndices};
 }
 
 void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
                                const gl::Buffer& drawnValues) const {
-    ENGINE_CHECK(mLevel > 0, "GpuDeformer::refineScalar() needs a subdivision level");
+    ENGINE_CHECK(subdivisionLevel() > 0, "GpuDeformer::refineScalar() needs a subdivision level");
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
     const GpuModel::Primitive& s = mUpload->primitive(mInstances[i].mesh, p);
     const Refined& r = mRefined.at(i).at(p);
@@ -301,7 +300,7 @@ DeformedPrimitive GpuDeformer::download(std::size_t i, std::size_t p) const {
 
 DeformedPrimitive GpuDeformer::downloadCage(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    return unpack(mLevel > 0 ? mRefined.at(i).at(p).cage : gp.deformed,
+    return unpack(subdivisionLevel() > 0 ? mRefined.at(i).at(p).cage : gp.deformed,
                   gp.source->vertexCount());
 }
 

@@ -41,8 +41,8 @@ std::unique_ptr<GpuModel::Primitive> upload(const scene::Primitive& p) {
     }
     s->deltas = gl::Buffer(std::span<const glm::vec4>(deltas));
     s->indices = gl::Buffer(std::span<const std::uint32_t>(p.indices));
-    std::vector<glm::vec2> uv = p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f))
-                                              : p.uv0;
+    std::vector<glm::vec2> uv =
+        p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f)) : p.uv0;
     s->uv0 = gl::Buffer(std::span<const glm::vec2>(uv));
     return s;
 }
@@ -71,7 +71,7 @@ core::Status refine(GpuModel::Primitive& s, const scene::Primitive& p, int level
 GpuModel::~GpuModel() = default;
 
 core::Result<std::shared_ptr<const GpuModel>> GpuModel::create(const scene::Model& model,
-                                                                int subdivisionLevel) {
+                                                               int subdivisionLevel) {
     if (subdivisionLevel < 0 || subdivisionLevel > core::limits::kMaxSubdivisionLevel)
         return core::Error{"deform::GpuModel::create(): subdivision level " +
                            std::to_string(subdivisionLevel) + " is outside 0.." +
@@ -90,10 +90,9 @@ core::Result<std::shared_ptr<const GpuModel>> GpuModel::create(const scene::Mode
             const scene::Primitive& p = mesh.primitives[pi];
             auto uploaded = upload(p);
             if (subdivisionLevel > 0)
-                if (auto refined =
-                        refine(*uploaded, p, subdivisionLevel,
-                               "mesh " + std::to_string(meshIndex) + " '" + mesh.name +
-                                   "' primitive " + std::to_string(pi));
+                if (auto refined = refine(*uploaded, p, subdivisionLevel,
+                                          "mesh " + std::to_string(meshIndex) + " '" + mesh.name +
+                                              "' primitive " + std::to_string(pi));
                     !refined)
                     return refined.error();
             primitives.push_back(std::move(uploaded));

@@ -23,7 +23,6 @@ struct FrameGraph::Resource {
     std::string name;
     gl::TextureDesc desc; // textures only
     bool imported = false;
-    bool buffer = false;
     void* object = nullptr; // imported object, or the pooled one while alive
     std::uint32_t latestNode = UINT32_MAX;
     int firstUse = -1, lastUse = -1; // positions in mOrder
@@ -65,25 +64,24 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
     return "'" + mResources[n.resource].name + "' (version " + std::to_string(n.version) + ")";
 }
 
-std::uint32_t FrameGraph::addImported(const std::string& name, bool buffer,
-                                       const gl::TextureDesc& desc, void* object) {
+std::uint32_t FrameGraph::addImported(const std::string& name, const gl::TextureDesc& desc,
+                                       void* object) {
     ENGINE_CHECK(!mCompiled, "importing '" + name + "' after compile()");
-    Resource resource{name, desc, true, buffer, object};
-    mResources.push_back(std::move(resource));
+    mResources.push_back(Resource{name, desc, true, object});
     return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
 }
 
 TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc,
                                         void* object) {
-    return TextureHandle{addImported(name, false, desc, object)};
+    return TextureHandle{addImported(name, desc, object)};
 }
 
 BufferHandle FrameGraph::importBuffer(const std::string& name, void* object) {
-    return BufferHandle{addImported(name, true, {}, object)};
+    return BufferHandle{addImported(name, {}, object)};
 }
 
 TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
-    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, false, nullptr});
+    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, nullptr});
     const auto resource = std::uint32_t(mGraph.mResources.size() - 1);
     mGraph.mPasses[mPass].creates.push_back(resource);
     return TextureHandle{mGraph.addNode(resource, 0, UINT32_MAX)};

@@ -247,6 +247,14 @@ void Framebuffer::bind() const {
     glViewport(0, 0, mSize.x, mSize.y);
 }
 
+core::Status Framebuffer::bindTargets(const char* name, const std::vector<const Texture*>& colors,
+                                      const Texture* depth) {
+    if (auto attached = attach(name, colors, depth); !attached)
+        return attached;
+    bind();
+    return {};
+}
+
 void Framebuffer::bindDefault(glm::ivec2 size) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, size.x, size.y);

@@ -88,7 +88,8 @@ std::vector<BadScene> badScenes() {
          scene(Json(std::vector<Json>(core::limits::kMaxCharacters + 1, character()))),
          "characters: 4097 characters, the limit is 4096"},
         {"TooManyVertices",
-         scene(Json(std::vector<Json>(200, character({{"model", "builtin:sphere?segments=1024"}})))),
+         scene(
+             Json(std::vector<Json>(200, character({{"model", "builtin:sphere?segments=1024"}})))),
          "vertices with this character, the limit is 67108864"},
     };
 }
@@ -114,8 +115,8 @@ INSTANTIATE_TEST_SUITE_P(Scene, BadSceneFile, ::testing::ValuesIn(badScenes()),
                          [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(SceneFile, TheExampleSceneLoads) {
-    const auto world = asset::loadScene(std::filesystem::path(GLASS_SOURCE_DIR) /
-                                        "assets/scenes/walk_past.json");
+    const auto world =
+        asset::loadScene(std::filesystem::path(GLASS_SOURCE_DIR) / "assets/scenes/walk_past.json");
     ASSERT_TRUE(world.ok()) << world.error().message;
     ASSERT_EQ(world->characters.size(), 3u);
     EXPECT_EQ(world->characters[0].model, world->characters[2].model);

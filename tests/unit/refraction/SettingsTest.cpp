@@ -34,12 +34,21 @@ TEST(Settings, DecodesEveryChoice) {
     EXPECT_EQ(defaults.method, S::Method::Dir);
     EXPECT_EQ(defaults.geometryPasses, S::GeometryPasses::One);
     EXPECT_TRUE(defaults.nearby);
-    for (const auto& [key, value] :
-         {std::pair{"method", "isr"}, {"glass", "all"}, {"ior", "1.33"}, {"dispersion", "0.5"},
-          {"tint", "0.5,0.25,1"}, {"absorption-distance", "2"}, {"fresnel", "schlick"},
-          {"search-steps", "9"}, {"tir", "reflect"}, {"tir-bounces", "3"},
-          {"back-surface", "first"}, {"geometry-passes", "two"},
-          {"dispersion-search", "per-channel"}, {"nearby", "off"}, {"debug", "steps"}})
+    for (const auto& [key, value] : {std::pair{"method", "isr"},
+                                     {"glass", "all"},
+                                     {"ior", "1.33"},
+                                     {"dispersion", "0.5"},
+                                     {"tint", "0.5,0.25,1"},
+                                     {"absorption-distance", "2"},
+                                     {"fresnel", "schlick"},
+                                     {"search-steps", "9"},
+                                     {"tir", "reflect"},
+                                     {"tir-bounces", "3"},
+                                     {"back-surface", "first"},
+                                     {"geometry-passes", "two"},
+                                     {"dispersion-search", "per-channel"},
+                                     {"nearby", "off"},
+                                     {"debug", "steps"}})
         ASSERT_TRUE(p.set(key, value).ok()) << key;
     const S s = S::decode(p);
     EXPECT_EQ(s.method, S::Method::Isr);

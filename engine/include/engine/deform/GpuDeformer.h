@@ -65,7 +65,7 @@ public:
     void update(const anim::Pose& pose);
 
     const std::vector<GpuInstance>& instances() const { return mInstances; }
-    int subdivisionLevel() const { return mLevel; }
+    int subdivisionLevel() const { return mUpload->subdivisionLevel(); }
     /** The uploaded model this placement deforms. */
     const std::shared_ptr<const GpuModel>& model() const { return mUpload; }
     /** Differs between any two deformers of a process (plugins key their caches on it). */
@@ -97,7 +97,6 @@ private:
     struct Refined;    // per instance primitive: the cage and the evaluators' outputs
     struct Evaluators; // OpenSubdiv's GL compute evaluators, one per buffer layout
     std::shared_ptr<const GpuModel> mUpload;
-    int mLevel = 0;
     std::uint64_t mSerial = 0;
     std::unique_ptr<Evaluators> mEvaluators;
     std::vector<std::vector<Refined>> mRefined; // [instance][primitive], empty at level 0

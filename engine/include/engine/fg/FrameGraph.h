@@ -162,8 +162,7 @@ private:
     std::uint32_t addPassNode(const std::string& name);
     void setExecute(std::uint32_t pass,
                     std::function<core::Status(const Resources&, gl::Context&)> fn);
-    std::uint32_t addImported(const std::string& name, bool buffer, const gl::TextureDesc& desc,
-                              void* object);
+    std::uint32_t addImported(const std::string& name, const gl::TextureDesc& desc, void* object);
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
 

@@ -24,6 +24,10 @@ public:
                         const Texture* depth, int level = 0);
     /** Binds for drawing and sets the viewport to the attachments' size. */
     void bind() const;
+    /** attach(), then bind() when complete: what a pass does before it draws. The error is
+     *  attach()'s, for the pass to return. */
+    core::Status bindTargets(const char* name, const std::vector<const Texture*>& colors,
+                             const Texture* depth);
     /** Binds the default framebuffer (the window) with the given viewport. */
     static void bindDefault(glm::ivec2 size);
     /** Copies rectangle `source` (x, y, width, height; GL's bottom-up rows) of colour

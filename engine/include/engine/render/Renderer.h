@@ -93,9 +93,11 @@ private:
     const scene::Model* mModel = nullptr;
     gl::Context* mContext = nullptr;
     gl::ShaderLibrary mShaders;
-    std::unique_ptr<RenderGpu> mGpu; // what the passes draw with
     std::unique_ptr<Allocator> mAllocator;
     std::unique_ptr<fg::TexturePool> mPool;
+    // What the passes draw with; declared after the pool so that its framebuffer goes before
+    // the pooled textures it may still hold.
+    std::unique_ptr<RenderGpu> mGpu;
     std::unique_ptr<Timer> mTimer;
     std::vector<plugin::Plugin*> mPlugins;
     gl::Texture mOutput;

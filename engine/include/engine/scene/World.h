@@ -35,10 +35,10 @@ struct Character {
     std::string modelPath;
     /** Model space to world space, as glTF nodes spell it (translation, rotation, scale). */
     Trs placement;
-    int clip = -1;            ///< index into model->animations; -1: the rest pose
-    double timeOffset = 0.0;  ///< seconds added to the scene time
-    double speed = 1.0;       ///< clip seconds per scene second (negative plays backwards)
-    bool loop = true;         ///< else the clip holds its ends
+    int clip = -1;           ///< index into model->animations; -1: the rest pose
+    double timeOffset = 0.0; ///< seconds added to the scene time
+    double speed = 1.0;      ///< clip seconds per scene second (negative plays backwards)
+    bool loop = true;        ///< else the clip holds its ends
     GlassMode glass = GlassMode::Auto;
     GlassOverrides overrides;
 

@@ -16,8 +16,8 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound = bindTargets(gpu, "background", {&r.texture(d.color)},
-                                         &r.texture(d.depth));
+            if (auto bound = gpu.framebuffer.bindTargets("background", {&r.texture(d.color)},
+                                                         &r.texture(d.depth));
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);

@@ -15,8 +15,8 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound =
-                    bindTargets(gpu, "ground", {&r.texture(d.color)}, &r.texture(d.depth));
+            if (auto bound = gpu.framebuffer.bindTargets("ground", {&r.texture(d.color)},
+                                                         &r.texture(d.depth));
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None});

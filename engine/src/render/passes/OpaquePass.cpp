@@ -26,8 +26,8 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound =
-                    bindTargets(gpu, "opaque", {&r.texture(d.color)}, &r.texture(d.depth));
+            if (auto bound = gpu.framebuffer.bindTargets("opaque", {&r.texture(d.color)},
+                                                         &r.texture(d.depth));
                 !bound)
                 return bound;
             const scene::Model& model = *frame.model;

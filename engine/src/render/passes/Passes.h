@@ -33,8 +33,4 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
 void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                 fg::TextureHandle scene, fg::TextureHandle output);
 
-/** Attaches and binds the pass's targets; an incomplete framebuffer is the pass's error. */
-core::Status bindTargets(RenderGpu& gpu, const char* pass,
-                         const std::vector<const gl::Texture*>& colors, const gl::Texture* depth);
-
 } // namespace render::passes

@@ -17,7 +17,9 @@ void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
             d.output = b.write(output);
         },
         [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
-            if (auto bound = bindTargets(gpu, "tonemap", {&r.texture(d.output)}, nullptr); !bound)
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("tonemap", {&r.texture(d.output)}, nullptr);
+                !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gpu.tonemap.use();
