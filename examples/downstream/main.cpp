@@ -3,7 +3,6 @@
 // statically), optionally adds a plugin module, renders one frame headless and writes a PNG.
 // To show that the glass was drawn it also renders the same frame with the plugin switched off
 // and counts the pixels that differ.
-#include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/capture/Image.h"
 #include "engine/core/Version.h"
@@ -15,6 +14,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,9 +54,10 @@ int main(int argc, char** argv) {
     }
     std::printf("Glass %s\n", core::engineVersion());
 
-    auto model = asset::loadModel(positional[0]);
-    if (!model)
-        return fail(model.error().message);
+    auto loaded = asset::loadModel(positional[0]);
+    if (!loaded)
+        return fail(loaded.error().message);
+    const auto model = std::make_shared<const scene::Model>(std::move(*loaded));
     auto context = gl::createHeadlessContext();
     if (!context)
         return fail(context.error().message);
@@ -74,8 +75,7 @@ int main(int argc, char** argv) {
             return fail(loaded.error().message);
         extra = std::move(*loaded);
     }
-    auto renderer =
-        render::Renderer::create(*model, render::Environment::proceduralSky(), **context);
+    auto renderer = render::Renderer::create(render::Environment::proceduralSky(), **context);
     if (!renderer)
         return fail(renderer.error().message);
     for (plugin::Plugin* added : {glass.get(), extra.get()})
@@ -83,14 +83,15 @@ int main(int argc, char** argv) {
             if (auto status = (*renderer)->addPlugin(added); !status)
                 return fail(status.error().message);
 
+    // A world of one character playing the model's first clip.
     const int clip = model->animations.empty() ? -1 : 0;
-    const anim::Pose pose = anim::evaluate(*model, clip, time);
+    const scene::World world = scene::singleCharacterWorld(model, clip, positional[0]);
     render::RenderSettings settings;
     settings.size = {256, 256};
     const render::Camera camera =
         render::frameBounds(render::animatedBounds(*model, clip), 1.0f, 0.7f, 0.4f, 0.2f);
     auto frame = [&]() -> core::Result<capture::Image> {
-        auto stats = (*renderer)->render(pose, camera, settings, time);
+        auto stats = (*renderer)->render(world, camera, settings, time);
         if (!stats)
             return stats.error();
         return capture::Image{settings.size.x, settings.size.y, (*renderer)->readOutput()};

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -92,15 +93,20 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     return buffers;
 }
 
-bool FrameContext::isGlass(const scene::Primitive& primitive) const {
-    return settings.isGlass(*frame->model, primitive);
+void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) {
+    std::erase_if(gpu.distances, [&](const auto& entry) {
+        return std::none_of(items.begin(), items.end(), [&](const render::DrawItem& item) {
+            return item.key == std::get<0>(entry.first);
+        });
+    });
 }
 
-void FrameContext::setMaterial(const gl::Program& program, int material) const {
-    const scene::Model& model = *frame->model;
+void FrameContext::setMaterial(const gl::Program& program, const render::DrawItem& item) const {
+    const scene::Model& model = *item.model;
+    const int material = item.material;
     const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-    frame->materials->bind(program, model, material, kMaterialUnit);
-    const Optics o = opticsFor(settings, m);
+    item.materials->bind(program, model, material, kMaterialUnit);
+    const Optics o = opticsFor(settings, m, item.source->overrides);
     program.set("uIor", o.ior);
     program.set("uDispersion", o.dispersion ? 1 : 0);
     program.set("uSigma", o.sigma);
@@ -115,30 +121,24 @@ void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState
                              bool front) const {
     program.use();
     program.set("uProjection", frame->camera.projection);
-    std::size_t vao = 0, instanceIndex = 0;
-    for (const auto& instance : frame->geometry->instances()) {
-        const glm::mat4 modelView = frame->camera.view * instance.meshToWorld;
+    for (const render::DrawItem& item : frame->items) {
+        if (!isGlass(item))
+            continue;
+        const glm::mat4 modelView = frame->camera.view * item.world;
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
-        for (std::size_t p = 0; p < instance.primitives.size(); ++p, ++vao) {
-            const auto& primitive = instance.primitives[p];
-            if (!isGlass(*primitive.source))
-                continue;
-            gl::bindStorage(0, primitive.deformed);
-            gl::bindStorage(1, *primitive.uv0);
-            const auto distance = gpu->distances.find({instanceIndex, p});
-            const bool hasDistance =
-                distance != gpu->distances.end() && settings.usesNormalDistance();
-            program.set("uHasNormalDistance", hasDistance ? 1 : 0);
-            // Without d_N the binding still needs a buffer: the vertices stand in (unread).
-            gl::bindStorage(2, hasDistance ? distance->second.values() : primitive.deformed);
-            if (front)
-                setMaterial(program, primitive.source->material);
-            gl::apply(state);
-            gpu->vaos[vao].bind();
-            gl::drawIndexed(primitive.indexCount);
-        }
-        ++instanceIndex;
+        gl::bindStorage(0, item.gpu->deformed);
+        gl::bindStorage(1, *item.gpu->uv0);
+        const auto distance = gpu->distances.find({item.key, item.instance, item.primitiveIndex});
+        const bool hasDistance = distance != gpu->distances.end() && settings.usesNormalDistance();
+        program.set("uHasNormalDistance", hasDistance ? 1 : 0);
+        // Without d_N the binding still needs a buffer: the vertices stand in (unread).
+        gl::bindStorage(2, hasDistance ? distance->second.values() : item.gpu->deformed);
+        if (front)
+            setMaterial(program, item);
+        gl::apply(state);
+        item.vertexArray->bind();
+        gl::drawIndexed(item.gpu->indexCount);
     }
 }
 
@@ -153,26 +153,25 @@ void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
             d.distances = b.write(buffers.distances);
         },
         [c](const fg::Resources&, const Data&, gl::Context&) {
-            const deform::GpuDeformer& geometry = *c.frame->geometry;
-            const bool refined = geometry.subdivisionLevel() > 0;
-            for (std::size_t i = 0; i < geometry.instances().size(); ++i)
-                for (std::size_t p = 0; p < geometry.instances()[i].primitives.size(); ++p) {
-                    const auto& primitive = geometry.instances()[i].primitives[p];
-                    if (!c.isGlass(*primitive.source))
-                        continue;
-                    auto& distance = c.gpu->distances[{i, p}];
-                    if (!distance.cage) {
-                        distance.cage = std::make_unique<NormalDistance>(*primitive.source);
-                        if (refined)
-                            distance.drawn =
-                                gl::Buffer(std::size_t(primitive.vertexCount) * sizeof(float));
-                    }
-                    const auto cage = geometry.cage(i, p);
-                    distance.cage->update(cage.vertices, cage.indices, c.gpu->refit,
-                                          c.gpu->normalDistance);
+            for (const render::DrawItem& item : c.frame->items) {
+                if (!c.isGlass(item))
+                    continue;
+                const deform::GpuDeformer& geometry = *item.geometry;
+                const bool refined = geometry.subdivisionLevel() > 0;
+                auto& distance = c.gpu->distances[{item.key, item.instance, item.primitiveIndex}];
+                if (!distance.cage) {
+                    distance.cage = std::make_unique<NormalDistance>(*item.primitive);
                     if (refined)
-                        geometry.refineScalar(i, p, distance.cage->distances(), distance.drawn);
+                        distance.drawn =
+                            gl::Buffer(std::size_t(item.gpu->vertexCount) * sizeof(float));
                 }
+                const auto cage = geometry.cage(item.instance, item.primitiveIndex);
+                distance.cage->update(cage.vertices, cage.indices, c.gpu->refit,
+                                      c.gpu->normalDistance);
+                if (refined)
+                    geometry.refineScalar(item.instance, item.primitiveIndex,
+                                          distance.cage->distances(), distance.drawn);
+            }
         });
     buffers.distances = pass.distances;
 }
@@ -253,19 +252,17 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
             gpu.rectangleGrow.use();
             gpu.rectangleGrow.set("uViewportSize", glm::vec2(frame.settings.size));
             gl::bindStorage(4, gpu.rectangle);
-            const auto& instances = frame.geometry->instances();
-            for (std::size_t i = 0; i < instances.size(); ++i)
-                for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
-                    const auto& primitive = instances[i].primitives[p];
-                    if (!c.isGlass(*primitive.source))
-                        continue;
-                    gpu.rectangleGrow.set("uModelViewProjection",
-                                          frame.camera.viewProjection() * instances[i].meshToWorld);
-                    const int count = int(primitive.source->vertexCount());
-                    gpu.rectangleGrow.set("uVertexCount", count);
-                    gl::bindStorage(0, frame.geometry->cage(i, p).vertices);
-                    gl::dispatch(std::uint32_t((count + 63) / 64));
-                }
+            for (const render::DrawItem& item : frame.items) {
+                if (!c.isGlass(item))
+                    continue;
+                gpu.rectangleGrow.set("uModelViewProjection",
+                                      frame.camera.viewProjection() * item.world);
+                const int count = int(item.primitive->vertexCount());
+                gpu.rectangleGrow.set("uVertexCount", count);
+                gl::bindStorage(0,
+                                item.geometry->cage(item.instance, item.primitiveIndex).vertices);
+                gl::dispatch(std::uint32_t((count + 63) / 64));
+            }
             gl::memoryBarrier(gl::BarrierStorage);
             if (auto bound = gpu.framebuffer.bindTargets(
                     "refraction.surfaces", {&r.texture(d.nearTargets), &r.texture(d.farTargets)},
@@ -442,7 +439,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                            .depthWrite = false,
                            .depthFunc = gl::DepthFunc::Greater});
                 setShading(c, gpu.deferred, d, r);
-                c.setMaterial(gpu.deferred, c.glassMaterial);
+                c.setMaterial(gpu.deferred, *c.glass);
                 gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
                 gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
                 gpu.deferred.set("uProjection", c.frame->camera.projection);

@@ -19,19 +19,25 @@ namespace refraction {
  *  callbacks run after addPasses() returns). */
 struct FrameContext {
     GpuState* gpu = nullptr;
-    Settings settings; ///< the parameters, decoded once this frame
+    const plugin::Plugin* plugin = nullptr; ///< owner of the glass items (DrawItem::owner)
+    Settings settings;                      ///< the parameters, decoded once this frame
     const render::FrameInfo* frame = nullptr;
-    bool reflect = false;   ///< TIR reflect (two interfaces): the front surface is searched too
-    bool onePass = false;   ///< the single gathered geometry pass
-    int glassMaterial = -1; ///< one pass: the one material of every glass primitive
+    bool reflect = false; ///< TIR reflect (two interfaces): the front surface is searched too
+    bool onePass = false; ///< the single gathered geometry pass
+    /** The first glass item: with one pass, its material and overrides are every one's. */
+    const render::DrawItem* glass = nullptr;
 
-    bool isGlass(const scene::Primitive& primitive) const;
-    /** Draws every glass primitive with `program` (glass.vert.glsl); `front` sets each one's
+    bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
+    /** Draws every glass item with `program` (glass.vert.glsl); `front` sets each one's
      *  material for the shading. */
     void drawGlass(const gl::Program& program, const gl::PipelineState& state, bool front) const;
-    /** Material and optics uniforms of glass_shading.glsl. */
-    void setMaterial(const gl::Program& program, int material) const;
+    /** Material and optics uniforms of glass_shading.glsl for `item`'s material and its
+     *  character's overrides. */
+    void setMaterial(const gl::Program& program, const render::DrawItem& item) const;
 };
+
+/** Forgets the d_N of characters no longer in `items` (removed, or placed again). */
+void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items);
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
  *  and the plugin's own (GpuState: d_N, the glass rectangle, the depth range), imported each

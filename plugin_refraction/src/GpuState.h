@@ -8,13 +8,12 @@
 #include "engine/gl/Commands.h"
 #include "engine/gl/Framebuffer.h"
 #include "engine/gl/Program.h"
-#include "engine/scene/Model.h"
+#include "engine/render/FrameInfo.h"
 
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <utility>
-#include <vector>
+#include <tuple>
 
 namespace refraction {
 
@@ -27,17 +26,18 @@ struct GpuState {
     gl::VertexArray emptyVao;
     gl::Buffer range{4 * sizeof(std::uint32_t)};    // depth_range.comp.glsl's min/max
     gl::Buffer rectangle{4 * sizeof(std::int32_t)}; // the glass's pixel rectangle (surfaces.glsl)
-    const scene::Model* model = nullptr;
-    std::uint64_t geometry = 0;        // GpuDeformer::serial() the caches below belong to
-    std::vector<gl::VertexArray> vaos; // per instance primitive, flattened
-    /** d_N of one glass primitive: measured on the deformed cage (the file's triangles); with
-     *  subdivision carried to the drawn vertices by the refinement stencils. */
+    /** d_N of one glass item (a primitive of a character): measured on the deformed cage (the
+     * file's triangles); with subdivision carried to the drawn vertices by the refinement stencils.
+     */
     struct Distance {
         std::unique_ptr<NormalDistance> cage;
         gl::Buffer drawn; // with subdivision: one float per drawn vertex
         const gl::Buffer& values() const { return drawn ? drawn : cage->distances(); }
     };
-    std::map<std::pair<std::size_t, std::size_t>, Distance> distances; // (instance, primitive)
+    /** Keyed by (DrawItem::key, instance, primitive); entries of characters gone from the
+     *  frame are dropped. */
+    using DistanceKey = std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>;
+    std::map<DistanceKey, Distance> distances;
 };
 
 } // namespace refraction

@@ -6,19 +6,23 @@
 
 namespace refraction {
 
-Optics opticsFor(const Settings& s, const scene::Material* m) {
+Optics opticsFor(const Settings& s, const scene::Material* m,
+                 const scene::GlassOverrides& overrides) {
     Optics o;
-    const double iorOverride = s.ior;
+    const double iorOverride = overrides.ior ? double(*overrides.ior) : s.ior;
     const double ior = iorOverride >= 1.0
                            ? iorOverride
                            : (m && m->hasIor && m->ior >= 1.0f ? double(m->ior) : 1.5);
-    const double dispersion = s.dispersion >= 0.0 ? s.dispersion : (m ? double(m->dispersion) : 0.0);
+    const double dispersion = overrides.dispersion  ? double(*overrides.dispersion)
+                              : s.dispersion >= 0.0 ? s.dispersion
+                              : m                   ? double(m->dispersion)
+                                                    : 0.0;
     // KHR_materials_dispersion: the indices spread around ior by the Abbe number (20 / dispersion).
     const double halfSpread = (ior - 1.0) * 0.025 * dispersion;
     o.ior = glm::vec3(float(ior - halfSpread), float(ior), float(ior + halfSpread));
     o.dispersion = halfSpread > 0.0;
-    const glm::vec3 attenuation =
-        (m ? m->attenuationColor : glm::vec3(1.0f)) * glm::vec3(s.tint);
+    const glm::vec3 attenuation = (m ? m->attenuationColor : glm::vec3(1.0f)) *
+                                  (overrides.tint ? *overrides.tint : glm::vec3(s.tint));
     const double distanceOverride = s.absorptionDistance;
     const float distance = distanceOverride > 0.0 ? float(distanceOverride)
                            : m                    ? m->attenuationDistance

@@ -10,7 +10,9 @@
 
 namespace refraction {
 
-/** Per-primitive optics from the material and the global overrides. */
+/** Per-primitive optics: a character's own overrides (scene files: ior, tint, dispersion)
+ *  first, then the plugin's parameters (ior, dispersion, tint, absorption distance) where set,
+ *  then the material. */
 struct Optics {
     glm::vec3 ior; ///< per channel (R, G, B): the KHR_materials_dispersion spread
     bool dispersion = false;
@@ -22,6 +24,7 @@ struct Optics {
     float roughness = 0.0f, metallic = 0.0f;
 };
 
-Optics opticsFor(const Settings& settings, const scene::Material* material);
+Optics opticsFor(const Settings& settings, const scene::Material* material,
+                 const scene::GlassOverrides& overrides = {});
 
 } // namespace refraction

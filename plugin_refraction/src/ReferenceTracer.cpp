@@ -151,6 +151,7 @@ struct Surface {
     std::vector<dvec2> uv;
     std::vector<std::uint32_t> indices;
     bool glass = true;
+    const scene::Model* model = nullptr;       // whose material and textures
     const scene::Material* material = nullptr; // opaque surfaces
     Optics optics;                             // glass surfaces
 };
@@ -199,9 +200,8 @@ public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
            Settings::Fresnel fresnelMode, double epsilon)
-        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options),
-          mFresnel(fresnelMode), mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)),
-          mScene(rtcNewScene(mDevice)) {
+        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options), mFresnel(fresnelMode),
+          mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)) {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto* v = static_cast<float*>(
@@ -286,12 +286,12 @@ public:
         glm::dvec4 base = m ? glm::dvec4(m->baseColorFactor) : glm::dvec4(1.0);
         double metallic = m ? m->metallicFactor : 1.0, roughness = m ? m->roughnessFactor : 1.0;
         dvec3 emissive = m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
-        if (m && mModel) {
+        if (const scene::Model* model = h.surface->model; m && model) {
             auto image = [&](const scene::TextureRef& t) -> const scene::Image* {
                 if (!t.present() || t.texCoord != 0)
                     return nullptr;
-                const int i = mModel->textures[std::size_t(t.texture)].image;
-                return i >= 0 ? &mModel->images[std::size_t(i)] : nullptr;
+                const int i = model->textures[std::size_t(t.texture)].image;
+                return i >= 0 ? &model->images[std::size_t(i)] : nullptr;
             };
             if (const auto* img = image(m->baseColorTexture))
                 base *= sampleImage(*img, h.uv, true);
@@ -389,8 +389,6 @@ public:
                (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
     }
 
-    const scene::Model* mModel = nullptr;
-
 private:
     const std::vector<Surface>& mSurfaces;
     const EnvironmentSampler& mEnv;
@@ -405,41 +403,44 @@ private:
 } // namespace
 
 core::Result<ReferenceImage>
-traceReference(const scene::Model& model, const anim::Pose& pose, const render::Camera& camera,
+traceReference(const scene::World& world, double time, const render::Camera& camera,
                const EnvironmentSampler& environment, const render::RenderSettings& settings,
                const render::GroundPlane& ground, const plugin::ParameterSet& glass,
                const ReferenceOptions& options) {
     const Settings decoded = Settings::decode(glass);
     std::vector<Surface> surfaces;
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const auto& instance : deform::deformScene(model, pose)) {
-        const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
-        for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-            const scene::Primitive& primitive = mesh.primitives[p];
-            const auto world = deform::toWorld(instance.primitives[p], instance.meshToWorld);
-            Surface s;
-            s.positions = world.positions;
-            s.normals = world.normals;
-            s.indices = primitive.indices;
-            for (const glm::vec2& uv : primitive.uv0)
-                s.uv.emplace_back(uv);
-            const int material = primitive.material;
-            s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-            s.glass = decoded.isGlass(model, primitive);
-            s.optics = opticsFor(decoded, s.material);
-            if (!s.optics.dispersion)
-                s.optics.ior = glm::vec3(s.optics.ior.g);
-            for (const auto& v : s.positions) {
-                lo = glm::min(lo, v);
-                hi = glm::max(hi, v);
+    for (const scene::Character& character : world.characters) {
+        const scene::Model& model = *character.model;
+        for (const auto& instance : deform::deformCharacter(character, time)) {
+            const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
+            for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+                const scene::Primitive& primitive = mesh.primitives[p];
+                const auto placed = deform::toWorld(instance.primitives[p], instance.meshToWorld);
+                Surface s;
+                s.positions = placed.positions;
+                s.normals = placed.normals;
+                s.indices = primitive.indices;
+                for (const glm::vec2& uv : primitive.uv0)
+                    s.uv.emplace_back(uv);
+                const int material = primitive.material;
+                s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+                s.model = &model;
+                s.glass = decoded.isGlass(model, primitive, character.glass);
+                s.optics = opticsFor(decoded, s.material, character.overrides);
+                if (!s.optics.dispersion)
+                    s.optics.ior = glm::vec3(s.optics.ior.g);
+                for (const auto& v : s.positions) {
+                    lo = glm::min(lo, v);
+                    hi = glm::max(hi, v);
+                }
+                surfaces.push_back(std::move(s));
             }
-            surfaces.push_back(std::move(s));
         }
     }
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
                   decoded.fresnel, epsilon);
-    tracer.mModel = &model;
 
     ReferenceImage image;
     image.size = settings.size;

@@ -5,8 +5,6 @@
 #include "FramePasses.h"
 #include "GpuState.h"
 
-#include "engine/deform/GpuDeformer.h"
-
 #include "engine/core/Check.h"
 
 #include <cstdio>
@@ -211,25 +209,8 @@ const Settings& RefractionPlugin::settings() const {
     return *mSettings;
 }
 
-bool RefractionPlugin::drawsPrimitive(const scene::Model& model, int,
-                                      const scene::Primitive& primitive) const {
-    return mGpu && settings().isGlass(model, primitive);
-}
-
-void RefractionPlugin::prepare(const scene::Model& model, const deform::GpuDeformer& geometry) {
-    if (mGpu->model == &model && mGpu->geometry == geometry.serial())
-        return;
-    mGpu->model = &model;
-    mGpu->geometry = geometry.serial();
-    mGpu->vaos.clear();
-    mGpu->distances.clear();
-    const auto& instances = geometry.instances();
-    for (const auto& instance : instances)
-        for (const auto& primitive : instance.primitives) {
-            gl::VertexArray vao;
-            vao.setIndexBuffer(*primitive.indices);
-            mGpu->vaos.push_back(std::move(vao));
-        }
+bool RefractionPlugin::claims(const render::DrawItem& item) const {
+    return mGpu && settings().isGlass(*item.model, *item.primitive, item.source->glass);
 }
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
@@ -241,26 +222,28 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (c.settings.method == Settings::Method::Opaque)
         return;
     c.gpu = mGpu.get();
+    c.plugin = this;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
-    prepare(*c.frame->model, *c.frame->geometry);
 
-    // The single geometry pass needs what one shading pass can serve: one glass material, no
-    // normal map (no UV or tangent is gathered), the farthest back surface (MAX blending).
-    bool anyGlass = false, oneMaterial = true;
-    for (const auto& instance : c.frame->geometry->instances())
-        for (const auto& primitive : instance.primitives) {
-            if (!c.isGlass(*primitive.source))
-                continue;
-            oneMaterial =
-                oneMaterial && (!anyGlass || c.glassMaterial == primitive.source->material);
-            c.glassMaterial = primitive.source->material;
-            anyGlass = true;
-        }
-    if (!anyGlass)
+    // The single geometry pass needs what one shading pass can serve: one glass material with
+    // the same overrides on every glass item, no normal map (no UV or tangent is gathered), the
+    // farthest back surface (MAX blending).
+    bool oneMaterial = true;
+    for (const render::DrawItem& item : c.frame->items) {
+        if (item.owner != this)
+            continue;
+        if (!c.glass)
+            c.glass = &item;
+        oneMaterial = oneMaterial && item.model == c.glass->model &&
+                      item.material == c.glass->material &&
+                      item.source->overrides == c.glass->source->overrides;
+    }
+    dropStaleDistances(*mGpu, c.frame->items);
+    if (!c.glass)
         return;
-    const scene::Model& model = *c.frame->model;
-    const bool normalMap = c.glassMaterial >= 0 &&
-                           model.materials[std::size_t(c.glassMaterial)].normalTexture.present();
+    const scene::Model& model = *c.glass->model;
+    const bool normalMap = c.glass->material >= 0 &&
+                           model.materials[std::size_t(c.glass->material)].normalTexture.present();
     const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
     c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&

@@ -49,10 +49,11 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     return s;
 }
 
-bool Settings::isGlass(const scene::Model& model, const scene::Primitive& primitive) const {
-    if (method == Method::Opaque)
+bool Settings::isGlass(const scene::Model& model, const scene::Primitive& primitive,
+                       scene::GlassMode mode) const {
+    if (method == Method::Opaque || mode == scene::GlassMode::None)
         return false;
-    if (glass == Glass::All)
+    if (glass == Glass::All || mode == scene::GlassMode::All)
         return true;
     return primitive.material >= 0 &&
            model.materials[std::size_t(primitive.material)].isTransmissive();

@@ -4,6 +4,7 @@
 
 #include "engine/plugin/ParameterSet.h"
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <glm/glm.hpp>
 
@@ -42,9 +43,11 @@ struct Settings {
     bool twoInterfaces() const { return method == Method::Isr || method == Method::Dir; }
     /** Isr measures d_N every frame and reads it. */
     bool usesNormalDistance() const { return method == Method::Isr; }
-    /** Whether `primitive` renders as glass: never with Opaque, every mesh with Glass::All,
-     *  else materials with KHR_materials_transmission. */
-    bool isGlass(const scene::Model& model, const scene::Primitive& primitive) const;
+    /** Whether `primitive` of a character in glass mode `mode` renders as glass: never with
+     *  Opaque or GlassMode::None, always with GlassMode::All; with GlassMode::Auto every mesh
+     *  under Glass::All, else materials with KHR_materials_transmission. */
+    bool isGlass(const scene::Model& model, const scene::Primitive& primitive,
+                 scene::GlassMode mode = scene::GlassMode::Auto) const;
 };
 
 } // namespace refraction

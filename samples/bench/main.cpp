@@ -1,5 +1,5 @@
-// glass-bench: frame time of each glass method on one model, the methods interleaved frame by
-// frame so that their ratios hold on a noisy machine.
+// glass-bench: frame time of each glass method on a model or a scene (and on N copies of it on a
+// grid), the methods interleaved frame by frame so that their ratios hold on a noisy machine.
 #include "Plot.h"
 
 #include "../common/HeadlessScene.h"
@@ -32,18 +32,25 @@
 namespace {
 
 const char* const kUsage =
-    R"(usage: glass-bench MODEL [--methods opaque,sir,isr,dir] [--subdiv 0,1,2] [--size WxH]
-                   [--frames N] [--warmup W] [--glass all|auto] [--ground] [--set KEY=VALUE]...
-                   [--json FILE] [--plot PNG] [--force]
+    R"(usage: glass-bench MODEL|SCENE [MODEL...] [--methods opaque,sir,isr,dir] [--subdiv 0,1,2]
+                   [--instances 1,4,16,64] [--size WxH] [--frames N] [--warmup W]
+                   [--glass all|auto] [--ground] [--set KEY=VALUE]... [--json FILE] [--plot PNG]
+                   [--force]
 
-Renders MODEL headless (EGL) at each OpenSubdiv level of --subdiv (default 0: the file's
-triangles; 0..4, refined every frame on the GPU from the deformed mesh) with each method,
-interleaved frame by frame (opaque, sir, isr, dir, opaque, ...) while the first clip plays
-(1/30 s per round), after W warm-up rounds (default 10), for N measured rounds (default 60), at
-WxH (default 512x512). Per method and level: median and p95 frame time (render + finish, wall
-clock), each pass's median GPU and CPU time (every pass finished before its end timestamp),
-triangles drawn, pixels the model covers (CPU coverage of the deformed file triangles at the
-middle of the clip) and the GPU memory of the frame graph's pooled textures. --glass all
+Renders MODEL (a scene file, or several models side by side) headless (EGL) at each
+OpenSubdiv level of --subdiv (default 0: the file's triangles; 0..4, refined every frame on the
+GPU from the deformed mesh) with each method, interleaved frame by frame (opaque, sir, isr, dir,
+opaque, ...) while the clips play (1/30 s per round), after W warm-up rounds (default 10), for N
+measured rounds (default 60), at WxH (default 512x512). --instances N,... also runs each count N
+of characters: copies of the scene's characters in turn, on a square grid in the x-z plane, copy
+k at phase k/N of its clip, the camera framing all. Per method, level and count: median and p95
+frame time (render + finish, wall clock), the median CPU time of the frame on the render thread
+(animate, upload, record, issue; "cpu ms") and of animating alone (pose every character, stage
+the uploads, list the draw items), each pass's median GPU and CPU time, triangles drawn, pixels
+the world covers (CPU coverage of the deformed file triangles at the middle of the clip) and the
+GPU memory of the frame graph's pooled textures. Without --instances every pass is finished
+before its end timestamp (exact per-pass GPU times; the CPU times then include those waits);
+with it, frames pipeline as in an application and pass times come from the timer queries. --glass all
 (default) plays every mesh as glass; --ground draws the ground plane (opaque geometry the glass
 sees through its nearby-scene walk; without opaque geometry the walk is skipped); --set sets any
 other refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
@@ -78,61 +85,94 @@ double percentile(std::vector<double> values, double p) {
 
 /** Pixels covered by the deformed triangles at `size` (any facing), by edge functions at pixel
  *  centres: the share of the image the glass pass works on. */
-std::size_t coveredPixels(const scene::Model& model, const anim::Pose& pose,
-                          const render::Camera& camera, glm::ivec2 size) {
+std::size_t coveredPixels(const scene::World& world, double time, const render::Camera& camera,
+                          glm::ivec2 size) {
     std::vector<std::uint8_t> covered(std::size_t(size.x) * std::size_t(size.y), 0);
     const glm::dmat4 viewProjection(camera.viewProjection());
-    for (const deform::DeformedInstance& instance : deform::deformScene(model, pose)) {
-        const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
-        for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-            std::vector<glm::dvec3> screen;
-            bool behind = false;
-            for (const glm::dvec3& v : instance.primitives[p].positions) {
-                const glm::dvec4 clip = viewProjection * instance.meshToWorld * glm::dvec4(v, 1.0);
-                behind = behind || clip.w <= 0.0;
-                screen.emplace_back((clip.x / clip.w * 0.5 + 0.5) * size.x,
-                                    (clip.y / clip.w * 0.5 + 0.5) * size.y, 0.0);
-            }
-            if (behind)
-                continue; // the benchmark frames the whole model; nothing is behind the camera
-            const auto& indices = mesh.primitives[p].indices;
-            for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-                const glm::dvec3 a = screen[indices[t]], b = screen[indices[t + 1]],
-                                 c = screen[indices[t + 2]];
-                const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-                if (area == 0.0)
-                    continue;
-                const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
-                const int x1 = std::min(size.x - 1, int(std::ceil(std::max({a.x, b.x, c.x}))));
-                const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}))));
-                const int y1 = std::min(size.y - 1, int(std::ceil(std::max({a.y, b.y, c.y}))));
-                for (int y = y0; y <= y1; ++y)
-                    for (int x = x0; x <= x1; ++x) {
-                        const double px = x + 0.5, py = y + 0.5;
-                        const double w0 = (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
-                        const double w1 = (c.x - b.x) * (py - b.y) - (c.y - b.y) * (px - b.x);
-                        const double w2 = (a.x - c.x) * (py - c.y) - (a.y - c.y) * (px - c.x);
-                        if ((w0 >= 0 && w1 >= 0 && w2 >= 0) || (w0 <= 0 && w1 <= 0 && w2 <= 0))
-                            covered[std::size_t(y) * std::size_t(size.x) + std::size_t(x)] = 1;
-                    }
+    for (const scene::Character& character : world.characters)
+        for (const deform::DeformedInstance& instance : deform::deformCharacter(character, time)) {
+            const scene::Model& model = *character.model;
+            const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
+            for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
+                std::vector<glm::dvec3> screen;
+                bool behind = false;
+                for (const glm::dvec3& v : instance.primitives[p].positions) {
+                    const glm::dvec4 clip =
+                        viewProjection * instance.meshToWorld * glm::dvec4(v, 1.0);
+                    behind = behind || clip.w <= 0.0;
+                    screen.emplace_back((clip.x / clip.w * 0.5 + 0.5) * size.x,
+                                        (clip.y / clip.w * 0.5 + 0.5) * size.y, 0.0);
+                }
+                if (behind)
+                    continue; // the benchmark frames the whole model; nothing is behind the camera
+                const auto& indices = mesh.primitives[p].indices;
+                for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+                    const glm::dvec3 a = screen[indices[t]], b = screen[indices[t + 1]],
+                                     c = screen[indices[t + 2]];
+                    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+                    if (area == 0.0)
+                        continue;
+                    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
+                    const int x1 = std::min(size.x - 1, int(std::ceil(std::max({a.x, b.x, c.x}))));
+                    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}))));
+                    const int y1 = std::min(size.y - 1, int(std::ceil(std::max({a.y, b.y, c.y}))));
+                    for (int y = y0; y <= y1; ++y)
+                        for (int x = x0; x <= x1; ++x) {
+                            const double px = x + 0.5, py = y + 0.5;
+                            const double w0 = (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
+                            const double w1 = (c.x - b.x) * (py - b.y) - (c.y - b.y) * (px - b.x);
+                            const double w2 = (a.x - c.x) * (py - c.y) - (a.y - c.y) * (px - c.x);
+                            if ((w0 >= 0 && w1 >= 0 && w2 >= 0) || (w0 <= 0 && w1 <= 0 && w2 <= 0))
+                                covered[std::size_t(y) * std::size_t(size.x) + std::size_t(x)] = 1;
+                        }
+                }
             }
         }
-    }
     return std::size_t(std::count(covered.begin(), covered.end(), std::uint8_t(1)));
 }
 
 struct MethodRun {
     std::string method;
-    std::vector<double> frameMs;
+    std::vector<double> frameMs, cpuMs, animateMs;
     std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> passes;
     std::vector<std::string> passOrder;
     std::size_t transientBytes = 0;
 };
 
-/** Prints one table row per run of `level` and returns them as JSON; ratios are to the opaque
- *  run of the same level. */
+/** N characters from `base`: its characters in turn, on a square grid in the x-z plane (cells
+ *  a fifth wider than the widest character), copy k at phase k/N of its clip. */
+scene::World gridWorld(const scene::World& base, int count) {
+    scene::World grid = base;
+    grid.characters.clear();
+    grid.camera.reset(); // the tool frames the whole grid
+    float cell = 0.0f;
+    for (const scene::Character& c : base.characters) {
+        scene::World one;
+        one.characters.push_back(c);
+        one.characters[0].placement = {};
+        const render::Bounds b = render::worldBounds(one, 4);
+        cell = std::max({cell, b.max.x - b.min.x, b.max.z - b.min.z});
+    }
+    cell *= 1.2f;
+    const int columns = int(std::ceil(std::sqrt(double(count))));
+    for (int k = 0; k < count; ++k) {
+        scene::Character c = base.characters[std::size_t(k) % base.characters.size()];
+        c.name += " #" + std::to_string(k + 1);
+        const double centre = 0.5 * double(columns - 1);
+        c.placement.translation = glm::dvec3(double(cell) * (double(k % columns) - centre), 0.0,
+                                             double(cell) * (double(k / columns) - centre));
+        if (c.clip >= 0 && c.speed != 0.0)
+            c.timeOffset = c.model->animations[std::size_t(c.clip)].duration * double(k) /
+                           double(count) / std::abs(c.speed);
+        grid.characters.push_back(std::move(c));
+    }
+    return grid;
+}
+
+/** Prints one table row per run of `level` and `characters` and returns them as JSON; ratios
+ *  are to the opaque run of the same configuration. */
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
-                                      std::size_t triangles) {
+                                      std::size_t characters, std::size_t triangles) {
     double opaqueMedian = 0.0;
     for (const MethodRun& r : runs)
         if (r.method == "opaque")
@@ -158,15 +198,19 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
             top += item;
         }
         const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
-        std::printf("| %s | %d | %zu | %.2f | %.2f | %.2f | %.1f | %s |\n", r.method.c_str(), level,
-                    triangles, median, p95, ratio, double(r.transientBytes) / 1048576.0,
-                    top.c_str());
+        const double cpu = percentile(r.cpuMs, 0.5), animate = percentile(r.animateMs, 0.5);
+        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s |\n",
+                    r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu,
+                    animate, double(r.transientBytes) / 1048576.0, top.c_str());
         std::fflush(stdout);
         rows.push_back({{"method", r.method},
                         {"level", level},
+                        {"characters", characters},
                         {"triangles", triangles},
                         {"median_ms", median},
                         {"p95_ms", p95},
+                        {"cpu_ms", cpu},
+                        {"animate_ms", animate},
                         {"ratio_to_opaque", ratio},
                         {"transient_bytes", r.transientBytes},
                         {"passes", passes}});
@@ -177,14 +221,16 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
 /** The chart of a report: one line per method through its (triangles, median ms) per level. */
 capture::Image plot(const nlohmann::json& report) {
     static const std::map<std::string, std::array<std::uint8_t, 3>> colors = {
-        {"opaque", {120, 120, 120}}, {"sir", {52, 101, 164}},
-        {"isr", {230, 126, 34}},     {"dir", {46, 139, 87}}};
+        {"opaque", {120, 120, 120}},
+        {"sir", {52, 101, 164}},
+        {"isr", {230, 126, 34}},
+        {"dir", {46, 139, 87}}};
     bench::Chart chart;
     const std::string name =
         std::filesystem::path(report["model"].get<std::string>()).filename().string();
     chart.title = name + " " + std::to_string(report["size"][0].get<int>()) + "x" +
                   std::to_string(report["size"][1].get<int>()) + ": median frame time";
-    chart.xLabel = "triangles drawn (subdivision levels)";
+    chart.xLabel = "triangles drawn (subdivision levels, characters)";
     chart.yLabel = "ms per frame";
     for (const nlohmann::json& row : report["results"]) {
         const std::string method = row["method"];
@@ -193,7 +239,9 @@ capture::Image plot(const nlohmann::json& report) {
         if (it == chart.series.end()) {
             const auto color = colors.find(method);
             chart.series.push_back(
-                {method, color != colors.end() ? color->second : std::array<std::uint8_t, 3>{0, 0, 0}, {}});
+                {method,
+                 color != colors.end() ? color->second : std::array<std::uint8_t, 3>{0, 0, 0},
+                 {}});
             it = std::prev(chart.series.end());
         }
         it->points.emplace_back(row["triangles"].get<double>(), row["median_ms"].get<double>());
@@ -202,9 +250,11 @@ capture::Image plot(const nlohmann::json& report) {
 }
 
 int run(int argc, char** argv) {
-    std::string model, jsonPath, plotPath, glass = "all";
+    std::string jsonPath, plotPath, glass = "all";
+    std::vector<std::string> paths;
     std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
     std::vector<int> levels = {0};
+    std::vector<int> instances; // empty: the world as loaded
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
     bool force = false, ground = false;
@@ -233,6 +283,17 @@ int run(int argc, char** argv) {
                                       ", got '" + level + "'");
                 levels.push_back(int(n));
             }
+        } else if (arg == "--instances" && hasValue) {
+            for (const std::string& count : split(argv[++i])) {
+                char* end = nullptr;
+                const long n = std::strtol(count.c_str(), &end, 10);
+                if (count.empty() || *end != '\0' || n < 1 ||
+                    n > long(core::limits::kMaxCharacters))
+                    return usageError("--instances needs counts 1.." +
+                                      std::to_string(core::limits::kMaxCharacters) + ", got '" +
+                                      count + "'");
+                instances.push_back(int(n));
+            }
         } else if (arg == "--size" && hasValue) {
             char extra = 0;
             if (std::sscanf(argv[++i], "%dx%d%c", &size.x, &size.y, &extra) != 2 || size.x < 16 ||
@@ -254,14 +315,15 @@ int run(int argc, char** argv) {
             if (equals == std::string::npos)
                 return usageError("--set needs KEY=VALUE");
             assignments.emplace_back(assignment.substr(0, equals), assignment.substr(equals + 1));
-        } else if (!arg.empty() && arg[0] != '-' && model.empty()) {
-            model = arg;
+        } else if (!arg.empty() && arg[0] != '-') {
+            paths.push_back(arg);
         } else {
             return usageError("unexpected '" + arg + "'");
         }
     }
-    if (model.empty())
+    if (paths.empty())
         return usageError("no model given");
+    const std::string model = paths.size() == 1 ? paths[0] : paths[0] + " ...";
     for (const std::string& path : {jsonPath, plotPath})
         if (!path.empty() && !force && std::filesystem::exists(path)) {
             std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
@@ -279,94 +341,113 @@ int run(int argc, char** argv) {
             return usageError("--" + std::string(key == "glass" ? "glass" : "set " + key) + ": " +
                               ok.error().message);
 
-    auto opened = tool::openHeadlessScene(model);
+    auto opened = tool::openHeadlessScene(paths);
     if (!opened) {
         std::fprintf(stderr, "glass-bench: %s\n", opened.error().message.c_str());
         return 1;
     }
     tool::HeadlessScene& headless = *opened;
-    scene::Model* const loaded = headless.model.get();
     plugin::Plugin* const plugin = headless.glass.get();
     plugin->parameters() = parameters;
-    const int clip = headless.clip;
-    const double duration = headless.duration;
-    const render::Bounds bounds = headless.bounds;
-    const render::Camera camera = render::frameBounds(bounds, float(size.x) / float(size.y));
-    const std::size_t covered =
-        coveredPixels(*loaded, anim::evaluate(*loaded, clip, 0.5 * duration), camera, size);
     render::RenderSettings settings;
     settings.size = size;
-    settings.exactPassTimes = true;
-    settings.ground = ground;
+    settings.exactPassTimes = instances.empty();
+    settings.ground = ground || headless.world.ground;
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const int rounds = warmup + frames;
 
-    std::printf("%s, %dx%d, %zu covered pixels, %d rounds after %d warm-up (%s)\n",
-                loaded->sourceName.c_str(), size.x, size.y, covered, frames, warmup,
-                gl::rendererString());
-    std::printf("| method | level | triangles | median ms | p95 ms | x opaque | transients MiB | "
-                "slowest passes (GPU ms) |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---|\n");
+    std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), size.x, size.y,
+                frames, warmup, gl::rendererString());
+    std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
+                "cpu ms | animate ms | transients MiB | slowest passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     nlohmann::json report = {{"model", model},
+                             {"paths", paths},
                              {"renderer", gl::rendererString()},
                              {"size", {size.x, size.y}},
                              {"frames", frames},
                              {"warmup", warmup},
-                             {"covered_pixels", covered},
                              {"settings", assignments},
-                             {"ground", ground},
+                             {"ground", settings.ground},
+                             {"exact_pass_times", settings.exactPassTimes},
                              {"results", nlohmann::json::array()}};
+    std::vector<scene::World> worlds;
+    if (instances.empty())
+        worlds.push_back(headless.world);
+    for (int count : instances)
+        worlds.push_back(gridWorld(headless.world, count));
     for (int level : levels) {
         if (auto refined = headless.renderer->setSubdivisionLevel(level); !refined) {
             std::fprintf(stderr, "glass-bench: %s: %s\n", model.c_str(),
                          refined.error().message.c_str());
             return 1;
         }
-        std::size_t triangles = 0;
-        for (const auto& instance : headless.renderer->geometry().instances())
-            for (const auto& primitive : instance.primitives)
-                triangles += primitive.indexCount / 3;
-        std::vector<MethodRun> runs;
-        for (const std::string& method : methods)
-            runs.push_back({method, {}, {}, {}, 0});
-        for (int round = 0; round < rounds; ++round) {
-            const double time = std::fmod(round / 30.0, duration);
-            const anim::Pose pose = anim::evaluate(*loaded, clip, time);
-            for (MethodRun& r : runs) {
-                (void)plugin->parameters().set("method", r.method);
-                const auto start = std::chrono::steady_clock::now();
-                auto stats = headless.renderer->render(pose, camera, settings, time);
-                gl::finish();
-                const double ms = std::chrono::duration<double, std::milli>(
-                                      std::chrono::steady_clock::now() - start)
-                                      .count();
-                if (!stats) {
-                    std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
-                    return 1;
+        for (const scene::World& world : worlds) {
+            const render::Bounds bounds = render::worldBounds(world);
+            headless.renderer->setGround({bounds.min.y, bounds.center(), 3.0f * bounds.radius()});
+            const render::Camera camera =
+                world.camera
+                    ? render::worldCamera(*world.camera, float(size.x) / float(size.y), bounds)
+                    : render::frameBounds(bounds, float(size.x) / float(size.y));
+            if (auto prepared = headless.renderer->prepare(world); !prepared) {
+                std::fprintf(stderr, "glass-bench: %s\n", prepared.error().message.c_str());
+                return 1;
+            }
+            std::size_t triangles = 0;
+            for (std::size_t c = 0; c < headless.renderer->characterCount(); ++c)
+                for (const auto& instance : headless.renderer->geometry(c).instances())
+                    for (const auto& primitive : instance.primitives)
+                        triangles += primitive.indexCount / 3;
+            const std::size_t covered =
+                coveredPixels(world, 0.5 * tool::longestClip(world), camera, size);
+            const double duration = tool::longestClip(world);
+            std::vector<MethodRun> runs;
+            for (const std::string& method : methods)
+                runs.push_back({method, {}, {}, {}, {}, {}, 0});
+            for (int round = 0; round < rounds; ++round) {
+                const double time = std::fmod(round / 30.0, duration);
+                for (MethodRun& r : runs) {
+                    (void)plugin->parameters().set("method", r.method);
+                    const auto start = std::chrono::steady_clock::now();
+                    auto stats = headless.renderer->render(world, camera, settings, time);
+                    gl::finish();
+                    const double ms = std::chrono::duration<double, std::milli>(
+                                          std::chrono::steady_clock::now() - start)
+                                          .count();
+                    if (!stats) {
+                        std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
+                        return 1;
+                    }
+                    if (round < warmup)
+                        continue;
+                    r.frameMs.push_back(ms);
+                    r.cpuMs.push_back(stats->cpuMs);
+                    r.animateMs.push_back(stats->animateMs);
+                    r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
+                    for (const render::PassStats& p : stats->passes) {
+                        if (!r.passes.count(p.name))
+                            r.passOrder.push_back(p.name);
+                        r.passes[p.name].first.push_back(p.gpuMs);
+                        r.passes[p.name].second.push_back(p.cpuMs);
+                    }
                 }
-                if (round < warmup)
-                    continue;
-                r.frameMs.push_back(ms);
-                r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
-                for (const render::PassStats& p : stats->passes) {
-                    if (!r.passes.count(p.name))
-                        r.passOrder.push_back(p.name);
-                    r.passes[p.name].first.push_back(p.gpuMs);
-                    r.passes[p.name].second.push_back(p.cpuMs);
-                }
+                if (terminal)
+                    std::fprintf(stderr,
+                                 "\rglass-bench: level %d, %zu characters, %s round %d/%d   ",
+                                 level, world.characters.size(),
+                                 round < warmup ? "warm-up" : "measured", round + 1, rounds);
             }
             if (terminal)
-                std::fprintf(stderr, "\rglass-bench: level %d, %s round %d/%d   ", level,
-                             round < warmup ? "warm-up" : "measured", round + 1, rounds);
+                std::fprintf(stderr, "\n");
+            if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
+                std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
+                return 1;
+            }
+            for (nlohmann::json& row : summarise(runs, level, world.characters.size(), triangles)) {
+                row["covered_pixels"] = covered;
+                report["results"].push_back(std::move(row));
+            }
         }
-        if (terminal)
-            std::fprintf(stderr, "\n");
-        if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
-            std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
-            return 1;
-        }
-        for (nlohmann::json& row : summarise(runs, level, triangles))
-            report["results"].push_back(std::move(row));
     }
     if (!jsonPath.empty())
         if (auto written = core::writeFileAtomic(jsonPath, report.dump(2) + "\n"); !written) {

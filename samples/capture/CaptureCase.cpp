@@ -3,6 +3,7 @@
 
 #include "engine/core/Files.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -26,10 +27,17 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
     CaseFile c;
     c.path = path;
     try {
-        if (!j.contains("model") || !j["model"].is_string())
-            return core::Error{where + "\"model\" (a path relative to the case file) is required"};
-        const std::string model = j["model"].get<std::string>();
-        c.session.model = model.rfind("builtin:", 0) == 0 ? model : resolve(model);
+        const auto& models = j.contains("model") ? j["model"] : nlohmann::json();
+        const bool list = models.is_array() && !models.empty() &&
+                          std::all_of(models.begin(), models.end(),
+                                      [](const nlohmann::json& m) { return m.is_string(); });
+        if (!models.is_string() && !list)
+            return core::Error{where + "\"model\" (a model or scene file path relative to the "
+                                       "case file, or an array of model paths) is required"};
+        for (const auto& m : list ? models : nlohmann::json::array({models})) {
+            const std::string model = m.get<std::string>();
+            c.session.models.push_back(model.rfind("builtin:", 0) == 0 ? model : resolve(model));
+        }
         if (j.contains("clip"))
             c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>()
                                                    : std::to_string(j["clip"].get<int>());

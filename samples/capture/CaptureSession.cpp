@@ -4,7 +4,9 @@
 #include "engine/anim/Pose.h"
 #include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
+#include "engine/asset/SceneFile.h"
 #include "engine/gl/Debug.h"
+#include "engine/render/WorldLoader.h"
 #include "refraction/RefractionPlugin.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 namespace capture {
@@ -22,21 +25,22 @@ core::Result<std::unique_ptr<CaptureSession>>
 CaptureSession::create(const SessionOptions& options) {
     std::unique_ptr<CaptureSession> s(new CaptureSession());
     s->mOptions = options;
-    auto model = asset::loadModel(options.model);
-    if (!model)
-        return model.error();
-    s->mModel = std::move(*model);
-    s->mClip = s->mModel.animations.empty() ? -1 : 0;
-    if (options.clip) {
-        const auto clip = s->mModel.findAnimation(*options.clip);
-        if (!clip)
-            return core::Error{"glass-capture: " + s->mModel.sourceName + " has no clip '" +
-                               *options.clip + "'"};
-        s->mClip = *clip;
-    }
+    auto world = render::loadWorld(options.models);
+    if (!world)
+        return world.error();
+    s->mWorld = std::move(*world);
+    if (options.clip)
+        for (scene::Character& c : s->mWorld.characters) {
+            const auto clip = c.model->findAnimation(*options.clip);
+            if (!clip)
+                return core::Error{"glass-capture: --clip: " + c.name + " (" + c.model->sourceName +
+                                   ") has no clip '" + *options.clip + "'"};
+            c.clip = *clip;
+        }
+    s->mOptions.ground = options.ground || s->mWorld.ground;
     asset::HdrImage environment = render::Environment::proceduralSky();
-    if (options.environment) {
-        auto hdr = asset::loadHdr(*options.environment);
+    if (const auto& path = options.environment ? options.environment : s->mWorld.environment) {
+        auto hdr = asset::loadHdr(*path);
         if (!hdr)
             return hdr.error();
         environment = std::move(*hdr);
@@ -45,12 +49,14 @@ CaptureSession::create(const SessionOptions& options) {
     if (!context)
         return context.error();
     s->mContext = std::move(*context);
-    auto renderer = render::Renderer::create(s->mModel, environment, *s->mContext);
+    auto renderer = render::Renderer::create(environment, *s->mContext);
     if (!renderer)
         return renderer.error();
     s->mRenderer = std::move(*renderer);
     if (auto refined = s->mRenderer->setSubdivisionLevel(options.subdivision); !refined)
-        return core::Error{"glass-capture: " + options.model + ": " + refined.error().message};
+        return core::Error{"glass-capture: " + refined.error().message};
+    if (auto prepared = s->mRenderer->prepare(s->mWorld); !prepared)
+        return core::Error{"glass-capture: " + prepared.error().message};
     s->mRefraction = refraction::createPlugin();
     for (const auto& [key, value] : options.refraction) {
         auto set = s->mRefraction->parameters().set(key, value);
@@ -74,24 +80,49 @@ CaptureSession::create(const SessionOptions& options) {
             return added.error();
         s->mPlugins.push_back(std::move(*loaded));
     }
-    s->mBounds = render::animatedBounds(s->mModel, s->mClip);
+    s->mBounds = render::worldBounds(s->mWorld);
     const float radius = s->mBounds.radius();
     s->mRenderer->setGround({s->mBounds.min.y, s->mBounds.center(), 3.0f * radius});
     return s;
 }
 
-std::string CaptureSession::clipLabel() const {
-    if (mClip < 0)
-        return "rest";
-    const std::string& name = mModel.animations[std::size_t(mClip)].name;
-    std::string label = name.empty() ? "clip" + std::to_string(mClip) : name;
-    for (char& c : label)
+namespace {
+
+/** Letters, digits, '-' and '_' kept; anything else becomes '_'. */
+std::string fileNameSafe(std::string text) {
+    for (char& c : text)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
             c = '_';
-    return label;
+    return text;
 }
 
-render::Camera CaptureSession::cameraAt(const anim::Pose& pose) const {
+} // namespace
+
+std::string CaptureSession::clipLabel() const {
+    if (mWorld.characters.size() != 1)
+        return "scene";
+    const scene::Character& c = mWorld.characters[0];
+    if (c.clip < 0)
+        return "rest";
+    const std::string& name = c.model->animations[std::size_t(c.clip)].name;
+    return fileNameSafe(name.empty() ? "clip" + std::to_string(c.clip) : name);
+}
+
+std::string CaptureSession::stem() const {
+    const std::string& first = mOptions.models.at(0);
+    if (first.rfind("builtin:", 0) == 0)
+        return fileNameSafe(first);
+    return fileNameSafe(std::filesystem::path(first).stem().string());
+}
+
+std::optional<render::Camera> CaptureSession::modelCamera(double time, float aspect) const {
+    if (mWorld.characters.size() != 1 || asset::isSceneFile(mOptions.models.at(0)))
+        return std::nullopt; // a scene places its characters: their files' cameras do not apply
+    const scene::Character& c = mWorld.characters[0];
+    return render::gltfCamera(*c.model, anim::evaluate(*c.model, c.clip, c.clipTime(time)), aspect);
+}
+
+render::Camera CaptureSession::cameraAt(double time) const {
     const float aspect = float(mOptions.size.x) / float(mOptions.size.y);
     render::Camera camera;
     if (mOptions.camera && mOptions.camera->position) {
@@ -105,7 +136,9 @@ render::Camera CaptureSession::cameraAt(const anim::Pose& pose) const {
     } else if (mOptions.camera) {
         camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov,
                                      mOptions.camera->azimuth, mOptions.camera->elevation);
-    } else if (auto gltf = render::gltfCamera(mModel, pose, aspect)) {
+    } else if (mWorld.camera) {
+        camera = render::worldCamera(*mWorld.camera, aspect, mBounds);
+    } else if (auto gltf = modelCamera(time, aspect)) {
         camera = *gltf;
     } else {
         camera = render::frameBounds(mBounds, aspect);
@@ -123,9 +156,8 @@ render::RenderSettings CaptureSession::settings() const {
 }
 
 core::Result<RenderedFrame> CaptureSession::render(double time) {
-    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     const std::uint64_t errorsBefore = gl::errorCount();
-    auto stats = mRenderer->render(pose, cameraAt(pose), settings(), time);
+    auto stats = mRenderer->render(mWorld, cameraAt(time), settings(), time);
     if (!stats)
         return stats.error();
     RenderedFrame frame;
@@ -141,14 +173,13 @@ core::Result<RenderedFrame> CaptureSession::render(double time) {
 
 core::Result<RenderedFrame>
 CaptureSession::renderReference(double time, const refraction::ReferenceOptions& options) {
-    const anim::Pose pose = anim::evaluate(mModel, mClip, time);
     const auto start = std::chrono::steady_clock::now();
     const render::RenderSettings frameSettings = settings();
     const auto environment = refraction::EnvironmentSampler::fromGpu(
         mRenderer->environment(), frameSettings.environmentRotation,
         frameSettings.environmentIntensity);
     auto traced =
-        refraction::traceReference(mModel, pose, cameraAt(pose), environment, frameSettings,
+        refraction::traceReference(mWorld, time, cameraAt(time), environment, frameSettings,
                                    mRenderer->ground(), mRefraction->parameters(), options);
     if (!traced)
         return traced.error();

@@ -1,5 +1,5 @@
-// What glass-capture renders: a model, its clip, a camera, the environment and plugins, set up
-// once and rendered at any number of times.
+// What glass-capture renders: a world (a scene file, or models side by side), a camera, the
+// environment and plugins, set up once and rendered at any number of times.
 #pragma once
 
 #include "engine/capture/Image.h"
@@ -28,14 +28,18 @@ struct CameraOverride {
 };
 
 struct SessionOptions {
-    std::string model;
-    std::optional<std::string> clip;        ///< name or index; default: the first clip
-    std::optional<std::string> environment; ///< HDR path; default: procedural sky
+    /** One scene file, or model paths placed side by side (render::loadWorld). */
+    std::vector<std::string> models;
+    /** Name or index, for every character; default: a scene file's clips, a model's first. */
+    std::optional<std::string> clip;
+    /** HDR path; default: the scene file's environment, else the procedural sky. */
+    std::optional<std::string> environment;
     glm::ivec2 size{256, 256};
-    bool ground = false;
+    bool ground = false; ///< also on when the scene file asks for it
     float exposure = 1.0f;
     int subdivision = 0; ///< OpenSubdiv level of every mesh (Renderer::setSubdivisionLevel)
-    std::optional<CameraOverride> camera; ///< default: glTF camera, else framing
+    /** Default: the scene file's camera, else one model's glTF camera, else framing. */
+    std::optional<CameraOverride> camera;
     struct PluginSpec {
         std::string path;
         std::vector<std::pair<std::string, std::string>> parameters;
@@ -55,7 +59,7 @@ struct RenderedFrame {
 
 class CaptureSession {
 public:
-    /** Loads the model and environment, creates a headless context and the renderer, loads
+    /** Loads the world and environment, creates a headless context and the renderer, loads
      *  and configures plugins. Fails with the loader's (or GL's) message. */
     static core::Result<std::unique_ptr<CaptureSession>> create(const SessionOptions& options);
 
@@ -64,17 +68,21 @@ public:
     core::Result<RenderedFrame> renderReference(double time,
                                                 const refraction::ReferenceOptions& options);
 
-    const scene::Model& model() const { return mModel; }
-    int clip() const { return mClip; }
+    const scene::World& world() const { return mWorld; }
+    /** The first character's clip for file names ("rest" without one); "scene" for a world of
+     *  several characters. */
     std::string clipLabel() const;
+    /** The file name stem of the frames: the model's or the scene file's. */
+    std::string stem() const;
 
 private:
     CaptureSession() = default;
-    render::Camera cameraAt(const anim::Pose& pose) const;
+    render::Camera cameraAt(double time) const;
+    /** The glTF camera of one model (not of a scene file), posed at `time`. */
+    std::optional<render::Camera> modelCamera(double time, float aspect) const;
     render::RenderSettings settings() const;
     SessionOptions mOptions;
-    scene::Model mModel;
-    int mClip = -1;
+    scene::World mWorld;
     std::unique_ptr<gl::Context> mContext;
     std::unique_ptr<plugin::Plugin> mRefraction;
     std::vector<plugin::LoadedPlugin> mPlugins;

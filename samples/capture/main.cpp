@@ -18,7 +18,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    R"(usage: glass-capture MODEL [--clip N|NAME] [--time T | --frames START:END:STEP]
+    R"(usage: glass-capture MODEL|SCENE [MODEL...] [--clip N|NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--subdiv N]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
@@ -31,9 +31,12 @@ constexpr const char* kUsage =
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
 
 Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
-DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals).
+DIR (default out/capture) named MODEL_CLIP_tSECONDS.png (seconds with 3 decimals). A scene file
+(.json, README "Scene files") renders its world (SCENE_scene_tSECONDS.png with several
+characters; T is the scene time); several MODELs are placed side by side.
 
-  --clip N|NAME       clip index or name (default: the first clip; the rest pose if none)
+  --clip N|NAME       clip index or name, for every character (default: the first clip, or the
+                      scene file's; the rest pose if none)
   --time T            one time in seconds (default 0)
   --frames S:E:STEP   times S, S+STEP, ... up to E inclusive (at most 10000 frames)
   --size WxH          output size in pixels (default 256x256)
@@ -186,8 +189,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
-                   arg == "--geometry-passes" || arg == "--dispersion-search" ||
-                   arg == "--debug") {
+                   arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -262,10 +264,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             }
         } else if (!arg.empty() && arg[0] == '-') {
             return usageError("unknown option " + arg);
-        } else if (o.session.model.empty()) {
-            o.session.model = arg;
         } else {
-            return usageError("more than one model given: " + arg);
+            o.session.models.push_back(arg);
         }
     }
     if (o.reference && o.compare)
@@ -275,9 +275,9 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                           "--method reference and --compare-reference");
     if (haveTime && haveFrames)
         return usageError("--time and --frames are exclusive");
-    if (o.caseFile.empty() && o.session.model.empty())
+    if (o.caseFile.empty() && o.session.models.empty())
         return usageError("no model given");
-    if (!o.caseFile.empty() && !o.session.model.empty())
+    if (!o.caseFile.empty() && !o.session.models.empty())
         return usageError("--case takes its model from the case file");
     if (o.update && o.caseFile.empty())
         return usageError("--update goes with --case");
@@ -290,12 +290,14 @@ int runCase(const Options& o) {
         std::fprintf(stderr, "%s\n", c.error().message.c_str());
         return 2;
     }
-    const bool builtin = c->session.model.rfind("builtin:", 0) == 0;
-    if (c->skipIfModelMissing && !builtin && !std::filesystem::exists(c->session.model)) {
-        std::printf("skipped %s: model %s is not present (third-party samples live in ../shared)\n",
-                    o.caseFile.c_str(), c->session.model.c_str());
-        return capture::kCaseSkipped;
-    }
+    for (const std::string& model : c->session.models)
+        if (c->skipIfModelMissing && model.rfind("builtin:", 0) != 0 &&
+            !std::filesystem::exists(model)) {
+            std::printf(
+                "skipped %s: model %s is not present (third-party samples live in ../shared)\n",
+                o.caseFile.c_str(), model.c_str());
+            return capture::kCaseSkipped;
+        }
     // plugins named on the command line (build artefacts, say) come after the case's own
     c->session.plugins.insert(c->session.plugins.end(), o.session.plugins.begin(),
                               o.session.plugins.end());
@@ -323,11 +325,10 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", session.error().message.c_str());
         return 1;
     }
-    std::string stem = std::filesystem::path(o.session.model).stem().string();
-    for (char& c : stem)
-        if (c == ':' || c == '?' || c == '=' || c == '/')
-            c = '_';
-    nlohmann::json report = {{"model", o.session.model},
+    const std::string stem = (*session)->stem();
+    nlohmann::json report = {{"model", o.session.models.size() == 1
+                                           ? nlohmann::json(o.session.models[0])
+                                           : nlohmann::json(o.session.models)},
                              {"clip", (*session)->clipLabel()},
                              {"size", {o.session.size.x, o.session.size.y}},
                              {"frames", nlohmann::json::array()}};

@@ -1,51 +1,79 @@
-// A model ready to render headless with the refraction plugin: what glass-bench and glass-soak
+// A world ready to render headless with the refraction plugin: what glass-bench and glass-soak
 // set up the same way (glass-capture's CaptureSession adds cameras, plugins and references).
 #pragma once
 
-#include "engine/asset/ModelLoader.h"
+#include "engine/asset/HdrImage.h"
 #include "engine/render/Renderer.h"
+#include "engine/render/WorldLoader.h"
 #include "refraction/RefractionPlugin.h"
 
 #include <algorithm>
 #include <memory>
+#include <span>
 #include <string>
 
 namespace tool {
 
 struct HeadlessScene {
-    std::unique_ptr<scene::Model> model; // the renderer keeps a reference: not movable itself
+    scene::World world;
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<plugin::Plugin> glass; // the refraction plugin, before the renderer dies
     std::unique_ptr<render::Renderer> renderer;
-    int clip = -1;         ///< the first clip, or -1 (rest pose)
-    double duration = 1.0; ///< of that clip, seconds (1 for the rest pose)
-    render::Bounds bounds; ///< over the clip
+    /** The longest clip any character plays, in scene seconds (1 when none plays one). */
+    double duration = 1.0;
+    render::Bounds bounds; ///< of every character over its clip
+
+    /** The scene file's camera, else one framing the bounds. */
+    render::Camera camera(glm::ivec2 size) const {
+        const float aspect = float(size.x) / float(size.y);
+        return world.camera ? render::worldCamera(*world.camera, aspect, bounds)
+                            : render::frameBounds(bounds, aspect);
+    }
 };
 
-/** Loads `path`, makes a headless context and a renderer with the procedural sky at
- *  `skyWidth`, adds the refraction plugin and places the ground under the clip's bounds.
- *  Fails with the first step's message. */
-inline core::Result<HeadlessScene> openHeadlessScene(const std::string& path, int skyWidth = 1024) {
+/** The duration of the longest clip of `world`, in scene seconds (at each character's speed). */
+inline double longestClip(const scene::World& world) {
+    double longest = 0.0;
+    for (const scene::Character& c : world.characters)
+        if (c.clip >= 0 && c.speed != 0.0)
+            longest = std::max(longest, c.model->animations[std::size_t(c.clip)].duration /
+                                            std::abs(c.speed));
+    return longest > 1e-3 ? longest : 1.0;
+}
+
+/** Loads `paths` (render::loadWorld: a scene file, or models side by side), makes a headless
+ *  context and a renderer with the scene's environment (else the procedural sky at
+ *  `skyWidth`), adds the refraction plugin and places the ground under the bounds. Fails with
+ *  the first step's message. */
+inline core::Result<HeadlessScene> openHeadlessScene(std::span<const std::string> paths,
+                                                     int skyWidth = 1024) {
     HeadlessScene s;
-    auto model = asset::loadModel(path);
-    if (!model)
-        return model.error();
-    s.model = std::make_unique<scene::Model>(std::move(*model));
+    auto world = render::loadWorld(paths);
+    if (!world)
+        return world.error();
+    s.world = std::move(*world);
+    asset::HdrImage environment = render::Environment::proceduralSky(skyWidth);
+    if (s.world.environment) {
+        auto hdr = asset::loadHdr(*s.world.environment);
+        if (!hdr)
+            return hdr.error();
+        environment = std::move(*hdr);
+    }
     auto context = gl::createHeadlessContext();
     if (!context)
         return context.error();
     s.context = std::move(*context);
-    auto renderer = render::Renderer::create(*s.model, render::Environment::proceduralSky(skyWidth),
-                                             *s.context);
+    auto renderer = render::Renderer::create(environment, *s.context);
     if (!renderer)
         return renderer.error();
     s.renderer = std::move(*renderer);
     s.glass = refraction::createPlugin();
     if (auto added = s.renderer->addPlugin(s.glass.get()); !added)
         return added.error();
-    s.clip = s.model->animations.empty() ? -1 : 0;
-    s.duration = s.clip < 0 ? 1.0 : std::max(s.model->animations[0].duration, 1e-3);
-    s.bounds = render::animatedBounds(*s.model, s.clip);
+    if (auto prepared = s.renderer->prepare(s.world); !prepared)
+        return prepared.error();
+    s.duration = longestClip(s.world);
+    s.bounds = render::worldBounds(s.world);
     s.renderer->setGround({s.bounds.min.y, s.bounds.center(), 3.0f * s.bounds.radius()});
     return s;
 }

@@ -25,11 +25,11 @@
 namespace {
 
 const char* const kUsage =
-    R"(usage: glass-soak [MODEL] [--frames N] [--switch-every S] [--resize-every R]
+    R"(usage: glass-soak [MODEL|SCENE [MODEL...]] [--frames N] [--switch-every S] [--resize-every R]
                   [--report-every K] [--json]
 
-Renders MODEL (default: builtin:sphere) headless for N frames (default 10000): the first clip
-loops; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
+Renders MODEL (default: builtin:sphere; a scene file, or several models side by side) headless
+for N frames (default 10000): the clips loop; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
 TIR reflect); every R frames (default 300) the viewport takes the next of 4 sizes (around
 128x128). Every K frames (default 220) it prints the frame, resident memory (RSS, from
 /proc/self/statm) and the live GL objects (counted by asking the driver about every name).
@@ -60,7 +60,7 @@ struct Report {
 } // namespace
 
 int run(int argc, char** argv) {
-    std::string modelPath = "builtin:sphere";
+    std::vector<std::string> paths;
     int frames = 10000, switchEvery = 100, resizeEvery = 300, reportEvery = 220;
     bool json = false, injectLeak = false;
     for (int i = 1; i < argc; ++i) {
@@ -84,13 +84,15 @@ int run(int argc, char** argv) {
                 return 2;
             }
         } else if (!arg.empty() && arg[0] != '-') {
-            modelPath = arg;
+            paths.push_back(arg);
         } else {
             std::fprintf(stderr, "glass-soak: unexpected '%s'\n\n%s", arg.c_str(), kUsage);
             return 2;
         }
     }
-    auto opened = tool::openHeadlessScene(modelPath, 256);
+    if (paths.empty())
+        paths.push_back("builtin:sphere");
+    auto opened = tool::openHeadlessScene(paths, 256);
     if (!opened) {
         std::fprintf(stderr, "glass-soak: %s\n", opened.error().message.c_str());
         return 1;
@@ -98,9 +100,7 @@ int run(int argc, char** argv) {
     tool::HeadlessScene& headless = *opened;
     plugin::Plugin* const plugin = headless.glass.get();
     (void)plugin->parameters().set("glass", "all");
-    const int clip = headless.clip;
     const double duration = headless.duration;
-    const render::Bounds bounds = headless.bounds;
     const std::vector<std::pair<std::string, std::string>> methods = {{"opaque", "clamp"},
                                                                       {"sir", "clamp"},
                                                                       {"isr", "clamp"},
@@ -117,12 +117,11 @@ int run(int argc, char** argv) {
         (void)plugin->parameters().set("method", method);
         (void)plugin->parameters().set("tir", tir);
         const double time = std::fmod(frame / 30.0, duration);
-        const anim::Pose pose = anim::evaluate(*headless.model, clip, time);
         render::RenderSettings settings;
         settings.size = size;
         settings.ground = true;
-        auto stats = headless.renderer->render(
-            pose, render::frameBounds(bounds, float(size.x) / float(size.y)), settings, time);
+        auto stats =
+            headless.renderer->render(headless.world, headless.camera(size), settings, time);
         if (!stats) {
             std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
                          stats.error().message.c_str());
@@ -167,11 +166,12 @@ int run(int argc, char** argv) {
     const bool rssStable = lastRss - warmRss <= 8L * 1024L;
     const std::uint64_t errors = gl::errorCount();
     if (json) {
-        nlohmann::json out = {{"model", modelPath},
-                              {"frames", frames},
-                              {"cycle", cycle},
-                              {"gl_errors", errors},
-                              {"reports", nlohmann::json::array()}};
+        nlohmann::json out = {
+            {"model", paths.size() == 1 ? nlohmann::json(paths[0]) : nlohmann::json(paths)},
+            {"frames", frames},
+            {"cycle", cycle},
+            {"gl_errors", errors},
+            {"reports", nlohmann::json::array()}};
         for (const Report& r : reports)
             out["reports"].push_back({{"frame", r.frame},
                                       {"rss_kib", r.rssKiB},

@@ -6,8 +6,11 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace viewer {
@@ -101,41 +104,140 @@ bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
     return changed;
 }
 
-void Panel::model(Viewer& v) {
-    if (!section("Model"))
+void Panel::scene(Viewer& v) {
+    if (!section("Scene"))
         return;
-    static std::string path;
-    ImGui::TextWrapped("%s", v.mScene.path.c_str());
-    std::size_t triangles = 0, vertices = 0;
-    for (const auto& mesh : v.mScene.model->meshes)
+    static std::string addPath, scenePath;
+    if (scenePath.empty())
+        scenePath = v.mScenePath;
+    scene::World& world = v.mWorld;
+    if (ImGui::BeginListBox(
+            "##characters",
+            ImVec2(-1.0f, ImGui::GetTextLineHeightWithSpacing() *
+                                  float(std::min<std::size_t>(
+                                      std::max<std::size_t>(world.characters.size(), 1), 6)) +
+                              4.0f))) {
+        for (std::size_t i = 0; i < world.characters.size(); ++i) {
+            const scene::Character& c = world.characters[i];
+            const std::string label = c.name + "  (" +
+                                      std::filesystem::path(c.modelPath).filename().string() +
+                                      ")##" + std::to_string(i);
+            if (ImGui::Selectable(label.c_str(), int(i) == v.mSelected))
+                v.select(int(i));
+        }
+        ImGui::EndListBox();
+    }
+    ImGui::SetNextItemWidth(-70.0f);
+    const bool entered = ImGui::InputTextWithHint("##add", "model or scene path (or drop a file)",
+                                                  &addPath, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if ((ImGui::Button("Add") || entered) && !addPath.empty())
+        v.addCharacter(addPath);
+    if (ImGui::Button("Replace scene") && !addPath.empty())
+        v.openWorld({addPath});
+    ImGui::SameLine();
+    ImGui::BeginDisabled(v.mSelected < 0);
+    if (ImGui::Button("Remove (Del)"))
+        v.removeCharacter(std::size_t(v.mSelected));
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::Checkbox("Drops replace", &v.mDropReplaces);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a dropped model replaces the scene instead of joining it (or hold "
+                          "Shift while dropping); a dropped scene file always replaces it");
+    ImGui::SetNextItemWidth(-110.0f);
+    ImGui::InputText("##scene", &scenePath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save"))
+        v.saveWorld(scenePath);
+    ImGui::SameLine();
+    if (ImGui::Button("Open"))
+        v.openWorld({scenePath});
+    if (v.mSelected >= 0)
+        character(v, world.characters[std::size_t(v.mSelected)]);
+}
+
+void Panel::character(Viewer& v, scene::Character& c) {
+    ImGui::Separator();
+    std::size_t triangles = 0, vertices = 0, joints = 0;
+    for (const auto& mesh : c.model->meshes)
         for (const auto& primitive : mesh.primitives) {
             triangles += primitive.indices.size() / 3;
             vertices += primitive.positions.size();
         }
-    std::size_t joints = 0;
-    for (const auto& skin : v.mScene.model->skins)
+    for (const auto& skin : c.model->skins)
         joints += skin.joints.size();
+    ImGui::TextWrapped("%s", c.modelPath.c_str());
     ImGui::Text("%zu vertices, %zu triangles, %zu joints", vertices, triangles, joints);
-    ImGui::SetNextItemWidth(-70.0f);
-    const bool entered = ImGui::InputTextWithHint("##open", ".gltf or .glb (or drop a file)", &path,
-                                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::InputText("Name", &c.name);
+    glm::vec3 translation(c.placement.translation);
+    if (ImGui::DragFloat3("Position", &translation.x, 0.01f))
+        c.placement.translation = glm::dvec3(translation);
+    // Rotation as yaw (about +y), pitch, roll in degrees.
+    glm::vec3 angles = glm::degrees(glm::vec3(glm::eulerAngles(glm::quat(c.placement.rotation))));
+    if (ImGui::DragFloat3("Rotation (deg)", &angles.x, 0.5f))
+        c.placement.rotation = glm::dquat(glm::quat(glm::radians(angles)));
+    float scale = float(c.placement.scale.x);
+    if (ImGui::DragFloat("Scale", &scale, 0.01f, 0.01f, 100.0f, "%.3f",
+                         ImGuiSliderFlags_Logarithmic))
+        c.placement.scale = glm::dvec3(std::max(scale, 0.01f));
+    plugin::ParameterSet& s = v.mSettings;
+    if (c.model->animations.empty()) {
+        ImGui::TextDisabled("no clips: the rest pose");
+    } else {
+        widget(s, "clip");
+        widget(s, "loop");
+    }
+    float speed = float(c.speed), phase = float(c.timeOffset);
+    if (ImGui::DragFloat("Clip speed", &speed, 0.01f, -4.0f, 4.0f))
+        c.speed = double(speed);
+    if (ImGui::DragFloat("Phase (s)", &phase, 0.01f))
+        c.timeOffset = double(phase);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("seconds added to the scene time before the clip speed");
+    int mode = int(c.glass);
+    if (ImGui::Combo("Glass", &mode, "as authored\0all glass\0no glass\0"))
+        c.glass = scene::GlassMode(mode);
+    auto overrideFloat = [](const char* label, std::optional<float>& value, float fallback,
+                            float lo, float hi) {
+        bool on = value.has_value();
+        ImGui::PushID(label);
+        if (ImGui::Checkbox("##on", &on))
+            value = on ? std::optional<float>(fallback) : std::nullopt;
+        ImGui::SameLine();
+        ImGui::BeginDisabled(!on);
+        float x = value.value_or(fallback);
+        if (ImGui::SliderFloat(label, &x, lo, hi, "%.3f") && on)
+            value = x;
+        ImGui::EndDisabled();
+        ImGui::PopID();
+    };
+    overrideFloat("IOR", c.overrides.ior, 1.5f, 1.0f, 3.0f);
+    overrideFloat("Dispersion", c.overrides.dispersion, 0.3f, 0.0f, 2.0f);
+    bool tinted = c.overrides.tint.has_value();
+    if (ImGui::Checkbox("##tint", &tinted))
+        c.overrides.tint = tinted ? std::optional<glm::vec3>(glm::vec3(1.0f)) : std::nullopt;
     ImGui::SameLine();
-    if ((ImGui::Button("Open") || entered) && !path.empty())
-        v.openModel(path);
+    ImGui::BeginDisabled(!tinted);
+    glm::vec3 tint = c.overrides.tint.value_or(glm::vec3(1.0f));
+    if (ImGui::ColorEdit3("Tint", &tint.x) && tinted)
+        c.overrides.tint = tint;
+    ImGui::EndDisabled();
 }
 
 void Panel::animation(Viewer& v) {
     if (!section("Animation"))
         return;
     plugin::ParameterSet& s = v.mSettings;
-    const auto& clips = v.mScene.model->animations;
-    if (clips.empty()) {
+    double longest = 0.0;
+    for (const scene::Character& c : v.mWorld.characters)
+        if (c.clip >= 0 && c.clip < int(c.model->animations.size()) && c.speed != 0.0)
+            longest = std::max(longest, c.model->animations[std::size_t(c.clip)].duration /
+                                            std::abs(c.speed));
+    if (longest <= 0.0) {
         ImGui::TextDisabled("no clips: the rest pose");
         return;
     }
-    if (parameterWidget(s, *s.find("clip")))
-        v.mTime = 0.0;
-    const double duration = clips[std::size_t(s.number("clip"))].duration;
     if (ImGui::Button(s.flag("playing") ? "Pause" : "Play"))
         s.setNumber("playing", !s.flag("playing"));
     ImGui::SameLine();
@@ -148,10 +250,8 @@ void Panel::animation(Viewer& v) {
         s.setNumber("playing", 0.0);
         v.advance(1.0 / 30.0);
     }
-    ImGui::SameLine();
-    widget(s, "loop");
     float time = float(v.mTime);
-    if (ImGui::SliderFloat("Time (s)", &time, 0.0f, float(duration), "%.3f"))
+    if (ImGui::SliderFloat("Scene time (s)", &time, 0.0f, float(longest), "%.3f"))
         v.mTime = double(time);
     widget(s, "speed");
 }
@@ -159,12 +259,15 @@ void Panel::animation(Viewer& v) {
 void Panel::camera(Viewer& v) {
     if (!section("Camera"))
         return;
-    if (ImGui::Button("Frame (F)"))
-        v.mCamera.frame(v.mScene.bounds, v.viewportAspect());
+    if (ImGui::Button("Frame all (F)"))
+        v.frameCharacters(false);
+    ImGui::SameLine();
+    if (ImGui::Button("Frame selection (Shift+F)"))
+        v.frameCharacters(true);
     ImGui::SameLine();
     if (ImGui::Button("Reset (R)"))
         v.mCamera.reset();
-    ImGui::TextDisabled("drag: orbit; right/shift-drag: pan; wheel: zoom");
+    ImGui::TextDisabled("drag: orbit; right/shift-drag: pan; wheel: zoom; click: select");
 }
 
 void Panel::environment(Viewer& v) {
@@ -296,7 +399,7 @@ void Panel::draw(Viewer& v) {
         ImGui::TextColored(v.mMessageIsError ? ImVec4(1.0f, 0.4f, 0.35f, 1.0f)
                                              : ImVec4(0.6f, 0.9f, 0.6f, 1.0f),
                            "%s", v.mMessage.c_str());
-    model(v);
+    scene(v);
     animation(v);
     camera(v);
     environment(v);
@@ -306,7 +409,7 @@ void Panel::draw(Viewer& v) {
     presets(v);
     screenshot(v);
     ImGui::TextDisabled("Space play, arrows step, M/1-4 method, B split, G ground,\n"
-                        "Tab panel, F12 screenshot, Esc quit");
+                        "F frame, Del remove, Tab panel, F12 screenshot, Esc quit");
     ImGui::PopItemWidth();
     ImGui::End();
 }

@@ -1,9 +1,10 @@
-// glass-viewer's Dear ImGui panel: model, animation, camera, environment, every plugin's
-// parameters (from its ParameterSet, then its own panel hook), A/B split, timings, presets and
-// screenshots.
+// glass-viewer's Dear ImGui panel: the scene's characters, animation, camera, environment, every
+// plugin's parameters (from its ParameterSet, then its own panel hook), A/B split, timings,
+// presets and screenshots.
 #pragma once
 
 #include "engine/plugin/ParameterSet.h"
+#include "engine/scene/World.h"
 
 namespace viewer {
 
@@ -17,7 +18,8 @@ public:
     static int width(int windowWidth);
 
 private:
-    static void model(Viewer& v);
+    static void scene(Viewer& v);
+    static void character(Viewer& v, scene::Character& c);
     static void animation(Viewer& v);
     static void camera(Viewer& v);
     static void environment(Viewer& v);

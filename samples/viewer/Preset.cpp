@@ -17,10 +17,18 @@ plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
     plugin::ParameterSet p;
     const std::vector<std::string> clipChoices =
         clips.empty() ? std::vector<std::string>{"(rest pose)"} : clips;
-    p.declare({"clip", "Clip", Type::Enum, 0, 0, 0, clipChoices, "the animation clip playing"});
+    p.declare({"clip", "Clip", Type::Enum, 0, 0, 0, clipChoices,
+               "the animation clip the selected character plays"});
     p.declare({"playing", "Playing", Type::Bool, 0, 1, 1, {}, "space: play or pause"});
-    p.declare({"speed", "Speed", Type::Float, 0.0, 4.0, 1.0, {}, "playback rate"});
-    p.declare({"loop", "Loop", Type::Bool, 0, 1, 1, {}, "off: stop at the clip's end"});
+    p.declare({"speed", "Speed", Type::Float, 0.0, 4.0, 1.0, {}, "the scene clock's rate"});
+    p.declare({"loop",
+               "Loop",
+               Type::Bool,
+               0,
+               1,
+               1,
+               {},
+               "off: the selected character stops at its clip's end"});
     p.declare({"environment", "Environment", Type::Enum, 0, 0, 0, environments,
                "the HDR around the character"});
     p.declare({"env-rotation",

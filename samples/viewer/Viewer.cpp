@@ -1,13 +1,16 @@
-// glass-viewer's window, scene and frame loop (the panel is in Panel.cpp).
+// glass-viewer's window, world of characters and frame loop (the panel is in Panel.cpp).
 #include "Viewer.h"
 
 #include "Panel.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
+#include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
+#include "engine/core/Limits.h"
 #include "engine/gl/Debug.h"
 #include "engine/gl/Framebuffer.h"
+#include "engine/render/WorldLoader.h"
 #include "refraction/RefractionPlugin.h"
 
 #define GLFW_INCLUDE_NONE
@@ -63,6 +66,11 @@ std::filesystem::path lastSessionPath() {
     if (const char* home = std::getenv("HOME"); home && *home)
         return std::filesystem::path(home) / ".config" / "glass-viewer" / "last-session.json";
     return {};
+}
+
+std::filesystem::path lastScenePath() {
+    const std::filesystem::path session = lastSessionPath();
+    return session.empty() ? session : session.parent_path() / "last-scene.json";
 }
 
 std::filesystem::path assetsDir() {
@@ -134,15 +142,48 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
         v->mPlugins.push_back(std::move(*loaded));
     }
 
-    const std::string model =
-        options.model ? *options.model : (assetsDir() / "models" / "glass_figure.glb").string();
-    auto scene = v->loadScene(model);
-    if (!scene)
-        return scene.error();
-    v->mScene = std::move(*scene);
+    auto renderer = render::Renderer::create(render::Environment::proceduralSky(), *v->mContext);
+    if (!renderer)
+        return renderer.error();
+    v->mRenderer = std::move(*renderer);
+    if (auto added = v->mRenderer->addPlugin(v->mRefraction.get()); !added)
+        return added.error();
+    for (const auto& loaded : v->mPlugins)
+        if (auto added = v->mRenderer->addPlugin(loaded.get()); !added)
+            return added.error();
+
+    // The world: as given, else the last session's scene, else the project's character.
+    std::vector<std::string> paths = options.models;
+    const std::filesystem::path lastScene = lastScenePath();
+    bool restored = false;
+    if (paths.empty() && options.restoreSession && !lastScene.empty() &&
+        std::filesystem::exists(lastScene)) {
+        auto world = asset::loadScene(lastScene);
+        if (world && !world->characters.empty()) {
+            v->mWorld = std::move(*world);
+            restored = true;
+            std::printf("glass-viewer: restored the last scene (%zu characters)\n",
+                        v->mWorld.characters.size());
+        } else {
+            std::fprintf(stderr, "glass-viewer: last scene not restored: %s\n",
+                         world ? "no characters" : world.error().message.c_str());
+        }
+    }
+    if (!restored) {
+        if (paths.empty())
+            paths.push_back((assetsDir() / "models" / "glass_figure.glb").string());
+        auto world = render::loadWorld(paths);
+        if (!world)
+            return world.error();
+        v->mWorld = std::move(*world);
+        if (paths.size() == 1 && asset::isSceneFile(paths[0]))
+            v->mScenePath = paths[0];
+    }
+    v->worldChanged();
+    v->mSelected = v->mWorld.characters.empty() ? -1 : 0;
     const glm::ivec2 size = v->mContext->framebufferSize();
     v->mViewport = {size.x - Panel::width(size.x), size.y};
-    v->mCamera.frame(v->mScene.bounds, v->viewportAspect());
+    v->mCamera.frame(v->mBounds, v->viewportAspect());
 
     v->mSettings = v->settingsForScene();
     // Start on the first project HDR (the default environment), or the sky.
@@ -182,11 +223,14 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
     v->mCamera.setOrbit(orbit);
     if (auto env = v->applyEnvironment(); !env)
         return env.error();
+    for (const std::string& path : options.add)
+        if (!v->addCharacter(path))
+            return core::Error{v->mMessage};
     return v;
 }
 
 Viewer::~Viewer() {
-    mScene = {};
+    mRenderer.reset(); // GL objects go while the context lives
     if (ImGui::GetCurrentContext()) {
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();
@@ -194,49 +238,146 @@ Viewer::~Viewer() {
     }
 }
 
-core::Result<LoadedScene> Viewer::loadScene(const std::string& path) {
-    LoadedScene scene;
-    scene.path = path;
-    auto model = asset::loadModel(path);
-    if (!model)
-        return model.error();
-    scene.model = std::make_unique<scene::Model>(std::move(*model));
-    auto renderer =
-        render::Renderer::create(*scene.model, render::Environment::proceduralSky(), *mContext);
-    if (!renderer)
-        return renderer.error();
-    scene.renderer = std::move(*renderer);
-    std::vector<plugin::Plugin*> plugins{mRefraction.get()};
-    for (const auto& loaded : mPlugins)
-        plugins.push_back(loaded.get());
-    for (plugin::Plugin* p : plugins)
-        if (auto added = scene.renderer->addPlugin(p); !added)
-            return added.error();
-    scene.bounds = render::animatedBounds(*scene.model, scene.model->animations.empty() ? -1 : 0);
-    const float radius = std::max(scene.bounds.radius(), 1e-3f);
-    scene.renderer->setGround({scene.bounds.min.y, scene.bounds.center(), 3.0f * radius});
-    return scene;
+void Viewer::reportStatus(const core::Status& status, const std::string& success) {
+    mMessage = status ? success : status.error().message;
+    mMessageIsError = !status;
+    if (!status)
+        std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
 }
 
-void Viewer::openModel(const std::string& path) {
-    auto scene = loadScene(path);
-    if (!scene) {
-        // The current scene is untouched (plugins initialised again for the failed renderer
-        // are prepared again for ours on the next frame).
-        mMessage = scene.error().message;
-        mMessageIsError = true;
-        std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
-        return;
-    }
-    mScene = std::move(*scene);
-    mEnvironmentShown = -1; // the new renderer starts with the sky
-    mCamera.frame(mScene.bounds, viewportAspect());
+void Viewer::worldChanged() {
+    mBounds = render::worldBounds(mWorld);
+    const float radius = std::max(mBounds.radius(), 1e-3f);
+    mRenderer->setGround({mBounds.min.y, mBounds.center(), 3.0f * radius});
+    if (mWorld.ground)
+        mSettings.setNumber("ground", 1.0);
+    select(std::min(mSelected, int(mWorld.characters.size()) - 1));
+}
+
+void Viewer::select(int index) {
+    mSelected =
+        mWorld.characters.empty() ? -1 : std::clamp(index, 0, int(mWorld.characters.size()) - 1);
+    if (mSettings.declarations().empty())
+        return; // create() builds the settings after the world
     plugin::ParameterSet settings = settingsForScene();
     copyValues(mSettings, settings);
+    if (mSelected >= 0) {
+        const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
+        settings.setNumber("clip", double(std::max(c.clip, 0)));
+        settings.setNumber("loop", c.loop ? 1.0 : 0.0);
+    }
     mSettings = std::move(settings);
+}
+
+bool Viewer::openWorld(const std::vector<std::string>& paths) {
+    auto world = render::loadWorld(paths);
+    if (!world) {
+        reportStatus(world.error(), "");
+        return false;
+    }
+    mWorld = std::move(*world);
+    if (paths.size() == 1 && asset::isSceneFile(paths[0]))
+        mScenePath = paths[0];
+    mSelected = 0;
+    worldChanged();
+    mCamera.frame(mBounds, viewportAspect());
     mTime = 0.0;
-    mMessage = "opened " + path;
-    mMessageIsError = false;
+    reportStatus({}, "opened " + paths[0]);
+    return true;
+}
+
+bool Viewer::addCharacter(const std::string& path) {
+    auto added = render::loadWorld(std::vector<std::string>{path});
+    if (!added) {
+        reportStatus(added.error(), "");
+        return false;
+    }
+    if (mWorld.characters.size() + added->characters.size() > core::limits::kMaxCharacters) {
+        reportStatus(core::Error{"glass-viewer: " + path + ": the scene would have more than " +
+                                 std::to_string(core::limits::kMaxCharacters) + " characters"},
+                     "");
+        return false;
+    }
+    // Right of what is there, with a fifth of its width between.
+    const render::Bounds bounds = render::worldBounds(*added);
+    const float gap = 0.2f * std::max(bounds.max.x - bounds.min.x, 0.1f);
+    const double shift =
+        mWorld.characters.empty() ? 0.0 : double(mBounds.max.x + gap - bounds.min.x);
+    for (scene::Character& c : added->characters) {
+        // The same file already in the scene: its model is shared, not loaded twice.
+        for (const scene::Character& other : mWorld.characters)
+            if (other.modelPath == c.modelPath)
+                c.model = other.model;
+        c.placement.translation.x += shift;
+        if (!asset::isSceneFile(path))
+            c.name = std::filesystem::path(c.modelPath).stem().string() + " " +
+                     std::to_string(mWorld.characters.size() + 1);
+        mWorld.characters.push_back(std::move(c));
+    }
+    mSelected = int(mWorld.characters.size()) - 1;
+    worldChanged();
+    reportStatus({}, "added " + path);
+    return true;
+}
+
+void Viewer::removeCharacter(std::size_t index) {
+    if (index >= mWorld.characters.size())
+        return;
+    const std::string name = mWorld.characters[index].name;
+    mWorld.characters.erase(mWorld.characters.begin() + std::ptrdiff_t(index));
+    worldChanged();
+    reportStatus({}, "removed " + name);
+}
+
+bool Viewer::saveWorld(const std::string& path) {
+    auto saved = asset::saveScene(path, mWorld);
+    reportStatus(saved, "saved " + path);
+    if (saved)
+        mScenePath = path;
+    return bool(saved);
+}
+
+int Viewer::pick(glm::vec2 pixel) const {
+    const render::Camera camera = mCamera.camera(viewportAspect());
+    const glm::vec2 ndc(2.0f * pixel.x / float(std::max(mViewport.x, 1)) - 1.0f,
+                        1.0f - 2.0f * pixel.y / float(std::max(mViewport.y, 1)));
+    const glm::mat4 inverse = glm::inverse(camera.viewProjection());
+    const glm::vec4 nearPoint = inverse * glm::vec4(ndc, -1.0f, 1.0f);
+    const glm::vec4 farPoint = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
+    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+    int best = -1;
+    float bestT = 1e30f;
+    for (std::size_t i = 0; i < mWorld.characters.size(); ++i) {
+        scene::World one;
+        one.characters.push_back(mWorld.characters[i]);
+        const render::Bounds b = render::worldBounds(one, 4);
+        // Slab test of the ray against the character's box.
+        float t0 = 0.0f, t1 = 1e30f;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float inv = 1.0f / (std::abs(direction[axis]) > 1e-9f ? direction[axis] : 1e-9f);
+            float a = (b.min[axis] - origin[axis]) * inv, c = (b.max[axis] - origin[axis]) * inv;
+            if (a > c)
+                std::swap(a, c);
+            t0 = std::max(t0, a);
+            t1 = std::min(t1, c);
+        }
+        if (t0 <= t1 && t0 < bestT) {
+            bestT = t0;
+            best = int(i);
+        }
+    }
+    return best;
+}
+
+void Viewer::frameCharacters(bool selectionOnly) {
+    if (!selectionOnly || mSelected < 0) {
+        mCamera.frame(mBounds, viewportAspect());
+        return;
+    }
+    scene::World one;
+    one.characters.push_back(mWorld.characters[std::size_t(mSelected)]);
+    mCamera.frame(render::worldBounds(one), viewportAspect());
 }
 
 core::Status Viewer::applyEnvironment() {
@@ -251,7 +392,7 @@ core::Status Viewer::applyEnvironment() {
             return hdr.error();
         image = std::move(*hdr);
     }
-    if (auto set = mScene.renderer->setEnvironment(image); !set)
+    if (auto set = mRenderer->setEnvironment(image); !set)
         return set;
     mEnvironmentShown = wanted;
     return {};
@@ -273,8 +414,10 @@ plugin::ParameterSet Viewer::settingsForScene() const {
     std::vector<std::string> environments;
     for (const EnvironmentEntry& e : mEnvironments)
         environments.push_back(e.name);
-    return viewerParameters(clipNames(*mScene.model), environments,
-                            methodPlugin()->parameters().find("method")->choices);
+    const bool any = mSelected >= 0 && std::size_t(mSelected) < mWorld.characters.size();
+    return viewerParameters(any ? clipNames(*mWorld.characters[std::size_t(mSelected)].model)
+                                : std::vector<std::string>{},
+                            environments, methodPlugin()->parameters().find("method")->choices);
 }
 
 void Viewer::handleInput() {
@@ -301,7 +444,11 @@ void Viewer::handleInput() {
             glass.setNumber("method", double((std::size_t(glass.number("method")) + 1) % methods));
             break;
         case GLFW_KEY_F:
-            mCamera.frame(mScene.bounds, viewportAspect());
+            frameCharacters(key.mods & GLFW_MOD_SHIFT);
+            break;
+        case GLFW_KEY_DELETE:
+            if (mSelected >= 0)
+                removeCharacter(std::size_t(mSelected));
             break;
         case GLFW_KEY_R:
             mCamera.reset();
@@ -347,6 +494,11 @@ void Viewer::handleInput() {
         mDraggingDivider = true;
         return;
     }
+    // A click (no drag) picks the character under the cursor.
+    if (ImGui::IsMouseReleased(0) && !io.KeyShift && io.MouseDragMaxDistanceSqr[0] < 9.0f) {
+        if (const int picked = pick({io.MousePos.x, io.MousePos.y}); picked >= 0)
+            select(picked);
+    }
     const glm::vec2 delta{io.MouseDelta.x, io.MouseDelta.y};
     const bool panning =
         ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
@@ -359,22 +511,20 @@ void Viewer::handleInput() {
 }
 
 void Viewer::advance(double dt) {
-    if (mScene.model->animations.empty())
-        return;
-    const double duration =
-        mScene.model->animations[std::size_t(mSettings.number("clip"))].duration;
+    // The scene clock wraps at the longest clip; each character loops or holds its own.
+    double longest = 0.0;
+    for (const scene::Character& c : mWorld.characters)
+        if (c.clip >= 0 && c.clip < int(c.model->animations.size()) && c.speed != 0.0)
+            longest = std::max(longest, c.model->animations[std::size_t(c.clip)].duration /
+                                            std::abs(c.speed));
     mTime += dt;
-    if (duration <= 0.0) {
+    if (longest <= 0.0) {
         mTime = 0.0;
-    } else if (mSettings.flag("loop")) {
-        mTime = std::fmod(mTime, duration);
-        if (mTime < 0.0)
-            mTime += duration;
-    } else if (mTime >= duration || mTime < 0.0) {
-        mTime = std::clamp(mTime, 0.0, duration);
-        if (dt > 0.0 && mTime >= duration)
-            mSettings.setNumber("playing", 0.0);
+        return;
     }
+    mTime = std::fmod(mTime, longest);
+    if (mTime < 0.0)
+        mTime += longest;
 }
 
 render::RenderSettings Viewer::settings(glm::ivec2 size) const {
@@ -393,7 +543,7 @@ core::Status Viewer::renderView(glm::ivec2 size) {
         mMessageIsError = true;
         mSettings.setNumber("environment", double(std::max(mEnvironmentShown, 0)));
     }
-    render::Renderer& renderer = *mScene.renderer;
+    render::Renderer& renderer = *mRenderer;
     if (const int level = int(mSettings.number("subdiv")); level != renderer.subdivisionLevel()) {
         if (auto refined = renderer.setSubdivisionLevel(level); !refined) {
             mMessage = refined.error().message;
@@ -401,14 +551,18 @@ core::Status Viewer::renderView(glm::ivec2 size) {
             mSettings.setNumber("subdiv", double(renderer.subdivisionLevel()));
         }
     }
-    const scene::Model& model = *mScene.model;
-    const int clip = model.animations.empty() ? -1 : int(mSettings.number("clip"));
-    const anim::Pose pose = anim::evaluate(model, clip, mTime);
+    // The clip and loop settings are the selected character's.
+    if (mSelected >= 0) {
+        scene::Character& c = mWorld.characters[std::size_t(mSelected)];
+        if (!c.model->animations.empty())
+            c.clip = int(mSettings.number("clip"));
+        c.loop = mSettings.flag("loop");
+    }
     const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
     // Rendered at render-scale of the view and scaled up when shown.
     const double scale = mSettings.number("render-scale");
     const glm::ivec2 internal = glm::max(glm::ivec2(glm::round(glm::dvec2(size) * scale)), 1);
-    auto stats = renderer.render(pose, camera, settings(internal), mTime);
+    auto stats = renderer.render(mWorld, camera, settings(internal), mTime);
     if (!stats)
         return stats.error();
     mStats = std::move(*stats);
@@ -421,7 +575,7 @@ core::Status Viewer::renderView(glm::ivec2 size) {
         plugin::ParameterSet& glass = methodPlugin()->parameters();
         const double methodA = glass.number("method");
         glass.setNumber("method", mSettings.number("split-method"));
-        auto right = renderer.render(pose, camera, settings(internal), mTime);
+        auto right = renderer.render(mWorld, camera, settings(internal), mTime);
         glass.setNumber("method", methodA);
         if (!right)
             return right.error();
@@ -436,14 +590,11 @@ core::Status Viewer::screenshot(const std::filesystem::path& path, std::optional
     capture::Image image;
     if (size) {
         // Offscreen at the chosen resolution: the left (A) method, no panel.
-        const scene::Model& model = *mScene.model;
-        const int clip = model.animations.empty() ? -1 : int(mSettings.number("clip"));
-        const anim::Pose pose = anim::evaluate(model, clip, mTime);
-        auto stats = mScene.renderer->render(pose, mCamera.camera(float(size->x) / float(size->y)),
-                                             settings(*size), mTime);
+        auto stats = mRenderer->render(mWorld, mCamera.camera(float(size->x) / float(size->y)),
+                                       settings(*size), mTime);
         if (!stats)
             return stats.error();
-        image = {size->x, size->y, mScene.renderer->readOutput()};
+        image = {size->x, size->y, mRenderer->readOutput()};
     } else {
         // The view (left of the panel) or the whole window with the panel.
         const glm::ivec2 window = withPanel ? mContext->framebufferSize() : mViewport;
@@ -480,6 +631,9 @@ void Viewer::saveSession() {
     if (auto written = writePreset(path, presetJson(scopes(), mCamera.orbitState())); !written)
         std::fprintf(stderr, "glass-viewer: session not saved: %s\n",
                      written.error().message.c_str());
+    if (auto written = asset::saveScene(lastScenePath(), mWorld); !written)
+        std::fprintf(stderr, "glass-viewer: scene not saved: %s\n",
+                     written.error().message.c_str());
 }
 
 int Viewer::run() {
@@ -489,8 +643,18 @@ int Viewer::run() {
     auto last = std::chrono::steady_clock::now();
     while (!mQuit && !mContext->shouldClose()) {
         mContext->pollEvents();
-        for (const std::string& path : std::exchange(mEvents.dropped, {}))
-            openModel(path);
+        // A dropped model joins the scene; a scene file, or Shift (or the panel's choice),
+        // replaces it.
+        const bool replace =
+            mDropReplaces || glfwGetKey(static_cast<GLFWwindow*>(mContext->nativeWindow()),
+                                        GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+        const std::vector<std::string> dropped = std::exchange(mEvents.dropped, {});
+        if (!dropped.empty() &&
+            (replace || (dropped.size() == 1 && asset::isSceneFile(dropped[0]))))
+            openWorld(dropped);
+        else
+            for (const std::string& path : dropped)
+                addCharacter(path);
         const auto now = std::chrono::steady_clock::now();
         const double wallMs = std::chrono::duration<double, std::milli>(now - last).count();
         last = now;

@@ -1,5 +1,6 @@
-// glass-viewer: plays a glTF character as glass in a window, with a Dear ImGui panel over every
-// parameter, presets, screenshots and a scripted mode for tests and demos.
+// glass-viewer: plays a world of glTF characters (a scene file, or models added one by one) with
+// glass in a window, with a Dear ImGui panel over the scene and every parameter, presets,
+// screenshots and a scripted mode for tests and demos.
 #pragma once
 
 #include "OrbitCamera.h"
@@ -8,6 +9,7 @@
 #include "engine/plugin/Plugin.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -19,7 +21,11 @@
 namespace viewer {
 
 struct ViewerOptions {
-    std::optional<std::string> model;      ///< default: the project's generated character
+    /** A scene file or models (side by side); default: the last session's scene, else the
+     *  project's generated character. */
+    std::vector<std::string> models;
+    /** --add PATH: added to the scene after it opens, as the panel's Add button does. */
+    std::vector<std::string> add;
     std::vector<std::string> environments; ///< --env, added to those found in the assets
     std::optional<std::string> preset;
     std::vector<std::string> plugins;
@@ -33,14 +39,6 @@ struct ViewerOptions {
     bool restoreSession = true;
     bool force = false; ///< overwrite an existing --screenshot
     std::filesystem::path screenshotDir = ".";
-};
-
-/** A model and what draws it: replaced as a whole when another model is opened. */
-struct LoadedScene {
-    std::unique_ptr<scene::Model> model;
-    std::unique_ptr<render::Renderer> renderer;
-    render::Bounds bounds;
-    std::string path;
 };
 
 /** A key press (or repeat) from the window, in arrival order. */
@@ -76,13 +74,29 @@ private:
     Viewer() = default;
     friend class Panel;
 
-    core::Result<LoadedScene> loadScene(const std::string& path);
-    /** Opens another model; on failure the current one stays and the error is shown. */
-    void openModel(const std::string& path);
+    /** Replaces the world by `paths` (render::loadWorld); on failure the current one stays
+     *  and the error is shown. */
+    bool openWorld(const std::vector<std::string>& paths);
+    /** Adds a character placing the model at `path` (loaded once per path) right of the
+     *  others, playing its first clip, and selects it; a scene file adds its characters. */
+    bool addCharacter(const std::string& path);
+    void removeCharacter(std::size_t index);
+    /** Writes the world to `path` (asset::saveScene: atomic). */
+    bool saveWorld(const std::string& path);
+    /** Selects character `index` (clamped; -1 with none): the clip and loop settings follow
+     *  it. */
+    void select(int index);
+    /** After characters or their models change: ground under the new bounds, selection kept in
+     *  range. */
+    void worldChanged();
+    /** The character under window pixel `pixel` of the view (nearest hit of its bounds), or -1. */
+    int pick(glm::vec2 pixel) const;
+    void frameCharacters(bool selectionOnly);
+    void reportStatus(const core::Status& status, const std::string& success);
     core::Status applyEnvironment();
     std::vector<Scope> scopes();
     plugin::Plugin* methodPlugin() const;
-    /** The viewer's settings, at their defaults, for the current model's clips. */
+    /** The viewer's settings, at their defaults, for the selected character's clips. */
     plugin::ParameterSet settingsForScene() const;
     float viewportAspect() const { return float(mViewport.x) / float(std::max(mViewport.y, 1)); }
 
@@ -99,7 +113,12 @@ private:
     std::unique_ptr<gl::Context> mContext;
     std::unique_ptr<plugin::Plugin> mRefraction;
     std::vector<plugin::LoadedPlugin> mPlugins;
-    LoadedScene mScene;
+    std::unique_ptr<render::Renderer> mRenderer; // one for the viewer's life
+    scene::World mWorld;
+    render::Bounds mBounds; ///< of every character over its clip, at the last change
+    int mSelected = -1;
+    std::string mScenePath = "scene.json"; ///< the scene file opened or saved last
+    bool mDropReplaces = false;            ///< a dropped model replaces the scene (or Shift)
     std::vector<EnvironmentEntry> mEnvironments;
     int mEnvironmentShown = -1;
     plugin::ParameterSet mSettings;
@@ -122,6 +141,8 @@ private:
 /** Where the last session's settings live: $XDG_CONFIG_HOME/glass-viewer/last-session.json
  *  (or ~/.config/...). */
 std::filesystem::path lastSessionPath();
+/** Where the last session's scene lives: last-scene.json beside lastSessionPath(). */
+std::filesystem::path lastScenePath();
 
 /** The project's assets folder: $GLASS_ASSETS_DIR, else PREFIX/share/glass/assets when the
  *  viewer runs installed (PREFIX/bin), else the source tree's the build was configured with. */

@@ -1,4 +1,5 @@
-// glass-viewer: plays glTF characters as glass in a window; every parameter live in a panel.
+// glass-viewer: plays a world of glTF characters with glass in a window; the scene and every
+// parameter live in a panel.
 #include "../common/ToolMain.h"
 #include "Viewer.h"
 
@@ -11,15 +12,21 @@
 namespace {
 
 const char* const kUsage =
-    R"(usage: glass-viewer [MODEL] [--env HDR]... [--preset FILE] [--plugin PATH]...
-                    [--set KEY=VALUE]... [--size WxH] [--no-restore]
+    R"(usage: glass-viewer [MODEL|SCENE [MODEL...]] [--add PATH]... [--env HDR]... [--preset FILE]
+                    [--plugin PATH]... [--set KEY=VALUE]... [--size WxH] [--no-restore]
                     [--frames N [--screenshot PATH [--screenshot-size WxH] [--screenshot-panel]
                     [--force]] [--exit]] [--screenshot-dir DIR]
 
-Plays MODEL (.gltf, .glb or builtin:sphere; default: the project's generated character) as
-glass in a window, with a panel over every parameter. Drop a .gltf/.glb on the window, or type
-a path in the panel, to open another.
+Plays a world of characters with glass in a window, with a panel over the scene and every
+parameter: a scene file (.json, README "Scene files"), or models (.gltf, .glb, builtin:sphere)
+placed side by side; default: the last session's scene, else the project's generated
+character. The scene panel lists the characters (click one in the view to select it): add one
+by path, remove, move, rotate, scale, clip, speed, phase, glass mode and overrides, save and
+open scene files. A file dropped on the window joins the scene (a scene file, or Shift held,
+replaces it).
 
+  --add PATH          add a model (or a scene file's characters) after the scene opens, as the
+                      panel's Add button does
   --env HDR           add an equirectangular HDR to the environments (and start on it); the
                       project's assets/env/*.hdr and a procedural sky are always offered
   --preset FILE       apply a preset saved from the panel (JSON)
@@ -28,8 +35,8 @@ a path in the panel, to open another.
                       --set exposure=1.5 --set split=on; SCOPE.KEY (viewer.*, refraction.*,
                       <plugin>.*) when a name is ambiguous. Applied after --preset.
   --size WxH          window size (default 1280x720)
-  --no-restore        do not restore the last session's settings
-                      (saved at exit to $XDG_CONFIG_HOME/glass-viewer/last-session.json)
+  --no-restore        do not restore the last session's settings and scene (saved at exit
+                      to $XDG_CONFIG_HOME/glass-viewer/last-session.json and last-scene.json)
   --screenshot-dir D  where F12 screenshots go (default: the current folder)
 Scripted mode (tests, demos):
   --frames N          advance N frames of 1/30 s each (then continue interactively)
@@ -41,7 +48,8 @@ Scripted mode (tests, demos):
 
 Mouse: drag to orbit, right- or shift-drag to pan, wheel to zoom, drag the A/B divider.
 Keys: Space play/pause, Left/Right step one frame, M next method, 1-4 method,
-      F frame the character, R reset the camera, G ground, B A/B split, Tab panel,
+      F frame all (Shift+F the selection), R reset the camera, Del remove the selected
+      character, G ground, B A/B split, Tab panel,
       F12 or P screenshot, Esc or Ctrl+Q quit.
 
 Exit status: 0 success; 1 a load error, a failed screenshot or any GL error; 2 bad arguments.
@@ -81,7 +89,7 @@ std::optional<int> parse(int argc, char** argv, viewer::ViewerOptions& o) {
         } else if (arg == "--force") {
             o.force = true;
         } else if (arg == "--env" || arg == "--preset" || arg == "--plugin" || arg == "--set" ||
-                   arg == "--screenshot" || arg == "--screenshot-dir") {
+                   arg == "--screenshot" || arg == "--screenshot-dir" || arg == "--add") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -93,6 +101,8 @@ std::optional<int> parse(int argc, char** argv, viewer::ViewerOptions& o) {
                 o.plugins.push_back(*v);
             else if (arg == "--set")
                 o.assignments.push_back(*v);
+            else if (arg == "--add")
+                o.add.push_back(*v);
             else if (arg == "--screenshot")
                 o.screenshot = *v;
             else
@@ -112,10 +122,8 @@ std::optional<int> parse(int argc, char** argv, viewer::ViewerOptions& o) {
             o.frames = int(n);
         } else if (!arg.empty() && arg[0] == '-') {
             return usageError("unknown option " + arg);
-        } else if (o.model) {
-            return usageError("one model at a time (got " + *o.model + " and " + arg + ")");
         } else {
-            o.model = arg;
+            o.models.push_back(arg);
         }
     }
     if ((o.screenshot || o.exitAfterFrames) && !o.frames)

@@ -27,9 +27,11 @@ constexpr int kSize = 128;
  *  an HDR image (rows top to bottom). */
 class RefractionRig {
 public:
-    RefractionRig(const scene::Model& model, gl::Context& context) : mModel(model) {
-        auto renderer =
-            render::Renderer::create(model, render::Environment::proceduralSky(128), context);
+    /** `model` must outlive the rig (the rig's world does not own it). */
+    RefractionRig(const scene::Model& model, gl::Context& context)
+        : mWorld(scene::singleCharacterWorld(
+              std::shared_ptr<const scene::Model>(std::shared_ptr<const scene::Model>(), &model))) {
+        auto renderer = render::Renderer::create(render::Environment::proceduralSky(128), context);
         EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
         mRenderer = std::move(*renderer);
         mPlugin = refraction::createPlugin();
@@ -45,17 +47,19 @@ public:
         render::RenderSettings settings;
         settings.size = {size, size};
         settings.hdrOutput = true;
-        auto stats = mRenderer->render(anim::evaluate(mModel, clip, time), mCamera, settings, time);
+        mWorld.characters[0].clip = clip;
+        auto stats = mRenderer->render(mWorld, mCamera, settings, time);
         EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
         return mRenderer->readHdrOutput();
     }
     const render::Camera& camera() const { return mCamera; }
     const render::Renderer& renderer() const { return *mRenderer; }
+    const scene::World& world() const { return mWorld; }
     const plugin::ParameterSet& parameters() const { return mPlugin->parameters(); }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
 
 private:
-    const scene::Model& mModel;
+    scene::World mWorld;
     std::unique_ptr<render::Renderer> mRenderer;
     std::unique_ptr<plugin::Plugin> mPlugin;
     render::Camera mCamera;
@@ -305,15 +309,15 @@ struct Reference {
     capture::Image image;
     std::vector<bool> mask;
 };
-Reference traceReference(const RefractionRig& rig, const scene::Model& model) {
+Reference traceReference(const RefractionRig& rig) {
     render::RenderSettings settings;
     settings.size = {kSize, kSize};
     refraction::ReferenceOptions options;
     options.samplesPerPixel = 16;
     const auto environment =
         refraction::EnvironmentSampler::fromGpu(rig.renderer().environment(), 0.0f, 1.0f);
-    auto traced = refraction::traceReference(model, anim::restPose(model), rig.camera(),
-                                             environment, settings, {}, rig.parameters(), options);
+    auto traced = refraction::traceReference(rig.world(), 0.0, rig.camera(), environment, settings,
+                                             {}, rig.parameters(), options);
     EXPECT_TRUE(traced.ok()) << (traced.ok() ? "" : traced.error().message);
     Reference r;
     if (!traced)
@@ -334,7 +338,7 @@ TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
     const scene::Model sphere = asset::makeSphere(128);
     RefractionRig rig(sphere, context());
     rig.set("ior", "1.5");
-    const Reference reference = traceReference(rig, sphere);
+    const Reference reference = traceReference(rig);
     auto psnr = [&](const char* method, const char* steps) {
         rig.set("method", method);
         rig.set("search-steps", steps);
@@ -356,7 +360,7 @@ TEST_F(Refraction, SharedDispersionSearchStaysCloseToOneSearchPerChannel) {
     rig.set("ior", "1.5");
     rig.set("dispersion", "1.0"); // a strong spread: flint glass is about 0.55
     rig.set("method", "dir");
-    const Reference reference = traceReference(rig, sphere);
+    const Reference reference = traceReference(rig);
     rig.set("dispersion-search", "per-channel");
     const double perChannel = maskedPsnr(rig, reference);
     rig.set("dispersion-search", "shared");
@@ -414,7 +418,8 @@ TEST_F(Refraction, EveryMethodAndDebugViewRendersTheSphere) {
 TEST_F(Refraction, OneGeometryPassGivesTheTwoPassImageWithinQuantisation) {
     // The single pass quantises normals (10-bit octahedral) and d_N (10 bits of the depth);
     // everything else is the same arithmetic, so the images agree but for a few pixels.
-    auto figure = asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure.glb");
+    auto figure =
+        asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure.glb");
     ASSERT_TRUE(figure.ok());
     const scene::Model sphere = asset::makeSphere(64);
     for (const scene::Model* model : {&sphere, static_cast<const scene::Model*>(&*figure)}) {

@@ -22,6 +22,8 @@ layout(std430, binding = 5) writeonly buffer Deformed { DeformedVertex deformed[
 uniform int uVertexCount;
 uniform int uTargetCount;
 uniform int uSkinned; // 0: rest space is the mesh node's space
+uniform int uSkinBase;   // this mesh node's first matrix in SkinMatrices (every character's)
+uniform int uWeightBase; // its first weight in MorphWeights
 
 void main() {
     uint v = gl_GlobalInvocationID.x;
@@ -31,7 +33,7 @@ void main() {
     vec3 normal = rest[v].normal.xyz;
     vec3 tangent = rest[v].tangent.xyz;
     for (uint t = 0u; t < uint(uTargetCount); ++t) {
-        float w = weights[t];
+        float w = weights[uint(uWeightBase) + t];
         if (w == 0.0)
             continue;
         uint base = (t * uint(uVertexCount) + v) * 3u;
@@ -42,10 +44,11 @@ void main() {
     mat4 blend = mat4(1.0);
     if (uSkinned != 0) {
         Influence inf = influences[v];
-        blend = inf.weights0.x * skin[inf.joints0.x] + inf.weights0.y * skin[inf.joints0.y] +
-                inf.weights0.z * skin[inf.joints0.z] + inf.weights0.w * skin[inf.joints0.w] +
-                inf.weights1.x * skin[inf.joints1.x] + inf.weights1.y * skin[inf.joints1.y] +
-                inf.weights1.z * skin[inf.joints1.z] + inf.weights1.w * skin[inf.joints1.w];
+        uvec4 j0 = inf.joints0 + uint(uSkinBase), j1 = inf.joints1 + uint(uSkinBase);
+        blend = inf.weights0.x * skin[j0.x] + inf.weights0.y * skin[j0.y] +
+                inf.weights0.z * skin[j0.z] + inf.weights0.w * skin[j0.w] +
+                inf.weights1.x * skin[j1.x] + inf.weights1.y * skin[j1.y] +
+                inf.weights1.z * skin[j1.z] + inf.weights1.w * skin[j1.w];
     }
     mat3 linear = mat3(blend);
     mat3 normalMatrix = transpose(inverse(linear));

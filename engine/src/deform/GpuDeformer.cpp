@@ -25,10 +25,10 @@ std::uint32_t groups(std::size_t n) {
 
 /** Per instance primitive with subdivision: the deformed cage and the evaluators' outputs. */
 struct GpuDeformer::Refined {
-    gl::Buffer cage;           // DeformedVertex per file vertex
-    gl::Buffer refined;        // 3 floats per refined vertex
-    gl::Buffer limit, du, dv;  // 3 floats per refined vertex
-    gl::Buffer tangents;       // 4 floats per refined face-varying value
+    gl::Buffer cage;                       // DeformedVertex per file vertex
+    gl::Buffer refined;                    // 3 floats per refined vertex
+    gl::Buffer limit, du, dv;              // 3 floats per refined vertex
+    gl::Buffer tangents;                   // 4 floats per refined face-varying value
     gl::Buffer scalarRefined, scalarLimit; // refineScalar(): 1 float per refined vertex
 };
 
@@ -44,9 +44,9 @@ struct GpuDeformer::Evaluators {
 
 GpuDeformer::~GpuDeformer() = default;
 
-core::Result<std::unique_ptr<GpuDeformer>>
-GpuDeformer::create(const scene::Model& model, const gl::ShaderLibrary& shaders,
-                    int subdivisionLevel) {
+core::Result<std::unique_ptr<GpuDeformer>> GpuDeformer::create(const scene::Model& model,
+                                                               const gl::ShaderLibrary& shaders,
+                                                               int subdivisionLevel) {
     auto uploaded = GpuModel::create(model, subdivisionLevel);
     if (!uploaded)
         return uploaded.error();
@@ -128,34 +128,79 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
         }
         if (subdivisionLevel > 0)
             d->mRefined.push_back(std::move(refined));
-        const std::size_t joints = n.skin >= 0 ? model.skins[std::size_t(n.skin)].joints.size() : 1;
-        d->mSkinMatrices.emplace_back(joints * sizeof(glm::mat4));
-        d->mMorphWeights.emplace_back(std::max<std::size_t>(1, mesh.morphTargetCount()) *
-                                      sizeof(float));
         d->mInstances.push_back(std::move(instance));
     }
+    d->mStaged.resize(d->mInstances.size());
     return d;
 }
 
-void GpuDeformer::update(const anim::Pose& pose) {
+void PoseUpload::clear() {
+    mMatrixValues.clear();
+    mWeightValues.clear();
+}
+
+std::uint32_t PoseUpload::addMatrices(std::span<const glm::mat4> matrices) {
+    const auto first = std::uint32_t(mMatrixValues.size());
+    mMatrixValues.insert(mMatrixValues.end(), matrices.begin(), matrices.end());
+    return first;
+}
+
+std::uint32_t PoseUpload::addWeights(std::span<const double> weights) {
+    const auto first = std::uint32_t(mWeightValues.size());
+    for (double w : weights)
+        mWeightValues.push_back(float(w));
+    return first;
+}
+
+void PoseUpload::upload() {
+    // Buffers of at least one element, so that they can be bound when nothing is staged.
+    auto put = [](gl::Buffer& buffer, const auto& values) {
+        const std::size_t bytes = std::max<std::size_t>(values.size(), 1) * sizeof(values[0]);
+        if (buffer.size() < bytes)
+            buffer = gl::Buffer(std::max(bytes, 2 * buffer.size()));
+        buffer.update(std::span(values));
+    };
+    put(mMatrices, mMatrixValues);
+    put(mWeights, mWeightValues);
+}
+
+void GpuDeformer::stage(const anim::Pose& pose, const glm::dmat4& placement, PoseUpload& upload) {
     const scene::Model& model = mUpload->model();
-    mDeform.use();
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
-        const scene::Node& node = model.nodes[std::size_t(instance.node)];
-        instance.meshToWorld = glm::mat4(pose.world[std::size_t(instance.node)]);
-        const bool skinned = node.skin >= 0;
-        if (skinned) {
+        const auto node = std::size_t(instance.node);
+        instance.meshToWorld = glm::mat4(placement * pose.world[node]);
+        Staged& staged = mStaged[i];
+        if (model.nodes[node].skin >= 0) {
             anim::skinMatrices(model, pose, instance.node, mScratchMatrices);
-            mSkinMatrices[i].update(std::span<const glm::mat4>(mScratchMatrices));
+            staged.matrices = upload.addMatrices(mScratchMatrices);
         }
-        const auto& weights = pose.weights[std::size_t(instance.node)];
-        if (!weights.empty()) {
-            mScratchWeights.assign(weights.begin(), weights.end());
-            mMorphWeights[i].update(std::span<const float>(mScratchWeights));
-        }
-        gl::bindStorage(3, mMorphWeights[i]);
-        gl::bindStorage(4, mSkinMatrices[i]);
+        const auto& weights = pose.weights[node];
+        staged.weights = upload.addWeights(weights);
+        staged.weightCount = std::uint32_t(weights.size());
+    }
+}
+
+void GpuDeformer::update(const anim::Pose& pose, const glm::dmat4& placement) {
+    if (!mOwnUpload)
+        mOwnUpload = std::make_unique<PoseUpload>();
+    mOwnUpload->clear();
+    stage(pose, placement, *mOwnUpload);
+    mOwnUpload->upload();
+    dispatch(*mOwnUpload);
+}
+
+void GpuDeformer::dispatch(const PoseUpload& upload) {
+    const scene::Model& model = mUpload->model();
+    mDeform.use();
+    gl::bindStorage(3, upload.weights());
+    gl::bindStorage(4, upload.matrices());
+    for (std::size_t i = 0; i < mInstances.size(); ++i) {
+        GpuInstance& instance = mInstances[i];
+        const Staged& staged = mStaged[i];
+        const bool skinned = model.nodes[std::size_t(instance.node)].skin >= 0;
+        mDeform.set("uSkinBase", int(staged.matrices));
+        mDeform.set("uWeightBase", int(staged.weights));
         for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
             GpuPrimitive& gp = instance.primitives[p];
             const GpuModel::Primitive& s = mUpload->primitive(instance.mesh, p);
@@ -164,7 +209,7 @@ void GpuDeformer::update(const anim::Pose& pose) {
             gl::bindStorage(2, s.deltas);
             gl::bindStorage(5, subdivisionLevel() > 0 ? mRefined[i][p].cage : gp.deformed);
             mDeform.set("uVertexCount", int(gp.source->vertexCount()));
-            mDeform.set("uTargetCount", int(std::min<std::size_t>(s.targetCount, weights.size())));
+            mDeform.set("uTargetCount", int(std::min(s.targetCount, staged.weightCount)));
             mDeform.set("uSkinned", skinned && gp.source->isSkinned() ? 1 : 0);
             gl::dispatch(groups(gp.source->vertexCount()));
         }
@@ -207,20 +252,20 @@ void GpuDeformer::refine() {
     each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive&) {
         const GpuStencils& t = *s.refine;
         e.refine->EvalStencils(r.cage.id(), e.cagePosition, r.refined.id(), e.packed3, 0, none, 0,
-                               none, t.sizes.id(), t.offsets.id(), t.indices.id(),
-                               t.weights.id(), 0, 0, 0, t.count);
+                               none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(),
+                               0, 0, 0, t.count);
         const GpuStencils& fv = *s.faceVarying;
-        e.faceVarying->EvalStencils(r.cage.id(), e.cageTangent, r.tangents.id(), e.packed4, 0,
-                                    none, 0, none, fv.sizes.id(), fv.offsets.id(),
-                                    fv.indices.id(), fv.weights.id(), 0, 0, 0, fv.count);
+        e.faceVarying->EvalStencils(r.cage.id(), e.cageTangent, r.tangents.id(), e.packed4, 0, none,
+                                    0, none, fv.sizes.id(), fv.offsets.id(), fv.indices.id(),
+                                    fv.weights.id(), 0, 0, 0, fv.count);
     });
     gl::memoryBarrier(gl::BarrierStorage);
     each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive&) {
         const GpuStencils& t = *s.limit;
         e.limit->EvalStencils(r.refined.id(), e.packed3, r.limit.id(), e.packed3, r.du.id(),
                               e.packed3, r.dv.id(), e.packed3, t.sizes.id(), t.offsets.id(),
-                              t.indices.id(), t.weights.id(), t.duWeights.id(),
-                              t.dvWeights.id(), 0, t.count);
+                              t.indices.id(), t.weights.id(), t.duWeights.id(), t.dvWeights.id(), 0,
+                              t.count);
     });
     gl::memoryBarrier(gl::BarrierStorage);
     mPack.use();
@@ -255,13 +300,13 @@ void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& c
     const OpenSubdiv::Osd::BufferDescriptor none;
     const GpuStencils& t = *s.refine;
     e.scalar->EvalStencils(cageValues.id(), e.packed1, r.scalarRefined.id(), e.packed1, 0, none, 0,
-                           none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0,
-                           0, 0, t.count);
+                           none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0, 0,
+                           0, t.count);
     gl::memoryBarrier(gl::BarrierStorage);
     const GpuStencils& l = *s.limit;
     e.scalar->EvalStencils(r.scalarRefined.id(), e.packed1, r.scalarLimit.id(), e.packed1, 0, none,
-                           0, none, l.sizes.id(), l.offsets.id(), l.indices.id(), l.weights.id(),
-                           0, 0, 0, l.count);
+                           0, none, l.sizes.id(), l.offsets.id(), l.indices.id(), l.weights.id(), 0,
+                           0, 0, l.count);
     gl::memoryBarrier(gl::BarrierStorage);
     mGather.use();
     gl::bindStorage(0, s.corners);

@@ -105,6 +105,10 @@ const GpuModel::Primitive& GpuModel::primitive(int mesh, std::size_t p) const {
     return *mPrimitives.at(std::size_t(mesh)).at(p);
 }
 
+const gl::Buffer& GpuModel::indices(int mesh, std::size_t p) const {
+    return primitive(mesh, p).indices;
+}
+
 const Subdivision* GpuModel::subdivision(int mesh, std::size_t p) const {
     return primitive(mesh, p).subdivision.get();
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace render {
 
@@ -24,6 +25,44 @@ Bounds animatedBounds(const scene::Model& model, int clip, int samples) {
     if (bounds.empty())
         bounds.add(glm::vec3(0.0f));
     return bounds;
+}
+
+Bounds worldBounds(const scene::World& world, int samples) {
+    std::map<std::pair<const scene::Model*, int>, Bounds> perClip;
+    Bounds bounds;
+    for (const scene::Character& character : world.characters) {
+        const scene::Model& model = *character.model;
+        const int clip = character.clip < int(model.animations.size()) ? character.clip : -1;
+        auto [it, added] = perClip.try_emplace({&model, clip});
+        if (added)
+            it->second = animatedBounds(model, clip, samples);
+        const glm::dmat4 transform = character.transform();
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? it->second.max.x : it->second.min.x,
+                               (corner & 2) ? it->second.max.y : it->second.min.y,
+                               (corner & 4) ? it->second.max.z : it->second.min.z);
+            bounds.add(glm::vec3(transform * glm::dvec4(p, 1.0)));
+        }
+    }
+    if (bounds.empty())
+        bounds.add(glm::vec3(0.0f));
+    return bounds;
+}
+
+Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds& bounds) {
+    Camera c;
+    c.yfov = camera.yfov;
+    c.position = camera.position;
+    glm::vec3 up(0, 1, 0);
+    if (glm::length(glm::cross(glm::normalize(camera.target - camera.position), up)) < 1e-4f)
+        up = glm::vec3(0, 0, -1); // looking straight up or down
+    c.view = glm::lookAt(camera.position, camera.target, up);
+    const float distance = glm::length(bounds.center() - camera.position);
+    const float radius = std::max(bounds.radius(), 1e-3f);
+    c.znear = std::max(distance - 2.0f * radius, std::max(distance, radius) * 0.005f);
+    c.zfar = distance + 4.0f * radius;
+    c.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar);
+    return c;
 }
 
 Camera frameBounds(const Bounds& bounds, float aspect, float yfov, float azimuth, float elevation,

@@ -1,12 +1,15 @@
-// The renderer's GPU objects, shared by its passes (render/passes/): deformed geometry,
-// environment, material textures, programs, vertex arrays and the framebuffer they draw with.
+// The renderer's GPU objects, shared by its passes (render/passes/): the world's models and
+// characters on the GPU, the frame's draw items, environment, programs and the framebuffer
+// they draw with.
 #pragma once
 
+#include "engine/anim/Pose.h"
 #include "engine/deform/GpuDeformer.h"
 #include "engine/gl/Commands.h"
 #include "engine/gl/Framebuffer.h"
 #include "engine/gl/Program.h"
 #include "engine/render/Environment.h"
+#include "engine/render/FrameInfo.h"
 #include "engine/render/MaterialTextures.h"
 
 #include <memory>
@@ -14,14 +17,31 @@
 
 namespace render {
 
-struct RenderGpu {
+/** A model on the GPU, shared by every character that places it. */
+struct ModelGpu {
+    std::shared_ptr<const scene::Model> model;
+    std::shared_ptr<const deform::GpuModel> upload;
+    std::shared_ptr<MaterialTextures> materials; ///< kept when the level changes
+    /** Per mesh node instance, per primitive: a vertex array binding its index buffer (the
+     *  same for every placement). */
+    std::vector<std::vector<gl::VertexArray>> vertexArrays;
+};
+
+/** A character on the GPU: its placement of the model and its reused pose. */
+struct CharacterGpu {
+    std::shared_ptr<ModelGpu> model;
     std::unique_ptr<deform::GpuDeformer> deformer;
+    anim::Pose pose;
+};
+
+struct RenderGpu {
+    std::vector<std::shared_ptr<ModelGpu>> models; // the prepared world's, each once
+    std::vector<CharacterGpu> characters;          // the prepared world's, in its order
+    deform::PoseUpload poses;                      // every character's, this frame
+    std::vector<DrawItem> items;                   // this frame's (storage reused)
     std::unique_ptr<Environment> environment;
-    std::unique_ptr<MaterialTextures> materials;
     gl::Program background, opaque, ground, tonemap;
     gl::VertexArray emptyVao;
-    std::vector<gl::VertexArray> vaos; ///< per instance primitive, flattened
-    std::vector<char> claimed;         ///< same order: a plugin draws it (this frame)
     gl::Framebuffer framebuffer;
 };
 

@@ -68,27 +68,51 @@ private:
 
 Renderer::~Renderer() = default;
 
-core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& model,
-                                                         const asset::HdrImage& environment,
+namespace {
+
+/** Uploads `model` at subdivision `level` with vertex arrays over its index buffers;
+ *  `materials` reused when given (they do not depend on the level). */
+core::Result<std::shared_ptr<ModelGpu>> uploadModel(std::shared_ptr<const scene::Model> model,
+                                                    int level,
+                                                    std::shared_ptr<MaterialTextures> materials) {
+    auto upload = deform::GpuModel::create(*model, level);
+    if (!upload)
+        return upload.error();
+    auto m = std::make_shared<ModelGpu>();
+    m->upload = std::move(*upload);
+    if (!materials) {
+        auto created = MaterialTextures::create(*model);
+        if (!created)
+            return created.error();
+        materials = std::make_shared<MaterialTextures>(std::move(*created));
+    }
+    m->materials = std::move(materials);
+    for (int node : model->meshNodes()) {
+        const scene::Mesh& mesh = model->meshes[std::size_t(model->nodes[std::size_t(node)].mesh)];
+        auto& arrays = m->vertexArrays.emplace_back();
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            gl::VertexArray vao;
+            vao.setIndexBuffer(m->upload->indices(model->nodes[std::size_t(node)].mesh, p));
+            arrays.push_back(std::move(vao));
+        }
+    }
+    m->model = std::move(model);
+    return m;
+}
+
+} // namespace
+
+core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& environment,
                                                          gl::Context& context) {
     std::unique_ptr<Renderer> r(new Renderer());
-    r->mModel = &model;
     r->mContext = &context;
     r->mGpu = std::make_unique<RenderGpu>();
     RenderGpu& gpu = *r->mGpu;
     r->mShaders.add(engineShaderFiles());
-    auto deformer = deform::GpuDeformer::create(model, r->mShaders);
-    if (!deformer)
-        return deformer.error();
-    gpu.deformer = std::move(*deformer);
     auto env = Environment::create(environment, r->mShaders);
     if (!env)
         return env.error();
     gpu.environment = std::move(*env);
-    auto materials = MaterialTextures::create(model);
-    if (!materials)
-        return materials.error();
-    gpu.materials = std::make_unique<MaterialTextures>(std::move(*materials));
     struct ProgramSpec {
         gl::Program* target;
         const char* vertex;
@@ -105,46 +129,82 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Model& mod
             return core::Error{"render::Renderer::create(): " + program.error().message};
         *spec.target = std::move(*program);
     }
-    r->makeVertexArrays();
     r->mAllocator = std::make_unique<Allocator>();
     r->mPool = std::make_unique<fg::TexturePool>(*r->mAllocator);
     r->mTimer = std::make_unique<Timer>();
     return r;
 }
 
-void Renderer::makeVertexArrays() {
-    mGpu->vaos.clear();
-    mGpu->claimed.clear();
-    for (const auto& instance : mGpu->deformer->instances())
-        for (const auto& primitive : instance.primitives) {
-            gl::VertexArray vao;
-            vao.setIndexBuffer(*primitive.indices);
-            mGpu->vaos.push_back(std::move(vao));
-            mGpu->claimed.push_back(0);
+core::Status Renderer::prepare(const scene::World& world) {
+    RenderGpu& gpu = *mGpu;
+    std::vector<std::shared_ptr<ModelGpu>> used;
+    auto modelFor = [&](const std::shared_ptr<const scene::Model>& model)
+        -> core::Result<std::shared_ptr<ModelGpu>> {
+        for (const auto* list : {&used, &gpu.models})
+            for (const auto& m : *list)
+                if (m->model == model)
+                    return m;
+        return uploadModel(model, mLevel, nullptr);
+    };
+    gpu.characters.resize(world.characters.size());
+    for (std::size_t i = 0; i < world.characters.size(); ++i) {
+        const scene::Character& character = world.characters[i];
+        auto fail = [&](const std::string& message) {
+            return core::Error{"render::Renderer::prepare(): characters[" + std::to_string(i) +
+                               "] (" + character.name + "): " + message};
+        };
+        if (!character.model)
+            return fail("no model");
+        auto model = modelFor(character.model);
+        if (!model)
+            return fail(model.error().message);
+        if (std::find(used.begin(), used.end(), *model) == used.end())
+            used.push_back(*model);
+        CharacterGpu& c = gpu.characters[i];
+        if (c.model != *model || !c.deformer) {
+            auto deformer = deform::GpuDeformer::create((*model)->upload, mShaders);
+            if (!deformer)
+                return fail(deformer.error().message);
+            c.model = *model;
+            c.deformer = std::move(*deformer);
+            c.pose = anim::restPose(*character.model);
         }
-}
-
-core::Status Renderer::setSubdivisionLevel(int level) {
-    if (level == mGpu->deformer->subdivisionLevel())
-        return {};
-    auto deformer = deform::GpuDeformer::create(*mModel, mShaders, level);
-    if (!deformer)
-        return deformer.error();
-    mGpu->deformer = std::move(*deformer);
-    makeVertexArrays();
+    }
+    gpu.models = std::move(used);
     return {};
 }
 
-int Renderer::subdivisionLevel() const {
-    return mGpu->deformer->subdivisionLevel();
+core::Status Renderer::setSubdivisionLevel(int level) {
+    if (level == mLevel)
+        return {};
+    // Every model at the new level before anything changes: on failure nothing does.
+    std::vector<std::shared_ptr<ModelGpu>> refined;
+    for (const auto& m : mGpu->models) {
+        auto upload = uploadModel(m->model, level, m->materials);
+        if (!upload)
+            return upload.error();
+        refined.push_back(std::move(*upload));
+    }
+    mGpu->models = std::move(refined);
+    mGpu->characters.clear(); // placed again over the new uploads by the next prepare()
+    mLevel = level;
+    return {};
 }
 
 const Environment& Renderer::environment() const {
     return *mGpu->environment;
 }
 
-const deform::GpuDeformer& Renderer::geometry() const {
-    return *mGpu->deformer;
+std::size_t Renderer::characterCount() const {
+    return mGpu->characters.size();
+}
+
+const deform::GpuDeformer& Renderer::geometry(std::size_t character) const {
+    return *mGpu->characters.at(character).deformer;
+}
+
+std::span<const DrawItem> Renderer::drawItems() const {
+    return mGpu->items;
 }
 
 core::Status Renderer::addPlugin(plugin::Plugin* p) {
@@ -156,43 +216,74 @@ core::Status Renderer::addPlugin(plugin::Plugin* p) {
     return {};
 }
 
-core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& camera,
+core::Result<FrameStats> Renderer::render(const scene::World& world, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
+    if (auto prepared = prepare(world); !prepared)
+        return prepared.error();
     const gl::Format outputFormat = settings.hdrOutput ? gl::Format::RGBA32F : gl::Format::RGBA8;
     if (!mOutput || mOutput.desc().size != settings.size || mOutput.desc().format != outputFormat)
         mOutput = gl::Texture({settings.size, outputFormat, 1});
 
+    // Animate: pose every character, stage its uploads, list and claim the draw items.
     RenderGpu& gpu = *mGpu;
+    gpu.poses.clear();
+    gpu.items.clear();
+    bool opaqueGeometry = settings.ground;
+    for (std::size_t c = 0; c < world.characters.size(); ++c) {
+        const scene::Character& character = world.characters[c];
+        CharacterGpu& cg = gpu.characters[c];
+        const scene::Model& model = *character.model;
+        const int clip = character.clip < int(model.animations.size()) ? character.clip : -1;
+        anim::applyClip(model, clip, character.clipTime(time), cg.pose);
+        anim::updateWorld(model, cg.pose);
+        cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
+        const auto& instances = cg.deformer->instances();
+        for (std::size_t i = 0; i < instances.size(); ++i)
+            for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
+                const deform::GpuPrimitive& primitive = instances[i].primitives[p];
+                DrawItem item;
+                item.character = c;
+                item.source = &character;
+                item.model = &model;
+                item.primitive = primitive.source;
+                item.material = primitive.source->material;
+                item.geometry = cg.deformer.get();
+                item.instance = std::uint32_t(i);
+                item.primitiveIndex = std::uint32_t(p);
+                item.gpu = &primitive;
+                item.vertexArray = &cg.model->vertexArrays[i][p];
+                item.materials = cg.model->materials.get();
+                item.world = instances[i].meshToWorld;
+                item.key = cg.deformer->serial();
+                for (const plugin::Plugin* plugin : mPlugins)
+                    if (plugin->claims(item)) {
+                        item.owner = plugin;
+                        break;
+                    }
+                opaqueGeometry = opaqueGeometry || !item.owner;
+                gpu.items.push_back(item);
+            }
+    }
     FrameInfo frame;
-    frame.model = mModel;
-    frame.geometry = gpu.deformer.get();
+    frame.world = &world;
+    frame.items = gpu.items;
     frame.environment = gpu.environment.get();
-    frame.materials = gpu.materials.get();
     frame.shaders = &mShaders;
     frame.camera = camera;
     frame.settings = settings;
     frame.time = time;
     frame.ground = mGroundPlane;
-    // Which primitives a plugin draws instead of the opaque pass, asked once a frame.
-    std::size_t flat = 0;
-    frame.opaqueGeometry = settings.ground;
-    for (const auto& instance : gpu.deformer->instances())
-        for (const auto& primitive : instance.primitives) {
-            const bool claimed =
-                std::any_of(mPlugins.begin(), mPlugins.end(), [&](const plugin::Plugin* p) {
-                    return p->drawsPrimitive(*mModel, instance.node, *primitive.source);
-                });
-            gpu.claimed[flat++] = claimed;
-            frame.opaqueGeometry = frame.opaqueGeometry || !claimed;
-        }
+    frame.opaqueGeometry = opaqueGeometry;
+    const double animateMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
+            .count();
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
     const fg::BufferHandle vertices =
-        passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", gpu.deformer.get()),
-                          pose);
+        passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", &gpu.characters));
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (settings.ground)
         scene = passes::addGround(graph, gpu, frame, scene);
@@ -212,6 +303,7 @@ core::Result<FrameStats> Renderer::render(const anim::Pose& pose, const Camera& 
     if (!compiled)
         return compiled.error();
     FrameStats stats;
+    stats.animateMs = animateMs;
     mTimer->exact = settings.exactPassTimes;
     mTimer->beginFrame();
     auto executed = graph.execute(*mContext, mTimer.get());

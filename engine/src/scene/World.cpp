@@ -1,4 +1,4 @@
-// A character's clock.
+// A character's clock; a world of one character.
 #include "engine/scene/World.h"
 
 #include <algorithm>
@@ -17,6 +17,17 @@ double Character::clipTime(double sceneTime) const {
         return std::clamp(t, 0.0, duration);
     const double wrapped = std::fmod(t, duration);
     return wrapped < 0.0 ? wrapped + duration : wrapped;
+}
+
+World singleCharacterWorld(std::shared_ptr<const Model> model, int clip, std::string path) {
+    Character c;
+    c.name = path.empty() ? "character" : path.substr(path.find_last_of('/') + 1);
+    c.model = std::move(model);
+    c.modelPath = std::move(path);
+    c.clip = clip;
+    World world;
+    world.characters.push_back(std::move(c));
+    return world;
 }
 
 } // namespace scene

@@ -10,6 +10,7 @@
 #include "engine/render/Camera.h"
 #include "engine/render/FrameInfo.h"
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <vector>
 
@@ -63,9 +64,11 @@ struct ReferenceImage {
     std::size_t trappedSamples = 0; ///< paths still inside after maxBounces reflections (black)
 };
 
-/** Traces `model` in `pose` like the GPU frame of `settings` (size, ground plane) lit by
- *  `environment`, with the glass configured by `glass` (the refraction plugin's parameters:
- *  ior, dispersion, tint, absorption, Fresnel at the entry, glass auto|all). Shading matches the
+/** Traces every character of `world` at scene time `time` (each deformed by the CPU reference
+ *  in its clip's pose and placed by its transform) like the GPU frame of `settings` (size,
+ *  ground plane) lit by `environment`, with the glass configured by `glass` (the refraction
+ *  plugin's parameters: ior, dispersion, tint, absorption, Fresnel at the entry, glass
+ *  auto|all) and each character's glass mode and overrides. Shading matches the
  *  GPU's: Fresnel-weighted environment reflection at the first entry, transmission tinted by the
  *  base colour, Beer-Lambert over the in-glass path, per-channel paths with dispersion; later
  *  entries into glass choose reflection or refraction by Fresnel. Opaque primitives and the
@@ -73,7 +76,7 @@ struct ReferenceImage {
  *  split-sum environment lighting; base colour, metallic-roughness and emissive textures at
  *  level 0; no normal or occlusion maps), so exit rays meet the real nearby scene. */
 core::Result<ReferenceImage>
-traceReference(const scene::Model& model, const anim::Pose& pose, const render::Camera& camera,
+traceReference(const scene::World& world, double time, const render::Camera& camera,
                const EnvironmentSampler& environment, const render::RenderSettings& settings,
                const render::GroundPlane& ground, const plugin::ParameterSet& glass,
                const ReferenceOptions& options);

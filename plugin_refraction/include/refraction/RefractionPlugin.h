@@ -31,15 +31,14 @@ public:
     const char* name() const override { return "refraction"; }
     core::Status initialize(gl::ShaderLibrary& shaders) override;
     void addPasses(plugin::Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) override;
-    bool drawsPrimitive(const scene::Model& model, int node,
-                        const scene::Primitive& primitive) const override;
+    /** Claims the glass: items Settings::isGlass() picks under the character's glass mode. */
+    bool claims(const render::DrawItem& item) const override;
     /** Also holds presets of common materials (water 1.333 ... diamond 2.417) as data. */
     plugin::ParameterSet& parameters() override { return mParameters; }
 
 private:
     /** The parameters decoded, again only after they change. */
     const Settings& settings() const;
-    void prepare(const scene::Model& model, const deform::GpuDeformer& geometry);
     plugin::ParameterSet mParameters;
     mutable std::unique_ptr<Settings> mSettings;
     mutable std::uint64_t mSettingsRevision = 0;

@@ -63,7 +63,9 @@ capture::Image display(const std::vector<float>& hdr) {
 }
 
 TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
-    const scene::Model sphere = asset::makeSphere(256);
+    const auto model = std::make_shared<const scene::Model>(asset::makeSphere(256));
+    const scene::Model& sphere = *model;
+    const scene::World world = scene::singleCharacterWorld(model);
     const refraction::EnvironmentSampler env(render::Environment::proceduralSky(512), 0.0f, 1.0f);
     const render::Camera camera =
         render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.6f, 0.3f, 0.2f, 1.15f);
@@ -75,8 +77,8 @@ TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
         refraction::ReferenceOptions options;
         options.samplesPerPixel = 64;
         options.twoInterfaces = true;
-        auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env,
-                                                 settings, {}, glass, options);
+        auto traced =
+            refraction::traceReference(world, 0.0, camera, env, settings, {}, glass, options);
         ASSERT_TRUE(traced.ok()) << traced.error().message;
         const auto exact = closedForm(camera, env, ior);
         std::vector<bool> mask(std::size_t(kSize) * kSize);
@@ -92,7 +94,9 @@ TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
 }
 
 TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
-    const scene::Model sphere = asset::makeSphere(32);
+    const auto model = std::make_shared<const scene::Model>(asset::makeSphere(32));
+    const scene::Model& sphere = *model;
+    const scene::World world = scene::singleCharacterWorld(model);
     const refraction::EnvironmentSampler env(render::Environment::proceduralSky(64), 0.0f, 1.0f);
     const render::Camera camera =
         render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.7f, 0.0f, 0.5f);
@@ -102,8 +106,7 @@ TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
     const render::GroundPlane ground{-1.0f, glm::vec3(0.0f), 4.0f};
     auto glass = refraction::createPlugin()->parameters();
     ASSERT_TRUE(glass.set("method", "opaque").ok()); // the sphere is an opaque mesh now
-    auto traced = refraction::traceReference(sphere, anim::restPose(sphere), camera, env, settings,
-                                             ground, glass, {});
+    auto traced = refraction::traceReference(world, 0.0, camera, env, settings, ground, glass, {});
     ASSERT_TRUE(traced.ok()) << traced.error().message;
     float coverage = 0.0f;
     for (std::size_t i = 0; i < traced->rgba.size(); i += 4) {

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace deform {
@@ -41,8 +42,32 @@ struct GpuPrimitive {
 struct GpuInstance {
     int node = -1;
     int mesh = -1;
-    glm::mat4 meshToWorld{1.0f}; ///< world(node), refreshed by update()
+    /** placement * world(node): mesh space to world space, refreshed by stage() and update(). */
+    glm::mat4 meshToWorld{1.0f};
     std::vector<GpuPrimitive> primitives;
+};
+
+/** The per-frame uploads of any number of deformers: every skin matrix and morph weight of a
+ *  frame staged on the CPU (GpuDeformer::stage), then one upload per buffer. The buffers grow
+ *  (by doubling) only when a frame needs more than any before, so a steady scene allocates
+ *  nothing per frame. */
+class PoseUpload {
+public:
+    /** Starts a frame: forgets the staged values (keeps the storage). */
+    void clear();
+    /** Stages values; returns the index of the first in the buffer. */
+    std::uint32_t addMatrices(std::span<const glm::mat4> matrices);
+    std::uint32_t addWeights(std::span<const double> weights);
+    /** Uploads what was staged: one buffer update each (a reallocation when it grew). */
+    void upload();
+    const gl::Buffer& matrices() const { return mMatrices; }
+    const gl::Buffer& weights() const { return mWeights; }
+    std::size_t stagedMatrices() const { return mMatrixValues.size(); }
+
+private:
+    std::vector<glm::mat4> mMatrixValues;
+    std::vector<float> mWeightValues;
+    gl::Buffer mMatrices, mWeights;
 };
 
 class GpuDeformer {
@@ -50,19 +75,25 @@ public:
     /** Places `model` once more: deformed buffers of every mesh node of the default scene and
      *  the buffers of its per-frame uploads (skin matrices, morph weights), over the shared
      *  static data, and the deform programs. Needs a current GL context. */
-    static core::Result<std::unique_ptr<GpuDeformer>>
-    create(std::shared_ptr<const GpuModel> model, const gl::ShaderLibrary& shaders);
+    static core::Result<std::unique_ptr<GpuDeformer>> create(std::shared_ptr<const GpuModel> model,
+                                                             const gl::ShaderLibrary& shaders);
     /** Uploads `model` (GpuModel::create, failing as it does) and places it. */
     static core::Result<std::unique_ptr<GpuDeformer>>
     create(const scene::Model& model, const gl::ShaderLibrary& shaders, int subdivisionLevel = 0);
     ~GpuDeformer();
 
-    /** Uploads this pose's skin matrices and morph weights and runs the deform passes (one
-     *  dispatch per primitive, plus one for flat normals where the file had none), then the
-     *  refinement of each deformed cage (stencils to the refined vertices, to their limit
-     *  positions and tangents, face-varying tangents, one pack dispatch). Issues a barrier so
-     *  draws and later compute passes see the result. No allocation, no sync. */
-    void update(const anim::Pose& pose);
+    /** Stages this pose's skin matrices and morph weights into `upload` and sets each
+     *  instance's meshToWorld to placement * world(node). No GL call. */
+    void stage(const anim::Pose& pose, const glm::dmat4& placement, PoseUpload& upload);
+    /** Runs the deform passes on what stage() left in `upload` (uploaded since): one dispatch
+     *  per primitive, plus one for flat normals where the file had none, then the refinement
+     *  of each deformed cage (stencils to the refined vertices, to their limit positions and
+     *  tangents, face-varying tangents, one pack dispatch). Issues a barrier so draws and later
+     *  compute passes see the result. No allocation, no sync. */
+    void dispatch(const PoseUpload& upload);
+    /** stage(), upload and dispatch() with an upload of this deformer's own: for a deformer
+     *  used alone (tests, tools); a renderer stages every character into one upload. */
+    void update(const anim::Pose& pose, const glm::dmat4& placement = glm::dmat4(1.0));
 
     const std::vector<GpuInstance>& instances() const { return mInstances; }
     int subdivisionLevel() const { return mUpload->subdivisionLevel(); }
@@ -93,7 +124,7 @@ public:
 
 private:
     GpuDeformer() = default;
-    void refine(); // the subdivision passes of update()
+    void refine();     // the subdivision passes of update()
     struct Refined;    // per instance primitive: the cage and the evaluators' outputs
     struct Evaluators; // OpenSubdiv's GL compute evaluators, one per buffer layout
     std::shared_ptr<const GpuModel> mUpload;
@@ -101,10 +132,12 @@ private:
     std::unique_ptr<Evaluators> mEvaluators;
     std::vector<std::vector<Refined>> mRefined; // [instance][primitive], empty at level 0
     std::vector<GpuInstance> mInstances;
-    std::vector<gl::Buffer> mSkinMatrices; // per instance (empty: unskinned)
-    std::vector<gl::Buffer> mMorphWeights; // per instance
+    struct Staged {
+        std::uint32_t matrices = 0, weights = 0, weightCount = 0; // into the PoseUpload
+    };
+    std::vector<Staged> mStaged; // per instance, by the last stage()
     std::vector<glm::mat4> mScratchMatrices;
-    std::vector<float> mScratchWeights;
+    std::unique_ptr<PoseUpload> mOwnUpload; // update()'s
     gl::Program mDeform, mFlatNormals, mPack, mGather;
 };
 

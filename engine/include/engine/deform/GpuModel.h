@@ -5,6 +5,7 @@
 
 #include "engine/core/Result.h"
 #include "engine/deform/Subdivision.h"
+#include "engine/gl/Buffer.h"
 #include "engine/scene/Model.h"
 
 #include <memory>
@@ -28,6 +29,8 @@ public:
     /** One primitive's buffers (defined privately in src/deform/GpuModelData.h). */
     struct Primitive;
     const Primitive& primitive(int mesh, std::size_t p) const;
+    /** Its triangles as drawn (uint32; the refined mesh's with subdivision). */
+    const gl::Buffer& indices(int mesh, std::size_t p) const;
     /** Its refinement; null at level 0. */
     const Subdivision* subdivision(int mesh, std::size_t p) const;
 

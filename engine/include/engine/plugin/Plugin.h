@@ -16,10 +16,9 @@ class Blackboard;
 namespace gl {
 class ShaderLibrary;
 }
-namespace scene {
-struct Model;
-struct Primitive;
-} // namespace scene
+namespace render {
+struct DrawItem;
+}
 
 /** The contract, in full.
  *
@@ -33,12 +32,15 @@ struct Primitive;
  *  Frames. `addPasses(stage, graph, blackboard)` only records: it declares passes with
  *  `graph.addPass<Data>(name, setup, execute)`, whose execute callbacks run later in the same
  *  frame, in an order the graph derives from reads and writes (of textures and buffers); an
- *  execute callback may return a core::Status, and an error ends the frame with it. Stages run in enum order; at
- *  each stage the blackboard holds the keys below. A plugin that replaces the scene colour
- *  writes a new texture and puts its handle back under kSceneColor; later stages and the
+ *  execute callback may return a core::Status, and an error ends the frame with it. Stages run in
+ * enum order; at each stage the blackboard holds the keys below. A plugin that replaces the scene
+ * colour writes a new texture and puts its handle back under kSceneColor; later stages and the
  *  tonemap read that. Handles and the FrameInfo pointer are valid for that frame only.
- *  `drawsPrimitive` is asked once a frame per primitive before recording: true keeps the
- *  primitive out of the opaque pass (the plugin draws it).
+ *  A frame draws a world of characters as draw items (render::DrawItem: character, primitive,
+ *  deformed vertices, material, world matrix); `claims` is asked once a frame per item before
+ *  recording, plugins in the order they were added: the first that says yes owns the item
+ *  (DrawItem::owner), which keeps it out of the opaque pass. Caches of per-character GPU data
+ *  key on DrawItem::key, never on a model's address.
  *
  *  Threading. Every call, execute callbacks included, comes from the one thread that owns the
  *  GL context, never concurrently. A plugin may use threads of its own inside a call if it
@@ -51,7 +53,8 @@ struct Primitive;
  *  Versioning. kInterfaceVersion names this contract. It changes whenever a plugin built
  *  against the old headers could misbehave with the new engine: any change to the Plugin class
  *  (virtual functions, their signatures or order), to the types a plugin receives or reads
- *  (ParameterSet, Parameter, ParameterPreset, render::FrameInfo and what it points to,
+ *  (ParameterSet, Parameter, ParameterPreset, render::FrameInfo, render::DrawItem and what they
+ *  point to,
  *  fg::FrameGraph, fg::Blackboard, gl:: objects), to the blackboard keys or their value types,
  *  to the stages or to the module entry points. Adding engine functions a plugin may call does
  *  not change it. Plugins are C++ with the engine's ABI: build them with the same compiler
@@ -60,8 +63,10 @@ namespace plugin {
 
 /** Checked when a plugin is loaded: a plugin built against another interface is refused.
  *  History: 1 first interface; 2 ParameterSet presets, buffer resources in the frame graph
- *  ("scene.vertices"), execute callbacks that may return a core::Status. */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/2";
+ *  ("scene.vertices"), execute callbacks that may return a core::Status; 3 worlds of characters:
+ *  FrameInfo::items (render::DrawItem) and Plugin::claims instead of FrameInfo::model,
+ *  FrameInfo::geometry, FrameInfo::materials and Plugin::drawsPrimitive. */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/3";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
@@ -72,9 +77,9 @@ enum class Stage {
 /** Blackboard keys the engine fills for plugins each frame (see ARCHITECTURE.md):
  *  "scene.color" fg::TextureHandle (HDR, RGBA16F, the frame's size), "scene.depth"
  *  fg::TextureHandle (Depth32F, the opaque scene's depth), "scene.vertices" fg::BufferHandle
- *  (this frame's deformed vertices, FrameInfo::geometry: a pass that draws or reads them
+ *  (every character's deformed vertices, FrameInfo::items: a pass that draws or reads them
  *  declares a read, which orders it after the deform pass), "frame" const render::FrameInfo*
- *  (camera, settings and size, time, model, deformed geometry, environment, materials, shaders).
+ *  (camera, settings and size, scene time, world, draw items, environment, shaders).
  *  A plugin that changes the scene colour puts its new version back under "scene.color". */
 inline constexpr const char* kSceneColor = "scene.color";
 inline constexpr const char* kSceneDepth = "scene.depth";
@@ -91,11 +96,10 @@ public:
     virtual core::Status initialize(gl::ShaderLibrary& shaders) = 0;
     /** Adds this plugin's passes for `stage` (may add none). */
     virtual void addPasses(Stage stage, fg::FrameGraph& graph, fg::Blackboard& blackboard) = 0;
-    /** True when this plugin draws primitive `primitive` of mesh node `node` itself, so the
-     *  opaque pass leaves it out (a glass plugin claims its glass). */
-    virtual bool drawsPrimitive(const scene::Model& model, int node,
-                                const scene::Primitive& primitive) const {
-        (void)model, (void)node, (void)primitive;
+    /** True when this plugin draws `item` itself, so the opaque pass leaves it out (a glass
+     *  plugin claims its glass). Asked before the frame's passes are added. */
+    virtual bool claims(const render::DrawItem& item) const {
+        (void)item;
         return false;
     }
     /** Parameters (and presets) the host may list, set from the command line and show in a

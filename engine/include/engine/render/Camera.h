@@ -3,6 +3,7 @@
 
 #include "engine/anim/Pose.h"
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <glm/glm.hpp>
 
@@ -34,6 +35,13 @@ struct Bounds {
 /** Bounds of the default scene's deformed meshes over `clip` (sampled at `samples` times over
  *  its duration; the rest pose when clip < 0), via the CPU reference deformation. */
 Bounds animatedBounds(const scene::Model& model, int clip, int samples = 16);
+
+/** Bounds of every character of `world` over its clip: animatedBounds() of each model and
+ *  clip (computed once per pair), its corners through the character's transform. */
+Bounds worldBounds(const scene::World& world, int samples = 16);
+
+/** The camera a scene file places, its near and far planes fitted to `bounds`. */
+Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds& bounds);
 
 /** Looks at the bounds' centre from the front (+z side, slightly above), far enough that the
  *  bounding sphere fits the vertical and horizontal field of view. */

@@ -5,14 +5,25 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <span>
+
 namespace scene {
 struct Model;
-}
+struct Primitive;
+struct Character;
+struct World;
+} // namespace scene
 namespace deform {
 class GpuDeformer;
-}
+struct GpuPrimitive;
+} // namespace deform
 namespace gl {
 class ShaderLibrary;
+class VertexArray;
+} // namespace gl
+namespace plugin {
+class Plugin;
 }
 
 namespace render {
@@ -45,18 +56,42 @@ struct RenderSettings {
     bool hdrOutput = false;
 };
 
+/** One primitive of one mesh node of one character, as a frame draws it: the unit plugins
+ *  claim. Its deformed vertices are this frame's (read them after the deform pass: declare a
+ *  read of "scene.vertices"). */
+struct DrawItem {
+    std::size_t character = 0;                      ///< index into FrameInfo::world->characters
+    const scene::Character* source = nullptr;       ///< glass mode, overrides, name
+    const scene::Model* model = nullptr;            ///< the character's model
+    const scene::Primitive* primitive = nullptr;    ///< the file's primitive (material, skin)
+    int material = -1;                              ///< index into model->materials, or -1
+    const deform::GpuDeformer* geometry = nullptr;  ///< the character's deformer
+    std::uint32_t instance = 0, primitiveIndex = 0; ///< into geometry->instances()
+    const deform::GpuPrimitive* gpu = nullptr;      ///< deformed vertices, uv0, index count
+    const gl::VertexArray* vertexArray = nullptr;   ///< binds the primitive's index buffer
+    const MaterialTextures* materials = nullptr;    ///< the model's textures
+    glm::mat4 world{1.0f}; ///< mesh node to world space (the character's placement included)
+    /** Identifies the character's GPU placement across frames (GpuDeformer::serial()): what a
+     *  plugin keys per-character caches on. A new value means new vertex buffers. */
+    std::uint64_t key = 0;
+    /** The plugin that draws this item instead of the opaque pass (the first whose claims()
+     *  said yes), or null. */
+    const plugin::Plugin* owner = nullptr;
+};
+
 struct FrameInfo {
-    const scene::Model* model = nullptr;
-    const deform::GpuDeformer* geometry = nullptr; ///< this frame's deformed vertex buffers
+    const scene::World* world = nullptr;
+    /** Every primitive of every character, characters in world order, each character's in
+     *  its deformer's order (GpuDeformer::instances(), then primitives). */
+    std::span<const DrawItem> items;
     const Environment* environment = nullptr;
-    const MaterialTextures* materials = nullptr;
     const gl::ShaderLibrary* shaders = nullptr;
     Camera camera;
     RenderSettings settings;
-    double time = 0.0;
+    double time = 0.0;  ///< scene time, seconds
     GroundPlane ground; ///< drawn when settings.ground
-    /** Whether the opaque pass draws anything besides the background: the ground, or a
-     *  primitive no plugin claims. Screen-space effects that look for nearby geometry can skip
+    /** Whether the opaque pass draws anything besides the background: the ground, or an
+     *  item no plugin claims. Screen-space effects that look for nearby geometry can skip
      *  their search when it is false (the background alone is the environment). */
     bool opaqueGeometry = false;
 };

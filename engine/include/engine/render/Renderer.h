@@ -1,6 +1,6 @@
-// The scene renderer: deform -> background -> (ground) -> opaque -> plugin stages -> tonemap,
-// recorded into a frame graph every frame (one file per pass: src/render/passes/), executed,
-// timed per pass on CPU and GPU.
+// The scene renderer: a world of characters through deform -> background -> (ground) -> opaque
+// -> plugin stages -> tonemap, recorded into a frame graph every frame (one file per pass:
+// src/render/passes/), executed, timed per pass on CPU and GPU.
 #pragma once
 
 #include "engine/anim/Pose.h"
@@ -15,8 +15,10 @@
 #include "engine/render/Environment.h"
 #include "engine/render/FrameInfo.h"
 #include "engine/render/MaterialTextures.h"
+#include "engine/scene/World.h"
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,26 +37,39 @@ struct PassStats {
 
 struct FrameStats {
     std::vector<PassStats> passes;
-    double cpuMs = 0.0; ///< whole frame on the CPU (record, compile, execute)
-    double gpuMs = 0.0; ///< sum of the passes' GPU times
+    double cpuMs = 0.0; ///< whole frame on the CPU (animate, record, compile, execute)
+    /** CPU time to pose every character, stage its skin matrices and morph weights, and
+     *  build and claim the draw items (part of cpuMs). */
+    double animateMs = 0.0;
+    double gpuMs = 0.0;             ///< sum of the passes' GPU times
     std::size_t transientBytes = 0; ///< GPU memory of the frame graph's pooled textures
-    std::string graph;  ///< the compiled frame graph as text
+    std::string graph;              ///< the compiled frame graph as text
 };
 
 class Renderer {
 public:
-    /** Prepares `model` for drawing (GPU deformer, textures, programs) with `environment`.
-     *  `model` must outlive the renderer. Needs a current context. */
-    static core::Result<std::unique_ptr<Renderer>>
-    create(const scene::Model& model, const asset::HdrImage& environment, gl::Context& context);
+    /** Programs and the environment (prefiltered); no world yet. Needs a current context. */
+    static core::Result<std::unique_ptr<Renderer>> create(const asset::HdrImage& environment,
+                                                          gl::Context& context);
     ~Renderer();
 
     /** Adds a plugin (not owned): initialises it now, then it adds passes every frame. */
     core::Status addPlugin(plugin::Plugin* plugin);
 
-    /** Renders one frame of `pose` seen by `camera` into output() (RGBA8, sRGB-encoded, size
-     *  settings.size). Fails (no crash) on a frame graph error, naming the pass. */
-    core::Result<FrameStats> render(const anim::Pose& pose, const Camera& camera,
+    /** Brings the GPU state up to `world`: each model is uploaded once (GpuModel, material
+     *  textures), whatever number of characters place it; each character gets a placement of
+     *  it (GpuDeformer), kept while the character at that index places the same model. Models
+     *  no character places any more are released. render() calls it; a tool calls it first to
+     *  reach geometry() before a frame. The renderer shares the models (no lifetime rule). On
+     *  failure (a limit, a topology OpenSubdiv rejects) the error names the character. */
+    core::Status prepare(const scene::World& world);
+
+    /** Renders `world` at scene time `time` seen by `camera` into output() (RGBA8,
+     *  sRGB-encoded, size settings.size): each character posed by its clip at
+     *  Character::clipTime(time) and placed by its transform, every character's skin matrices
+     *  and morph weights uploaded at once, deformed, then the frame graph. Fails (no crash) on a
+     *  preparation or frame graph error, naming the character or the pass. */
+    core::Result<FrameStats> render(const scene::World& world, const Camera& camera,
                                     const RenderSettings& settings, double time = 0.0);
 
     const gl::Texture& output() const { return mOutput; }
@@ -71,11 +86,12 @@ public:
     /** Replaces the environment (prefiltered again); on failure the previous one stays. */
     core::Status setEnvironment(const asset::HdrImage& environment);
 
-    /** Rebuilds the deformed geometry with OpenSubdiv refinement to `level` (0: the file's
-     *  meshes as they are; up to core::limits::kMaxSubdivisionLevel). On failure (a topology
-     *  OpenSubdiv rejects, a limit) the current geometry stays and the error names the mesh. */
+    /** Rebuilds every model's deformed geometry with OpenSubdiv refinement to `level` (0: the
+     *  file's meshes as they are; up to core::limits::kMaxSubdivisionLevel); models added later
+     *  are refined alike. On failure (a topology OpenSubdiv rejects, a limit) the current
+     *  geometry stays and the error names the mesh. */
     core::Status setSubdivisionLevel(int level);
-    int subdivisionLevel() const;
+    int subdivisionLevel() const { return mLevel; }
 
     /** Sets where the ground plane is drawn when settings.ground is on. */
     void setGround(const GroundPlane& ground) { mGroundPlane = ground; }
@@ -83,15 +99,19 @@ public:
     const Environment& environment() const;
 
     gl::ShaderLibrary& shaders() { return mShaders; }
-    const deform::GpuDeformer& geometry() const;
+    /** Characters of the world last prepared, and each one's deformed geometry (as the last
+     *  frame left it). */
+    std::size_t characterCount() const;
+    const deform::GpuDeformer& geometry(std::size_t character) const;
+    /** The draw items of the last frame (every character's primitives, with their owners). */
+    std::span<const DrawItem> drawItems() const;
 
 private:
     Renderer() = default;
-    void makeVertexArrays();
     class Allocator;
     class Timer;
-    const scene::Model* mModel = nullptr;
     gl::Context* mContext = nullptr;
+    int mLevel = 0;
     gl::ShaderLibrary mShaders;
     std::unique_ptr<Allocator> mAllocator;
     std::unique_ptr<fg::TexturePool> mPool;

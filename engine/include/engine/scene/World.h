@@ -64,4 +64,9 @@ struct World {
     std::optional<WorldCamera> camera; ///< else the tools frame every character
 };
 
+/** A world of one character placing `model` at the origin, playing clip `clip` (-1: the rest
+ *  pose) from scene time 0; `path` is its model path (for saving) and its name's source. */
+World singleCharacterWorld(std::shared_ptr<const Model> model, int clip = -1,
+                           std::string path = {});
+
 } // namespace scene

@@ -1,17 +1,19 @@
-// `deform`: skinning and morphing of this frame's pose on the GPU, once, for every later pass.
+// `deform`: every character's skin matrices and morph weights up in one upload, then skinning
+// and morphing on the GPU, once, for every later pass.
 #include "Passes.h"
 
 namespace render::passes {
 
-fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices,
-                           const anim::Pose& pose) {
+fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices) {
     struct Data {
         fg::BufferHandle vertices;
     };
     const Data& pass = graph.addPass<Data>(
         "deform", [&](fg::Builder& b, Data& d) { d.vertices = b.write(vertices); },
-        [&gpu, &pose](const fg::Resources&, const Data&, gl::Context&) {
-            gpu.deformer->update(pose);
+        [&gpu](const fg::Resources&, const Data&, gl::Context&) {
+            gpu.poses.upload();
+            for (CharacterGpu& character : gpu.characters)
+                character.deformer->dispatch(gpu.poses);
         });
     return pass.vertices;
 }

@@ -30,30 +30,23 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                                                          &r.texture(d.depth));
                 !bound)
                 return bound;
-            const scene::Model& model = *frame.model;
             gl::Program& p = gpu.opaque;
             p.use();
             gpu.environment->bind(p, 0, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);
             p.set("uViewProjection", frame.camera.viewProjection());
             p.set("uCameraPosition", frame.camera.position);
-            std::size_t vao = 0;
-            for (const auto& instance : gpu.deformer->instances()) {
-                p.set("uModel", instance.meshToWorld);
-                p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(instance.meshToWorld)));
-                for (const auto& primitive : instance.primitives) {
-                    if (gpu.claimed[vao]) {
-                        ++vao;
-                        continue;
-                    }
-                    const int material = primitive.source->material;
-                    gl::apply({.cull = cullFor(model, material)});
-                    gpu.materials->bind(p, model, material, 2);
-                    gl::bindStorage(0, primitive.deformed);
-                    gl::bindStorage(1, *primitive.uv0);
-                    gpu.vaos[vao++].bind();
-                    gl::drawIndexed(primitive.indexCount);
-                }
+            for (const DrawItem& item : frame.items) {
+                if (item.owner)
+                    continue;
+                p.set("uModel", item.world);
+                p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
+                gl::apply({.cull = cullFor(*item.model, item.material)});
+                item.materials->bind(p, *item.model, item.material, 2);
+                gl::bindStorage(0, item.gpu->deformed);
+                gl::bindStorage(1, *item.gpu->uv0);
+                item.vertexArray->bind();
+                gl::drawIndexed(item.gpu->indexCount);
             }
             return {};
         });

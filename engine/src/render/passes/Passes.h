@@ -4,7 +4,6 @@
 
 #include "../RenderGpu.h"
 
-#include "engine/anim/Pose.h"
 #include "engine/fg/FrameGraph.h"
 #include "engine/render/FrameInfo.h"
 
@@ -15,17 +14,17 @@ struct SceneTargets {
     fg::TextureHandle color, depth;
 };
 
-/** `deform`: `pose` into the deformed vertex buffers (GpuDeformer::update); writes
- *  `vertices` (the imported resource standing for all of them), returns the new version. */
-fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices,
-                           const anim::Pose& pose);
+/** `deform`: uploads what the characters staged (RenderGpu::poses) and deforms each one
+ *  (GpuDeformer::dispatch); writes `vertices` (the imported resource standing for every
+ *  character's deformed buffers), returns the new version. */
+fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
 /** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene);
-/** `opaque`: every primitive no plugin claimed, metallic-roughness with image-based lighting,
+/** `opaque`: every draw item no plugin claimed, metallic-roughness with image-based lighting,
  *  from the deformed vertices. */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices);
