@@ -264,7 +264,6 @@ void Panel::camera(Viewer& v) {
     ImGui::SameLine();
     if (ImGui::Button("Frame selection (Shift+F)"))
         v.frameCharacters(true);
-    ImGui::SameLine();
     if (ImGui::Button("Reset (R)"))
         v.mCamera.reset();
     ImGui::TextDisabled("drag: orbit; right/shift-drag: pan; wheel: zoom; click: select");

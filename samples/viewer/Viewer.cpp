@@ -186,6 +186,7 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
     v->mCamera.frame(v->mBounds, v->viewportAspect());
 
     v->mSettings = v->settingsForScene();
+    v->worldChanged(); // the clip, loop and ground settings follow the world
     // Start on the first project HDR (the default environment), or the sky.
     v->mSettings.setNumber("environment", v->mEnvironments.size() > 1 ? 1.0 : 0.0);
     // On a CPU rasteriser, half resolution keeps the glass interactive.
@@ -203,7 +204,9 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
             std::fprintf(stderr, "glass-viewer: last session not restored: %s\n",
                          applied.error().message.c_str());
     }
-    if (!options.environments.empty()) {
+    if (options.environments.empty()) {
+        v->useWorldEnvironment();
+    } else {
         const auto it = std::find_if(
             v->mEnvironments.begin(), v->mEnvironments.end(),
             [&](const EnvironmentEntry& e) { return e.path == options.environments.front(); });
@@ -245,11 +248,31 @@ void Viewer::reportStatus(const core::Status& status, const std::string& success
         std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
 }
 
+void Viewer::useWorldEnvironment() {
+    if (!mWorld.environment || mSettings.declarations().empty())
+        return;
+    std::error_code ec;
+    const auto same = [&](const EnvironmentEntry& e) {
+        return !e.path.empty() && std::filesystem::equivalent(e.path, *mWorld.environment, ec);
+    };
+    auto it = std::find_if(mEnvironments.begin(), mEnvironments.end(), same);
+    if (it == mEnvironments.end()) {
+        mEnvironments.push_back(
+            {std::filesystem::path(*mWorld.environment).stem().string() + " (scene)",
+             *mWorld.environment});
+        plugin::ParameterSet settings = settingsForScene(); // the new entry among the choices
+        copyValues(mSettings, settings);
+        mSettings = std::move(settings);
+        it = std::prev(mEnvironments.end());
+    }
+    mSettings.setNumber("environment", double(it - mEnvironments.begin()));
+}
+
 void Viewer::worldChanged() {
     mBounds = render::worldBounds(mWorld);
     const float radius = std::max(mBounds.radius(), 1e-3f);
     mRenderer->setGround({mBounds.min.y, mBounds.center(), 3.0f * radius});
-    if (mWorld.ground)
+    if (mWorld.ground && mSettings.find("ground"))
         mSettings.setNumber("ground", 1.0);
     select(std::min(mSelected, int(mWorld.characters.size()) - 1));
 }
@@ -280,6 +303,7 @@ bool Viewer::openWorld(const std::vector<std::string>& paths) {
         mScenePath = paths[0];
     mSelected = 0;
     worldChanged();
+    useWorldEnvironment();
     mCamera.frame(mBounds, viewportAspect());
     mTime = 0.0;
     reportStatus({}, "opened " + paths[0]);
@@ -330,6 +354,11 @@ void Viewer::removeCharacter(std::size_t index) {
 }
 
 bool Viewer::saveWorld(const std::string& path) {
+    // The scene keeps what is shown: the environment (the sky: none) and the ground.
+    const std::string& environment =
+        mEnvironments[std::size_t(mSettings.number("environment"))].path;
+    mWorld.environment = environment.empty() ? std::nullopt : std::optional(environment);
+    mWorld.ground = mSettings.flag("ground");
     auto saved = asset::saveScene(path, mWorld);
     reportStatus(saved, "saved " + path);
     if (saved)
@@ -631,9 +660,8 @@ void Viewer::saveSession() {
     if (auto written = writePreset(path, presetJson(scopes(), mCamera.orbitState())); !written)
         std::fprintf(stderr, "glass-viewer: session not saved: %s\n",
                      written.error().message.c_str());
-    if (auto written = asset::saveScene(lastScenePath(), mWorld); !written)
-        std::fprintf(stderr, "glass-viewer: scene not saved: %s\n",
-                     written.error().message.c_str());
+    if (!saveWorld(lastScenePath().string()))
+        std::fprintf(stderr, "glass-viewer: scene not saved\n");
 }
 
 int Viewer::run() {

@@ -92,6 +92,8 @@ private:
     /** The character under window pixel `pixel` of the view (nearest hit of its bounds), or -1. */
     int pick(glm::vec2 pixel) const;
     void frameCharacters(bool selectionOnly);
+    /** Shows the world's environment (added to the list when it is not there yet). */
+    void useWorldEnvironment();
     void reportStatus(const core::Status& status, const std::string& success);
     core::Status applyEnvironment();
     std::vector<Scope> scopes();

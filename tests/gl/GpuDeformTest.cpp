@@ -6,6 +6,11 @@
 #include "engine/asset/GltfLoader.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/GpuDeformer.h"
+#include "engine/render/Camera.h"
+#include "engine/render/Environment.h"
+#include "engine/render/Renderer.h"
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <fstream>
 
@@ -53,6 +58,18 @@ protected:
     }
 };
 
+/** The two-joint model with a second mesh node and a second skin over the same joints in the
+ *  other order, in `dir`. */
+std::filesystem::path twoSkinsFile(const test::TempDir& dir) {
+    test::GltfBuilder builder = test::twoJointModel();
+    const auto inverseBind = builder.doc["skins"][0]["inverseBindMatrices"];
+    builder.doc["skins"].push_back({{"joints", {2, 1}}, {"inverseBindMatrices", inverseBind}});
+    builder.doc["nodes"].push_back(
+        {{"name", "second"}, {"mesh", 0}, {"skin", 1}, {"translation", {0.0, 2.0, 0.0}}});
+    builder.doc["scenes"][0]["nodes"].push_back(3);
+    return builder.save(dir.path(), "twoskins");
+}
+
 TEST_F(GpuDeform, TwoJointModelMatchesCpu) {
     test::TempDir dir;
     auto model = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
@@ -61,16 +78,9 @@ TEST_F(GpuDeform, TwoJointModelMatchesCpu) {
 }
 
 TEST_F(GpuDeform, FileWithTwoSkinsMatchesCpu) {
-    // The two-joint model with a second mesh node and a second skin over the same joints in the
-    // other order (its JOINTS_0 indices then name the other joint): two skins, two results.
-    test::GltfBuilder builder = test::twoJointModel();
-    const auto inverseBind = builder.doc["skins"][0]["inverseBindMatrices"];
-    builder.doc["skins"].push_back({{"joints", {2, 1}}, {"inverseBindMatrices", inverseBind}});
-    builder.doc["nodes"].push_back(
-        {{"name", "second"}, {"mesh", 0}, {"skin", 1}, {"translation", {0.0, 2.0, 0.0}}});
-    builder.doc["scenes"][0]["nodes"].push_back(3);
+    // Its JOINTS_0 indices name the other joint under the second skin: two skins, two results.
     test::TempDir dir;
-    auto model = asset::loadGltf(builder.save(dir.path(), "twoskins"));
+    auto model = asset::loadGltf(twoSkinsFile(dir));
     ASSERT_TRUE(model.ok()) << model.error().message;
     ASSERT_EQ(model->skins.size(), 2u);
     compare(*model, 0, {0.0, 0.4, 0.9});
@@ -114,6 +124,67 @@ TEST_F(GpuDeform, PlacementsOfOneUploadDeformIndependently) {
         moved = std::max(moved, glm::length(cpuEarly[0].primitives[0].positions[v] -
                                             cpuLate[0].primitives[0].positions[v]));
     EXPECT_GT(moved, 1e-3);
+}
+
+TEST_F(GpuDeform, WorldOfCharactersMatchesCpuThroughOneUpload) {
+    // Two characters of one model at other phases, speeds and transforms, and one of a file with
+    // two skins: the renderer stages all their skin matrices into one upload and deforms each;
+    // every character's vertices in the world equal the CPU oracle's.
+    test::TempDir dir;
+    auto oneSkin = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
+    auto twoSkins = asset::loadGltf(twoSkinsFile(dir));
+    ASSERT_TRUE(oneSkin.ok() && twoSkins.ok());
+    const auto shared = std::make_shared<const scene::Model>(std::move(*oneSkin));
+    scene::World world;
+    for (int k = 0; k < 3; ++k) {
+        scene::Character c;
+        c.name = "character " + std::to_string(k);
+        c.model = k < 2 ? shared : std::make_shared<const scene::Model>(std::move(*twoSkins));
+        c.clip = 0;
+        c.timeOffset = 0.31 * k;
+        c.speed = k == 1 ? -0.7 : 1.0;
+        c.placement.translation = glm::dvec3(1.5 * k, 0.2 * k, -0.5 * k);
+        c.placement.rotation = glm::angleAxis(0.4 * k + 0.1, glm::normalize(glm::dvec3(0.2, 1, 0)));
+        c.placement.scale = glm::dvec3(1.0 + 0.25 * k);
+        world.characters.push_back(std::move(c));
+    }
+    auto renderer = render::Renderer::create(render::Environment::proceduralSky(16), context());
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    render::RenderSettings settings;
+    settings.size = {16, 16};
+    for (double time : {0.0, 0.45, 1.3}) {
+        auto frame = (*renderer)->render(
+            world, render::frameBounds(render::worldBounds(world), 1.0f), settings, time);
+        ASSERT_TRUE(frame.ok()) << frame.error().message;
+        ASSERT_EQ((*renderer)->characterCount(), world.characters.size());
+        std::vector<std::vector<glm::dvec3>> placed;
+        for (std::size_t c = 0; c < world.characters.size(); ++c) {
+            const deform::GpuDeformer& gpu = (*renderer)->geometry(c);
+            const auto cpu = deform::deformCharacter(world.characters[c], time);
+            ASSERT_EQ(cpu.size(), gpu.instances().size());
+            std::vector<glm::dvec3> positions;
+            for (std::size_t i = 0; i < cpu.size(); ++i) {
+                const auto ref = deform::toWorld(cpu[i].primitives[0], cpu[i].meshToWorld);
+                const auto got = gpu.download(i, 0);
+                const glm::dmat4 meshToWorld(gpu.instances()[i].meshToWorld);
+                double error = 0.0;
+                for (std::size_t v = 0; v < ref.positions.size(); ++v) {
+                    const glm::dvec3 p(meshToWorld * glm::dvec4(got.positions[v], 1.0));
+                    error = std::max(error, glm::length(p - ref.positions[v]));
+                    positions.push_back(p);
+                }
+                SCOPED_TRACE("character " + std::to_string(c) + " instance " + std::to_string(i) +
+                             " t=" + std::to_string(time));
+                EXPECT_LE(error, 1e-4);
+            }
+            placed.push_back(std::move(positions));
+        }
+        // Not vacuous: the two characters of one model are posed and placed apart.
+        double apart = 0.0;
+        for (std::size_t v = 0; v < placed[0].size(); ++v)
+            apart = std::max(apart, glm::length(placed[0][v] - placed[1][v]));
+        EXPECT_GT(apart, 0.5);
+    }
 }
 
 TEST_F(GpuDeform, EverySharedSkinnedOrMorphingModelMatchesCpu) {

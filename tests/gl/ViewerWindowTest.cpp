@@ -3,6 +3,7 @@
 // (scripts/deps installs both).
 #include "support/TestSupport.h"
 
+#include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
 
 #include <gtest/gtest.h>
@@ -184,6 +185,39 @@ TEST_F(ViewerWindow, QuittingSavesTheSessionAndTheNextStartRestoresIt) {
     const capture::Image a = load(restored), b = load(explicitly), c = load(fresh);
     EXPECT_EQ(differingPixels(a, b, 0, a.width), 0u);
     EXPECT_GT(differingPixels(a, c, 0, a.width), 100u) << "sir at 1.77 differs from the default";
+}
+
+TEST_F(ViewerWindow, AddedModelJoinsTheSceneAndTheNextStartRestoresIt) {
+    std::string out;
+    // A second model added by path (--add: the panel's Add button), then Escape: the scene is
+    // saved with the session.
+    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere " + kWindow +
+                      " --add \"builtin:sphere?segments=24\" & pid=$!;"
+                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
+                      "head -n 1);"
+                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
+                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
+                      " xdotool key Escape; wait $pid'",
+                  &out),
+              0)
+        << out;
+    const auto saved = mConfig / "glass-viewer" / "last-scene.json";
+    auto world = asset::loadScene(saved);
+    ASSERT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message) << out;
+    ASSERT_EQ(world->characters.size(), 2u);
+    EXPECT_EQ(world->characters[0].modelPath, "builtin:sphere");
+    EXPECT_EQ(world->characters[1].modelPath, "builtin:sphere?segments=24");
+    EXPECT_GT(world->characters[1].placement.translation.x,
+              world->characters[0].placement.translation.x + 1.0)
+        << "added right of the first, not on top of it";
+    // A start without a model restores that scene and draws it.
+    const auto shot = mOut / "restored.png";
+    ASSERT_EQ(inX(kViewer + " " + kWindow + " --frames 1 --exit --screenshot " + shot.string(),
+                  &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("restored the last scene (2 characters)"), std::string::npos) << out;
+    EXPECT_TRUE(std::filesystem::exists(shot));
 }
 
 TEST_F(ViewerWindow, BadInputFailsClearlyWithoutOutput) {
