@@ -449,7 +449,14 @@ std::vector<Clip> clips() {
                   p.breath = 0.5 + 0.5 * std::sin(kTau * t / 1.5);
                   return p;
               }};
-    return {walk, wave, idle};
+    // The walk cycle four times over while the figure advances along its facing (+z), 0.5 m/s
+    // from 1.2 m behind its origin to 1.2 m in front: a scene turns it to walk past others.
+    Clip stroll{"stroll", 4.8, [walk](double t) {
+                    Pose p = walk.pose(std::fmod(t, walk.duration));
+                    p.hipsOffset.z += -1.2 + 0.5 * t;
+                    return p;
+                }};
+    return {walk, wave, idle, stroll};
 }
 
 // ---- The glTF document

@@ -43,7 +43,7 @@ TEST(GeneratedAssets, TheFigureIsASkinnedMorphingAnimatedGlassCharacter) {
     std::vector<std::string> clips;
     for (const auto& clip : model->animations)
         clips.push_back(clip.name);
-    EXPECT_EQ(clips, (std::vector<std::string>{"walk", "wave", "idle"}));
+    EXPECT_EQ(clips, (std::vector<std::string>{"walk", "wave", "idle", "stroll"}));
     const scene::Material& glass = model->materials.at(0);
     EXPECT_TRUE(glass.isTransmissive());
     EXPECT_FLOAT_EQ(glass.transmissionFactor, 1.0f);
