@@ -44,15 +44,23 @@ void main() {
     mat4 blend = mat4(1.0);
     if (uSkinned != 0) {
         Influence inf = influences[v];
-        uvec4 j0 = inf.joints0 + uint(uSkinBase), j1 = inf.joints1 + uint(uSkinBase);
+        uvec4 j0 = inf.joints0 + uint(uSkinBase);
         blend = inf.weights0.x * skin[j0.x] + inf.weights0.y * skin[j0.y] +
-                inf.weights0.z * skin[j0.z] + inf.weights0.w * skin[j0.w] +
-                inf.weights1.x * skin[j1.x] + inf.weights1.y * skin[j1.y] +
-                inf.weights1.z * skin[j1.z] + inf.weights1.w * skin[j1.w];
+                inf.weights0.z * skin[j0.z] + inf.weights0.w * skin[j0.w];
+        // Most files give four influences: the second four (zero weights) are skipped, which
+        // halves the matrix reads where no vertex of a group has more.
+        if (inf.weights1 != vec4(0.0)) {
+            uvec4 j1 = inf.joints1 + uint(uSkinBase);
+            blend += inf.weights1.x * skin[j1.x] + inf.weights1.y * skin[j1.y] +
+                     inf.weights1.z * skin[j1.z] + inf.weights1.w * skin[j1.w];
+        }
     }
     mat3 linear = mat3(blend);
-    mat3 normalMatrix = transpose(inverse(linear));
-    vec3 n = normalMatrix * normal;
+    // The inverse transpose up to a positive factor: the cofactor matrix, signed by the
+    // determinant (normals are normalised below), without a division or a full inverse.
+    mat3 cofactor = mat3(cross(linear[1], linear[2]), cross(linear[2], linear[0]),
+                         cross(linear[0], linear[1]));
+    vec3 n = (dot(linear[0], cofactor[0]) < 0.0 ? -1.0 : 1.0) * (cofactor * normal);
     vec3 t3 = linear * tangent;
     deformed[v].position = vec4((blend * vec4(position, 1.0)).xyz, 1.0);
     deformed[v].normal = vec4(length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0), 0.0);

@@ -137,7 +137,8 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
 
 core::Status Renderer::prepare(const scene::World& world) {
     RenderGpu& gpu = *mGpu;
-    std::vector<std::shared_ptr<ModelGpu>> used;
+    std::vector<std::shared_ptr<ModelGpu>>& used = gpu.modelsInUse; // storage kept across frames
+    used.clear();
     auto modelFor = [&](const std::shared_ptr<const scene::Model>& model)
         -> core::Result<std::shared_ptr<ModelGpu>> {
         for (const auto* list : {&used, &gpu.models})
@@ -170,7 +171,8 @@ core::Status Renderer::prepare(const scene::World& world) {
             c.pose = anim::restPose(*character.model);
         }
     }
-    gpu.models = std::move(used);
+    std::swap(gpu.models, used);
+    used.clear();
     return {};
 }
 
@@ -265,6 +267,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
                 gpu.items.push_back(item);
             }
     }
+    gpu.poses.upload(); // every character's, at once; the deform pass reads them
     FrameInfo frame;
     frame.world = &world;
     frame.items = gpu.items;
@@ -275,9 +278,12 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.time = time;
     frame.ground = mGroundPlane;
     frame.opaqueGeometry = opaqueGeometry;
-    const double animateMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
+    const auto since = [](std::chrono::steady_clock::time_point start) {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
+    };
+    const double animateMs = since(frameStart);
+    const auto recordStart = std::chrono::steady_clock::now();
 
     fg::FrameGraph graph(*mPool);
     fg::Blackboard blackboard;
@@ -304,6 +310,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         return compiled.error();
     FrameStats stats;
     stats.animateMs = animateMs;
+    stats.recordMs = since(recordStart);
     mTimer->exact = settings.exactPassTimes;
     mTimer->beginFrame();
     auto executed = graph.execute(*mContext, mTimer.get());
@@ -316,9 +323,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     }
     for (const fg::PassTiming& t : *executed)
         stats.passes.push_back({t.name, t.cpuMs, 0.0});
-    stats.cpuMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
-            .count();
+    stats.cpuMs = since(frameStart);
     for (PassStats& p : stats.passes) {
         p.gpuMs = mTimer->milliseconds(p.name);
         stats.gpuMs += p.gpuMs;

@@ -1,5 +1,5 @@
-// `deform`: every character's skin matrices and morph weights up in one upload, then skinning
-// and morphing on the GPU, once, for every later pass.
+// `deform`: skinning and morphing of every character on the GPU from the frame's one upload of
+// skin matrices and morph weights, once, for every later pass.
 #include "Passes.h"
 
 namespace render::passes {
@@ -11,7 +11,6 @@ fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHand
     const Data& pass = graph.addPass<Data>(
         "deform", [&](fg::Builder& b, Data& d) { d.vertices = b.write(vertices); },
         [&gpu](const fg::Resources&, const Data&, gl::Context&) {
-            gpu.poses.upload();
             for (CharacterGpu& character : gpu.characters)
                 character.deformer->dispatch(gpu.poses);
         });
