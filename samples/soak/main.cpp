@@ -31,7 +31,8 @@ const char* const kUsage =
 Renders MODEL (default: builtin:sphere; a scene file, or several models side by side) headless
 for N frames (default 10000): the clips loop; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
 TIR reflect); every R frames (default 300) the viewport takes the next of 4 sizes (around
-128x128). Every K frames (default 220) it prints the frame, resident memory (RSS, from
+128x128) and the world gains or loses a character (a copy of the first, beside it: the
+renderer places and releases its deformer, the glass plugin its caches). Every K frames (default 220) it prints the frame, resident memory (RSS, from
 /proc/self/statm) and the live GL objects (counted by asking the driver about every name).
 
 Warm-up: two full cycles of methods and sizes (every lazily created object exists by then). It
@@ -101,6 +102,13 @@ int run(int argc, char** argv) {
     plugin::Plugin* const plugin = headless.glass.get();
     (void)plugin->parameters().set("glass", "all");
     const double duration = headless.duration;
+    // Every other size, one character more: a copy of the first, beside the others.
+    scene::World grown = headless.world;
+    scene::Character extra = grown.characters.front();
+    extra.name += " (copy)";
+    extra.placement.translation.x += 2.5 * double(headless.bounds.radius());
+    extra.timeOffset += 0.37;
+    grown.characters.push_back(std::move(extra));
     const std::vector<std::pair<std::string, std::string>> methods = {{"opaque", "clamp"},
                                                                       {"sir", "clamp"},
                                                                       {"isr", "clamp"},
@@ -120,8 +128,8 @@ int run(int argc, char** argv) {
         render::RenderSettings settings;
         settings.size = size;
         settings.ground = true;
-        auto stats =
-            headless.renderer->render(headless.world, headless.camera(size), settings, time);
+        const scene::World& world = (frame / resizeEvery) % 2 ? grown : headless.world;
+        auto stats = headless.renderer->render(world, headless.camera(size), settings, time);
         if (!stats) {
             std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
                          stats.error().message.c_str());

@@ -7,7 +7,6 @@
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
-#include "engine/core/Limits.h"
 #include "engine/gl/Debug.h"
 #include "engine/gl/Framebuffer.h"
 #include "engine/render/WorldLoader.h"
@@ -316,10 +315,11 @@ bool Viewer::addCharacter(const std::string& path) {
         reportStatus(added.error(), "");
         return false;
     }
-    if (mWorld.characters.size() + added->characters.size() > core::limits::kMaxCharacters) {
-        reportStatus(core::Error{"glass-viewer: " + path + ": the scene would have more than " +
-                                 std::to_string(core::limits::kMaxCharacters) + " characters"},
-                     "");
+    scene::World joined = mWorld;
+    joined.characters.insert(joined.characters.end(), added->characters.begin(),
+                             added->characters.end());
+    if (auto limits = asset::checkWorldLimits(joined, "the scene with " + path); !limits) {
+        reportStatus(limits, "");
         return false;
     }
     // Right of what is there, with a fifth of its width between.

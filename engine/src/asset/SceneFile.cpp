@@ -263,6 +263,24 @@ std::string relativeTo(const std::string& path, const std::filesystem::path& dir
 
 } // namespace
 
+core::Status checkWorldLimits(const scene::World& world, const std::string& name) {
+    const std::string where = "asset::checkWorldLimits(): " + name + ": ";
+    if (world.characters.size() > core::limits::kMaxCharacters)
+        return core::Error{where + std::to_string(world.characters.size()) +
+                           " characters, the limit is " +
+                           std::to_string(core::limits::kMaxCharacters)};
+    std::size_t vertices = 0;
+    for (std::size_t i = 0; i < world.characters.size(); ++i) {
+        vertices += vertexCount(*world.characters[i].model);
+        if (vertices > core::limits::kMaxSceneVertices)
+            return core::Error{where + "characters[" + std::to_string(i) + "] (" +
+                               world.characters[i].name + "): the scene reaches " +
+                               std::to_string(vertices) + " vertices with it, the limit is " +
+                               std::to_string(core::limits::kMaxSceneVertices)};
+    }
+    return {};
+}
+
 bool isSceneFile(const std::filesystem::path& path) {
     return path.extension() == ".json";
 }

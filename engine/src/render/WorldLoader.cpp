@@ -3,6 +3,7 @@
 
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
+#include "engine/core/Limits.h"
 #include "engine/render/Camera.h"
 
 #include <algorithm>
@@ -22,6 +23,10 @@ core::Result<scene::World> loadWorld(std::span<const std::string> paths,
                            ", ...) cannot be mixed with other models or scenes: give one"};
     if (anyScene)
         return asset::loadScene(paths[0], options);
+    if (paths.size() > core::limits::kMaxCharacters)
+        return core::Error{"render::loadWorld(): " + std::to_string(paths.size()) +
+                           " models, the limit is " +
+                           std::to_string(core::limits::kMaxCharacters) + " characters"};
 
     scene::World world;
     std::map<std::string, std::shared_ptr<const scene::Model>> loaded;
@@ -43,6 +48,8 @@ core::Result<scene::World> loadWorld(std::span<const std::string> paths,
             bounds.push_back(worldBounds(one));
         }
         world.characters.push_back(std::move(one.characters[0]));
+        if (auto limits = asset::checkWorldLimits(world, "the models given"); !limits)
+            return limits.error();
     }
     if (paths.size() > 1) {
         float widest = 0.0f, total = 0.0f;

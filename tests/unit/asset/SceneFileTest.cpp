@@ -1,9 +1,13 @@
 // Scene files: one test per error, each naming the file and the key; a valid scene with
-// shared models; character clocks and transforms; the round trip through saveScene.
+// shared models; character clocks and transforms; the round trip through saveScene; the worlds
+// the tools make of model paths (render::loadWorld).
 #include "support/TestSupport.h"
 
+#include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/core/Limits.h"
+#include "engine/render/Camera.h"
+#include "engine/render/WorldLoader.h"
 
 #include <fstream>
 
@@ -240,6 +244,84 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
     ASSERT_TRUE(asset::saveScene(dir.dir / "c.json", *first).ok());
     std::ifstream inC(dir.dir / "c.json");
     EXPECT_EQ(Json::parse(inC)["characters"][0]["model"], "models/twojoint.glb");
+}
+
+TEST(LoadWorld, ModelsAreLoadedOnceAndPlacedSideBySide) {
+    SceneDir dir;
+    const std::string model = (dir.dir / "models/twojoint.glb").string();
+    const std::vector<std::string> paths{model, "builtin:sphere?segments=16", model};
+    const auto world = render::loadWorld(paths);
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    ASSERT_EQ(world->characters.size(), 3u);
+    EXPECT_EQ(world->characters[0].model, world->characters[2].model) << "one file, one model";
+    EXPECT_EQ(world->characters[0].clip, 0) << "a model plays its first clip";
+    EXPECT_EQ(world->characters[1].clip, -1) << "the sphere has none";
+    // Left to right in the order given, their bounds apart.
+    std::vector<render::Bounds> bounds;
+    for (const scene::Character& c : world->characters) {
+        scene::World one;
+        one.characters.push_back(c);
+        bounds.push_back(render::worldBounds(one));
+    }
+    for (std::size_t i = 0; i + 1 < bounds.size(); ++i)
+        EXPECT_LT(bounds[i].max.x, bounds[i + 1].min.x) << i;
+    const render::Bounds all = render::worldBounds(*world);
+    EXPECT_NEAR(all.min.x, -all.max.x, 1e-3f) << "centred on the origin";
+}
+
+TEST(LoadWorld, OneModelStandsAtTheOriginAndAScenePassesThrough) {
+    SceneDir dir;
+    const auto one = render::loadWorld(std::vector<std::string>{"builtin:sphere"});
+    ASSERT_TRUE(one.ok()) << one.error().message;
+    ASSERT_EQ(one->characters.size(), 1u);
+    EXPECT_EQ(one->characters[0].placement.translation, glm::dvec3(0.0));
+    EXPECT_EQ(one->characters[0].modelPath, "builtin:sphere");
+    const auto scene = render::loadWorld(std::vector<std::string>{
+        (std::filesystem::path(GLASS_SOURCE_DIR) / "assets/scenes/walk_past.json").string()});
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->characters.size(), 3u);
+    EXPECT_TRUE(scene->camera.has_value());
+}
+
+TEST(LoadWorld, BadListsFailClearly) {
+    SceneDir dir;
+    const auto scenePath = dir.write("s.json", Json{{"characters", {character()}}}.dump());
+    struct Case {
+        std::vector<std::string> paths;
+        std::string expected;
+    };
+    for (const Case& c :
+         {Case{{}, "render::loadWorld(): no model or scene file given"},
+          Case{{scenePath.string(), "builtin:sphere"}, "cannot be mixed with other models"},
+          Case{{"builtin:sphere", (dir.dir / "missing.glb").string()}, "missing.glb"},
+          Case{std::vector<std::string>(core::limits::kMaxCharacters + 1, "builtin:sphere"),
+               "4097 models, the limit is 4096 characters"}}) {
+        const auto world = render::loadWorld(c.paths);
+        ASSERT_FALSE(world.ok()) << c.expected;
+        EXPECT_NE(world.error().message.find(c.expected), std::string::npos)
+            << world.error().message;
+    }
+}
+
+TEST(LoadWorld, LimitsHoldOnAnyWorld) {
+    auto sphere = std::make_shared<const scene::Model>(asset::makeSphere(1024));
+    scene::World world;
+    for (int i = 0; i < 100; ++i) {
+        scene::Character c;
+        c.name = "sphere " + std::to_string(i);
+        c.model = sphere;
+        world.characters.push_back(std::move(c));
+    }
+    EXPECT_TRUE(asset::checkWorldLimits(world, "crowd").ok());
+    // A 1024-segment sphere has about 2^19 vertices: 2^26 in all is reached past 128 of them.
+    const std::size_t each = sphere->meshes[0].primitives[0].vertexCount();
+    const std::size_t over = core::limits::kMaxSceneVertices / each;
+    world.characters.resize(over + 1, world.characters[0]);
+    const auto limits = asset::checkWorldLimits(world, "crowd");
+    ASSERT_FALSE(limits.ok());
+    EXPECT_NE(limits.error().message.find("crowd: characters[" + std::to_string(over) + "]"),
+              std::string::npos)
+        << limits.error().message;
 }
 
 } // namespace

@@ -30,6 +30,12 @@ core::Result<scene::World> loadScene(const std::filesystem::path& path,
 core::Result<scene::World> parseScene(std::string_view text, const std::filesystem::path& directory,
                                       const std::string& name, const LoadOptions& options = {});
 
+/** The limits a scene file is held to, on any world (models side by side, a viewer's
+ *  additions): at most core::limits::kMaxCharacters characters and kMaxSceneVertices vertices
+ *  in all (each character counts its model's vertices). The error names `name` and the first
+ *  character over the limit. */
+core::Status checkWorldLimits(const scene::World& world, const std::string& name);
+
 /** True for a path the tools treat as a scene file rather than a model (a .json file). */
 bool isSceneFile(const std::filesystem::path& path);
 
