@@ -14,6 +14,7 @@
 #include "engine/gl/Context.h"
 #include "engine/gl/Debug.h"
 #include "engine/gl/Shaders.h"
+#include "engine/render/WorldLoader.h"
 
 #include <cmath>
 #include <cstdio>
@@ -25,13 +26,15 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: glass-inspect MODEL|SCENE [--json]
-       glass-inspect MODEL|SCENE --vertices cpu|gpu --out FILE.ply [--time T] [--clip C] [--ascii]
+constexpr const char* kUsage = R"(usage: glass-inspect MODEL|SCENE [MODEL...] [--json]
+       glass-inspect MODEL|SCENE [MODEL...] --vertices cpu|gpu --out FILE.ply [--time T]
+                     [--clip C] [--ascii]
 
 Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
 animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
 _volume, _ior, _dispersion) of a .gltf or .glb file. For a scene file (.json, README "Scene
-files"): each character's model, clip, timing, glass mode and counts, and the totals.
+files"), or several models (a scene of them side by side, each playing its first clip from
+scene time 0): each character's model, clip, timing, glass mode and counts, and the totals.
 
   --json          print the same as one JSON object (keys as in shared/assets/INVENTORY.json:
                   meshes, primitives, triangles, vertices, skins, joints_per_skin,
@@ -42,8 +45,8 @@ files"): each character's model, clip, timing, glass mode and counts, and the to
   --out FILE.ply  PLY file to write (atomically: no partial file on failure)
   --force         replace FILE.ply when it exists (otherwise that is an error)
   --time T        clip time in seconds (default 0); for a scene, the scene time
-  --clip C        clip name or index (default: the first clip; the rest pose if none); not
-                  with a scene, whose characters name their own
+  --clip C        clip name or index (default: the first clip; the rest pose if none); only
+                  with one model (a scene's characters name their own)
   --ascii         ASCII PLY instead of binary little-endian
 
 PLY layout: one vertex element with float properties x y z nx ny nz, in world space. Vertices
@@ -63,7 +66,8 @@ int usageError(const std::string& message) {
 }
 
 struct Options {
-    std::string model;
+    std::vector<std::string> models;
+    std::string model; ///< the first of them
     bool json = false;
     std::optional<std::string> vertices;
     std::optional<std::string> out;
@@ -111,14 +115,13 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             }
         } else if (!arg.empty() && arg[0] == '-') {
             return usageError("unknown option " + arg);
-        } else if (o.model.empty()) {
-            o.model = arg;
         } else {
-            return usageError("more than one model given: " + arg);
+            o.models.push_back(arg);
         }
     }
-    if (o.model.empty())
+    if (o.models.empty())
         return usageError("no model given");
+    o.model = o.models.front();
     if (o.vertices && *o.vertices != "cpu" && *o.vertices != "gpu")
         return usageError("--vertices takes 'cpu' or 'gpu', got '" + *o.vertices + "'");
     if (o.vertices.has_value() != o.out.has_value())
@@ -183,11 +186,18 @@ void printText(const scene::Model& model) {
         std::printf("  cameras %zu\n", model.cameras.size());
 }
 
-/** The world to deform: a scene file's, or one model as a character at the origin playing its
- *  first clip, whose clock is the clip time itself (held at the clip's ends). */
+/** True when the input is a world of characters rather than one model: a scene file, or
+ *  several models. */
+bool isWorld(const Options& o) {
+    return o.models.size() > 1 || asset::isSceneFile(o.model);
+}
+
+/** The world to deform: a scene file's, several models side by side (render::loadWorld), or
+ *  one model as a character at the origin playing its first clip, whose clock is the clip time
+ *  itself (held at the clip's ends). */
 core::Result<scene::World> worldOf(const Options& o, const asset::LoadOptions& loadOptions) {
-    if (asset::isSceneFile(o.model))
-        return asset::loadScene(o.model, loadOptions);
+    if (isWorld(o))
+        return render::loadWorld(o.models, loadOptions);
     auto model = asset::loadModel(o.model, loadOptions);
     if (!model)
         return model.error();
@@ -230,14 +240,14 @@ deformWorld(const scene::World& world, double time, bool onGpu) {
         auto deformer = deform::GpuDeformer::create(upload, shaders);
         if (!deformer)
             return deformer.error();
-        (*deformer)->update(anim::evaluate(*c.model, c.clip, c.clipTime(time)));
+        (*deformer)->update(anim::evaluate(*c.model, c.clip, c.clipTime(time)), c.transform());
         std::vector<deform::DeformedInstance>& instances = characters.emplace_back();
         const auto& placed = (*deformer)->instances();
         for (std::size_t i = 0; i < placed.size(); ++i) {
             deform::DeformedInstance& instance = instances.emplace_back();
             instance.node = placed[i].node;
             instance.mesh = placed[i].mesh;
-            instance.meshToWorld = c.transform() * glm::dmat4(placed[i].meshToWorld);
+            instance.meshToWorld = glm::dmat4(placed[i].meshToWorld); // placement included
             for (std::size_t p = 0; p < placed[i].primitives.size(); ++p)
                 instance.primitives.push_back((*deformer)->download(i, p));
         }
@@ -248,7 +258,7 @@ deformWorld(const scene::World& world, double time, bool onGpu) {
 }
 
 int writeVertices(const scene::World& world, const Options& o) {
-    const bool isScene = asset::isSceneFile(o.model);
+    const bool isScene = isWorld(o);
     auto characters = deformWorld(world, o.time, *o.vertices == "gpu");
     if (!characters) {
         std::fprintf(stderr, "glass-inspect: %s\n", characters.error().message.c_str());
@@ -271,7 +281,8 @@ int writeVertices(const scene::World& world, const Options& o) {
         blocks.push_back({labels[i], &placed[i]});
     const scene::Character& first = world.characters.front();
     const std::string what = isScene
-                                 ? "scene " + o.model + " time " + std::to_string(o.time)
+                                 ? "scene " + o.model + (o.models.size() > 1 ? " ..." : "") +
+                                       " time " + std::to_string(o.time)
                                  : first.model->sourceName + " clip " + std::to_string(first.clip) +
                                        " time " + std::to_string(o.time);
     const std::string comment =
@@ -342,9 +353,9 @@ int run(int argc, char** argv) {
         return *exitCode;
     asset::LoadOptions loadOptions;
     loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
-    const bool isScene = asset::isSceneFile(options.model);
+    const bool isScene = isWorld(options);
     if (isScene && options.clip)
-        return usageError("--clip goes with a model; a scene's characters name their clips");
+        return usageError("--clip goes with one model; a scene's characters name their clips");
     auto world = worldOf(options, loadOptions);
     if (!world) {
         std::fprintf(stderr, "glass-inspect: %s\n", world.error().message.c_str());
@@ -362,7 +373,7 @@ int run(int argc, char** argv) {
     if (isScene && options.json)
         std::printf("%s\n", describeScene(*world).dump(2).c_str());
     else if (isScene)
-        printScene(options.model, *world);
+        printScene(options.models.size() > 1 ? "models side by side" : options.model, *world);
     else if (options.json)
         std::printf("%s\n", inspect::describe(*world->characters[0].model).dump(2).c_str());
     else

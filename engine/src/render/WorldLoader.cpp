@@ -25,8 +25,8 @@ core::Result<scene::World> loadWorld(std::span<const std::string> paths,
         return asset::loadScene(paths[0], options);
     if (paths.size() > core::limits::kMaxCharacters)
         return core::Error{"render::loadWorld(): " + std::to_string(paths.size()) +
-                           " models, the limit is " +
-                           std::to_string(core::limits::kMaxCharacters) + " characters"};
+                           " models, the limit is " + std::to_string(core::limits::kMaxCharacters) +
+                           " characters"};
 
     scene::World world;
     std::map<std::string, std::shared_ptr<const scene::Model>> loaded;

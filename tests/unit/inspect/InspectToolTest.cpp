@@ -225,10 +225,35 @@ TEST(InspectTool, SceneCharactersDeformOnTheGpuAsTheCpuOracleSays) {
         const glm::dvec3 a(cpu.values[6 * v], cpu.values[6 * v + 1], cpu.values[6 * v + 2]);
         const glm::dvec3 b(cpu.values[6 * (v + half)], cpu.values[6 * (v + half) + 1],
                            cpu.values[6 * (v + half) + 2]);
-        differs = std::max(differs, glm::length((b - glm::dvec3(2, 1, 0)) / 1.5 -
-                                                (a - glm::dvec3(-2, 0, 0))));
+        differs = std::max(
+            differs, glm::length((b - glm::dvec3(2, 1, 0)) / 1.5 - (a - glm::dvec3(-2, 0, 0))));
     }
     EXPECT_GT(differs, 1e-2);
+}
+
+TEST(InspectTool, SeveralModelsAreAWorldSideBySide) {
+    test::TempDir dir;
+    const auto model = test::twoJointModel().save(dir.path(), "twojoint").string();
+    std::string out;
+    ASSERT_EQ(
+        test::runCommand(kInspect + " " + model + " builtin:sphere?segments=16 " + model, &out), 0)
+        << out;
+    EXPECT_NE(out.find("characters 3, models 2"), std::string::npos) << out;
+    // Their vertices, CPU and GPU alike, each character placed apart from the one before.
+    const PlyPair pair = cpuAndGpuPly(model + " " + model + " --time 0.3", dir);
+    if (pair.noContext)
+        GTEST_SKIP() << pair.output;
+    ASSERT_EQ(pair.cpu.count, pair.gpu.count);
+    for (std::size_t i = 0; i < pair.cpu.values.size(); ++i)
+        EXPECT_NEAR(pair.cpu.values[i], pair.gpu.values[i], 1e-4f) << i;
+    const std::size_t half = pair.cpu.count / 2;
+    float firstMax = -1e30f, secondMin = 1e30f;
+    for (std::size_t v = 0; v < half; ++v) {
+        firstMax = std::max(firstMax, pair.cpu.values[6 * v]);
+        secondMin = std::min(secondMin, pair.cpu.values[6 * (v + half)]);
+    }
+    EXPECT_LT(firstMax, secondMin) << "the second stands right of the first";
+    EXPECT_EQ(test::runCommand(kInspect + " " + model + " " + model + " --clip bend", &out), 2);
 }
 
 TEST(InspectTool, BadSceneExitsOneNamingTheKeyAndWritesNothing) {
@@ -243,8 +268,9 @@ TEST(InspectTool, BadSceneExitsOneNamingTheKeyAndWritesNothing) {
                                    ply.string(),
                                &out),
               1);
-    EXPECT_NE(out.find("crowd.json: characters[1].clip: \"Jump\" not in twojoint.glb (clips: bend)"),
-              std::string::npos)
+    EXPECT_NE(
+        out.find("crowd.json: characters[1].clip: \"Jump\" not in twojoint.glb (clips: bend)"),
+        std::string::npos)
         << out;
     EXPECT_FALSE(std::filesystem::exists(ply));
     EXPECT_EQ(test::runCommand(kInspect + " " + scenePath.string() + " --clip bend", &out), 2);
@@ -318,9 +344,8 @@ TEST(InspectTool, AnExistingPlyIsKeptWithoutForce) {
     const auto ply = dir / "out.ply";
     std::ofstream(ply) << "keep me";
     std::string out;
-    EXPECT_EQ(test::runCommand(kInspect + " " + path.string() + " --vertices cpu --out " +
-                                   ply.string(),
-                               &out),
+    EXPECT_EQ(test::runCommand(
+                  kInspect + " " + path.string() + " --vertices cpu --out " + ply.string(), &out),
               1);
     EXPECT_NE(out.find("exists (use --force to replace it)"), std::string::npos) << out;
     std::ifstream in(ply);
