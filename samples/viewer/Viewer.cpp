@@ -268,6 +268,7 @@ void Viewer::useWorldEnvironment() {
 }
 
 void Viewer::worldChanged() {
+    mClipBounds.clear(); // releases models no character places any more
     mBounds = render::worldBounds(mWorld);
     const float radius = std::max(mBounds.radius(), 1e-3f);
     mRenderer->setGround({mBounds.min.y, mBounds.center(), 3.0f * radius});
@@ -366,7 +367,16 @@ bool Viewer::saveWorld(const std::string& path) {
     return bool(saved);
 }
 
-int Viewer::pick(glm::vec2 pixel) const {
+render::Bounds Viewer::characterBounds(std::size_t index) const {
+    const scene::Character& c = mWorld.characters.at(index);
+    const int clip = c.clip < int(c.model->animations.size()) ? c.clip : -1;
+    auto [it, added] = mClipBounds.try_emplace({c.model, clip});
+    if (added)
+        it->second = render::animatedBounds(*c.model, clip);
+    return render::transformed(it->second, c.transform());
+}
+
+std::pair<glm::vec3, glm::vec3> Viewer::viewRay(glm::vec2 pixel) const {
     const render::Camera camera = mCamera.camera(viewportAspect());
     const glm::vec2 ndc(2.0f * pixel.x / float(std::max(mViewport.x, 1)) - 1.0f,
                         1.0f - 2.0f * pixel.y / float(std::max(mViewport.y, 1)));
@@ -374,13 +384,15 @@ int Viewer::pick(glm::vec2 pixel) const {
     const glm::vec4 nearPoint = inverse * glm::vec4(ndc, -1.0f, 1.0f);
     const glm::vec4 farPoint = inverse * glm::vec4(ndc, 1.0f, 1.0f);
     const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
-    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+    return {origin, glm::normalize(glm::vec3(farPoint) / farPoint.w - origin)};
+}
+
+int Viewer::pick(glm::vec2 pixel) const {
+    const auto [origin, direction] = viewRay(pixel);
     int best = -1;
     float bestT = 1e30f;
     for (std::size_t i = 0; i < mWorld.characters.size(); ++i) {
-        scene::World one;
-        one.characters.push_back(mWorld.characters[i]);
-        const render::Bounds b = render::worldBounds(one, 4);
+        const render::Bounds b = characterBounds(i);
         // Slab test of the ray against the character's box.
         float t0 = 0.0f, t1 = 1e30f;
         for (int axis = 0; axis < 3; ++axis) {
@@ -397,6 +409,66 @@ int Viewer::pick(glm::vec2 pixel) const {
         }
     }
     return best;
+}
+
+bool Viewer::moveSelected(glm::vec2 from, glm::vec2 to, bool vertical) {
+    scene::Character& c = mWorld.characters[std::size_t(mSelected)];
+    const glm::vec3 anchor(c.placement.translation);
+    // Over the horizontal plane through the character's origin; vertically, over the vertical
+    // plane through it that faces the camera.
+    glm::vec3 normal(0.0f, 1.0f, 0.0f);
+    if (vertical) {
+        const glm::vec3 forward = viewRay(to).second;
+        normal = glm::length(glm::vec2(forward.x, forward.z)) > 1e-4f
+                     ? glm::normalize(glm::vec3(forward.x, 0.0f, forward.z))
+                     : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+    auto hit = [&](glm::vec2 pixel) -> std::optional<glm::vec3> {
+        const auto [origin, direction] = viewRay(pixel);
+        const float along = glm::dot(direction, normal);
+        if (std::abs(along) < 1e-4f)
+            return std::nullopt; // the plane seen edge-on
+        const float t = glm::dot(anchor - origin, normal) / along;
+        return t > 0.0f ? std::optional(origin + t * direction) : std::nullopt;
+    };
+    const auto a = hit(from), b = hit(to);
+    if (!a || !b)
+        return false;
+    glm::vec3 move = *b - *a;
+    // Exactly along the plane (the intersections carry float rounding off it).
+    move = vertical ? glm::vec3(0.0f, move.y, 0.0f) : glm::vec3(move.x, 0.0f, move.z);
+    c.placement.translation += glm::dvec3(move);
+    return true;
+}
+
+void Viewer::drawSelection() const {
+    if (mSelected < 0 || mViewport.x <= 0 || (mWorld.characters.size() < 2 && !mMoving))
+        return; // one character: nothing to tell apart
+    const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
+    const render::Camera camera = mCamera.camera(viewportAspect());
+    auto project = [&](glm::vec3 p) -> std::optional<ImVec2> {
+        const glm::vec4 clip = camera.viewProjection() * glm::vec4(p, 1.0f);
+        if (clip.w <= 1e-6f)
+            return std::nullopt;
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        return ImVec2((ndc.x * 0.5f + 0.5f) * float(mViewport.x),
+                      (0.5f - 0.5f * ndc.y) * float(mViewport.y));
+    };
+    // The character's origin with its ground axes (x red, z blue) and its name: what Ctrl+drag
+    // moves.
+    const glm::vec3 origin(c.placement.translation);
+    const float arm = 0.35f * std::max(characterBounds(std::size_t(mSelected)).radius(), 0.05f);
+    const auto o = project(origin);
+    if (!o)
+        return;
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    for (const auto& [axis, color] : {std::pair{glm::vec3(arm, 0, 0), IM_COL32(235, 80, 70, 230)},
+                                      std::pair{glm::vec3(0, arm, 0), IM_COL32(90, 200, 90, 230)},
+                                      std::pair{glm::vec3(0, 0, arm), IM_COL32(80, 130, 240, 230)}})
+        if (const auto end = project(origin + axis))
+            draw->AddLine(*o, *end, color, 2.0f);
+    draw->AddCircle(*o, 5.0f, IM_COL32(255, 255, 255, 220), 12, 2.0f);
+    draw->AddText(ImVec2(o->x + 8.0f, o->y + 4.0f), IM_COL32(255, 255, 255, 220), c.name.c_str());
 }
 
 void Viewer::frameCharacters(bool selectionOnly) {
@@ -523,12 +595,27 @@ void Viewer::handleInput() {
         mDraggingDivider = true;
         return;
     }
+    // Ctrl+drag moves the selected character over the ground, Ctrl+Shift+drag up and down.
+    if (mSelected >= 0 && io.KeyCtrl && ImGui::IsMouseDown(0)) {
+        const glm::vec2 to{io.MousePos.x, io.MousePos.y}, by{io.MouseDelta.x, io.MouseDelta.y};
+        if (by != glm::vec2(0.0f) && !ImGui::IsMouseClicked(0))
+            mMoving = moveSelected(to - by, to, io.KeyShift) || mMoving;
+        return;
+    }
+    if (mMoving && !ImGui::IsMouseDown(0)) {
+        mMoving = false;
+        worldChanged(); // the bounds and the ground follow
+    }
     // A click (no drag) picks the character under the cursor.
     if (ImGui::IsMouseReleased(0) && !io.KeyShift && io.MouseDragMaxDistanceSqr[0] < 9.0f) {
         if (const int picked = pick({io.MousePos.x, io.MousePos.y}); picked >= 0)
             select(picked);
     }
-    const glm::vec2 delta{io.MouseDelta.x, io.MouseDelta.y};
+    // The motion of the frame a button goes down came before the press: no drag yet.
+    const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) ||
+                         ImGui::IsMouseClicked(2);
+    const glm::vec2 delta =
+        pressed ? glm::vec2(0.0f) : glm::vec2(io.MouseDelta.x, io.MouseDelta.y);
     const bool panning =
         ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
     if (panning)
@@ -718,8 +805,10 @@ int Viewer::run() {
             }
         }
         gl::Framebuffer::bindDefault(size);
-        if (mShowPanel)
+        if (mShowPanel) {
             Panel::draw(*this);
+            drawSelection();
+        }
         ImGui::Render();
         auto takeScreenshot = [&] {
             const auto path = *std::exchange(mPendingScreenshot, std::nullopt);

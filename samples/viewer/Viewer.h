@@ -13,9 +13,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace viewer {
@@ -91,6 +93,15 @@ private:
     void worldChanged();
     /** The character under window pixel `pixel` of the view (nearest hit of its bounds), or -1. */
     int pick(glm::vec2 pixel) const;
+    /** Character `index`'s bounds over its clip, in the world (clip bounds cached per model). */
+    render::Bounds characterBounds(std::size_t index) const;
+    /** The camera ray through window pixel `pixel` of the view: origin, unit direction. */
+    std::pair<glm::vec3, glm::vec3> viewRay(glm::vec2 pixel) const;
+    /** Moves the selected character by the cursor's motion from `from` to `to` over the ground
+     *  plane through it (`vertical`: up and down); false where the plane is seen edge-on. */
+    bool moveSelected(glm::vec2 from, glm::vec2 to, bool vertical);
+    /** Marks the selected character in the view: its origin, axes and name. */
+    void drawSelection() const;
     void frameCharacters(bool selectionOnly);
     /** Shows the world's environment (added to the list when it is not there yet). */
     void useWorldEnvironment();
@@ -121,6 +132,9 @@ private:
     int mSelected = -1;
     std::string mScenePath = "scene.json"; ///< the scene file opened or saved last
     bool mDropReplaces = false;            ///< a dropped model replaces the scene (or Shift)
+    bool mMoving = false;                  ///< a Ctrl+drag is moving the selected character
+    mutable std::map<std::pair<std::shared_ptr<const scene::Model>, int>, render::Bounds>
+        mClipBounds;
     std::vector<EnvironmentEntry> mEnvironments;
     int mEnvironmentShown = -1;
     plugin::ParameterSet mSettings;

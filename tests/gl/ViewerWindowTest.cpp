@@ -5,6 +5,7 @@
 
 #include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
+#include "engine/render/WorldLoader.h"
 
 #include <gtest/gtest.h>
 
@@ -218,6 +219,41 @@ TEST_F(ViewerWindow, AddedModelJoinsTheSceneAndTheNextStartRestoresIt) {
         << out;
     EXPECT_NE(out.find("restored the last scene (2 characters)"), std::string::npos) << out;
     EXPECT_TRUE(std::filesystem::exists(shot));
+}
+
+TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
+    std::string out;
+    // Two spheres side by side in the 352-pixel-wide view, the first selected at start; a click
+    // on the right one selects it, Ctrl + a drag to the right moves it, Escape saves the scene.
+    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere \"builtin:sphere?segments=24\" " +
+                      kWindow + " --no-restore & pid=$!;"
+                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
+                      "head -n 1);"
+                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
+                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
+                      " sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 0.3;"
+                      " xdotool mouseup 1; sleep 0.5;"
+                      " xdotool keydown ctrl mousedown 1;"
+                      " for x in 270 280 290 300 310; do sleep 0.15;"
+                      " xdotool mousemove --window $w $x 200; done;"
+                      " sleep 0.3; xdotool mouseup 1 keyup ctrl; sleep 0.3;"
+                      " xdotool key Escape; wait $pid'",
+                  &out),
+              0)
+        << out;
+    auto world = asset::loadScene(mConfig / "glass-viewer" / "last-scene.json");
+    ASSERT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message) << out;
+    ASSERT_EQ(world->characters.size(), 2u);
+    const auto before = render::loadWorld(
+        std::vector<std::string>{"builtin:sphere", "builtin:sphere?segments=24"});
+    ASSERT_TRUE(before.ok());
+    EXPECT_EQ(world->characters[0].placement.translation,
+              before->characters[0].placement.translation)
+        << "the first is no longer selected";
+    const glm::dvec3 moved = world->characters[1].placement.translation -
+                             before->characters[1].placement.translation;
+    EXPECT_GT(moved.x, 0.1) << "the picked one dragged to the right";
+    EXPECT_EQ(moved.y, 0.0) << "over the ground, not up";
 }
 
 TEST_F(ViewerWindow, BadInputFailsClearlyWithoutOutput) {

@@ -27,6 +27,17 @@ Bounds animatedBounds(const scene::Model& model, int clip, int samples) {
     return bounds;
 }
 
+Bounds transformed(const Bounds& bounds, const glm::dmat4& transform) {
+    Bounds out;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p((corner & 1) ? bounds.max.x : bounds.min.x,
+                           (corner & 2) ? bounds.max.y : bounds.min.y,
+                           (corner & 4) ? bounds.max.z : bounds.min.z);
+        out.add(glm::vec3(transform * glm::dvec4(p, 1.0)));
+    }
+    return out;
+}
+
 Bounds worldBounds(const scene::World& world, int samples) {
     std::map<std::pair<const scene::Model*, int>, Bounds> perClip;
     Bounds bounds;
@@ -36,13 +47,9 @@ Bounds worldBounds(const scene::World& world, int samples) {
         auto [it, added] = perClip.try_emplace({&model, clip});
         if (added)
             it->second = animatedBounds(model, clip, samples);
-        const glm::dmat4 transform = character.transform();
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::dvec3 p((corner & 1) ? it->second.max.x : it->second.min.x,
-                               (corner & 2) ? it->second.max.y : it->second.min.y,
-                               (corner & 4) ? it->second.max.z : it->second.min.z);
-            bounds.add(glm::vec3(transform * glm::dvec4(p, 1.0)));
-        }
+        const Bounds placed = transformed(it->second, character.transform());
+        bounds.add(placed.min);
+        bounds.add(placed.max);
     }
     if (bounds.empty())
         bounds.add(glm::vec3(0.0f));

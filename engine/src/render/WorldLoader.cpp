@@ -44,7 +44,10 @@ core::Result<scene::World> loadWorld(std::span<const std::string> paths,
         if (path.rfind("builtin:", 0) != 0)
             one.characters[0].modelPath = std::filesystem::absolute(path).lexically_normal();
         if (paths.size() > 1) {
-            one.characters[0].name += " " + std::to_string(world.characters.size() + 1);
+            // appended in two steps: `" " + std::to_string(...)` here trips GCC 12's -Wrestrict
+            // false positive at -O3 (GCC bug 105329)
+            one.characters[0].name += ' ';
+            one.characters[0].name += std::to_string(world.characters.size() + 1);
             bounds.push_back(worldBounds(one));
         }
         world.characters.push_back(std::move(one.characters[0]));

@@ -36,6 +36,9 @@ struct Bounds {
  *  its duration; the rest pose when clip < 0), via the CPU reference deformation. */
 Bounds animatedBounds(const scene::Model& model, int clip, int samples = 16);
 
+/** The box around the corners of `bounds` moved by `transform`. */
+Bounds transformed(const Bounds& bounds, const glm::dmat4& transform);
+
 /** Bounds of every character of `world` over its clip: animatedBounds() of each model and
  *  clip (computed once per pair), its corners through the character's transform. */
 Bounds worldBounds(const scene::World& world, int samples = 16);
