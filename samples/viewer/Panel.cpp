@@ -266,8 +266,8 @@ void Panel::camera(Viewer& v) {
         v.frameCharacters(true);
     if (ImGui::Button("Reset (R)"))
         v.mCamera.reset();
-    ImGui::TextDisabled("drag: orbit; right/shift-drag: pan; wheel: zoom; click: select;\n"
-                        "ctrl-drag: move the selected character (ctrl-shift: up/down)");
+    ImGui::TextDisabled("drag orbit, right/shift-drag pan, wheel zoom;\n"
+                        "click select, ctrl-drag move (ctrl-shift: up/down)");
 }
 
 void Panel::environment(Viewer& v) {

@@ -46,7 +46,9 @@ Scripted mode (tests, demos):
   --force             overwrite an existing screenshot file
   --exit              quit after the N frames (the session is then not saved)
 
-Mouse: drag to orbit, right- or shift-drag to pan, wheel to zoom, drag the A/B divider.
+Mouse: drag to orbit, right- or shift-drag to pan, wheel to zoom, drag the A/B divider; click a
+       character to select it, Ctrl+drag to move it over the ground (Ctrl+Shift+drag: up and
+       down).
 Keys: Space play/pause, Left/Right step one frame, M next method, 1-4 method,
       F frame all (Shift+F the selection), R reset the camera, Del remove the selected
       character, G ground, B A/B split, Tab panel,
