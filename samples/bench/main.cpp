@@ -201,8 +201,8 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
         const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
         const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
         std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s |\n",
-                    r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu,
-                    engine, double(r.transientBytes) / 1048576.0, top.c_str());
+                    r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
+                    double(r.transientBytes) / 1048576.0, top.c_str());
         std::fflush(stdout);
         rows.push_back({{"method", r.method},
                         {"level", level},

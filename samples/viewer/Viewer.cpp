@@ -612,10 +612,9 @@ void Viewer::handleInput() {
             select(picked);
     }
     // The motion of the frame a button goes down came before the press: no drag yet.
-    const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) ||
-                         ImGui::IsMouseClicked(2);
-    const glm::vec2 delta =
-        pressed ? glm::vec2(0.0f) : glm::vec2(io.MouseDelta.x, io.MouseDelta.y);
+    const bool pressed =
+        ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2);
+    const glm::vec2 delta = pressed ? glm::vec2(0.0f) : glm::vec2(io.MouseDelta.x, io.MouseDelta.y);
     const bool panning =
         ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
     if (panning)

@@ -64,8 +64,7 @@ void ViewerWindow::expectViewerMatchesCapture(const std::string& viewerArguments
     ASSERT_EQ(test::runCommand(kCapture + " " + assets + "/models/glass_figure.glb --env " +
                                    assets +
                                    "/env/sunset_sky.hdr --time 0.1 --size 176x200 --ground --out " +
-                                   (outDir / "capture").string() + " --force " +
-                                   captureArguments,
+                                   (outDir / "capture").string() + " --force " + captureArguments,
                                &out),
               0)
         << out;
@@ -213,9 +212,8 @@ TEST_F(ViewerWindow, AddedModelJoinsTheSceneAndTheNextStartRestoresIt) {
         << "added right of the first, not on top of it";
     // A start without a model restores that scene and draws it.
     const auto shot = mOut / "restored.png";
-    ASSERT_EQ(inX(kViewer + " " + kWindow + " --frames 1 --exit --screenshot " + shot.string(),
-                  &out),
-              0)
+    ASSERT_EQ(
+        inX(kViewer + " " + kWindow + " --frames 1 --exit --screenshot " + shot.string(), &out), 0)
         << out;
     EXPECT_NE(out.find("restored the last scene (2 characters)"), std::string::npos) << out;
     EXPECT_TRUE(std::filesystem::exists(shot));
@@ -226,7 +224,8 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
     // Two spheres side by side in the 352-pixel-wide view, the first selected at start; a click
     // on the right one selects it, Ctrl + a drag to the right moves it, Escape saves the scene.
     ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere \"builtin:sphere?segments=24\" " +
-                      kWindow + " --no-restore & pid=$!;"
+                      kWindow +
+                      " --no-restore & pid=$!;"
                       " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
                       "head -n 1);"
                       " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
@@ -244,14 +243,14 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
     auto world = asset::loadScene(mConfig / "glass-viewer" / "last-scene.json");
     ASSERT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message) << out;
     ASSERT_EQ(world->characters.size(), 2u);
-    const auto before = render::loadWorld(
-        std::vector<std::string>{"builtin:sphere", "builtin:sphere?segments=24"});
+    const auto before =
+        render::loadWorld(std::vector<std::string>{"builtin:sphere", "builtin:sphere?segments=24"});
     ASSERT_TRUE(before.ok());
     EXPECT_EQ(world->characters[0].placement.translation,
               before->characters[0].placement.translation)
         << "the first is no longer selected";
-    const glm::dvec3 moved = world->characters[1].placement.translation -
-                             before->characters[1].placement.translation;
+    const glm::dvec3 moved =
+        world->characters[1].placement.translation - before->characters[1].placement.translation;
     EXPECT_GT(moved.x, 0.1) << "the picked one dragged to the right";
     EXPECT_EQ(moved.y, 0.0) << "over the ground, not up";
 }

@@ -35,11 +35,11 @@ struct CharacterGpu {
 };
 
 struct RenderGpu {
-    std::vector<std::shared_ptr<ModelGpu>> models; // the prepared world's, each once
+    std::vector<std::shared_ptr<ModelGpu>> models;      // the prepared world's, each once
     std::vector<std::shared_ptr<ModelGpu>> modelsInUse; // Renderer::prepare()'s scratch
-    std::vector<CharacterGpu> characters;          // the prepared world's, in its order
-    deform::PoseUpload poses;                      // every character's, this frame
-    std::vector<DrawItem> items;                   // this frame's (storage reused)
+    std::vector<CharacterGpu> characters;               // the prepared world's, in its order
+    deform::PoseUpload poses;                           // every character's, this frame
+    std::vector<DrawItem> items;                        // this frame's (storage reused)
     std::unique_ptr<Environment> environment;
     gl::Program background, opaque, ground, tonemap;
     gl::VertexArray emptyVao;

@@ -15,8 +15,8 @@ struct SceneTargets {
 };
 
 /** `deform`: deforms each character (GpuDeformer::dispatch) from what they staged into
- *  RenderGpu::poses (uploaded before the frame graph runs); writes `vertices` (the imported resource standing for every
- *  character's deformed buffers), returns the new version. */
+ *  RenderGpu::poses (uploaded before the frame graph runs); writes `vertices` (the imported
+ *  resource standing for every character's deformed buffers), returns the new version. */
 fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything. */
