@@ -223,6 +223,8 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
     std::string out;
     // Two spheres side by side in the 352-pixel-wide view, the first selected at start; a click
     // on the right one selects it, Ctrl + a drag to the right moves it, Escape saves the scene.
+    // The click is held for a second: Dear ImGui 1.86's GLFW backend can miss the release of a
+    // press and release that fall in one frame (slow frames: sanitizer builds).
     ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere \"builtin:sphere?segments=24\" " +
                       kWindow +
                       " --no-restore & pid=$!;"
@@ -230,8 +232,8 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
                       "head -n 1);"
                       " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
                       " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
-                      " sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 0.3;"
-                      " xdotool mouseup 1; sleep 0.5;"
+                      " sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 1;"
+                      " xdotool mouseup 1; sleep 1;"
                       " xdotool keydown ctrl mousedown 1;"
                       " for x in 270 280 290 300 310; do sleep 0.15;"
                       " xdotool mousemove --window $w $x 200; done;"
