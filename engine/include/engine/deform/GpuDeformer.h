@@ -62,7 +62,6 @@ public:
     void upload();
     const gl::Buffer& matrices() const { return mMatrices; }
     const gl::Buffer& weights() const { return mWeights; }
-    std::size_t stagedMatrices() const { return mMatrixValues.size(); }
 
 private:
     std::vector<glm::mat4> mMatrixValues;
@@ -72,9 +71,9 @@ private:
 
 class GpuDeformer {
 public:
-    /** Places `model` once more: deformed buffers of every mesh node of the default scene and
-     *  the buffers of its per-frame uploads (skin matrices, morph weights), over the shared
-     *  static data, and the deform programs. Needs a current GL context. */
+    /** Places `model` once more: deformed buffers of every mesh node of the default scene over
+     *  the shared static data, and the deform programs (its skin matrices and morph weights go
+     *  through a PoseUpload each frame). Needs a current GL context. */
     static core::Result<std::unique_ptr<GpuDeformer>> create(std::shared_ptr<const GpuModel> model,
                                                              const gl::ShaderLibrary& shaders);
     /** Uploads `model` (GpuModel::create, failing as it does) and places it. */
