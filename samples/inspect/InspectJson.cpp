@@ -87,6 +87,7 @@ nlohmann::ordered_json describe(const scene::Model& model) {
     }
     j["transmissive_materials"] = glass;
     j["mesh_list"] = meshes;
+    j["warnings"] = model.warnings;
     return j;
 }
 

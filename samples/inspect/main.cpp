@@ -9,6 +9,7 @@
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/core/Files.h"
+#include "engine/core/Log.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/GpuDeformer.h"
 #include "engine/gl/Context.h"
@@ -16,6 +17,8 @@
 #include "engine/gl/Shaders.h"
 #include "engine/render/WorldLoader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -29,12 +32,19 @@ namespace {
 constexpr const char* kUsage = R"(usage: glass-inspect MODEL|SCENE [MODEL...] [--json]
        glass-inspect MODEL|SCENE [MODEL...] --vertices cpu|gpu --out FILE.ply [--time T]
                      [--clip C] [--ascii]
+       glass-inspect --check DIR|FILE...
 
 Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
 animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
 _volume, _ior, _dispersion) of a .gltf or .glb file. For a scene file (.json, README "Scene
 files"), or several models (a scene of them side by side, each playing its first clip from
 scene time 0): each character's model, clip, timing, glass mode and counts, and the totals.
+What loading skipped or could not honour (an extension the file uses that the engine does not
+implement, a POINTS or LINES primitive) is listed as warnings.
+
+  --check         load every .gltf and .glb below the folders (and files) given, images
+                  decoded, and print one line per file: ok, ok with warnings (and which), or
+                  refused (and why); then a summary. Exit 1 if any file is refused.
 
   --json          print the same as one JSON object (keys as in shared/assets/INVENTORY.json:
                   meshes, primitives, triangles, vertices, skins, joints_per_skin,
@@ -75,6 +85,7 @@ struct Options {
     std::optional<std::string> clip;
     bool ascii = false;
     bool force = false;
+    bool check = false;
 };
 
 /** Parses argv; returns an exit code when the program should stop (help or bad arguments). */
@@ -96,6 +107,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.ascii = true;
         } else if (arg == "--force") {
             o.force = true;
+        } else if (arg == "--check") {
+            o.check = true;
         } else if (arg == "--vertices" || arg == "--out" || arg == "--time" || arg == "--clip") {
             const auto v = value(arg.c_str());
             if (!v)
@@ -120,7 +133,9 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
         }
     }
     if (o.models.empty())
-        return usageError("no model given");
+        return usageError(o.check ? "--check needs folders or files" : "no model given");
+    if (o.check && (o.json || o.vertices || o.clip))
+        return usageError("--check is a mode of its own");
     o.model = o.models.front();
     if (o.vertices && *o.vertices != "cpu" && *o.vertices != "gpu")
         return usageError("--vertices takes 'cpu' or 'gpu', got '" + *o.vertices + "'");
@@ -184,6 +199,57 @@ void printText(const scene::Model& model) {
     }
     if (model.cameras.size())
         std::printf("  cameras %zu\n", model.cameras.size());
+    for (const std::string& warning : model.warnings)
+        std::printf("  warning: %s\n", warning.c_str());
+}
+
+/** --check: every .gltf/.glb below `roots` (sorted), one line each, then a summary; 1 if any
+ *  file is refused. */
+int checkFiles(const std::vector<std::string>& roots) {
+    std::vector<std::filesystem::path> files;
+    for (const std::string& root : roots) {
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(root, ec)) {
+            files.emplace_back(root);
+            continue;
+        }
+        if (!std::filesystem::is_directory(root, ec)) {
+            std::fprintf(stderr, "glass-inspect: --check: %s is neither a folder nor a file\n",
+                         root.c_str());
+            return 2;
+        }
+        for (auto it = std::filesystem::recursive_directory_iterator(
+                 root, std::filesystem::directory_options::skip_permission_denied, ec);
+             !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+            std::string extension = it->path().extension().string();
+            for (char& c : extension)
+                c = char(std::tolower(static_cast<unsigned char>(c)));
+            if (it->is_regular_file(ec) && (extension == ".gltf" || extension == ".glb"))
+                files.push_back(it->path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    std::size_t ok = 0, warned = 0, refused = 0;
+    for (const std::filesystem::path& file : files) {
+        const auto model = asset::loadGltf(file);
+        if (!model) {
+            ++refused;
+            std::printf("refused  %s: %s\n", file.string().c_str(), model.error().message.c_str());
+        } else if (!model->warnings.empty()) {
+            ++warned;
+            std::printf("warnings %s:", file.string().c_str());
+            for (std::size_t i = 0; i < model->warnings.size(); ++i)
+                std::printf("%s %s", i ? ";" : "", model->warnings[i].c_str());
+            std::printf("\n");
+        } else {
+            ++ok;
+            std::printf("ok       %s\n", file.string().c_str());
+        }
+        std::fflush(stdout);
+    }
+    std::printf("%zu files: %zu ok, %zu ok with warnings, %zu refused\n", files.size(), ok, warned,
+                refused);
+    return refused > 0 ? 1 : 0;
 }
 
 /** True when the input is a world of characters rather than one model: a scene file, or
@@ -351,6 +417,10 @@ int run(int argc, char** argv) {
     Options options;
     if (const auto exitCode = parse(argc, argv, options))
         return *exitCode;
+    if (options.check) {
+        core::setLogLevel(core::LogLevel::Error); // the warnings are in the lines
+        return checkFiles(options.models);
+    }
     asset::LoadOptions loadOptions;
     loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
     const bool isScene = isWorld(options);

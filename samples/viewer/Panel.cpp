@@ -395,10 +395,12 @@ void Panel::draw(Viewer& v) {
     ImGui::Begin("glass", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-130.0f);
-    if (!v.mMessage.empty())
-        ImGui::TextColored(v.mMessageIsError ? ImVec4(1.0f, 0.4f, 0.35f, 1.0f)
-                                             : ImVec4(0.6f, 0.9f, 0.6f, 1.0f),
-                           "%s", v.mMessage.c_str());
+    if (!v.mMessage.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, v.mMessageIsError ? ImVec4(1.0f, 0.4f, 0.35f, 1.0f)
+                                                               : ImVec4(0.6f, 0.9f, 0.6f, 1.0f));
+        ImGui::TextWrapped("%s", v.mMessage.c_str()); // load warnings run long
+        ImGui::PopStyleColor();
+    }
     scene(v);
     animation(v);
     camera(v);

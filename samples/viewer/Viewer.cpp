@@ -44,6 +44,22 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int mods) {
             ->keys.push_back({key, mods, action == GLFW_REPEAT});
 }
 
+/** " (N warnings: the first; ...)" for what loading the world's models skipped, or "". */
+std::string loadWarnings(const scene::World& world) {
+    std::vector<const scene::Model*> seen;
+    std::vector<std::string> warnings;
+    for (const scene::Character& c : world.characters)
+        if (std::find(seen.begin(), seen.end(), c.model.get()) == seen.end()) {
+            seen.push_back(c.model.get());
+            for (const std::string& w : c.model->warnings)
+                warnings.push_back(c.model->sourceName + ": " + w);
+        }
+    if (warnings.empty())
+        return "";
+    return " (" + std::to_string(warnings.size()) + " warning" + (warnings.size() > 1 ? "s" : "") +
+           ": " + warnings.front() + (warnings.size() > 1 ? "; the others in the log)" : ")");
+}
+
 std::vector<std::string> clipNames(const scene::Model& model) {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < model.animations.size(); ++i) {
@@ -306,7 +322,7 @@ bool Viewer::openWorld(const std::vector<std::string>& paths) {
     useWorldEnvironment();
     mCamera.frame(mBounds, viewportAspect());
     mTime = 0.0;
-    reportStatus({}, "opened " + paths[0]);
+    reportStatus({}, "opened " + paths[0] + loadWarnings(mWorld));
     return true;
 }
 
@@ -323,6 +339,7 @@ bool Viewer::addCharacter(const std::string& path) {
         reportStatus(limits, "");
         return false;
     }
+    const std::string warnings = loadWarnings(*added); // before its characters move
     // Right of what is there, with a fifth of its width between.
     const render::Bounds bounds = render::worldBounds(*added);
     const float gap = 0.2f * std::max(bounds.max.x - bounds.min.x, 0.1f);
@@ -341,7 +358,7 @@ bool Viewer::addCharacter(const std::string& path) {
     }
     mSelected = int(mWorld.characters.size()) - 1;
     worldChanged();
-    reportStatus({}, "added " + path);
+    reportStatus({}, "added " + path + warnings);
     return true;
 }
 

@@ -9,6 +9,9 @@
 
 namespace asset::detail {
 
+/** asset.version must be 2.x and asset.minVersion (when present) at most 2.0. */
+void checkVersion(const tinygltf::Asset& asset);
+
 /** Index ranges of every cross reference except accessors (checked when read), the node
  *  hierarchy (single parent, no cycles, scene roots are roots), extensionsRequired, limits. */
 void validateStructure(const tinygltf::Model& model);
@@ -17,9 +20,11 @@ void validateStructure(const tinygltf::Model& model);
 std::vector<scene::Node> convertNodes(const tinygltf::Model& model);
 
 /** Mesh `index`: primitives with attributes, indices, morph targets; generated normals and
- *  tangents where needed (tangents when `materials` gives the primitive a normal map). */
+ *  tangents where needed (tangents when `materials` gives the primitive a normal map).
+ *  POINTS and LINES primitives are left out, each with a line in `warnings`. */
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
-                        const std::vector<scene::Material>& materials);
+                        const std::vector<scene::Material>& materials,
+                        std::vector<std::string>& warnings);
 
 /** Skin `index` with inverse bind matrices (identity when absent). */
 scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index);

@@ -9,8 +9,10 @@
 #include "LoadError.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
+#include "engine/core/Log.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
@@ -90,6 +92,22 @@ std::uint32_t readU32(std::span<const std::uint8_t> bytes, std::size_t offset) {
 
 /** GLB container checks (glTF §4.4) that tinygltf leaves out or reports vaguely: version 2,
  *  declared length equal to the file size, chunks inside the file, JSON first, BIN second. */
+/** The file's extensionsRequired, read from its JSON (chunk 0 of a GLB whose container
+ *  checkGlbContainer accepted); empty where the JSON does not parse. */
+std::vector<std::string> requiredExtensions(std::span<const std::uint8_t> bytes, bool isBinary) {
+    std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (isBinary)
+        text = text.substr(20, readU32(bytes, 12));
+    std::vector<std::string> required;
+    const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+    if (json.is_object() && json.contains("extensionsRequired") &&
+        json["extensionsRequired"].is_array())
+        for (const nlohmann::json& extension : json["extensionsRequired"])
+            if (extension.is_string())
+                required.push_back(extension.get<std::string>());
+    return required;
+}
+
 void checkGlbContainer(std::span<const std::uint8_t> bytes) {
     if (bytes.size() < 20)
         fail("GLB is truncated: " + n(bytes.size()) + " bytes, the header alone needs 20");
@@ -346,19 +364,37 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             while (!err.empty() && (err.back() == '\n' || err.back() == ' '))
                 err.pop_back();
             std::replace(err.begin(), err.end(), '\n', ';');
-            return core::Error{prefix + (err.empty() ? std::string("not a valid glTF file") : err)};
+            if (err.empty())
+                err = "not a valid glTF file";
+            // A required extension the engine lacks (Draco, say) makes the parser stumble on
+            // what the extension stores elsewhere: name the extension, not the symptom.
+            for (const std::string& extension : requiredExtensions(*bytes, isBinary))
+                if (!supportedRequiredExtensions().count(extension))
+                    return core::Error{prefix + "extensionsRequired lists " + extension +
+                                       ", which this engine does not support (the parser: " + err +
+                                       ")"};
+            return core::Error{prefix + err};
         }
 
+        checkVersion(src.asset);
         validateStructure(src);
         const AccessorReader reader(src, bytes->size());
 
         scene::Model model;
         model.sourceName = file;
+        // Extensions the file uses but does not require, which this engine does not implement:
+        // the file loads without them (what they add is missing), with a warning each.
+        for (const std::string& extension : src.extensionsUsed)
+            if (!supportedRequiredExtensions().count(extension))
+                model.warnings.push_back("extensionsUsed lists " + extension +
+                                         ", which this engine does not implement: loaded "
+                                         "without it");
         model.nodes = convertNodes(src);
         for (std::size_t i = 0; i < src.materials.size(); ++i)
             model.materials.push_back(convertMaterial(src, int(i)));
         for (std::size_t i = 0; i < src.meshes.size(); ++i)
-            model.meshes.push_back(convertMesh(src, reader, int(i), model.materials));
+            model.meshes.push_back(
+                convertMesh(src, reader, int(i), model.materials, model.warnings));
         for (std::size_t i = 0; i < src.skins.size(); ++i)
             model.skins.push_back(convertSkin(src, reader, int(i)));
         for (std::size_t i = 0; i < src.animations.size(); ++i)
@@ -385,6 +421,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (const tinygltf::Scene& s : src.scenes)
             model.scenes.push_back(s.nodes);
         model.defaultScene = src.scenes.empty() ? -1 : std::max(src.defaultScene, 0);
+        for (const std::string& warning : model.warnings)
+            core::logWarning(prefix + warning);
         return model;
     } catch (const LoadError& e) {
         return core::Error{prefix + e.what()};

@@ -121,8 +121,7 @@ scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const Accessor
     const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        fail(what + " has mode " + modeName(mode) + " (" + std::to_string(mode) +
-             "); only triangles, strips and fans are supported");
+        fail(what + " has mode " + std::to_string(mode) + ", which glTF does not define");
     const auto& attributes = src.attributes;
     if (!attributes.count("POSITION"))
         fail(what + " has no POSITION attribute");
@@ -210,15 +209,29 @@ scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const Accessor
 } // namespace
 
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
-                        const std::vector<scene::Material>& materials) {
+                        const std::vector<scene::Material>& materials,
+                        std::vector<std::string>& warnings) {
     const tinygltf::Mesh& src = model.meshes[std::size_t(index)];
     const std::string what = "mesh " + n(std::size_t(index));
     scene::Mesh mesh;
     mesh.name = src.name;
-    for (std::size_t i = 0; i < src.primitives.size(); ++i)
+    for (std::size_t i = 0; i < src.primitives.size(); ++i) {
+        const int mode = src.primitives[i].mode;
+        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+            mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+            warnings.push_back(what + (src.name.empty() ? "" : " '" + src.name + "'") +
+                               " primitive " + n(i) + " has mode " + modeName(mode) +
+                               ": skipped (this engine draws triangles)");
+            continue;
+        }
         mesh.primitives.push_back(
             convertPrimitive(src.primitives[i], reader, what + " primitive " + n(i), materials));
-    const std::size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    }
+    // The morph target count is the file's, even where no drawn primitive is left to carry it
+    // (node weights and weight channels are checked against it).
+    const std::size_t targets = !mesh.primitives.empty() ? mesh.primitives[0].targets.size()
+                                : src.primitives.empty() ? 0
+                                                         : src.primitives[0].targets.size();
     for (std::size_t i = 0; i < mesh.primitives.size(); ++i)
         if (mesh.primitives[i].targets.size() != targets)
             fail(what + " primitive " + n(i) + " has " + n(mesh.primitives[i].targets.size()) +

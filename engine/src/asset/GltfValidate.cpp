@@ -6,7 +6,20 @@
 #include "engine/asset/GltfLoader.h"
 #include "engine/core/Limits.h"
 
+#include <cstdio>
 #include <string>
+#include <utility>
+
+namespace asset {
+
+const std::set<std::string>& supportedRequiredExtensions() {
+    static const std::set<std::string> supported = {
+        "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
+        "KHR_materials_dispersion", "KHR_materials_emissive_strength"};
+    return supported;
+}
+
+} // namespace asset
 
 namespace asset::detail {
 namespace {
@@ -34,11 +47,26 @@ void checkTexture(const tinygltf::Model& m, int texture, const std::string& what
 
 } // namespace
 
-const std::set<std::string>& supportedRequiredExtensions() {
-    static const std::set<std::string> supported = {
-        "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
-        "KHR_materials_dispersion", "KHR_materials_emissive_strength"};
-    return supported;
+void checkVersion(const tinygltf::Asset& asset) {
+    // "major.minor" (glTF 2.0 section 3.3.1); a file of another major version is another format.
+    auto parse = [](const std::string& text, const char* key) {
+        unsigned major = 0, minor = 0;
+        char dot = 0, extra = 0;
+        if (std::sscanf(text.c_str(), "%u%c%u%c", &major, &dot, &minor, &extra) != 3 || dot != '.')
+            fail(std::string("asset.") + key + " \"" + text + "\" is not major.minor");
+        return std::pair{major, minor};
+    };
+    const auto [major, minor] = parse(asset.version, "version");
+    if (major != 2)
+        fail("asset.version " + asset.version + ": glTF " + n(int(major)) +
+             " is not glTF 2, which this engine reads");
+    (void)minor; // a later 2.x is read as 2.0 unless minVersion says it cannot be
+    if (!asset.minVersion.empty()) {
+        const auto [minMajor, minMinor] = parse(asset.minVersion, "minVersion");
+        if (minMajor != 2 || minMinor > 0)
+            fail("asset.minVersion " + asset.minVersion +
+                 ": the file needs a glTF newer than 2.0, which this engine reads");
+    }
 }
 
 void validateStructure(const tinygltf::Model& m) {

@@ -198,9 +198,15 @@ const std::vector<MalformedCase>& cases() {
         {"MissingPosition",
          [](auto& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
          {"mesh 0 primitive 0 has no POSITION"}},
-        {"LinePrimitive",
-         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 1; },
-         {"mode LINES"}},
+        {"UndefinedPrimitiveMode",
+         [](auto& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 9; },
+         {"mesh 0 primitive 0 has mode 9, which glTF does not define"}},
+        {"AnotherMajorVersion",
+         [](auto& b) { b.doc["asset"]["version"] = "3.0"; },
+         {"asset.version 3.0: glTF 3 is not glTF 2"}},
+        {"NewerMinVersion",
+         [](auto& b) { b.doc["asset"]["minVersion"] = "2.1"; },
+         {"asset.minVersion 2.1: the file needs a glTF newer than 2.0"}},
         {"InverseBindTooShort",
          [](auto& b) { b.doc["accessors"][6]["count"] = 1; },
          {"skin 0 inverseBindMatrices has 1 matrices for 2 joints"}},
@@ -293,6 +299,42 @@ TEST(Malformed, ValidBaseModelLoadsInEveryContainer) {
         EXPECT_EQ(model->meshes[0].primitives[0].vertexCount(), 6u);
         EXPECT_EQ(model->skins[0].joints.size(), 2u);
     }
+}
+
+// What the engine can do without loads, with a warning naming it.
+TEST(Degrade, PointsAndLinesPrimitivesAreLeftOutWithAWarning) {
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    auto& primitives = builder.doc["meshes"][0]["primitives"];
+    for (int mode : {0, 1, 3}) { // POINTS, LINES, LINE_STRIP beside the triangles
+        nlohmann::json other = primitives[0];
+        other["mode"] = mode;
+        primitives.push_back(other);
+    }
+    const auto model = asset::loadGltf(builder.save(dir.path(), "modes"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->meshes[0].primitives.size(), 1u) << "the triangles stay";
+    ASSERT_EQ(model->warnings.size(), 3u);
+    EXPECT_NE(model->warnings[0].find("mesh 0 'strip' primitive 1 has mode POINTS: skipped"),
+              std::string::npos)
+        << model->warnings[0];
+    EXPECT_NE(model->warnings[2].find("primitive 3 has mode LINE_STRIP"), std::string::npos);
+    EXPECT_EQ(model->meshes[0].morphTargetCount(), 1u);
+}
+
+TEST(Degrade, ExtensionsUsedButNotRequiredLoadWithAWarningAndALater2xLoads) {
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    builder.doc["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_ior"};
+    builder.doc["asset"]["version"] = "2.1";
+    const auto model = asset::loadGltf(builder.save(dir.path(), "used"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->warnings.size(), 1u) << "KHR_materials_ior is implemented";
+    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_texture_transform, which this engine "
+                                  "does not implement: loaded without it");
+    const auto clean = asset::loadGltf(test::twoJointModel().save(dir.path(), "clean"));
+    ASSERT_TRUE(clean.ok());
+    EXPECT_TRUE(clean->warnings.empty());
 }
 
 TEST(Malformed, MissingExternalBuffer) {

@@ -29,6 +29,9 @@ struct Model {
     std::vector<Camera> cameras;
     std::vector<std::vector<int>> scenes; ///< root nodes of each scene
     int defaultScene = 0;                 ///< -1 when the file has no scene
+    /** What loading skipped or could not honour, each naming its element (an extension the
+     *  engine does not implement, a primitive it does not draw); the model is usable without. */
+    std::vector<std::string> warnings;
 
     /** Roots of the default scene (all parentless nodes when the file has no scene). */
     std::vector<int> sceneRoots() const;
