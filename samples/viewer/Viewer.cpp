@@ -56,8 +56,14 @@ std::string loadWarnings(const scene::World& world) {
         }
     if (warnings.empty())
         return "";
-    return " (" + std::to_string(warnings.size()) + " warning" + (warnings.size() > 1 ? "s" : "") +
-           ": " + warnings.front() + (warnings.size() > 1 ? "; the others in the log)" : ")");
+    // Built in steps: `" (" + std::to_string(...)` can trip GCC 12's -Wrestrict false
+    // positive at -O3 (GCC bug 105329).
+    std::string text = " (";
+    text += std::to_string(warnings.size());
+    text += warnings.size() > 1 ? " warnings: " : " warning: ";
+    text += warnings.front();
+    text += warnings.size() > 1 ? "; the others in the log)" : ")";
+    return text;
 }
 
 std::vector<std::string> clipNames(const scene::Model& model) {
