@@ -35,6 +35,19 @@ protected:
                                     "' xvfb-run -a -s '-screen 0 1024x768x24' " + command,
                                 output);
     }
+    /** An interactive run (no --frames) in a fresh X server: the viewer started with
+     *  `arguments` and the test window size, its window ($w) focused, the shell commands of
+     *  `input` run (xdotool), then Escape, which quits and saves the session and scene. */
+    int interactively(const std::string& arguments, const std::string& input, std::string* output) {
+        return inX("sh -c '" + kViewer + " " + arguments + " " + kWindow +
+                       " & pid=$!;"
+                       " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$"
+                       " | head -n 1);"
+                       " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
+                       " xdotool windowfocus --sync $w && break; sleep 0.1; done; " +
+                       input + " xdotool key Escape; wait $pid'",
+                   output);
+    }
     void expectViewerMatchesCapture(const std::string& viewerArguments,
                                     const std::string& captureArguments);
     test::TempDir mConfig, mOut;
@@ -159,16 +172,7 @@ TEST_F(ViewerWindow, RealInputEventsChangeTheImageAndEscapeQuits) {
 TEST_F(ViewerWindow, QuittingSavesTheSessionAndTheNextStartRestoresIt) {
     std::string out;
     // An interactive run, ended with the Escape key, saves its settings.
-    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere " + kWindow +
-                      " --set method=sir --set ior=1.77 & pid=$!;"
-                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
-                      "head -n 1);"
-                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
-                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
-                      " xdotool key Escape; wait $pid'",
-                  &out),
-              0)
-        << out;
+    ASSERT_EQ(interactively("builtin:sphere --set method=sir --set ior=1.77", "", &out), 0) << out;
     const auto session = mConfig / "glass-viewer" / "last-session.json";
     ASSERT_TRUE(std::filesystem::exists(session)) << out;
     // The next run starts from it...
@@ -191,15 +195,7 @@ TEST_F(ViewerWindow, AddedModelJoinsTheSceneAndTheNextStartRestoresIt) {
     std::string out;
     // A second model added by path (--add: the panel's Add button), then Escape: the scene is
     // saved with the session.
-    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere " + kWindow +
-                      " --add \"builtin:sphere?segments=24\" & pid=$!;"
-                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
-                      "head -n 1);"
-                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
-                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
-                      " xdotool key Escape; wait $pid'",
-                  &out),
-              0)
+    ASSERT_EQ(interactively("builtin:sphere --add \"builtin:sphere?segments=24\"", "", &out), 0)
         << out;
     const auto saved = mConfig / "glass-viewer" / "last-scene.json";
     auto world = asset::loadScene(saved);
@@ -225,21 +221,14 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
     // on the right one selects it, Ctrl + a drag to the right moves it, Escape saves the scene.
     // The click is held for a second: Dear ImGui 1.86's GLFW backend can miss the release of a
     // press and release that fall in one frame (slow frames: sanitizer builds).
-    ASSERT_EQ(inX("sh -c '" + kViewer + " builtin:sphere \"builtin:sphere?segments=24\" " +
-                      kWindow +
-                      " --no-restore & pid=$!;"
-                      " w=$(timeout 60 xdotool search --sync --onlyvisible --name ^glass-viewer$ | "
-                      "head -n 1);"
-                      " for i in $(seq 50); do xdotool mousemove --window $w 40 40 &&"
-                      " xdotool windowfocus --sync $w && break; sleep 0.1; done;"
-                      " sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 1;"
-                      " xdotool mouseup 1; sleep 1;"
-                      " xdotool keydown ctrl mousedown 1;"
-                      " for x in 270 280 290 300 310; do sleep 0.15;"
-                      " xdotool mousemove --window $w $x 200; done;"
-                      " sleep 0.3; xdotool mouseup 1 keyup ctrl; sleep 0.3;"
-                      " xdotool key Escape; wait $pid'",
-                  &out),
+    ASSERT_EQ(interactively("builtin:sphere \"builtin:sphere?segments=24\" --no-restore",
+                            "sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 1;"
+                            " xdotool mouseup 1; sleep 1;"
+                            " xdotool keydown ctrl mousedown 1;"
+                            " for x in 270 280 290 300 310; do sleep 0.15;"
+                            " xdotool mousemove --window $w $x 200; done;"
+                            " sleep 0.3; xdotool mouseup 1 keyup ctrl; sleep 0.3;",
+                            &out),
               0)
         << out;
     auto world = asset::loadScene(mConfig / "glass-viewer" / "last-scene.json");
