@@ -148,10 +148,7 @@ scene::World gridWorld(const scene::World& base, int count) {
     grid.camera.reset(); // the tool frames the whole grid
     float cell = 0.0f;
     for (const scene::Character& c : base.characters) {
-        scene::World one;
-        one.characters.push_back(c);
-        one.characters[0].placement = {};
-        const render::Bounds b = render::worldBounds(one, 4);
+        const render::Bounds b = render::animatedBounds(*c.model, c.playingClip(), 4);
         cell = std::max({cell, b.max.x - b.min.x, b.max.z - b.min.z});
     }
     cell *= 1.2f;
@@ -162,9 +159,7 @@ scene::World gridWorld(const scene::World& base, int count) {
         const double centre = 0.5 * double(columns - 1);
         c.placement.translation = glm::dvec3(double(cell) * (double(k % columns) - centre), 0.0,
                                              double(cell) * (double(k / columns) - centre));
-        if (c.clip >= 0 && c.speed != 0.0)
-            c.timeOffset = c.model->animations[std::size_t(c.clip)].duration * double(k) /
-                           double(count) / std::abs(c.speed);
+        c.timeOffset = c.clipPeriod() * double(k) / double(count);
         grid.characters.push_back(std::move(c));
     }
     return grid;
@@ -385,11 +380,8 @@ int run(int argc, char** argv) {
         }
         for (const scene::World& world : worlds) {
             const render::Bounds bounds = render::worldBounds(world);
-            headless.renderer->setGround({bounds.min.y, bounds.center(), 3.0f * bounds.radius()});
-            const render::Camera camera =
-                world.camera
-                    ? render::worldCamera(*world.camera, float(size.x) / float(size.y), bounds)
-                    : render::frameBounds(bounds, float(size.x) / float(size.y));
+            headless.renderer->setGround(render::GroundPlane::under(bounds));
+            const render::Camera camera = tool::viewOf(world, bounds, size);
             if (auto prepared = headless.renderer->prepare(world); !prepared) {
                 std::fprintf(stderr, "glass-bench: %s\n", prepared.error().message.c_str());
                 return 1;
@@ -399,9 +391,8 @@ int run(int argc, char** argv) {
                 for (const auto& instance : headless.renderer->geometry(c).instances())
                     for (const auto& primitive : instance.primitives)
                         triangles += primitive.indexCount / 3;
-            const std::size_t covered =
-                coveredPixels(world, 0.5 * tool::longestClip(world), camera, size);
-            const double duration = tool::longestClip(world);
+            const double duration = tool::sweepPeriod(world);
+            const std::size_t covered = coveredPixels(world, 0.5 * duration, camera, size);
             std::vector<MethodRun> runs;
             for (const std::string& method : methods)
                 runs.push_back({method, {}, {}, {}, {}, {}, 0});

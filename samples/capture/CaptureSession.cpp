@@ -81,8 +81,7 @@ CaptureSession::create(const SessionOptions& options) {
         s->mPlugins.push_back(std::move(*loaded));
     }
     s->mBounds = render::worldBounds(s->mWorld);
-    const float radius = s->mBounds.radius();
-    s->mRenderer->setGround({s->mBounds.min.y, s->mBounds.center(), 3.0f * radius});
+    s->mRenderer->setGround(render::GroundPlane::under(s->mBounds));
     return s;
 }
 

@@ -23,21 +23,26 @@ struct HeadlessScene {
     double duration = 1.0;
     render::Bounds bounds; ///< of every character over its clip
 
-    /** The scene file's camera, else one framing the bounds. */
-    render::Camera camera(glm::ivec2 size) const {
-        const float aspect = float(size.x) / float(size.y);
-        return world.camera ? render::worldCamera(*world.camera, aspect, bounds)
-                            : render::frameBounds(bounds, aspect);
-    }
+    render::Camera camera(glm::ivec2 size) const;
 };
 
-/** The duration of the longest clip of `world`, in scene seconds (at each character's speed). */
-inline double longestClip(const scene::World& world) {
-    double longest = 0.0;
-    for (const scene::Character& c : world.characters)
-        if (c.clip >= 0 && c.speed != 0.0)
-            longest = std::max(longest, c.model->animations[std::size_t(c.clip)].duration /
-                                            std::abs(c.speed));
+/** The camera of `world` at `size`: its scene file's camera, else one framing `bounds`. */
+inline render::Camera viewOf(const scene::World& world, const render::Bounds& bounds,
+                             glm::ivec2 size) {
+    const float aspect = float(size.x) / float(size.y);
+    return world.camera ? render::worldCamera(*world.camera, aspect, bounds)
+                        : render::frameBounds(bounds, aspect);
+}
+
+/** viewOf() the scene and its bounds. */
+inline render::Camera HeadlessScene::camera(glm::ivec2 size) const {
+    return viewOf(world, bounds, size);
+}
+
+/** The longest clip of `world` in scene seconds, 1 when none plays one: the period tools sweep
+ *  their times over. */
+inline double sweepPeriod(const scene::World& world) {
+    const double longest = world.longestClipPeriod();
     return longest > 1e-3 ? longest : 1.0;
 }
 
@@ -72,9 +77,9 @@ inline core::Result<HeadlessScene> openHeadlessScene(std::span<const std::string
         return added.error();
     if (auto prepared = s.renderer->prepare(s.world); !prepared)
         return prepared.error();
-    s.duration = longestClip(s.world);
+    s.duration = sweepPeriod(s.world);
     s.bounds = render::worldBounds(s.world);
-    s.renderer->setGround({s.bounds.min.y, s.bounds.center(), 3.0f * s.bounds.radius()});
+    s.renderer->setGround(render::GroundPlane::under(s.bounds));
     return s;
 }
 

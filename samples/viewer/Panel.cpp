@@ -229,11 +229,7 @@ void Panel::animation(Viewer& v) {
     if (!section("Animation"))
         return;
     plugin::ParameterSet& s = v.mSettings;
-    double longest = 0.0;
-    for (const scene::Character& c : v.mWorld.characters)
-        if (c.clip >= 0 && c.clip < int(c.model->animations.size()) && c.speed != 0.0)
-            longest = std::max(longest, c.model->animations[std::size_t(c.clip)].duration /
-                                            std::abs(c.speed));
+    const double longest = v.mWorld.longestClipPeriod();
     if (longest <= 0.0) {
         ImGui::TextDisabled("no clips: the rest pose");
         return;

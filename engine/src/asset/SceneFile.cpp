@@ -336,8 +336,7 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
         j["translation"] = {t.translation.x, t.translation.y, t.translation.z};
         j["rotation"] = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
         j["scale"] = {t.scale.x, t.scale.y, t.scale.z};
-        if (c.clip >= 0 && c.model && c.clip < int(c.model->animations.size()) &&
-            !c.model->animations[std::size_t(c.clip)].name.empty())
+        if (c.playingClip() >= 0 && !c.model->animations[std::size_t(c.clip)].name.empty())
             j["clip"] = c.model->animations[std::size_t(c.clip)].name;
         else if (c.clip >= 0)
             j["clip"] = c.clip;

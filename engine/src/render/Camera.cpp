@@ -43,7 +43,7 @@ Bounds worldBounds(const scene::World& world, int samples) {
     Bounds bounds;
     for (const scene::Character& character : world.characters) {
         const scene::Model& model = *character.model;
-        const int clip = character.clip < int(model.animations.size()) ? character.clip : -1;
+        const int clip = character.playingClip();
         auto [it, added] = perClip.try_emplace({&model, clip});
         if (added)
             it->second = animatedBounds(model, clip, samples);

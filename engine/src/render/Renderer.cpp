@@ -88,11 +88,11 @@ core::Result<std::shared_ptr<ModelGpu>> uploadModel(std::shared_ptr<const scene:
     }
     m->materials = std::move(materials);
     for (int node : model->meshNodes()) {
-        const scene::Mesh& mesh = model->meshes[std::size_t(model->nodes[std::size_t(node)].mesh)];
+        const int mesh = model->nodes[std::size_t(node)].mesh;
         auto& arrays = m->vertexArrays.emplace_back();
-        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        for (std::size_t p = 0; p < model->meshes[std::size_t(mesh)].primitives.size(); ++p) {
             gl::VertexArray vao;
-            vao.setIndexBuffer(m->upload->indices(model->nodes[std::size_t(node)].mesh, p));
+            vao.setIndexBuffer(m->upload->indices(mesh, p));
             arrays.push_back(std::move(vao));
         }
     }
@@ -236,8 +236,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         const scene::Character& character = world.characters[c];
         CharacterGpu& cg = gpu.characters[c];
         const scene::Model& model = *character.model;
-        const int clip = character.clip < int(model.animations.size()) ? character.clip : -1;
-        anim::applyClip(model, clip, character.clipTime(time), cg.pose);
+        anim::applyClip(model, character.playingClip(), character.clipTime(time), cg.pose);
         anim::updateWorld(model, cg.pose);
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
         const auto& instances = cg.deformer->instances();

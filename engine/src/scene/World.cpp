@@ -1,4 +1,4 @@
-// A character's clock; a world of one character.
+// A character's clock, a world's longest clip; a world of one character.
 #include "engine/scene/World.h"
 
 #include <algorithm>
@@ -6,8 +6,26 @@
 
 namespace scene {
 
+int Character::playingClip() const {
+    return model && clip >= 0 && clip < int(model->animations.size()) ? clip : -1;
+}
+
+double Character::clipPeriod() const {
+    const int playing = playingClip();
+    return playing < 0 || speed == 0.0
+               ? 0.0
+               : model->animations[std::size_t(playing)].duration / std::abs(speed);
+}
+
+double World::longestClipPeriod() const {
+    double longest = 0.0;
+    for (const Character& c : characters)
+        longest = std::max(longest, c.clipPeriod());
+    return longest;
+}
+
 double Character::clipTime(double sceneTime) const {
-    if (!model || clip < 0 || clip >= int(model->animations.size()))
+    if (playingClip() < 0)
         return 0.0;
     const double duration = model->animations[std::size_t(clip)].duration;
     const double t = (sceneTime + timeOffset) * speed;

@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -37,6 +38,12 @@ struct GroundPlane {
     float height = 0.0f;
     glm::vec3 center{0.0f};
     float halfSize = 1.0f;
+
+    /** The plane the tools put under `bounds`: at their lowest point, centred under them,
+     *  three bounding radii wide on each side. */
+    static GroundPlane under(const Bounds& bounds) {
+        return {bounds.min.y, bounds.center(), 3.0f * std::max(bounds.radius(), 1e-3f)};
+    }
 };
 
 /** Display and scene settings of a frame. */

@@ -47,6 +47,11 @@ struct Character {
     /** The clip time at scene time `sceneTime`: (sceneTime + timeOffset) * speed, wrapped into
      *  the clip when looping, else clamped to it; 0 without a clip. */
     double clipTime(double sceneTime) const;
+    /** `clip` when it names one of the model's clips, else -1 (the rest pose). */
+    int playingClip() const;
+    /** Scene seconds one run of the clip takes (its duration over |speed|); 0 without a clip or
+     *  at speed 0. */
+    double clipPeriod() const;
 };
 
 /** A camera a scene file places: at `position`, looking at `target`, vertical field of view
@@ -62,6 +67,9 @@ struct World {
     std::optional<std::string> environment; ///< an HDR path (absolute once loaded); else the sky
     bool ground = false;
     std::optional<WorldCamera> camera; ///< else the tools frame every character
+
+    /** The longest Character::clipPeriod() of the characters; 0 when none plays a clip. */
+    double longestClipPeriod() const;
 };
 
 /** A world of one character placing `model` at the origin, playing clip `clip` (-1: the rest
