@@ -11,6 +11,12 @@ find_package(TinyGLTF REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
 # zlib1g-dev: checks PNG image data before stb inflates it (asset/ImageChecks)
 find_package(ZLIB REQUIRED)
+# libdraco-dev, libmeshoptimizer-dev: decoders of KHR_draco_mesh_compression and
+# EXT_meshopt_compression geometry (only engine/src/asset includes them)
+find_package(draco REQUIRED)
+find_package(meshoptimizer REQUIRED)
+# libwebp-dev: EXT_texture_webp images
+pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET GLOBAL libwebp)
 # libepoxy-dev: GL and EGL entry points (only engine/src/gl includes it)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET GLOBAL epoxy)
 # libglfw3-dev: windows (GL 4.5 core) for the viewer

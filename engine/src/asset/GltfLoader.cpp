@@ -5,6 +5,7 @@
 
 #include "AccessorReader.h"
 #include "GltfConvert.h"
+#include "GltfDecode.h"
 #include "ImageChecks.h"
 #include "LoadError.h"
 #include "engine/core/Files.h"
@@ -354,6 +355,11 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         const bool isBinary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
         if (isBinary)
             checkGlbContainer(*bytes);
+        const std::optional<std::vector<std::uint8_t>> prepared =
+            prepareForParser(*bytes, isBinary);
+        const std::span<const std::uint8_t> preparedBytes =
+            prepared ? std::span<const std::uint8_t>(*prepared) : data;
+        bytes = &preparedBytes;
         const bool parsed =
             isBinary ? parser.LoadBinaryFromMemory(&src, &err, &warn, bytes->data(),
                                                    unsigned(bytes->size()), baseDir)
@@ -378,6 +384,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
 
         checkVersion(src.asset);
         validateStructure(src);
+        decodeCompressedGeometry(src);
         const AccessorReader reader(src, bytes->size());
 
         scene::Model model;

@@ -15,7 +15,9 @@ namespace asset {
 const std::set<std::string>& supportedRequiredExtensions() {
     static const std::set<std::string> supported = {
         "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
-        "KHR_materials_dispersion", "KHR_materials_emissive_strength"};
+        "KHR_materials_dispersion", "KHR_materials_emissive_strength",
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression",
+        "KHR_mesh_quantization"};
     return supported;
 }
 

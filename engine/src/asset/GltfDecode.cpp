@@ -1,0 +1,457 @@
+// Compressed geometry: Draco primitives (libdraco) and meshopt buffer views (libmeshoptimizer)
+// decoded into plain buffers before the loader reads accessors. Every size a compressed stream
+// or the JSON claims is checked before it is allocated.
+#include "GltfDecode.h"
+
+#include "LoadError.h"
+#include "engine/core/Limits.h"
+
+#include <draco/compression/decode.h>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <string>
+
+namespace asset::detail {
+namespace {
+
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+constexpr const char* kMeshopt[] = {"EXT_meshopt_compression", "KHR_meshopt_compression"};
+/** Where prepareForParser keeps a Draco primitive's indices accessor for the decoder. */
+constexpr const char* kDracoIndices = "glass.indices";
+
+/** Meshopt's codecs expand at most this much (the vertex codec spends 2 bits on 16 bytes of
+ *  zeros), so a claim beyond it is refused before the output is allocated. */
+constexpr std::uint64_t kMeshoptMaxRatio = 64;
+
+std::string n(std::uint64_t v) {
+    return std::to_string(v);
+}
+
+std::uint32_t readU32(std::span<const std::uint8_t> bytes, std::size_t offset) {
+    std::uint32_t v;
+    std::memcpy(&v, bytes.data() + offset, 4);
+    return v;
+}
+
+void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    out.insert(out.end(), p, p + 4);
+}
+
+/** A member of a tinygltf object, or nullptr. */
+const tinygltf::Value* member(const tinygltf::Value& object, const char* key) {
+    return object.IsObject() && object.Has(key) ? &object.Get(key) : nullptr;
+}
+
+std::int64_t integer(const tinygltf::Value& object, const char* key, std::int64_t fallback,
+                     const std::string& what) {
+    const tinygltf::Value* v = member(object, key);
+    if (!v)
+        return fallback;
+    if (!v->IsNumber() || v->GetNumberAsDouble() != double(std::int64_t(v->GetNumberAsDouble())))
+        fail(what + " " + key + " is not an integer");
+    return std::int64_t(v->GetNumberAsDouble());
+}
+
+std::string text(const tinygltf::Value& object, const char* key, const std::string& fallback) {
+    const tinygltf::Value* v = member(object, key);
+    return v && v->IsString() ? v->Get<std::string>() : fallback;
+}
+
+/** Keeps the running total of decoded bytes under the model limit. */
+class Budget {
+public:
+    void take(std::uint64_t bytes, const std::string& what) {
+        if (bytes > core::limits::kMaxModelBytes - mUsed)
+            fail(what + " decodes to " + n(bytes) + " bytes, over the limit of " +
+                 n(core::limits::kMaxModelBytes) + " for a whole model");
+        mUsed += bytes;
+    }
+
+private:
+    std::uint64_t mUsed = 0;
+};
+
+/** The bytes of buffer view `index`, checked against its buffer. */
+std::span<const std::uint8_t> viewBytes(const tinygltf::Model& model, std::int64_t index,
+                                        const std::string& what) {
+    if (index < 0 || std::uint64_t(index) >= model.bufferViews.size())
+        fail(what + " references bufferView " + n(std::uint64_t(index)) + ", file has " +
+             n(model.bufferViews.size()));
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(index)];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size())
+        fail("bufferView " + n(std::uint64_t(index)) + " references buffer " +
+             std::to_string(view.buffer) + ", file has " + n(model.buffers.size()));
+    const std::vector<unsigned char>& data = model.buffers[std::size_t(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+        fail("bufferView " + n(std::uint64_t(index)) + " runs past the end of buffer " +
+             std::to_string(view.buffer) + " (" + n(data.size()) + " bytes)");
+    return {data.data() + view.byteOffset, view.byteLength};
+}
+
+/** A new buffer holding `data` and a view over all of it; returns the view's index. */
+int addView(tinygltf::Model& model, std::vector<unsigned char> data, std::size_t byteStride) {
+    tinygltf::BufferView view;
+    view.buffer = int(model.buffers.size());
+    view.byteOffset = 0;
+    view.byteLength = data.size();
+    view.byteStride = byteStride;
+    tinygltf::Buffer buffer;
+    buffer.data = std::move(data);
+    model.buffers.push_back(std::move(buffer));
+    model.bufferViews.push_back(view);
+    return int(model.bufferViews.size()) - 1;
+}
+
+// --- EXT_meshopt_compression --------------------------------------------------------------
+
+void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const tinygltf::Value& ext,
+                       Budget& budget) {
+    const std::string what = "bufferView " + n(index) + " " + kMeshopt[0];
+    const std::int64_t buffer = integer(ext, "buffer", -1, what);
+    const std::int64_t byteOffset = integer(ext, "byteOffset", 0, what);
+    const std::int64_t byteLength = integer(ext, "byteLength", -1, what);
+    const std::int64_t stride = integer(ext, "byteStride", -1, what);
+    const std::int64_t count = integer(ext, "count", -1, what);
+    const std::string mode = text(ext, "mode", "");
+    const std::string filter = text(ext, "filter", "NONE");
+    if (buffer < 0 || std::uint64_t(buffer) >= model.buffers.size())
+        fail(what + " references buffer " + std::to_string(buffer) + ", file has " +
+             n(model.buffers.size()));
+    const std::vector<unsigned char>& data = model.buffers[std::size_t(buffer)].data;
+    if (byteOffset < 0 || byteLength < 0 || std::uint64_t(byteOffset) > data.size() ||
+        std::uint64_t(byteLength) > data.size() - std::uint64_t(byteOffset))
+        fail(what + " (offset " + std::to_string(byteOffset) + ", length " +
+             std::to_string(byteLength) + ") runs past the end of buffer " +
+             std::to_string(buffer) + " (" + n(data.size()) + " bytes)");
+    if (count < 0 || std::uint64_t(count) > core::limits::kMaxVerticesPerPrimitive)
+        fail(what + " count " + std::to_string(count) + " is not within 0.." +
+             n(core::limits::kMaxVerticesPerPrimitive));
+    if (mode == "ATTRIBUTES") {
+        if (stride < 4 || stride > 256 || stride % 4 != 0)
+            fail(what + " byteStride " + std::to_string(stride) +
+                 " must be a multiple of 4 within 4..256 for ATTRIBUTES");
+    } else if (mode == "TRIANGLES" || mode == "INDICES") {
+        if (stride != 2 && stride != 4)
+            fail(what + " byteStride " + std::to_string(stride) + " must be 2 or 4 for " + mode);
+        if (mode == "TRIANGLES" && count % 3 != 0)
+            fail(what + " count " + std::to_string(count) +
+                 " is not a multiple of 3 for TRIANGLES");
+        if (filter != "NONE")
+            fail(what + " filter " + filter + " applies to ATTRIBUTES only");
+    } else {
+        fail(what + " mode '" + mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
+    }
+    if (filter == "OCTAHEDRAL" && stride != 4 && stride != 8)
+        fail(what + " OCTAHEDRAL filter needs byteStride 4 or 8, not " + std::to_string(stride));
+    if (filter == "QUATERNION" && stride != 8)
+        fail(what + " QUATERNION filter needs byteStride 8, not " + std::to_string(stride));
+    if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" &&
+        filter != "EXPONENTIAL")
+        fail(what + " filter '" + filter + "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
+
+    const std::uint64_t decodedBytes = std::uint64_t(count) * std::uint64_t(stride);
+    if (decodedBytes > kMeshoptMaxRatio * std::uint64_t(byteLength) + 4096)
+        fail(what + " claims " + n(decodedBytes) + " decoded bytes from " +
+             std::to_string(byteLength) + " compressed ones, more than the codec can produce");
+    tinygltf::BufferView& view = model.bufferViews[index];
+    if (view.byteLength != decodedBytes)
+        fail(what + " decodes to " + n(decodedBytes) + " bytes (count " + std::to_string(count) +
+             " x byteStride " + std::to_string(stride) + "), but the bufferView's byteLength is " +
+             n(view.byteLength));
+    budget.take(decodedBytes, what);
+
+    std::vector<unsigned char> out(decodedBytes);
+    const unsigned char* source = data.data() + byteOffset;
+    const std::size_t size = std::size_t(byteLength);
+    int status = 0;
+    if (mode == "ATTRIBUTES")
+        status = meshopt_decodeVertexBuffer(out.data(), std::size_t(count), std::size_t(stride),
+                                            source, size);
+    else if (mode == "TRIANGLES")
+        status = meshopt_decodeIndexBuffer(out.data(), std::size_t(count), std::size_t(stride),
+                                           source, size);
+    else
+        status = meshopt_decodeIndexSequence(out.data(), std::size_t(count), std::size_t(stride),
+                                             source, size);
+    if (status != 0)
+        fail(what + ": the " + mode + " stream is corrupt (meshopt error " +
+             std::to_string(status) + ")");
+    if (filter == "OCTAHEDRAL")
+        meshopt_decodeFilterOct(out.data(), std::size_t(count), std::size_t(stride));
+    else if (filter == "QUATERNION")
+        meshopt_decodeFilterQuat(out.data(), std::size_t(count), std::size_t(stride));
+    else if (filter == "EXPONENTIAL")
+        meshopt_decodeFilterExp(out.data(), std::size_t(count), std::size_t(stride));
+
+    tinygltf::Buffer decoded;
+    decoded.data = std::move(out);
+    model.buffers.push_back(std::move(decoded));
+    view.buffer = int(model.buffers.size()) - 1;
+    view.byteOffset = 0;
+}
+
+// --- KHR_draco_mesh_compression ------------------------------------------------------------
+
+int accessorComponents(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+        return 1;
+    case TINYGLTF_TYPE_VEC2:
+        return 2;
+    case TINYGLTF_TYPE_VEC3:
+        return 3;
+    case TINYGLTF_TYPE_VEC4:
+        return 4;
+    default:
+        return 0;
+    }
+}
+
+/** Every point of `attribute` converted to T, `components` per point, as raw bytes. */
+template <typename T>
+std::vector<unsigned char> convertPoints(const draco::Mesh& mesh,
+                                         const draco::PointAttribute& attribute, int components,
+                                         const std::string& what) {
+    std::vector<unsigned char> out(std::size_t(mesh.num_points()) * std::size_t(components) *
+                                   sizeof(T));
+    T value[4] = {};
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+        if (!attribute.ConvertValue<T>(attribute.mapped_index(p), std::int8_t(components), value))
+            fail(what + ": point " + n(p.value()) + " does not convert to the accessor's type");
+        std::memcpy(out.data() + std::size_t(p.value()) * std::size_t(components) * sizeof(T),
+                    value, std::size_t(components) * sizeof(T));
+    }
+    return out;
+}
+
+std::vector<unsigned char> convertAttribute(const draco::Mesh& mesh,
+                                            const draco::PointAttribute& attribute,
+                                            const tinygltf::Accessor& accessor,
+                                            const std::string& what) {
+    const int components = accessorComponents(accessor.type);
+    switch (accessor.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return convertPoints<float>(mesh, attribute, components, what);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return convertPoints<std::uint8_t>(mesh, attribute, components, what);
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return convertPoints<std::int8_t>(mesh, attribute, components, what);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return convertPoints<std::uint16_t>(mesh, attribute, components, what);
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        return convertPoints<std::int16_t>(mesh, attribute, components, what);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return convertPoints<std::uint32_t>(mesh, attribute, components, what);
+    default:
+        fail(what + " has componentType " + std::to_string(accessor.componentType) +
+             ", which no glTF vertex attribute uses");
+    }
+}
+
+std::size_t componentBytes(int componentType) {
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return 2;
+    default:
+        return 4;
+    }
+}
+
+tinygltf::Accessor& accessorAt(tinygltf::Model& model, std::int64_t index,
+                               const std::string& what) {
+    if (index < 0 || std::uint64_t(index) >= model.accessors.size())
+        fail(what + " references accessor " + std::to_string(index) + ", file has " +
+             n(model.accessors.size()));
+    return model.accessors[std::size_t(index)];
+}
+
+void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive,
+                          const std::string& what, Budget& budget) {
+    const std::string name = what + " " + kDraco;
+    tinygltf::Value ext = primitive.extensions.at(kDraco);
+    primitive.extensions.erase(kDraco);
+    if (const tinygltf::Value* indices = member(ext, kDracoIndices))
+        primitive.indices = indices->GetNumberAsInt();
+    const tinygltf::Value* attributes = member(ext, "attributes");
+    if (!attributes || !attributes->IsObject())
+        fail(name + " has no attributes object");
+    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
+        fail(name + " is on a primitive of mode " + std::to_string(primitive.mode) +
+             "; Draco meshes are triangles");
+
+    // The sizes the JSON claims, checked before the decoder allocates anything.
+    std::uint64_t vertexCount = 0;
+    std::uint64_t decodedBytes = 0;
+    for (const std::string& semantic : attributes->Keys()) {
+        const auto it = primitive.attributes.find(semantic);
+        if (it == primitive.attributes.end())
+            fail(name + " compresses " + semantic + ", which the primitive does not list");
+        const tinygltf::Accessor& accessor = accessorAt(model, it->second, what + " " + semantic);
+        if (accessorComponents(accessor.type) == 0)
+            fail(what + " " + semantic + " accessor " + std::to_string(it->second) +
+                 " is not a scalar or vector");
+        if (vertexCount != 0 && accessor.count != vertexCount)
+            fail(name + ": " + semantic + " has " + n(accessor.count) +
+                 " elements, other attributes " + n(vertexCount));
+        vertexCount = accessor.count;
+        decodedBytes += std::uint64_t(accessor.count) *
+                        std::uint64_t(accessorComponents(accessor.type)) *
+                        componentBytes(accessor.componentType);
+    }
+    if (vertexCount > core::limits::kMaxVerticesPerPrimitive)
+        fail(name + " claims " + n(vertexCount) + " vertices, over the limit of " +
+             n(core::limits::kMaxVerticesPerPrimitive));
+    std::uint64_t indexCount = 0;
+    if (primitive.indices >= 0) {
+        indexCount = accessorAt(model, primitive.indices, what + " indices").count;
+        if (indexCount > 3 * core::limits::kMaxVerticesPerPrimitive)
+            fail(name + " claims " + n(indexCount) + " indices, over the limit");
+        decodedBytes += indexCount * 4;
+    }
+    budget.take(decodedBytes, name);
+
+    const std::span<const std::uint8_t> compressed =
+        viewBytes(model, integer(ext, "bufferView", -1, name), name);
+    draco::DecoderBuffer stream;
+    stream.Init(reinterpret_cast<const char*>(compressed.data()), compressed.size());
+    auto geometryType = draco::Decoder::GetEncodedGeometryType(&stream);
+    if (!geometryType.ok() || geometryType.value() != draco::TRIANGULAR_MESH)
+        fail(name + ": the stream is not a Draco triangle mesh" +
+             (geometryType.ok() ? "" : " (" + geometryType.status().error_msg_string() + ")"));
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&stream);
+    if (!decoded.ok())
+        fail(name + ": the Draco stream does not decode (" + decoded.status().error_msg_string() +
+             ")");
+    const draco::Mesh& mesh = *decoded.value();
+    if (mesh.num_points() != vertexCount)
+        fail(name + " decodes to " + n(mesh.num_points()) + " vertices, its accessors claim " +
+             n(vertexCount));
+    if (primitive.indices >= 0 && std::uint64_t(mesh.num_faces()) * 3 != indexCount)
+        fail(name + " decodes to " + n(mesh.num_faces()) + " triangles, its indices accessor " +
+             "claims " + n(indexCount) + " indices");
+
+    for (const std::string& semantic : attributes->Keys()) {
+        const std::string attributeName = name + " " + semantic;
+        const std::int64_t id = integer(*attributes, semantic.c_str(), -1, name + " attributes");
+        const draco::PointAttribute* attribute =
+            id < 0 ? nullptr : mesh.GetAttributeByUniqueId(std::uint32_t(id));
+        if (!attribute)
+            fail(attributeName + " is Draco attribute " + std::to_string(id) +
+                 ", which the stream does not have");
+        tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.attributes[semantic])];
+        if (attribute->num_components() < accessorComponents(accessor.type))
+            fail(attributeName + " has " + std::to_string(attribute->num_components()) +
+                 " components in the stream, its accessor " +
+                 std::to_string(accessorComponents(accessor.type)));
+        std::vector<unsigned char> data =
+            convertAttribute(mesh, *attribute, accessor, attributeName);
+        accessor.bufferView = addView(model, std::move(data), 0);
+        accessor.byteOffset = 0;
+        accessor.sparse = {};
+    }
+    if (primitive.indices >= 0) {
+        std::vector<unsigned char> data(std::size_t(indexCount) * 4);
+        for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
+            for (int corner = 0; corner < 3; ++corner) {
+                const std::uint32_t v = mesh.face(f)[corner].value();
+                std::memcpy(data.data() + (std::size_t(f.value()) * 3 + std::size_t(corner)) * 4,
+                            &v, 4);
+            }
+        tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.indices)];
+        accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        accessor.bufferView = addView(model, std::move(data), 0);
+        accessor.byteOffset = 0;
+        accessor.sparse = {};
+    }
+}
+
+} // namespace
+
+std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::uint8_t> bytes,
+                                                          bool isBinary) {
+    std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (isBinary)
+        json = json.substr(20, readU32(bytes, 12)); // the container is checked already
+    if (json.find(kDraco) == std::string_view::npos &&
+        json.find("meshopt_compression") == std::string_view::npos)
+        return std::nullopt;
+    nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object())
+        return std::nullopt; // the parser reports it
+
+    if (document.contains("meshes") && document["meshes"].is_array())
+        for (nlohmann::json& mesh : document["meshes"])
+            if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+                for (nlohmann::json& primitive : mesh["primitives"]) {
+                    if (!primitive.is_object() || !primitive.contains("indices") ||
+                        !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
+                        !primitive["extensions"].contains(kDraco) ||
+                        !primitive["extensions"][kDraco].is_object())
+                        continue;
+                    primitive["extensions"][kDraco][kDracoIndices] = primitive["indices"];
+                    primitive.erase("indices");
+                }
+    if (document.contains("buffers") && document["buffers"].is_array())
+        for (nlohmann::json& buffer : document["buffers"]) {
+            if (!buffer.is_object() || !buffer.contains("extensions") ||
+                !buffer["extensions"].is_object())
+                continue;
+            for (const char* name : kMeshopt) {
+                const auto ext = buffer["extensions"].find(name);
+                if (ext == buffer["extensions"].end() || !ext->is_object() ||
+                    ext->value("fallback", false) != true)
+                    continue;
+                // Nothing reads a fallback buffer: every view into it is decoded from another.
+                // One zero byte stands in for it (tinygltf refuses an empty data URI).
+                buffer["uri"] = "data:application/octet-stream;base64,AA==";
+                buffer["byteLength"] = 1;
+            }
+        }
+
+    const std::string text = document.dump();
+    if (!isBinary)
+        return std::vector<std::uint8_t>(text.begin(), text.end());
+    // GLB: the new JSON chunk (space-padded to 4 bytes), then the file's other chunks as they are.
+    const std::size_t jsonLength = (text.size() + 3) & ~std::size_t(3);
+    const std::size_t rest = 20 + std::size_t(readU32(bytes, 12));
+    std::vector<std::uint8_t> out;
+    out.reserve(20 + jsonLength + (bytes.size() - rest));
+    out.insert(out.end(), bytes.begin(), bytes.begin() + 8);
+    appendU32(out, std::uint32_t(20 + jsonLength + (bytes.size() - rest)));
+    appendU32(out, std::uint32_t(jsonLength));
+    appendU32(out, 0x4E4F534Au);
+    out.insert(out.end(), text.begin(), text.end());
+    out.resize(20 + jsonLength, ' ');
+    out.insert(out.end(), bytes.begin() + std::ptrdiff_t(rest), bytes.end());
+    return out;
+}
+
+void decodeCompressedGeometry(tinygltf::Model& model) {
+    Budget budget;
+    for (std::size_t i = 0; i < model.bufferViews.size(); ++i)
+        for (const char* name : kMeshopt) {
+            const auto it = model.bufferViews[i].extensions.find(name);
+            if (it == model.bufferViews[i].extensions.end())
+                continue;
+            const tinygltf::Value ext = it->second;
+            model.bufferViews[i].extensions.erase(it);
+            decodeMeshoptView(model, i, ext, budget);
+        }
+    for (std::size_t m = 0; m < model.meshes.size(); ++m)
+        for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+            tinygltf::Primitive& primitive = model.meshes[m].primitives[p];
+            if (primitive.extensions.count(kDraco))
+                decodeDracoPrimitive(model, primitive, "mesh " + n(m) + " primitive " + n(p),
+                                     budget);
+        }
+}
+
+} // namespace asset::detail
