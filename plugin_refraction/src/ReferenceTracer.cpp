@@ -293,15 +293,21 @@ public:
                 const int i = model->textures[std::size_t(t.texture)].image;
                 return i >= 0 ? &model->images[std::size_t(i)] : nullptr;
             };
+            auto uv = [&](const scene::TextureRef& t) {
+                return dvec2(glm::dmat3(t.transform) *
+                             glm::dvec3(h.uv, 1.0)); // KHR_texture_transform
+            };
             if (const auto* img = image(m->baseColorTexture))
-                base *= sampleImage(*img, h.uv, true);
+                base *= sampleImage(*img, uv(m->baseColorTexture), true);
+            if (m->unlit) // KHR_materials_unlit
+                return dvec3(base);
             if (const auto* img = image(m->metallicRoughnessTexture)) {
-                const glm::dvec4 mr = sampleImage(*img, h.uv, false);
+                const glm::dvec4 mr = sampleImage(*img, uv(m->metallicRoughnessTexture), false);
                 roughness *= mr.g;
                 metallic *= mr.b;
             }
             if (const auto* img = image(m->emissiveTexture))
-                emissive *= dvec3(sampleImage(*img, h.uv, true));
+                emissive *= dvec3(sampleImage(*img, uv(m->emissiveTexture), true));
         }
         dvec3 N = h.shadingNormal;
         if (glm::dot(N, V) < 0)

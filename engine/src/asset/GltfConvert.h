@@ -7,6 +7,8 @@
 
 #include <tiny_gltf.h>
 
+#include <set>
+
 namespace asset::detail {
 
 /** asset.version must be 2.x and asset.minVersion (when present) at most 2.0. */
@@ -33,8 +35,17 @@ scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& read
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
                                   int index, const std::vector<scene::Mesh>& meshes);
 
-/** Material `index` with metallic-roughness and the KHR glass extensions. */
-scene::Material convertMaterial(const tinygltf::Model& model, int index);
+/** Material `index` with metallic-roughness, the KHR glass extensions, KHR_materials_unlit,
+ *  KHR_texture_transform on every slot, and KHR_materials_pbrSpecularGlossiness converted
+ *  (what the conversion drops is a line in `warnings`). */
+scene::Material convertMaterial(const tinygltf::Model& model, int index,
+                                std::vector<std::string>& warnings);
+
+/** Texture `index` with its image: EXT_texture_webp's source where given; for
+ *  KHR_texture_basisu the PNG or JPEG fallback, or none with a line in `warnings` when only the
+ *  KTX2 image (in `undecoded`) is there. */
+scene::Texture convertTexture(const tinygltf::Model& model, int index,
+                              const std::set<int>& undecoded, std::vector<std::string>& warnings);
 
 scene::Camera convertCamera(const tinygltf::Model& model, int index);
 

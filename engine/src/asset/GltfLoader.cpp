@@ -16,11 +16,13 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 #include <tiny_gltf.h>
+#include <webp/decode.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <set>
 
 namespace asset {
 namespace detail {
@@ -30,14 +32,62 @@ std::string n(std::size_t v) {
     return std::to_string(v);
 }
 
+/** What the image callback is asked to do, and what it could not decode. */
+struct ImageDecoding {
+    bool decode = true;
+    std::set<int> ktx2; ///< images kept undecoded: KTX2 (no decoder in Debian 12)
+};
+
+/** Decodes WebP to RGBA8 with libwebp after the same size checks as the other formats. */
+bool decodeWebp(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes,
+                int size, bool decode) {
+    int width = 0, height = 0;
+    if (!WebPGetInfo(bytes, std::size_t(size), &width, &height)) {
+        *err += "image " + std::to_string(index) + " is not a valid WebP image";
+        return false;
+    }
+    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize) {
+        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
+                std::to_string(height) + ", over the limit of " +
+                std::to_string(core::limits::kMaxTextureSize);
+        return false;
+    }
+    if (auto refuse = detail::implausibleSize(width, height, std::size_t(size))) {
+        *err += "image " + std::to_string(index) + ": " + *refuse;
+        return false;
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    if (!decode)
+        return true;
+    image->image.resize(std::size_t(width) * std::size_t(height) * 4u);
+    if (!WebPDecodeRGBAInto(bytes, std::size_t(size), image->image.data(), image->image.size(),
+                            width * 4)) {
+        *err += "image " + std::to_string(index) + " could not be decoded: corrupt WebP data";
+        return false;
+    }
+    return true;
+}
+
 /** tinygltf image callback: checks the header's size against the limits before decoding,
- *  decodes to RGBA (8 or 16 bits), or only records the size when decoding is off. */
+ *  decodes PNG and JPEG to RGBA (8 or 16 bits) and WebP to RGBA8, or only records the size
+ *  when decoding is off. KTX2 images are kept undecoded and listed for a warning. */
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void* userData) {
-    const bool decode = *static_cast<const bool*>(userData);
+    ImageDecoding& options = *static_cast<ImageDecoding*>(userData);
+    const bool decode = options.decode;
     const detail::ImageKind kind = detail::imageKind(std::span(bytes, std::size_t(size)));
+    if (kind == detail::ImageKind::Ktx2) {
+        options.ktx2.insert(index);
+        return true;
+    }
+    if (kind == detail::ImageKind::Webp)
+        return decodeWebp(image, index, err, bytes, size, decode);
     if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg) {
-        *err += "image " + std::to_string(index) + " is neither PNG nor JPEG";
+        *err += "image " + std::to_string(index) + " is neither PNG, JPEG, WebP nor KTX2";
         return false;
     }
     int width = 0, height = 0, components = 0;
@@ -143,7 +193,39 @@ double number(const tinygltf::Value& object, const char* key, double fallback) {
     return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
-/** A glTF textureInfo object (index, texCoord, scale/strength) at `key` of `object`. */
+/** KHR_texture_transform in a textureInfo's `extensions`, folded into `ref`: its texCoord
+ *  override and the matrix translation * rotation * scale of the extension's text. */
+void readTransform(const tinygltf::ExtensionMap& extensions, scene::TextureRef& ref,
+                   const std::string& what) {
+    const auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end())
+        return;
+    const tinygltf::Value& e = it->second;
+    auto pair = [&](const char* key, glm::vec2 fallback) {
+        if (!e.IsObject() || !e.Has(key))
+            return fallback;
+        const tinygltf::Value& v = e.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+            fail(what + " KHR_texture_transform " + key + " is not two numbers");
+        return glm::vec2(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+    };
+    const glm::vec2 offset = pair("offset", glm::vec2(0.0f));
+    const glm::vec2 scale = pair("scale", glm::vec2(1.0f));
+    const float rotation = float(number(e, "rotation", 0.0));
+    if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(scale.x) ||
+        !std::isfinite(scale.y) || !std::isfinite(rotation))
+        fail(what + " KHR_texture_transform has a non-finite value");
+    if (e.IsObject() && e.Has("texCoord"))
+        ref.texCoord = int(number(e, "texCoord", 0));
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    const glm::mat3 translate(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.x, offset.y, 1.0f);
+    const glm::mat3 rotate(c, -s, 0.0f, s, c, 0.0f, 0.0f, 0.0f, 1.0f);
+    const glm::mat3 scaling(scale.x, 0.0f, 0.0f, 0.0f, scale.y, 0.0f, 0.0f, 0.0f, 1.0f);
+    ref.transform = translate * rotate * scaling; // rotation: counter-clockwise in UV space
+}
+
+/** A glTF textureInfo object (index, texCoord, KHR_texture_transform) at `key` of `object`,
+ *  for the extensions whose texture slots tinygltf leaves as JSON values. */
 scene::TextureRef textureInfo(const tinygltf::Model& m, const tinygltf::Value& object,
                               const char* key, const std::string& what) {
     scene::TextureRef ref;
@@ -155,11 +237,21 @@ scene::TextureRef textureInfo(const tinygltf::Model& m, const tinygltf::Value& o
     if (ref.texture < 0 || std::size_t(ref.texture) >= m.textures.size())
         fail(what + " " + key + " references texture " + std::to_string(ref.texture) +
              ", file has " + n(m.textures.size()) + " textures");
+    if (info.IsObject() && info.Has("extensions") && info.Get("extensions").IsObject()) {
+        tinygltf::ExtensionMap extensions;
+        for (const std::string& name : info.Get("extensions").Keys())
+            extensions[name] = info.Get("extensions").Get(name);
+        readTransform(extensions, ref, what + " " + key);
+    }
     return ref;
 }
 
-scene::TextureRef textureRef(int index, int texCoord, double scale) {
-    return scene::TextureRef{index, texCoord, float(scale)};
+/** A textureInfo that tinygltf parsed (TextureInfo, NormalTextureInfo, OcclusionTextureInfo). */
+template <typename Info>
+scene::TextureRef textureRef(const Info& info, double scale, const std::string& what) {
+    scene::TextureRef ref{info.index, info.texCoord, float(scale)};
+    readTransform(info.extensions, ref, what);
+    return ref;
 }
 
 void checkRange(double value, double lo, double hi, const std::string& what) {
@@ -227,7 +319,41 @@ std::vector<scene::Node> convertNodes(const tinygltf::Model& m) {
     return nodes;
 }
 
-scene::Material convertMaterial(const tinygltf::Model& m, int index) {
+scene::Texture convertTexture(const tinygltf::Model& m, int index, const std::set<int>& undecoded,
+                              std::vector<std::string>& warnings) {
+    const tinygltf::Texture& src = m.textures[std::size_t(index)];
+    const std::string what = "texture " + n(std::size_t(index));
+    scene::Texture texture{src.source, src.sampler};
+    auto extensionSource = [&](const char* name) {
+        const auto it = src.extensions.find(name);
+        if (it == src.extensions.end())
+            return -2; // not used
+        const int source = int(number(it->second, "source", -1));
+        if (source < 0 || std::size_t(source) >= m.images.size())
+            fail(what + " " + name + " source " + std::to_string(source) + " is not an image of " +
+                 "the file's " + n(m.images.size()));
+        return source;
+    };
+    if (const int webp = extensionSource("EXT_texture_webp"); webp >= 0)
+        texture.image = webp;
+    if (const int basisu = extensionSource("KHR_texture_basisu"); basisu >= 0) {
+        if (texture.image < 0 || undecoded.count(texture.image))
+            warnings.push_back(what + " has only a KHR_texture_basisu (KTX2) image, which this "
+                                      "engine cannot decode (Debian 12 has no KTX2 decoder): "
+                                      "materials load without it");
+        else
+            return texture; // the PNG or JPEG fallback beside it
+    } else if (texture.image >= 0 && undecoded.count(texture.image)) {
+        warnings.push_back(what + " uses image " + std::to_string(texture.image) +
+                           ", a KTX2 image this engine cannot decode: materials load without it");
+    }
+    if (texture.image >= 0 && undecoded.count(texture.image))
+        texture.image = -1;
+    return texture;
+}
+
+scene::Material convertMaterial(const tinygltf::Model& m, int index,
+                                std::vector<std::string>& warnings) {
     const tinygltf::Material& src = m.materials[std::size_t(index)];
     const std::string what = "material " + n(std::size_t(index));
     scene::Material mat;
@@ -235,17 +361,16 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index) {
     const auto& pbr = src.pbrMetallicRoughness;
     if (pbr.baseColorFactor.size() == 4)
         mat.baseColorFactor = glm::vec4(glm::make_vec4(pbr.baseColorFactor.data()));
-    mat.baseColorTexture =
-        textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0);
+    mat.baseColorTexture = textureRef(pbr.baseColorTexture, 1.0, what + " baseColorTexture");
     mat.metallicFactor = float(pbr.metallicFactor);
     mat.roughnessFactor = float(pbr.roughnessFactor);
     mat.metallicRoughnessTexture =
-        textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, 1.0);
+        textureRef(pbr.metallicRoughnessTexture, 1.0, what + " metallicRoughnessTexture");
     mat.normalTexture =
-        textureRef(src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.scale);
-    mat.occlusionTexture = textureRef(src.occlusionTexture.index, src.occlusionTexture.texCoord,
-                                      src.occlusionTexture.strength);
-    mat.emissiveTexture = textureRef(src.emissiveTexture.index, src.emissiveTexture.texCoord, 1.0);
+        textureRef(src.normalTexture, src.normalTexture.scale, what + " normalTexture");
+    mat.occlusionTexture =
+        textureRef(src.occlusionTexture, src.occlusionTexture.strength, what + " occlusionTexture");
+    mat.emissiveTexture = textureRef(src.emissiveTexture, 1.0, what + " emissiveTexture");
     if (src.emissiveFactor.size() == 3)
         mat.emissiveFactor = glm::vec3(glm::make_vec3(src.emissiveFactor.data()));
     mat.alphaMode = src.alphaMode == "MASK"    ? scene::AlphaMode::Mask
@@ -258,6 +383,27 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index) {
         const auto it = src.extensions.find(name);
         return it == src.extensions.end() ? nullptr : &it->second;
     };
+    if (extension("KHR_materials_unlit"))
+        mat.unlit = true;
+    if (const tinygltf::Value* e = extension("KHR_materials_pbrSpecularGlossiness")) {
+        // Converted to metallic-roughness as a dielectric (README "glTF as shipped"): diffuse
+        // becomes the base colour, 1 - glossiness the roughness; the specular colour and the
+        // specular-glossiness texture have no counterpart there.
+        mat.baseColorFactor = glm::vec4(1.0f);
+        if (e->Has("diffuseFactor") && e->Get("diffuseFactor").IsArray() &&
+            e->Get("diffuseFactor").ArrayLen() == 4)
+            for (int c = 0; c < 4; ++c)
+                mat.baseColorFactor[c] = float(e->Get("diffuseFactor").Get(c).GetNumberAsDouble());
+        mat.baseColorTexture = textureInfo(m, *e, "diffuseTexture", what);
+        mat.metallicFactor = 0.0f;
+        mat.roughnessFactor = 1.0f - float(number(*e, "glossinessFactor", 1.0));
+        mat.metallicRoughnessTexture = {};
+        checkRange(mat.roughnessFactor, 0.0, 1.0, what + " 1 - glossinessFactor");
+        if (e->Has("specularGlossinessTexture"))
+            warnings.push_back(what + " KHR_materials_pbrSpecularGlossiness: its "
+                                      "specularGlossinessTexture is not converted (the "
+                                      "glossiness factor is)");
+    }
     if (const tinygltf::Value* e = extension("KHR_materials_emissive_strength")) {
         mat.emissiveStrength = float(number(*e, "emissiveStrength", 1.0));
         checkRange(mat.emissiveStrength, 0.0, 1e9, what + " emissiveStrength");
@@ -347,8 +493,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             return core::Error{prefix + "file is over 4 GiB"};
 
         tinygltf::TinyGLTF parser;
-        bool decode = options.decodeImages;
-        parser.SetImageLoader(decodeImage, &decode);
+        ImageDecoding images{options.decodeImages, {}};
+        parser.SetImageLoader(decodeImage, &images);
         tinygltf::Model src;
         std::string err, warn;
         const std::string baseDir = baseDirectory.string();
@@ -398,7 +544,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
                                          "without it");
         model.nodes = convertNodes(src);
         for (std::size_t i = 0; i < src.materials.size(); ++i)
-            model.materials.push_back(convertMaterial(src, int(i)));
+            model.materials.push_back(convertMaterial(src, int(i), model.warnings));
         for (std::size_t i = 0; i < src.meshes.size(); ++i)
             model.meshes.push_back(
                 convertMesh(src, reader, int(i), model.materials, model.warnings));
@@ -420,8 +566,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
 
         for (const tinygltf::Sampler& s : src.samplers)
             model.samplers.push_back({s.magFilter, s.minFilter, s.wrapS, s.wrapT});
-        for (const tinygltf::Texture& t : src.textures)
-            model.textures.push_back({t.source, t.sampler});
+        for (std::size_t i = 0; i < src.textures.size(); ++i)
+            model.textures.push_back(convertTexture(src, int(i), images.ktx2, model.warnings));
         for (tinygltf::Image& image : src.images)
             model.images.push_back({image.name, image.uri, image.width, image.height,
                                     image.component, image.bits, std::move(image.image)});

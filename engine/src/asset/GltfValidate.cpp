@@ -15,9 +15,12 @@ namespace asset {
 const std::set<std::string>& supportedRequiredExtensions() {
     static const std::set<std::string> supported = {
         "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
-        "KHR_materials_dispersion", "KHR_materials_emissive_strength",
-        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression",
-        "KHR_mesh_quantization"};
+        "KHR_materials_dispersion", "KHR_materials_emissive_strength", "KHR_draco_mesh_compression",
+        "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization",
+        "KHR_texture_transform", "KHR_materials_unlit", "EXT_texture_webp",
+        "KHR_materials_pbrSpecularGlossiness",
+        // only its fallback images are used; a texture with none loads without it (warning)
+        "KHR_texture_basisu"};
     return supported;
 }
 

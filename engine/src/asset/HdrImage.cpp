@@ -26,7 +26,8 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     if (bytes->size() > std::size_t(INT32_MAX))
         return core::Error{prefix + "file too large"};
     const detail::ImageKind kind = detail::imageKind(*bytes);
-    if (kind == detail::ImageKind::Other)
+    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg &&
+        kind != detail::ImageKind::Radiance)
         return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
     int width = 0, height = 0, components = 0;
     const int size = int(bytes->size());
@@ -50,7 +51,8 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     image.height = height;
     const std::size_t values = std::size_t(width) * std::size_t(height) * 3u;
     if (kind == detail::ImageKind::Radiance) {
-        float* pixels = stbi_loadf_from_memory(bytes->data(), size, &width, &height, &components, 3);
+        float* pixels =
+            stbi_loadf_from_memory(bytes->data(), size, &width, &height, &components, 3);
         if (!pixels)
             return core::Error{prefix + "decoding failed (" +
                                (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") +
@@ -60,7 +62,8 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     } else {
         // An 8-bit environment (PNG, JPEG): decoded as bytes and linearised here. stb's own
         // conversion path (stbi_loadf on such files) crashed under fuzzing on a JPEG.
-        stbi_uc* pixels = stbi_load_from_memory(bytes->data(), size, &width, &height, &components, 3);
+        stbi_uc* pixels =
+            stbi_load_from_memory(bytes->data(), size, &width, &height, &components, 3);
         if (!pixels)
             return core::Error{prefix + "decoding failed (" +
                                (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") +

@@ -29,11 +29,17 @@ ImageKind imageKind(std::span<const std::uint8_t> bytes) {
         return ImageKind::Jpeg;
     if (startsWith("#?RADIANCE") || startsWith("#?RGBE"))
         return ImageKind::Radiance;
+    if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 &&
+        std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+        return ImageKind::Webp;
+    if (startsWith("\xabKTX 20\xbb\r\n\x1a\n"))
+        return ImageKind::Ktx2;
     return ImageKind::Other;
 }
 
 std::optional<std::string> implausibleSize(int width, int height, std::size_t encodedBytes) {
-    const std::uint64_t pixels = std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));
+    const std::uint64_t pixels =
+        std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));
     if (pixels <= 16384u * std::uint64_t(encodedBytes) + 65536u)
         return std::nullopt;
     return std::to_string(width) + "x" + std::to_string(height) + " pixels cannot come from " +
@@ -41,7 +47,7 @@ std::optional<std::string> implausibleSize(int width, int height, std::size_t en
 }
 
 std::optional<std::string> checkPngStream(std::span<const std::uint8_t> bytes) {
-    static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P', 'N', 'G',
+    static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P',  'N',  'G',
                                                                '\r', '\n', 0x1A, '\n'};
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature.data(), 8) != 0)
         return std::nullopt;
@@ -73,7 +79,8 @@ std::optional<std::string> checkPngStream(std::span<const std::uint8_t> bytes) {
         return "a PNG without a valid IHDR chunk";
     // Filtered scanlines: a filter byte per row; interlacing adds at most a row per pass.
     const std::uint64_t rowBytes = (width * bitsPerPixel + 7) / 8;
-    const std::uint64_t expected = height * (rowBytes + 1) + (interlaced ? 7 * (height + rowBytes + 2) : 0);
+    const std::uint64_t expected =
+        height * (rowBytes + 1) + (interlaced ? 7 * (height + rowBytes + 2) : 0);
 
     z_stream z{};
     if (inflateInit(&z) != Z_OK)

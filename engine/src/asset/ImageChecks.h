@@ -9,11 +9,12 @@
 
 namespace asset::detail {
 
-/** The encodings the engine decodes, by their signature: glTF images must be PNG or JPEG (the
- *  core spec's two MIME types), environments Radiance HDR, PNG or JPEG. Everything else is
- *  refused before stb sees it: its other decoders (PNM, PSD, TGA, GIF, ...) are not needed,
- *  and fuzzing found a heap overflow through its 16-bit PNM path. */
-enum class ImageKind { Png, Jpeg, Radiance, Other };
+/** The encodings the engine knows, by their signature: glTF images are PNG or JPEG (the core
+ *  spec's two MIME types), WebP (EXT_texture_webp, decoded by libwebp) or KTX2
+ *  (KHR_texture_basisu, recognised but not decoded); environments Radiance HDR, PNG or JPEG.
+ *  Everything else is refused before stb sees it: its other decoders (PNM, PSD, TGA, GIF, ...)
+ *  are not needed, and fuzzing found a heap overflow through its 16-bit PNM path. */
+enum class ImageKind { Png, Jpeg, Radiance, Webp, Ktx2, Other };
 ImageKind imageKind(std::span<const std::uint8_t> bytes);
 
 /** Refuses a width x height that no file of `encodedBytes` could hold. Real images stay far

@@ -95,18 +95,21 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
     program.set("uEmissive", m.emissiveFactor * m.emissiveStrength);
     program.set("uNormalScale", m.normalTexture.scale);
     program.set("uOcclusionStrength", m.occlusionTexture.scale);
+    program.set("uUnlit", m.unlit ? 1 : 0);
     struct Slot {
         const scene::TextureRef& ref;
         const char* sampler;
         const char* flag;
+        const char* transform;
         bool srgb;
     };
-    const Slot slots[] = {{m.baseColorTexture, "uBaseColorTexture", "uHasBaseColorTexture", true},
-                          {m.metallicRoughnessTexture, "uMetallicRoughnessTexture",
-                           "uHasMetallicRoughnessTexture", false},
-                          {m.normalTexture, "uNormalTexture", "uHasNormalTexture", false},
-                          {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", false},
-                          {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", true}};
+    const Slot slots[] = {
+        {m.baseColorTexture, "uBaseColorTexture", "uHasBaseColorTexture", "uBaseColorUv", true},
+        {m.metallicRoughnessTexture, "uMetallicRoughnessTexture", "uHasMetallicRoughnessTexture",
+         "uMetallicRoughnessUv", false},
+        {m.normalTexture, "uNormalTexture", "uHasNormalTexture", "uNormalUv", false},
+        {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", "uOcclusionUv", false},
+        {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", "uEmissiveUv", true}};
     int unit = firstUnit;
     for (const Slot& slot : slots) {
         // TEXCOORD_1 is not pulled by mesh.vert.glsl yet: such textures are left off.
@@ -114,6 +117,7 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
         const auto& textures = slot.srgb ? mSrgb : mLinear;
         const bool has = usable && textures[std::size_t(slot.ref.texture)];
         program.set(slot.flag, has ? 1 : 0);
+        program.set(slot.transform, slot.ref.transform);
         program.set(slot.sampler, unit);
         if (has)
             gl::bindTexture(std::uint32_t(unit), textures[std::size_t(slot.ref.texture)]);

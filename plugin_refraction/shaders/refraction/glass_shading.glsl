@@ -29,6 +29,7 @@ uniform vec3 uSigma;          // Beer-Lambert absorption per world unit
 uniform vec3 uEmissive;
 uniform int uHasNormalTexture;
 uniform sampler2D uNormalTexture;
+uniform mat3 uNormalUv;       // KHR_texture_transform of the normal texture
 uniform float uNormalScale;
 uniform sampler2D uBackDepth, uBackNormal, uFrontDepth, uFrontNormal;
 uniform float uNormalLod;
@@ -218,7 +219,8 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
     if (dot(N1, V) > 0.0)
         N1 = -N1;
     if (uHasNormalTexture != 0) {
-        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, uv, uNormalScale);
+        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, (uNormalUv * vec3(uv, 1.0)).xy,
+                                    uNormalScale);
         N1 = dot(mapped, V) < 0.0 ? mapped : N1;
     }
 

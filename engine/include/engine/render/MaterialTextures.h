@@ -17,7 +17,8 @@ public:
      *  when one is over GL_MAX_TEXTURE_SIZE or was not decoded. */
     static core::Result<MaterialTextures> create(const scene::Model& model);
 
-    /** Sets the material uniforms (factors, texture flags) and binds its textures to units
+    /** Sets the material uniforms (factors, unlit, texture flags and KHR_texture_transform
+     *  matrices `u<Slot>Uv`) and binds its textures to units
      *  `firstUnit`..`firstUnit + 4`. Material -1 is the glTF default material. */
     void bind(const gl::Program& program, const scene::Model& model, int material,
               int firstUnit) const;

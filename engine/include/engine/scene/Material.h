@@ -10,12 +10,15 @@
 namespace scene {
 
 /** A texture reference; texture == -1 means none. `scale` is the normal scale or occlusion
- *  strength where the slot has one. */
+ *  strength where the slot has one. `transform` maps the mesh's texture coordinates to the
+ *  texture's (KHR_texture_transform: translation * rotation * scale, identity without it). */
 struct TextureRef {
     int texture = -1;
     int texCoord = 0;
     float scale = 1.0f;
+    glm::mat3 transform{1.0f};
     bool present() const { return texture >= 0; }
+    glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(transform * glm::vec3(uv, 1.0f)); }
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -35,6 +38,8 @@ struct Material {
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
     bool doubleSided = false;
+    /** KHR_materials_unlit: the base colour is the colour, no lighting. */
+    bool unlit = false;
 
     // KHR_materials_transmission
     bool hasTransmission = false;
