@@ -1,0 +1,347 @@
+// glTF as the ecosystem's tools write it: Draco, meshopt, quantized, texture-transformed and WebP
+// variants made at test time by glTF-Transform's CLI (scripts/npm-deps installs it, pinned by
+// tests/variants/package-lock.json) and gltfpack, of the default figure and the shared samples,
+// and the Khronos variants in ../shared/assets/khronos. Each variant deforms like its source (CPU
+// and GPU, within the quantisation step) and its frames match its source's goldens.
+#include "support/GlTest.h"
+#include "support/TestSupport.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/asset/GltfLoader.h"
+#include "engine/deform/CpuDeformer.h"
+#include "engine/deform/GpuDeformer.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <unordered_map>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/** A model the tools rewrite, with what its tests need to know. */
+struct Source {
+    std::string name;
+    fs::path file;
+    int framesPerSecond;    ///< its keyframe rate: gltfpack resamples animations at this rate
+    bool textured;          ///< has images, so a WebP variant means something
+    std::string goldenCase; ///< tests/golden/<case>.json rendering the source ("" for none)
+};
+
+/** One tool run, and what its output's deformation is compared with at Precision::Fine. */
+struct Tool {
+    std::string name;
+    std::string command; ///< {in} and {out} are filled in
+    /** The variant of the same source to compare with ("" for the source itself): meshopt
+     *  compression is lossless over quantised data, so gltfpack's compressed outputs are held
+     *  to its uncompressed one, made with the same quantisation. */
+    std::string twin;
+    /** Compared in the rest pose only: gltfpack quantises weights to 8 bits, whatever is asked,
+     *  and glTF-Transform's meshopt command compresses the animation through meshopt's lossy
+     *  quaternion and exponential filters. Their frames are compared with the goldens. */
+    bool restOnly = false;
+};
+
+/** A tool's output for one source. */
+struct Variant {
+    std::string name; ///< source.tool
+    const Source* source;
+    fs::path file;
+    Tool tool;
+};
+
+std::vector<Source> sources() {
+    std::vector<Source> list = {{"figure",
+                                 fs::path(GLASS_SOURCE_DIR) / "assets/models/glass_figure.glb", 30,
+                                 false, "figure_dir_two_passes_subdiv1"}};
+    if (!test::sharedDir().empty()) {
+        const fs::path gltf = test::sharedDir() / "assets/gltf";
+        list.push_back({"cesiumman", gltf / "CesiumMan/CesiumMan.glb", 24, true, "cesiumman"});
+        list.push_back({"fox", gltf / "Fox/Fox.glb", 24, true, "fox_walk"});
+        list.push_back({"morphcube", gltf / "AnimatedMorphCube/AnimatedMorphCube.glb", 30, false,
+                        "animated_morph_cube"});
+    }
+    return list;
+}
+
+/** How finely the tools quantise: their defaults (what users ship), or 16 bits for every
+ *  attribute they allow, so that deformation can be compared within a small step. */
+enum class Precision { Default, Fine };
+
+/** The tool runs for `source`. */
+std::vector<Tool> tools(const Source& source, Precision precision) {
+    const std::string gltfTransform =
+        (fs::path(GLASS_SOURCE_DIR) / "build/variants/node_modules/.bin/gltf-transform").string();
+    const bool fine = precision == Precision::Fine;
+    const std::string bits = fine ? " --quantize-position 16 --quantize-normal 16"
+                                    " --quantize-texcoord 16"
+                                  : "";
+    // gltfpack keeps every keyframe when it resamples at the source's own rate, and its
+    // animation quantisation is set finer than its default so that only geometry differs.
+    const std::string gltfpack = "gltfpack -af " + std::to_string(source.framesPerSecond) +
+                                 " -ar 16 -at 24 -as 24" + (fine ? " -vp 16 -vn 16 -vt 16" : "") +
+                                 " -i {in} -o {out}";
+    std::vector<Tool> list = {
+        {"gt-draco",
+         gltfTransform + " draco {in} {out}" + bits + (fine ? " --quantize-generic 16" : ""), "",
+         false},
+        {"gt-meshopt",
+         gltfTransform + " meshopt {in} {out}" + bits + (fine ? " --quantize-weight 16" : ""), "",
+         true},
+        {"gt-quantize",
+         gltfTransform + " quantize {in} {out}" + bits + (fine ? " --quantize-weight 16" : ""), "",
+         false},
+        {"gp-quantize", gltfpack, "", true},
+        // -cc adds meshopt's lossy filters (inverse bind matrices, rotations): -c alone is
+        // lossless over the quantised data, so the fine set uses it.
+        {"gp-meshopt", gltfpack + (fine ? " -c" : " -cc"), "gp-quantize", false},
+        {"gp-fallback", gltfpack + " -cf", "gp-quantize", false}};
+    if (source.textured && !fine)
+        list.push_back({"gt-webp", gltfTransform + " webp {in} {out}", "", false});
+    return list;
+}
+
+std::string replaced(std::string text, const std::string& key, const std::string& value) {
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at))
+        text.replace(at, key.size(), value), at += value.size();
+    return text;
+}
+
+/** Every variant at `precision`, made once for the whole test program in build/variants-out. */
+const std::vector<Variant>& variants(Precision precision) {
+    static const std::vector<Source> kSources = sources();
+    auto make = [](Precision p) {
+        std::vector<Variant> list;
+        const fs::path out = fs::path(GLASS_BIN_DIR).parent_path() / "variants-out";
+        fs::create_directories(out);
+        for (const Source& source : kSources)
+            for (const Tool& tool : tools(source, p)) {
+                const std::string name =
+                    source.name + "." + tool.name + (p == Precision::Fine ? "-16" : "");
+                const fs::path file = out / (name + ".glb");
+                fs::remove(file);
+                std::string output;
+                const std::string line = replaced(
+                    replaced(tool.command, "{in}", source.file.string()), "{out}", file.string());
+                const int status = test::runCommand(line, &output);
+                if (status != 0 || !fs::exists(file))
+                    ADD_FAILURE() << line << " failed (" << status << "):\n" << output;
+                else
+                    list.push_back({name, &source, file, tool});
+            }
+        return list;
+    };
+    if (precision == Precision::Fine) {
+        static const std::vector<Variant> kFine = make(Precision::Fine);
+        return kFine;
+    }
+    static const std::vector<Variant> kDefault = make(Precision::Default);
+    return kDefault;
+}
+
+/** Every deformed vertex of `model` in world space at `time` of `clip` (-1: the rest pose). */
+std::vector<glm::dvec3> cpuVertices(const scene::Model& model, int clip, double time) {
+    const anim::Pose pose = anim::evaluate(model, clip, time);
+    std::vector<glm::dvec3> out;
+    for (const deform::DeformedInstance& instance : deform::deformScene(model, pose))
+        for (const deform::DeformedPrimitive& primitive : instance.primitives)
+            for (const glm::dvec3& v : primitive.positions)
+                out.push_back(glm::dvec3(instance.meshToWorld * glm::dvec4(v, 1.0)));
+    return out;
+}
+
+double diagonal(const std::vector<glm::dvec3>& points) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : points)
+        lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return points.empty() ? 0.0 : glm::length(hi - lo);
+}
+
+/** The largest distance from a point of `a` to the nearest point of `b`, found on a grid of
+ *  `cell`-sized cells; a point with nothing within a cell counts as `cell` away. The tools
+ *  reorder and weld vertices, so the two are compared as point sets. */
+double farthestFromNearest(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b,
+                           double cell) {
+    auto key = [&](glm::ivec3 c) {
+        return (std::int64_t(c.x) * 73856093) ^ (std::int64_t(c.y) * 19349663) ^
+               (std::int64_t(c.z) * 83492791);
+    };
+    std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
+    for (std::size_t i = 0; i < b.size(); ++i)
+        grid[key(glm::ivec3(glm::floor(b[i] / cell)))].push_back(i);
+    double worst = 0.0;
+    for (const glm::dvec3& p : a) {
+        const glm::ivec3 c(glm::floor(p / cell));
+        double nearest = cell;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = grid.find(key(c + glm::ivec3(dx, dy, dz)));
+                    if (it != grid.end())
+                        for (std::size_t i : it->second)
+                            nearest = std::min(nearest, glm::length(b[i] - p));
+                }
+        worst = std::max(worst, nearest);
+    }
+    return worst;
+}
+
+/** At Precision::Fine every attribute is quantised to 16 bits of its range (the mesh's extent
+ *  for positions, 0..1 for weights): a vertex may move half a step per axis, and a weight's step
+ *  moves it by a step of the distance between its joints' transforms of it. Two steps of the
+ *  world-space diagonal bound both. */
+constexpr double kQuantisationStep = 2.0 / 65535.0;
+
+class Variants : public test::GlTest {
+protected:
+    /** The same from the GPU deform pass. */
+    static std::vector<glm::dvec3> gpuVertices(const scene::Model& model, int clip, double time) {
+        auto deformer = deform::GpuDeformer::create(model, shaders());
+        EXPECT_TRUE(deformer.ok()) << deformer.error().message;
+        if (!deformer.ok())
+            return {};
+        const anim::Pose pose = anim::evaluate(model, clip, time);
+        (*deformer)->update(pose);
+        const auto cpu = deform::deformScene(model, pose); // for each instance's world matrix
+        std::vector<glm::dvec3> out;
+        for (std::size_t i = 0; i < cpu.size(); ++i)
+            for (std::size_t p = 0; p < cpu[i].primitives.size(); ++p)
+                for (const glm::dvec3& v : (*deformer)->download(i, p).positions)
+                    out.push_back(glm::dvec3(cpu[i].meshToWorld * glm::dvec4(v, 1.0)));
+        return out;
+    }
+
+    /** `variant` deforms like `source` at several times of the first clip (or in the rest pose
+     *  only), CPU and GPU: no vertex of either is farther than `tolerance` (a fraction of the
+     *  diagonal) from the other's nearest. */
+    static void expectDeformsLike(const scene::Model& source, const scene::Model& variant,
+                                  const std::string& name, double tolerance,
+                                  bool restOnly = false) {
+        const int clip = restOnly || source.animations.empty() ? -1 : 0;
+        const double duration = clip < 0 ? 0.0 : source.animations[0].duration;
+        for (double fraction : {0.0, 0.37, 0.81}) {
+            if (clip < 0 && fraction > 0.0)
+                break;
+            const double time = fraction * duration;
+            const std::vector<glm::dvec3> expected = cpuVertices(source, clip, time);
+            const double size = diagonal(expected);
+            for (const bool gpu : {false, true}) {
+                const std::vector<glm::dvec3> got =
+                    gpu ? gpuVertices(variant, clip, time) : cpuVertices(variant, clip, time);
+                ASSERT_FALSE(got.empty()) << name;
+                const double cell = 8.0 * tolerance * size;
+                const double error = std::max(farthestFromNearest(got, expected, cell),
+                                              farthestFromNearest(expected, got, cell)) /
+                                     size;
+                EXPECT_LE(error, tolerance)
+                    << name << (gpu ? " GPU" : " CPU") << " at t=" << time << ": a vertex is "
+                    << error * 65535.0 << " 16-bit steps of the diagonal from its source";
+            }
+        }
+    }
+};
+
+TEST_F(Variants, ToolsWriteVariantsThatLoadAndDeformLikeTheirSources) {
+    const std::vector<Variant>& all = variants(Precision::Fine);
+    ASSERT_FALSE(all.empty());
+    for (const Variant& v : all) {
+        SCOPED_TRACE(v.name);
+        fs::path reference = v.source->file;
+        if (!v.tool.twin.empty()) {
+            const std::string twin = v.source->name + "." + v.tool.twin + "-16";
+            const auto it = std::find_if(all.begin(), all.end(),
+                                         [&](const Variant& w) { return w.name == twin; });
+            ASSERT_NE(it, all.end()) << twin << " was not made";
+            reference = it->file;
+        }
+        auto source = asset::loadGltf(reference);
+        ASSERT_TRUE(source.ok()) << source.error().message;
+        auto variant = asset::loadGltf(v.file);
+        ASSERT_TRUE(variant.ok()) << variant.error().message;
+        EXPECT_TRUE(variant->warnings.empty()) << v.name << ": " << variant->warnings.front();
+        expectDeformsLike(*source, *variant, v.name, kQuantisationStep, v.tool.restOnly);
+    }
+}
+
+TEST_F(Variants, ToolsWriteTheExtensionsTheyAreMeantToExercise) {
+    // Without this, a tool that stopped compressing would make the other tests vacuous.
+    std::map<std::string, std::string> expected = {
+        {"gt-draco", "KHR_draco_mesh_compression"}, {"gt-meshopt", "EXT_meshopt_compression"},
+        {"gt-quantize", "KHR_mesh_quantization"},   {"gp-meshopt", "KHR_texture_transform"},
+        {"gp-fallback", "EXT_meshopt_compression"}, {"gt-webp", "EXT_texture_webp"},
+        {"gp-quantize", "KHR_mesh_quantization"}};
+    for (const Variant& v : variants(Precision::Default)) {
+        std::ifstream in(v.file, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        const std::string tool = v.name.substr(v.name.find('.') + 1);
+        if (tool == "gp-meshopt" && v.source->textured == false)
+            continue; // no texture coordinates to transform
+        EXPECT_NE(bytes.find(expected.at(tool)), std::string::npos) << v.name;
+    }
+}
+
+TEST_F(Variants, FramesMatchTheirSourcesGoldens) {
+    const fs::path out = fs::path(GLASS_BIN_DIR).parent_path() / "variants-out";
+    int compared = 0;
+    for (const Variant& v : variants(Precision::Default)) {
+        SCOPED_TRACE(v.name);
+        const fs::path golden = fs::path(GLASS_SOURCE_DIR) / "tests/golden";
+        std::ifstream in(golden / (v.source->goldenCase + ".json"));
+        nlohmann::json c = nlohmann::json::parse(in);
+        // The source's case, rendering the variant, beside copies of the source's goldens.
+        c["model"] = fs::absolute(v.file).string();
+        // Stated tolerance: at most 0.1% of the pixels more than 24 levels off (edges moved by
+        // quantisation); 0.5% for glass, whose refraction bends a sub-step change of a refined,
+        // deforming surface into a visible shift at silhouettes and total internal reflection.
+        c["tolerance"] = {{"max_abs_diff", 24},
+                          {"max_failing_fraction", c.contains("refraction") ? 0.005 : 0.001}};
+        const fs::path dir = out / "cases" / v.name;
+        fs::create_directories(dir);
+        std::ofstream(dir / (v.source->goldenCase + ".json")) << c.dump(2);
+        for (const auto& entry : fs::directory_iterator(golden))
+            if (entry.path().extension() == ".png" &&
+                entry.path().filename().string().rfind(v.source->goldenCase + ".t", 0) == 0)
+                fs::copy_file(entry.path(), dir / entry.path().filename(),
+                              fs::copy_options::overwrite_existing);
+        std::string output;
+        const int status = test::runCommand(std::string(GLASS_BIN_DIR) + "/glass-capture --case " +
+                                                (dir / (v.source->goldenCase + ".json")).string() +
+                                                " --out " + (dir / "frames").string(),
+                                            &output);
+        EXPECT_EQ(status, 0) << output;
+        std::printf("%s: %s", v.name.c_str(), output.c_str()); // the figures, for the README
+        ++compared;
+    }
+    EXPECT_GE(compared, 5);
+}
+
+/** The Khronos variants in ../shared/assets/khronos against the samples they were made from. */
+TEST_F(Variants, KhronosCompressedAndQuantizedSamplesDeformLikeTheirSources) {
+    GLASS_REQUIRE_SHARED();
+    const fs::path khronos = test::sharedDir() / "assets/khronos";
+    const fs::path gltf = test::sharedDir() / "assets/gltf";
+    const std::pair<const char*, const char*> pairs[] = {
+        {"CesiumMan/glTF-Draco/CesiumMan.gltf", "CesiumMan/CesiumMan.glb"},
+        {"RiggedSimple/glTF-Draco/RiggedSimple.gltf", "RiggedSimple/RiggedSimple.glb"},
+        {"MorphPrimitivesTest/glTF-Draco/MorphPrimitivesTest.gltf",
+         "MorphPrimitivesTest/MorphPrimitivesTest.glb"},
+        {"AnimatedMorphCube/glTF-Quantized/AnimatedMorphCube.gltf",
+         "AnimatedMorphCube/AnimatedMorphCube.glb"}};
+    for (const auto& [variantFile, sourceFile] : pairs) {
+        SCOPED_TRACE(variantFile);
+        auto variant = asset::loadGltf(khronos / variantFile);
+        ASSERT_TRUE(variant.ok()) << variant.error().message;
+        auto source = asset::loadGltf(gltf / sourceFile);
+        ASSERT_TRUE(source.ok()) << source.error().message;
+        // How these were encoded is not recorded in them: AnimatedMorphCube's morph deltas are
+        // 8-bit, the Draco files' positions 11 bits or so. 2^-10 of the diagonal is 2 mm on a
+        // 2 m character.
+        expectDeformsLike(*source, *variant, variantFile, 1.0 / 1024.0);
+    }
+}
+
+} // namespace
