@@ -5,8 +5,9 @@ find_package(Threads REQUIRED)
 
 # libglm-dev
 find_package(glm REQUIRED)
-# libtinygltf-dev (shared library; only engine/src/asset includes tiny_gltf.h)
-find_package(TinyGLTF REQUIRED)
+# libtinygltf-dev: its header, whose implementation engine/src/asset/TinyGltf.cpp compiles (only
+# engine/src/asset includes tiny_gltf.h)
+find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 # libstb-dev: image decoding (PNG/JPEG in glTF, HDR environments) and PNG writing
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
 # zlib1g-dev: checks PNG image data before stb inflates it (asset/ImageChecks)
