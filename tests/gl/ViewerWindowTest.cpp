@@ -219,15 +219,17 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
     std::string out;
     // Two spheres side by side in the 352-pixel-wide view, the first selected at start; a click
     // on the right one selects it, Ctrl + a drag to the right moves it, Escape saves the scene.
-    // The click is held for a second: Dear ImGui 1.86's GLFW backend can miss the release of a
-    // press and release that fall in one frame (slow frames: sanitizer builds).
+    // The click is held for a second, and the drag's steps are a few frames apart: Dear ImGui
+    // 1.86's GLFW backend can miss the release of a press and release that fall in one frame,
+    // and the viewer ignores the pointer's motion in the frame of the press (slow frames:
+    // sanitizer builds, a loaded machine).
     ASSERT_EQ(interactively("builtin:sphere \"builtin:sphere?segments=24\" --no-restore",
                             "sleep 0.5; xdotool mousemove --window $w 260 200 mousedown 1; sleep 1;"
                             " xdotool mouseup 1; sleep 1;"
-                            " xdotool keydown ctrl mousedown 1;"
-                            " for x in 270 280 290 300 310; do sleep 0.15;"
+                            " xdotool keydown ctrl mousedown 1; sleep 0.6;"
+                            " for x in 270 280 290 300 310; do sleep 0.3;"
                             " xdotool mousemove --window $w $x 200; done;"
-                            " sleep 0.3; xdotool mouseup 1 keyup ctrl; sleep 0.3;",
+                            " sleep 0.8; xdotool mouseup 1 keyup ctrl; sleep 0.3;",
                             &out),
               0)
         << out;

@@ -264,23 +264,23 @@ TEST(InspectTool, CheckListsEveryFileAndFailsOnARefusal) {
     std::filesystem::create_directories(dir / "sub");
     test::twoJointModel().save(dir.path(), "good", test::GltfFormat::Glb);
     test::GltfBuilder used = test::twoJointModel();
-    used.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    used.doc["extensionsUsed"] = {"KHR_materials_anisotropy"};
     used.save(dir.path() / "sub", "used");
     std::string out;
     ASSERT_EQ(test::runCommand(kInspect + " --check " + dir.path().string(), &out), 0) << out;
     EXPECT_NE(out.find("ok       " + (dir / "good.glb").string()), std::string::npos) << out;
     EXPECT_NE(out.find("warnings " + (dir / "sub" / "used.gltf").string() +
-                       ": extensionsUsed lists KHR_texture_transform"),
+                       ": extensionsUsed lists KHR_materials_anisotropy"),
               std::string::npos)
         << out;
     test::GltfBuilder required = test::twoJointModel();
-    required.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    required.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    required.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    required.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
     required.save(dir.path() / "sub", "required");
     EXPECT_EQ(test::runCommand(kInspect + " --check " + dir.path().string(), &out), 1) << out;
     EXPECT_NE(out.find("refused  " + (dir / "sub" / "required.gltf").string() +
                        ": asset::loadGltf(): required.gltf: extensionsRequired lists "
-                       "KHR_draco_mesh_compression"),
+                       "EXT_mesh_gpu_instancing"),
               std::string::npos)
         << out;
     EXPECT_NE(out.find("3 files: 1 ok, 1 ok with warnings, 1 refused"), std::string::npos) << out;
