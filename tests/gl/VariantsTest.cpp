@@ -8,8 +8,13 @@
 
 #include "engine/anim/Pose.h"
 #include "engine/asset/GltfLoader.h"
+#include "engine/capture/Image.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/GpuDeformer.h"
+#include "engine/render/Camera.h"
+#include "engine/render/Environment.h"
+#include "engine/render/Renderer.h"
+#include "engine/render/WorldLoader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <unordered_map>
 
 namespace {
@@ -342,6 +348,111 @@ TEST_F(Variants, KhronosCompressedAndQuantizedSamplesDeformLikeTheirSources) {
         // 2 m character.
         expectDeformsLike(*source, *variant, variantFile, 1.0 / 1024.0);
     }
+}
+
+/** Every file in ../shared/assets/khronos (Draco skinned and morph, quantized, texture transform,
+ *  unlit, every primitive mode) loads and renders through the renderer without a GL error (the
+ *  fixture fails on any); TextureTransformTest and UnlitTest also have goldens. */
+TEST_F(Variants, EveryKhronosVariantRenders) {
+    GLASS_REQUIRE_SHARED();
+    auto renderer = render::Renderer::create(render::Environment::proceduralSky(16), context());
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    render::RenderSettings settings;
+    settings.size = {64, 64};
+    int rendered = 0;
+    for (const auto& entry :
+         fs::recursive_directory_iterator(test::sharedDir() / "assets/khronos")) {
+        const auto extension = entry.path().extension();
+        if (extension != ".gltf" && extension != ".glb")
+            continue;
+        SCOPED_TRACE(entry.path().string());
+        auto world = render::loadWorld(std::vector<std::string>{entry.path().string()});
+        ASSERT_TRUE(world.ok()) << world.error().message;
+        for (double time : {0.0, 0.6}) {
+            auto frame = (*renderer)->render(
+                *world, render::frameBounds(render::worldBounds(*world), 1.0f), settings, time);
+            ASSERT_TRUE(frame.ok()) << frame.error().message;
+        }
+        ++rendered;
+    }
+    EXPECT_GE(rendered, 7);
+}
+
+/** TextureTransformTest's lower planes hold an arrow (Arrow.png rotated, scaled, or both, by
+ *  KHR_texture_transform) and small marks: "Correct" (green) where the arrow points when the
+ *  transform is right, "Not supported" (olive) where it points without the extension, "Error"
+ *  (red) where a wrong transform points. Every green mark must touch the arrow's dark pixels and
+ *  lie closer to them than any other mark. (Correct.png is that green mark's texture, not a
+ *  picture of the whole scene.) */
+TEST_F(Variants, TextureTransformTestArrowsPointAtTheCorrectMarks) {
+    GLASS_REQUIRE_SHARED();
+    test::TempDir dir;
+    std::string out;
+    ASSERT_EQ(test::runCommand(std::string(GLASS_BIN_DIR) + "/glass-capture " +
+                                   (test::sharedDir() / "assets/khronos/TextureTransformTest/glTF/"
+                                                        "TextureTransformTest.gltf")
+                                       .string() +
+                                   " --size 512x384 --out " + dir.path().string(),
+                               &out),
+              0)
+        << out;
+    auto image = capture::readPng(dir / "TextureTransformTest_rest_t0.000.png");
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    const int w = image->width, h = image->height;
+    auto rgb = [&](int x, int y) {
+        const std::uint8_t* p =
+            &image->rgba[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4];
+        return glm::ivec3(p[0], p[1], p[2]);
+    };
+    // The lower half: the three arrow planes (the upper row is the offset planes).
+    std::vector<glm::vec2> dark;
+    std::map<std::string, std::vector<glm::vec2>> marks;
+    for (int y = h / 2; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::ivec3 c = rgb(x, y);
+            const glm::vec2 at(x, y);
+            if (c.r + c.g + c.b < 120)
+                dark.push_back(at);
+            else if (c.g > 100 && c.g > c.r + 50 && c.g > c.b + 50)
+                marks["correct"].push_back(at);
+            else if (c.r > 120 && c.r > c.g + 60 && c.r > c.b + 60)
+                marks["error"].push_back(at);
+            else if (c.r > 90 && c.g > 90 && c.b + 50 < std::min(c.r, c.g))
+                marks["not supported"].push_back(at);
+        }
+    ASSERT_GT(dark.size(), 100u) << "no arrows";
+    ASSERT_GT(marks["correct"].size(), 30u) << "no Correct marks";
+    // Each mark's pixels in clusters (a mark is a few pixels across); per cluster, the distance
+    // from its nearest pixel to the nearest arrow pixel.
+    auto distances = [&](const std::vector<glm::vec2>& pixels) {
+        std::vector<std::vector<glm::vec2>> clusters;
+        for (const glm::vec2& p : pixels) {
+            auto it = std::find_if(clusters.begin(), clusters.end(), [&](const auto& c) {
+                return glm::distance(c.front(), p) < 20.0f;
+            });
+            if (it == clusters.end())
+                clusters.push_back({p});
+            else
+                it->push_back(p);
+        }
+        std::vector<float> nearestArrow;
+        for (const auto& cluster : clusters) {
+            float nearest = 1e9f;
+            for (const glm::vec2& p : cluster)
+                for (const glm::vec2& d : dark)
+                    nearest = std::min(nearest, glm::distance(p, d));
+            nearestArrow.push_back(nearest);
+        }
+        return nearestArrow;
+    };
+    const std::vector<float> correct = distances(marks["correct"]);
+    EXPECT_EQ(correct.size(), 3u) << "one Correct mark on each arrow plane";
+    const float farthestCorrect = *std::max_element(correct.begin(), correct.end());
+    // Measured: 3 to 6 pixels (the mark's white rim), the other marks 22 to 33 pixels away.
+    EXPECT_LE(farthestCorrect, 10.0f) << "an arrow misses its Correct mark";
+    for (const char* other : {"error", "not supported"})
+        for (float d : distances(marks[other]))
+            EXPECT_GT(d, farthestCorrect) << "an arrow points at a mark for " << other;
 }
 
 } // namespace
