@@ -107,9 +107,9 @@ int addView(tinygltf::Model& model, std::vector<unsigned char> data, std::size_t
 
 // --- EXT_meshopt_compression --------------------------------------------------------------
 
-void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const tinygltf::Value& ext,
-                       Budget& budget) {
-    const std::string what = "bufferView " + n(index) + " " + kMeshopt[0];
+void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const char* extension,
+                       const tinygltf::Value& ext, Budget& budget) {
+    const std::string what = "bufferView " + n(index) + " " + extension;
     const std::int64_t buffer = integer(ext, "buffer", -1, what);
     const std::int64_t byteOffset = integer(ext, "byteOffset", 0, what);
     const std::int64_t byteLength = integer(ext, "byteLength", -1, what);
@@ -176,6 +176,12 @@ void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const tinygltf
     else
         status = meshopt_decodeIndexSequence(out.data(), std::size_t(count), std::size_t(stride),
                                              source, size);
+    if (status != 0 && mode == "ATTRIBUTES" && size > 0 && (source[0] & 0xF0) == 0xA0 &&
+        source[0] != 0xA0)
+        fail(what + ": the stream is in version " + std::to_string(source[0] & 0x0F) +
+             " of meshopt's vertex codec; the libmeshoptimizer this engine is built with (" +
+             std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." +
+             std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10) + ") decodes version 0");
     if (status != 0)
         fail(what + ": the " + mode + " stream is corrupt (meshopt error " +
              std::to_string(status) + ")");
@@ -443,7 +449,7 @@ void decodeCompressedGeometry(tinygltf::Model& model) {
                 continue;
             const tinygltf::Value ext = it->second;
             model.bufferViews[i].extensions.erase(it);
-            decodeMeshoptView(model, i, ext, budget);
+            decodeMeshoptView(model, i, name, ext, budget);
         }
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
         for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {

@@ -128,6 +128,17 @@ TEST(Meshopt, MalformedExtensionsFailNamingTheView) {
     }
 }
 
+TEST(Meshopt, AVertexCodecNewerThanTheLibraryIsNamed) {
+    test::TempDir dir;
+    test::GltfBuilder b = meshoptModel();
+    b.bin[meshoptOf(b).value("byteOffset", std::size_t(0))] = 0xA1; // version 1's header byte
+    const auto model = asset::loadGltf(b.save(dir.path(), "v1"));
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("the stream is in version 1 of meshopt's vertex codec"),
+              std::string::npos)
+        << model.error().message;
+}
+
 // --- KHR_draco_mesh_compression -----------------------------------------------------------
 
 /** The two-joint model's triangles, positions, joints and weights Draco-encoded (sequential,
