@@ -352,6 +352,21 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
         if (!attribute)
             fail(attributeName + " is Draco attribute " + std::to_string(id) +
                  ", which the stream does not have");
+        // glTF attributes are integers of up to 32 bits or floats; Draco's other types (a bool
+        // is loaded as one, whatever byte the stream holds) have no glTF meaning.
+        switch (attribute->data_type()) {
+        case draco::DT_INT8:
+        case draco::DT_UINT8:
+        case draco::DT_INT16:
+        case draco::DT_UINT16:
+        case draco::DT_INT32:
+        case draco::DT_UINT32:
+        case draco::DT_FLOAT32:
+            break;
+        default:
+            fail(attributeName + " has Draco data type " +
+                 std::to_string(int(attribute->data_type())) + ", which no glTF attribute uses");
+        }
         tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.attributes[semantic])];
         if (attribute->num_components() < accessorComponents(accessor.type))
             fail(attributeName + " has " + std::to_string(attribute->num_components()) +
