@@ -16,6 +16,8 @@ find_package(ZLIB REQUIRED)
 # EXT_meshopt_compression geometry (only engine/src/asset includes them)
 find_package(draco REQUIRED)
 find_package(meshoptimizer REQUIRED)
+# libjpeg-dev (libjpeg-turbo): JPEG images and environments (stb's JPEG decoder is not used)
+find_package(JPEG REQUIRED)
 # libwebp-dev: EXT_texture_webp images
 pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET GLOBAL libwebp)
 # libepoxy-dev: GL and EGL entry points (only engine/src/gl includes it)

@@ -7,6 +7,7 @@
 #include "GltfConvert.h"
 #include "GltfDecode.h"
 #include "ImageChecks.h"
+#include "JpegDecoder.h"
 #include "LoadError.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
@@ -73,7 +74,8 @@ bool decodeWebp(tinygltf::Image* image, int index, std::string* err, const unsig
 }
 
 /** tinygltf image callback: checks the header's size against the limits before decoding,
- *  decodes PNG and JPEG to RGBA (8 or 16 bits) and WebP to RGBA8, or only records the size
+ *  decodes PNG (stb, after checking its zlib stream) to RGBA of 8 or 16 bits, JPEG
+ *  (libjpeg-turbo) and WebP (libwebp) to RGBA8, or only records the size
  *  when decoding is off. KTX2 images are kept undecoded and listed for a warning. */
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void* userData) {
@@ -90,8 +92,17 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         *err += "image " + std::to_string(index) + " is neither PNG, JPEG, WebP nor KTX2";
         return false;
     }
+    const std::span<const std::uint8_t> encoded(bytes, std::size_t(size));
     int width = 0, height = 0, components = 0;
-    if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
+    if (kind == detail::ImageKind::Jpeg) {
+        const detail::Jpeg header = detail::jpegHeader(encoded);
+        if (!header.error.empty()) {
+            *err += "image " + std::to_string(index) + " could not be decoded: " + header.error;
+            return false;
+        }
+        width = header.width;
+        height = header.height;
+    } else if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
         *err += "image " + std::to_string(index) + " could not be decoded: " +
                 (stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
         return false;
@@ -113,11 +124,21 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     image->width = width;
     image->height = height;
     image->component = 4;
-    image->bits = stbi_is_16_bit_from_memory(bytes, size) ? 16 : 8;
+    image->bits =
+        kind == detail::ImageKind::Png && stbi_is_16_bit_from_memory(bytes, size) ? 16 : 8;
     image->pixel_type = image->bits == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
                                           : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     if (!decode)
         return true;
+    if (kind == detail::ImageKind::Jpeg) {
+        detail::Jpeg jpeg = detail::decodeJpeg(encoded, 4);
+        if (!jpeg.error.empty()) {
+            *err += "image " + std::to_string(index) + " could not be decoded: " + jpeg.error;
+            return false;
+        }
+        image->image = std::move(jpeg.pixels);
+        return true;
+    }
     int w = 0, h = 0, c = 0;
     void* pixels = image->bits == 16
                        ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))

@@ -2,6 +2,7 @@
 #include "engine/asset/HdrImage.h"
 
 #include "ImageChecks.h"
+#include "JpegDecoder.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
 
@@ -31,10 +32,17 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
         return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
     int width = 0, height = 0, components = 0;
     const int size = int(bytes->size());
-    if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components))
+    if (kind == detail::ImageKind::Jpeg) {
+        const detail::Jpeg header = detail::jpegHeader(*bytes);
+        if (!header.error.empty())
+            return core::Error{prefix + "not a decodable image (" + header.error + ")"};
+        width = header.width;
+        height = header.height;
+    } else if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components)) {
         return core::Error{prefix + "not a decodable image (" +
                            (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") +
                            ")"};
+    }
     if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is over the texture limit of " +
@@ -60,20 +68,29 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
         image.rgb.assign(pixels, pixels + values);
         stbi_image_free(pixels);
     } else {
-        // An 8-bit environment (PNG, JPEG): decoded as bytes and linearised here. stb's own
-        // conversion path (stbi_loadf on such files) crashed under fuzzing on a JPEG.
-        stbi_uc* pixels =
-            stbi_load_from_memory(bytes->data(), size, &width, &height, &components, 3);
-        if (!pixels)
-            return core::Error{prefix + "decoding failed (" +
-                               (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") +
-                               ")"};
+        // An 8-bit environment (PNG through stb, JPEG through libjpeg-turbo), linearised here.
+        // stb's own conversion path (stbi_loadf on such files) crashed under fuzzing on a JPEG.
+        std::vector<std::uint8_t> decoded;
+        if (kind == detail::ImageKind::Jpeg) {
+            detail::Jpeg jpeg = detail::decodeJpeg(*bytes, 3);
+            if (!jpeg.error.empty())
+                return core::Error{prefix + "decoding failed (" + jpeg.error + ")"};
+            decoded = std::move(jpeg.pixels);
+        } else {
+            stbi_uc* pixels =
+                stbi_load_from_memory(bytes->data(), size, &width, &height, &components, 3);
+            if (!pixels)
+                return core::Error{
+                    prefix + "decoding failed (" +
+                    (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data") + ")"};
+            decoded.assign(pixels, pixels + values);
+            stbi_image_free(pixels);
+        }
         image.rgb.resize(values);
         for (std::size_t i = 0; i < values; ++i) {
-            const float c = float(pixels[i]) / 255.0f;
+            const float c = float(decoded[i]) / 255.0f;
             image.rgb[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
         }
-        stbi_image_free(pixels);
     }
     for (float& v : image.rgb)
         if (!std::isfinite(v) || v < 0.0f)
