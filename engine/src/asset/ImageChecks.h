@@ -1,6 +1,5 @@
 // Checks on encoded images before a decoder sees them: stb (PNG, Radiance) trusts a file's header
-// and its zlib
-// streams, so a tiny file could otherwise make it allocate gigabytes.
+// and its zlib streams, so a tiny file could otherwise make it allocate gigabytes.
 #pragma once
 
 #include <cstdint>
