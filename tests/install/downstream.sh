@@ -23,7 +23,8 @@ deb)
     depends=$(dpkg-deb -f "$deb" Depends)
     echo "Depends: $depends"
     # what the programs and libglass-engine link, and GLM for the headers
-    for needed in libglm-dev libepoxy0 libglfw3 libdraco libmeshoptimizer libwebp libosdgpu libembree3 libc6 libstdc++6; do
+    for needed in libglm-dev libepoxy0 libglfw3 libdraco libmeshoptimizer libwebp libjpeg62-turbo \
+        libosdgpu libembree3 libc6 libstdc++6; do
         grep -q "$needed" <<<"$depends" || { echo "FAIL: Depends lacks $needed"; exit 1; }
     done
     dpkg-deb -x "$deb" "$work/root"
