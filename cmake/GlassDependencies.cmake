@@ -10,6 +10,9 @@ find_package(glm REQUIRED)
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 # libstb-dev: image decoding (PNG/JPEG in glTF, HDR environments) and PNG writing
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
+# Its headers alone: the engine compiles the implementation (engine/src/third_party/Stb.cpp).
+add_library(glass_stb_headers INTERFACE)
+target_include_directories(glass_stb_headers SYSTEM INTERFACE ${STB_INCLUDE_DIRS})
 # zlib1g-dev: checks PNG image data before stb inflates it (asset/ImageChecks)
 find_package(ZLIB REQUIRED)
 # libdraco-dev, libmeshoptimizer-dev: decoders of KHR_draco_mesh_compression and
