@@ -11,6 +11,19 @@
 
 namespace asset::detail {
 
+/** What the image callback is asked to do, and the images it kept undecoded. */
+struct ImageDecoding {
+    bool decode = true;
+    std::set<int> ktx2; ///< images kept undecoded: KTX2 (Debian 12 has no decoder for it)
+};
+
+/** tinygltf's image callback (`userData`: an ImageDecoding): checks the image's size against
+ *  the limits and what its bytes can justify before decoding PNG to RGBA of 8 or 16 bits, JPEG
+ *  and WebP to RGBA8, or only records the size when decoding is off; keeps KTX2 undecoded. */
+bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::string* warn,
+                 int requestedWidth, int requestedHeight, const unsigned char* bytes, int size,
+                 void* userData);
+
 /** asset.version must be 2.x and asset.minVersion (when present) at most 2.0. */
 void checkVersion(const tinygltf::Asset& asset);
 

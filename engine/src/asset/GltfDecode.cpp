@@ -3,7 +3,9 @@
 // or the JSON claims is checked before it is allocated.
 #include "GltfDecode.h"
 
+#include "GlbReader.h"
 #include "LoadError.h"
+#include "engine/asset/Glb.h"
 #include "engine/core/Limits.h"
 
 #include <draco/compression/decode.h>
@@ -27,17 +29,6 @@ constexpr std::uint64_t kMeshoptMaxRatio = 64;
 
 std::string n(std::uint64_t v) {
     return std::to_string(v);
-}
-
-std::uint32_t readU32(std::span<const std::uint8_t> bytes, std::size_t offset) {
-    std::uint32_t v;
-    std::memcpy(&v, bytes.data() + offset, 4);
-    return v;
-}
-
-void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    out.insert(out.end(), p, p + 4);
 }
 
 /** A member of a tinygltf object, or nullptr. */
@@ -398,9 +389,9 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
 
 std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::uint8_t> bytes,
                                                           bool isBinary) {
-    std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (isBinary)
-        json = json.substr(20, readU32(bytes, 12)); // the container is checked already
+    const std::string_view json =
+        isBinary ? glbChunks(bytes).json
+                 : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     if (json.find(kDraco) == std::string_view::npos &&
         json.find("meshopt_compression") == std::string_view::npos)
         return std::nullopt;
@@ -440,19 +431,7 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
     const std::string text = document.dump();
     if (!isBinary)
         return std::vector<std::uint8_t>(text.begin(), text.end());
-    // GLB: the new JSON chunk (space-padded to 4 bytes), then the file's other chunks as they are.
-    const std::size_t jsonLength = (text.size() + 3) & ~std::size_t(3);
-    const std::size_t rest = 20 + std::size_t(readU32(bytes, 12));
-    std::vector<std::uint8_t> out;
-    out.reserve(20 + jsonLength + (bytes.size() - rest));
-    out.insert(out.end(), bytes.begin(), bytes.begin() + 8);
-    appendU32(out, std::uint32_t(20 + jsonLength + (bytes.size() - rest)));
-    appendU32(out, std::uint32_t(jsonLength));
-    appendU32(out, 0x4E4F534Au);
-    out.insert(out.end(), text.begin(), text.end());
-    out.resize(20 + jsonLength, ' ');
-    out.insert(out.end(), bytes.begin() + std::ptrdiff_t(rest), bytes.end());
-    return out;
+    return encodeGlb(text, glbChunks(bytes).bin); // unknown chunks after BIN are dropped
 }
 
 void decodeCompressedGeometry(tinygltf::Model& model) {

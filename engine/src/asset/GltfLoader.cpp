@@ -1,13 +1,13 @@
-// loadGltf(): parse with tinygltf (our own bounded image decoder), validate, convert into an
-// engine-owned scene::Model. Nodes, materials, cameras and images are converted here; meshes,
-// skins and animations in GltfMeshes.cpp / GltfAnimations.cpp.
+// loadGltf(): prepare, parse with tinygltf (images through GltfImages.cpp), validate, decode
+// compressed geometry (GltfDecode.cpp), convert into an engine-owned scene::Model. Nodes,
+// materials, textures and cameras are converted here; meshes, skins and animations in
+// GltfMeshes.cpp / GltfAnimations.cpp.
 #include "engine/asset/GltfLoader.h"
 
 #include "AccessorReader.h"
+#include "GlbReader.h"
 #include "GltfConvert.h"
 #include "GltfDecode.h"
-#include "ImageChecks.h"
-#include "JpegDecoder.h"
 #include "LoadError.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
@@ -15,9 +15,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
-#include <stb_image.h>
 #include <tiny_gltf.h>
-#include <webp/decode.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,143 +31,12 @@ std::string n(std::size_t v) {
     return std::to_string(v);
 }
 
-/** What the image callback is asked to do, and what it could not decode. */
-struct ImageDecoding {
-    bool decode = true;
-    std::set<int> ktx2; ///< images kept undecoded: KTX2 (no decoder in Debian 12)
-};
-
-/** Decodes WebP to RGBA8 with libwebp after the same size checks as the other formats. */
-bool decodeWebp(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes,
-                int size, bool decode) {
-    int width = 0, height = 0;
-    if (!WebPGetInfo(bytes, std::size_t(size), &width, &height)) {
-        *err += "image " + std::to_string(index) + " is not a valid WebP image";
-        return false;
-    }
-    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize) {
-        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
-                std::to_string(height) + ", over the limit of " +
-                std::to_string(core::limits::kMaxTextureSize);
-        return false;
-    }
-    if (auto refuse = detail::implausibleSize(width, height, std::size_t(size))) {
-        *err += "image " + std::to_string(index) + ": " + *refuse;
-        return false;
-    }
-    image->width = width;
-    image->height = height;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    if (!decode)
-        return true;
-    image->image.resize(std::size_t(width) * std::size_t(height) * 4u);
-    if (!WebPDecodeRGBAInto(bytes, std::size_t(size), image->image.data(), image->image.size(),
-                            width * 4)) {
-        *err += "image " + std::to_string(index) + " could not be decoded: corrupt WebP data";
-        return false;
-    }
-    return true;
-}
-
-/** tinygltf image callback: checks the header's size against the limits before decoding,
- *  decodes PNG (stb, after checking its zlib stream) to RGBA of 8 or 16 bits, JPEG
- *  (libjpeg-turbo) and WebP (libwebp) to RGBA8, or only records the size
- *  when decoding is off. KTX2 images are kept undecoded and listed for a warning. */
-bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* userData) {
-    ImageDecoding& options = *static_cast<ImageDecoding*>(userData);
-    const bool decode = options.decode;
-    const detail::ImageKind kind = detail::imageKind(std::span(bytes, std::size_t(size)));
-    if (kind == detail::ImageKind::Ktx2) {
-        options.ktx2.insert(index);
-        return true;
-    }
-    if (kind == detail::ImageKind::Webp)
-        return decodeWebp(image, index, err, bytes, size, decode);
-    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg) {
-        *err += "image " + std::to_string(index) + " is neither PNG, JPEG, WebP nor KTX2";
-        return false;
-    }
-    const std::span<const std::uint8_t> encoded(bytes, std::size_t(size));
-    int width = 0, height = 0, components = 0;
-    if (kind == detail::ImageKind::Jpeg) {
-        const detail::Jpeg header = detail::jpegHeader(encoded);
-        if (!header.error.empty()) {
-            *err += "image " + std::to_string(index) + " could not be decoded: " + header.error;
-            return false;
-        }
-        width = header.width;
-        height = header.height;
-    } else if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
-        *err += "image " + std::to_string(index) + " could not be decoded: " +
-                (stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
-        return false;
-    }
-    if (width <= 0 || height <= 0 || width > core::limits::kMaxTextureSize ||
-        height > core::limits::kMaxTextureSize) {
-        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
-                std::to_string(height) + ", over the limit of " +
-                std::to_string(core::limits::kMaxTextureSize);
-        return false;
-    }
-    auto refuse = detail::implausibleSize(width, height, std::size_t(size));
-    if (!refuse)
-        refuse = detail::checkPngStream(std::span(bytes, std::size_t(size)));
-    if (refuse) {
-        *err += "image " + std::to_string(index) + ": " + *refuse;
-        return false;
-    }
-    image->width = width;
-    image->height = height;
-    image->component = 4;
-    image->bits =
-        kind == detail::ImageKind::Png && stbi_is_16_bit_from_memory(bytes, size) ? 16 : 8;
-    image->pixel_type = image->bits == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
-                                          : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    if (!decode)
-        return true;
-    if (kind == detail::ImageKind::Jpeg) {
-        detail::Jpeg jpeg = detail::decodeJpeg(encoded, 4);
-        if (!jpeg.error.empty()) {
-            *err += "image " + std::to_string(index) + " could not be decoded: " + jpeg.error;
-            return false;
-        }
-        image->image = std::move(jpeg.pixels);
-        return true;
-    }
-    int w = 0, h = 0, c = 0;
-    void* pixels = image->bits == 16
-                       ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))
-                       : static_cast<void*>(stbi_load_from_memory(bytes, size, &w, &h, &c, 4));
-    if (!pixels) {
-        *err += "image " + std::to_string(index) + " could not be decoded: " +
-                (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data");
-        return false;
-    }
-    const std::size_t byteCount =
-        std::size_t(w) * std::size_t(h) * 4u * std::size_t(image->bits / 8);
-    image->image.assign(static_cast<unsigned char*>(pixels),
-                        static_cast<unsigned char*>(pixels) + byteCount);
-    stbi_image_free(pixels);
-    return true;
-}
-
-std::uint32_t readU32(std::span<const std::uint8_t> bytes, std::size_t offset) {
-    std::uint32_t v;
-    std::memcpy(&v, bytes.data() + offset, 4);
-    return v; // GLB is little-endian, as is every platform this engine builds for
-}
-
-/** GLB container checks (glTF §4.4) that tinygltf leaves out or reports vaguely: version 2,
- *  declared length equal to the file size, chunks inside the file, JSON first, BIN second. */
 /** The file's extensionsRequired, read from its JSON (chunk 0 of a GLB whose container
  *  checkGlbContainer accepted); empty where the JSON does not parse. */
 std::vector<std::string> requiredExtensions(std::span<const std::uint8_t> bytes, bool isBinary) {
-    std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (isBinary)
-        text = text.substr(20, readU32(bytes, 12));
+    const std::string_view text =
+        isBinary ? glbChunks(bytes).json
+                 : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     std::vector<std::string> required;
     const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
     if (json.is_object() && json.contains("extensionsRequired") &&
@@ -178,33 +45,6 @@ std::vector<std::string> requiredExtensions(std::span<const std::uint8_t> bytes,
             if (extension.is_string())
                 required.push_back(extension.get<std::string>());
     return required;
-}
-
-void checkGlbContainer(std::span<const std::uint8_t> bytes) {
-    if (bytes.size() < 20)
-        fail("GLB is truncated: " + n(bytes.size()) + " bytes, the header alone needs 20");
-    const std::uint32_t version = readU32(bytes, 4);
-    if (version != 2)
-        fail("GLB version is " + std::to_string(version) + ", only version 2 is supported");
-    const std::uint32_t length = readU32(bytes, 8);
-    if (length != bytes.size())
-        fail("GLB header declares " + std::to_string(length) + " bytes but the file has " +
-             n(bytes.size()) + (length > bytes.size() ? " (truncated)" : ""));
-    std::size_t offset = 12;
-    for (int chunk = 0; offset < bytes.size(); ++chunk) {
-        if (bytes.size() - offset < 8)
-            fail("GLB chunk " + std::to_string(chunk) + " header is truncated");
-        const std::uint64_t chunkLength = readU32(bytes, offset);
-        const std::uint32_t type = readU32(bytes, offset + 4);
-        if (chunkLength > bytes.size() - offset - 8)
-            fail("GLB chunk " + std::to_string(chunk) + " declares " + std::to_string(chunkLength) +
-                 " bytes, past the end of the file");
-        if (chunk == 0 && type != 0x4E4F534Au)
-            fail("GLB chunk 0 is not JSON");
-        if (chunk == 1 && type != 0x004E4942u)
-            fail("GLB chunk 1 is not BIN");
-        offset += 8 + std::size_t(chunkLength);
-    }
 }
 
 double number(const tinygltf::Value& object, const char* key, double fallback) {
