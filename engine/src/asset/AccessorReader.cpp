@@ -10,7 +10,6 @@
 #include <cstring>
 
 namespace asset::detail {
-namespace {
 
 int componentSize(int componentType) {
     switch (componentType) {
@@ -48,6 +47,8 @@ int typeComponents(int type) {
         return 0;
     }
 }
+
+namespace {
 
 /** Reads one component at `p`, normalised per glTF §3.11 when `normalized`. */
 double readComponent(const unsigned char* p, int componentType, bool normalized) {

@@ -10,6 +10,12 @@
 
 namespace asset::detail {
 
+/** Bytes of one component of a glTF componentType (5120..5126), 0 for another value. */
+int componentSize(int componentType);
+
+/** Components of a glTF accessor type (TINYGLTF_TYPE_SCALAR..MAT4), 0 for another value. */
+int typeComponents(int type);
+
 class AccessorReader {
 public:
     /** `fileBytes` sizes the budget for accessors that have no buffer view (zero-filled, maybe

@@ -3,6 +3,7 @@
 // or the JSON claims is checked before it is allocated.
 #include "GltfDecode.h"
 
+#include "AccessorReader.h"
 #include "GlbReader.h"
 #include "LoadError.h"
 #include "engine/asset/Glb.h"
@@ -192,19 +193,10 @@ void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const char* ex
 
 // --- KHR_draco_mesh_compression ------------------------------------------------------------
 
-int accessorComponents(int type) {
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-        return 1;
-    case TINYGLTF_TYPE_VEC2:
-        return 2;
-    case TINYGLTF_TYPE_VEC3:
-        return 3;
-    case TINYGLTF_TYPE_VEC4:
-        return 4;
-    default:
-        return 0;
-    }
+/** Components of a vertex attribute's accessor type: 1 to 4, or 0 for a matrix. */
+int vectorComponents(int type) {
+    const int components = typeComponents(type);
+    return components <= 4 && type != TINYGLTF_TYPE_MAT2 ? components : 0;
 }
 
 /** Every point of `attribute` converted to T, `components` per point, as raw bytes. */
@@ -228,7 +220,7 @@ std::vector<unsigned char> convertAttribute(const draco::Mesh& mesh,
                                             const draco::PointAttribute& attribute,
                                             const tinygltf::Accessor& accessor,
                                             const std::string& what) {
-    const int components = accessorComponents(accessor.type);
+    const int components = vectorComponents(accessor.type);
     switch (accessor.componentType) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT:
         return convertPoints<float>(mesh, attribute, components, what);
@@ -245,19 +237,6 @@ std::vector<unsigned char> convertAttribute(const draco::Mesh& mesh,
     default:
         fail(what + " has componentType " + std::to_string(accessor.componentType) +
              ", which no glTF vertex attribute uses");
-    }
-}
-
-std::size_t componentBytes(int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return 2;
-    default:
-        return 4;
     }
 }
 
@@ -291,7 +270,7 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
         if (it == primitive.attributes.end())
             fail(name + " compresses " + semantic + ", which the primitive does not list");
         const tinygltf::Accessor& accessor = accessorAt(model, it->second, what + " " + semantic);
-        if (accessorComponents(accessor.type) == 0)
+        if (vectorComponents(accessor.type) == 0)
             fail(what + " " + semantic + " accessor " + std::to_string(it->second) +
                  " is not a scalar or vector");
         if (vertexCount != 0 && accessor.count != vertexCount)
@@ -299,8 +278,8 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
                  " elements, other attributes " + n(vertexCount));
         vertexCount = accessor.count;
         decodedBytes += std::uint64_t(accessor.count) *
-                        std::uint64_t(accessorComponents(accessor.type)) *
-                        componentBytes(accessor.componentType);
+                        std::uint64_t(vectorComponents(accessor.type)) *
+                        std::uint64_t(componentSize(accessor.componentType));
     }
     if (vertexCount > core::limits::kMaxVerticesPerPrimitive)
         fail(name + " claims " + n(vertexCount) + " vertices, over the limit of " +
@@ -359,10 +338,10 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
                  std::to_string(int(attribute->data_type())) + ", which no glTF attribute uses");
         }
         tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.attributes[semantic])];
-        if (attribute->num_components() < accessorComponents(accessor.type))
+        if (attribute->num_components() < vectorComponents(accessor.type))
             fail(attributeName + " has " + std::to_string(attribute->num_components()) +
                  " components in the stream, its accessor " +
-                 std::to_string(accessorComponents(accessor.type)));
+                 std::to_string(vectorComponents(accessor.type)));
         std::vector<unsigned char> data =
             convertAttribute(mesh, *attribute, accessor, attributeName);
         accessor.bufferView = addView(model, std::move(data), 0);
