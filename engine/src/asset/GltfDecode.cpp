@@ -13,7 +13,9 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 namespace asset::detail {
@@ -42,9 +44,11 @@ std::int64_t integer(const tinygltf::Value& object, const char* key, std::int64_
     const tinygltf::Value* v = member(object, key);
     if (!v)
         return fallback;
-    if (!v->IsNumber() || v->GetNumberAsDouble() != double(std::int64_t(v->GetNumberAsDouble())))
+    // Range first: converting a double outside int64's range is undefined.
+    const double d = v->IsNumber() ? v->GetNumberAsDouble() : 0.5;
+    if (!(d >= -9.0e15 && d <= 9.0e15) || d != std::floor(d))
         fail(what + " " + key + " is not an integer");
-    return std::int64_t(v->GetNumberAsDouble());
+    return std::int64_t(d);
 }
 
 std::string text(const tinygltf::Value& object, const char* key, const std::string& fallback) {
@@ -83,13 +87,13 @@ std::span<const std::uint8_t> viewBytes(const tinygltf::Model& model, std::int64
     return {data.data() + view.byteOffset, view.byteLength};
 }
 
-/** A new buffer holding `data` and a view over all of it; returns the view's index. */
-int addView(tinygltf::Model& model, std::vector<unsigned char> data, std::size_t byteStride) {
+/** A new buffer holding `data` and a tightly packed view over all of it; returns the view's
+ *  index. */
+int addView(tinygltf::Model& model, std::vector<unsigned char> data) {
     tinygltf::BufferView view;
     view.buffer = int(model.buffers.size());
     view.byteOffset = 0;
     view.byteLength = data.size();
-    view.byteStride = byteStride;
     tinygltf::Buffer buffer;
     buffer.data = std::move(data);
     model.buffers.push_back(std::move(buffer));
@@ -253,8 +257,12 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
     const std::string name = what + " " + kDraco;
     tinygltf::Value ext = primitive.extensions.at(kDraco);
     primitive.extensions.erase(kDraco);
-    if (const tinygltf::Value* indices = member(ext, kDracoIndices))
-        primitive.indices = indices->GetNumberAsInt();
+    if (member(ext, kDracoIndices)) {
+        const std::int64_t indices = integer(ext, kDracoIndices, -1, name);
+        if (indices < 0 || indices > std::numeric_limits<int>::max())
+            fail(what + " indices " + std::to_string(indices) + " is not an accessor index");
+        primitive.indices = int(indices);
+    }
     const tinygltf::Value* attributes = member(ext, "attributes");
     if (!attributes || !attributes->IsObject())
         fail(name + " has no attributes object");
@@ -337,14 +345,15 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
             fail(attributeName + " has Draco data type " +
                  std::to_string(int(attribute->data_type())) + ", which no glTF attribute uses");
         }
-        tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.attributes[semantic])];
+        tinygltf::Accessor& accessor =
+            model.accessors[std::size_t(primitive.attributes.at(semantic))];
         if (attribute->num_components() < vectorComponents(accessor.type))
             fail(attributeName + " has " + std::to_string(attribute->num_components()) +
                  " components in the stream, its accessor " +
                  std::to_string(vectorComponents(accessor.type)));
         std::vector<unsigned char> data =
             convertAttribute(mesh, *attribute, accessor, attributeName);
-        accessor.bufferView = addView(model, std::move(data), 0);
+        accessor.bufferView = addView(model, std::move(data));
         accessor.byteOffset = 0;
         accessor.sparse = {};
     }
@@ -358,7 +367,7 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
             }
         tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.indices)];
         accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        accessor.bufferView = addView(model, std::move(data), 0);
+        accessor.bufferView = addView(model, std::move(data));
         accessor.byteOffset = 0;
         accessor.sparse = {};
     }
@@ -398,7 +407,7 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
             for (const char* name : kMeshopt) {
                 const auto ext = buffer["extensions"].find(name);
                 if (ext == buffer["extensions"].end() || !ext->is_object() ||
-                    ext->value("fallback", false) != true)
+                    !ext->contains("fallback") || (*ext)["fallback"] != true)
                     continue;
                 // Nothing reads a fallback buffer: every view into it is decoded from another.
                 // One zero byte stands in for it (tinygltf refuses an empty data URI).

@@ -1,6 +1,6 @@
-// glTF images: the loader's image callback, which bounds every image's size before decoding it
-// with the decoder for its format (PNG: stb after zlib checks its stream; JPEG: libjpeg-turbo;
-// WebP: libwebp) and keeps KTX2 images undecoded.
+// glTF images: the loader's image callback, which bounds every image's size (its header read by
+// ImageChecks.h) before decoding it with the decoder for its format (PNG: stb after zlib checks its
+// stream; JPEG: libjpeg-turbo; WebP: libwebp) and keeps KTX2 images undecoded.
 #include "GltfConvert.h"
 #include "ImageChecks.h"
 #include "JpegDecoder.h"
@@ -12,118 +12,86 @@
 namespace asset::detail {
 namespace {
 
-/** Decodes WebP to RGBA8 with libwebp after the same size checks as the other formats. */
-bool decodeWebp(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes,
-                int size, bool decode) {
-    int width = 0, height = 0;
-    if (!WebPGetInfo(bytes, std::size_t(size), &width, &height)) {
-        *err += "image " + std::to_string(index) + " is not a valid WebP image";
-        return false;
+/** Decodes into `image` (its size and bit depth set already): RGBA of its bit depth. Returns
+ *  why it could not, or an empty string. */
+std::string decodePixels(ImageKind kind, std::span<const std::uint8_t> bytes,
+                         tinygltf::Image& image) {
+    if (kind == ImageKind::Jpeg) {
+        Jpeg jpeg = decodeJpeg(bytes, 4);
+        image.image = std::move(jpeg.pixels);
+        return jpeg.error;
     }
-    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize) {
-        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
-                std::to_string(height) + ", over the limit of " +
-                std::to_string(core::limits::kMaxTextureSize);
-        return false;
+    if (kind == ImageKind::Webp) {
+        image.image.resize(std::size_t(image.width) * std::size_t(image.height) * 4u);
+        return WebPDecodeRGBAInto(bytes.data(), bytes.size(), image.image.data(),
+                                  image.image.size(), image.width * 4)
+                   ? ""
+                   : "corrupt WebP data";
     }
-    if (auto refuse = detail::implausibleSize(width, height, std::size_t(size))) {
-        *err += "image " + std::to_string(index) + ": " + *refuse;
-        return false;
-    }
-    image->width = width;
-    image->height = height;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    if (!decode)
-        return true;
-    image->image.resize(std::size_t(width) * std::size_t(height) * 4u);
-    if (!WebPDecodeRGBAInto(bytes, std::size_t(size), image->image.data(), image->image.size(),
-                            width * 4)) {
-        *err += "image " + std::to_string(index) + " could not be decoded: corrupt WebP data";
-        return false;
-    }
-    return true;
+    const int size = int(bytes.size());
+    int w = 0, h = 0, c = 0;
+    void* pixels =
+        image.bits == 16
+            ? static_cast<void*>(stbi_load_16_from_memory(bytes.data(), size, &w, &h, &c, 4))
+            : static_cast<void*>(stbi_load_from_memory(bytes.data(), size, &w, &h, &c, 4));
+    if (!pixels)
+        return stbi_failure_reason() ? stbi_failure_reason() : "corrupt data";
+    const std::size_t byteCount =
+        std::size_t(w) * std::size_t(h) * 4u * std::size_t(image.bits / 8);
+    image.image.assign(static_cast<unsigned char*>(pixels),
+                       static_cast<unsigned char*>(pixels) + byteCount);
+    stbi_image_free(pixels);
+    return "";
 }
 
 } // namespace
 
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* userData) {
+                 const unsigned char* data, int size, void* userData) {
     ImageDecoding& options = *static_cast<ImageDecoding*>(userData);
-    const bool decode = options.decode;
-    const detail::ImageKind kind = detail::imageKind(std::span(bytes, std::size_t(size)));
-    if (kind == detail::ImageKind::Ktx2) {
+    const std::span<const std::uint8_t> bytes(data, std::size_t(size));
+    const std::string name = "image " + std::to_string(index);
+    const ImageKind kind = imageKind(bytes);
+    if (kind == ImageKind::Ktx2) {
         options.ktx2.insert(index);
         return true;
     }
-    if (kind == detail::ImageKind::Webp)
-        return decodeWebp(image, index, err, bytes, size, decode);
-    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg) {
-        *err += "image " + std::to_string(index) + " is neither PNG, JPEG, WebP nor KTX2";
+    if (kind != ImageKind::Png && kind != ImageKind::Jpeg && kind != ImageKind::Webp) {
+        *err += name + " is neither PNG, JPEG, WebP nor KTX2";
         return false;
     }
-    const std::span<const std::uint8_t> encoded(bytes, std::size_t(size));
-    int width = 0, height = 0, components = 0;
-    if (kind == detail::ImageKind::Jpeg) {
-        const detail::Jpeg header = detail::jpegHeader(encoded);
-        if (!header.error.empty()) {
-            *err += "image " + std::to_string(index) + " could not be decoded: " + header.error;
-            return false;
-        }
-        width = header.width;
-        height = header.height;
-    } else if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
-        *err += "image " + std::to_string(index) + " could not be decoded: " +
-                (stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+    const ImageHeader header = readImageHeader(kind, bytes);
+    if (!header.unreadable.empty()) {
+        *err += name + " could not be decoded: " + header.unreadable;
         return false;
     }
-    if (width <= 0 || height <= 0 || width > core::limits::kMaxTextureSize ||
-        height > core::limits::kMaxTextureSize) {
-        *err += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" +
-                std::to_string(height) + ", over the limit of " +
-                std::to_string(core::limits::kMaxTextureSize);
+    if (header.width <= 0 || header.height <= 0 || header.width > core::limits::kMaxTextureSize ||
+        header.height > core::limits::kMaxTextureSize) {
+        *err += name + " is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                ", over the limit of " + std::to_string(core::limits::kMaxTextureSize);
         return false;
     }
-    auto refuse = detail::implausibleSize(width, height, std::size_t(size));
+    auto refuse = implausibleSize(header.width, header.height, bytes.size());
     if (!refuse)
-        refuse = detail::checkPngStream(std::span(bytes, std::size_t(size)));
+        refuse = checkPngStream(bytes);
     if (refuse) {
-        *err += "image " + std::to_string(index) + ": " + *refuse;
+        *err += name + ": " + *refuse;
         return false;
     }
-    image->width = width;
-    image->height = height;
+    image->width = header.width;
+    image->height = header.height;
     image->component = 4;
-    image->bits =
-        kind == detail::ImageKind::Png && stbi_is_16_bit_from_memory(bytes, size) ? 16 : 8;
+    image->bits = kind == ImageKind::Png && stbi_is_16_bit_from_memory(data, size) ? 16 : 8;
     image->pixel_type = image->bits == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
                                           : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    if (!decode)
+    if (!options.decode)
         return true;
-    if (kind == detail::ImageKind::Jpeg) {
-        detail::Jpeg jpeg = detail::decodeJpeg(encoded, 4);
-        if (!jpeg.error.empty()) {
-            *err += "image " + std::to_string(index) + " could not be decoded: " + jpeg.error;
-            return false;
-        }
-        image->image = std::move(jpeg.pixels);
-        return true;
-    }
-    int w = 0, h = 0, c = 0;
-    void* pixels = image->bits == 16
-                       ? static_cast<void*>(stbi_load_16_from_memory(bytes, size, &w, &h, &c, 4))
-                       : static_cast<void*>(stbi_load_from_memory(bytes, size, &w, &h, &c, 4));
-    if (!pixels) {
-        *err += "image " + std::to_string(index) + " could not be decoded: " +
-                (stbi_failure_reason() ? stbi_failure_reason() : "corrupt data");
+    const std::string corrupt = decodePixels(kind, bytes, *image);
+    if (!corrupt.empty()) {
+        image->image.clear();
+        *err += name + " could not be decoded: " + corrupt;
         return false;
     }
-    const std::size_t byteCount =
-        std::size_t(w) * std::size_t(h) * 4u * std::size_t(image->bits / 8);
-    image->image.assign(static_cast<unsigned char*>(pixels),
-                        static_cast<unsigned char*>(pixels) + byteCount);
-    stbi_image_free(pixels);
     return true;
 }
 

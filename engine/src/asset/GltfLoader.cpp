@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <set>
 
@@ -54,6 +55,16 @@ double number(const tinygltf::Value& object, const char* key, double fallback) {
     return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
+/** An index or texCoord member as int; a value no int holds (huge, NaN) becomes -1, which the
+ *  caller's range check then refuses. */
+int intNumber(const tinygltf::Value& object, const char* key, int fallback) {
+    const double v = number(object, key, double(fallback));
+    return v >= double(std::numeric_limits<int>::min()) &&
+                   v <= double(std::numeric_limits<int>::max())
+               ? int(v)
+               : -1;
+}
+
 /** KHR_texture_transform in a textureInfo's `extensions`, folded into `ref`: its texCoord
  *  override and the matrix translation * rotation * scale of the extension's text. */
 void readTransform(const tinygltf::ExtensionMap& extensions, scene::TextureRef& ref,
@@ -77,7 +88,7 @@ void readTransform(const tinygltf::ExtensionMap& extensions, scene::TextureRef& 
         !std::isfinite(scale.y) || !std::isfinite(rotation))
         fail(what + " KHR_texture_transform has a non-finite value");
     if (e.IsObject() && e.Has("texCoord"))
-        ref.texCoord = int(number(e, "texCoord", 0));
+        ref.texCoord = intNumber(e, "texCoord", 0);
     const float c = std::cos(rotation), s = std::sin(rotation);
     const glm::mat3 translate(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.x, offset.y, 1.0f);
     const glm::mat3 rotate(c, -s, 0.0f, s, c, 0.0f, 0.0f, 0.0f, 1.0f);
@@ -93,8 +104,8 @@ scene::TextureRef textureInfo(const tinygltf::Model& m, const tinygltf::Value& o
     if (!object.IsObject() || !object.Has(key))
         return ref;
     const tinygltf::Value& info = object.Get(key);
-    ref.texture = int(number(info, "index", -1));
-    ref.texCoord = int(number(info, "texCoord", 0));
+    ref.texture = intNumber(info, "index", -1);
+    ref.texCoord = intNumber(info, "texCoord", 0);
     if (ref.texture < 0 || std::size_t(ref.texture) >= m.textures.size())
         fail(what + " " + key + " references texture " + std::to_string(ref.texture) +
              ", file has " + n(m.textures.size()) + " textures");
@@ -189,7 +200,7 @@ scene::Texture convertTexture(const tinygltf::Model& m, int index, const std::se
         const auto it = src.extensions.find(name);
         if (it == src.extensions.end())
             return -2; // not used
-        const int source = int(number(it->second, "source", -1));
+        const int source = intNumber(it->second, "source", -1);
         if (source < 0 || std::size_t(source) >= m.images.size())
             fail(what + " " + name + " source " + std::to_string(source) + " is not an image of " +
                  "the file's " + n(m.images.size()));
@@ -197,19 +208,17 @@ scene::Texture convertTexture(const tinygltf::Model& m, int index, const std::se
     };
     if (const int webp = extensionSource("EXT_texture_webp"); webp >= 0)
         texture.image = webp;
-    if (const int basisu = extensionSource("KHR_texture_basisu"); basisu >= 0) {
-        if (texture.image < 0 || undecoded.count(texture.image))
-            warnings.push_back(what + " has only a KHR_texture_basisu (KTX2) image, which this "
-                                      "engine cannot decode (Debian 12 has no KTX2 decoder): "
-                                      "materials load without it");
-        else
-            return texture; // the PNG or JPEG fallback beside it
-    } else if (texture.image >= 0 && undecoded.count(texture.image)) {
+    const bool basisu = extensionSource("KHR_texture_basisu") >= 0;
+    if (texture.image >= 0 && !undecoded.count(texture.image))
+        return texture; // decodable: PNG, JPEG or WebP (KHR_texture_basisu's fallback, say)
+    if (basisu)
+        warnings.push_back(what + " has only a KHR_texture_basisu (KTX2) image, which this "
+                                  "engine cannot decode (Debian 12 has no KTX2 decoder): "
+                                  "materials load without it");
+    else if (texture.image >= 0)
         warnings.push_back(what + " uses image " + std::to_string(texture.image) +
                            ", a KTX2 image this engine cannot decode: materials load without it");
-    }
-    if (texture.image >= 0 && undecoded.count(texture.image))
-        texture.image = -1;
+    texture.image = -1;
     return texture;
 }
 

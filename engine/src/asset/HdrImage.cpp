@@ -30,19 +30,11 @@ core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::
     if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg &&
         kind != detail::ImageKind::Radiance)
         return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
-    int width = 0, height = 0, components = 0;
+    const detail::ImageHeader header = detail::readImageHeader(kind, *bytes);
+    if (!header.unreadable.empty())
+        return core::Error{prefix + "not a decodable image (" + header.unreadable + ")"};
+    int width = header.width, height = header.height, components = 0;
     const int size = int(bytes->size());
-    if (kind == detail::ImageKind::Jpeg) {
-        const detail::Jpeg header = detail::jpegHeader(*bytes);
-        if (!header.error.empty())
-            return core::Error{prefix + "not a decodable image (" + header.error + ")"};
-        width = header.width;
-        height = header.height;
-    } else if (!stbi_info_from_memory(bytes->data(), size, &width, &height, &components)) {
-        return core::Error{prefix + "not a decodable image (" +
-                           (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") +
-                           ")"};
-    }
     if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
         return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
                            " is over the texture limit of " +

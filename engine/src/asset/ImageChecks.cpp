@@ -1,6 +1,10 @@
 // Checks on encoded images before decoding.
 #include "ImageChecks.h"
 
+#include "JpegDecoder.h"
+
+#include <stb_image.h>
+#include <webp/decode.h>
 #include <zlib.h>
 
 #include <array>
@@ -35,6 +39,23 @@ ImageKind imageKind(std::span<const std::uint8_t> bytes) {
     if (startsWith("\xabKTX 20\xbb\r\n\x1a\n"))
         return ImageKind::Ktx2;
     return ImageKind::Other;
+}
+
+ImageHeader readImageHeader(ImageKind kind, std::span<const std::uint8_t> bytes) {
+    ImageHeader header;
+    if (kind == ImageKind::Jpeg) {
+        const Jpeg jpeg = jpegHeader(bytes);
+        header = {jpeg.width, jpeg.height, jpeg.error};
+    } else if (kind == ImageKind::Webp) {
+        if (!WebPGetInfo(bytes.data(), bytes.size(), &header.width, &header.height))
+            header.unreadable = "not a valid WebP image";
+    } else {
+        int components = 0;
+        if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &header.width, &header.height,
+                                   &components))
+            header.unreadable = stbi_failure_reason() ? stbi_failure_reason() : "unknown format";
+    }
+    return header;
 }
 
 std::optional<std::string> implausibleSize(int width, int height, std::size_t encodedBytes) {

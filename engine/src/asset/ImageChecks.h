@@ -17,6 +17,14 @@ namespace asset::detail {
 enum class ImageKind { Png, Jpeg, Radiance, Webp, Ktx2, Other };
 ImageKind imageKind(std::span<const std::uint8_t> bytes);
 
+/** The size in an image's header (PNG, Radiance: stb; JPEG: libjpeg-turbo; WebP: libwebp), read
+ *  without decoding the pixels, or why it cannot be read (`unreadable` not empty). */
+struct ImageHeader {
+    int width = 0, height = 0;
+    std::string unreadable;
+};
+ImageHeader readImageHeader(ImageKind kind, std::span<const std::uint8_t> bytes);
+
 /** Refuses a width x height that no file of `encodedBytes` could hold. Real images stay far
  *  below the bound (16384 pixels per encoded byte: past deflate's 1032:1 limit on 8-bit PNG
  *  data and the run-length limit of Radiance files); a header that claims more is a lie that
