@@ -3,13 +3,10 @@
 // compressed stream, wrapped in a GLB whose one primitive reads the decoded view (positions for
 // ATTRIBUTES, indices for TRIANGLES and INDICES) through a fallback buffer with no data, as
 // gltfpack -cf writes it.
-#include "engine/asset/Glb.h"
-#include "engine/asset/GltfLoader.h"
+#include "LoadGlb.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <span>
 #include <string>
@@ -67,10 +64,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":)" + (attributes ? "0" : "1") +
         "}" + (attributes ? "" : R"(,"indices":0)") +
         R"(}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
-    const auto glb = asset::encodeGlb(json, stream);
-    const auto model =
-        asset::loadGltfFromMemory(glb, "fuzz-meshopt.glb", "/nonexistent-glass-fuzz-dir");
-    if (std::getenv("GLASS_FUZZ_VERBOSE")) // what a seed reaches: scripts/fuzz --help
-        std::fprintf(stderr, "%s\n", model.ok() ? "loaded" : model.error().message.c_str());
+    fuzz::loadGlb(json, stream, "fuzz-meshopt.glb");
     return 0;
 }

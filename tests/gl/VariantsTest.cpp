@@ -117,12 +117,17 @@ std::string replaced(std::string text, const std::string& key, const std::string
     return text;
 }
 
-/** Every variant at `precision`, made once for the whole test program in build/variants-out. */
+/** Where the variants and their frames go: build/variants-out. */
+fs::path outDir() {
+    return fs::path(GLASS_BIN_DIR).parent_path() / "variants-out";
+}
+
+/** Every variant at `precision`, made once for the whole test program in outDir(). */
 const std::vector<Variant>& variants(Precision precision) {
     static const std::vector<Source> kSources = sources();
     auto make = [](Precision p) {
         std::vector<Variant> list;
-        const fs::path out = fs::path(GLASS_BIN_DIR).parent_path() / "variants-out";
+        const fs::path out = outDir();
         fs::create_directories(out);
         for (const Source& source : kSources)
             for (const Tool& tool : tools(source, p)) {
@@ -149,15 +154,23 @@ const std::vector<Variant>& variants(Precision precision) {
     return kDefault;
 }
 
-/** Every deformed vertex of `model` in world space at `time` of `clip` (-1: the rest pose). */
-std::vector<glm::dvec3> cpuVertices(const scene::Model& model, int clip, double time) {
-    const anim::Pose pose = anim::evaluate(model, clip, time);
+/** Every vertex of deformed `instances` in world space; `positions(i, p)` gives instance i's
+ *  primitive p in mesh space (the CPU oracle's own, or the GPU deform pass's). */
+template <typename Positions>
+std::vector<glm::dvec3> worldVertices(const std::vector<deform::DeformedInstance>& instances,
+                                      Positions positions) {
     std::vector<glm::dvec3> out;
-    for (const deform::DeformedInstance& instance : deform::deformScene(model, pose))
-        for (const deform::DeformedPrimitive& primitive : instance.primitives)
-            for (const glm::dvec3& v : primitive.positions)
-                out.push_back(glm::dvec3(instance.meshToWorld * glm::dvec4(v, 1.0)));
+    for (std::size_t i = 0; i < instances.size(); ++i)
+        for (std::size_t p = 0; p < instances[i].primitives.size(); ++p)
+            for (const glm::dvec3& v : positions(i, p))
+                out.push_back(glm::dvec3(instances[i].meshToWorld * glm::dvec4(v, 1.0)));
     return out;
+}
+
+std::vector<glm::dvec3> cpuVertices(const std::vector<deform::DeformedInstance>& instances) {
+    return worldVertices(instances, [&](std::size_t i, std::size_t p) {
+        return instances[i].primitives[p].positions;
+    });
 }
 
 double diagonal(const std::vector<glm::dvec3>& points) {
@@ -204,40 +217,33 @@ constexpr double kQuantisationStep = 2.0 / 65535.0;
 
 class Variants : public test::GlTest {
 protected:
-    /** The same from the GPU deform pass. */
-    static std::vector<glm::dvec3> gpuVertices(const scene::Model& model, int clip, double time) {
-        auto deformer = deform::GpuDeformer::create(model, shaders());
-        EXPECT_TRUE(deformer.ok()) << deformer.error().message;
-        if (!deformer.ok())
-            return {};
-        const anim::Pose pose = anim::evaluate(model, clip, time);
-        (*deformer)->update(pose);
-        const auto cpu = deform::deformScene(model, pose); // for each instance's world matrix
-        std::vector<glm::dvec3> out;
-        for (std::size_t i = 0; i < cpu.size(); ++i)
-            for (std::size_t p = 0; p < cpu[i].primitives.size(); ++p)
-                for (const glm::dvec3& v : (*deformer)->download(i, p).positions)
-                    out.push_back(glm::dvec3(cpu[i].meshToWorld * glm::dvec4(v, 1.0)));
-        return out;
-    }
-
     /** `variant` deforms like `source` at several times of the first clip (or in the rest pose
      *  only), CPU and GPU: no vertex of either is farther than `tolerance` (a fraction of the
      *  diagonal) from the other's nearest. */
     static void expectDeformsLike(const scene::Model& source, const scene::Model& variant,
                                   const std::string& name, double tolerance,
                                   bool restOnly = false) {
+        auto deformer = deform::GpuDeformer::create(variant, shaders());
+        ASSERT_TRUE(deformer.ok()) << deformer.error().message;
         const int clip = restOnly || source.animations.empty() ? -1 : 0;
         const double duration = clip < 0 ? 0.0 : source.animations[0].duration;
         for (double fraction : {0.0, 0.37, 0.81}) {
             if (clip < 0 && fraction > 0.0)
                 break;
             const double time = fraction * duration;
-            const std::vector<glm::dvec3> expected = cpuVertices(source, clip, time);
+            const std::vector<glm::dvec3> expected =
+                cpuVertices(deform::deformScene(source, anim::evaluate(source, clip, time)));
             const double size = diagonal(expected);
+            const anim::Pose pose = anim::evaluate(variant, clip, time);
+            const auto cpu = deform::deformScene(variant, pose);
+            (*deformer)->update(pose);
             for (const bool gpu : {false, true}) {
                 const std::vector<glm::dvec3> got =
-                    gpu ? gpuVertices(variant, clip, time) : cpuVertices(variant, clip, time);
+                    gpu ? worldVertices(cpu,
+                                        [&](std::size_t i, std::size_t p) {
+                                            return (*deformer)->download(i, p).positions;
+                                        })
+                        : cpuVertices(cpu);
                 ASSERT_FALSE(got.empty()) << name;
                 const double cell = 8.0 * tolerance * size;
                 const double error = std::max(farthestFromNearest(got, expected, cell),
@@ -291,7 +297,7 @@ TEST_F(Variants, ToolsWriteTheExtensionsTheyAreMeantToExercise) {
 }
 
 TEST_F(Variants, FramesMatchTheirSourcesGoldens) {
-    const fs::path out = fs::path(GLASS_BIN_DIR).parent_path() / "variants-out";
+    const fs::path out = outDir();
     int compared = 0;
     for (const Variant& v : variants(Precision::Default)) {
         SCOPED_TRACE(v.name);

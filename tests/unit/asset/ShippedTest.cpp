@@ -291,7 +291,8 @@ TEST(Images, Ktx2TextureUsesItsFallbackOrLoadsWithoutItWithAWarning) {
     ktx2.resize(80, 0);
     const std::vector<std::uint8_t> pixels = {10, 20, 30, 255};
     test::GltfBuilder b = texturedModel(ktx2, "image/ktx2");
-    const int fallbackView = b.addView(webp(pixels, 1, 1).data(), webp(pixels, 1, 1).size());
+    const std::vector<std::uint8_t> fallback = webp(pixels, 1, 1);
+    const int fallbackView = b.addView(fallback.data(), fallback.size());
     b.doc["images"].push_back({{"bufferView", fallbackView}, {"mimeType", "image/webp"}});
     b.doc["textures"][0] = {{"source", 1},
                             {"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}};
