@@ -46,29 +46,8 @@ struct ShadeData {
 /** Uniforms and maps of glass_shading.glsl common to both shading paths. */
 void setShading(const FrameContext& c, const gl::Program& f, const ShadeData& d,
                 const fg::Resources& r) {
-    const Settings& s = c.settings;
-    const render::FrameInfo& frame = *c.frame;
-    f.use();
-    f.set("uMethod", int(s.method)); // glass_shading.glsl: 1 sir, 2 isr, 3 dir
-    f.set("uSteps", s.searchSteps);
-    f.set("uTirPolicy", c.reflect ? 1 : 0);
-    f.set("uBounces", s.tirBounces);
-    f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off
-    // Without opaque geometry the walk could only find the background, which is the
-    // environment the lookup falls back to: skip it (the same image, cheaper).
-    f.set("uNearby", s.nearby && frame.opaqueGeometry ? 1 : 0);
-    f.set("uDebug", s.debug);
-    f.set("uSharedDispersion", s.dispersionSearch == Settings::DispersionSearch::Shared ? 1 : 0);
-    f.set("uViewportSize", glm::vec2(frame.settings.size));
-    f.set("uNear", frame.camera.znear);
-    f.set("uFar", frame.camera.zfar);
-    f.set("uNearbyDistance", 0.5f * (frame.camera.zfar - frame.camera.znear));
-    const glm::mat4 viewToWorld = glm::inverse(frame.camera.view);
-    f.set("uViewToWorld", glm::mat3(viewToWorld));
-    f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+    c.setWalkUniforms(f);
     f.set("uNormalLod", float(kNormalLod));
-    frame.environment->bind(f, 0, frame.settings.environmentRotation,
-                            frame.settings.environmentIntensity);
     const std::pair<const char*, fg::TextureHandle> samplers[] = {
         {"uBackDepth", d.maps.backDepth},   {"uBackNormal", d.maps.backNormal},
         {"uFrontDepth", d.maps.frontDepth}, {"uFrontNormal", d.maps.frontNormal},
@@ -90,6 +69,7 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
     buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
     buffers.range = graph.importBuffer("refraction.depth_range", &gpu.range);
+    buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     return buffers;
 }
 
@@ -99,6 +79,32 @@ void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) 
             return item.key == std::get<0>(entry.first);
         });
     });
+}
+
+void FrameContext::setWalkUniforms(const gl::Program& f) const {
+    const Settings& s = settings;
+    f.use();
+    f.set("uMethod", int(s.method)); // 1 sir, 2 isr, 3 dir
+    f.set("uSteps", s.searchSteps);
+    f.set("uTirPolicy", reflect ? 1 : 0);
+    f.set("uBounces", s.tirBounces);
+    f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off
+    // Without opaque geometry the walk could only find the background, which is the
+    // environment the lookup falls back to: skip it (the same image, cheaper).
+    f.set("uNearby", s.nearby && frame->opaqueGeometry ? 1 : 0);
+    f.set("uDebug", s.debug);
+    f.set("uSharedDispersion", s.dispersionSearch == Settings::DispersionSearch::Shared ? 1 : 0);
+    f.set("uViewportSize", glm::vec2(frame->settings.size));
+    f.set("uProjection", frame->camera.projection);
+    f.set("uInverseProjection", glm::inverse(frame->camera.projection));
+    f.set("uNear", frame->camera.znear);
+    f.set("uFar", frame->camera.zfar);
+    f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+    const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
+    f.set("uViewToWorld", glm::mat3(viewToWorld));
+    f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+    frame->environment->bind(f, 0, frame->settings.environmentRotation,
+                             frame->settings.environmentIntensity);
 }
 
 void FrameContext::setMaterial(const gl::Program& program, const render::DrawItem& item) const {
@@ -117,11 +123,13 @@ void FrameContext::setMaterial(const gl::Program& program, const render::DrawIte
     program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
 }
 
-void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState& state,
-                             bool front) const {
+void FrameContext::drawGlass(
+    const gl::Program& program, const gl::PipelineState& state,
+    const std::function<void(const render::DrawItem&, std::size_t)>& perItem) const {
     program.use();
     program.set("uProjection", frame->camera.projection);
-    for (const render::DrawItem& item : frame->items) {
+    for (std::size_t index = 0; index < frame->items.size(); ++index) {
+        const render::DrawItem& item = frame->items[index];
         if (!isGlass(item))
             continue;
         const glm::mat4 modelView = frame->camera.view * item.world;
@@ -134,12 +142,35 @@ void FrameContext::drawGlass(const gl::Program& program, const gl::PipelineState
         program.set("uHasNormalDistance", hasDistance ? 1 : 0);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
         gl::bindStorage(2, hasDistance ? distance->second.values() : item.gpu->deformed);
-        if (front)
-            setMaterial(program, item);
+        if (perItem)
+            perItem(item, index);
         gl::apply(state);
         item.vertexArray->bind();
         gl::drawIndexed(item.gpu->indexCount);
     }
+}
+
+void FrameContext::growGlassRectangle() const {
+    // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
+    gpu->rectangle.fill(0, 2, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(8, 2, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(16, 3, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(28, 3, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(40, 1, 0u);
+    gpu->rectangleGrow.use();
+    gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
+    gl::bindStorage(4, gpu->rectangle);
+    for (const render::DrawItem& item : frame->items) {
+        if (!isGlass(item))
+            continue;
+        gpu->rectangleGrow.set("uModelViewProjection", frame->camera.viewProjection() * item.world);
+        gpu->rectangleGrow.set("uModelView", frame->camera.view * item.world);
+        const int count = int(item.primitive->vertexCount());
+        gpu->rectangleGrow.set("uVertexCount", count);
+        gl::bindStorage(0, item.geometry->cage(item.instance, item.primitiveIndex).vertices);
+        gl::dispatch(std::uint32_t((count + 63) / 64));
+    }
+    gl::memoryBarrier(gl::BarrierStorage);
 }
 
 void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
@@ -205,8 +236,7 @@ SurfaceMaps addSeparateSurfacePasses(fg::FrameGraph& graph, const FrameContext& 
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
                 c.drawGlass(c.gpu->surface,
                             {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
-                             .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater},
-                            false);
+                             .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
                 r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
                 return {};
             });
@@ -246,24 +276,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
         [c](const fg::Resources& r, const GatherData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const render::FrameInfo& frame = *c.frame;
-            // The glass rectangle from the deformed cages (rectangle.comp.glsl).
-            gpu.rectangle.fill(0, 2, std::uint32_t(INT32_MAX)); // empty: min > max
-            gpu.rectangle.fill(8, 2, std::uint32_t(INT32_MIN));
-            gpu.rectangleGrow.use();
-            gpu.rectangleGrow.set("uViewportSize", glm::vec2(frame.settings.size));
-            gl::bindStorage(4, gpu.rectangle);
-            for (const render::DrawItem& item : frame.items) {
-                if (!c.isGlass(item))
-                    continue;
-                gpu.rectangleGrow.set("uModelViewProjection",
-                                      frame.camera.viewProjection() * item.world);
-                const int count = int(item.primitive->vertexCount());
-                gpu.rectangleGrow.set("uVertexCount", count);
-                gl::bindStorage(0,
-                                item.geometry->cage(item.instance, item.primitiveIndex).vertices);
-                gl::dispatch(std::uint32_t((count + 63) / 64));
-            }
-            gl::memoryBarrier(gl::BarrierStorage);
+            c.growGlassRectangle();
             if (auto bound = gpu.framebuffer.bindTargets(
                     "refraction.surfaces", {&r.texture(d.nearTargets), &r.texture(d.farTargets)},
                     nullptr);
@@ -278,8 +291,7 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
                         {.cull = gl::Cull::None,
                          .depthTest = false,
                          .depthWrite = false,
-                         .blend = gl::Blend::Max},
-                        false);
+                         .blend = gl::Blend::Max});
             return {};
         });
     buffers.rectangle = gathered.rectangle;
@@ -442,8 +454,6 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                 c.setMaterial(gpu.deferred, *c.glass);
                 gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
                 gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
-                gpu.deferred.set("uProjection", c.frame->camera.projection);
-                gpu.deferred.set("uInverseProjection", glm::inverse(c.frame->camera.projection));
                 gl::bindStorage(4, gpu.rectangle);
                 gpu.emptyVao.bind();
                 gl::drawArrays(6);
@@ -469,7 +479,9 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             gl::clearDepth(1.0f);
             setShading(c, c.gpu->front, d, r);
             c.drawGlass(c.gpu->front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
-                        true);
+                        [&c](const render::DrawItem& item, std::size_t) {
+                            c.setMaterial(c.gpu->front, item);
+                        });
             return {};
         });
     struct CompositeData {

@@ -13,7 +13,18 @@
 #include "engine/plugin/Plugin.h"
 #include "engine/render/FrameInfo.h"
 
+#include <functional>
+#include <vector>
+
 namespace refraction {
+
+/** One glass id's optics as layers.glsl's GlassMaterial reads them (std430). */
+struct GlassMaterialGpu {
+    glm::vec4 ior;       ///< per channel; w: transmission
+    glm::vec4 sigma;     ///< absorption per world unit; w: roughness
+    glm::vec4 baseColor; ///< w: metallic
+    glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
+};
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
@@ -26,11 +37,24 @@ struct FrameContext {
     bool onePass = false; ///< the single gathered geometry pass
     /** The first glass item: with one pass, its material and overrides are every one's. */
     const render::DrawItem* glass = nullptr;
+    /** The layered path: each frame item's glass id (-1: not glass), and the optics per id
+     *  (one per character and material). */
+    std::vector<int> glassIds;
+    std::vector<GlassMaterialGpu> materials;
+    const gl::Program* layerShade = nullptr; ///< the shading variant (layerShadeProgram)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
-    /** Draws every glass item with `program` (glass.vert.glsl); `front` sets each one's
-     *  material for the shading. */
-    void drawGlass(const gl::Program& program, const gl::PipelineState& state, bool front) const;
+    /** Draws every glass item with `program` (glass.vert.glsl), calling `perItem` (its index
+     *  in the frame's items) first when given. */
+    void drawGlass(const gl::Program& program, const gl::PipelineState& state,
+                   const std::function<void(const render::DrawItem&, std::size_t)>& perItem =
+                       {}) const;
+    /** The glass's pixel rectangle and view-space box from the deformed cages
+     *  (rectangle.comp.glsl), into GpuState::rectangle. */
+    void growGlassRectangle() const;
+    /** What every shading pass sets alike: method, search, TIR policy, Fresnel, debug view,
+     *  camera, the lookup's parameters and the environment (texture units 0-1). */
+    void setWalkUniforms(const gl::Program& program) const;
     /** Material and optics uniforms of glass_shading.glsl for `item`'s material and its
      *  character's overrides. */
     void setMaterial(const gl::Program& program, const render::DrawItem& item) const;
@@ -40,10 +64,12 @@ struct FrameContext {
 void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items);
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
- *  and the plugin's own (GpuState: d_N, the glass rectangle, the depth range), imported each
+ *  and the plugin's own (GpuState: d_N, the glass rectangle, the depth range, the layers),
+ *  imported each
  *  frame. A pass that writes one leaves the new version here for the passes after it. */
 struct FrameBuffers {
     fg::BufferHandle vertices, distances, rectangle, range;
+    fg::BufferHandle layers; ///< GpuState::layers (the layered path)
 };
 
 /** The maps the searches read. */
@@ -67,6 +93,20 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
 /** The depth range of the back (and front) maps, into GpuState::range. */
 void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps,
                        FrameBuffers& buffers);
+/** The layered path's programs for this frame: the capture for capacity K and the shading
+ *  variant for K, the method and the dispersion search (compiled in: layers.glsl,
+ *  layers_shade.frag.glsl), built when first needed and kept. */
+core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c);
+/** The layered path's glass ids and their optics (FrameContext::glassIds, materials); ids past
+ *  the 255 a layer can name share the last, with a warning. */
+void assignGlassIds(FrameContext& c);
+/** The layered path: the capture pass (one geometry pass, every glass layer) and the walk over
+ *  the glass pixels; returns the new scene colour. */
+fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                 const FrameContext& c, FrameBuffers& buffers);
+/** Bytes per pixel the layered path keeps at capacity K (the per-pixel head and K layers). */
+std::size_t layerBytesPerPixel(int capacity);
+
 /** The shading, composited over the scene colour: returns the new scene colour. */
 fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
                                    const FrameContext& c, const SurfaceMaps& maps,

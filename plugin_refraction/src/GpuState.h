@@ -22,10 +22,27 @@ struct GpuState {
     gl::Program surface, front, composite, depthRange, refit, normalDistance;
     // The single geometry pass.
     gl::Program surfaces, resolve, deferred, rectangleGrow;
+    // The layered path (layers.glsl).
+    gl::Program layersCapture; // for K = layerProgramsCapacity (compiled in)
+    int layerProgramsCapacity = 0;
+    /** Shading variants for that K by (method, dispersion search). */
+    std::map<std::pair<int, int>, gl::Program> layerShadePrograms;
+    /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
+    struct LayerStorage {
+        gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
+        gl::Buffer depths; // K floats per pixel
+        gl::Buffer attrs;  // K uvec2 per pixel
+        glm::ivec2 size{0};
+        int capacity = 0;
+    } layers;
+    gl::Buffer glassMaterials; // GlassMaterial (layers.glsl) per glass id, grown as needed
+    bool warnedGlassIds = false; // the 256-id limit was reported
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer range{4 * sizeof(std::uint32_t)};    // depth_range.comp.glsl's min/max
-    gl::Buffer rectangle{4 * sizeof(std::int32_t)}; // the glass's pixel rectangle (surfaces.glsl)
+    /** The glass's pixel rectangle (surfaces.glsl) [0..3], its view-space box [4..9]
+     *  (rectangle.comp.glsl), the layered shading's overflowing pixels [10]. */
+    gl::Buffer rectangle{11 * sizeof(std::int32_t)};
     /** d_N of one glass item (a primitive of a character): measured on the deformed cage (the
      * file's triangles); with subdivision carried to the drawn vertices by the refinement stencils.
      */

@@ -10,6 +10,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -151,6 +152,7 @@ struct Surface {
     std::vector<dvec2> uv;
     std::vector<std::uint32_t> indices;
     bool glass = true;
+    int solid = 0;                             // the character: one closed solid (media rule)
     const scene::Model* model = nullptr;       // whose material and textures
     const scene::Material* material = nullptr; // opaque surfaces
     Optics optics;                             // glass surfaces
@@ -160,6 +162,7 @@ struct Hit {
     bool hit = false, ground = false;
     double t = 1e300;
     dvec3 point, shadingNormal;
+    dvec3 geometricNormal; // from the winding (glTF: counter-clockwise is outside)
     dvec2 uv{0.0};
     const Surface* surface = nullptr;
 };
@@ -194,6 +197,37 @@ double random01(std::uint32_t& state) {
     std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return double((word >> 22u) ^ word) / 4294967296.0;
 }
+
+/** The media a path is in (ARCHITECTURE.md, "How a ray walks the layers"): a stack of the
+ *  glass surfaces it entered through. Crossing a surface against its outward (winding) normal
+ *  enters it; crossing one along it leaves the most recent entry of that surface's solid (its
+ *  character), so the pieces of one character (a mesh split by material, interpenetrating
+ *  parts) are one solid, and other characters' glass nests inside. The medium is the top
+ *  entry's glass, air when empty. */
+class Media {
+public:
+    const Surface* top() const { return mCount ? mEntries[mCount - 1] : nullptr; }
+    void enter(const Surface* surface) {
+        if (mCount < mEntries.size())
+            mEntries[mCount++] = surface;
+    }
+    void leave(int solid) {
+        for (std::size_t i = mCount; i-- > 0;)
+            if (mEntries[i]->solid == solid) {
+                std::copy(mEntries.begin() + std::ptrdiff_t(i) + 1,
+                          mEntries.begin() + std::ptrdiff_t(mCount), mEntries.begin() + std::ptrdiff_t(i));
+                --mCount;
+                return;
+            }
+    }
+
+private:
+    std::array<const Surface*, 16> mEntries{};
+    std::size_t mCount = 0;
+};
+
+/** Interfaces into glass where a path follows both the reflection and the refraction. */
+constexpr int kSplits = 3;
 
 class Tracer {
 public:
@@ -254,6 +288,8 @@ public:
             h.point = w * s.positions[tri[0]] + u * s.positions[tri[1]] + v * s.positions[tri[2]];
             h.shadingNormal = glm::normalize(w * s.normals[tri[0]] + u * s.normals[tri[1]] +
                                              v * s.normals[tri[2]]);
+            h.geometricNormal = glm::cross(s.positions[tri[1]] - s.positions[tri[0]],
+                                           s.positions[tri[2]] - s.positions[tri[0]]);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
         }
@@ -317,60 +353,73 @@ public:
                emissive;
     }
 
-    /** Radiance of channel `c` along a ray entering glass at `entry` (refracted), through the
-     *  glass with real TIR, and on after it leaves. */
-    double inside(const Hit& entry, const dvec3& dir, int c, int depth, std::uint32_t& rng,
-                  std::size_t& trapped) const {
-        const Optics& o = entry.surface->optics;
-        const double ior = o.ior[c], sigma = o.sigma[c];
-        dvec3 n = entry.shadingNormal;
-        if (glm::dot(n, dir) > 0)
-            n = -n;
-        dvec3 d;
-        if (!refractRay(dir, n, 1.0 / ior, d))
-            return 0.0;
-        dvec3 p = entry.point;
-        double length = 0.0;
-        for (int bounce = 0;; ++bounce) {
-            const Hit h = intersect(p, d);
-            if (!h.hit) // an open mesh: the ray leaves through the hole
-                return mEnv.radiance(d, 0.0)[c] * std::exp(-sigma * length);
-            length += h.t;
+    /** Radiance of channel `c` arriving along a ray from `origin` inside `media`, through
+     *  every interface it meets (Media: the rule the GPU's walk follows too): where the ray goes
+     *  into glass (from air or from other glass) Fresnel splits it into both branches
+     *  (`splits` more times), then chooses one by chance,
+     *  a ray leaving glass for air refracts unless totally reflected, Beer-Lambert absorption
+     *  in every glass segment. A path ends at an opaque surface, the ground or the environment,
+     *  when its throughput is negligible, or after maxBounces interfaces (counted in `trapped`
+     *  when still in glass, and black). */
+    double follow(dvec3 origin, dvec3 dir, int c, Media media, double weight, int splits,
+                  std::uint32_t& rng, std::size_t& trapped) const {
+        for (int event = 0;; ++event) {
+            const Hit h = intersect(origin, dir);
+            const Surface* inside = media.top();
+            if (!h.hit) // the environment (or an open mesh's hole)
+                return weight * mEnv.radiance(dir, 0.0)[c];
+            if (inside)
+                weight *= std::exp(-inside->optics.sigma[c] * h.t);
             if (h.ground || !h.surface->glass)
-                return shadeOpaque(h, d)[c] * std::exp(-sigma * length);
-            dvec3 out = h.shadingNormal;
-            if (glm::dot(out, d) < 0)
-                out = -out;
-            dvec3 t;
-            if (refractRay(d, -out, ior, t))
-                return outside(h.point, t, c, depth + 1, rng, trapped) * std::exp(-sigma * length);
-            if (bounce >= mOptions.maxBounces) {
-                ++trapped;
+                return weight * shadeOpaque(h, dir)[c];
+            if (weight < 1e-4) // negligible: no longer worth following
+                return 0.0;
+            if (event >= mOptions.maxBounces) {
+                if (inside)
+                    ++trapped;
                 return 0.0;
             }
-            d = glm::reflect(d, out);
-            p = h.point;
+            Media after = media;
+            if (glm::dot(dir, h.geometricNormal) < 0.0)
+                after.enter(h.surface);
+            else
+                after.leave(h.surface->solid);
+            const Surface* to = after.top();
+            const double n1 = inside ? inside->optics.ior[c] : 1.0;
+            const double n2 = to ? to->optics.ior[c] : 1.0;
+            origin = h.point;
+            if (n1 == n2) { // overlapping glass of one index, or one solid's parts: no interface
+                media = after;
+                continue;
+            }
+            dvec3 n = h.shadingNormal;
+            if (glm::dot(n, dir) > 0)
+                n = -n;
+            dvec3 t;
+            const bool refracts = refractRay(dir, n, n1 / n2, t);
+            const double f =
+                refracts && to ? fresnelEntry(mFresnel, -glm::dot(dir, n), n1 / n2) : 0.0;
+            if (refracts && f > 0.0 && splits > 0) {
+                // Both branches, weighted (the first few times: far less noise than choosing).
+                Media entered = after;
+                const double reflected =
+                    follow(origin, glm::reflect(dir, n), c, media, weight * f, splits - 1, rng,
+                           trapped);
+                return reflected + follow(origin, t, c, entered, weight * (1.0 - f) *
+                                                                     to->optics.baseColor[c],
+                                          splits - 1, rng, trapped);
+            }
+            if (!refracts || (f > 0.0 && random01(rng) < f)) {
+                dir = glm::reflect(dir, n);
+                continue;
+            }
+            if (!to && mOptions.twoInterfaces)
+                return weight * mEnv.radiance(t, 0.0)[c]; // the closed-form model: one exit
+            dir = t;
+            media = after;
+            if (to)
+                weight *= to->optics.baseColor[c];
         }
-    }
-
-    /** Radiance of channel `c` arriving along a ray in air from `origin`. */
-    double outside(const dvec3& origin, const dvec3& dir, int c, int depth, std::uint32_t& rng,
-                   std::size_t& trapped) const {
-        if (mOptions.twoInterfaces || depth > 2 * mOptions.maxBounces)
-            return mEnv.radiance(dir, 0.0)[c];
-        const Hit h = intersect(origin, dir);
-        if (!h.hit)
-            return mEnv.radiance(dir, 0.0)[c];
-        if (h.ground || !h.surface->glass)
-            return shadeOpaque(h, dir)[c];
-        dvec3 n = h.shadingNormal;
-        if (glm::dot(n, dir) > 0)
-            n = -n;
-        const Optics& o = h.surface->optics;
-        const double f = fresnelEntry(mFresnel, -glm::dot(dir, n), 1.0 / o.ior[c]);
-        if (random01(rng) < f)
-            return outside(h.point, glm::reflect(dir, n), c, depth + 1, rng, trapped);
-        return o.baseColor[c] * inside(h, dir, c, depth + 1, rng, trapped);
     }
 
     /** Colour of one camera ray; `glass` reports whether it hit glass first. */
@@ -388,11 +437,29 @@ public:
             n = -n;
         const double f = fresnelEntry(mFresnel, -glm::dot(dir, n), 1.0 / o.ior.g);
         const dvec3 reflected = mEnv.radiance(glm::reflect(dir, n), o.roughness);
+        Media media;
+        media.enter(h.surface);
         dvec3 transmitted;
-        for (int c = 0; c < 3; ++c)
-            transmitted[c] = inside(h, dir, c, 0, rng, trapped);
+        for (int c = 0; c < 3; ++c) {
+            dvec3 d;
+            refractRay(dir, n, 1.0 / o.ior[c], d); // air into glass never reflects totally
+            transmitted[c] = follow(h.point, d, c, media, 1.0, kSplits, rng, trapped);
+        }
         return double(o.transmission) *
                (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
+    }
+
+    /** How many glass surfaces the straight line from `origin` along `dir` crosses before an
+     *  opaque surface (what the layered capture stores for the pixel), at most `cap`. */
+    int countGlassSurfaces(dvec3 origin, const dvec3& dir, int cap) const {
+        int count = 0;
+        for (; count < cap; ++count) {
+            const Hit h = intersect(origin, dir);
+            if (!h.hit || h.ground || !h.surface->glass)
+                break;
+            origin = h.point;
+        }
+        return count;
     }
 
 private:
@@ -416,7 +483,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     const Settings decoded = Settings::decode(glass);
     std::vector<Surface> surfaces;
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const scene::Character& character : world.characters) {
+    for (std::size_t solid = 0; solid < world.characters.size(); ++solid) {
+        const scene::Character& character = world.characters[solid];
         const scene::Model& model = *character.model;
         for (const auto& instance : deform::deformCharacter(character, time)) {
             const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
@@ -433,6 +501,7 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 s.model = &model;
                 s.glass = decoded.isGlass(model, primitive, character.glass);
+                s.solid = int(solid);
                 s.optics = opticsFor(decoded, s.material, character.overrides);
                 if (!s.optics.dispersion)
                     s.optics.ior = glm::vec3(s.optics.ior.g);
@@ -458,11 +527,14 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     const bool stratified = grid * grid == spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::size_t> trapped{0};
+    constexpr int kCountCap = 64;
+    std::vector<std::atomic<std::size_t>> histogram(kCountCap + 1);
     const unsigned threads =
         options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     const bool bar = options.progress && isatty(2);
     auto work = [&] {
         std::size_t localTrapped = 0;
+        std::vector<std::size_t> localHistogram(kCountCap + 1, 0);
         for (int row = nextRow++; row < h; row = nextRow++) {
             for (int x = 0; x < w; ++x) {
                 dvec3 sum(0.0);
@@ -485,6 +557,9 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                     const dvec3 dir = glm::normalize(dvec3(farPoint) / farPoint.w - origin);
                     bool glassHit = false;
                     sum += tracer.primary(origin, dir, glassHit, rng, localTrapped);
+                    if (s == 0 && glassHit)
+                        ++localHistogram[std::size_t(
+                            tracer.countGlassSurfaces(origin, dir, kCountCap))];
                     glassSamples += glassHit ? 1 : 0;
                 }
                 float* out = &image.rgba[(std::size_t(row) * std::size_t(w) + std::size_t(x)) * 4];
@@ -498,6 +573,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                              std::string(std::size_t(40 * done / h), '#').c_str(), 100 * done / h);
         }
         trapped += localTrapped;
+        for (std::size_t i = 0; i < localHistogram.size(); ++i)
+            histogram[i] += localHistogram[i];
     };
     std::vector<std::thread> pool;
     for (unsigned t = 0; t < threads; ++t)
@@ -507,6 +584,11 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     if (bar)
         std::fprintf(stderr, "\n");
     image.trappedSamples = trapped.load();
+    image.surfaceHistogram.resize(histogram.size());
+    for (std::size_t i = 0; i < histogram.size(); ++i)
+        image.surfaceHistogram[i] = histogram[i].load();
+    while (image.surfaceHistogram.size() > 1 && image.surfaceHistogram.back() == 0)
+        image.surfaceHistogram.pop_back();
     return image;
 }
 

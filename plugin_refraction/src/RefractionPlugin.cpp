@@ -6,6 +6,7 @@
 #include "GpuState.h"
 
 #include "engine/core/Check.h"
+#include "engine/core/Log.h"
 
 #include <cstdio>
 
@@ -134,6 +135,41 @@ RefractionPlugin::RefractionPlugin() {
                0,
                {"farthest", "first"},
                "which back face the depth map keeps (ISR paper §3.2)"});
+    p.declare({"surfaces",
+               "Surfaces",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"layers", "two-surface"},
+               "layers: every glass surface a ray crosses (up to layer-capacity per pixel), "
+               "captured in one geometry pass whatever the materials, and walked interface by "
+               "interface; two-surface: the papers' nearest front and one back surface"});
+    p.declare({"layer-capacity",
+               "Layers per pixel (K)",
+               Type::Int,
+               1,
+               8,
+               4,
+               {},
+               "glass fragments kept per pixel; a pixel with more keeps its nearest front and "
+               "farthest back (debug view overflow)"});
+    p.declare({"interfaces",
+               "Interfaces (N)",
+               Type::Int,
+               1,
+               32,
+               8,
+               {},
+               "interfaces a layered ray crosses at most, the entry included"});
+    p.declare({"march-steps",
+               "March steps",
+               Type::Int,
+               1,
+               64,
+               12,
+               {},
+               "layered search: coarse samples along the ray before search-steps halvings"});
     p.declare({"geometry-passes",
                "Geometry passes",
                Type::Enum,
@@ -142,9 +178,9 @@ RefractionPlugin::RefractionPlugin() {
                0,
                {"one", "two"},
                "one: front and back surfaces gathered in one pass (MAX blending), refracted in a "
-               "full-screen pass; two: the papers' back-face pass, then a front-face pass. One "
-               "needs a single glass material without a normal map and back-surface=farthest; "
-               "otherwise two runs"});
+               "full-screen pass; two: the papers' back-face pass, then a front-face pass. With "
+               "surfaces=two-surface, one needs a single glass material without a normal map "
+               "and back-surface=farthest, otherwise two runs; layers always draw once"});
     p.declare({"nearby",
                "Nearby scene",
                Type::Bool,
@@ -160,7 +196,7 @@ RefractionPlugin::RefractionPlugin() {
                0,
                0,
                {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
-                "exit-point", "exit-direction"},
+                "exit-point", "exit-direction", "layer-count", "overflow"},
                ""});
     addMaterialPresets(p);
 }
@@ -225,7 +261,27 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.plugin = this;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
 
-    // The single geometry pass needs what one shading pass can serve: one glass material with
+    dropStaleDistances(*mGpu, c.frame->items);
+    c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
+    if (c.settings.layered()) {
+        // Every glass item, whatever its material, in one capture pass; then the walk.
+        assignGlassIds(c);
+        if (c.materials.empty())
+            return;
+        auto program = layerShadeProgram(*mGpu, c);
+        if (!program) {
+            core::logError("refraction: " + program.error().message);
+            return;
+        }
+        c.layerShade = *program;
+        FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
+        if (c.settings.usesNormalDistance())
+            addNormalDistancePass(graph, c, buffers);
+        blackboard.put(plugin::kSceneColor, addLayerPasses(graph, blackboard, c, buffers));
+        return;
+    }
+
+    // The two-surface path's single geometry pass needs what one shading pass can serve: one glass material with
     // the same overrides on every glass item, no normal map (no UV or tangent is gathered), the
     // farthest back surface (MAX blending).
     bool oneMaterial = true;
@@ -238,14 +294,12 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                       item.material == c.glass->material &&
                       item.source->overrides == c.glass->source->overrides;
     }
-    dropStaleDistances(*mGpu, c.frame->items);
     if (!c.glass)
         return;
     const scene::Model& model = *c.glass->model;
     const bool normalMap = c.glass->material >= 0 &&
                            model.materials[std::size_t(c.glass->material)].normalTexture.present();
     const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
-    c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
                 !normalMap && !firstBack;
 

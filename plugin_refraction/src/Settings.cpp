@@ -44,6 +44,10 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.geometryPasses = choose<GeometryPasses>(p, "geometry-passes", {"one", "two"});
     s.dispersionSearch =
         choose<DispersionSearch>(p, "dispersion-search", {"shared", "per-channel"});
+    s.surfaces = choose<Surfaces>(p, "surfaces", {"layers", "two-surface"});
+    s.layerCapacity = int(p.number("layer-capacity"));
+    s.interfaces = int(p.number("interfaces"));
+    s.marchSteps = int(p.number("march-steps"));
     s.nearby = p.flag("nearby");
     s.debug = int(p.number("debug"));
     return s;

@@ -19,6 +19,7 @@ struct Settings {
     enum class BackSurface { Farthest, First };
     enum class GeometryPasses { One, Two };
     enum class DispersionSearch { Shared, PerChannel };
+    enum class Surfaces { Layers, TwoSurface };
 
     Method method = Method::Dir;
     Glass glass = Glass::Auto;
@@ -33,6 +34,10 @@ struct Settings {
     BackSurface backSurface = BackSurface::Farthest;
     GeometryPasses geometryPasses = GeometryPasses::One;
     DispersionSearch dispersionSearch = DispersionSearch::Shared;
+    Surfaces surfaces = Surfaces::Layers;
+    int layerCapacity = 4; ///< K: fragments kept per pixel by the layered capture
+    int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
+    int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     bool nearby = true;
     int debug = 0; ///< index into the "debug" parameter's choices (glass_shading.glsl)
 
@@ -41,6 +46,8 @@ struct Settings {
 
     /** Isr and Dir search an exit through a back surface; Sir refracts once. */
     bool twoInterfaces() const { return method == Method::Isr || method == Method::Dir; }
+    /** The layered path: every glass layer in one geometry pass (any materials, normal maps). */
+    bool layered() const { return surfaces == Surfaces::Layers && method != Method::Opaque; }
     /** Isr measures d_N every frame and reads it. */
     bool usesNormalDistance() const { return method == Method::Isr; }
     /** Whether `primitive` of a character in glass mode `mode` renders as glass: never with

@@ -190,8 +190,11 @@ CaptureSession::renderReference(double time, const refraction::ReferenceOptions&
                         refraction::tonemap(traced->rgba, mOptions.exposure)};
     for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
         frame.glassMask.push_back(traced->rgba[i] > 0.5f);
+    frame.trappedSamples = traced->trappedSamples;
+    frame.surfaceHistogram = traced->surfaceHistogram;
     if (traced->trappedSamples > 0)
-        std::fprintf(stderr, "reference: %zu samples still inside after the bounce limit (black)\n",
+        std::fprintf(stderr,
+                     "reference: %zu samples still in glass after the interface limit (black)\n",
                      traced->trappedSamples);
     return frame;
 }

@@ -55,6 +55,9 @@ struct RenderedFrame {
     render::FrameStats stats;
     std::vector<bool> glassMask; ///< reference frames: pixels whose camera rays hit glass
     double milliseconds = 0.0;   ///< reference frames: tracing time
+    std::size_t trappedSamples = 0; ///< reference frames: paths still in glass at the cap
+    /** Reference frames: glass pixels by the number of glass surfaces on their line of sight. */
+    std::vector<std::size_t> surfaceHistogram;
 };
 
 class CaptureSession {

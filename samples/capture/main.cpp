@@ -27,6 +27,8 @@ constexpr const char* kUsage =
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
                      [--geometry-passes one|two] [--dispersion-search shared|per-channel]
+                     [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
+                     [--march-steps M]
                      [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
 
@@ -61,19 +63,25 @@ characters; T is the scene time); several MODELs are placed side by side.
   --tir P             clamp (the papers, default) or reflect; --tir-bounces B (default 2)
   --back-surface S    farthest (default) or first back face
   --nearby on|off     exit rays see the opaque scene before the environment (default on)
-  --geometry-passes G one (default): front and back surfaces gathered in one geometry pass
-                      (MAX blending) and refracted in a full-screen pass; two: the papers'
-                      back-face pass then front-face pass (also used where one cannot: several
-                      glass materials, a normal map, --back-surface first)
+  --surfaces S        layers (default): every glass surface a ray crosses, captured in one
+                      geometry pass (--layer-capacity K per pixel, default 4), walked over at
+                      most --interfaces N (default 8), each crossing found by --march-steps M
+                      coarse samples (default 12) then --search-steps halvings; two-surface:
+                      the papers' nearest front and one back surface
+  --geometry-passes G two-surface only: one (default): front and back surfaces gathered in one
+                      geometry pass (MAX blending) and refracted in a full-screen pass; two: the
+                      papers' back-face pass then front-face pass (also used where one cannot:
+                      several glass materials, a normal map, --back-surface first)
   --debug VIEW        none, back-depth, back-normal, dv, dn, exit-uv, steps, tir, exit-point,
-                      exit-direction
+                      exit-direction, layer-count, overflow
   Reference (Embree, on the CPU, all cores; glass-only scenes without --ground):
   --method reference  trace the ground truth instead of rendering on the GPU
   --compare-reference render --method and the reference, report PSNR and SSIM over the glass
                       mask and the whole image, write MODEL_..._tT.reference.png and
                       .heatmap.png beside the frame
   --spp K             reference samples per pixel, jittered (default 16)
-  --max-bounces N     total internal reflections the reference follows (default 8)
+  --max-bounces N     interfaces (refractions and reflections) a reference path follows after
+                      its entry before it counts as trapped (default 64)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
   --force             replace output files that exist (without it, an existing file is an
@@ -189,7 +197,9 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--dispersion" || arg == "--tint" || arg == "--absorption-distance" ||
                    arg == "--fresnel" || arg == "--search-steps" || arg == "--tir" ||
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
-                   arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug") {
+                   arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug" ||
+                   arg == "--surfaces" || arg == "--layer-capacity" || arg == "--interfaces" ||
+                   arg == "--march-steps") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
@@ -379,8 +389,13 @@ int run(int argc, char** argv) {
         nlohmann::json entry = capture::statsJson(frame->stats);
         entry["time"] = frame->time;
         entry["file"] = path.string();
+        auto referenceFacts = [&entry](const capture::RenderedFrame& traced) {
+            entry["reference_ms"] = traced.milliseconds;
+            entry["trapped_samples"] = traced.trappedSamples;
+            entry["glass_surfaces_per_pixel"] = traced.surfaceHistogram;
+        };
         if (o.reference)
-            entry["reference_ms"] = frame->milliseconds;
+            referenceFacts(*frame);
         std::string scoreText;
         if (o.compare) {
             auto reference = (*session)->renderReference(o.times[i], o.referenceOptions);
@@ -402,7 +417,7 @@ int run(int argc, char** argv) {
                 }
             entry["reference_file"] = sibling(path, ".reference").string();
             entry["heatmap_file"] = sibling(path, ".heatmap").string();
-            entry["reference_ms"] = reference->milliseconds;
+            referenceFacts(*reference);
             entry["scores"] = {
                 {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
                 {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};

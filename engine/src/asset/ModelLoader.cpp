@@ -6,6 +6,40 @@
 
 namespace asset {
 
+namespace {
+
+/** A one-node model of `primitive` in the built-in clear glass (IOR 1.5). */
+scene::Model glassModel(const std::string& name, scene::Primitive primitive) {
+    primitive.sourceVertexCount = primitive.positions.size();
+    primitive.material = 0;
+    scene::Model model;
+    model.sourceName = "builtin:" + name;
+    scene::Material glass;
+    glass.name = name + " glass";
+    glass.baseColorFactor = glm::vec4(1.0f);
+    glass.metallicFactor = 0.0f;
+    glass.roughnessFactor = 0.0f;
+    glass.hasTransmission = true;
+    glass.transmissionFactor = 1.0f;
+    glass.hasIor = true;
+    glass.ior = 1.5f;
+    glass.hasVolume = true;
+    model.materials.push_back(glass);
+    scene::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(std::move(primitive));
+    model.meshes.push_back(std::move(mesh));
+    scene::Node node;
+    node.name = name;
+    node.mesh = 0;
+    model.nodes.push_back(node);
+    model.scenes.push_back({0});
+    model.defaultScene = 0;
+    return model;
+}
+
+} // namespace
+
 scene::Model makeSphere(int segments) {
     const int longitudes = segments, latitudes = segments / 2;
     scene::Primitive p;
@@ -33,33 +67,29 @@ scene::Model makeSphere(int segments) {
             if (lat + 1 < latitudes)
                 p.indices.insert(p.indices.end(), {d, b, c});
         }
-    p.sourceVertexCount = p.positions.size();
-    p.material = 0;
+    return glassModel("sphere", std::move(p));
+}
 
-    scene::Model model;
-    model.sourceName = "builtin:sphere";
-    scene::Material glass;
-    glass.name = "sphere glass";
-    glass.baseColorFactor = glm::vec4(1.0f);
-    glass.metallicFactor = 0.0f;
-    glass.roughnessFactor = 0.0f;
-    glass.hasTransmission = true;
-    glass.transmissionFactor = 1.0f;
-    glass.hasIor = true;
-    glass.ior = 1.5f;
-    glass.hasVolume = true;
-    model.materials.push_back(glass);
-    scene::Mesh mesh;
-    mesh.name = "sphere";
-    mesh.primitives.push_back(std::move(p));
-    model.meshes.push_back(std::move(mesh));
-    scene::Node node;
-    node.name = "sphere";
-    node.mesh = 0;
-    model.nodes.push_back(node);
-    model.scenes.push_back({0});
-    model.defaultScene = 0;
-    return model;
+scene::Model makeBox() {
+    scene::Primitive p;
+    // Per face: its normal and two in-face axes u, v (u x v = normal: counter-clockwise outside).
+    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const glm::vec3& n : normals) {
+        const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) * n.y
+                                                 : glm::vec3(-n.z, 0.0f, n.x);
+        const glm::vec3 v = glm::cross(n, u);
+        const auto first = std::uint32_t(p.positions.size());
+        for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1),
+                                       glm::vec2(-1, 1)}) {
+            p.positions.push_back(n + corner.x * u + corner.y * v);
+            p.normals.push_back(n);
+            p.tangents.emplace_back(u, 1.0f);
+            p.uv0.push_back(corner * 0.5f + 0.5f);
+        }
+        p.indices.insert(p.indices.end(),
+                         {first, first + 1, first + 2, first, first + 2, first + 3});
+    }
+    return glassModel("box", std::move(p));
 }
 
 core::Result<scene::Model> loadModel(const std::string& path, const LoadOptions& options) {
@@ -67,6 +97,8 @@ core::Result<scene::Model> loadModel(const std::string& path, const LoadOptions&
     if (path.rfind("builtin:", 0) != 0)
         return loadGltf(path, options);
     int segments = 128;
+    if (path == "builtin:box")
+        return makeBox();
     if (path == prefix)
         return makeSphere(segments);
     const std::string query = prefix + "?segments=";
@@ -80,7 +112,7 @@ core::Result<scene::Model> loadModel(const std::string& path, const LoadOptions&
                            ": segments must be an integer in 8..1024"};
     }
     return core::Error{"asset::loadModel(): unknown built-in model '" + path +
-                       "' (known: builtin:sphere, builtin:sphere?segments=N)"};
+                       "' (known: builtin:sphere, builtin:sphere?segments=N, builtin:box)"};
 }
 
 } // namespace asset

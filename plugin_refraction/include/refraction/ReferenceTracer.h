@@ -50,7 +50,9 @@ private:
 
 struct ReferenceOptions {
     int samplesPerPixel = 16; ///< jittered in a stratified grid when a square
-    int maxBounces = 8;       ///< total internal reflections followed inside the glass
+    /** Interfaces a path crosses or reflects at after the entry before it is given up (black,
+     *  counted as trapped when in glass); paths whose throughput falls under 1e-4 end first. */
+    int maxBounces = 64;
     /** Follow only the entry and one exit (no further surfaces after leaving the glass): the
      *  closed-form two-interface model, for checking the tracer itself. */
     bool twoInterfaces = false;
@@ -61,17 +63,24 @@ struct ReferenceOptions {
 struct ReferenceImage {
     glm::ivec2 size{0};
     std::vector<float> rgba;        ///< HDR, rows top to bottom; alpha: glass coverage (0..1)
-    std::size_t trappedSamples = 0; ///< paths still inside after maxBounces reflections (black)
+    std::size_t trappedSamples = 0; ///< paths still in glass after maxBounces interfaces (black)
+    /** Pixels whose primary ray (the pixel centre's first sample) first meets glass, by how many
+     *  glass surfaces its straight line crosses before an opaque surface or the sky ([n]: n
+     *  surfaces, 64 at most): what the layered capture must hold per pixel. */
+    std::vector<std::size_t> surfaceHistogram;
 };
 
 /** Traces every character of `world` at scene time `time` (each deformed by the CPU reference
  *  in its clip's pose and placed by its transform) like the GPU frame of `settings` (size,
  *  ground plane) lit by `environment`, with the glass configured by `glass` (the refraction
- *  plugin's parameters: ior, dispersion, tint, absorption, Fresnel at the entry, glass
- *  auto|all) and each character's glass mode and overrides. Shading matches the
- *  GPU's: Fresnel-weighted environment reflection at the first entry, transmission tinted by the
- *  base colour, Beer-Lambert over the in-glass path, per-channel paths with dispersion; later
- *  entries into glass choose reflection or refraction by Fresnel. Opaque primitives and the
+ *  plugin's parameters: ior, dispersion, tint, absorption, Fresnel, glass auto|all) and each
+ *  character's glass mode and overrides. Shading matches the GPU's: Fresnel-weighted
+ *  environment reflection at the first entry, transmission tinted by the base colour of each
+ *  glass entered, Beer-Lambert over every in-glass segment with its glass's attenuation,
+ *  per-channel paths with dispersion. Every interface is followed with the media on both sides
+ *  (a stack of entered solids, each character one solid: glass in glass, overlapping
+ *  characters); interfaces into glass choose reflection or refraction by Fresnel, a ray
+ *  leaving glass for air refracts unless totally reflected. Opaque primitives and the
  *  ground plane are traced and shaded like the GPU's opaque pass (metallic-roughness with the
  *  split-sum environment lighting; base colour, metallic-roughness and emissive textures at
  *  level 0; no normal or occlusion maps), so exit rays meet the real nearby scene. */

@@ -11,6 +11,7 @@
 #include "common/brdf.glsl"
 #include "common/normal_map.glsl"
 #include "refraction/optics.glsl"
+#include "refraction/scene_lookup.glsl"
 #include "refraction/search.glsl"
 
 float gNormalDistance = -1.0; // ISR: d_N at this pixel in view units (-1: no far side)
@@ -18,7 +19,7 @@ float gNormalDistance = -1.0; // ISR: d_N at this pixel in view units (-1: no fa
 const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 
-uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uNearby, uDebug;
+uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uDebug;
 uniform vec3 uIor;            // per channel (dispersion); all equal without it
 uniform int uDispersion;      // 1: per-channel indices (uIor)
 uniform int uSharedDispersion; // 1: one exit search shared by the channels, 0: one each
@@ -33,9 +34,6 @@ uniform mat3 uNormalUv;       // KHR_texture_transform of the normal texture
 uniform float uNormalScale;
 uniform sampler2D uBackDepth, uBackNormal, uFrontDepth, uFrontNormal;
 uniform float uNormalLod;
-uniform sampler2D uSceneColor, uSceneDepth;
-uniform float uNear, uFar, uNearbyDistance;
-uniform mat3 uViewToWorld;    // rotation part of the inverse view matrix
 uniform vec3 uViewOriginWorld;
 
 layout(std430, binding = 3) readonly buffer Range { uint range[]; }; // back min/max, front min/max
@@ -53,11 +51,6 @@ struct Path {
     bool fallback;    // exit normal from the silhouette fallback
     int steps;
 };
-
-float linearDepth(float d) {
-    float z = d * 2.0 - 1.0;
-    return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
-}
 
 // Wyman's exit normal where P2 leaves the silhouette: T1 projected on the plane perpendicular
 // to the look-at direction (view space: -z).
@@ -165,52 +158,6 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
     }
 }
 
-// What a ray leaving the glass sees: the opaque scene where the ray meets it on screen (when
-// enabled), else the environment.
-vec3 lookup(vec3 P, vec3 dir, out float hitT) {
-    hitT = -1.0;
-    if (uNearby != 0) {
-        // March in clip space: the point P + t dir projects to C0 + t Cd (linear in t), so each
-        // step costs a few multiply-adds, not a matrix product; depths compare in window space
-        // (no division per step but the perspective one).
-        vec4 C0 = uProjection * vec4(P, 1.0);
-        vec4 Cd = uProjection * vec4(dir, 0.0);
-        float previous = 0.0;
-        for (int i = 1; i <= 24; ++i) {
-            float t = uNearbyDistance * float(i * i) / 576.0;
-            vec4 C = C0 + t * Cd;
-            if (C.w < uNear)
-                break;
-            vec3 ndc = C.xyz / C.w;
-            if (any(greaterThanEqual(abs(ndc.xy), vec2(1.0))))
-                break;
-            vec2 uv = ndc.xy * 0.5 + 0.5;
-            float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
-            if (d < 1.0 && ndc.z * 0.5 + 0.5 > d && C.w - linearDepth(d) < 0.125 * uNearbyDistance) {
-                // Refine the crossing between the last step in front and this one (binary search),
-                // so the lookup does not band with the step size.
-                float lo = previous, hi = t;
-                for (int k = 0; k < 6; ++k) {
-                    float mid = 0.5 * (lo + hi);
-                    vec4 M = C0 + mid * Cd;
-                    vec2 muv = clamp(M.xy / M.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                    float md = texelFetch(uSceneDepth, ivec2(muv * uViewportSize), 0).r;
-                    if (md < 1.0 && M.z / M.w * 0.5 + 0.5 > md)
-                        hi = mid;
-                    else
-                        lo = mid;
-                }
-                hitT = hi;
-                vec4 H = C0 + hi * Cd;
-                vec2 hitUv = clamp(H.xy / H.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
-            }
-            previous = t;
-        }
-    }
-    return environmentRadiance(uViewToWorld * dir, uRoughness);
-}
-
 // The glass colour at the entry point P1 (view space) with the interpolated normal N (and, for
 // the normal map, the tangent and UV), for the pixel at gl_FragCoord.
 vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
@@ -228,7 +175,7 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
     vec3 transmitted;
     bool anyTir = path.tir;
     float hitT;
-    vec3 green = lookup(path.exitPoint, path.exitDir, hitT);
+    vec3 green = lookup(path.exitPoint, path.exitDir, uRoughness, hitT);
     if (uDispersion != 0 && uMethod != METHOD_SIR && uSharedDispersion != 0) {
         // One search: red and blue leave from green's exit point, each bent by its own index at
         // both interfaces, and see the scene where green's ray met it (or the environment).
@@ -253,9 +200,9 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
         Path red = trace(P1, V, N1, uIor.r);
         Path blue = trace(P1, V, N1, uIor.b);
         float unused;
-        transmitted = vec3(lookup(red.exitPoint, red.exitDir, unused).r * exp(-uSigma.r * red.length),
+        transmitted = vec3(lookup(red.exitPoint, red.exitDir, uRoughness, unused).r * exp(-uSigma.r * red.length),
                            green.g * exp(-uSigma.g * path.length),
-                           lookup(blue.exitPoint, blue.exitDir, unused).b * exp(-uSigma.b * blue.length));
+                           lookup(blue.exitPoint, blue.exitDir, uRoughness, unused).b * exp(-uSigma.b * blue.length));
         anyTir = anyTir || red.tir || blue.tir;
     } else {
         transmitted = green * exp(-uSigma * path.length);

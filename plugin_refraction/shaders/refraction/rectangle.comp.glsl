@@ -1,6 +1,8 @@
 // Grows the glass rectangle (surfaces.glsl) by the projected vertices of one glass primitive's
 // deformed cage: the refined surface lies in the convex hull of its cage (subdivision masks are
-// convex combinations), and so does its projection. One atomic per group and bound.
+// convex combinations), and so does its projection. One atomic per group and bound. The layered
+// path also takes the view-space box of the vertices (where its searches end): floats as
+// ordered ints, [4..6] min, [7..9] max.
 #include "common/vertex.glsl"
 #include "refraction/surfaces.glsl"
 
@@ -9,14 +11,26 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Cage { DeformedVertex vertices[]; };
 
 uniform mat4 uModelViewProjection;
+uniform mat4 uModelView;
 uniform vec2 uViewportSize;
 uniform int uVertexCount;
 
 shared ivec4 sBounds;
+shared int sBox[6]; // view-space min x, y, z, max x, y, z (ordered)
+
+int floatToOrdered(float f) {
+    int i = floatBitsToInt(f);
+    return i < 0 ? i ^ 0x7FFFFFFF : i;
+}
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u)
+    if (gl_LocalInvocationIndex == 0u) {
         sBounds = ivec4(0x7FFFFFFF, 0x7FFFFFFF, -0x7FFFFFFF, -0x7FFFFFFF);
+        for (int c = 0; c < 3; ++c) {
+            sBox[c] = 0x7FFFFFFF;
+            sBox[3 + c] = -0x7FFFFFFF;
+        }
+    }
     barrier();
     uint v = gl_GlobalInvocationID.x;
     if (v < uint(uVertexCount)) {
@@ -32,6 +46,11 @@ void main() {
         atomicMin(sBounds.y, int(lo.y));
         atomicMax(sBounds.z, int(hi.x));
         atomicMax(sBounds.w, int(hi.y));
+        vec3 view = (uModelView * vec4(vertices[v].position.xyz, 1.0)).xyz;
+        for (int c = 0; c < 3; ++c) {
+            atomicMin(sBox[c], floatToOrdered(view[c]));
+            atomicMax(sBox[3 + c], floatToOrdered(view[c]));
+        }
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && sBounds.x <= sBounds.z) {
@@ -39,5 +58,9 @@ void main() {
         atomicMin(glassRectangle[1], sBounds.y);
         atomicMax(glassRectangle[2], sBounds.z);
         atomicMax(glassRectangle[3], sBounds.w);
+        for (int c = 0; c < 3; ++c) {
+            atomicMin(glassRectangle[4 + c], sBox[c]);
+            atomicMax(glassRectangle[7 + c], sBox[3 + c]);
+        }
     }
 }

@@ -6,13 +6,7 @@
 #ifndef REFRACTION_SEARCH_GLSL
 #define REFRACTION_SEARCH_GLSL
 
-uniform mat4 uProjection;
-uniform vec2 uViewportSize;
-
-vec2 projectToUv(vec3 p) {
-    vec4 clip = uProjection * vec4(p, 1.0);
-    return clip.xy / clip.w * 0.5 + 0.5;
-}
+#include "refraction/view.glsl"
 
 // Linear depth stored at uv, 0 outside the map or where no surface was drawn.
 float storedDepth(sampler2D map, vec2 uv) {

@@ -1,0 +1,188 @@
+// Every glass surface a pixel's primary ray crosses, captured in one geometry pass
+// (layers_capture.frag.glsl) into fixed per-pixel arrays of K fragments, in the order the
+// rasteriser produced them (unsorted):
+//   LayerHeads  per pixel: [pixel] the fragment count (may exceed K: overflow), and for the
+//               overflow fallback [P + pixel] the nearest front key (atomicMin) and
+//               [2P + pixel] the farthest back key (atomicMax), P = pixels
+//   LayerDepths per pixel, ceil(K / 4) vec4: the linear view depth of the fragment in each slot
+//               (the search reads four at once)
+//   LayerAttrs  per pixel and slot: x the outward view normal (octahedral, 16 + 16 bits);
+//               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
+//               d_N relative to the depth (bits 16-31, 0: none)
+// A pixel with more than K fragments keeps only its nearest front and farthest back surface
+// (the two-surface model, never a partial list): see readLayers.
+#ifndef REFRACTION_LAYERS_GLSL
+#define REFRACTION_LAYERS_GLSL
+#include "refraction/surfaces.glsl" // uKeyNear, uKeyLogRange: the keys' log depth range
+
+// K (layer-capacity) is compiled in (LAYER_CAPACITY, 1-8): every loop over a pixel's layers has
+// a constant bound, so the arrays below stay in registers.
+#ifndef LAYER_CAPACITY
+#define LAYER_CAPACITY 4
+#endif
+const int uLayerCapacity = LAYER_CAPACITY;
+const int kMaxLayers = LAYER_CAPACITY < 2 ? 2 : LAYER_CAPACITY; // an overflow keeps 2
+const int kDepthGroups = (LAYER_CAPACITY + 3) / 4;
+uniform int uPixelCount;    // P: width x height
+uniform int uViewportWidth;
+
+layout(std430, binding = 5) coherent buffer LayerHeads { uint layerHeads[]; };
+layout(std430, binding = 6) coherent buffer LayerDepths { vec4 layerDepth4[]; };
+layout(std430, binding = 7) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
+
+// One optical material of the frame's glass (a character's material with its overrides).
+struct GlassMaterial {
+    vec4 ior;        // per channel (dispersion), w: transmission
+    vec4 sigma;      // Beer-Lambert absorption per world unit, w: roughness
+    vec4 baseColor;  // w: metallic
+    vec4 emissive;   // w: the solid (character) it belongs to
+};
+layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
+
+const uint kLayerFront = 256u;
+
+uint packOctNormal(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return packUnorm2x16(e * 0.5 + 0.5);
+}
+
+vec3 unpackOctNormal(uint bits) {
+    vec2 e = unpackUnorm2x16(bits) * 2.0 - 1.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0)
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
+// The overflow fallback's keys: 16 bits of log depth, then the glass id (8 bits) and an
+// octahedral normal in 4 + 4 bits (coarse, only for overflowing pixels). Unsigned order is
+// depth order.
+
+uint fallbackKey(float z, vec3 n, uint id) {
+    float t = clamp(log2(max(z, uKeyNear) / uKeyNear) / uKeyLogRange, 0.0, 1.0);
+    uint q = min(uint(t * 65536.0), 65535u);
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    uvec2 o = uvec2(round(clamp(e * 0.5 + 0.5, 0.0, 1.0) * 15.0));
+    return (q << 16) | ((id & 255u) << 8) | (o.x << 4) | o.y;
+}
+
+float fallbackDepth(uint key) {
+    float t = (float(key >> 16) + 0.5) / 65536.0;
+    return uKeyNear * exp2(t * uKeyLogRange);
+}
+
+vec3 fallbackNormal(uint key) {
+    vec2 e = vec2(float((key >> 4) & 15u), float(key & 15u)) / 15.0 * 2.0 - 1.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0)
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
+// The layers of one pixel as the walk reads them.
+struct Layers {
+    int count;      // usable layers (K at most; 2 or fewer for an overflowing pixel)
+    bool overflow;  // more fragments than K: the nearest front and farthest back stand in
+    float depth[kMaxLayers];
+    uvec2 attr[kMaxLayers];
+};
+
+uint pixelIndex(ivec2 p) {
+    return uint(p.y * uViewportWidth + p.x);
+}
+
+int storedCount(ivec2 p) {
+    return int(layerHeads[pixelIndex(p)]);
+}
+
+// Whether a ray that went from depth zFrom to depth z, now in pixel p, is still in a segment of
+// layer parity `parity`: none of p's layers lies between the two depths (a ray along the line
+// of sight crosses surfaces within one pixel), and the number of p's layers in front of z has
+// that parity (a ray coming in from the side). Off screen: no layers.
+bool inSegment(ivec2 p, float zFrom, float z, int parity) {
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return parity == 0;
+    uint pixel = pixelIndex(p);
+    int n = int(layerHeads[pixel]);
+    if (n == 0)
+        return parity == 0;
+    float lo = min(zFrom, z), hi = max(zFrom, z);
+    int count = 0;
+    bool between = false;
+    if (n > uLayerCapacity) {
+        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
+        vec2 d = vec2(front != 0xFFFFFFFFu ? fallbackDepth(front) : 3.0e38,
+                      back != 0u ? fallbackDepth(back) : 3.0e38);
+        count = int(dot(vec2(lessThan(d, vec2(z))), vec2(1.0)));
+        between = any(bvec2(vec2(greaterThan(d, vec2(lo))) * vec2(lessThan(d, vec2(hi)))));
+    } else {
+        for (int g = 0; g < kDepthGroups; ++g) {
+            vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
+            vec4 used = vec4(lessThan(vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0), vec4(float(n))));
+            count += int(dot(used * vec4(lessThan(d, vec4(z))), vec4(1.0)));
+            between = between ||
+                      any(bvec4(used * vec4(greaterThan(d, vec4(lo))) * vec4(lessThan(d, vec4(hi)))));
+        }
+    }
+    return !between && (count & 1) == parity;
+}
+
+Layers readLayers(ivec2 p) {
+    Layers l;
+    l.count = 0;
+    l.overflow = false;
+    for (int i = 0; i < kMaxLayers; ++i) {
+        l.depth[i] = 0.0;
+        l.attr[i] = uvec2(0u);
+    }
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return l;
+    uint pixel = pixelIndex(p);
+    int n = int(layerHeads[pixel]);
+    if (n > uLayerCapacity) {
+        l.overflow = true;
+        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
+        if (front != 0xFFFFFFFFu) {
+            l.depth[l.count] = fallbackDepth(front);
+            l.attr[l.count++] = uvec2(packOctNormal(fallbackNormal(front)), ((front >> 8) & 255u) | kLayerFront);
+        }
+        if (back != 0u) {
+            l.depth[l.count] = fallbackDepth(back);
+            l.attr[l.count++] = uvec2(packOctNormal(fallbackNormal(back)), (back >> 8) & 255u);
+        }
+        return l;
+    }
+    uint base = pixel * uint(uLayerCapacity), depthBase = pixel * uint(kDepthGroups);
+    for (int g = 0; g < kDepthGroups; ++g) {
+        vec4 d = layerDepth4[depthBase + uint(g)];
+        for (int c = 0; c < 4; ++c)
+            if (4 * g + c < uLayerCapacity) {
+                l.depth[4 * g + c] = d[c];
+                l.attr[4 * g + c] = 4 * g + c < n ? layerAttr[base + uint(4 * g + c)] : uvec2(0u);
+            }
+    }
+    l.count = n;
+    return l;
+}
+
+uint layerGlass(uvec2 attr) {
+    return attr.y & 255u;
+}
+
+bool layerFront(uvec2 attr) {
+    return (attr.y & kLayerFront) != 0u;
+}
+
+vec3 layerNormal(uvec2 attr) {
+    return unpackOctNormal(attr.x);
+}
+
+// d_N in view units at depth z, -1 where none was measured.
+float layerNormalDistance(uvec2 attr, float z) {
+    uint d = attr.y >> 16;
+    return d == 0u ? -1.0 : float(d - 1u) / 65534.0 * z;
+}
+
+#endif

@@ -1,0 +1,38 @@
+// The layered path's one geometry pass: every glass fragment in front of the opaque scene (the
+// scene depth is attached read-only, early tests on), front- or back-facing, appends itself to
+// its pixel's fixed array (layers.glsl): depth, outward normal after normal mapping, glass id,
+// facing, d_N. Fragments past K only count; every fragment also bids for the pixel's overflow
+// fallback (nearest front, farthest back).
+#include "common/normal_map.glsl"
+#include "refraction/glass_inputs.glsl"
+#include "refraction/view.glsl"
+#include "refraction/layers.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform int uGlassId;
+uniform int uHasNormalTexture;
+uniform sampler2D uNormalTexture;
+uniform mat3 uNormalUv; // KHR_texture_transform of the normal texture
+uniform float uNormalScale;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    uint pixel = pixelIndex(p);
+    float z = -vViewPosition.z;
+    vec3 n = normalize(vViewNormal);
+    if (uHasNormalTexture != 0)
+        n = perturbNormal(n, vViewTangent, uNormalTexture, (uNormalUv * vec3(vUv, 1.0)).xy,
+                          uNormalScale);
+    uint id = uint(uGlassId);
+    uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;
+    uint slot = atomicAdd(layerHeads[pixel], 1u);
+    if (slot < uint(uLayerCapacity)) {
+        layerDepth4[pixel * uint(kDepthGroups) + slot / 4u][slot % 4u] = z;
+        layerAttr[pixel * uint(uLayerCapacity) + slot] = uvec2(packOctNormal(n), id | (gl_FrontFacing ? kLayerFront : 0u) | (d << 16));
+    }
+    if (gl_FrontFacing)
+        atomicMin(layerHeads[uint(uPixelCount) + pixel], fallbackKey(z, n, id));
+    else
+        atomicMax(layerHeads[2u * uint(uPixelCount) + pixel], fallbackKey(z, n, id));
+}

@@ -1,0 +1,496 @@
+// The layered path's shading, over the glass rectangle: a pixel's primary ray enters the
+// nearest captured layer and walks the others (layers.glsl) in texture space, refracting at
+// every interface it crosses (or reflecting under total internal reflection) with the media on
+// both sides, up to N interfaces; then it sees the nearby opaque scene or the environment
+// (scene_lookup.glsl). ARCHITECTURE.md ("How a ray walks the layers") has the figure.
+//
+// Media (the Embree reference's rule too): crossing a glass surface against its outward normal
+// enters its glass (a stack of up to four, the newest on top); crossing one along its normal
+// leaves the most recent entry of the same solid (a character: the pieces of one character are
+// one solid), if the ray is in it at all. The medium is the top of the stack, air when empty;
+// where it does not change (overlapping glass, a surface crossed twice in the samples) the ray
+// goes straight on.
+//
+// Finding the next interface generalises DIR's search: the ray from the last crossing is
+// sampled in texture space (perspective-correct, M coarse steps up to where it leaves the
+// glass's view-space box) and, at each sample, the number of layers of that pixel in front of
+// the sample's depth is counted. Closed surfaces come in pairs along any line of sight, so the
+// count's parity changes only where the ray crosses a surface (a silhouette adds or removes
+// two): the first sample whose parity differs from the segment's is refined by the conservative
+// binary search (DIR §3.3, search-steps halvings) and the layer crossed is the one of that
+// pixel between the two depths.
+#include "common/brdf.glsl"
+#include "refraction/optics.glsl"
+#include "refraction/scene_lookup.glsl"
+#include "refraction/surfaces.glsl"
+#include "refraction/layers.glsl"
+
+const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
+const int TIR_CLAMP = 0, TIR_REFLECT = 1;
+const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
+
+// The method and the dispersion search are compiled in (a variant each, LayerPasses.cpp): on a
+// CPU rasteriser a shader pays for the code it carries.
+#ifndef LAYER_METHOD
+#define LAYER_METHOD METHOD_DIR
+#endif
+#ifndef LAYER_DISPERSION
+#define LAYER_DISPERSION 0 // DISPERSION_NONE
+#endif
+const int uMethod = LAYER_METHOD;
+
+uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uFresnelMode, uDebug;
+uniform mat4 uInverseProjection;
+uniform vec3 uViewOriginWorld;
+
+out vec4 outColor;
+
+float orderedToFloat(int i) {
+    return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
+}
+
+// The view-space box of every glass vertex this frame (rectangle.comp.glsl).
+void glassBox(out vec3 lo, out vec3 hi) {
+    lo = vec3(orderedToFloat(glassRectangle[4]), orderedToFloat(glassRectangle[5]),
+              orderedToFloat(glassRectangle[6]));
+    hi = vec3(orderedToFloat(glassRectangle[7]), orderedToFloat(glassRectangle[8]),
+              orderedToFloat(glassRectangle[9]));
+}
+
+ivec2 pixelOf(vec3 X) {
+    return ivec2(floor(projectToUv(X) * uViewportSize));
+}
+
+// A ray segment in screen space (DIR Eqs. 3-4): texture coordinates are linear along it and so
+// is 1/z, so a sample costs no matrix product.
+struct ScreenRay {
+    vec3 S, E;       // view-space ends
+    vec2 uvS, uvE;
+    float invS, invE; // 1 / depth
+};
+
+ScreenRay screenRay(vec3 S, vec3 E) {
+    return ScreenRay(S, E, projectToUv(S), projectToUv(E), -1.0 / S.z, -1.0 / E.z);
+}
+
+float depthAt(ScreenRay r, float a) {
+    return 1.0 / mix(r.invS, r.invE, a);
+}
+
+// Whether the ray, from screen fraction `from` (in the segment) to `a`, is still in a segment of
+// layer parity `parity` (inSegment, at a's pixel).
+bool stillIn(ScreenRay r, float from, float a, int parity) {
+    vec2 uv = mix(r.uvS, r.uvE, a);
+    return inSegment(ivec2(floor(uv * uViewportSize)), depthAt(r, from), depthAt(r, a), parity);
+}
+
+// The view-space point at screen fraction a.
+vec3 pointAt(ScreenRay r, float a) {
+    float z = 1.0 / mix(r.invS, r.invE, a);
+    float s = abs(r.E.z - r.S.z) > 1e-7 * abs(r.S.z) ? (-z - r.S.z) / (r.E.z - r.S.z) : a;
+    return mix(r.S, r.E, clamp(s, 0.0, 1.0));
+}
+
+struct Crossing {
+    bool found;
+    bool silhouette; // the ray left every layer of the pixel (no surface recorded there)
+    vec3 point;      // the last point before the interface
+    vec3 beyond;     // the first point found past it
+    uvec2 attr;      // the layer crossed
+    int steps;
+};
+
+// Where P + t dir leaves the box [lo, hi] (t > 0), at most `limit`.
+float boxExit(vec3 P, vec3 dir, vec3 lo, vec3 hi, float limit) {
+    vec3 inv = 1.0 / (abs(dir) + 1e-20) * sign(dir + 1e-20);
+    vec3 t0 = (lo - P) * inv, t1 = (hi - P) * inv;
+    vec3 tFar = max(t0, t1);
+    return min(min(tFar.x, tFar.y), min(tFar.z, limit));
+}
+
+// The layer of pixel p the ray passed on its way to depth z: the deepest one in front of z when
+// it goes deeper, the nearest one behind z when it comes toward the camera (the layer whose
+// passing changed the pixel's count); failing that the layer nearest z.
+bool pickLayer(ivec2 p, float z, bool deeper, out uvec2 attr) {
+    Layers l = readLayers(p);
+    if (l.count == 0)
+        return false;
+    int best = -1, nearest = -1;
+    for (int i = 0; i < kMaxLayers; ++i) {
+        if (i >= l.count)
+            continue;
+        bool passed = deeper ? l.depth[i] <= z : l.depth[i] >= z;
+        if (passed && (best < 0 || (deeper ? l.depth[i] > l.depth[best] : l.depth[i] < l.depth[best])))
+            best = i;
+        if (nearest < 0 || abs(l.depth[i] - z) < abs(l.depth[nearest] - z))
+            nearest = i;
+    }
+    attr = l.attr[best >= 0 ? best : nearest];
+    return true;
+}
+
+// The normal at a crossing, filtered like a texture lookup (DIR reads its normal map with
+// bilinear filtering): the four texels around the point, each by its layer of the same glass
+// and facing nearest the point's depth (within 2%), weighted bilinearly.
+vec3 filteredNormal(vec3 X, uvec2 attr) {
+    vec2 texel = projectToUv(X) * uViewportSize - 0.5;
+    ivec2 base = ivec2(floor(texel));
+    vec2 f = texel - vec2(base);
+    float z = -X.z;
+    uint kind = attr.y & (255u | kLayerFront);
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        ivec2 offset = ivec2(k & 1, k >> 1);
+        Layers l = readLayers(base + offset);
+        float best = 0.02 * z;
+        vec3 n = vec3(0.0);
+        for (int i = 0; i < kMaxLayers; ++i)
+            if (i < l.count && (l.attr[i].y & (255u | kLayerFront)) == kind &&
+                abs(l.depth[i] - z) < best) {
+                best = abs(l.depth[i] - z);
+                n = layerNormal(l.attr[i]);
+            }
+        vec2 w = mix(1.0 - f, f, vec2(offset));
+        sum += w.x * w.y * n;
+    }
+    return length(sum) > 1e-6 ? normalize(sum) : layerNormal(attr);
+}
+
+// The next interface along P + t dir after a crossing, the ray in a segment of layer parity
+// `parity`.
+Crossing searchLayers(vec3 P, vec3 dir, int parity) {
+    Crossing c;
+    c.found = false;
+    c.silhouette = false;
+    c.point = P;
+    c.beyond = P;
+    c.attr = uvec2(0u);
+    c.steps = 0;
+    vec3 lo, hi;
+    glassBox(lo, hi);
+    float margin = 1e-3 * length(hi - lo);
+    float tEnd = boxExit(P, dir, lo - margin, hi + margin, 1.0e30);
+    if (dir.z > 0.0) // toward the camera: stop at the near plane
+        tEnd = min(tEnd, (-uNear * 1.001 - P.z) / dir.z);
+    if (!(tEnd > 0.0))
+        return c;
+    ScreenRay r = screenRay(P, P + dir * tEnd);
+    float pixels = length((r.uvE - r.uvS) * uViewportSize);
+    // The segment starts just past the interface (the layer crossed is behind it).
+    float pixel = 1.0 / max(pixels, 1e-3);
+    float start = min(0.5 * pixel, 0.5), inside = start, outside = -1.0;
+    // Coarse samples (about one per three pixels, march-steps at most) until the ray leaves the
+    // segment, then (outside the loop: the SIMD lanes of a shader all run it together) the
+    // conservative binary search between the last sample in the segment and the first out of
+    // it: advance only to points still in it. A parity change that is gone again a pixel and a
+    // half further is a graze of a silhouette, where a pixel's layers stand for a line of sight
+    // the ray only passes beside: the search goes on behind it (twice at most).
+    int steps = clamp(int(ceil(pixels / 3.0)), 1, max(uMarchSteps, 1));
+    for (int pass = 0; pass < 3; ++pass) {
+        inside = start;
+        outside = -1.0;
+        for (int i = 1; i <= steps; ++i) {
+            float a = start + (1.0 - start) * float(i) / float(steps);
+            if (!stillIn(r, inside, a, parity)) {
+                outside = a;
+                break;
+            }
+            inside = a;
+        }
+        if (outside < 0.0)
+            return c;
+        for (int k = 0; k < uSteps; ++k) {
+            float mid = 0.5 * (inside + outside);
+            if (stillIn(r, inside, mid, parity)) {
+                inside = mid;
+                ++c.steps;
+            } else {
+                outside = mid;
+            }
+        }
+        float past = outside + 1.5 * pixel;
+        if (pass == 2 || past >= 1.0 || !stillIn(r, past, past, parity))
+            break;
+        start = past;
+    }
+    vec3 X0 = pointAt(r, inside), X1 = pointAt(r, outside);
+    c.found = true;
+    c.point = X0;
+    c.beyond = X1;
+    c.silhouette = !pickLayer(pixelOf(X1), -X1.z, dir.z < 0.0, c.attr);
+    return c;
+}
+
+// ISR (Wyman 2005) on the layers: the exit estimated from the entry, d interpolated between
+// d_V (to the next layer of the entry's pixel) and the entry layer's d_N by theta_t / theta_i.
+Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryAttr) {
+    Crossing c;
+    c.found = true;
+    c.steps = 0;
+    c.attr = uvec2(0u);
+    Layers l = readLayers(pixelOf(P1));
+    float z1 = -P1.z, next = 0.0;
+    for (int i = 0; i < kMaxLayers; ++i)
+        if (i < l.count && l.depth[i] > z1 + 1e-5 * z1 && (next == 0.0 || l.depth[i] < next))
+            next = l.depth[i];
+    float dV = next > 0.0 ? (next - z1) / max(abs(V.z), 1e-4) : 0.0;
+    float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
+    float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
+    float ratio = thetaI > 1e-4 ? thetaT / thetaI : eta;
+    float dN = layerNormalDistance(entryAttr, z1);
+    float d = ratio * dV + (1.0 - ratio) * (dN >= 0.0 ? dN : dV);
+    c.point = P1 + d * T1;
+    c.beyond = c.point;
+    c.silhouette = !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, c.attr);
+    return c;
+}
+
+// One path through the layers, for the indices of channel `channel`.
+struct Walk {
+    vec3 point, dir;    // where the ray leaves for the lookup, and its direction
+    vec3 weight;        // transmittance: absorption, Fresnel and base colour of what it crossed
+    vec3 reflected;     // light reflected toward the ray at the later interfaces into glass
+    vec3 lastIncoming;  // the last refraction: incoming direction, normal against it, media
+    vec3 lastNormal;
+    uint lastFrom, lastTo; // glass ids + 1, 0: air
+    vec3 firstExit;
+    bool tir, fallback;
+    int interfaces, steps;
+};
+
+float mediumIor(uint medium, int channel) {
+    return medium == 0u ? 1.0 : glassMaterials[medium - 1u].ior[channel];
+}
+
+// The media around the ray: up to four glass ids + 1, a byte each, the newest in the low byte
+// (0: air). A fifth nested glass is not entered (its crossings pass straight).
+uint topMedium(uint media) {
+    return media & 255u;
+}
+
+int solidOf(uint medium) {
+    return int(glassMaterials[medium - 1u].emissive.w);
+}
+
+// Crossing a surface of `medium` (glass id + 1) against its outward normal enters it; along it
+// leaves the most recent entry of the same solid (character), if any.
+uint crossMedium(uint media, uint medium, bool entering) {
+    if (entering)
+        return (media >> 24) != 0u ? media : (media << 8) | medium;
+    int solid = solidOf(medium);
+    for (int k = 0; k < 4; ++k) {
+        uint entry = (media >> (8 * k)) & 255u;
+        if (entry != 0u && solidOf(entry) == solid) {
+            uint below = k == 0 ? 0u : media & ((1u << (8 * k)) - 1u);
+            uint above = k == 3 ? 0u : (media >> (8 * k + 8)) << (8 * k);
+            return below | above;
+        }
+    }
+    return media;
+}
+
+Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
+    Walk w;
+    w.weight = vec3(1.0);
+    w.reflected = vec3(0.0);
+    w.tir = false;
+    w.fallback = false;
+    w.interfaces = 1;
+    w.steps = 0;
+    uint media = layerGlass(entryAttr) + 1u;
+    float ior = mediumIor(media, channel);
+    vec3 dir;
+    refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
+    w.lastIncoming = V;
+    w.lastNormal = N1;
+    w.lastFrom = 0u;
+    w.lastTo = media;
+    w.firstExit = P1;
+    vec3 P = P1;
+    int parity = 1;
+    int bounces = 0;
+    uvec2 segmentEntry = entryAttr;
+    bool segmentFromEntry = true; // the segment began where the ray entered glass (ISR)
+    while (uMethod != METHOD_SIR && w.interfaces < uInterfaces) {
+        uint inside = topMedium(media);
+        Crossing c = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry
+            ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
+            : searchLayers(P, dir, parity);
+        w.steps += c.steps;
+        if (!c.found)
+            break;
+        if (inside != 0u)
+            w.weight *= exp(-glassMaterials[inside - 1u].sigma.rgb * length(c.point - P));
+        P = c.point;
+        if (w.interfaces == 1)
+            w.firstExit = P;
+        ++w.interfaces;
+        parity ^= 1;
+        // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
+        // glass the ray is in, with Wyman's silhouette normal.
+        if (c.silhouette && inside == 0u)
+            break; // in air and off every layer: nothing more to cross
+        uint glass = c.silhouette ? inside : layerGlass(c.attr) + 1u;
+        vec3 N = c.silhouette ? normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6))
+                              : filteredNormal(c.beyond, c.attr);
+        w.fallback = w.fallback || c.silhouette;
+        uint before = media;
+        media = crossMedium(media, glass, c.silhouette ? false : dot(dir, N) < 0.0);
+        uint to = topMedium(media);
+        segmentFromEntry = inside == 0u && to != 0u;
+        segmentEntry = c.attr;
+        if (inside == to) { // inside a glass that overlaps the one crossed: no interface
+            P = c.beyond;
+            continue;
+        }
+        float n1 = mediumIor(inside, channel), n2 = mediumIor(to, channel);
+        vec3 facing = dot(N, dir) < 0.0 ? N : -N;
+        vec3 T;
+        if (refractRay(dir, facing, n1 / n2, T)) {
+            if (to != 0u) {
+                // Into glass: Fresnel splits the light; the reflected part sees the environment,
+                // the transmitted part goes on in the glass's colour.
+                GlassMaterial g = glassMaterials[to - 1u];
+                float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
+                w.reflected += w.weight * F *
+                               environmentRadiance(uViewToWorld * reflect(dir, facing), g.sigma.w);
+                w.weight *= (1.0 - F) * g.baseColor.rgb;
+            }
+            w.lastIncoming = dir;
+            w.lastNormal = facing;
+            w.lastFrom = inside;
+            w.lastTo = to;
+            dir = T;
+            ior = n2;
+            P = c.beyond; // the refracted ray starts on the far side of the interface
+            continue;
+        }
+        w.tir = true;
+        if (uTirPolicy == TIR_REFLECT && bounces < uBounces) {
+            ++bounces;
+            dir = reflect(dir, facing);
+            media = before; // still in the same medium
+            parity ^= 1;
+            segmentFromEntry = false;
+            continue;
+        }
+        // The papers' clamp: leave tangent to the surface.
+        w.lastIncoming = dir;
+        w.lastNormal = facing;
+        w.lastFrom = inside;
+        w.lastTo = to;
+        dir = tangentExit(dir, -facing);
+        ior = n2;
+        P = c.beyond;
+    }
+    w.point = P;
+    w.dir = dir;
+    return w;
+}
+
+vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
+    GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
+    green = walkLayers(P1, V, N1, entryAttr, 1);
+    float hitT;
+    vec3 seen = lookup(green.point, green.dir, m.sigma.w, hitT);
+    vec3 transmitted = seen * green.weight + green.reflected;
+    bool dispersion = m.ior.r != m.ior.b;
+#if LAYER_DISPERSION == 1 // DISPERSION_SHARED
+    if (dispersion) {
+        // One walk: red and blue leave from green's last interface, bent there by their own
+        // indices with the deviation their entry gave them, and see what green's ray met.
+        vec3 T1g;
+        refractRay(V, N1, 1.0 / m.ior.g, T1g);
+        for (int c = 0; c < 3; c += 2) {
+            vec3 T1c, Tc;
+            refractRay(V, N1, 1.0 / m.ior[c], T1c);
+            vec3 incoming = normalize(green.lastIncoming + (T1c - T1g));
+            float eta = mediumIor(green.lastFrom, c) / mediumIor(green.lastTo, c);
+            if (green.interfaces < 2 || !refractRay(incoming, green.lastNormal, eta, Tc))
+                Tc = green.interfaces < 2 ? T1c : green.dir;
+            vec3 channelSeen;
+            if (hitT >= 0.0) {
+                vec2 uv = clamp(projectToUv(green.point + Tc * hitT), vec2(0.0), vec2(0.9999));
+                channelSeen = texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+            } else {
+                channelSeen = environmentRadiance(uViewToWorld * Tc, m.sigma.w);
+            }
+            transmitted[c] = channelSeen[c] * green.weight[c] + green.reflected[c];
+        }
+    }
+#elif LAYER_DISPERSION == 2 // DISPERSION_PER_CHANNEL
+    if (dispersion) {
+        for (int c = 0; c < 3; c += 2) {
+            Walk w = walkLayers(P1, V, N1, entryAttr, c);
+            float unused;
+            transmitted[c] = lookup(w.point, w.dir, m.sigma.w, unused)[c] * w.weight[c] + w.reflected[c];
+            green.tir = green.tir || w.tir;
+        }
+    }
+#endif
+    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / m.ior.g);
+    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
+    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
+    vec3 color = glass;
+    if (m.ior.w < 1.0)
+        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,
+                                           uViewToWorld * N1, uViewToWorld * -V),
+                    glass, m.ior.w);
+    return color + m.emissive.rgb;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    Layers layers = readLayers(p);
+    if (layers.count == 0)
+        discard;
+    // The nearest layer (constant-bound loops keep the arrays in registers).
+    float z = layers.depth[0];
+    uvec2 entryAttr = layers.attr[0];
+    float far = z;
+    uvec2 farAttr = entryAttr;
+    for (int i = 1; i < kMaxLayers; ++i) {
+        if (i < layers.count && layers.depth[i] < z) {
+            z = layers.depth[i];
+            entryAttr = layers.attr[i];
+        }
+        if (i < layers.count && layers.depth[i] > far) {
+            far = layers.depth[i];
+            farAttr = layers.attr[i];
+        }
+    }
+    vec4 ray = uInverseProjection * vec4(gl_FragCoord.xy / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+    vec3 direction = ray.xyz / ray.w;
+    vec3 P1 = direction * (z / -direction.z);
+    vec3 V = normalize(P1);
+    vec3 N1 = layerNormal(entryAttr);
+    if (dot(N1, V) > 0.0)
+        N1 = -N1;
+    Walk walk;
+    vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
+
+    int stored = storedCount(p);
+    switch (uDebug) {
+    case 1: { // back-depth: the farthest layer
+        vec3 lo, hi;
+        glassBox(lo, hi);
+        color = vec3(far / max(-lo.z, 1e-6));
+        break;
+    }
+    case 2: color = layerNormal(farAttr) * 0.5 + 0.5; break; // back-normal: the farthest's
+    case 4: color = vec3(max(layerNormalDistance(entryAttr, z), 0.0) / z); break;
+    case 5: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
+    case 6: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
+                         walk.fallback ? 1.0 : 0.0, float(walk.interfaces) / float(uInterfaces)); break;
+    case 7: color = walk.tir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case 8: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
+    case 9: color = uViewToWorld * walk.dir; break;
+    case 10: // layer-count: K layers white, fewer grey, overflow red
+        color = stored > uLayerCapacity ? vec3(1.0, 0.0, 0.0)
+                                        : vec3(float(stored) / float(uLayerCapacity));
+        break;
+    case 11: color = stored > uLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    default: break;
+    }
+    outColor = vec4(color, 1.0);
+}

@@ -1,0 +1,234 @@
+// The layered path (ARCHITECTURE.md, "How a ray walks the layers"): every glass item of every
+// character drawn once into per-pixel layer arrays (layers_capture.frag.glsl), then one pass
+// over the glass pixels walks them (layers_shade.frag.glsl).
+#include "FramePasses.h"
+
+#include "Optics.h"
+
+#include "engine/core/Log.h"
+#include "engine/render/MaterialTextures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace refraction {
+namespace {
+
+/** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
+constexpr std::size_t kMaxGlassIds = 255;
+// Texture units: 0-1 the environment, 2-3 the scene colour and depth, 8-13 the material's.
+constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kMaterialUnit = 8;
+
+gl::TextureDesc colorDesc(glm::ivec2 size) {
+    return {size, gl::Format::RGBA16F, 1};
+}
+
+/** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
+std::size_t depthSlots(int capacity) {
+    return std::size_t((capacity + 3) / 4 * 4);
+}
+
+/** The layer arrays for `size` and capacity K, reallocated only when either changes. */
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {
+    if (layers.size == size && layers.capacity == capacity)
+        return;
+    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
+    layers.depths = gl::Buffer(pixels * depthSlots(capacity) * sizeof(float));
+    layers.attrs = gl::Buffer(pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t));
+    layers.size = size;
+    layers.capacity = capacity;
+}
+
+/** The uniforms of layers.glsl. */
+void setLayerUniforms(const FrameContext& c, const gl::Program& program) {
+    const glm::ivec2 size = c.frame->settings.size;
+    program.set("uPixelCount", size.x * size.y);
+    program.set("uViewportWidth", size.x);
+    program.set("uViewportSize", glm::vec2(size));
+    program.set("uKeyNear", c.frame->camera.znear);
+    program.set("uKeyLogRange", std::log2(c.frame->camera.zfar / c.frame->camera.znear));
+    const GpuState::LayerStorage& layers = c.gpu->layers;
+    gl::bindStorage(5, layers.heads);
+    gl::bindStorage(6, layers.depths);
+    gl::bindStorage(7, layers.attrs);
+    gl::bindStorage(8, c.gpu->glassMaterials);
+}
+
+} // namespace
+
+core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
+    if (gpu.layerProgramsCapacity != c.settings.layerCapacity) {
+        gpu.layerShadePrograms.clear();
+        auto capture = gl::Program::graphics(
+            *c.frame->shaders, "refraction/glass.vert.glsl", "refraction/layers_capture.frag.glsl",
+            {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity)});
+        if (!capture)
+            return capture.error();
+        gpu.layersCapture = std::move(*capture);
+        gpu.layerProgramsCapacity = c.settings.layerCapacity;
+    }
+    // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
+    const bool dispersion = std::any_of(c.materials.begin(), c.materials.end(),
+                                        [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
+    const int mode = !dispersion ? 0
+                     : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
+                                                                                          : 2;
+    const std::pair key{int(c.settings.method), mode};
+    auto found = gpu.layerShadePrograms.find(key);
+    if (found == gpu.layerShadePrograms.end()) {
+        auto shade = gl::Program::graphics(
+            *c.frame->shaders, "refraction/rectangle.vert.glsl",
+            "refraction/layers_shade.frag.glsl",
+            {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
+             "LAYER_METHOD " + std::to_string(key.first),
+             "LAYER_DISPERSION " + std::to_string(key.second)});
+        if (!shade)
+            return shade.error();
+        found = gpu.layerShadePrograms.emplace(key, std::move(*shade)).first;
+    }
+    return &found->second;
+}
+
+std::size_t layerBytesPerPixel(int capacity) {
+    return 3 * sizeof(std::uint32_t) + depthSlots(capacity) * sizeof(float) +
+           std::size_t(capacity) * 2 * sizeof(std::uint32_t);
+}
+
+void assignGlassIds(FrameContext& c) {
+    const auto& items = c.frame->items;
+    c.glassIds.assign(items.size(), -1);
+    c.materials.clear();
+    std::map<std::pair<std::uint64_t, int>, int> ids;
+    std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
+    bool full = false;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const render::DrawItem& item = items[i];
+        if (!c.isGlass(item))
+            continue;
+        const auto key = std::pair{item.key, item.material};
+        if (const auto known = ids.find(key); known != ids.end()) {
+            c.glassIds[i] = known->second;
+            continue;
+        }
+        if (c.materials.size() == kMaxGlassIds) {
+            full = true;
+            c.glassIds[i] = int(kMaxGlassIds) - 1;
+            continue;
+        }
+        const scene::Material* m =
+            item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+        const Optics o = opticsFor(c.settings, m, item.source->overrides);
+        const glm::vec3 emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
+        const int solid = solids.emplace(item.key, int(solids.size())).first->second;
+        c.materials.push_back({glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
+                               glm::vec4(glm::vec3(o.baseColor), o.metallic),
+                               glm::vec4(emissive, float(solid))});
+        ids.emplace(key, int(c.materials.size()) - 1);
+        c.glassIds[i] = int(c.materials.size()) - 1;
+    }
+    if (full && !c.gpu->warnedGlassIds) {
+        core::logWarning("refraction: more than 255 glass materials (character x material) in "
+                         "one frame; the layered path draws the rest with the 255th's optics");
+        c.gpu->warnedGlassIds = true;
+    }
+}
+
+fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
+                                 const FrameContext& c, FrameBuffers& buffers) {
+    const glm::ivec2 size = c.frame->settings.size;
+    const fg::TextureHandle sceneColor = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
+
+    struct CaptureData {
+        fg::TextureHandle sceneDepth;
+        fg::BufferHandle layers, rectangle;
+    };
+    const auto& captured = graph.addPass<CaptureData>(
+        "refraction.layers",
+        [&](fg::Builder& b, CaptureData& d) {
+            b.read(buffers.vertices);
+            if (c.settings.usesNormalDistance())
+                b.read(buffers.distances);
+            d.sceneDepth = b.read(sceneDepth);
+            d.rectangle = b.write(buffers.rectangle);
+            d.layers = b.write(buffers.layers);
+        },
+        [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            const glm::ivec2 viewport = c.frame->settings.size;
+            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity);
+            const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
+            gpu.layers.heads.fill(0, pixels, 0u);                     // counts
+            gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu);  // nearest front keys
+            gpu.layers.heads.fill(pixels * 8, pixels, 0u);           // farthest back keys
+            const std::size_t bytes = c.materials.size() * sizeof(GlassMaterialGpu);
+            if (gpu.glassMaterials.size() < bytes)
+                gpu.glassMaterials = gl::Buffer(bytes);
+            gpu.glassMaterials.update(0, bytes, c.materials.data());
+            c.growGlassRectangle();
+            // Depth only: the scene's, tested (glass behind the opaque scene is never seen) and
+            // left as it is.
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.layers", {},
+                                                         &r.texture(d.sceneDepth));
+                !bound)
+                return bound;
+            const gl::Program& program = gpu.layersCapture;
+            program.use();
+            setLayerUniforms(c, program);
+            c.drawGlass(program,
+                        {.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Less},
+                        [&c, &program](const render::DrawItem& item, std::size_t index) {
+                            program.set("uGlassId", c.glassIds[index]);
+                            item.materials->bind(program, *item.model, item.material,
+                                                 kMaterialUnit);
+                        });
+            gl::memoryBarrier(gl::BarrierStorage);
+            return {};
+        });
+    buffers.layers = captured.layers;
+    buffers.rectangle = captured.rectangle;
+
+    struct ShadeData {
+        fg::TextureHandle sceneColor, sceneDepth, out;
+        fg::BufferHandle layers, rectangle;
+    };
+    const auto& shaded = graph.addPass<ShadeData>(
+        "refraction.shade_layers",
+        [&](fg::Builder& b, ShadeData& d) {
+            d.layers = b.read(buffers.layers);
+            d.rectangle = b.write(buffers.rectangle); // counts the overflowing pixels
+            d.sceneColor = b.read(sceneColor);
+            d.sceneDepth = b.read(sceneDepth);
+            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+        },
+        [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.shade_layers",
+                                                         {&r.texture(d.out)}, nullptr);
+                !bound)
+                return bound;
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            const gl::Program& program = *c.layerShade;
+            c.setWalkUniforms(program);
+            program.set("uMarchSteps", c.settings.marchSteps);
+            program.set("uInterfaces", c.settings.interfaces);
+            setLayerUniforms(c, program);
+            gl::bindTexture(kSceneColorUnit, r.texture(d.sceneColor));
+            gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
+            program.set("uSceneColor", kSceneColorUnit);
+            program.set("uSceneDepth", kSceneDepthUnit);
+            gl::bindStorage(4, gpu.rectangle);
+            gpu.emptyVao.bind();
+            gl::drawArrays(6);
+            return {};
+        });
+    buffers.rectangle = shaded.rectangle;
+    return shaded.out;
+}
+
+} // namespace refraction
