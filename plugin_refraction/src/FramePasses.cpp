@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 
 namespace refraction {
 namespace {
@@ -73,10 +74,15 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     return buffers;
 }
 
+int GpuState::Distance::find(Part part) const {
+    const auto at = std::find(parts.begin(), parts.end(), part);
+    return at == parts.end() ? -1 : int(at - parts.begin());
+}
+
 void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) {
     std::erase_if(gpu.distances, [&](const auto& entry) {
         return std::none_of(items.begin(), items.end(), [&](const render::DrawItem& item) {
-            return item.key == std::get<0>(entry.first);
+            return item.key == entry.first;
         });
     });
 }
@@ -137,11 +143,27 @@ void FrameContext::drawGlass(
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
         gl::bindStorage(0, item.gpu->deformed);
         gl::bindStorage(1, *item.gpu->uv0);
-        const auto distance = gpu->distances.find({item.key, item.instance, item.primitiveIndex});
-        const bool hasDistance = distance != gpu->distances.end() && settings.usesNormalDistance();
+        // d_N: the character's combined cage values from this part's base, or (subdivision)
+        // the part's own drawn values.
+        const GpuState::Distance* distance = nullptr;
+        int part = -1;
+        if (settings.usesNormalDistance())
+            if (const auto found = gpu->distances.find(item.key); found != gpu->distances.end()) {
+                distance = &found->second;
+                part = distance->find({item.instance, item.primitiveIndex});
+            }
+        const bool hasDistance = distance && part >= 0 && distance->cage;
+        const gl::Buffer* values = nullptr;
+        int base = 0;
+        if (hasDistance) {
+            const auto drawn = distance->drawn.find({item.instance, item.primitiveIndex});
+            values = drawn != distance->drawn.end() ? &drawn->second : &distance->cage->distances();
+            base = drawn != distance->drawn.end() ? 0 : int(distance->cage->base(std::size_t(part)));
+        }
         program.set("uHasNormalDistance", hasDistance ? 1 : 0);
+        program.set("uDistanceBase", base);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
-        gl::bindStorage(2, hasDistance ? distance->second.values() : item.gpu->deformed);
+        gl::bindStorage(2, values ? *values : item.gpu->deformed);
         if (perItem)
             perItem(item, index);
         gl::apply(state);
@@ -184,24 +206,43 @@ void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
             d.distances = b.write(buffers.distances);
         },
         [c](const fg::Resources&, const Data&, gl::Context&) {
-            for (const render::DrawItem& item : c.frame->items) {
-                if (!c.isGlass(item))
-                    continue;
-                const deform::GpuDeformer& geometry = *item.geometry;
-                const bool refined = geometry.subdivisionLevel() > 0;
-                auto& distance = c.gpu->distances[{item.key, item.instance, item.primitiveIndex}];
-                if (!distance.cage) {
-                    distance.cage = std::make_unique<NormalDistance>(*item.primitive);
-                    if (refined)
-                        distance.drawn =
-                            gl::Buffer(std::size_t(item.gpu->vertexCount) * sizeof(float));
+            // The glass items of each character, in frame order: its parts.
+            std::map<std::uint64_t, std::vector<const render::DrawItem*>> characters;
+            for (const render::DrawItem& item : c.frame->items)
+                if (c.isGlass(item))
+                    characters[item.key].push_back(&item);
+            GpuState& gpu = *c.gpu;
+            for (const auto& [key, items] : characters) {
+                GpuState::Distance& distance = gpu.distances[key];
+                std::vector<GpuState::Distance::Part> parts;
+                for (const render::DrawItem* item : items)
+                    parts.emplace_back(item->instance, item->primitiveIndex);
+                if (!distance.cage || parts != distance.parts) { // new, or other glass parts
+                    std::vector<const scene::Primitive*> primitives;
+                    for (const render::DrawItem* item : items)
+                        primitives.push_back(item->primitive);
+                    distance.parts = parts;
+                    distance.cage = std::make_unique<NormalDistance>(primitives);
+                    distance.drawn.clear();
                 }
-                const auto cage = geometry.cage(item.instance, item.primitiveIndex);
-                distance.cage->update(cage.vertices, cage.indices, c.gpu->refit,
-                                      c.gpu->normalDistance);
-                if (refined)
-                    geometry.refineScalar(item.instance, item.primitiveIndex,
-                                          distance.cage->distances(), distance.drawn);
+                for (std::size_t i = 0; i < items.size(); ++i) {
+                    const render::DrawItem& item = *items[i];
+                    distance.cage->gather(
+                        i, item.geometry->cage(item.instance, item.primitiveIndex).vertices,
+                        std::uint32_t(item.primitive->vertexCount()), item.world, gpu.cageGather);
+                }
+                distance.cage->update(gpu.refit, gpu.normalDistance);
+                for (std::size_t i = 0; i < items.size(); ++i) {
+                    const render::DrawItem& item = *items[i];
+                    if (item.geometry->subdivisionLevel() == 0)
+                        continue;
+                    gl::Buffer& drawn = distance.drawn[parts[i]];
+                    if (!drawn)
+                        drawn = gl::Buffer(std::size_t(item.gpu->vertexCount) * sizeof(float));
+                    item.geometry->refineScalar(item.instance, item.primitiveIndex,
+                                                distance.cage->distances(), drawn,
+                                                distance.cage->base(i));
+                }
             }
         });
     buffers.distances = pass.distances;

@@ -13,13 +13,14 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace refraction {
 
 struct GpuState {
     // The papers' two geometry passes, and what both paths share.
-    gl::Program surface, front, composite, depthRange, refit, normalDistance;
+    gl::Program surface, front, composite, depthRange, refit, normalDistance, cageGather;
     // The single geometry pass.
     gl::Program surfaces, resolve, deferred, rectangleGrow;
     // The layered path (layers.glsl).
@@ -43,18 +44,20 @@ struct GpuState {
     /** The glass's pixel rectangle (surfaces.glsl) [0..3], its view-space box [4..9]
      *  (rectangle.comp.glsl), the layered shading's overflowing pixels [10]. */
     gl::Buffer rectangle{11 * sizeof(std::int32_t)};
-    /** d_N of one glass item (a primitive of a character): measured on the deformed cage (the
-     * file's triangles); with subdivision carried to the drawn vertices by the refinement stencils.
-     */
+    /** d_N of one character's glass: one BVH over all its glass primitives' cages (parts, in
+     *  the order of their draw items); with subdivision carried to each part's drawn vertices
+     *  by the refinement stencils. */
     struct Distance {
+        using Part = std::pair<std::uint32_t, std::uint32_t>; // (instance, primitive)
+        std::vector<Part> parts;
         std::unique_ptr<NormalDistance> cage;
-        gl::Buffer drawn; // with subdivision: one float per drawn vertex
-        const gl::Buffer& values() const { return drawn ? drawn : cage->distances(); }
+        std::map<Part, gl::Buffer> drawn; // with subdivision: one float per drawn vertex
+        /** Part `part`'s index in `parts`, or -1. */
+        int find(Part part) const;
     };
-    /** Keyed by (DrawItem::key, instance, primitive); entries of characters gone from the
-     *  frame are dropped. */
-    using DistanceKey = std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>;
-    std::map<DistanceKey, Distance> distances;
+    /** Keyed by DrawItem::key (the character); entries of characters gone from the frame are
+     *  dropped. */
+    std::map<std::uint64_t, Distance> distances;
 };
 
 } // namespace refraction

@@ -144,7 +144,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
 
     struct CaptureData {
-        fg::TextureHandle sceneDepth;
+        fg::TextureHandle sceneDepth, mask;
         fg::BufferHandle layers, rectangle;
     };
     const auto& captured = graph.addPass<CaptureData>(
@@ -154,6 +154,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             if (c.settings.usesNormalDistance())
                 b.read(buffers.distances);
             d.sceneDepth = b.read(sceneDepth);
+            d.mask = b.write(b.create("refraction.layers.mask", {size, gl::Format::Depth32F, 1}));
             d.rectangle = b.write(buffers.rectangle);
             d.layers = b.write(buffers.layers);
         },
@@ -170,17 +171,18 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 gpu.glassMaterials = gl::Buffer(bytes);
             gpu.glassMaterials.update(0, bytes, c.materials.data());
             c.growGlassRectangle();
-            // Depth only: the scene's, tested (glass behind the opaque scene is never seen) and
-            // left as it is.
+            // Depth only: the shading pass's mask (the shader tests the scene depth itself).
             if (auto bound = gpu.framebuffer.bindTargets("refraction.layers", {},
-                                                         &r.texture(d.sceneDepth));
+                                                         &r.texture(d.mask));
                 !bound)
                 return bound;
+            gl::clearDepth(1.0f);
             const gl::Program& program = gpu.layersCapture;
             program.use();
             setLayerUniforms(c, program);
-            c.drawGlass(program,
-                        {.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Less},
+            gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
+            program.set("uSceneDepth", kSceneDepthUnit);
+            c.drawGlass(program, {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always},
                         [&c, &program](const render::DrawItem& item, std::size_t index) {
                             program.set("uGlassId", c.glassIds[index]);
                             item.materials->bind(program, *item.model, item.material,
@@ -193,13 +195,14 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     buffers.rectangle = captured.rectangle;
 
     struct ShadeData {
-        fg::TextureHandle sceneColor, sceneDepth, out;
+        fg::TextureHandle sceneColor, sceneDepth, mask, out;
         fg::BufferHandle layers, rectangle;
     };
     const auto& shaded = graph.addPass<ShadeData>(
         "refraction.shade_layers",
         [&](fg::Builder& b, ShadeData& d) {
             d.layers = b.read(buffers.layers);
+            d.mask = b.read(captured.mask);
             d.rectangle = b.write(buffers.rectangle); // counts the overflowing pixels
             d.sceneColor = b.read(sceneColor);
             d.sceneDepth = b.read(sceneDepth);
@@ -208,11 +211,15 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
         [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
-            if (auto bound = gpu.framebuffer.bindTargets("refraction.shade_layers",
-                                                         {&r.texture(d.out)}, nullptr);
+            if (auto bound = gpu.framebuffer.bindTargets(
+                    "refraction.shade_layers", {&r.texture(d.out)}, &r.texture(d.mask));
                 !bound)
                 return bound;
-            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            // The rectangle lies at depth 1: the early depth test runs the shader only where
+            // the mask holds glass.
+            gl::apply({.cull = gl::Cull::None,
+                       .depthWrite = false,
+                       .depthFunc = gl::DepthFunc::Greater});
             const gl::Program& program = *c.layerShade;
             c.setWalkUniforms(program);
             program.set("uMarchSteps", c.settings.marchSteps);

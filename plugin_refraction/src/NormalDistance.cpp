@@ -11,14 +11,18 @@
 namespace refraction {
 
 Bvh buildBvh(const scene::Primitive& p) {
+    return buildBvh(p.positions, p.indices);
+}
+
+Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices) {
     Bvh bvh;
-    const std::size_t triangles = p.triangleCount();
+    const std::size_t triangles = indices.size() / 3;
     bvh.order.resize(triangles);
     std::iota(bvh.order.begin(), bvh.order.end(), 0u);
     std::vector<glm::vec3> centroid(triangles);
     for (std::size_t t = 0; t < triangles; ++t)
-        centroid[t] = (p.positions[p.indices[3 * t]] + p.positions[p.indices[3 * t + 1]] +
-                       p.positions[p.indices[3 * t + 2]]) /
+        centroid[t] = (positions[indices[3 * t]] + positions[indices[3 * t + 1]] +
+                       positions[indices[3 * t + 2]]) /
                       3.0f;
     struct Task {
         int node, first, count, depth;
@@ -69,14 +73,28 @@ Bvh buildBvh(const scene::Primitive& p) {
     return bvh;
 }
 
-NormalDistance::NormalDistance(const scene::Primitive& primitive)
-    : mBvh(buildBvh(primitive)), mVertexCount(std::uint32_t(primitive.vertexCount())) {
+NormalDistance::NormalDistance(std::span<const scene::Primitive* const> primitives) {
+    // The rest positions only shape the tree (each primitive in its own mesh space); the refit
+    // bounds the deformed world-space vertices every frame.
+    std::vector<glm::vec3> positions;
+    std::vector<std::uint32_t> indices;
+    for (const scene::Primitive* p : primitives) {
+        const auto base = std::uint32_t(positions.size());
+        mBases.push_back(base);
+        positions.insert(positions.end(), p->positions.begin(), p->positions.end());
+        for (std::uint32_t index : p->indices)
+            indices.push_back(base + index);
+    }
+    mBvh = buildBvh(positions, indices);
+    mVertexCount = std::uint32_t(positions.size());
     glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const glm::vec3& v : primitive.positions) {
+    for (const glm::vec3& v : positions) {
         lo = glm::min(lo, v);
         hi = glm::max(hi, v);
     }
     mEpsilon = 1e-4f * glm::length(hi - lo);
+    mVertices = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * 12 * sizeof(float));
+    mIndices = gl::Buffer(std::span<const std::uint32_t>(indices));
     mNodes = gl::Buffer(std::span<const Bvh::Node>(mBvh.nodes));
     mOrder = gl::Buffer(std::span<const std::uint32_t>(mBvh.order));
     mLevels = gl::Buffer(std::span<const std::int32_t>(mBvh.levelNodes));
@@ -84,10 +102,23 @@ NormalDistance::NormalDistance(const scene::Primitive& primitive)
     mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
 }
 
-void NormalDistance::update(const gl::Buffer& deformed, const gl::Buffer& indices,
-                            const gl::Program& refit, const gl::Program& cast) {
-    gl::bindStorage(0, deformed);
-    gl::bindStorage(1, indices);
+void NormalDistance::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count,
+                            const glm::mat4& world, const gl::Program& gather) const {
+    gather.use();
+    gather.set("uWorld", world);
+    gather.set("uNormalMatrix", glm::mat3(glm::transpose(glm::inverse(world))));
+    gather.set("uBase", int(mBases[i]));
+    gather.set("uVertexCount", int(count));
+    gl::bindStorage(0, cage);
+    gl::bindStorage(1, mVertices);
+    gl::dispatch((count + 63) / 64);
+}
+
+void NormalDistance::update(const gl::Program& refit, const gl::Program& cast) {
+    gl::memoryBarrier(gl::BarrierStorage); // the gathered cages
+
+    gl::bindStorage(0, mVertices);
+    gl::bindStorage(1, mIndices);
     gl::bindStorage(2, mNodes);
     gl::bindStorage(3, mOrder);
     gl::bindStorage(4, mBounds);

@@ -1,13 +1,17 @@
-// d_N for ISR, recomputed every frame because the mesh deforms: a BVH built once over the
-// primitive's static topology, refitted on the GPU to the deformed vertices, then one ray per
-// vertex along -N (exact nearest hit). Private to the plugin.
+// d_N for ISR, recomputed every frame because the mesh deforms: a BVH built once over the static
+// topology of all of a character's glass primitives, refitted on the GPU to their deformed
+// vertices gathered in world space, then one ray per vertex along -N (exact nearest hit). Its
+// cost grows with the character's triangles, not with its primitives. Private to the plugin.
 #pragma once
 
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Program.h"
 #include "engine/scene/Mesh.h"
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace refraction {
@@ -24,27 +28,38 @@ struct Bvh {
     std::vector<std::pair<int, int>> levels; ///< (first, count) into levelNodes, deepest first
 };
 
-/** Builds the BVH of `primitive` from its rest positions (leaves of at most 4 triangles). */
+/** Builds the BVH of the triangles `indices` over `positions` (leaves of at most 4 triangles). */
+Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices);
+/** The BVH of one primitive from its rest positions. */
 Bvh buildBvh(const scene::Primitive& primitive);
 
-/** GPU state of one primitive's d_N. */
+/** GPU state of one character's d_N: its glass primitives' cages, one after another (vertex
+ *  `base(i) + v` is primitive i's vertex v), under one BVH. */
 class NormalDistance {
 public:
-    explicit NormalDistance(const scene::Primitive& primitive);
+    explicit NormalDistance(std::span<const scene::Primitive* const> primitives);
 
-    /** Refits the BVH to `deformed` (the engine's deformed vertex buffer of this primitive) and
-     *  writes d_N per vertex into distances(). `refit` and `cast` are bvh_refit.comp.glsl and
-     *  normal_distance.comp.glsl. */
-    void update(const gl::Buffer& deformed, const gl::Buffer& indices, const gl::Program& refit,
-                const gl::Program& cast);
+    /** Where primitive i's vertices start in the combined cage and in distances(). */
+    std::uint32_t base(std::size_t i) const { return mBases[i]; }
+    /** The combined cage the gather pass fills each frame (world space, common/vertex.glsl). */
+    const gl::Buffer& vertices() const { return mVertices; }
+
+    /** Copies primitive i's deformed cage (`count` vertices in its mesh node's space, placed by
+     *  `world`) into vertices() (`gather`: cage_gather.comp.glsl). No sync. */
+    void gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count, const glm::mat4& world,
+                const gl::Program& gather) const;
+    /** Refits the BVH to the gathered vertices() and writes d_N (world units) per vertex into
+     *  distances(). `refit` and `cast` are bvh_refit.comp.glsl and normal_distance.comp.glsl. */
+    void update(const gl::Program& refit, const gl::Program& cast);
 
     const gl::Buffer& distances() const { return mDistances; }
 
 private:
     Bvh mBvh;
-    std::uint32_t mVertexCount;
-    float mEpsilon;
-    gl::Buffer mNodes, mOrder, mLevels, mBounds, mDistances;
+    std::vector<std::uint32_t> mBases;
+    std::uint32_t mVertexCount = 0;
+    float mEpsilon = 0.0f;
+    gl::Buffer mVertices, mIndices, mNodes, mOrder, mLevels, mBounds, mDistances;
 };
 
 } // namespace refraction

@@ -228,7 +228,8 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
          {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
           std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
           std::pair{&mGpu->rectangleGrow, "refraction/rectangle.comp.glsl"},
-          std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"}}) {
+          std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"},
+          std::pair{&mGpu->cageGather, "refraction/cage_gather.comp.glsl"}}) {
         auto program = gl::Program::compute(shaders, name);
         if (!program)
             return program.error();

@@ -81,7 +81,7 @@ characters; T is the scene time); several MODELs are placed side by side.
                       .heatmap.png beside the frame
   --spp K             reference samples per pixel, jittered (default 16)
   --max-bounces N     interfaces (refractions and reflections) a reference path follows after
-                      its entry before it counts as trapped (default 64)
+                      its entry before it counts as trapped (default 256)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
   --force             replace output files that exist (without it, an existing file is an
@@ -187,7 +187,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
         } else if (arg == "--spp" || arg == "--max-bounces") {
             const auto v = next();
             double n = 0;
-            const double limit = arg == "--spp" ? 4096 : 64;
+            const double limit = 4096;
             if (!v || !parseDouble(*v, n) || n != std::floor(n) || n < (arg == "--spp" ? 1 : 0) ||
                 n > limit)
                 return usageError(arg + " needs an integer up to " + std::to_string(int(limit)));

@@ -2,6 +2,7 @@
 #include "Figure.h"
 
 #include "engine/asset/Glb.h"
+#include "engine/capture/Image.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -521,7 +522,8 @@ std::vector<float> flatten(const std::vector<dvec3>& v) {
 }
 
 nlohmann::json primitive(Document& doc, const Surface& s, const Skinning& skinning,
-                         const std::vector<dvec3>& breath, int material) {
+                         const std::vector<dvec3>& breath, int material,
+                         const std::vector<float>& uv = {}) {
     constexpr int kArray = 34962, kElements = 34963;
     std::vector<std::uint8_t> joints;
     std::vector<float> weights;
@@ -534,6 +536,8 @@ nlohmann::json primitive(Document& doc, const Surface& s, const Skinning& skinni
         {"NORMAL", doc.floats(flatten(s.normals), "VEC3", 3, false, kArray)},
         {"JOINTS_0", doc.integers(joints, 5121, "VEC4", s.positions.size(), kArray)},
         {"WEIGHTS_0", doc.floats(weights, "VEC4", 4, false, kArray)}};
+    if (!uv.empty())
+        attributes["TEXCOORD_0"] = doc.floats(uv, "VEC2", 2, false, kArray);
     int indices = 0;
     if (s.positions.size() < 65536) {
         const std::vector<std::uint16_t> narrow(s.indices.begin(), s.indices.end());
@@ -545,6 +549,116 @@ nlohmann::json primitive(Document& doc, const Surface& s, const Skinning& skinni
             {"indices", indices},
             {"material", material},
             {"targets", {{{"POSITION", doc.floats(flatten(breath), "VEC3", 3, true, kArray)}}}}};
+}
+
+// ---- The parts variant: a glass per body part, a normal-mapped head
+
+enum Part { Torso, Arms, Legs, HeadPart, PartCount };
+
+Part partOf(int joint) {
+    if (joint == Head || joint == Neck)
+        return HeadPart;
+    if (joint >= LShoulder && joint <= RHand)
+        return Arms;
+    if (joint >= LThigh && joint <= RFoot)
+        return Legs;
+    return Torso;
+}
+
+/** One part of the surface: its triangles (by the strongest joint of their first vertex) with
+ *  the vertices they use, their skinning and breathing deltas. Vertices on a seam are copied
+ *  into both parts at the same position, so the parts still close the body. */
+struct PartMesh {
+    Surface surface;
+    Skinning skinning;
+    std::vector<dvec3> breath;
+};
+
+std::array<PartMesh, PartCount> splitParts(const Surface& s, const Skinning& skinning,
+                                           const std::vector<dvec3>& breath) {
+    std::array<PartMesh, PartCount> parts;
+    std::array<std::vector<std::int64_t>, PartCount> remap;
+    for (auto& r : remap)
+        r.assign(s.positions.size(), -1);
+    for (std::size_t t = 0; t < s.indices.size(); t += 3) {
+        const Part part = partOf(skinning.joints[s.indices[t]][0]);
+        PartMesh& m = parts[std::size_t(part)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t v = s.indices[t + k];
+            std::int64_t& to = remap[std::size_t(part)][v];
+            if (to < 0) {
+                to = std::int64_t(m.surface.positions.size());
+                m.surface.positions.push_back(s.positions[v]);
+                m.surface.normals.push_back(s.normals[v]);
+                m.skinning.joints.push_back(skinning.joints[v]);
+                m.skinning.weights.push_back(skinning.weights[v]);
+                m.breath.push_back(breath[v]);
+            }
+            m.surface.indices.push_back(std::uint32_t(to));
+        }
+    }
+    return parts;
+}
+
+/** Spherical texture coordinates around the head's centre (the seam at the back). */
+std::vector<float> headUv(const std::vector<dvec3>& positions) {
+    const dvec3 centre(0.0, 1.655, 0.01);
+    std::vector<float> uv;
+    for (const dvec3& p : positions) {
+        const dvec3 d = glm::normalize(p - centre);
+        uv.push_back(float(0.5 + std::atan2(d.x, d.z) / (2.0 * M_PI)));
+        uv.push_back(float(std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI));
+    }
+    return uv;
+}
+
+/** A hammered-glass normal map: round dimples on a jittered grid, tileable, 128 x 128. */
+capture::Image hammeredNormals() {
+    constexpr int kSize = 128, kCells = 8;
+    auto height = [](double x, double y) {
+        double h = 0.0;
+        for (int cy = -1; cy <= kCells; ++cy)
+            for (int cx = -1; cx <= kCells; ++cx) {
+                const int wx = (cx + kCells) % kCells, wy = (cy + kCells) % kCells;
+                const double jx = 0.5 + 0.3 * std::sin(double(wx * 7 + wy * 13)),
+                             jy = 0.5 + 0.3 * std::cos(double(wx * 11 + wy * 5));
+                const double dx = x * kCells - (cx + jx), dy = y * kCells - (cy + jy);
+                const double r2 = dx * dx + dy * dy;
+                if (r2 < 0.36)
+                    h -= (0.36 - r2) * (0.36 - r2);
+            }
+        return h;
+    };
+    capture::Image image{kSize, kSize, std::vector<std::uint8_t>(kSize * kSize * 4)};
+    const double e = 1.0 / kSize;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const double u = (x + 0.5) / kSize, v = (y + 0.5) / kSize;
+            const double gx = (height(u + e, v) - height(u - e, v)) / (2 * e);
+            const double gy = (height(u, v + e) - height(u, v - e)) / (2 * e);
+            const dvec3 n = glm::normalize(dvec3(-gx * 0.6, -gy * 0.6, 1.0));
+            std::uint8_t* texel = &image.rgba[std::size_t(y * kSize + x) * 4];
+            for (int c = 0; c < 3; ++c)
+                texel[c] = std::uint8_t(std::lround((n[c] * 0.5 + 0.5) * 255.0));
+            texel[3] = 255;
+        }
+    return image;
+}
+
+nlohmann::json glassMaterial(const char* name, double ior, std::array<double, 3> attenuation,
+                             double distance) {
+    return {{"name", name},
+            {"pbrMetallicRoughness",
+             {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
+              {"metallicFactor", 0.0},
+              {"roughnessFactor", 0.04}}},
+            {"extensions",
+             {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+              {"KHR_materials_volume",
+               {{"thicknessFactor", 0.15},
+                {"attenuationDistance", distance},
+                {"attenuationColor", attenuation}}},
+              {"KHR_materials_ior", {{"ior", ior}}}}}};
 }
 
 } // namespace
@@ -587,15 +701,42 @@ std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
     Skinning eyeSkin;
     eyeSkin.joints.assign(eyeSurface.positions.size(), {std::uint8_t(Head), 0, 0, 0});
     eyeSkin.weights.assign(eyeSurface.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
-    doc.gltf["meshes"] = {
-        {{"name", "glass_figure"},
-         {"primitives",
-          {primitive(doc, surface, skin(shapes, surface.positions),
-                     breathe(surface.positions, surface.normals), 0),
-           primitive(doc, eyeSurface, eyeSkin,
-                     std::vector<dvec3>(eyeSurface.positions.size(), dvec3(0.0)), 1)}},
-         {"weights", {0.0}},
-         {"extras", {{"targetNames", {"breathe"}}}}}};
+    const Skinning bodySkin = skin(shapes, surface.positions);
+    const std::vector<dvec3> breath = breathe(surface.positions, surface.normals);
+    nlohmann::json primitives = nlohmann::json::array();
+    if (!options.parts) {
+        primitives.push_back(primitive(doc, surface, bodySkin, breath, 0));
+    } else {
+        // Materials 2-5 (after the glass and the eyes): a glass per part, the head's with the
+        // hammered normal map (texture 0).
+        doc.gltf["materials"].push_back(glassMaterial("clear torso", 1.5, {0.85, 0.95, 1.0}, 0.8));
+        doc.gltf["materials"].push_back(glassMaterial("blue arms", 1.6, {0.35, 0.55, 1.0}, 0.35));
+        doc.gltf["materials"].push_back(glassMaterial("amber legs", 1.55, {1.0, 0.7, 0.3}, 0.4));
+        nlohmann::json head = glassMaterial("hammered head", 1.52, {0.9, 1.0, 0.9}, 0.8);
+        head["normalTexture"] = {{"index", 0}, {"scale", 1.0}};
+        doc.gltf["materials"].push_back(head);
+        const std::vector<std::uint8_t> png = capture::encodePng(hammeredNormals());
+        doc.gltf["images"] = {{{"bufferView", doc.view(png.data(), png.size(), std::nullopt)},
+                               {"mimeType", "image/png"}}};
+        doc.gltf["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
+        doc.gltf["textures"] = {{{"source", 0}, {"sampler", 0}}};
+        const auto parts = splitParts(surface, bodySkin, breath);
+        for (int part = 0; part < PartCount; ++part) {
+            const PartMesh& m = parts[std::size_t(part)];
+            if (m.surface.indices.empty())
+                continue;
+            primitives.push_back(primitive(doc, m.surface, m.skinning, m.breath, 2 + part,
+                                           part == HeadPart ? headUv(m.surface.positions)
+                                                            : std::vector<float>{}));
+        }
+    }
+    primitives.push_back(primitive(doc, eyeSurface, eyeSkin,
+                                   std::vector<dvec3>(eyeSurface.positions.size(), dvec3(0.0)),
+                                   1));
+    doc.gltf["meshes"] = {{{"name", "glass_figure"},
+                           {"primitives", primitives},
+                           {"weights", {0.0}},
+                           {"extras", {{"targetNames", {"breathe"}}}}}};
 
     // Nodes: 0 the mesh, 1.. the joints (joint j is node j + 1).
     doc.gltf["nodes"] = {{{"name", "glass_figure"}, {"mesh", 0}, {"skin", 0}}};

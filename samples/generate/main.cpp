@@ -18,6 +18,9 @@ Writes the project's own default assets (nothing third party):
   DIR/models/glass_figure.glb  a glass figure: 19-joint skeleton, a breathing morph target,
                                clips walk, wave and idle; KHR_materials_transmission, _volume,
                                _ior and _dispersion
+  DIR/models/glass_figure_parts.glb
+                               the same figure with a glass per body part (clear torso, blue
+                               arms, amber legs) and a hammered-glass head (a normal map)
   DIR/env/sunset_sky.hdr       a procedural sunset: sun, coloured skyline, tiled floor
 
   --out DIR   where to write (default: assets)
@@ -49,16 +52,19 @@ int run(int argc, char** argv) {
         }
     }
     const std::filesystem::path figure = out / "models" / "glass_figure.glb";
+    const std::filesystem::path parts = out / "models" / "glass_figure_parts.glb";
     const std::filesystem::path sky = out / "env" / "sunset_sky.hdr";
-    for (const auto& path : {figure, sky})
+    for (const auto& path : {figure, parts, sky})
         if (!force && std::filesystem::exists(path)) {
             std::fprintf(stderr, "glass-generate-assets: %s exists (use --force to replace it)\n",
                          path.string().c_str());
             return 1;
         }
     const std::vector<std::uint8_t> glb = generate::buildFigureGlb();
+    const std::vector<std::uint8_t> partsGlb = generate::buildFigureGlb({.parts = true});
     const std::vector<std::uint8_t> hdr = asset::encodeHdr(generate::buildSky());
-    for (const auto& [path, bytes] : {std::pair{figure, &glb}, std::pair{sky, &hdr}}) {
+    for (const auto& [path, bytes] :
+         {std::pair{figure, &glb}, std::pair{parts, &partsGlb}, std::pair{sky, &hdr}}) {
         std::error_code ec;
         std::filesystem::create_directories(path.parent_path(), ec);
         if (auto written = core::writeFileAtomic(path, *bytes); !written) {

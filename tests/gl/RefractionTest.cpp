@@ -195,7 +195,7 @@ double bruteForceDistance(const deform::DeformedPrimitive& mesh,
 struct DistanceRig {
     scene::Model model;
     gl::ShaderLibrary library;
-    gl::Program refit, cast;
+    gl::Program refit, cast, gather;
     void open(const gl::ShaderLibrary& engineShaders) {
         auto loaded =
             asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
@@ -205,9 +205,21 @@ struct DistanceRig {
         library.add(refractionShaderFiles());
         auto r = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
         auto c = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
-        ASSERT_TRUE(r.ok() && c.ok());
+        auto g = gl::Program::compute(library, "refraction/cage_gather.comp.glsl");
+        ASSERT_TRUE(r.ok() && c.ok() && g.ok());
         refit = std::move(*r);
         cast = std::move(*c);
+        gather = std::move(*g);
+    }
+    /** d_N of one primitive's deformed cage `vertices` (identity placement: mesh space). */
+    refraction::NormalDistance distances(const scene::Primitive& primitive,
+                                         const gl::Buffer& vertices) const {
+        const scene::Primitive* primitives[] = {&primitive};
+        refraction::NormalDistance distance(primitives);
+        distance.gather(0, vertices, std::uint32_t(primitive.vertexCount()), glm::mat4(1.0f),
+                        gather);
+        distance.update(refit, cast);
+        return distance;
     }
 };
 
@@ -219,8 +231,7 @@ TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     ASSERT_TRUE(deformer.ok());
     (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
     const auto& primitive = (*deformer)->instances()[0].primitives[0];
-    refraction::NormalDistance distance(*primitive.source);
-    distance.update(primitive.deformed, *primitive.indices, rig.refit, rig.cast);
+    const refraction::NormalDistance distance = rig.distances(*primitive.source, primitive.deformed);
     const auto bytes = distance.distances().download();
     std::vector<float> gpu(primitive.vertexCount);
     std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
@@ -267,9 +278,8 @@ TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) 
     ASSERT_TRUE(deformer.ok()) << deformer.error().message;
     (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
     const auto& primitive = (*deformer)->instances()[0].primitives[0];
-    refraction::NormalDistance distance(*primitive.source);
-    const auto cage = (*deformer)->cage(0, 0);
-    distance.update(cage.vertices, cage.indices, rig.refit, rig.cast);
+    const refraction::NormalDistance distance =
+        rig.distances(*primitive.source, (*deformer)->cage(0, 0).vertices);
     gl::Buffer drawn(std::size_t(primitive.vertexCount) * sizeof(float));
     (*deformer)->refineScalar(0, 0, distance.distances(), drawn);
     const auto bytes = drawn.download();
@@ -416,8 +426,9 @@ TEST_F(Refraction, EveryMethodAndDebugViewRendersTheSphere) {
 }
 
 TEST_F(Refraction, OneGeometryPassGivesTheTwoPassImageWithinQuantisation) {
-    // The single pass quantises normals (10-bit octahedral) and d_N (10 bits of the depth);
-    // everything else is the same arithmetic, so the images agree but for a few pixels.
+    // The two-surface path's single pass quantises normals (10-bit octahedral) and d_N (10 bits
+    // of the depth); everything else is the same arithmetic, so the images agree but for a few
+    // pixels.
     auto figure =
         asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure.glb");
     ASSERT_TRUE(figure.ok());
@@ -425,6 +436,7 @@ TEST_F(Refraction, OneGeometryPassGivesTheTwoPassImageWithinQuantisation) {
     for (const scene::Model* model : {&sphere, static_cast<const scene::Model*>(&*figure)}) {
         RefractionRig rig(*model, context());
         rig.set("dispersion", "0");
+        rig.set("surfaces", "two-surface");
         for (const char* method : {"sir", "isr", "dir"})
             for (const char* tir : {"clamp", "reflect"}) {
                 SCOPED_TRACE(model->sourceName + " " + method + " tir " + tir);

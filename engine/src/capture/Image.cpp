@@ -11,7 +11,7 @@
 
 namespace capture {
 
-core::Status writePng(const std::filesystem::path& path, const Image& image) {
+std::vector<std::uint8_t> encodePng(const Image& image) {
     std::vector<std::uint8_t> png;
     const int ok = stbi_write_png_to_func(
         [](void* context, void* data, int size) {
@@ -21,6 +21,13 @@ core::Status writePng(const std::filesystem::path& path, const Image& image) {
         },
         &png, image.width, image.height, 4, image.rgba.data(), image.width * 4);
     if (!ok)
+        png.clear();
+    return png;
+}
+
+core::Status writePng(const std::filesystem::path& path, const Image& image) {
+    const std::vector<std::uint8_t> png = encodePng(image);
+    if (png.empty())
         return core::Error{"capture::writePng(): " + path.string() + ": PNG encoding failed"};
     return core::writeFileAtomic(path, png);
 }

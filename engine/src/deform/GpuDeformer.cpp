@@ -291,7 +291,7 @@ GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
 }
 
 void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
-                               const gl::Buffer& drawnValues) const {
+                               const gl::Buffer& drawnValues, std::uint32_t cageOffset) const {
     ENGINE_CHECK(subdivisionLevel() > 0, "GpuDeformer::refineScalar() needs a subdivision level");
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
     const GpuModel::Primitive& s = mUpload->primitive(mInstances[i].mesh, p);
@@ -299,7 +299,8 @@ void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& c
     const Evaluators& e = *mEvaluators;
     const OpenSubdiv::Osd::BufferDescriptor none;
     const GpuStencils& t = *s.refine;
-    e.scalar->EvalStencils(cageValues.id(), e.packed1, r.scalarRefined.id(), e.packed1, 0, none, 0,
+    const OpenSubdiv::Osd::BufferDescriptor cage{int(cageOffset), 1, 1};
+    e.scalar->EvalStencils(cageValues.id(), cage, r.scalarRefined.id(), e.packed1, 0, none, 0,
                            none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0, 0,
                            0, t.count);
     gl::memoryBarrier(gl::BarrierStorage);

@@ -10,6 +10,7 @@ uniform mat4 uModelView;       // mesh node space -> view
 uniform mat3 uNormalMatrix;    // inverse transpose of uModelView's 3x3
 uniform mat4 uProjection;
 uniform int uHasNormalDistance;
+uniform int uDistanceBase; // this primitive's first vertex in the character's d_N
 
 out vec3 vViewPosition;
 out vec3 vViewNormal;
@@ -24,8 +25,7 @@ void main() {
     vViewNormal = normalize(uNormalMatrix * v.normal.xyz);
     vViewTangent = vec4(normalize(mat3(uModelView) * v.tangent.xyz), v.tangent.w);
     vUv = uvs[gl_VertexID];
-    // d_N is measured in mesh units; the model-view matrix scales it along the normal.
-    float d = uHasNormalDistance != 0 ? normalDistance[gl_VertexID] : -1.0;
-    vNormalDistance = d >= 0.0 ? d * length(mat3(uModelView) * v.normal.xyz) : -1.0;
+    // d_N is measured in world units, which the view (rigid) keeps.
+    vNormalDistance = uHasNormalDistance != 0 ? normalDistance[uDistanceBase + gl_VertexID] : -1.0;
     gl_Position = uProjection * view;
 }

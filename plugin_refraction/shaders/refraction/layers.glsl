@@ -129,41 +129,62 @@ bool inSegment(ivec2 p, float zFrom, float z, int parity) {
     return !between && (count & 1) == parity;
 }
 
+// A pixel's layer count as the walk reads it (0 off screen; an overflowing pixel's 2 or fewer).
+int layerCount(ivec2 p) {
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return 0;
+    uint pixel = pixelIndex(p);
+    int n = int(layerHeads[pixel]);
+    if (n <= uLayerCapacity)
+        return n;
+    return (layerHeads[uint(uPixelCount) + pixel] != 0xFFFFFFFFu ? 1 : 0) +
+           (layerHeads[2u * uint(uPixelCount) + pixel] != 0u ? 1 : 0);
+}
+
+// Depths of layers 4g..4g+3 of pixel p (3e38 where unused); an overflowing pixel's nearest front
+// and farthest back stand in as layers 0 and 1.
+vec4 layerDepths(ivec2 p, int g) {
+    uint pixel = pixelIndex(p);
+    int n = int(layerHeads[pixel]);
+    vec4 slots = vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0);
+    if (n > uLayerCapacity) {
+        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
+        vec4 d = vec4(front != 0xFFFFFFFFu ? fallbackDepth(front) : 3.0e38,
+                      back != 0u ? fallbackDepth(back) : 3.0e38, 3.0e38, 3.0e38);
+        return g == 0 ? d : vec4(3.0e38);
+    }
+    vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
+    return mix(vec4(3.0e38), d, vec4(lessThan(slots, vec4(float(n)))));
+}
+
+// Layer i of pixel p (see layerDepths).
+uvec2 layerAttrAt(ivec2 p, int i) {
+    uint pixel = pixelIndex(p);
+    if (int(layerHeads[pixel]) > uLayerCapacity) {
+        uint key = layerHeads[uint(i == 0 ? uPixelCount : 2 * uPixelCount) + pixel];
+        return uvec2(packOctNormal(fallbackNormal(key)), ((key >> 8) & 255u) | (i == 0 ? kLayerFront : 0u));
+    }
+    return layerAttr[pixel * uint(uLayerCapacity) + uint(i)];
+}
+
 Layers readLayers(ivec2 p) {
     Layers l;
-    l.count = 0;
-    l.overflow = false;
+    l.count = layerCount(p);
+    l.overflow = l.count > 0 && int(layerHeads[pixelIndex(p)]) > uLayerCapacity;
     for (int i = 0; i < kMaxLayers; ++i) {
         l.depth[i] = 0.0;
         l.attr[i] = uvec2(0u);
     }
-    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+    if (l.count == 0)
         return l;
-    uint pixel = pixelIndex(p);
-    int n = int(layerHeads[pixel]);
-    if (n > uLayerCapacity) {
-        l.overflow = true;
-        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
-        if (front != 0xFFFFFFFFu) {
-            l.depth[l.count] = fallbackDepth(front);
-            l.attr[l.count++] = uvec2(packOctNormal(fallbackNormal(front)), ((front >> 8) & 255u) | kLayerFront);
-        }
-        if (back != 0u) {
-            l.depth[l.count] = fallbackDepth(back);
-            l.attr[l.count++] = uvec2(packOctNormal(fallbackNormal(back)), (back >> 8) & 255u);
-        }
-        return l;
-    }
-    uint base = pixel * uint(uLayerCapacity), depthBase = pixel * uint(kDepthGroups);
     for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepth4[depthBase + uint(g)];
+        vec4 d = layerDepths(p, g);
         for (int c = 0; c < 4; ++c)
-            if (4 * g + c < uLayerCapacity) {
+            if (4 * g + c < kMaxLayers) {
                 l.depth[4 * g + c] = d[c];
-                l.attr[4 * g + c] = 4 * g + c < n ? layerAttr[base + uint(4 * g + c)] : uvec2(0u);
+                l.attr[4 * g + c] = 4 * g + c < l.count ? layerAttrAt(p, 4 * g + c) : uvec2(0u);
             }
     }
-    l.count = n;
     return l;
 }
 

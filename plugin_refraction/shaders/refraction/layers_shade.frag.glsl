@@ -110,22 +110,32 @@ float boxExit(vec3 P, vec3 dir, vec3 lo, vec3 hi, float limit) {
 
 // The layer of pixel p the ray passed on its way to depth z: the deepest one in front of z when
 // it goes deeper, the nearest one behind z when it comes toward the camera (the layer whose
-// passing changed the pixel's count); failing that the layer nearest z.
-bool pickLayer(ivec2 p, float z, bool deeper, out uvec2 attr) {
-    Layers l = readLayers(p);
-    if (l.count == 0)
+// passing changed the pixel's count). `nearest` (an estimated point, ISR), or no such layer:
+// the layer nearest z.
+bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
+    int n = layerCount(p);
+    attr = uvec2(0u);
+    if (n == 0)
         return false;
-    int best = -1, nearest = -1;
-    for (int i = 0; i < kMaxLayers; ++i) {
-        if (i >= l.count)
-            continue;
-        bool passed = deeper ? l.depth[i] <= z : l.depth[i] >= z;
-        if (passed && (best < 0 || (deeper ? l.depth[i] > l.depth[best] : l.depth[i] < l.depth[best])))
-            best = i;
-        if (nearest < 0 || abs(l.depth[i] - z) < abs(l.depth[nearest] - z))
-            nearest = i;
+    int passed = -1, closest = 0;
+    float passedDepth = deeper ? -1.0 : 3.0e38, closestGap = 3.0e38;
+    for (int g = 0; g < kDepthGroups; ++g) {
+        vec4 d = layerDepths(p, g);
+        for (int k = 0; k < 4; ++k) {
+            int i = 4 * g + k;
+            if (i >= n)
+                continue;
+            if (deeper ? d[k] <= z && d[k] > passedDepth : d[k] >= z && d[k] < passedDepth) {
+                passed = i;
+                passedDepth = d[k];
+            }
+            if (abs(d[k] - z) < closestGap) {
+                closestGap = abs(d[k] - z);
+                closest = i;
+            }
+        }
     }
-    attr = l.attr[best >= 0 ? best : nearest];
+    attr = layerAttrAt(p, passed >= 0 && !nearest ? passed : closest);
     return true;
 }
 
@@ -140,25 +150,34 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
     uint kind = attr.y & (255u | kLayerFront);
     vec3 sum = vec3(0.0);
     for (int k = 0; k < 4; ++k) {
-        ivec2 offset = ivec2(k & 1, k >> 1);
-        Layers l = readLayers(base + offset);
-        float best = 0.02 * z;
-        vec3 n = vec3(0.0);
-        for (int i = 0; i < kMaxLayers; ++i)
-            if (i < l.count && (l.attr[i].y & (255u | kLayerFront)) == kind &&
-                abs(l.depth[i] - z) < best) {
-                best = abs(l.depth[i] - z);
-                n = layerNormal(l.attr[i]);
-            }
+        ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
+        int n = layerCount(q);
+        if (n == 0)
+            continue;
+        int best = -1;
+        float gap = 0.02 * z;
+        for (int g = 0; g < kDepthGroups; ++g) {
+            vec4 d = layerDepths(q, g);
+            for (int j = 0; j < 4; ++j)
+                if (4 * g + j < n && abs(d[j] - z) < gap) {
+                    gap = abs(d[j] - z);
+                    best = 4 * g + j;
+                }
+        }
+        if (best < 0)
+            continue;
+        uvec2 a = layerAttrAt(q, best);
+        if ((a.y & (255u | kLayerFront)) != kind)
+            continue;
         vec2 w = mix(1.0 - f, f, vec2(offset));
-        sum += w.x * w.y * n;
+        sum += w.x * w.y * layerNormal(a);
     }
     return length(sum) > 1e-6 ? normalize(sum) : layerNormal(attr);
 }
 
 // The next interface along P + t dir after a crossing, the ray in a segment of layer parity
 // `parity`.
-Crossing searchLayers(vec3 P, vec3 dir, int parity) {
+Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     Crossing c;
     c.found = false;
     c.silhouette = false;
@@ -179,13 +198,14 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity) {
     // The segment starts just past the interface (the layer crossed is behind it).
     float pixel = 1.0 / max(pixels, 1e-3);
     float start = min(0.5 * pixel, 0.5), inside = start, outside = -1.0;
-    // Coarse samples (about one per three pixels, march-steps at most) until the ray leaves the
+    // Coarse samples (one per four pixels in glass, per eight in air, where the glass to meet
+    // next is a whole other piece; march-steps at most) until the ray leaves the
     // segment, then (outside the loop: the SIMD lanes of a shader all run it together) the
     // conservative binary search between the last sample in the segment and the first out of
     // it: advance only to points still in it. A parity change that is gone again a pixel and a
     // half further is a graze of a silhouette, where a pixel's layers stand for a line of sight
     // the ray only passes beside: the search goes on behind it (twice at most).
-    int steps = clamp(int(ceil(pixels / 3.0)), 1, max(uMarchSteps, 1));
+    int steps = clamp(int(ceil(pixels / (inGlass ? 4.0 : 8.0))), 1, max(uMarchSteps, 1));
     for (int pass = 0; pass < 3; ++pass) {
         inside = start;
         outside = -1.0;
@@ -217,7 +237,7 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity) {
     c.found = true;
     c.point = X0;
     c.beyond = X1;
-    c.silhouette = !pickLayer(pixelOf(X1), -X1.z, dir.z < 0.0, c.attr);
+    c.silhouette = !pickLayer(pixelOf(X1), -X1.z, dir.z < 0.0, false, c.attr);
     return c;
 }
 
@@ -241,7 +261,10 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     float d = ratio * dV + (1.0 - ratio) * (dN >= 0.0 ? dN : dV);
     c.point = P1 + d * T1;
     c.beyond = c.point;
-    c.silhouette = !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, c.attr);
+    // No layer there, or one facing the ray (the estimate fell short of the far side, or past
+    // the outline): Wyman's silhouette normal, as the two-surface ISR does.
+    c.silhouette = !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, true, c.attr) ||
+                   dot(layerNormal(c.attr), T1) <= 0.0;
     return c;
 }
 
@@ -315,7 +338,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         uint inside = topMedium(media);
         Crossing c = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry
             ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
-            : searchLayers(P, dir, parity);
+            : searchLayers(P, dir, parity, inside != 0u);
         w.steps += c.steps;
         if (!c.found)
             break;
@@ -325,14 +348,19 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         if (w.interfaces == 1)
             w.firstExit = P;
         ++w.interfaces;
-        parity ^= 1;
+        // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on, the
+        // far side: there the count is read afresh.
+        bool estimated = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
+        int parityBefore = parity;
+        parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
+                           : parity ^ 1;
         // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
         // glass the ray is in, with Wyman's silhouette normal.
         if (c.silhouette && inside == 0u)
             break; // in air and off every layer: nothing more to cross
         uint glass = c.silhouette ? inside : layerGlass(c.attr) + 1u;
         vec3 N = c.silhouette ? normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6))
-                              : filteredNormal(c.beyond, c.attr);
+                              : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
         uint before = media;
         media = crossMedium(media, glass, c.silhouette ? false : dot(dir, N) < 0.0);
@@ -344,6 +372,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             continue;
         }
         float n1 = mediumIor(inside, channel), n2 = mediumIor(to, channel);
+        if (to == 0u && !c.silhouette) // leaving glass for air: where the image is most sensitive
+            N = filteredNormal(c.beyond, c.attr);
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
         if (refractRay(dir, facing, n1 / n2, T)) {
@@ -370,7 +400,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             ++bounces;
             dir = reflect(dir, facing);
             media = before; // still in the same medium
-            parity ^= 1;
+            parity = parityBefore;
             segmentFromEntry = false;
             continue;
         }

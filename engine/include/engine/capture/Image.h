@@ -15,6 +15,8 @@ struct Image {
     std::vector<std::uint8_t> rgba;
 };
 
+/** `image` as PNG bytes; empty if encoding failed. */
+std::vector<std::uint8_t> encodePng(const Image& image);
 /** Encodes `image` as PNG and writes it atomically (no partial file on failure). */
 core::Status writePng(const std::filesystem::path& path, const Image& image);
 /** Reads a PNG (any channel count, expanded to RGBA8); fails naming the file. */

@@ -1,0 +1,23 @@
+// ISR's d_N per character: copies one glass primitive's deformed cage into the character's
+// combined cage at uBase, in world space (each primitive's mesh node has its own matrix), so
+// that one BVH over all of a character's glass answers every vertex's ray.
+#include "common/vertex.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Cage { DeformedVertex cage[]; };
+layout(std430, binding = 1) writeonly buffer Combined { DeformedVertex combined[]; };
+
+uniform mat4 uWorld;        // mesh node -> world
+uniform mat3 uNormalMatrix; // inverse transpose of uWorld's 3x3
+uniform int uBase;
+uniform int uVertexCount;
+
+void main() {
+    uint v = gl_GlobalInvocationID.x;
+    if (v >= uint(uVertexCount))
+        return;
+    DeformedVertex d = cage[v];
+    d.position = vec4((uWorld * vec4(d.position.xyz, 1.0)).xyz, 1.0);
+    d.normal = vec4(normalize(uNormalMatrix * d.normal.xyz), 0.0);
+    combined[uint(uBase) + v] = d;
+}
