@@ -104,7 +104,8 @@ void assignGlassIds(FrameContext& c);
  *  the glass pixels; returns the new scene colour. */
 fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
                                  const FrameContext& c, FrameBuffers& buffers);
-/** Bytes per pixel the layered path keeps at capacity K (the per-pixel head and K layers). */
+/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers and the
+ *  depth maps the walk reads. */
 std::size_t layerBytesPerPixel(int capacity);
 
 /** The shading, composited over the scene colour: returns the new scene colour. */

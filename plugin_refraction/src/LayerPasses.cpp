@@ -19,8 +19,10 @@ namespace {
 
 /** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
 constexpr std::size_t kMaxGlassIds = 255;
-// Texture units: 0-1 the environment, 2-3 the scene colour and depth, 8-13 the material's.
-constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kMaterialUnit = 8;
+// Texture units: 0-1 the environment, 2-3 the scene colour and depth, 4-5 the layer depth maps,
+// 8-13 the material's.
+constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kMaterialUnit = 8;
+constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth
 
 gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
@@ -63,12 +65,18 @@ void setLayerUniforms(const FrameContext& c, const gl::Program& program) {
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
     if (gpu.layerProgramsCapacity != c.settings.layerCapacity) {
         gpu.layerShadePrograms.clear();
-        auto capture = gl::Program::graphics(
-            *c.frame->shaders, "refraction/glass.vert.glsl", "refraction/layers_capture.frag.glsl",
-            {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity)});
+        const std::vector<std::string> defines{"LAYER_CAPACITY " +
+                                               std::to_string(c.settings.layerCapacity)};
+        auto capture = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
+                                             "refraction/layers_capture.frag.glsl", defines);
         if (!capture)
             return capture.error();
+        auto resolve = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                             "refraction/layers_resolve.frag.glsl", defines);
+        if (!resolve)
+            return resolve.error();
         gpu.layersCapture = std::move(*capture);
+        gpu.layersResolve = std::move(*resolve);
         gpu.layerProgramsCapacity = c.settings.layerCapacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
@@ -94,8 +102,9 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
 }
 
 std::size_t layerBytesPerPixel(int capacity) {
+    // The arrays (head, depth slots, attributes), then the depth maps the resolve pass writes.
     return 3 * sizeof(std::uint32_t) + depthSlots(capacity) * sizeof(float) +
-           std::size_t(capacity) * 2 * sizeof(std::uint32_t);
+           std::size_t(capacity) * 2 * sizeof(std::uint32_t) + depthSlots(capacity) * sizeof(float);
 }
 
 void assignGlassIds(FrameContext& c) {
@@ -194,8 +203,47 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     buffers.layers = captured.layers;
     buffers.rectangle = captured.rectangle;
 
+    // The depths the walk's searches read, as maps (one texel fetch per sample).
+    struct ResolveData {
+        fg::TextureHandle mask, depths0, depths1;
+        fg::BufferHandle layers, rectangle;
+    };
+    const bool twoMaps = c.settings.layerCapacity > 4;
+    const gl::TextureDesc depthsDesc{size, gl::Format::RGBA32F, 1};
+    const auto& resolved = graph.addPass<ResolveData>(
+        "refraction.layer_depths",
+        [&](fg::Builder& b, ResolveData& d) {
+            d.layers = b.read(buffers.layers);
+            d.rectangle = b.read(buffers.rectangle);
+            d.mask = b.read(captured.mask);
+            d.depths0 = b.write(b.create("refraction.layers.depths0", depthsDesc));
+            if (twoMaps)
+                d.depths1 = b.write(b.create("refraction.layers.depths1", depthsDesc));
+        },
+        [c, twoMaps](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
+            if (twoMaps)
+                targets.push_back(&r.texture(d.depths1));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.layer_depths", targets,
+                                                         &r.texture(d.mask));
+                !bound)
+                return bound;
+            for (int i = 0; i < int(targets.size()); ++i)
+                gl::clearColor(i, glm::vec4(kNoLayer));
+            gl::apply({.cull = gl::Cull::None,
+                       .depthWrite = false,
+                       .depthFunc = gl::DepthFunc::Greater});
+            gpu.layersResolve.use();
+            setLayerUniforms(c, gpu.layersResolve);
+            gl::bindStorage(4, gpu.rectangle);
+            gpu.emptyVao.bind();
+            gl::drawArrays(6);
+            return {};
+        });
+
     struct ShadeData {
-        fg::TextureHandle sceneColor, sceneDepth, mask, out;
+        fg::TextureHandle sceneColor, sceneDepth, mask, depths0, depths1, out;
         fg::BufferHandle layers, rectangle;
     };
     const auto& shaded = graph.addPass<ShadeData>(
@@ -203,6 +251,9 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
         [&](fg::Builder& b, ShadeData& d) {
             d.layers = b.read(buffers.layers);
             d.mask = b.read(captured.mask);
+            d.depths0 = b.read(resolved.depths0);
+            if (resolved.depths1.valid())
+                d.depths1 = b.read(resolved.depths1);
             d.rectangle = b.write(buffers.rectangle); // counts the overflowing pixels
             d.sceneColor = b.read(sceneColor);
             d.sceneDepth = b.read(sceneDepth);
@@ -229,6 +280,12 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
             program.set("uSceneColor", kSceneColorUnit);
             program.set("uSceneDepth", kSceneDepthUnit);
+            for (int map = 0; map < 2; ++map) { // an absent second map: the first stands in
+                const fg::TextureHandle depths = map == 1 && d.depths1.valid() ? d.depths1
+                                                                                : d.depths0;
+                gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
+                program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
+            }
             gl::bindStorage(4, gpu.rectangle);
             gpu.emptyVao.bind();
             gl::drawArrays(6);

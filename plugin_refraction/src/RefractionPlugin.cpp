@@ -9,6 +9,7 @@
 #include "engine/core/Log.h"
 
 #include <cstdio>
+#include <cstring>
 
 std::span<const gl::ShaderFile> refractionShaderFiles();
 
@@ -312,6 +313,19 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (c.settings.twoInterfaces())
         addDepthRangePass(graph, c, maps, buffers);
     blackboard.put(plugin::kSceneColor, addShadingPasses(graph, blackboard, c, maps, buffers));
+}
+
+LayerStats RefractionPlugin::layerStats() const {
+    LayerStats stats;
+    if (!mGpu || mGpu->layers.capacity == 0)
+        return stats;
+    const GpuState::LayerStorage& layers = mGpu->layers;
+    stats.capacity = layers.capacity;
+    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity);
+    stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
+    const auto counter = mGpu->rectangle.download(10 * sizeof(std::uint32_t), sizeof(std::uint32_t));
+    std::memcpy(&stats.overflowPixels, counter.data(), sizeof(std::uint32_t));
+    return stats;
 }
 
 std::unique_ptr<plugin::Plugin> createPlugin() {

@@ -138,6 +138,7 @@ struct MethodRun {
     std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> passes;
     std::vector<std::string> passOrder;
     std::size_t transientBytes = 0;
+    refraction::LayerStats layers; ///< after the last round (layered methods)
 };
 
 /** N characters from `base`: its characters in turn, on a square grid in the x-z plane (cells
@@ -195,9 +196,13 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
         }
         const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
         const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
-        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s |\n",
+        char layers[48] = "-";
+        if (r.layers.capacity > 0)
+            std::snprintf(layers, sizeof layers, "K=%d: %zu B/px, %u px over", r.layers.capacity,
+                          r.layers.bytesPerPixel, r.layers.overflowPixels);
+        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s |\n",
                     r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
-                    double(r.transientBytes) / 1048576.0, top.c_str());
+                    double(r.transientBytes) / 1048576.0, layers, top.c_str());
         std::fflush(stdout);
         rows.push_back({{"method", r.method},
                         {"level", level},
@@ -209,6 +214,10 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                         {"animate_record_ms", engine},
                         {"ratio_to_opaque", ratio},
                         {"transient_bytes", r.transientBytes},
+                        {"layer_capacity", r.layers.capacity},
+                        {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
+                        {"layer_bytes", r.layers.bytes},
+                        {"layer_overflow_pixels", r.layers.overflowPixels},
                         {"passes", passes}});
     }
     return rows;
@@ -355,8 +364,8 @@ int run(int argc, char** argv) {
     std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), size.x, size.y,
                 frames, warmup, gl::rendererString());
     std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
-                "cpu ms | animate+record ms | transients MiB | slowest passes (GPU ms) |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+                "cpu ms | animate+record ms | transients MiB | layers | slowest passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
     nlohmann::json report = {{"model", model},
                              {"paths", paths},
                              {"renderer", gl::rendererString()},
@@ -395,7 +404,7 @@ int run(int argc, char** argv) {
             const std::size_t covered = coveredPixels(world, 0.5 * duration, camera, size);
             std::vector<MethodRun> runs;
             for (const std::string& method : methods)
-                runs.push_back({method, {}, {}, {}, {}, {}, 0});
+                runs.push_back({method, {}, {}, {}, {}, {}, 0, {}});
             for (int round = 0; round < rounds; ++round) {
                 const double time = std::fmod(round / 30.0, duration);
                 for (MethodRun& r : runs) {
@@ -412,6 +421,10 @@ int run(int argc, char** argv) {
                     }
                     if (round < warmup)
                         continue;
+                    if (round + 1 == rounds && r.method != "opaque") // read back after timing
+                        if (const auto* refractionPlugin =
+                                dynamic_cast<const refraction::RefractionPlugin*>(plugin))
+                            r.layers = refractionPlugin->layerStats();
                     r.frameMs.push_back(ms);
                     r.cpuMs.push_back(stats->cpuMs);
                     r.engineMs.push_back(stats->animateMs + stats->recordMs);

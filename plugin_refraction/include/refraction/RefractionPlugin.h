@@ -1,12 +1,15 @@
-// The refraction plugin: renders the engine's deforming glTF characters as glass through two
-// interfaces, with no preprocessing (DIR), with per-frame d_N (ISR), or through one (SIR).
-// Passes, per frame (ARCHITECTURE.md): [d_N] -> the glass surfaces in one gathered geometry pass
-// (or the papers' back-face and front-depth passes) -> depth range -> shading over the scene
-// colour (deferred over the glass pixels, or per front fragment and a composite).
+// The refraction plugin: renders the engine's deforming glTF characters as glass, through every
+// glass surface a ray crosses (layers) or through the papers' two, with no preprocessing (DIR),
+// with per-frame d_N (ISR), or through one interface (SIR). Passes, per frame (ARCHITECTURE.md):
+// layers: [d_N] -> every glass layer in one capture pass -> the walk over the glass pixels;
+// two-surface: [d_N] -> the glass surfaces in one gathered geometry pass (or the papers'
+// back-face and front-depth passes) -> depth range -> shading over the scene colour.
 #pragma once
 
 #include "engine/plugin/Plugin.h"
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 
 namespace deform {
@@ -18,12 +21,23 @@ namespace refraction {
 struct GpuState;
 struct Settings;
 
+/** The layered path's figures for a frame: what its storage holds and how many pixels
+ *  overflowed it. */
+struct LayerStats {
+    int capacity = 0;               ///< K
+    std::size_t bytesPerPixel = 0;  ///< the per-pixel arrays at K
+    std::size_t bytes = 0;          ///< all of them at the frame's size
+    std::uint32_t overflowPixels = 0; ///< glass pixels with more than K layers (last frame)
+};
+
 /** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,
  *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
  *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
- *  search-steps 1..16, tir clamp|reflect, tir-bounces, back-surface farthest|first,
+ *  search-steps 1..16, surfaces layers|two-surface, layer-capacity 1..8, interfaces 1..32,
+ *  march-steps 1..64, tir clamp|reflect, tir-bounces, back-surface farthest|first,
  *  geometry-passes one|two, dispersion-search shared|per-channel, nearby on|off, debug
- * none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction. */
+ *  none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction|layer-count|
+ *  overflow. */
 class RefractionPlugin final : public plugin::Plugin {
 public:
     RefractionPlugin();
@@ -35,6 +49,8 @@ public:
     bool claims(const render::DrawItem& item) const override;
     /** Also holds presets of common materials (water 1.333 ... diamond 2.417) as data. */
     plugin::ParameterSet& parameters() override { return mParameters; }
+    /** The last layered frame's figures (reads the GPU back: tools and tests). */
+    LayerStats layerStats() const;
 
 private:
     /** The parameters decoded, again only after they change. */

@@ -97,53 +97,10 @@ int storedCount(ivec2 p) {
     return int(layerHeads[pixelIndex(p)]);
 }
 
-// Whether a ray that went from depth zFrom to depth z, now in pixel p, is still in a segment of
-// layer parity `parity`: none of p's layers lies between the two depths (a ray along the line
-// of sight crosses surfaces within one pixel), and the number of p's layers in front of z has
-// that parity (a ray coming in from the side). Off screen: no layers.
-bool inSegment(ivec2 p, float zFrom, float z, int parity) {
-    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
-        return parity == 0;
-    uint pixel = pixelIndex(p);
-    int n = int(layerHeads[pixel]);
-    if (n == 0)
-        return parity == 0;
-    float lo = min(zFrom, z), hi = max(zFrom, z);
-    int count = 0;
-    bool between = false;
-    if (n > uLayerCapacity) {
-        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
-        vec2 d = vec2(front != 0xFFFFFFFFu ? fallbackDepth(front) : 3.0e38,
-                      back != 0u ? fallbackDepth(back) : 3.0e38);
-        count = int(dot(vec2(lessThan(d, vec2(z))), vec2(1.0)));
-        between = any(bvec2(vec2(greaterThan(d, vec2(lo))) * vec2(lessThan(d, vec2(hi)))));
-    } else {
-        for (int g = 0; g < kDepthGroups; ++g) {
-            vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
-            vec4 used = vec4(lessThan(vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0), vec4(float(n))));
-            count += int(dot(used * vec4(lessThan(d, vec4(z))), vec4(1.0)));
-            between = between ||
-                      any(bvec4(used * vec4(greaterThan(d, vec4(lo))) * vec4(lessThan(d, vec4(hi)))));
-        }
-    }
-    return !between && (count & 1) == parity;
-}
-
-// A pixel's layer count as the walk reads it (0 off screen; an overflowing pixel's 2 or fewer).
-int layerCount(ivec2 p) {
-    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
-        return 0;
-    uint pixel = pixelIndex(p);
-    int n = int(layerHeads[pixel]);
-    if (n <= uLayerCapacity)
-        return n;
-    return (layerHeads[uint(uPixelCount) + pixel] != 0xFFFFFFFFu ? 1 : 0) +
-           (layerHeads[2u * uint(uPixelCount) + pixel] != 0u ? 1 : 0);
-}
-
-// Depths of layers 4g..4g+3 of pixel p (3e38 where unused); an overflowing pixel's nearest front
-// and farthest back stand in as layers 0 and 1.
-vec4 layerDepths(ivec2 p, int g) {
+// Depths of stored layers 4g..4g+3 of pixel p, as the walk reads them (3e38 where unused): an
+// overflowing pixel's nearest front and farthest back stand in as layers 0 and 1. Read from the
+// arrays by the resolve pass; the walk reads its copy in the depth maps (LAYER_DEPTH_MAPS).
+vec4 storedDepths(ivec2 p, int g) {
     uint pixel = pixelIndex(p);
     int n = int(layerHeads[pixel]);
     vec4 slots = vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0);
@@ -155,6 +112,44 @@ vec4 layerDepths(ivec2 p, int g) {
     }
     vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
     return mix(vec4(3.0e38), d, vec4(lessThan(slots, vec4(float(n)))));
+}
+
+#ifdef LAYER_DEPTH_MAPS
+uniform sampler2D uLayerDepths0, uLayerDepths1; // layers 0-3, 4-7 (layers_resolve.frag.glsl)
+
+vec4 layerDepths(ivec2 p, int g) {
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return vec4(3.0e38);
+    return g == 0 ? texelFetch(uLayerDepths0, p, 0) : texelFetch(uLayerDepths1, p, 0);
+}
+#else
+vec4 layerDepths(ivec2 p, int g) {
+    return storedDepths(p, g);
+}
+#endif
+
+// Whether a ray that went from depth zFrom to depth z, now in pixel p, is still in a segment of
+// layer parity `parity`: none of p's layers lies between the two depths (a ray along the line
+// of sight crosses surfaces within one pixel), and the number of p's layers in front of z has
+// that parity (a ray coming in from the side). Off screen: no layers.
+bool inSegment(ivec2 p, float zFrom, float z, int parity) {
+    float lo = min(zFrom, z), hi = max(zFrom, z);
+    int count = 0;
+    bool between = false;
+    for (int g = 0; g < kDepthGroups; ++g) {
+        vec4 d = layerDepths(p, g);
+        count += int(dot(vec4(lessThan(d, vec4(z))), vec4(1.0)));
+        between = between || any(bvec4(vec4(greaterThan(d, vec4(lo))) * vec4(lessThan(d, vec4(hi)))));
+    }
+    return !between && (count & 1) == parity;
+}
+
+// A pixel's layer count as the walk reads it (0 off screen; an overflowing pixel's 2 or fewer).
+int layerCount(ivec2 p) {
+    int count = 0;
+    for (int g = 0; g < kDepthGroups; ++g)
+        count += int(dot(vec4(lessThan(layerDepths(p, g), vec4(1.0e38))), vec4(1.0)));
+    return count;
 }
 
 // Layer i of pixel p (see layerDepths).

@@ -19,6 +19,7 @@
 // two): the first sample whose parity differs from the segment's is refined by the conservative
 // binary search (DIR §3.3, search-steps halvings) and the layer crossed is the one of that
 // pixel between the two depths.
+#define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
 #include "common/brdf.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/scene_lookup.glsl"
@@ -27,6 +28,7 @@
 
 const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
+const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
 // The method and the dispersion search are compiled in (a variant each, LayerPasses.cpp): on a
@@ -334,7 +336,10 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     int bounces = 0;
     uvec2 segmentEntry = entryAttr;
     bool segmentFromEntry = true; // the segment began where the ray entered glass (ISR)
-    while (uMethod != METHOD_SIR && w.interfaces < uInterfaces) {
+    // Crossings that change no medium (overlapping glass, a surface met again in the samples)
+    // are not interfaces: they pass straight on, a few times at most.
+    int passes = 0;
+    while (uMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
         uint inside = topMedium(media);
         Crossing c = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry
             ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
@@ -369,6 +374,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         segmentEntry = c.attr;
         if (inside == to) { // inside a glass that overlaps the one crossed: no interface
             P = c.beyond;
+            --w.interfaces;
+            ++passes;
             continue;
         }
         float n1 = mediumIor(inside, channel), n2 = mediumIor(to, channel);
@@ -500,6 +507,8 @@ void main() {
     vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 
     int stored = storedCount(p);
+    if (stored > uLayerCapacity)
+        atomicAdd(glassRectangle[10], 1); // LayerStats::overflowPixels
     switch (uDebug) {
     case 1: { // back-depth: the farthest layer
         vec3 lo, hi;
