@@ -1,5 +1,6 @@
 // The Embree reference, limited to two interfaces, against the closed-form image of the exact
-// sphere; and its basic behaviour (misses see the environment, trapped paths are counted).
+// sphere; its media rule (nested and overlapping glass), the surfaces it counts per pixel, and
+// its basic behaviour (misses see the environment, trapped paths are counted).
 #include "support/TestSupport.h"
 
 #include "engine/asset/ModelLoader.h"
@@ -115,6 +116,80 @@ TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
             EXPECT_TRUE(std::isfinite(traced->rgba[i + std::size_t(c)]));
     }
     EXPECT_EQ(coverage, 0.0f) << "no glass: the mask must be empty";
+}
+
+/** A world of spheres (centre, radius), each its own character. */
+scene::World spheres(std::initializer_list<std::pair<glm::vec3, float>> placed) {
+    const auto model = std::make_shared<const scene::Model>(asset::makeSphere(96));
+    scene::World world;
+    for (const auto& [centre, radius] : placed) {
+        scene::Character c;
+        c.model = model;
+        c.placement.translation = glm::dvec3(centre);
+        c.placement.scale = glm::dvec3(radius);
+        c.glass = scene::GlassMode::All;
+        world.characters.push_back(c);
+    }
+    return world;
+}
+
+struct Traced {
+    capture::Image image;
+    refraction::ReferenceImage hdr;
+};
+
+Traced traceSpheres(const scene::World& world, const char* ior = "1.5") {
+    const refraction::EnvironmentSampler env(render::Environment::proceduralSky(128), 0.0f, 1.0f);
+    render::Bounds box; // the same camera for every world
+    box.add(glm::vec3(-1.3f));
+    box.add(glm::vec3(1.3f));
+    const render::Camera camera = render::frameBounds(box, 1.0f, 0.7f, 0.0f, 0.0f, 0.8f);
+    render::RenderSettings settings;
+    settings.size = {kSize, kSize};
+    auto glass = refraction::createPlugin()->parameters();
+    EXPECT_TRUE(glass.set("ior", ior).ok());
+    refraction::ReferenceOptions options;
+    options.samplesPerPixel = 4;
+    auto traced = refraction::traceReference(world, 0.0, camera, env, settings, {}, glass, options);
+    EXPECT_TRUE(traced.ok()) << (traced.ok() ? "" : traced.error().message);
+    if (!traced)
+        return {};
+    return {display(traced->rgba), std::move(*traced)};
+}
+
+TEST(Reference, GlassInsideGlassOfTheSameIndexIsOneMedium) {
+    // A sphere inside a larger one of the same index: entering it changes no medium (the rule:
+    // a stack of entered solids), so the pair looks like the large sphere alone. Crossing every
+    // surface as glass-to-air instead would refract at the inner sphere and differ.
+    const Traced alone = traceSpheres(spheres({{glm::vec3(0.0f), 1.0f}}));
+    const Traced nested =
+        traceSpheres(spheres({{glm::vec3(0.0f), 1.0f}, {glm::vec3(0.1f, 0.0f, 0.0f), 0.4f}}));
+    const auto scores = capture::score(nested.image, alone.image);
+    std::printf("reference: a sphere nested in another of the same index vs the outer alone: "
+                "PSNR %.2f dB\n",
+                scores.psnr);
+    EXPECT_GE(scores.psnr, 40.0);
+    EXPECT_EQ(nested.hdr.trappedSamples, 0u);
+    // Four surfaces on the lines of sight through the inner sphere, two elsewhere.
+    ASSERT_GE(nested.hdr.surfaceHistogram.size(), 5u);
+    EXPECT_GT(nested.hdr.surfaceHistogram[4], 100u);
+    EXPECT_GT(nested.hdr.surfaceHistogram[2], nested.hdr.surfaceHistogram[4]);
+    EXPECT_EQ(nested.hdr.surfaceHistogram[1] + nested.hdr.surfaceHistogram[3], 0u);
+}
+
+TEST(Reference, GlassBehindGlassIsRefractedAtItsOwnSurfaces) {
+    // A sphere behind another changes the image through the front one (its rays pass through
+    // four interfaces), and nothing is trapped.
+    const Traced front = traceSpheres(spheres({{glm::vec3(-0.3f, 0.0f, 0.8f), 0.6f}}));
+    const Traced both = traceSpheres(
+        spheres({{glm::vec3(-0.3f, 0.0f, 0.8f), 0.6f}, {glm::vec3(0.4f, 0.0f, -0.8f), 0.8f}}));
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < front.image.rgba.size(); i += 4)
+        if (front.hdr.rgba[i + 3] > 0.5f && both.hdr.rgba[i + 3] > 0.5f &&
+            std::abs(int(front.image.rgba[i]) - int(both.image.rgba[i])) > 8)
+            ++changed;
+    EXPECT_GT(changed, 100u) << "the far sphere should show through the near one";
+    EXPECT_EQ(both.hdr.trappedSamples, 0u);
 }
 
 } // namespace

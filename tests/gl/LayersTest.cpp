@@ -1,0 +1,224 @@
+// The layered path: glass seen through glass against the Embree reference, every glass material
+// and normal map in one geometry pass, overflowing pixels counted and degraded to the
+// two-surface pair, and the stored layers matching the surfaces the reference counts.
+#include "support/GlTest.h"
+#include "support/TestSupport.h"
+
+#include "engine/asset/ModelLoader.h"
+#include "engine/asset/SceneFile.h"
+#include "engine/capture/Metrics.h"
+#include "engine/render/Renderer.h"
+#include "refraction/ReferenceTracer.h"
+#include "refraction/RefractionPlugin.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace {
+
+constexpr int kSize = 128;
+
+/** A world rendered by the refraction plugin (KEY=VALUE parameters) and traced by the
+ *  reference with the same parameters. */
+class WorldRig {
+public:
+    WorldRig(scene::World world, gl::Context& context) : mWorld(std::move(world)) {
+        auto renderer = render::Renderer::create(render::Environment::proceduralSky(128), context);
+        EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
+        mRenderer = std::move(*renderer);
+        mPlugin = std::make_unique<refraction::RefractionPlugin>();
+        EXPECT_TRUE(mRenderer->addPlugin(mPlugin.get()).ok());
+        mCamera = render::frameBounds(render::worldBounds(mWorld), 1.0f, 0.7f, 0.0f, 0.1f, 1.0f);
+    }
+    void set(const std::string& key, const std::string& value) {
+        ASSERT_TRUE(mPlugin->parameters().set(key, value).ok()) << key << "=" << value;
+    }
+    /** The HDR frame at scene time `time` (rows top to bottom); `passes` gets the frame's pass
+     *  names. */
+    std::vector<float> renderHdr(double time = 0.0, std::vector<std::string>* passes = nullptr) {
+        render::RenderSettings settings;
+        settings.size = {kSize, kSize};
+        settings.hdrOutput = true;
+        auto stats = mRenderer->render(mWorld, mCamera, settings, time);
+        EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
+        if (stats && passes)
+            for (const render::PassStats& p : stats->passes)
+                passes->push_back(p.name);
+        return mRenderer->readHdrOutput();
+    }
+    /** renderHdr() tonemapped. */
+    capture::Image render(double time = 0.0, std::vector<std::string>* passes = nullptr) {
+        return {kSize, kSize, refraction::tonemap(renderHdr(time, passes), 1.0f)};
+    }
+    struct Reference {
+        capture::Image image;
+        std::vector<bool> mask;
+        refraction::ReferenceImage traced;
+    };
+    Reference reference(double time = 0.0) const {
+        render::RenderSettings settings;
+        settings.size = {kSize, kSize};
+        refraction::ReferenceOptions options;
+        options.samplesPerPixel = 16;
+        const auto environment =
+            refraction::EnvironmentSampler::fromGpu(mRenderer->environment(), 0.0f, 1.0f);
+        auto traced = refraction::traceReference(mWorld, time, mCamera, environment, settings, {},
+                                                 mPlugin->parameters(), options);
+        EXPECT_TRUE(traced.ok()) << (traced.ok() ? "" : traced.error().message);
+        Reference r;
+        if (!traced)
+            return r;
+        r.image = {kSize, kSize, refraction::tonemap(traced->rgba, 1.0f)};
+        for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
+            r.mask.push_back(traced->rgba[i] > 0.5f);
+        r.traced = std::move(*traced);
+        return r;
+    }
+    const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
+
+private:
+    scene::World mWorld;
+    std::unique_ptr<render::Renderer> mRenderer;
+    std::unique_ptr<refraction::RefractionPlugin> mPlugin;
+    render::Camera mCamera;
+};
+
+scene::World loadScene(const std::string& name) {
+    auto world = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
+    EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
+    return world ? std::move(*world) : scene::World{};
+}
+
+class Layers : public test::GlTest {};
+
+TEST_F(Layers, GlassBehindGlassBeatsTheTwoSurfaceModel) {
+    // Two spheres overlapping on screen: the far one is refracted at its own surfaces through
+    // the near one only when the walk goes on after the first glass.
+    WorldRig rig(loadScene("glass_spheres.json"), context());
+    rig.set("method", "dir");
+    rig.set("search-steps", "8");
+    const auto reference = rig.reference();
+    auto psnr = [&](const char* surfaces, const char* interfaces) {
+        rig.set("surfaces", surfaces);
+        rig.set("interfaces", interfaces);
+        const double p = capture::score(rig.render(), reference.image, &reference.mask).psnr;
+        std::printf("two overlapping glass spheres, DIR 8, %s, %s interfaces: masked PSNR %.2f dB\n",
+                    surfaces, interfaces, p);
+        return p;
+    };
+    const double layered = psnr("layers", "8"), firstGlassOnly = psnr("layers", "2"),
+                 twoSurface = psnr("two-surface", "8");
+    EXPECT_GE(layered, 30.0);
+    EXPECT_GT(layered, firstGlassOnly + 5.0);
+    EXPECT_GT(layered, twoSurface + 8.0);
+    EXPECT_EQ(reference.traced.trappedSamples, 0u);
+}
+
+TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
+    // The parts figure: four glasses (one normal-mapped) and opaque eyes. The layered path draws
+    // the glass once; the two-surface path falls back to the papers' two passes.
+    WorldRig rig(loadScene("glass_pair.json"), context());
+    rig.set("method", "dir");
+    std::vector<std::string> layered, twoSurface;
+    rig.render(0.5, &layered);
+    rig.set("surfaces", "two-surface");
+    rig.render(0.5, &twoSurface);
+    auto has = [](const std::vector<std::string>& passes, const char* name) {
+        return std::find(passes.begin(), passes.end(), name) != passes.end();
+    };
+    EXPECT_TRUE(has(layered, "refraction.layers"));
+    EXPECT_FALSE(has(layered, "refraction.back_faces"));
+    EXPECT_FALSE(has(layered, "refraction.front_faces"));
+    EXPECT_TRUE(has(twoSurface, "refraction.back_faces"));
+    EXPECT_TRUE(has(twoSurface, "refraction.front_faces"));
+}
+
+TEST_F(Layers, TheCaptureAppliesNormalMaps) {
+    // The parts figure's head is hammered glass (a normal map): the same figure without that
+    // texture renders differently, and only there.
+    auto loaded = asset::loadModel(std::string(GLASS_SOURCE_DIR) +
+                                   "/assets/models/glass_figure_parts.glb");
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    auto smooth = std::make_shared<scene::Model>(*loaded);
+    std::size_t mapped = 0;
+    for (scene::Material& m : smooth->materials)
+        if (m.normalTexture.present()) {
+            m.normalTexture = {};
+            ++mapped;
+        }
+    ASSERT_EQ(mapped, 1u);
+    auto images = [&](std::shared_ptr<const scene::Model> model) {
+        scene::World world = scene::singleCharacterWorld(std::move(model));
+        world.characters[0].clip = 0;
+        WorldRig rig(std::move(world), context());
+        rig.set("method", "dir");
+        return rig.render(0.3);
+    };
+    const capture::Image withMap = images(std::make_shared<const scene::Model>(*loaded));
+    const capture::Image without = images(smooth);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < withMap.rgba.size(); ++i)
+        differing += std::abs(int(withMap.rgba[i]) - int(without.rgba[i])) > 4 ? 1 : 0;
+    std::printf("parts figure with and without its normal map: %zu channels differ\n", differing);
+    EXPECT_GT(differing, 100u);
+}
+
+TEST_F(Layers, OverflowingPixelsKeepTheirNearestFrontAndFarthestBack) {
+    // One layer per pixel: every glass pixel of a sphere overflows and keeps its nearest front
+    // and farthest back, which for a sphere are all its surfaces: the image barely changes.
+    WorldRig rig(loadScene("glass_spheres.json"), context());
+    rig.set("method", "dir");
+    const capture::Image full = rig.render();
+    const auto fullStats = rig.plugin().layerStats();
+    rig.set("layer-capacity", "1");
+    const capture::Image one = rig.render();
+    const auto oneStats = rig.plugin().layerStats();
+    EXPECT_EQ(fullStats.capacity, 4);
+    EXPECT_EQ(oneStats.capacity, 1);
+    EXPECT_LE(fullStats.bytesPerPixel, 80u);
+    EXPECT_EQ(fullStats.overflowPixels, 0u);
+    EXPECT_GT(oneStats.overflowPixels, 1000u);
+    const double psnr = capture::score(one, full).psnr;
+    std::printf("glass spheres, K=1 (%u pixels over) against K=4: PSNR %.2f dB\n",
+                oneStats.overflowPixels, psnr);
+    EXPECT_GE(psnr, 25.0);
+    rig.set("debug", "overflow");
+    const capture::Image view = rig.render();
+    std::size_t red = 0;
+    for (std::size_t i = 0; i < view.rgba.size(); i += 4)
+        red += view.rgba[i] > 200 && view.rgba[i + 1] < 60 ? 1 : 0;
+    EXPECT_GT(red, 1000u) << "the overflow view marks the overflowing pixels red";
+}
+
+TEST_F(Layers, StoredLayersMatchTheSurfacesTheReferenceCounts) {
+    // The layer-count view (count / K, grey) against the reference's count of the surfaces on
+    // each glass pixel's line of sight: the share of pixels with four.
+    WorldRig rig(loadScene("sphere_in_front.json"), context());
+    rig.set("method", "dir");
+    const auto reference = rig.reference();
+    const auto& histogram = reference.traced.surfaceHistogram;
+    ASSERT_GE(histogram.size(), 5u);
+    std::size_t traced = 0;
+    for (std::size_t n : histogram)
+        traced += n;
+    rig.set("debug", "layer-count");
+    const std::vector<float> view = rig.renderHdr();
+    std::size_t glass = 0, four = 0;
+    for (std::size_t i = 0; i < view.size(); i += 4) {
+        if (!reference.mask[i / 4])
+            continue;
+        const float count = view[i + 1] * 4.0f; // green: count / K (red alone: overflow)
+        ++glass;
+        four += std::abs(count - 4.0f) < 0.1f ? 1 : 0;
+    }
+    const double gpuShare = double(four) / double(std::max<std::size_t>(glass, 1));
+    // The reference counts from one sample per pixel, the mask from its coverage: close.
+    const double referenceShare = double(histogram[4]) / double(std::max<std::size_t>(traced, 1));
+    std::printf("small sphere in front of a large one: pixels with 4 layers %.3f (GPU) vs %.3f "
+                "(reference)\n",
+                gpuShare, referenceShare);
+    EXPECT_GT(referenceShare, 0.1);
+    EXPECT_NEAR(gpuShare, referenceShare, 0.03);
+}
+
+} // namespace
