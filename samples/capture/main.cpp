@@ -81,7 +81,7 @@ characters; T is the scene time); several MODELs are placed side by side.
                       .heatmap.png beside the frame
   --spp K             reference samples per pixel, jittered (default 16)
   --max-bounces N     interfaces (refractions and reflections) a reference path follows after
-                      its entry before it counts as trapped (default 256)
+                      its entry before it counts as trapped (default 1024)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
                       the median of each over all frames after the first (warm-up)
   --force             replace output files that exist (without it, an existing file is an
@@ -372,6 +372,10 @@ int run(int argc, char** argv) {
         return 1;
     }
     std::vector<capture::Image> sheetFrames;
+    // Temporal stability against the reference over consecutive frames (capture::flicker).
+    std::optional<capture::RenderedFrame> previous, previousReference;
+    double flickerSum = 0.0;
+    std::size_t flickerPairs = 0;
     for (std::size_t i = 0; i < o.times.size(); ++i) {
         auto frame = o.reference ? (*session)->renderReference(o.times[i], o.referenceOptions)
                                  : (*session)->render(o.times[i]);
@@ -426,6 +430,19 @@ int run(int argc, char** argv) {
                           ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB",
                           masked.pixels, masked.psnr, masked.ssim, full.psnr);
             scoreText = text;
+            if (previous) {
+                std::vector<bool> both(reference->glassMask.size());
+                for (std::size_t p = 0; p < both.size(); ++p)
+                    both[p] = reference->glassMask[p] && previousReference->glassMask[p];
+                const capture::Flicker f = capture::flicker(previous->image, frame->image,
+                                                            previousReference->image,
+                                                            reference->image, both);
+                entry["flicker"] = f.meanAbsDifference;
+                flickerSum += f.meanAbsDifference;
+                ++flickerPairs;
+            }
+            previous = *frame;
+            previousReference = *reference;
         }
         report["frames"].push_back(entry);
         if (!o.contactSheet.empty())
@@ -447,6 +464,14 @@ int run(int argc, char** argv) {
                         int(sheetFrames.size()));
     }
     outputs.commit();
+    if (flickerPairs > 0) {
+        const double mean = flickerSum / double(flickerPairs);
+        report["flicker"] = {{"mean_abs_difference", mean}, {"pairs", flickerPairs}};
+        if (!o.json)
+            std::printf("flicker against the reference: %.3f (mean |frame change - reference "
+                        "change| over the glass, 1/255, %zu frame pairs)\n",
+                        mean, flickerPairs);
+    }
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);
         std::printf("%s\n", report.dump(2).c_str());

@@ -112,4 +112,23 @@ Image heatmap(const Image& a, const Image& b, int fullScale, const std::vector<b
     return out;
 }
 
+Flicker flicker(const Image& method0, const Image& method1, const Image& reference0,
+                const Image& reference1, const std::vector<bool>& mask) {
+    Flicker f;
+    double sum = 0.0;
+    for (std::size_t p = 0; p < mask.size() && p * 4 + 3 < method0.rgba.size(); ++p) {
+        if (!mask[p])
+            continue;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const std::size_t i = p * 4 + c;
+            const int method = int(method1.rgba[i]) - int(method0.rgba[i]);
+            const int reference = int(reference1.rgba[i]) - int(reference0.rgba[i]);
+            sum += std::abs(method - reference);
+        }
+        ++f.pixels;
+    }
+    f.meanAbsDifference = f.pixels ? sum / double(3 * f.pixels) : 0.0;
+    return f;
+}
+
 } // namespace capture

@@ -52,7 +52,7 @@ struct ReferenceOptions {
     int samplesPerPixel = 16; ///< jittered in a stratified grid when a square
     /** Interfaces a path crosses or reflects at after the entry before it is given up (black,
      *  counted as trapped when in glass); paths whose throughput falls under 1e-4 end first. */
-    int maxBounces = 256;
+    int maxBounces = 1024;
     /** Follow only the entry and one exit (no further surfaces after leaving the glass): the
      *  closed-form two-interface model, for checking the tracer itself. */
     bool twoInterfaces = false;

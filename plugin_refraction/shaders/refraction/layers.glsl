@@ -117,10 +117,15 @@ vec4 storedDepths(ivec2 p, int g) {
 #ifdef LAYER_DEPTH_MAPS
 uniform sampler2D uLayerDepths0, uLayerDepths1; // layers 0-3, 4-7 (layers_resolve.frag.glsl)
 
-vec4 layerDepths(ivec2 p, int g) {
+// The maps as stored: an overflowing pixel's pair negated (layerOverflow).
+vec4 storedMap(ivec2 p, int g) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
         return vec4(3.0e38);
     return g == 0 ? texelFetch(uLayerDepths0, p, 0) : texelFetch(uLayerDepths1, p, 0);
+}
+
+vec4 layerDepths(ivec2 p, int g) {
+    return abs(storedMap(p, g));
 }
 #else
 vec4 layerDepths(ivec2 p, int g) {
@@ -152,14 +157,26 @@ int layerCount(ivec2 p) {
     return count;
 }
 
-// Layer i of pixel p (see layerDepths).
-uvec2 layerAttrAt(ivec2 p, int i) {
+// Layer i of pixel p (see layerDepths), `overflow` if the pixel overflowed.
+uvec2 layerAttrOf(ivec2 p, int i, bool overflow) {
     uint pixel = pixelIndex(p);
-    if (int(layerHeads[pixel]) > uLayerCapacity) {
+    if (overflow) {
         uint key = layerHeads[uint(i == 0 ? uPixelCount : 2 * uPixelCount) + pixel];
         return uvec2(packOctNormal(fallbackNormal(key)), ((key >> 8) & 255u) | (i == 0 ? kLayerFront : 0u));
     }
     return layerAttr[pixel * uint(uLayerCapacity) + uint(i)];
+}
+
+bool layerOverflow(ivec2 p) {
+#ifdef LAYER_DEPTH_MAPS
+    return storedMap(p, 0).x < 0.0;
+#else
+    return int(layerHeads[pixelIndex(p)]) > uLayerCapacity;
+#endif
+}
+
+uvec2 layerAttrAt(ivec2 p, int i) {
+    return layerAttrOf(p, i, layerOverflow(p));
 }
 
 Layers readLayers(ivec2 p) {

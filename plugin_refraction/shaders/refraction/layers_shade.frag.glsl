@@ -153,22 +153,22 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
     vec3 sum = vec3(0.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
-        int n = layerCount(q);
-        if (n == 0)
-            continue;
         int best = -1;
+        bool overflow = false;
         float gap = 0.02 * z;
         for (int g = 0; g < kDepthGroups; ++g) {
-            vec4 d = layerDepths(q, g);
+            vec4 stored = storedMap(q, g);
+            overflow = overflow || (g == 0 && stored.x < 0.0);
+            vec4 d = abs(stored);
             for (int j = 0; j < 4; ++j)
-                if (4 * g + j < n && abs(d[j] - z) < gap) {
+                if (abs(d[j] - z) < gap) {
                     gap = abs(d[j] - z);
                     best = 4 * g + j;
                 }
         }
         if (best < 0)
             continue;
-        uvec2 a = layerAttrAt(q, best);
+        uvec2 a = layerAttrOf(q, best, overflow);
         if ((a.y & (255u | kLayerFront)) != kind)
             continue;
         vec2 w = mix(1.0 - f, f, vec2(offset));
@@ -201,13 +201,14 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     float pixel = 1.0 / max(pixels, 1e-3);
     float start = min(0.5 * pixel, 0.5), inside = start, outside = -1.0;
     // Coarse samples (one per four pixels in glass, per eight in air, where the glass to meet
-    // next is a whole other piece; march-steps at most) until the ray leaves the
+    // next is a whole other piece; march-steps at most, half that in air) until the ray leaves the
     // segment, then (outside the loop: the SIMD lanes of a shader all run it together) the
     // conservative binary search between the last sample in the segment and the first out of
     // it: advance only to points still in it. A parity change that is gone again a pixel and a
     // half further is a graze of a silhouette, where a pixel's layers stand for a line of sight
     // the ray only passes beside: the search goes on behind it (twice at most).
-    int steps = clamp(int(ceil(pixels / (inGlass ? 4.0 : 8.0))), 1, max(uMarchSteps, 1));
+    int steps = clamp(int(ceil(pixels / (inGlass ? 4.0 : 8.0))), 1,
+                      max(inGlass ? uMarchSteps : uMarchSteps / 2, 1));
     for (int pass = 0; pass < 3; ++pass) {
         inside = start;
         outside = -1.0;
@@ -478,24 +479,27 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    Layers layers = readLayers(p);
-    if (layers.count == 0)
-        discard;
-    // The nearest layer (constant-bound loops keep the arrays in registers).
-    float z = layers.depth[0];
-    uvec2 entryAttr = layers.attr[0];
-    float far = z;
-    uvec2 farAttr = entryAttr;
-    for (int i = 1; i < kMaxLayers; ++i) {
-        if (i < layers.count && layers.depth[i] < z) {
-            z = layers.depth[i];
-            entryAttr = layers.attr[i];
-        }
-        if (i < layers.count && layers.depth[i] > far) {
-            far = layers.depth[i];
-            farAttr = layers.attr[i];
+    // The nearest and farthest layers from the depth map, then the nearest's attributes alone.
+    float z = 3.0e38, far = 0.0;
+    int entry = -1, farthest = 0;
+    for (int g = 0; g < kDepthGroups; ++g) {
+        vec4 d = layerDepths(p, g);
+        for (int k = 0; k < 4; ++k) {
+            if (d[k] >= 1.0e38)
+                continue;
+            if (d[k] < z) {
+                z = d[k];
+                entry = 4 * g + k;
+            }
+            if (d[k] > far) {
+                far = d[k];
+                farthest = 4 * g + k;
+            }
         }
     }
+    if (entry < 0)
+        discard;
+    uvec2 entryAttr = layerAttrAt(p, entry);
     vec4 ray = uInverseProjection * vec4(gl_FragCoord.xy / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     vec3 direction = ray.xyz / ray.w;
     vec3 P1 = direction * (z / -direction.z);
@@ -516,7 +520,7 @@ void main() {
         color = vec3(far / max(-lo.z, 1e-6));
         break;
     }
-    case 2: color = layerNormal(farAttr) * 0.5 + 0.5; break; // back-normal: the farthest's
+    case 2: color = layerNormal(layerAttrAt(p, farthest)) * 0.5 + 0.5; break; // back-normal
     case 4: color = vec3(max(layerNormalDistance(entryAttr, z), 0.0) / z); break;
     case 5: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
     case 6: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),

@@ -19,6 +19,17 @@ struct Scores {
  *  true (mask.size() == width * height). */
 Scores score(const Image& a, const Image& b, const std::vector<bool>* mask = nullptr);
 
+/** Temporal stability of a method between two consecutive frames: the mean over the pixels where
+ *  `mask` is true and over RGB of |(method1 - method0) - (reference1 - reference0)|, in 1/255
+ *  (0: the method changes from frame to frame exactly as the reference does; flicker the
+ *  reference does not have adds to it). All four images the same size. */
+struct Flicker {
+    double meanAbsDifference = 0.0;
+    std::size_t pixels = 0;
+};
+Flicker flicker(const Image& method0, const Image& method1, const Image& reference0,
+                const Image& reference1, const std::vector<bool>& mask);
+
 /** Per-pixel absolute error (max over RGB) as a colour ramp: black (0) -> blue -> yellow -> red
  *  (>= `fullScale` in 1/255); pixels outside `mask` dimmed. */
 Image heatmap(const Image& a, const Image& b, int fullScale = 64,
