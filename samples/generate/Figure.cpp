@@ -523,7 +523,8 @@ std::vector<float> flatten(const std::vector<dvec3>& v) {
 
 nlohmann::json primitive(Document& doc, const Surface& s, const Skinning& skinning,
                          const std::vector<dvec3>& breath, int material,
-                         const std::vector<float>& uv = {}) {
+                         const std::vector<float>& uv = {},
+                         const std::vector<float>& tangents = {}) {
     constexpr int kArray = 34962, kElements = 34963;
     std::vector<std::uint8_t> joints;
     std::vector<float> weights;
@@ -538,6 +539,8 @@ nlohmann::json primitive(Document& doc, const Surface& s, const Skinning& skinni
         {"WEIGHTS_0", doc.floats(weights, "VEC4", 4, false, kArray)}};
     if (!uv.empty())
         attributes["TEXCOORD_0"] = doc.floats(uv, "VEC2", 2, false, kArray);
+    if (!tangents.empty())
+        attributes["TANGENT"] = doc.floats(tangents, "VEC4", 4, false, kArray);
     int indices = 0;
     if (s.positions.size() < 65536) {
         const std::vector<std::uint16_t> narrow(s.indices.begin(), s.indices.end());
@@ -610,6 +613,25 @@ std::vector<float> headUv(const std::vector<dvec3>& positions) {
         uv.push_back(float(std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI));
     }
     return uv;
+}
+
+/** Tangents of headUv()'s mapping: along increasing u (around the head's vertical axis) in each
+ *  vertex's tangent plane, the handedness from the direction of increasing v (downwards). */
+std::vector<float> headTangents(const std::vector<dvec3>& positions,
+                                const std::vector<dvec3>& normals) {
+    const dvec3 centre(0.0, 1.655, 0.01);
+    std::vector<float> tangents;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        const dvec3 d = positions[i] - centre;
+        const double phi = std::atan2(d.x, d.z);
+        const dvec3 around(std::cos(phi), 0.0, -std::sin(phi));
+        const dvec3& n = normals[i];
+        dvec3 t = around - n * glm::dot(n, around);
+        t = glm::length(t) > 1e-9 ? glm::normalize(t) : glm::normalize(glm::cross(dvec3(0, 1, 0), n) + dvec3(1e-9, 0, 0));
+        const double w = glm::dot(glm::cross(n, t), dvec3(0.0, -1.0, 0.0)) < 0.0 ? -1.0 : 1.0;
+        tangents.insert(tangents.end(), {float(t.x), float(t.y), float(t.z), float(w)});
+    }
+    return tangents;
 }
 
 /** A hammered-glass normal map: round dimples on a jittered grid, tileable, 128 x 128. */
@@ -725,9 +747,12 @@ std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
             const PartMesh& m = parts[std::size_t(part)];
             if (m.surface.indices.empty())
                 continue;
-            primitives.push_back(primitive(doc, m.surface, m.skinning, m.breath, 2 + part,
-                                           part == HeadPart ? headUv(m.surface.positions)
-                                                            : std::vector<float>{}));
+            const bool mapped = part == HeadPart; // the normal-mapped part
+            primitives.push_back(primitive(
+                doc, m.surface, m.skinning, m.breath, 2 + part,
+                mapped ? headUv(m.surface.positions) : std::vector<float>{},
+                mapped ? headTangents(m.surface.positions, m.surface.normals)
+                       : std::vector<float>{}));
         }
     }
     primitives.push_back(primitive(doc, eyeSurface, eyeSkin,

@@ -12,11 +12,13 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 namespace {
 
 const std::filesystem::path kAssets = std::filesystem::path(GLASS_SOURCE_DIR) / "assets";
 const std::filesystem::path kFigure = kAssets / "models" / "glass_figure.glb";
+const std::filesystem::path kParts = kAssets / "models" / "glass_figure_parts.glb";
 const std::filesystem::path kSky = kAssets / "env" / "sunset_sky.hdr";
 
 std::vector<std::uint8_t> bytesOf(const std::filesystem::path& path) {
@@ -28,6 +30,9 @@ std::vector<std::uint8_t> bytesOf(const std::filesystem::path& path) {
 TEST(GeneratedAssets, CommittedFilesAreTheGeneratorsOutput) {
     EXPECT_TRUE(bytesOf(kFigure) == generate::buildFigureGlb())
         << "assets/models/glass_figure.glb is stale: run build/bin/glass-generate-assets --force";
+    EXPECT_TRUE(bytesOf(kParts) == generate::buildFigureGlb({.parts = true}))
+        << "assets/models/glass_figure_parts.glb is stale: run build/bin/glass-generate-assets "
+           "--force";
     EXPECT_TRUE(bytesOf(kSky) == asset::encodeHdr(generate::buildSky()))
         << "assets/env/sunset_sky.hdr is stale: run build/bin/glass-generate-assets --force";
 }
@@ -65,6 +70,28 @@ TEST(GeneratedAssets, TheFigureIsASkinnedMorphingAnimatedGlassCharacter) {
     EXPECT_EQ(open, 0u) << "edges not shared by exactly two triangles";
 }
 
+TEST(GeneratedAssets, ThePartsFigureHasAGlassPerPartAndANormalMappedHead) {
+    auto model = asset::loadModel(kParts.string());
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->skins.size(), 1u);
+    ASSERT_EQ(model->meshes.size(), 1u);
+    std::set<float> iors;
+    int mapped = 0;
+    for (const auto& primitive : model->meshes[0].primitives) {
+        const scene::Material& m = model->materials.at(std::size_t(primitive.material));
+        if (!m.isTransmissive())
+            continue;
+        iors.insert(m.ior);
+        if (m.normalTexture.present()) {
+            ++mapped;
+            EXPECT_FALSE(primitive.uv0.empty());
+            EXPECT_FALSE(primitive.tangents.empty());
+        }
+    }
+    EXPECT_GE(iors.size(), 4u) << "a glass of its own per part";
+    EXPECT_EQ(mapped, 1);
+}
+
 TEST(GeneratedAssets, TheSkyLoadsAsAnEnvironment) {
     auto sky = asset::loadHdr(kSky);
     ASSERT_TRUE(sky.ok()) << sky.error().message;
@@ -84,11 +111,14 @@ TEST(GeneratedAssets, KhronosValidatorFindsNoErrorOrWarning) {
     if (test::runCommand("command -v node >/dev/null") != 0)
         GTEST_SKIP() << "node is missing (scripts/deps installs Node.js)";
     std::string out;
-    int status = test::runCommand("node " + script + " " + modules + " " + kFigure.string(), &out);
-    if (status == 77)
-        GTEST_SKIP() << out;
-    EXPECT_EQ(status, 0) << out;
-    EXPECT_NE(out.find("0 errors, 0 warnings"), std::string::npos) << out;
+    int status = 0;
+    for (const auto& file : {kFigure, kParts}) {
+        status = test::runCommand("node " + script + " " + modules + " " + file.string(), &out);
+        if (status == 77)
+            GTEST_SKIP() << out;
+        EXPECT_EQ(status, 0) << out;
+        EXPECT_NE(out.find("0 errors, 0 warnings"), std::string::npos) << out;
+    }
     // The harness can fail: a file with a bad accessor reference is reported.
     test::TempDir dir;
     test::GltfBuilder broken = test::twoJointModel();
