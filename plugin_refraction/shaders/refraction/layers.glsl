@@ -10,18 +10,17 @@
 //               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
 //               d_N relative to the depth (bits 16-31, 0: none)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
-// (the two-surface model, never a partial list): see readLayers.
+// (the two-surface model, never a partial list): see storedDepths.
 #ifndef REFRACTION_LAYERS_GLSL
 #define REFRACTION_LAYERS_GLSL
 #include "refraction/surfaces.glsl" // uKeyNear, uKeyLogRange: the keys' log depth range
 
 // K (layer-capacity) is compiled in (LAYER_CAPACITY, 1-8): every loop over a pixel's layers has
-// a constant bound, so the arrays below stay in registers.
+// a constant bound and unrolls.
 #ifndef LAYER_CAPACITY
 #define LAYER_CAPACITY 4
 #endif
-const int uLayerCapacity = LAYER_CAPACITY;
-const int kMaxLayers = LAYER_CAPACITY < 2 ? 2 : LAYER_CAPACITY; // an overflow keeps 2
+const int kLayerCapacity = LAYER_CAPACITY;
 const int kDepthGroups = (LAYER_CAPACITY + 3) / 4;
 uniform int uPixelCount;    // P: width x height
 uniform int uViewportWidth;
@@ -81,14 +80,6 @@ vec3 fallbackNormal(uint key) {
     return normalize(n);
 }
 
-// The layers of one pixel as the walk reads them.
-struct Layers {
-    int count;      // usable layers (K at most; 2 or fewer for an overflowing pixel)
-    bool overflow;  // more fragments than K: the nearest front and farthest back stand in
-    float depth[kMaxLayers];
-    uvec2 attr[kMaxLayers];
-};
-
 uint pixelIndex(ivec2 p) {
     return uint(p.y * uViewportWidth + p.x);
 }
@@ -104,7 +95,7 @@ vec4 storedDepths(ivec2 p, int g) {
     uint pixel = pixelIndex(p);
     int n = int(layerHeads[pixel]);
     vec4 slots = vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0);
-    if (n > uLayerCapacity) {
+    if (n > kLayerCapacity) {
         uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
         vec4 d = vec4(front != 0xFFFFFFFFu ? fallbackDepth(front) : 3.0e38,
                       back != 0u ? fallbackDepth(back) : 3.0e38, 3.0e38, 3.0e38);
@@ -149,14 +140,6 @@ bool inSegment(ivec2 p, float zFrom, float z, int parity) {
     return !between && (count & 1) == parity;
 }
 
-// A pixel's layer count as the walk reads it (0 off screen; an overflowing pixel's 2 or fewer).
-int layerCount(ivec2 p) {
-    int count = 0;
-    for (int g = 0; g < kDepthGroups; ++g)
-        count += int(dot(vec4(lessThan(layerDepths(p, g), vec4(1.0e38))), vec4(1.0)));
-    return count;
-}
-
 // Layer i of pixel p (see layerDepths), `overflow` if the pixel overflowed.
 uvec2 layerAttrOf(ivec2 p, int i, bool overflow) {
     uint pixel = pixelIndex(p);
@@ -164,40 +147,19 @@ uvec2 layerAttrOf(ivec2 p, int i, bool overflow) {
         uint key = layerHeads[uint(i == 0 ? uPixelCount : 2 * uPixelCount) + pixel];
         return uvec2(packOctNormal(fallbackNormal(key)), ((key >> 8) & 255u) | (i == 0 ? kLayerFront : 0u));
     }
-    return layerAttr[pixel * uint(uLayerCapacity) + uint(i)];
+    return layerAttr[pixel * uint(kLayerCapacity) + uint(i)];
 }
 
 bool layerOverflow(ivec2 p) {
 #ifdef LAYER_DEPTH_MAPS
     return storedMap(p, 0).x < 0.0;
 #else
-    return int(layerHeads[pixelIndex(p)]) > uLayerCapacity;
+    return int(layerHeads[pixelIndex(p)]) > kLayerCapacity;
 #endif
 }
 
 uvec2 layerAttrAt(ivec2 p, int i) {
     return layerAttrOf(p, i, layerOverflow(p));
-}
-
-Layers readLayers(ivec2 p) {
-    Layers l;
-    l.count = layerCount(p);
-    l.overflow = l.count > 0 && int(layerHeads[pixelIndex(p)]) > uLayerCapacity;
-    for (int i = 0; i < kMaxLayers; ++i) {
-        l.depth[i] = 0.0;
-        l.attr[i] = uvec2(0u);
-    }
-    if (l.count == 0)
-        return l;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(p, g);
-        for (int c = 0; c < 4; ++c)
-            if (4 * g + c < kMaxLayers) {
-                l.depth[4 * g + c] = d[c];
-                l.attr[4 * g + c] = 4 * g + c < l.count ? layerAttrAt(p, 4 * g + c) : uvec2(0u);
-            }
-    }
-    return l;
 }
 
 uint layerGlass(uvec2 attr) {

@@ -28,9 +28,9 @@ void main() {
     uint id = uint(uGlassId);
     uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;
     uint slot = atomicAdd(layerHeads[pixel], 1u);
-    if (slot < uint(uLayerCapacity)) {
+    if (slot < uint(kLayerCapacity)) {
         layerDepth4[pixel * uint(kDepthGroups) + slot / 4u][slot % 4u] = z;
-        layerAttr[pixel * uint(uLayerCapacity) + slot] = uvec2(packOctNormal(n), id | (gl_FrontFacing ? kLayerFront : 0u) | (d << 16));
+        layerAttr[pixel * uint(kLayerCapacity) + slot] = uvec2(packOctNormal(n), id | (gl_FrontFacing ? kLayerFront : 0u) | (d << 16));
     }
     if (gl_FrontFacing)
         atomicMin(layerHeads[uint(uPixelCount) + pixel], fallbackKey(z, n, id));

@@ -9,7 +9,7 @@ layout(location = 1) out vec4 outDepths1;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    bool overflow = int(layerHeads[pixelIndex(p)]) > uLayerCapacity;
+    bool overflow = int(layerHeads[pixelIndex(p)]) > kLayerCapacity;
     outDepths0 = storedDepths(p, 0);
     if (overflow)
         outDepths0.xy = -outDepths0.xy;

@@ -115,18 +115,18 @@ float boxExit(vec3 P, vec3 dir, vec3 lo, vec3 hi, float limit) {
 // passing changed the pixel's count). `nearest` (an estimated point, ISR), or no such layer:
 // the layer nearest z.
 bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
-    int n = layerCount(p);
     attr = uvec2(0u);
-    if (n == 0)
-        return false;
-    int passed = -1, closest = 0;
+    int passed = -1, closest = -1;
     float passedDepth = deeper ? -1.0 : 3.0e38, closestGap = 3.0e38;
+    bool overflow = false;
     for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(p, g);
+        vec4 stored = storedMap(p, g);
+        overflow = overflow || (g == 0 && stored.x < 0.0);
+        vec4 d = abs(stored);
         for (int k = 0; k < 4; ++k) {
-            int i = 4 * g + k;
-            if (i >= n)
+            if (d[k] >= 1.0e38)
                 continue;
+            int i = 4 * g + k;
             if (deeper ? d[k] <= z && d[k] > passedDepth : d[k] >= z && d[k] < passedDepth) {
                 passed = i;
                 passedDepth = d[k];
@@ -137,7 +137,9 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
             }
         }
     }
-    attr = layerAttrAt(p, passed >= 0 && !nearest ? passed : closest);
+    if (closest < 0)
+        return false;
+    attr = layerAttrOf(p, passed >= 0 && !nearest ? passed : closest, overflow);
     return true;
 }
 
@@ -251,11 +253,13 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     c.found = true;
     c.steps = 0;
     c.attr = uvec2(0u);
-    Layers l = readLayers(pixelOf(P1));
     float z1 = -P1.z, next = 0.0;
-    for (int i = 0; i < kMaxLayers; ++i)
-        if (i < l.count && l.depth[i] > z1 + 1e-5 * z1 && (next == 0.0 || l.depth[i] < next))
-            next = l.depth[i];
+    for (int g = 0; g < kDepthGroups; ++g) {
+        vec4 d = layerDepths(pixelOf(P1), g);
+        for (int k = 0; k < 4; ++k)
+            if (d[k] < 1.0e38 && d[k] > z1 + 1e-5 * z1 && (next == 0.0 || d[k] < next))
+                next = d[k];
+    }
     float dV = next > 0.0 ? (next - z1) / max(abs(V.z), 1e-4) : 0.0;
     float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
     float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
@@ -511,7 +515,7 @@ void main() {
     vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 
     int stored = storedCount(p);
-    if (stored > uLayerCapacity)
+    if (stored > kLayerCapacity)
         atomicAdd(glassRectangle[10], 1); // LayerStats::overflowPixels
     switch (uDebug) {
     case 1: { // back-depth: the farthest layer
@@ -529,10 +533,10 @@ void main() {
     case 8: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
     case 9: color = uViewToWorld * walk.dir; break;
     case 10: // layer-count: K layers white, fewer grey, overflow red
-        color = stored > uLayerCapacity ? vec3(1.0, 0.0, 0.0)
-                                        : vec3(float(stored) / float(uLayerCapacity));
+        color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0)
+                                        : vec3(float(stored) / float(kLayerCapacity));
         break;
-    case 11: color = stored > uLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case 11: color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
     default: break;
     }
     outColor = vec4(color, 1.0);
