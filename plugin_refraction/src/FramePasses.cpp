@@ -195,6 +195,14 @@ void FrameContext::growGlassRectangle() const {
     gl::memoryBarrier(gl::BarrierStorage);
 }
 
+void FrameContext::drawMaskedRectangle() const {
+    // The rectangle lies at depth 1: it passes only where the mask holds less.
+    gl::apply({.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Greater});
+    gl::bindStorage(4, gpu->rectangle);
+    gpu->emptyVao.bind();
+    gl::drawArrays(6);
+}
+
 void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     struct Data {
         fg::BufferHandle distances;
@@ -487,17 +495,11 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                         "refraction.shade", {&r.texture(d.out)}, &r.texture(d.maps.mask));
                     !bound)
                     return bound;
-                // The rectangle lies at depth 1: it passes only where the mask holds 0.
-                gl::apply({.cull = gl::Cull::None,
-                           .depthWrite = false,
-                           .depthFunc = gl::DepthFunc::Greater});
                 setShading(c, gpu.deferred, d, r);
                 c.setMaterial(gpu.deferred, *c.glass);
                 gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
                 gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
-                gl::bindStorage(4, gpu.rectangle);
-                gpu.emptyVao.bind();
-                gl::drawArrays(6);
+                c.drawMaskedRectangle();
                 return {};
             });
         return shaded.out;

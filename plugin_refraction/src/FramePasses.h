@@ -52,6 +52,9 @@ struct FrameContext {
     /** The glass's pixel rectangle and view-space box from the deformed cages
      *  (rectangle.comp.glsl), into GpuState::rectangle. */
     void growGlassRectangle() const;
+    /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
+     *  mask: the early depth test runs the program only on glass pixels. */
+    void drawMaskedRectangle() const;
     /** What every shading pass sets alike: method, search, TIR policy, Fresnel, debug view,
      *  camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;

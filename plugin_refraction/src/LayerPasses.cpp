@@ -231,14 +231,9 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 return bound;
             for (int i = 0; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(kNoLayer));
-            gl::apply({.cull = gl::Cull::None,
-                       .depthWrite = false,
-                       .depthFunc = gl::DepthFunc::Greater});
             gpu.layersResolve.use();
             setLayerUniforms(c, gpu.layersResolve);
-            gl::bindStorage(4, gpu.rectangle);
-            gpu.emptyVao.bind();
-            gl::drawArrays(6);
+            c.drawMaskedRectangle();
             return {};
         });
 
@@ -266,11 +261,6 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                     "refraction.shade_layers", {&r.texture(d.out)}, &r.texture(d.mask));
                 !bound)
                 return bound;
-            // The rectangle lies at depth 1: the early depth test runs the shader only where
-            // the mask holds glass.
-            gl::apply({.cull = gl::Cull::None,
-                       .depthWrite = false,
-                       .depthFunc = gl::DepthFunc::Greater});
             const gl::Program& program = *c.layerShade;
             c.setWalkUniforms(program);
             program.set("uMarchSteps", c.settings.marchSteps);
@@ -286,9 +276,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
                 program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
             }
-            gl::bindStorage(4, gpu.rectangle);
-            gpu.emptyVao.bind();
-            gl::drawArrays(6);
+            c.drawMaskedRectangle();
             return {};
         });
     buffers.rectangle = shaded.rectangle;

@@ -701,19 +701,9 @@ std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
                 {"extensionsUsed",
                  {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
                   "KHR_materials_dispersion"}}};
-    doc.gltf["materials"] = {{{"name", "glass"},
-                              {"pbrMetallicRoughness",
-                               {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
-                                {"metallicFactor", 0.0},
-                                {"roughnessFactor", 0.04}}},
-                              {"extensions",
-                               {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
-                                {"KHR_materials_volume",
-                                 {{"thicknessFactor", 0.15},
-                                  {"attenuationDistance", 0.6},
-                                  {"attenuationColor", {0.80, 0.92, 1.0}}}},
-                                {"KHR_materials_ior", {{"ior", 1.5}}},
-                                {"KHR_materials_dispersion", {{"dispersion", 0.3}}}}}},
+    nlohmann::json glass = glassMaterial("glass", 1.5, {0.80, 0.92, 1.0}, 0.6);
+    glass["extensions"]["KHR_materials_dispersion"] = {{"dispersion", 0.3}};
+    doc.gltf["materials"] = {glass,
                              {{"name", "eyes"},
                               {"pbrMetallicRoughness",
                                {{"baseColorFactor", {0.02, 0.02, 0.03, 1.0}},
