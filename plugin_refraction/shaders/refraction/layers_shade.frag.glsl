@@ -12,13 +12,13 @@
 // goes straight on.
 //
 // Finding the next interface generalises DIR's search: the ray from the last crossing is
-// sampled in texture space (perspective-correct, M coarse steps up to where it leaves the
+// sampled in texture space (perspective-correct, coarse samples up to where it leaves the
 // glass's view-space box) and, at each sample, the number of layers of that pixel in front of
 // the sample's depth is counted. Closed surfaces come in pairs along any line of sight, so the
 // count's parity changes only where the ray crosses a surface (a silhouette adds or removes
-// two): the first sample whose parity differs from the segment's is refined by the conservative
-// binary search (DIR §3.3, search-steps halvings) and the layer crossed is the one of that
-// pixel between the two depths.
+// two); a layer between two samples' depths in one pixel is a crossing along the line of sight.
+// The first sample out of the segment is refined by the conservative binary search (DIR §3.3,
+// search-steps halvings) and the layer crossed is the one that pixel's count passed.
 #define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
 #include "common/brdf.glsl"
 #include "refraction/optics.glsl"
@@ -39,7 +39,7 @@ const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2
 #ifndef LAYER_DISPERSION
 #define LAYER_DISPERSION 0 // DISPERSION_NONE
 #endif
-const int uMethod = LAYER_METHOD;
+const int kMethod = LAYER_METHOD;
 
 uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uFresnelMode, uDebug;
 uniform mat4 uInverseProjection;
@@ -344,9 +344,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     // Crossings that change no medium (overlapping glass, a surface met again in the samples)
     // are not interfaces: they pass straight on, a few times at most.
     int passes = 0;
-    while (uMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
+    while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
         uint inside = topMedium(media);
-        Crossing c = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry
+        Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
             ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
             : searchLayers(P, dir, parity, inside != 0u);
         w.steps += c.steps;
@@ -360,7 +360,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         ++w.interfaces;
         // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on, the
         // far side: there the count is read afresh.
-        bool estimated = uMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
+        bool estimated = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
         int parityBefore = parity;
         parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
                            : parity ^ 1;
