@@ -98,7 +98,7 @@ void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const Surfa
                        FrameBuffers& buffers);
 /** The layered path's programs for this frame: the capture for capacity K and the shading
  *  variant for K, the method and the dispersion search (compiled in: layers.glsl,
- *  layers_shade.frag.glsl), built when first needed and kept. */
+ *  layers_shade.frag.glsl), built when first needed (every method's at once) and kept. */
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c);
 /** The layered path's glass ids and their optics (FrameContext::glassIds, materials); ids past
  *  the 255 a layer can name share the last, with a warning. */

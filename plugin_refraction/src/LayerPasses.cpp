@@ -86,19 +86,23 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
                      : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
                                                                                           : 2;
     const std::pair key{int(c.settings.method), mode};
-    auto found = gpu.layerShadePrograms.find(key);
-    if (found == gpu.layerShadePrograms.end()) {
-        auto shade = gl::Program::graphics(
-            *c.frame->shaders, "refraction/rectangle.vert.glsl",
-            "refraction/layers_shade.frag.glsl",
-            {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
-             "LAYER_METHOD " + std::to_string(key.first),
-             "LAYER_DISPERSION " + std::to_string(key.second)});
-        if (!shade)
-            return shade.error();
-        found = gpu.layerShadePrograms.emplace(key, std::move(*shade)).first;
+    if (!gpu.layerShadePrograms.count(key)) {
+        // Every method's variant at once: switching methods (the viewer's panel) then compiles
+        // nothing, and the live programs do not depend on which methods ran.
+        for (const Settings::Method method :
+             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir}) {
+            auto shade = gl::Program::graphics(
+                *c.frame->shaders, "refraction/rectangle.vert.glsl",
+                "refraction/layers_shade.frag.glsl",
+                {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
+                 "LAYER_METHOD " + std::to_string(int(method)),
+                 "LAYER_DISPERSION " + std::to_string(mode)});
+            if (!shade)
+                return shade.error();
+            gpu.layerShadePrograms.insert_or_assign({int(method), mode}, std::move(*shade));
+        }
     }
-    return &found->second;
+    return &gpu.layerShadePrograms.at(key);
 }
 
 std::size_t layerBytesPerPixel(int capacity) {
