@@ -18,14 +18,6 @@
 
 namespace refraction {
 
-/** One glass id's optics as layers.glsl's GlassMaterial reads them (std430). */
-struct GlassMaterialGpu {
-    glm::vec4 ior;       ///< per channel; w: transmission
-    glm::vec4 sigma;     ///< absorption per world unit; w: roughness
-    glm::vec4 baseColor; ///< w: metallic
-    glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
-};
-
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
 struct FrameContext {
@@ -37,10 +29,6 @@ struct FrameContext {
     bool onePass = false; ///< the single gathered geometry pass
     /** The first glass item: with one pass, its material and overrides are every one's. */
     const render::DrawItem* glass = nullptr;
-    /** The layered path: each frame item's glass id (-1: not glass), and the optics per id
-     *  (one per character and material). */
-    std::vector<int> glassIds;
-    std::vector<GlassMaterialGpu> materials;
     const gl::Program* layerShade = nullptr; ///< the shading variant (layerShadeProgram)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
@@ -100,7 +88,7 @@ void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const Surfa
  *  variant for K, the method and the dispersion search (compiled in: layers.glsl,
  *  layers_shade.frag.glsl), built when first needed (every method's at once) and kept. */
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c);
-/** The layered path's glass ids and their optics (FrameContext::glassIds, materials); ids past
+/** The layered path's glass ids and their optics (GpuState::glassIds, glassOptics); ids past
  *  the 255 a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
 /** The layered path: the capture pass (one geometry pass, every glass layer) and the walk over

@@ -10,6 +10,8 @@
 #include "engine/gl/Program.h"
 #include "engine/render/FrameInfo.h"
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -17,6 +19,14 @@
 #include <vector>
 
 namespace refraction {
+
+/** One glass id's optics as layers.glsl's GlassMaterial reads them (std430). */
+struct GlassMaterialGpu {
+    glm::vec4 ior;       ///< per channel; w: transmission
+    glm::vec4 sigma;     ///< absorption per world unit; w: roughness
+    glm::vec4 baseColor; ///< w: metallic
+    glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
+};
 
 struct GpuState {
     // The papers' two geometry passes, and what both paths share.
@@ -37,6 +47,10 @@ struct GpuState {
         int capacity = 0;
     } layers;
     gl::Buffer glassMaterials; // GlassMaterial (layers.glsl) per glass id, grown as needed
+    /** This frame's glass ids per frame item (-1: not glass) and optics per id (one per
+     *  character and material), refilled each frame in place (assignGlassIds). */
+    std::vector<int> glassIds;
+    std::vector<GlassMaterialGpu> glassOptics;
     bool warnedGlassIds = false; // the 256-id limit was reported
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;

@@ -80,7 +80,7 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
         gpu.layerProgramsCapacity = c.settings.layerCapacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
-    const bool dispersion = std::any_of(c.materials.begin(), c.materials.end(),
+    const bool dispersion = std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
                                         [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
     const int mode = !dispersion ? 0
                      : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
@@ -113,8 +113,8 @@ std::size_t layerBytesPerPixel(int capacity) {
 
 void assignGlassIds(FrameContext& c) {
     const auto& items = c.frame->items;
-    c.glassIds.assign(items.size(), -1);
-    c.materials.clear();
+    c.gpu->glassIds.assign(items.size(), -1);
+    c.gpu->glassOptics.clear();
     std::map<std::pair<std::uint64_t, int>, int> ids;
     std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
     bool full = false;
@@ -124,12 +124,12 @@ void assignGlassIds(FrameContext& c) {
             continue;
         const auto key = std::pair{item.key, item.material};
         if (const auto known = ids.find(key); known != ids.end()) {
-            c.glassIds[i] = known->second;
+            c.gpu->glassIds[i] = known->second;
             continue;
         }
-        if (c.materials.size() == kMaxGlassIds) {
+        if (c.gpu->glassOptics.size() == kMaxGlassIds) {
             full = true;
-            c.glassIds[i] = int(kMaxGlassIds) - 1;
+            c.gpu->glassIds[i] = int(kMaxGlassIds) - 1;
             continue;
         }
         const scene::Material* m =
@@ -137,11 +137,11 @@ void assignGlassIds(FrameContext& c) {
         const Optics o = opticsFor(c.settings, m, item.source->overrides);
         const glm::vec3 emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
-        c.materials.push_back({glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
+        c.gpu->glassOptics.push_back({glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
                                glm::vec4(glm::vec3(o.baseColor), o.metallic),
                                glm::vec4(emissive, float(solid))});
-        ids.emplace(key, int(c.materials.size()) - 1);
-        c.glassIds[i] = int(c.materials.size()) - 1;
+        ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
+        c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }
     if (full && !c.gpu->warnedGlassIds) {
         core::logWarning("refraction: more than 255 glass materials (character x material) in "
@@ -179,10 +179,10 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gpu.layers.heads.fill(0, pixels, 0u);                     // counts
             gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu);  // nearest front keys
             gpu.layers.heads.fill(pixels * 8, pixels, 0u);           // farthest back keys
-            const std::size_t bytes = c.materials.size() * sizeof(GlassMaterialGpu);
+            const std::size_t bytes = c.gpu->glassOptics.size() * sizeof(GlassMaterialGpu);
             if (gpu.glassMaterials.size() < bytes)
                 gpu.glassMaterials = gl::Buffer(bytes);
-            gpu.glassMaterials.update(0, bytes, c.materials.data());
+            gpu.glassMaterials.update(0, bytes, c.gpu->glassOptics.data());
             c.growGlassRectangle();
             // Depth only: the shading pass's mask (the shader tests the scene depth itself).
             if (auto bound = gpu.framebuffer.bindTargets("refraction.layers", {},
@@ -197,7 +197,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             program.set("uSceneDepth", kSceneDepthUnit);
             c.drawGlass(program, {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always},
                         [&c, &program](const render::DrawItem& item, std::size_t index) {
-                            program.set("uGlassId", c.glassIds[index]);
+                            program.set("uGlassId", c.gpu->glassIds[index]);
                             item.materials->bind(program, *item.model, item.material,
                                                  kMaterialUnit);
                         });

@@ -268,7 +268,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (c.settings.layered()) {
         // Every glass item, whatever its material, in one capture pass; then the walk.
         assignGlassIds(c);
-        if (c.materials.empty())
+        if (c.gpu->glassOptics.empty())
             return;
         auto program = layerShadeProgram(*mGpu, c);
         if (!program) {
