@@ -45,6 +45,9 @@ uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uFresnelMode
 uniform mat4 uInverseProjection;
 uniform vec3 uViewOriginWorld;
 
+// The mask's depth test before the shader (its overflow count is a side effect, which would
+// otherwise move the test after it, for every pixel of the rectangle).
+layout(early_fragment_tests) in;
 out vec4 outColor;
 
 float orderedToFloat(int i) {
@@ -280,6 +283,8 @@ struct Walk {
     vec3 point, dir;    // where the ray leaves for the lookup, and its direction
     vec3 weight;        // transmittance: absorption, Fresnel and base colour of what it crossed
     vec3 reflected;     // light reflected toward the ray at the later interfaces into glass
+    vec3 reflectedDir;  // their directions, weighted by the light they reflect
+    float reflectedRoughness;
     vec3 lastIncoming;  // the last refraction: incoming direction, normal against it, media
     vec3 lastNormal;
     uint lastFrom, lastTo; // glass ids + 1, 0: air
@@ -323,6 +328,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     Walk w;
     w.weight = vec3(1.0);
     w.reflected = vec3(0.0);
+    w.reflectedDir = vec3(0.0);
+    w.reflectedRoughness = 0.0;
     w.tir = false;
     w.fallback = false;
     w.interfaces = 1;
@@ -343,6 +350,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     bool segmentFromEntry = true; // the segment began where the ray entered glass (ISR)
     // Crossings that change no medium (overlapping glass, a surface met again in the samples)
     // are not interfaces: they pass straight on, a few times at most.
+    // On a CPU rasteriser every lane of a SIMD group runs the loop's whole body as long as one
+    // lane walks on: the environment's reflection in the interfaces into glass is looked up
+    // once after it, in their mean direction (exact for one such interface).
     int passes = 0;
     while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
         uint inside = topMedium(media);
@@ -394,8 +404,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
                 // the transmitted part goes on in the glass's colour.
                 GlassMaterial g = glassMaterials[to - 1u];
                 float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
-                w.reflected += w.weight * F *
-                               environmentRadiance(uViewToWorld * reflect(dir, facing), g.sigma.w);
+                w.reflected += w.weight * F;
+                w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
+                w.reflectedRoughness = g.sigma.w;
                 w.weight *= (1.0 - F) * g.baseColor.rgb;
             }
             w.lastIncoming = dir;
@@ -427,6 +438,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     }
     w.point = P;
     w.dir = dir;
+    if (dot(w.reflectedDir, w.reflectedDir) > 0.0)
+        w.reflected *= environmentRadiance(uViewToWorld * normalize(w.reflectedDir),
+                                           w.reflectedRoughness);
     return w;
 }
 
