@@ -282,7 +282,8 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
 struct Walk {
     vec3 point, dir;    // where the ray leaves for the lookup, and its direction
     vec3 weight;        // transmittance: absorption, Fresnel and base colour of what it crossed
-    vec3 reflected;     // light reflected toward the ray at the later interfaces into glass
+    vec3 reflected;     // the share reflected toward the ray at the later interfaces into
+                        // glass (times the environment once the walk ends)
     vec3 reflectedDir;  // their directions, weighted by the light they reflect
     float reflectedRoughness;
     vec3 lastIncoming;  // the last refraction: incoming direction, normal against it, media
