@@ -99,6 +99,7 @@ NormalDistance::NormalDistance(std::span<const scene::Primitive* const> primitiv
     mOrder = gl::Buffer(std::span<const std::uint32_t>(mBvh.order));
     mLevels = gl::Buffer(std::span<const std::int32_t>(mBvh.levelNodes));
     mBounds = gl::Buffer(mBvh.nodes.size() * 2 * sizeof(glm::vec4));
+    mLeafCorners = gl::Buffer(std::max<std::size_t>(mBvh.order.size(), 1) * 3 * sizeof(glm::vec4));
     mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
 }
 
@@ -123,6 +124,7 @@ void NormalDistance::update(const gl::Program& refit, const gl::Program& cast) {
     gl::bindStorage(3, mOrder);
     gl::bindStorage(4, mBounds);
     gl::bindStorage(5, mLevels);
+    gl::bindStorage(7, mLeafCorners);
     refit.use();
     for (const auto& [first, count] : mBvh.levels) {
         refit.set("uFirst", first);

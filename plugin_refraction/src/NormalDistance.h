@@ -59,7 +59,7 @@ private:
     std::vector<std::uint32_t> mBases;
     std::uint32_t mVertexCount = 0;
     float mEpsilon = 0.0f;
-    gl::Buffer mVertices, mIndices, mNodes, mOrder, mLevels, mBounds, mDistances;
+    gl::Buffer mVertices, mIndices, mNodes, mOrder, mLevels, mBounds, mLeafCorners, mDistances;
 };
 
 } // namespace refraction

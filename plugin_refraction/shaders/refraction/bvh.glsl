@@ -14,4 +14,7 @@ layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 2) readonly buffer Nodes { BvhNode nodes[]; };
 layout(std430, binding = 3) readonly buffer Order { uint triangleOrder[]; };
 layout(std430, binding = 4) buffer Bounds { vec4 bounds[]; }; // [2 * node]: min, [2 * node + 1]: max
+// The deformed corners of each triangle in leaf order (3 per triangle, written by the refit), so
+// that a ray test reads them directly instead of through the order and the index buffer.
+layout(std430, binding = 7) buffer LeafTriangles { vec4 leafCorners[]; };
 #endif

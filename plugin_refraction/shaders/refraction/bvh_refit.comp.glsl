@@ -1,5 +1,6 @@
 // BVH refit, one tree level per dispatch from the leaves up: a leaf bounds its deformed
-// triangles, an inner node the union of its children.
+// triangles (and copies their corners in leaf order for the casts), an inner node the union of
+// its children.
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
@@ -19,6 +20,7 @@ void main() {
             uint tri = triangleOrder[node.first + t];
             for (uint k = 0u; k < 3u; ++k) {
                 vec3 p = vertices[indices[3u * tri + k]].position.xyz;
+                leafCorners[3 * (node.first + t) + int(k)] = vec4(p, 0.0);
                 lo = min(lo, p);
                 hi = max(hi, p);
             }

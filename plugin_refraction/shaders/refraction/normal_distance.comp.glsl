@@ -7,12 +7,13 @@ layout(std430, binding = 6) writeonly buffer Distance { float distances[]; };
 uniform int uVertexCount;
 uniform float uEpsilon; // self-intersection offset, in mesh units
 
-bool hitBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, float tMax) {
+// The distance at which the ray enters the box [lo, hi] before tMax, or -1 when it misses.
+float enterBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, float tMax) {
     vec3 t0 = (lo - origin) * inverseDir, t1 = (hi - origin) * inverseDir;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
     float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
-    return enter <= exit;
+    return enter <= exit ? enter : -1.0;
 }
 
 // Möller-Trumbore; returns t or -1.
@@ -42,28 +43,47 @@ void main() {
     vec3 dir = -normalize(vertices[vid].normal.xyz);
     vec3 inverseDir = 1.0 / (dir + vec3(equal(dir, vec3(0.0))) * 1e-30);
     float best = 3.0e38;
+    // Nearer child first, so that the first hits shorten the ray; a node waiting on the stack
+    // is dropped once a hit is nearer than where the ray enters it.
     int stack[64];
+    float entered[64];
     int top = 0;
-    stack[top++] = 0;
+    if (enterBox(origin, inverseDir, bounds[0].xyz, bounds[1].xyz, best) >= 0.0) {
+        stack[0] = 0;
+        entered[0] = 0.0;
+        top = 1;
+    }
     while (top > 0) {
-        int n = stack[--top];
-        if (!hitBox(origin, inverseDir, bounds[2 * n].xyz, bounds[2 * n + 1].xyz, best))
-            continue;
-        BvhNode node = nodes[n];
+        BvhNode node = nodes[stack[--top]];
         if (node.left < 0) {
             for (int t = 0; t < node.count; ++t) {
-                uint tri = triangleOrder[node.first + t];
-                vec3 a = vertices[indices[3u * tri]].position.xyz;
-                vec3 b = vertices[indices[3u * tri + 1u]].position.xyz;
-                vec3 c = vertices[indices[3u * tri + 2u]].position.xyz;
-                float h = hitTriangle(origin, dir, a, b, c);
+                int corner = 3 * (node.first + t);
+                float h = hitTriangle(origin, dir, leafCorners[corner].xyz,
+                                      leafCorners[corner + 1].xyz, leafCorners[corner + 2].xyz);
                 if (h > uEpsilon && h < best)
                     best = h;
             }
-        } else if (top < 62) {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
+            while (top > 0 && entered[top - 1] > best)
+                --top;
+            continue;
         }
+        float tLeft = enterBox(origin, inverseDir, bounds[2 * node.left].xyz,
+                               bounds[2 * node.left + 1].xyz, best);
+        float tRight = enterBox(origin, inverseDir, bounds[2 * node.right].xyz,
+                                bounds[2 * node.right + 1].xyz, best);
+        bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
+        int near = leftFirst ? node.left : node.right, far = leftFirst ? node.right : node.left;
+        float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
+        if (tFar >= 0.0 && top < 63) {
+            stack[top] = far;
+            entered[top++] = tFar;
+        }
+        if (tNear >= 0.0 && top < 63) {
+            stack[top] = near;
+            entered[top++] = tNear;
+        }
+        while (top > 0 && entered[top - 1] > best)
+            --top;
     }
     distances[vid] = best < 3.0e38 ? best : -1.0;
 }
