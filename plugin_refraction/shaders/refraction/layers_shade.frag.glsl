@@ -298,27 +298,27 @@ float mediumIor(uint medium, int channel) {
     return medium == 0u ? 1.0 : glassMaterials[medium - 1u].ior[channel];
 }
 
-// The media around the ray: up to four glass ids + 1, a byte each, the newest in the low byte
-// (0: air). A fifth nested glass is not entered (its crossings pass straight).
-uint topMedium(uint media) {
-    return media & 255u;
+// The media around the ray: x up to four glass ids + 1, a byte each, the newest in the low
+// byte (0: air); y the solid of each, byte for byte (so that leaving one reads no material). A
+// fifth nested glass is not entered (its crossings pass straight).
+uint topMedium(uvec2 media) {
+    return media.x & 255u;
 }
 
-int solidOf(uint medium) {
-    return int(glassMaterials[medium - 1u].emissive.w);
+uint solidOf(uint medium) {
+    return uint(glassMaterials[medium - 1u].emissive.w);
 }
 
 // Crossing a surface of `medium` (glass id + 1) against its outward normal enters it; along it
 // leaves the most recent entry of the same solid (character), if any.
-uint crossMedium(uint media, uint medium, bool entering) {
+uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
+    uint solid = solidOf(medium);
     if (entering)
-        return (media >> 24) != 0u ? media : (media << 8) | medium;
-    int solid = solidOf(medium);
+        return (media.x >> 24) != 0u ? media : (media << 8) | uvec2(medium, solid);
     for (int k = 0; k < 4; ++k) {
-        uint entry = (media >> (8 * k)) & 255u;
-        if (entry != 0u && solidOf(entry) == solid) {
-            uint below = k == 0 ? 0u : media & ((1u << (8 * k)) - 1u);
-            uint above = k == 3 ? 0u : (media >> (8 * k + 8)) << (8 * k);
+        if (((media.x >> (8 * k)) & 255u) != 0u && ((media.y >> (8 * k)) & 255u) == solid) {
+            uvec2 below = k == 0 ? uvec2(0u) : media & uvec2((1u << (8 * k)) - 1u);
+            uvec2 above = k == 3 ? uvec2(0u) : (media >> (8 * k + 8)) << (8 * k);
             return below | above;
         }
     }
@@ -335,14 +335,17 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     w.fallback = false;
     w.interfaces = 1;
     w.steps = 0;
-    uint media = layerGlass(entryAttr) + 1u;
-    float ior = mediumIor(media, channel);
+    uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
+    // The medium's index and absorption (kept with it: a crossing reads one material).
+    GlassMaterial entered = glassMaterials[layerGlass(entryAttr)];
+    float ior = entered.ior[channel];
+    vec3 sigma = entered.sigma.rgb;
     vec3 dir;
     refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
     w.lastIncoming = V;
     w.lastNormal = N1;
     w.lastFrom = 0u;
-    w.lastTo = media;
+    w.lastTo = topMedium(media);
     w.firstExit = P1;
     vec3 P = P1;
     int parity = 1;
@@ -364,7 +367,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         if (!c.found)
             break;
         if (inside != 0u)
-            w.weight *= exp(-glassMaterials[inside - 1u].sigma.rgb * length(c.point - P));
+            w.weight *= exp(-sigma * length(c.point - P));
         P = c.point;
         if (w.interfaces == 1)
             w.firstExit = P;
@@ -383,7 +386,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         vec3 N = c.silhouette ? normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6))
                               : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
-        uint before = media;
+        uvec2 before = media;
         media = crossMedium(media, glass, c.silhouette ? false : dot(dir, N) < 0.0);
         uint to = topMedium(media);
         segmentFromEntry = inside == 0u && to != 0u;
@@ -394,7 +397,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             ++passes;
             continue;
         }
-        float n1 = mediumIor(inside, channel), n2 = mediumIor(to, channel);
+        GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
+        float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
         if (to == 0u && !c.silhouette) // leaving glass for air: where the image is most sensitive
             N = filteredNormal(c.beyond, c.attr);
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
@@ -403,7 +407,6 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             if (to != 0u) {
                 // Into glass: Fresnel splits the light; the reflected part sees the environment,
                 // the transmitted part goes on in the glass's colour.
-                GlassMaterial g = glassMaterials[to - 1u];
                 float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
                 w.reflected += w.weight * F;
                 w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
@@ -416,6 +419,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             w.lastTo = to;
             dir = T;
             ior = n2;
+            sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
             P = c.beyond; // the refracted ray starts on the far side of the interface
             continue;
         }
@@ -435,6 +439,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         w.lastTo = to;
         dir = tangentExit(dir, -facing);
         ior = n2;
+        sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
         P = c.beyond;
     }
     w.point = P;
