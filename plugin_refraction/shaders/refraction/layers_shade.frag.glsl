@@ -269,6 +269,9 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     float ratio = thetaI > 1e-4 ? thetaT / thetaI : eta;
     float dN = layerNormalDistance(entryAttr, z1);
     float d = ratio * dV + (1.0 - ratio) * (dN >= 0.0 ? dN : dV);
+    // Nothing to estimate from (an open surface: no layer behind the entry, no d_N): no exit,
+    // as DIR's search finds none there; the ray leaves in its refracted direction.
+    c.found = d > 1e-5 * z1;
     c.point = P1 + d * T1;
     c.beyond = c.point;
     // No layer there, or one facing the ray (the estimate fell short of the far side, or past
