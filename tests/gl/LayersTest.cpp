@@ -1,6 +1,7 @@
 // The layered path: glass seen through glass against the Embree reference, every glass material
 // and normal map in one geometry pass, overflowing pixels counted and degraded to the
-// two-surface pair, and the stored layers matching the surfaces the reference counts.
+// two-surface pair, the stored layers matching the surfaces the reference counts, and ISR ending
+// on an open surface where DIR does.
 #include "support/GlTest.h"
 #include "support/TestSupport.h"
 
@@ -161,6 +162,31 @@ TEST_F(Layers, TheCaptureAppliesNormalMaps) {
         differing += std::abs(int(withMap.rgba[i]) - int(without.rgba[i])) > 4 ? 1 : 0;
     std::printf("parts figure with and without its normal map: %zu channels differ\n", differing);
     EXPECT_GT(differing, 100u);
+}
+
+TEST_F(Layers, IsrOnAnOpenSurfaceEndsWhereDirDoes) {
+    // One face of the box, toward the camera: a sheet with nothing behind it and no d_N. ISR has no exit to
+    // estimate there; like DIR's search it finds none, and the ray leaves through the sheet
+    // (it used to bounce on the sheet itself up to N interfaces).
+    auto box = asset::loadModel("builtin:box");
+    ASSERT_TRUE(box.ok()) << box.error().message;
+    scene::Primitive& sheet = box->meshes[0].primitives[0];
+    sheet.indices = {sheet.indices.begin() + 24, sheet.indices.begin() + 30}; // the +z face
+    scene::World world = scene::singleCharacterWorld(std::make_shared<const scene::Model>(*box));
+    WorldRig rig(std::move(world), context());
+    rig.set("debug", "steps"); // blue: interfaces crossed / N
+    auto stepsView = [&](const char* method) {
+        rig.set("method", method);
+        return rig.render();
+    };
+    const capture::Image dir = stepsView("dir"), isr = stepsView("isr");
+    std::size_t glass = 0, longer = 0;
+    for (std::size_t i = 0; i < dir.rgba.size(); i += 4) {
+        glass += dir.rgba[i + 2] > 0 ? 1 : 0;
+        longer += isr.rgba[i + 2] > dir.rgba[i + 2] + 2 ? 1 : 0;
+    }
+    EXPECT_GT(glass, 500u) << "the sheet covers part of the frame";
+    EXPECT_EQ(longer, 0u) << "pixels where ISR crossed more interfaces than DIR";
 }
 
 TEST_F(Layers, OverflowingPixelsKeepTheirNearestFrontAndFarthestBack) {
