@@ -28,7 +28,8 @@ struct Bvh {
     std::vector<std::pair<int, int>> levels; ///< (first, count) into levelNodes, deepest first
 };
 
-/** Builds the BVH of the triangles `indices` over `positions` (leaves of at most 4 triangles). */
+/** Builds the BVH of the triangles `indices` over `positions` (binned surface-area heuristic,
+ *  leaves of at most 4 triangles). */
 Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices);
 /** The BVH of one primitive from its rest positions. */
 Bvh buildBvh(const scene::Primitive& primitive);

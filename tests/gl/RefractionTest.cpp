@@ -196,9 +196,8 @@ struct DistanceRig {
     scene::Model model;
     gl::ShaderLibrary library;
     gl::Program refit, cast, gather;
-    void open(const gl::ShaderLibrary& engineShaders) {
-        auto loaded =
-            asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
+    void open(const gl::ShaderLibrary& engineShaders, const std::string& path) {
+        auto loaded = asset::loadModel(path);
         ASSERT_TRUE(loaded.ok()) << loaded.error().message;
         model = std::move(*loaded);
         library = engineShaders;
@@ -223,10 +222,41 @@ struct DistanceRig {
     }
 };
 
+std::string cesiumMan() {
+    return (test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string();
+}
+
+TEST_F(Refraction, NormalDistanceOfASphereIsItsDiameter) {
+    // Every ray along -N from a vertex of the unit sphere passes through the centre and meets
+    // the sphere at the opposite vertex (or the opposite pole): exactly on a vertex shared by
+    // several triangles, and along a face of a box where the tree splits at the axis. None may
+    // slip between them.
+    DistanceRig rig;
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), "builtin:sphere"));
+    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
+    ASSERT_TRUE(deformer.ok());
+    (*deformer)->update(anim::evaluate(rig.model, -1, 0.0));
+    const auto& primitive = (*deformer)->instances()[0].primitives[0];
+    const refraction::NormalDistance distance = rig.distances(*primitive.source, primitive.deformed);
+    const auto bytes = distance.distances().download();
+    std::vector<float> gpu(primitive.vertexCount);
+    std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
+    int misses = 0;
+    double worst = 0.0;
+    for (float d : gpu) {
+        misses += d < 0.0f ? 1 : 0;
+        worst = std::max(worst, std::abs(double(d) - 2.0));
+    }
+    std::printf("d_N on the unit sphere: %zu vertices, %d misses, worst error %.2e\n", gpu.size(),
+                misses, worst);
+    EXPECT_EQ(misses, 0);
+    EXPECT_LE(worst, 1e-4);
+}
+
 TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     GLASS_REQUIRE_SHARED();
     DistanceRig rig;
-    ASSERT_NO_FATAL_FAILURE(rig.open(shaders()));
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), cesiumMan()));
     auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
     ASSERT_TRUE(deformer.ok());
     (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
@@ -273,7 +303,7 @@ TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
 TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) {
     GLASS_REQUIRE_SHARED();
     DistanceRig rig;
-    ASSERT_NO_FATAL_FAILURE(rig.open(shaders()));
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), cesiumMan()));
     auto deformer = deform::GpuDeformer::create(rig.model, rig.library, 2);
     ASSERT_TRUE(deformer.ok()) << deformer.error().message;
     (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));

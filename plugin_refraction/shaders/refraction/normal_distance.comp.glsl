@@ -7,16 +7,20 @@ layout(std430, binding = 6) writeonly buffer Distance { float distances[]; };
 uniform int uVertexCount;
 uniform float uEpsilon; // self-intersection offset, in mesh units
 
-// The distance at which the ray enters the box [lo, hi] before tMax, or -1 when it misses.
+// The distance at which the ray enters the box [lo, hi] before tMax, or -1 when it misses. The
+// box is padded by the self-intersection offset: a ray along one of its faces (a sphere's -N
+// from a pole, through the opposite pole) is inside it, whichever side of the face it lies on.
 float enterBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, float tMax) {
-    vec3 t0 = (lo - origin) * inverseDir, t1 = (hi - origin) * inverseDir;
+    vec3 t0 = (lo - uEpsilon - origin) * inverseDir, t1 = (hi + uEpsilon - origin) * inverseDir;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
     float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
     return enter <= exit ? enter : -1.0;
 }
 
-// Möller-Trumbore; returns t or -1.
+// Möller-Trumbore; returns t or -1. Barycentrics within 1e-4 of an edge hit: a ray through an
+// edge or vertex (a sphere's -N through the opposite vertex) hits one of the triangles there,
+// whatever the rounding of the deformed vertices and normals.
 float hitTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c) {
     vec3 e1 = b - a, e2 = c - a;
     vec3 p = cross(dir, e2);
@@ -26,11 +30,11 @@ float hitTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c) {
     float inv = 1.0 / det;
     vec3 s = origin - a;
     float u = dot(s, p) * inv;
-    if (u < 0.0 || u > 1.0)
+    if (u < -1e-4 || u > 1.0 + 1e-4)
         return -1.0;
     vec3 q = cross(s, e1);
     float v = dot(dir, q) * inv;
-    if (v < 0.0 || u + v > 1.0)
+    if (v < -1e-4 || u + v > 1.0 + 1e-4)
         return -1.0;
     return dot(e2, q) * inv;
 }
