@@ -105,10 +105,6 @@ int splitBySurfaceArea(std::span<std::uint32_t> part, std::span<const glm::vec3>
 
 } // namespace
 
-Bvh buildBvh(const scene::Primitive& p) {
-    return buildBvh(p.positions, p.indices);
-}
-
 Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices) {
     Bvh bvh;
     const std::size_t triangles = indices.size() / 3;

@@ -31,8 +31,6 @@ struct Bvh {
 /** Builds the BVH of the triangles `indices` over `positions` (binned surface-area heuristic,
  *  leaves of at most 4 triangles). */
 Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices);
-/** The BVH of one primitive from its rest positions. */
-Bvh buildBvh(const scene::Primitive& primitive);
 
 /** GPU state of one character's d_N: its glass primitives' cages, one after another (vertex
  *  `base(i) + v` is primitive i's vertex v), under one BVH. */
@@ -42,14 +40,12 @@ public:
 
     /** Where primitive i's vertices start in the combined cage and in distances(). */
     std::uint32_t base(std::size_t i) const { return mBases[i]; }
-    /** The combined cage the gather pass fills each frame (world space, common/vertex.glsl). */
-    const gl::Buffer& vertices() const { return mVertices; }
 
     /** Copies primitive i's deformed cage (`count` vertices in its mesh node's space, placed by
-     *  `world`) into vertices() (`gather`: cage_gather.comp.glsl). No sync. */
+     *  `world`) into the combined cage at base(i) (`gather`: cage_gather.comp.glsl). No sync. */
     void gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count, const glm::mat4& world,
                 const gl::Program& gather) const;
-    /** Refits the BVH to the gathered vertices() and writes d_N (world units) per vertex into
+    /** Refits the BVH to the gathered combined cage and writes d_N (world units) per vertex into
      *  distances(). `refit` and `cast` are bvh_refit.comp.glsl and normal_distance.comp.glsl. */
     void update(const gl::Program& refit, const gl::Program& cast);
 

@@ -220,6 +220,14 @@ struct DistanceRig {
         distance.update(refit, cast);
         return distance;
     }
+    /** d_N per vertex of `deformer`'s first primitive as it is deformed now, read back. */
+    std::vector<float> deformedDistances(const deform::GpuDeformer& deformer) const {
+        const auto& primitive = deformer.instances()[0].primitives[0];
+        const auto bytes = distances(*primitive.source, primitive.deformed).distances().download();
+        std::vector<float> values(primitive.vertexCount);
+        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+        return values;
+    }
 };
 
 std::string cesiumMan() {
@@ -236,11 +244,7 @@ TEST_F(Refraction, NormalDistanceOfASphereIsItsDiameter) {
     auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
     ASSERT_TRUE(deformer.ok());
     (*deformer)->update(anim::evaluate(rig.model, -1, 0.0));
-    const auto& primitive = (*deformer)->instances()[0].primitives[0];
-    const refraction::NormalDistance distance = rig.distances(*primitive.source, primitive.deformed);
-    const auto bytes = distance.distances().download();
-    std::vector<float> gpu(primitive.vertexCount);
-    std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
+    const std::vector<float> gpu = rig.deformedDistances(**deformer);
     int misses = 0;
     double worst = 0.0;
     for (float d : gpu) {
@@ -260,11 +264,8 @@ TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
     ASSERT_TRUE(deformer.ok());
     (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
+    const std::vector<float> gpu = rig.deformedDistances(**deformer);
     const auto& primitive = (*deformer)->instances()[0].primitives[0];
-    const refraction::NormalDistance distance = rig.distances(*primitive.source, primitive.deformed);
-    const auto bytes = distance.distances().download();
-    std::vector<float> gpu(primitive.vertexCount);
-    std::memcpy(gpu.data(), bytes.data(), gpu.size() * sizeof(float));
 
     // Brute force over every triangle of the same deformed vertices.
     const auto deformed = (*deformer)->download(0, 0);
