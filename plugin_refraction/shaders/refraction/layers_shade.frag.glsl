@@ -28,6 +28,10 @@
 
 const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
+// Incidence angles this close past the critical angle leave grazing instead of reflecting
+// totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
+// enough to tell the two apart, and a grazing exit is the limit refraction tends to there.
+const float kTirBand = radians(2.5);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
@@ -148,13 +152,14 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
 
 // The normal at a crossing, filtered like a texture lookup (DIR reads its normal map with
 // bilinear filtering): the four texels around the point, each by its layer of the same glass
-// and facing nearest the point's depth (within 2%), weighted bilinearly.
+// nearest the point's depth (within 2%), front or back (near an outline, where crossings graze,
+// they meet), weighted bilinearly.
 vec3 filteredNormal(vec3 X, uvec2 attr) {
     vec2 texel = projectToUv(X) * uViewportSize - 0.5;
     ivec2 base = ivec2(floor(texel));
     vec2 f = texel - vec2(base);
     float z = -X.z;
-    uint kind = attr.y & (255u | kLayerFront);
+    uint glass = layerGlass(attr);
     vec3 sum = vec3(0.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
@@ -174,7 +179,7 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
         if (best < 0)
             continue;
         uvec2 a = layerAttrOf(q, best, overflow);
-        if ((a.y & (255u | kLayerFront)) != kind)
+        if (layerGlass(a) != glass)
             continue;
         vec2 w = mix(1.0 - f, f, vec2(offset));
         sum += w.x * w.y * layerNormal(a);
@@ -402,7 +407,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         }
         GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
         float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
-        if (to == 0u && !c.silhouette) // leaving glass for air: where the image is most sensitive
+        if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
             N = filteredNormal(c.beyond, c.attr);
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
@@ -427,7 +432,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             continue;
         }
         w.tir = true;
-        if (uTirPolicy == TIR_REFLECT && bounces < uBounces) {
+        float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
+        bool grazing = incidence < asin(n2 / n1) + kTirBand;
+        if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
             ++bounces;
             dir = reflect(dir, facing);
             media = before; // still in the same medium
