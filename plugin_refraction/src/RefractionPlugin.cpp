@@ -117,9 +117,10 @@ RefractionPlugin::RefractionPlugin() {
                Type::Enum,
                0,
                0,
-               0,
+               1,
                {"clamp", "reflect"},
-               "clamp: exit tangent (the papers); reflect: bounce inside and search again"});
+               "reflect (default): bounce inside and search again, as light does; clamp: exit "
+               "tangent (the papers)"});
     p.declare({"tir-bounces",
                "TIR bounces",
                Type::Int,

@@ -29,7 +29,7 @@ struct Settings {
     double absorptionDistance = 0.0; ///< 0: the material's
     Fresnel fresnel = Fresnel::Exact;
     int searchSteps = 5;
-    Tir tir = Tir::Clamp;
+    Tir tir = Tir::Reflect;
     int tirBounces = 2;
     BackSurface backSurface = BackSurface::Farthest;
     GeometryPasses geometryPasses = GeometryPasses::One;

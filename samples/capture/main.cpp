@@ -60,7 +60,8 @@ characters; T is the scene time); several MODELs are placed side by side.
                       light reaches it (0 = the material's)
   --fresnel M         exact (default), schlick or off
   --search-steps N    DIR binary search steps, 1..16 (default 5)
-  --tir P             clamp (the papers, default) or reflect; --tir-bounces B (default 2)
+  --tir P             reflect (default: as light does) or clamp (the papers: leave tangent);
+                      --tir-bounces B (default 2)
   --back-surface S    farthest (default) or first back face
   --nearby on|off     exit rays see the opaque scene before the environment (default on)
   --surfaces S        layers (default): every glass surface a ray crosses, captured in one

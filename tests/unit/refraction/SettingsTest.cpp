@@ -34,6 +34,7 @@ TEST(Settings, DecodesEveryChoice) {
     EXPECT_EQ(defaults.method, S::Method::Dir);
     EXPECT_EQ(defaults.geometryPasses, S::GeometryPasses::One);
     EXPECT_TRUE(defaults.nearby);
+    EXPECT_EQ(defaults.tir, S::Tir::Reflect); // as light does (and the reference)
     for (const auto& [key, value] : {std::pair{"method", "isr"},
                                      {"glass", "all"},
                                      {"ior", "1.33"},
@@ -42,7 +43,7 @@ TEST(Settings, DecodesEveryChoice) {
                                      {"absorption-distance", "2"},
                                      {"fresnel", "schlick"},
                                      {"search-steps", "9"},
-                                     {"tir", "reflect"},
+                                     {"tir", "clamp"},
                                      {"tir-bounces", "3"},
                                      {"back-surface", "first"},
                                      {"geometry-passes", "two"},
@@ -60,7 +61,7 @@ TEST(Settings, DecodesEveryChoice) {
     EXPECT_DOUBLE_EQ(s.absorptionDistance, 2.0);
     EXPECT_EQ(s.fresnel, S::Fresnel::Schlick);
     EXPECT_EQ(s.searchSteps, 9);
-    EXPECT_EQ(s.tir, S::Tir::Reflect);
+    EXPECT_EQ(s.tir, S::Tir::Clamp);
     EXPECT_EQ(s.tirBounces, 3);
     EXPECT_EQ(s.backSurface, S::BackSurface::First);
     EXPECT_EQ(s.geometryPasses, S::GeometryPasses::Two);
