@@ -60,6 +60,17 @@ void setLayerUniforms(const FrameContext& c, const gl::Program& program) {
     gl::bindStorage(8, c.gpu->glassMaterials);
 }
 
+/** The layer depth maps (LAYER_DEPTH_MAPS in layers.glsl); an absent second map: the first
+ *  stands in. */
+void bindLayerDepthMaps(const gl::Program& program, const fg::Resources& r,
+                        fg::TextureHandle depths0, fg::TextureHandle depths1) {
+    for (int map = 0; map < 2; ++map) {
+        const fg::TextureHandle depths = map == 1 && depths1.valid() ? depths1 : depths0;
+        gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
+        program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
+    }
+}
+
 } // namespace
 
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
@@ -75,8 +86,13 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
                                              "refraction/layers_resolve.frag.glsl", defines);
         if (!resolve)
             return resolve.error();
+        auto outline = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                             "refraction/layers_outline.frag.glsl", defines);
+        if (!outline)
+            return outline.error();
         gpu.layersCapture = std::move(*capture);
         gpu.layersResolve = std::move(*resolve);
+        gpu.layersOutline = std::move(*outline);
         gpu.layerProgramsCapacity = c.settings.layerCapacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
@@ -274,17 +290,53 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
             program.set("uSceneColor", kSceneColorUnit);
             program.set("uSceneDepth", kSceneDepthUnit);
-            for (int map = 0; map < 2; ++map) { // an absent second map: the first stands in
-                const fg::TextureHandle depths = map == 1 && d.depths1.valid() ? d.depths1
-                                                                                : d.depths0;
-                gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
-                program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
-            }
+            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
             c.drawMaskedRectangle();
             return {};
         });
     buffers.rectangle = shaded.rectangle;
-    return shaded.out;
+    if (!c.settings.outlineAntialiasing)
+        return shaded.out;
+
+    // The outlines of smooth glass anti-aliased: over the glass rectangle and a pixel around
+    // it (the pixels an outline only grazes lie outside the glass).
+    struct OutlineData {
+        fg::TextureHandle shaded, depths0, depths1, out;
+        fg::BufferHandle layers, rectangle;
+    };
+    const auto& outlined = graph.addPass<OutlineData>(
+        "refraction.layer_outlines",
+        [&](fg::Builder& b, OutlineData& d) {
+            d.layers = b.read(buffers.layers);
+            d.rectangle = b.read(buffers.rectangle);
+            d.shaded = b.read(shaded.out);
+            d.depths0 = b.read(resolved.depths0);
+            if (resolved.depths1.valid())
+                d.depths1 = b.read(resolved.depths1);
+            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+        },
+        [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            gl::copyTexture(r.texture(d.shaded), r.texture(d.out));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.layer_outlines",
+                                                         {&r.texture(d.out)}, nullptr);
+                !bound)
+                return bound;
+            const gl::Program& program = gpu.layersOutline;
+            program.use();
+            setLayerUniforms(c, program);
+            program.set("uProjection", c.frame->camera.projection);
+            program.set("uRectangleMargin", 1.0f);
+            gl::bindTexture(kSceneColorUnit, r.texture(d.shaded));
+            program.set("uColor", kSceneColorUnit);
+            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            gl::bindStorage(4, gpu.rectangle);
+            gpu.emptyVao.bind();
+            gl::drawArrays(6);
+            return {};
+        });
+    return outlined.out;
 }
 
 } // namespace refraction

@@ -191,6 +191,14 @@ RefractionPlugin::RefractionPlugin() {
                1,
                {},
                "exit rays see the opaque scene on screen before the environment"});
+    p.declare({"outline-aa",
+               "Outline anti-aliasing",
+               Type::Bool,
+               0,
+               1,
+               1,
+               {},
+               "layers: the outlines of smooth glass share each pixel with what is behind"});
     p.declare({"debug",
                "Debug view",
                Type::Enum,

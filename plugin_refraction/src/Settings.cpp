@@ -49,6 +49,7 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.interfaces = int(p.number("interfaces"));
     s.marchSteps = int(p.number("march-steps"));
     s.nearby = p.flag("nearby");
+    s.outlineAntialiasing = p.flag("outline-aa");
     s.debug = int(p.number("debug"));
     return s;
 }

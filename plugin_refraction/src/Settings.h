@@ -39,6 +39,7 @@ struct Settings {
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     bool nearby = true;
+    bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
     int debug = 0; ///< index into the "debug" parameter's choices (glass_shading.glsl)
 
     /** Reads every parameter of the refraction plugin's set (which must declare them all). */

@@ -28,6 +28,7 @@ constexpr const char* kUsage =
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
                      [--geometry-passes one|two] [--dispersion-search shared|per-channel]
                      [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
+                     [--outline-aa on|off]
                      [--march-steps M]
                      [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
@@ -69,6 +70,7 @@ characters; T is the scene time); several MODELs are placed side by side.
                       most --interfaces N (default 8), each crossing found by --march-steps M
                       coarse samples (default 12) then --search-steps halvings; two-surface:
                       the papers' nearest front and one back surface
+  --outline-aa on|off layers: the outlines of smooth glass anti-aliased (default on)
   --geometry-passes G two-surface only: one (default): front and back surfaces gathered in one
                       geometry pass (MAX blending) and refracted in a full-screen pass; two: the
                       papers' back-face pass then front-face pass (also used where one cannot:
@@ -200,7 +202,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
                    arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug" ||
                    arg == "--surfaces" || arg == "--layer-capacity" || arg == "--interfaces" ||
-                   arg == "--march-steps") {
+                   arg == "--march-steps" || arg == "--outline-aa") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");

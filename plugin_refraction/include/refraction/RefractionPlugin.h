@@ -34,8 +34,9 @@ struct LayerStats {
  *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
  *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
  *  search-steps 1..16, surfaces layers|two-surface, layer-capacity 1..8, interfaces 1..32,
- *  march-steps 1..64, tir clamp|reflect, tir-bounces, back-surface farthest|first,
- *  geometry-passes one|two, dispersion-search shared|per-channel, nearby on|off, debug
+ *  march-steps 1..64, tir reflect|clamp, tir-bounces, back-surface farthest|first,
+ *  geometry-passes one|two, dispersion-search shared|per-channel, nearby on|off, outline-aa
+ *  on|off, debug
  *  none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction|layer-count|
  *  overflow. */
 class RefractionPlugin final : public plugin::Plugin {

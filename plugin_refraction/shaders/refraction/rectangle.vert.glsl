@@ -3,13 +3,18 @@
 #include "refraction/surfaces.glsl"
 
 uniform vec2 uViewportSize;
+uniform float uRectangleMargin; // pixels added around it (0 unless set)
 
 void main() {
     const vec2 corners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
     vec2 lo = vec2(glassRectangle[0], glassRectangle[1]);
     vec2 hi = vec2(glassRectangle[2], glassRectangle[3]) + 1.0;
-    if (any(greaterThan(lo, hi)))
+    if (any(greaterThan(lo, hi))) {
         hi = lo; // empty
+    } else {
+        lo = max(lo - uRectangleMargin, vec2(0.0));
+        hi = min(hi + uRectangleMargin, uViewportSize);
+    }
     vec2 pixel = mix(lo, hi, corners[gl_VertexID]);
     gl_Position = vec4(pixel / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
 }
