@@ -34,8 +34,8 @@ struct GpuState {
     // The single geometry pass.
     gl::Program surfaces, resolve, deferred, rectangleGrow;
     // The layered path (layers.glsl).
-    // For K = layerProgramsCapacity (compiled in).
-    gl::Program layersCapture, layersResolve, layersOutline;
+    gl::Program layersCapture, layersResolve; // for K = layerProgramsCapacity (compiled in)
+    gl::Program layersOutline;
     int layerProgramsCapacity = 0;
     /** Shading variants for that K by (method, dispersion search). */
     std::map<std::pair<int, int>, gl::Program> layerShadePrograms;

@@ -60,17 +60,6 @@ void setLayerUniforms(const FrameContext& c, const gl::Program& program) {
     gl::bindStorage(8, c.gpu->glassMaterials);
 }
 
-/** The layer depth maps (LAYER_DEPTH_MAPS in layers.glsl); an absent second map: the first
- *  stands in. */
-void bindLayerDepthMaps(const gl::Program& program, const fg::Resources& r,
-                        fg::TextureHandle depths0, fg::TextureHandle depths1) {
-    for (int map = 0; map < 2; ++map) {
-        const fg::TextureHandle depths = map == 1 && depths1.valid() ? depths1 : depths0;
-        gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
-        program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
-    }
-}
-
 } // namespace
 
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
@@ -86,13 +75,8 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
                                              "refraction/layers_resolve.frag.glsl", defines);
         if (!resolve)
             return resolve.error();
-        auto outline = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                             "refraction/layers_outline.frag.glsl", defines);
-        if (!outline)
-            return outline.error();
         gpu.layersCapture = std::move(*capture);
         gpu.layersResolve = std::move(*resolve);
-        gpu.layersOutline = std::move(*outline);
         gpu.layerProgramsCapacity = c.settings.layerCapacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
@@ -258,9 +242,10 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
         });
 
     struct ShadeData {
-        fg::TextureHandle sceneColor, sceneDepth, mask, depths0, depths1, out;
+        fg::TextureHandle sceneColor, sceneDepth, mask, depths0, depths1, out, surface;
         fg::BufferHandle layers, rectangle;
     };
+    const bool outlines = c.settings.outlineAntialiasing;
     const auto& shaded = graph.addPass<ShadeData>(
         "refraction.shade_layers",
         [&](fg::Builder& b, ShadeData& d) {
@@ -273,14 +258,23 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.sceneColor = b.read(sceneColor);
             d.sceneDepth = b.read(sceneDepth);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+            if (outlines) // the nearest layer per pixel, for the outline pass
+                d.surface = b.write(b.create("refraction.layers.surface",
+                                             {size, gl::Format::RGBA32F, 1}));
         },
-        [c](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
+        [c, outlines](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
-            if (auto bound = gpu.framebuffer.bindTargets(
-                    "refraction.shade_layers", {&r.texture(d.out)}, &r.texture(d.mask));
+            std::vector<const gl::Texture*> targets{&r.texture(d.out)};
+            if (outlines)
+                targets.push_back(&r.texture(d.surface));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.shade_layers", targets,
+                                                         &r.texture(d.mask));
                 !bound)
                 return bound;
+            if (outlines)
+                gl::clearColor(1, glm::vec4(0.0f, -1.0f, 0.0f, 0.0f)); // no glass
+
             const gl::Program& program = *c.layerShade;
             c.setWalkUniforms(program);
             program.set("uMarchSteps", c.settings.marchSteps);
@@ -290,29 +284,31 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
             program.set("uSceneColor", kSceneColorUnit);
             program.set("uSceneDepth", kSceneDepthUnit);
-            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
+            for (int map = 0; map < 2; ++map) { // an absent second map: the first stands in
+                const fg::TextureHandle depths = map == 1 && d.depths1.valid() ? d.depths1
+                                                                                : d.depths0;
+                gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
+                program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
+            }
             c.drawMaskedRectangle();
             return {};
         });
     buffers.rectangle = shaded.rectangle;
-    if (!c.settings.outlineAntialiasing)
+    if (!outlines)
         return shaded.out;
 
     // The outlines of smooth glass anti-aliased: over the glass rectangle and a pixel around
     // it (the pixels an outline only grazes lie outside the glass).
     struct OutlineData {
-        fg::TextureHandle shaded, depths0, depths1, out;
-        fg::BufferHandle layers, rectangle;
+        fg::TextureHandle shaded, surface, out;
+        fg::BufferHandle rectangle;
     };
     const auto& outlined = graph.addPass<OutlineData>(
         "refraction.layer_outlines",
         [&](fg::Builder& b, OutlineData& d) {
-            d.layers = b.read(buffers.layers);
             d.rectangle = b.read(buffers.rectangle);
             d.shaded = b.read(shaded.out);
-            d.depths0 = b.read(resolved.depths0);
-            if (resolved.depths1.valid())
-                d.depths1 = b.read(resolved.depths1);
+            d.surface = b.read(shaded.surface);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
         },
         [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
@@ -324,12 +320,12 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 return bound;
             const gl::Program& program = gpu.layersOutline;
             program.use();
-            setLayerUniforms(c, program);
-            program.set("uProjection", c.frame->camera.projection);
+            program.set("uViewportSize", glm::vec2(c.frame->settings.size));
             program.set("uRectangleMargin", 1.0f);
             gl::bindTexture(kSceneColorUnit, r.texture(d.shaded));
             program.set("uColor", kSceneColorUnit);
-            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
+            gl::bindTexture(kLayerDepthUnit, r.texture(d.surface));
+            program.set("uSurface", kLayerDepthUnit);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gl::bindStorage(4, gpu.rectangle);
             gpu.emptyVao.bind();

@@ -228,7 +228,9 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
           Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
           Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
           Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl",
-               "refraction/deferred.frag.glsl"}}) {
+               "refraction/deferred.frag.glsl"},
+          Spec{&mGpu->layersOutline, "refraction/rectangle.vert.glsl",
+               "refraction/layers_outline.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
         if (!program)
             return program.error();

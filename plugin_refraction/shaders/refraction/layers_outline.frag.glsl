@@ -6,52 +6,28 @@
 // pixels it places the outline to a fraction of a pixel, and the surface's share of each pixel
 // it crosses follows (a straight edge through a pixel box). The rest of the pixel takes the
 // colour of the neighbour across the outline. Creases (a pane's edge) are left as they are.
-#define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
-#include "refraction/view.glsl"
-#include "refraction/layers.glsl"
-
-uniform sampler2D uColor; // the shaded frame
+// What it reads of each pixel's nearest layer the shading pass wrote (outSurface).
+uniform sampler2D uColor;   // the shaded frame
+uniform sampler2D uSurface; // per pixel: nearest layer's depth, glass id (-1: none), and the
+                            // length of its normal's part across the line of sight
+uniform vec2 uViewportSize;
 out vec4 outColor;
 
 const float kSameSurface = 0.05; // neighbours on one surface: depths within 5%
+const float kNone = 3.0e38;
 
-// The nearest layer's depth (3e38: none) and slot, from the depth maps.
-float nearestDepth(ivec2 p, out int slot) {
-    float z = 3.0e38;
-    slot = -1;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(p, g);
-        for (int k = 0; k < 4; ++k)
-            if (d[k] < z) {
-                z = d[k];
-                slot = 4 * g + k;
-            }
-    }
-    return z;
-}
-
-// The view ray through the centre of pixel p.
-vec3 viewRay(ivec2 p) {
-    vec2 ndc = (vec2(p) + 0.5) / uViewportSize * 2.0 - 1.0;
-    vec2 slope = (ndc + vec2(uProjection[2][0], uProjection[2][1])) /
-                 vec2(uProjection[0][0], uProjection[1][1]);
-    return normalize(vec3(slope, -1.0));
-}
-
-// Pixel p's nearest layer: x its depth (3e38: none), y its glass id, z the length of its
-// normal's part across p's line of sight.
+// Pixel p's nearest layer (layers_shade.frag.glsl): x its depth (kNone: none), y its glass id,
+// z the part across.
 vec3 nearestSurface(ivec2 p) {
-    int slot;
-    float z = nearestDepth(p, slot);
-    if (slot < 0 || z >= 1.0e38)
-        return vec3(3.0e38, -1.0, 0.0);
-    uvec2 attr = layerAttrAt(p, slot);
-    float along = dot(layerNormal(attr), viewRay(p));
-    return vec3(z, float(layerGlass(attr)), sqrt(max(1.0 - along * along, 0.0)));
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return vec3(kNone, -1.0, 0.0);
+    vec3 s = texelFetch(uSurface, p, 0).xyz;
+    return s.y < 0.0 ? vec3(kNone, -1.0, 0.0) : s;
 }
 
 bool sameSurface(vec3 a, vec3 b) {
-    return a.x < 1.0e38 && b.x < 1.0e38 && a.y == b.y && abs(a.x - b.x) <= kSameSurface * min(a.x, b.x);
+    return a.x < kNone && b.x < kNone && a.y == b.y &&
+           abs(a.x - b.x) <= kSameSurface * min(a.x, b.x);
 }
 
 const ivec2 kSteps[4] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
@@ -85,15 +61,15 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 color = texelFetch(uColor, p, 0);
     outColor = color;
-    // Most pixels: the nearest depths of the four neighbours agree with the pixel's.
-    int slot;
-    float z = nearestDepth(p, slot);
+    vec3 s = nearestSurface(p), nb[4];
+    // Most pixels: the four neighbours' nearest depths agree with the pixel's.
     int nearer = -1; // the neighbour on the nearest surface in front of the pixel's
-    float nearest = z;
+    float nearest = s.x;
     bool outline = false;
     for (int i = 0; i < 4; ++i) {
-        float zq = nearestDepth(p + kSteps[i], slot);
-        bool apart = min(z, zq) < 1.0e38 && abs(zq - z) > kSameSurface * min(z, zq);
+        nb[i] = nearestSurface(p + kSteps[i]);
+        float z = s.x, zq = nb[i].x;
+        bool apart = min(z, zq) < kNone && abs(zq - z) > kSameSurface * min(z, zq);
         outline = outline || apart;
         if (apart && zq < nearest) {
             nearest = zq;
@@ -102,14 +78,11 @@ void main() {
     }
     if (!outline)
         return;
-    vec3 s = nearestSurface(p), nb[4];
-    for (int i = 0; i < 4; ++i)
-        nb[i] = nearestSurface(p + kSteps[i]);
     // On a surface whose outline crosses the pixel: the colour behind it is the neighbours'
     // across the outline (off the surface, behind it).
     vec2 toward;
     float distance;
-    if (s.x < 1.0e38 && outlineNear(s, nb, toward, distance)) {
+    if (s.x < kNone && outlineNear(s, nb, toward, distance)) {
         vec3 behind = vec3(0.0);
         float weight = 0.0;
         for (int i = 0; i < 4; ++i) {
