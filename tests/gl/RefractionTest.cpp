@@ -342,8 +342,6 @@ TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) 
     EXPECT_LE(percentile(relative, 0.5), 0.1);
 }
 
-/** Masked PSNR of each method against the Embree reference on the sphere at IOR 1.5. The
- *  margins are taken from measurement (README, accuracy table): SIR about 18 dB, ISR 30, DIR 43. */
 /** The Embree reference of the rig's scene (the rest pose, the rig's parameters) at kSize, and
  *  the mask of its glass pixels. */
 struct Reference {
@@ -375,6 +373,8 @@ double maskedPsnr(RefractionRig& rig, const Reference& reference) {
     return capture::score(image, reference.image, &reference.mask).psnr;
 }
 
+/** Masked PSNR of each method against the Embree reference on the sphere at IOR 1.5, 128x128:
+ *  SIR 18.5 dB, ISR 32.9, DIR 39.5 (5 steps) and 39.3 (8). */
 TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
     const scene::Model sphere = asset::makeSphere(128);
     RefractionRig rig(sphere, context());
@@ -390,7 +390,9 @@ TEST_F(Refraction, TwoInterfaceMethodsBeatSirAgainstTheReference) {
     };
     const double sir = psnr("sir", "5"), isr = psnr("isr", "5"), dir5 = psnr("dir", "5"),
                  dir8 = psnr("dir", "8");
-    EXPECT_GT(isr, sir + 5.0);
+    // ISR 32.9 dB: its estimated exit lies near the sphere's far side, not on it, and a TIR
+    // there would reflect inside (24.9 dB) light that a sphere never reflects totally.
+    EXPECT_GT(isr, sir + 12.0);
     EXPECT_GT(dir5, sir + 10.0);
     EXPECT_GE(dir8, dir5 - 0.5);
 }

@@ -30,8 +30,10 @@ const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
-// enough to tell the two apart, and a grazing exit is the limit refraction tends to there.
-const float kTirBand = radians(2.5);
+// enough to tell the two apart, and a grazing exit is the limit refraction tends to there. At
+// an exit ISR estimated (near the far side, not on it) the normal read may be tens of degrees
+// off: only incidences far past the critical angle reflect there.
+const float kTirBand = radians(2.5), kEstimatedTirBand = radians(20.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
@@ -436,7 +438,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         }
         w.tir = true;
         float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-        bool grazing = incidence < asin(n2 / n1) + kTirBand;
+        bool grazing = incidence < asin(n2 / n1) + (estimated ? kEstimatedTirBand : kTirBand);
         if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
             ++bounces;
             dir = reflect(dir, facing);
