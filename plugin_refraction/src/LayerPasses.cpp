@@ -30,7 +30,7 @@ gl::TextureDesc colorDesc(glm::ivec2 size) {
 
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t depthSlots(int capacity) {
-    return std::size_t((capacity + 3) / 4 * 4);
+    return (std::size_t(capacity) + 3) / 4 * 4;
 }
 
 /** The layer arrays for `size` and capacity K, reallocated only when either changes. */
