@@ -95,9 +95,9 @@ void assignGlassIds(FrameContext& c);
  *  the glass pixels; returns the new scene colour. */
 fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,
                                  const FrameContext& c, FrameBuffers& buffers);
-/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers and the
- *  depth maps the walk reads. */
-std::size_t layerBytesPerPixel(int capacity);
+/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers, the
+ *  depth maps the walk reads and, with `outlines`, the outline pass's map. */
+std::size_t layerBytesPerPixel(int capacity, bool outlines);
 
 /** The shading, composited over the scene colour: returns the new scene colour. */
 fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,

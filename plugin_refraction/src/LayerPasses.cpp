@@ -20,8 +20,9 @@ namespace {
 /** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
 constexpr std::size_t kMaxGlassIds = 255;
 // Texture units: 0-1 the environment, 2-3 the scene colour and depth, 4-5 the layer depth maps,
-// 8-13 the material's.
-constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kMaterialUnit = 8;
+// 6 the outline pass's nearest layers, 8-13 the material's.
+constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6,
+              kMaterialUnit = 8;
 constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth
 
 gl::TextureDesc colorDesc(glm::ivec2 size) {
@@ -58,6 +59,17 @@ void setLayerUniforms(const FrameContext& c, const gl::Program& program) {
     gl::bindStorage(6, layers.depths);
     gl::bindStorage(7, layers.attrs);
     gl::bindStorage(8, c.gpu->glassMaterials);
+}
+
+/** The layer depth maps as uLayerDepths0/1 (layers.glsl); an absent second map: the first
+ *  stands in. */
+void bindLayerDepthMaps(const gl::Program& program, const fg::Resources& r,
+                        fg::TextureHandle depths0, fg::TextureHandle depths1) {
+    for (int map = 0; map < 2; ++map) {
+        const fg::TextureHandle depths = map == 1 && depths1.valid() ? depths1 : depths0;
+        gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
+        program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
+    }
 }
 
 } // namespace
@@ -105,10 +117,12 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
     return &gpu.layerShadePrograms.at(key);
 }
 
-std::size_t layerBytesPerPixel(int capacity) {
-    // The arrays (head, depth slots, attributes), then the depth maps the resolve pass writes.
+std::size_t layerBytesPerPixel(int capacity, bool outlines) {
+    // The arrays (head, depth slots, attributes), the depth maps the resolve pass writes, and
+    // the nearest layers' map the outline pass reads.
     return 3 * sizeof(std::uint32_t) + depthSlots(capacity) * sizeof(float) +
-           std::size_t(capacity) * 2 * sizeof(std::uint32_t) + depthSlots(capacity) * sizeof(float);
+           std::size_t(capacity) * 2 * sizeof(std::uint32_t) +
+           depthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
 }
 
 void assignGlassIds(FrameContext& c) {
@@ -260,7 +274,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
             if (outlines) // the nearest layer per pixel, for the outline pass
                 d.surface = b.write(b.create("refraction.layers.surface",
-                                             {size, gl::Format::RGBA32F, 1}));
+                                             {size, gl::Format::R32F, 1}));
         },
         [c, outlines](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
@@ -273,8 +287,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 !bound)
                 return bound;
             if (outlines)
-                gl::clearColor(1, glm::vec4(0.0f, -1.0f, 0.0f, 0.0f)); // no glass
-
+                gl::clearColor(1, glm::vec4(-1.0f)); // no glass
             const gl::Program& program = *c.layerShade;
             c.setWalkUniforms(program);
             program.set("uMarchSteps", c.settings.marchSteps);
@@ -284,12 +297,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
             program.set("uSceneColor", kSceneColorUnit);
             program.set("uSceneDepth", kSceneDepthUnit);
-            for (int map = 0; map < 2; ++map) { // an absent second map: the first stands in
-                const fg::TextureHandle depths = map == 1 && d.depths1.valid() ? d.depths1
-                                                                                : d.depths0;
-                gl::bindTexture(std::uint32_t(kLayerDepthUnit + map), r.texture(depths));
-                program.set(map == 0 ? "uLayerDepths0" : "uLayerDepths1", kLayerDepthUnit + map);
-            }
+            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
             c.drawMaskedRectangle();
             return {};
         });
@@ -300,7 +308,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     // The outlines of smooth glass anti-aliased: over the glass rectangle and a pixel around
     // it (the pixels an outline only grazes lie outside the glass).
     struct OutlineData {
-        fg::TextureHandle shaded, surface, out;
+        fg::TextureHandle shaded, surface, depths0, depths1, out;
         fg::BufferHandle rectangle;
     };
     const auto& outlined = graph.addPass<OutlineData>(
@@ -309,6 +317,9 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.rectangle = b.read(buffers.rectangle);
             d.shaded = b.read(shaded.out);
             d.surface = b.read(shaded.surface);
+            d.depths0 = b.read(resolved.depths0);
+            if (resolved.depths1.valid())
+                d.depths1 = b.read(resolved.depths1);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
         },
         [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
@@ -324,8 +335,9 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             program.set("uRectangleMargin", 1.0f);
             gl::bindTexture(kSceneColorUnit, r.texture(d.shaded));
             program.set("uColor", kSceneColorUnit);
-            gl::bindTexture(kLayerDepthUnit, r.texture(d.surface));
-            program.set("uSurface", kLayerDepthUnit);
+            gl::bindTexture(kSurfaceUnit, r.texture(d.surface));
+            program.set("uSurface", kSurfaceUnit);
+            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gl::bindStorage(4, gpu.rectangle);
             gpu.emptyVao.bind();

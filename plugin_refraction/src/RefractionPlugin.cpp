@@ -332,7 +332,7 @@ LayerStats RefractionPlugin::layerStats() const {
         return stats;
     const GpuState::LayerStorage& layers = mGpu->layers;
     stats.capacity = layers.capacity;
-    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity);
+    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, mParameters.flag("outline-aa"));
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
     const auto counter = mGpu->rectangle.download(10 * sizeof(std::uint32_t), sizeof(std::uint32_t));
     std::memcpy(&stats.overflowPixels, counter.data(), sizeof(std::uint32_t));

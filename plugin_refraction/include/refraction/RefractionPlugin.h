@@ -25,7 +25,7 @@ struct Settings;
  *  overflowed it. */
 struct LayerStats {
     int capacity = 0;               ///< K
-    std::size_t bytesPerPixel = 0;  ///< the per-pixel arrays at K
+    std::size_t bytesPerPixel = 0;  ///< the per-pixel arrays and maps at K
     std::size_t bytes = 0;          ///< all of them at the frame's size
     std::uint32_t overflowPixels = 0; ///< glass pixels with more than K layers (last frame)
 };

@@ -6,10 +6,12 @@
 // pixels it places the outline to a fraction of a pixel, and the surface's share of each pixel
 // it crosses follows (a straight edge through a pixel box). The rest of the pixel takes the
 // colour of the neighbour across the outline. Creases (a pane's edge) are left as they are.
-// What it reads of each pixel's nearest layer the shading pass wrote (outSurface).
+// The nearest layer's depth is the least in the depth maps (layers_resolve.frag.glsl); its glass
+// and normal the shading pass wrote (outSurface).
 uniform sampler2D uColor;   // the shaded frame
-uniform sampler2D uSurface; // per pixel: nearest layer's depth, glass id (-1: none), and the
-                            // length of its normal's part across the line of sight
+uniform sampler2D uSurface; // per pixel: glass id + half the length of the nearest layer's
+                            // normal's part across the line of sight; -1: no glass
+uniform sampler2D uLayerDepths0, uLayerDepths1; // the second: the first again for K <= 4
 uniform vec2 uViewportSize;
 out vec4 outColor;
 
@@ -21,8 +23,11 @@ const float kNone = 3.0e38;
 vec3 nearestSurface(ivec2 p) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
         return vec3(kNone, -1.0, 0.0);
-    vec3 s = texelFetch(uSurface, p, 0).xyz;
-    return s.y < 0.0 ? vec3(kNone, -1.0, 0.0) : s;
+    float s = texelFetch(uSurface, p, 0).x;
+    if (s < 0.0)
+        return vec3(kNone, -1.0, 0.0);
+    vec4 d = min(abs(texelFetch(uLayerDepths0, p, 0)), abs(texelFetch(uLayerDepths1, p, 0)));
+    return vec3(min(min(d.x, d.y), min(d.z, d.w)), floor(s), 2.0 * fract(s));
 }
 
 bool sameSurface(vec3 a, vec3 b) {

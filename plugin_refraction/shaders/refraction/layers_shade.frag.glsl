@@ -55,9 +55,9 @@ uniform vec3 uViewOriginWorld;
 // otherwise move the test after it, for every pixel of the rectangle).
 layout(early_fragment_tests) in;
 out vec4 outColor;
-// The nearest layer for the outline pass (layers_outline.frag.glsl): its depth, glass id and
-// the length of its normal's part across the line of sight.
-layout(location = 1) out vec4 outSurface;
+// The nearest layer for the outline pass (layers_outline.frag.glsl): its glass id plus half the
+// length of its normal's part across the line of sight (its depth is in the depth maps).
+layout(location = 1) out float outSurface;
 
 float orderedToFloat(int i) {
     return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
@@ -547,7 +547,7 @@ void main() {
     if (dot(N1, V) > 0.0)
         N1 = -N1;
     float along = dot(N1, V);
-    outSurface = vec4(z, float(layerGlass(entryAttr)), sqrt(max(1.0 - along * along, 0.0)), 1.0);
+    outSurface = float(layerGlass(entryAttr)) + 0.5 * sqrt(max(1.0 - along * along, 0.0));
     Walk walk;
     vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 
