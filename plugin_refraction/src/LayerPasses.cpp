@@ -274,7 +274,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
             if (outlines) // the nearest layer per pixel, for the outline pass
                 d.surface = b.write(b.create("refraction.layers.surface",
-                                             {size, gl::Format::R32F, 1}));
+                                             {size, gl::Format::R32UI, 1}));
         },
         [c, outlines](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
@@ -287,7 +287,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
                 !bound)
                 return bound;
             if (outlines)
-                gl::clearColor(1, glm::vec4(-1.0f)); // no glass
+                gl::clearColorUint(1, 0u); // no glass
             const gl::Program& program = *c.layerShade;
             c.setWalkUniforms(program);
             program.set("uMarchSteps", c.settings.marchSteps);
@@ -308,7 +308,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     // The outlines of smooth glass anti-aliased: over the glass rectangle and a pixel around
     // it (the pixels an outline only grazes lie outside the glass).
     struct OutlineData {
-        fg::TextureHandle shaded, surface, depths0, depths1, out;
+        fg::TextureHandle shaded, surface, out;
         fg::BufferHandle rectangle;
     };
     const auto& outlined = graph.addPass<OutlineData>(
@@ -317,9 +317,6 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.rectangle = b.read(buffers.rectangle);
             d.shaded = b.read(shaded.out);
             d.surface = b.read(shaded.surface);
-            d.depths0 = b.read(resolved.depths0);
-            if (resolved.depths1.valid())
-                d.depths1 = b.read(resolved.depths1);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
         },
         [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
@@ -337,7 +334,6 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             program.set("uColor", kSceneColorUnit);
             gl::bindTexture(kSurfaceUnit, r.texture(d.surface));
             program.set("uSurface", kSurfaceUnit);
-            bindLayerDepthMaps(program, r, d.depths0, d.depths1);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gl::bindStorage(4, gpu.rectangle);
             gpu.emptyVao.bind();

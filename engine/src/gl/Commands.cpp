@@ -41,6 +41,12 @@ void clearColor(int index, const glm::vec4& color) {
     glClearBufferfv(GL_COLOR, index, &color.x);
 }
 
+void clearColorUint(int index, std::uint32_t value) {
+    glColorMaski(GLuint(index), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const GLuint values[4] = {value, value, value, value};
+    glClearBufferuiv(GL_COLOR, index, values);
+}
+
 void clearDepth(float depth) {
     glDepthMask(GL_TRUE);
     glClearBufferfv(GL_DEPTH, 0, &depth);

@@ -6,12 +6,9 @@
 // pixels it places the outline to a fraction of a pixel, and the surface's share of each pixel
 // it crosses follows (a straight edge through a pixel box). The rest of the pixel takes the
 // colour of the neighbour across the outline. Creases (a pane's edge) are left as they are.
-// The nearest layer's depth is the least in the depth maps (layers_resolve.frag.glsl); its glass
-// and normal the shading pass wrote (outSurface).
-uniform sampler2D uColor;   // the shaded frame
-uniform sampler2D uSurface; // per pixel: glass id + half the length of the nearest layer's
-                            // normal's part across the line of sight; -1: no glass
-uniform sampler2D uLayerDepths0, uLayerDepths1; // the second: the first again for K <= 4
+// What it reads of each pixel's nearest layer the shading pass wrote (outSurface).
+uniform sampler2D uColor;    // the shaded frame
+uniform usampler2D uSurface; // per pixel, packed: the nearest layer's depth, glass, part across
 uniform vec2 uViewportSize;
 out vec4 outColor;
 
@@ -23,11 +20,11 @@ const float kNone = 3.0e38;
 vec3 nearestSurface(ivec2 p) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
         return vec3(kNone, -1.0, 0.0);
-    float s = texelFetch(uSurface, p, 0).x;
-    if (s < 0.0)
+    uint s = texelFetch(uSurface, p, 0).x;
+    if (s == 0u)
         return vec3(kNone, -1.0, 0.0);
-    vec4 d = min(abs(texelFetch(uLayerDepths0, p, 0)), abs(texelFetch(uLayerDepths1, p, 0)));
-    return vec3(min(min(d.x, d.y), min(d.z, d.w)), floor(s), 2.0 * fract(s));
+    float along = float(s >> 24) / 255.0;
+    return vec3(unpackHalf2x16(s & 0xFFFFu).x, float((s >> 16) & 255u), sqrt(1.0 - along * along));
 }
 
 bool sameSurface(vec3 a, vec3 b) {

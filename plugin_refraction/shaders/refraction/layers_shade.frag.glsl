@@ -55,9 +55,10 @@ uniform vec3 uViewOriginWorld;
 // otherwise move the test after it, for every pixel of the rectangle).
 layout(early_fragment_tests) in;
 out vec4 outColor;
-// The nearest layer for the outline pass (layers_outline.frag.glsl): its glass id plus half the
-// length of its normal's part across the line of sight (its depth is in the depth maps).
-layout(location = 1) out float outSurface;
+// The nearest layer for the outline pass (layers_outline.frag.glsl), packed: its depth (half
+// float, bits 0-15), glass id (16-23) and its normal's part along the line of sight (24-31,
+// unorm of the absolute value: finest near an outline, where it goes to 0); 0: no glass.
+layout(location = 1) out uint outSurface;
 
 float orderedToFloat(int i) {
     return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
@@ -547,7 +548,8 @@ void main() {
     if (dot(N1, V) > 0.0)
         N1 = -N1;
     float along = dot(N1, V);
-    outSurface = float(layerGlass(entryAttr)) + 0.5 * sqrt(max(1.0 - along * along, 0.0));
+    outSurface = (packHalf2x16(vec2(z, 0.0)) & 0xFFFFu) | (layerGlass(entryAttr) << 16) |
+                 (uint(round(abs(along) * 255.0)) << 24);
     Walk walk;
     vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 

@@ -29,6 +29,8 @@ void apply(const PipelineState& state);
 
 /** Clears the bound framebuffer's colour attachment `index` to `color`. */
 void clearColor(int index, const glm::vec4& color);
+/** Clears colour attachment `index` of an unsigned-integer format to `value`. */
+void clearColorUint(int index, std::uint32_t value);
 void clearDepth(float depth);
 
 /** A vertex array with only an index buffer: vertex shaders pull attributes from SSBOs. */
