@@ -129,9 +129,10 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     // yet with the pixel's own normal at the entry (or one filtered over the front layers only,
     // which end at the outline) the error of a few degrees made the exit reflect totally: a
     // band of the near sphere far off the reference. The entry's normal is filtered as the
-    // exit's, across front and back layers, and a TIR within 2.5 degrees of the critical angle
-    // leaves grazing. 35.2 dB here; 30.9 with the front layers only, 30.6 with the pixel's own
-    // normal at entries, 32.9 without the band.
+    // exit's, across front and back layers, texels past the outline counting with the normal
+    // square to the line of sight there, and a TIR within 2.5 degrees of the critical angle
+    // leaves grazing. 37.4 dB here; 31.6 with the front layers only, 31.0 with the pixel's own
+    // normal at entries, 36.0 without the band, 35.2 without the texels past the outline.
     WorldRig rig(loadScene("glass_spheres.json"), context(), 256);
     rig.useSceneCamera();
     rig.set("method", "dir");
@@ -141,7 +142,7 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     const double psnr = capture::score(rig.render(), reference.image, &reference.mask).psnr;
     std::printf("two overlapping glass spheres, 256x256, DIR 8, TIR reflect: masked PSNR %.2f dB\n",
                 psnr);
-    EXPECT_GE(psnr, 34.0);
+    EXPECT_GE(psnr, 36.5);
 }
 
 TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {

@@ -159,7 +159,9 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
 // The normal at a crossing, filtered like a texture lookup (DIR reads its normal map with
 // bilinear filtering): the four texels around the point, each by its layer of the same glass
 // nearest the point's depth (within 2%), front or back (near an outline, where crossings graze,
-// they meet), weighted bilinearly.
+// they meet), weighted bilinearly. Near an outline (the normal within about 30 degrees of
+// square to the line of sight) texels without the surface lie past it, where its normal is
+// square to the line of sight: they count with that normal, continuing the others' direction.
 vec3 filteredNormal(vec3 X, uvec2 attr) {
     vec2 texel = projectToUv(X) * uViewportSize - 0.5;
     ivec2 base = ivec2(floor(texel));
@@ -167,6 +169,7 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
     float z = -X.z;
     uint glass = layerGlass(attr);
     vec3 sum = vec3(0.0);
+    float missing = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
         int best = -1;
@@ -182,15 +185,26 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
                     best = 4 * g + j;
                 }
         }
-        if (best < 0)
-            continue;
-        uvec2 a = layerAttrOf(q, best, overflow);
-        if (layerGlass(a) != glass)
-            continue;
         vec2 w = mix(1.0 - f, f, vec2(offset));
+        if (best < 0) {
+            missing += w.x * w.y;
+            continue;
+        }
+        uvec2 a = layerAttrOf(q, best, overflow);
+        if (layerGlass(a) != glass) {
+            missing += w.x * w.y;
+            continue;
+        }
         sum += w.x * w.y * layerNormal(a);
     }
-    return length(sum) > 1e-6 ? normalize(sum) : layerNormal(attr);
+    if (length(sum) <= 1e-6)
+        return layerNormal(attr);
+    vec3 n = normalize(sum);
+    vec3 V = normalize(X);
+    vec3 across = n - dot(n, V) * V;
+    if (missing > 0.0 && length(across) > 0.85)
+        n = normalize(sum + missing * normalize(across));
+    return n;
 }
 
 // The next interface along P + t dir after a crossing, the ray in a segment of layer parity
