@@ -198,6 +198,10 @@ void FrameContext::growGlassRectangle() const {
 void FrameContext::drawMaskedRectangle() const {
     // The rectangle lies at depth 1: it passes only where the mask holds less.
     gl::apply({.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Greater});
+    drawRectangle();
+}
+
+void FrameContext::drawRectangle() const {
     gl::bindStorage(4, gpu->rectangle);
     gpu->emptyVao.bind();
     gl::drawArrays(6);

@@ -43,6 +43,8 @@ struct FrameContext {
     /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
      *  mask: the early depth test runs the program only on glass pixels. */
     void drawMaskedRectangle() const;
+    /** The glass rectangle with the state as it is (no mask test unless set). */
+    void drawRectangle() const;
     /** What every shading pass sets alike: method, search, TIR policy, Fresnel, debug view,
      *  camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;

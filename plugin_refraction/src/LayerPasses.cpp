@@ -335,9 +335,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gl::bindTexture(kSurfaceUnit, r.texture(d.surface));
             program.set("uSurface", kSurfaceUnit);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            gl::bindStorage(4, gpu.rectangle);
-            gpu.emptyVao.bind();
-            gl::drawArrays(6);
+            c.drawRectangle();
             return {};
         });
     return outlined.out;
