@@ -131,8 +131,10 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     // band of the near sphere far off the reference. The entry's normal is filtered as the
     // exit's, across front and back layers, texels past the outline counting with the normal
     // square to the line of sight there, and a TIR within 2.5 degrees of the critical angle
-    // leaves grazing. 37.4 dB here; 31.6 with the front layers only, 31.0 with the pixel's own
-    // normal at entries, 36.0 without the band, 35.2 without the texels past the outline.
+    // leaves grazing (4 degrees in a segment that entered near an outline, where the normal is
+    // good to no better). 37.8 dB here; 37.4 with 2.5 degrees throughout, 31.6 with the front
+    // layers only, 31.0 with the pixel's own normal at entries, 36.0 without the band, 35.2
+    // without the texels past the outline.
     WorldRig rig(loadScene("glass_spheres.json"), context(), 256);
     rig.useSceneCamera();
     rig.set("method", "dir");
@@ -142,7 +144,7 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     const double psnr = capture::score(rig.render(), reference.image, &reference.mask).psnr;
     std::printf("two overlapping glass spheres, 256x256, DIR 8, TIR reflect: masked PSNR %.2f dB\n",
                 psnr);
-    EXPECT_GE(psnr, 36.5);
+    EXPECT_GE(psnr, 37.6);
 }
 
 TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {

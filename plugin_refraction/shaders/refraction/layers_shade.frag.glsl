@@ -32,8 +32,11 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
 // enough to tell the two apart, and a grazing exit is the limit refraction tends to there. At
 // an exit ISR estimated (near the far side, not on it) the normal read may be tens of degrees
-// off: only incidences far past the critical angle reflect there.
-const float kTirBand = radians(2.5), kEstimatedTirBand = radians(20.0);
+// off: only incidences far past the critical angle reflect there. Near an outline the filtered
+// normal is good to 2-4 degrees (filteredNormal), and a segment that began there carries that
+// error to its far end: crossings at or after such a normal have the wider band.
+const float kTirBand = radians(2.5), kOutlineTirBand = radians(4.0),
+            kEstimatedTirBand = radians(20.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
@@ -161,8 +164,9 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
 // nearest the point's depth (within 2%), front or back (near an outline, where crossings graze,
 // they meet), weighted bilinearly. Near an outline (the normal within about 30 degrees of
 // square to the line of sight) texels without the surface lie past it, where its normal is
-// square to the line of sight: they count with that normal, continuing the others' direction.
-vec3 filteredNormal(vec3 X, uvec2 attr) {
+// square to the line of sight: they count with that normal, continuing the others' direction
+// (`outline`: the normal was continued so, good to 2-4 degrees on a sphere).
+vec3 filteredNormal(vec3 X, uvec2 attr, out bool outline) {
     vec2 texel = projectToUv(X) * uViewportSize - 0.5;
     ivec2 base = ivec2(floor(texel));
     vec2 f = texel - vec2(base);
@@ -170,6 +174,7 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
     uint glass = layerGlass(attr);
     vec3 sum = vec3(0.0);
     float missing = 0.0;
+    outline = false;
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
         int best = -1;
@@ -202,7 +207,8 @@ vec3 filteredNormal(vec3 X, uvec2 attr) {
     vec3 n = normalize(sum);
     vec3 V = normalize(X);
     vec3 across = n - dot(n, V) * V;
-    if (missing > 0.0 && length(across) > 0.85)
+    outline = missing > 0.0 && length(across) > 0.85;
+    if (outline)
         n = normalize(sum + missing * normalize(across));
     return n;
 }
@@ -386,6 +392,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     // lane walks on: the environment's reflection in the interfaces into glass is looked up
     // once after it, in their mean direction (exact for one such interface).
     int passes = 0;
+    bool segmentFromOutline = false; // the segment began at a normal filtered near an outline
     while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
         uint inside = topMedium(media);
         Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
@@ -427,8 +434,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         }
         GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
         float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
+        bool outline = false;
         if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
-            N = filteredNormal(c.beyond, c.attr);
+            N = filteredNormal(c.beyond, c.attr, outline);
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
         if (refractRay(dir, facing, n1 / n2, T)) {
@@ -446,6 +454,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             w.lastFrom = inside;
             w.lastTo = to;
             dir = T;
+            segmentFromOutline = outline;
             ior = n2;
             sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
             P = c.beyond; // the refracted ray starts on the far side of the interface
@@ -453,7 +462,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         }
         w.tir = true;
         float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-        bool grazing = incidence < asin(n2 / n1) + (estimated ? kEstimatedTirBand : kTirBand);
+        float band = estimated ? kEstimatedTirBand
+                               : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
+        bool grazing = incidence < asin(n2 / n1) + band;
         if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
             ++bounces;
             dir = reflect(dir, facing);
