@@ -26,6 +26,12 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
         vec4 C0 = uProjection * vec4(P, 1.0);
         vec4 Cd = uProjection * vec4(dir, 0.0);
         float previous = 0.0;
+        // A surface is met where the ray goes from in front of the depth map to behind it, not
+        // where a ray that starts behind a surface (leaving glass behind a small opaque part)
+        // stays behind it, nor where it passes behind one from the side (below).
+        vec2 uv0 = clamp(C0.xy / C0.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
+        bool inFront =
+            C0.z / C0.w * 0.5 + 0.5 <= texelFetch(uSceneDepth, ivec2(uv0 * uViewportSize), 0).r;
         for (int i = 1; i <= 24; ++i) {
             float t = uNearbyDistance * float(i * i) / 576.0;
             vec4 C = C0 + t * Cd;
@@ -36,7 +42,8 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
                 break;
             vec2 uv = ndc.xy * 0.5 + 0.5;
             float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
-            if (d < 1.0 && ndc.z * 0.5 + 0.5 > d && C.w - linearDepth(d) < 0.125 * uNearbyDistance) {
+            bool behind = d < 1.0 && ndc.z * 0.5 + 0.5 > d;
+            if (behind && inFront && C.w - linearDepth(d) < 0.125 * uNearbyDistance) {
                 // Refine the crossing between the last step in front and this one (binary search),
                 // so the lookup does not band with the step size.
                 float lo = previous, hi = t;
@@ -50,12 +57,26 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
                     else
                         lo = mid;
                 }
-                hitT = hi;
-                vec4 H = C0 + hi * Cd;
+                vec4 H = C0 + hi * Cd, L = C0 + lo * Cd;
                 vec2 hitUv = clamp(H.xy / H.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                return texelFetch(uSceneColor, ivec2(hitUv * uViewportSize), 0).rgb;
+                ivec2 hit = ivec2(hitUv * uViewportSize);
+                // A crossing of the surface found: the last point in front of the depth map was
+                // in front of that surface too, within the refined step and the change of the
+                // depth map between the two points' pixels (a surface seen at a grazing angle).
+                // A ray that came from the side behind a small opaque part, from pixels of the
+                // environment, was behind it already: it goes on.
+                vec2 frontUv = clamp(L.xy / L.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
+                float front = texelFetch(uSceneDepth, ivec2(frontUv * uViewportSize), 0).r;
+                float surface = linearDepth(texelFetch(uSceneDepth, hit, 0).r);
+                float slack = abs(H.w - L.w) + 0.01 * H.w +
+                              (front < 1.0 ? abs(linearDepth(front) - surface) : 0.0);
+                if (L.w <= surface + slack) {
+                    hitT = hi;
+                    return texelFetch(uSceneColor, hit, 0).rgb;
+                }
             }
             previous = t;
+            inFront = !behind;
         }
     }
     return environmentRadiance(uViewToWorld * dir, roughness);
