@@ -147,9 +147,32 @@ glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
     return sum;
 }
 
+/** A material's normal texture as the reference reads it (texture coordinates 0). */
+struct NormalMap {
+    const scene::Image* image = nullptr;
+    glm::dmat3 uvTransform{1.0}; // KHR_texture_transform
+    double scale = 1.0;
+};
+
+/** The normal map's normal at uv around the interpolated normal N and tangent (xyz, w the
+ *  handedness), as common/normal_map.glsl perturbs it on the GPU. */
+dvec3 perturbNormal(const NormalMap& map, dvec3 N, glm::dvec4 tangent, dvec2 uv) {
+    const dvec3 T = glm::normalize(dvec3(tangent) - N * glm::dot(N, dvec3(tangent)));
+    const dvec3 B = glm::cross(N, T) * tangent.w;
+    dvec3 n =
+        dvec3(sampleImage(*map.image, dvec2(map.uvTransform * glm::dvec3(uv, 1.0)), false)) * 2.0 -
+        1.0;
+    n.x *= map.scale;
+    n.y *= map.scale;
+    const dvec3 mapped = T * n.x + B * n.y + N * n.z;
+    return glm::length(mapped) > 1e-12 ? glm::normalize(mapped) : N;
+}
+
 struct Surface {
     std::vector<dvec3> positions, normals; // world
+    std::vector<glm::dvec4> tangents;      // world, where a normal map needs them
     std::vector<dvec2> uv;
+    NormalMap normalMap; // image null: none
     std::vector<std::uint32_t> indices;
     bool glass = true;
     int solid = 0;                             // the character: one closed solid (media rule)
@@ -215,7 +238,8 @@ public:
         for (std::size_t i = mCount; i-- > 0;)
             if (mEntries[i]->solid == solid) {
                 std::copy(mEntries.begin() + std::ptrdiff_t(i) + 1,
-                          mEntries.begin() + std::ptrdiff_t(mCount), mEntries.begin() + std::ptrdiff_t(i));
+                          mEntries.begin() + std::ptrdiff_t(mCount),
+                          mEntries.begin() + std::ptrdiff_t(i));
                 --mCount;
                 return;
             }
@@ -292,6 +316,10 @@ public:
                                            s.positions[tri[2]] - s.positions[tri[0]]);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
+            if (s.normalMap.image) // every surface the GPU maps, glass (both sides) or opaque
+                h.shadingNormal = perturbNormal(
+                    s.normalMap, h.shadingNormal,
+                    w * s.tangents[tri[0]] + u * s.tangents[tri[1]] + v * s.tangents[tri[2]], h.uv);
         }
         if (mGround && std::abs(dir.y) > 1e-12) {
             const double t = (double(mGround->height) - origin.y) / dir.y;
@@ -402,12 +430,11 @@ public:
             if (refracts && f > 0.0 && splits > 0) {
                 // Both branches, weighted (the first few times: far less noise than choosing).
                 Media entered = after;
-                const double reflected =
-                    follow(origin, glm::reflect(dir, n), c, media, weight * f, splits - 1, rng,
-                           trapped);
-                return reflected + follow(origin, t, c, entered, weight * (1.0 - f) *
-                                                                     to->optics.baseColor[c],
-                                          splits - 1, rng, trapped);
+                const double reflected = follow(origin, glm::reflect(dir, n), c, media, weight * f,
+                                                splits - 1, rng, trapped);
+                return reflected + follow(origin, t, c, entered,
+                                          weight * (1.0 - f) * to->optics.baseColor[c], splits - 1,
+                                          rng, trapped);
             }
             if (!refracts || (f > 0.0 && random01(rng) < f)) {
                 dir = glm::reflect(dir, n);
@@ -499,6 +526,16 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                     s.uv.emplace_back(uv);
                 const int material = primitive.material;
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+                const scene::TextureRef normals =
+                    s.material ? s.material->normalTexture : scene::TextureRef{};
+                const int normalImage =
+                    normals.present() ? model.textures[std::size_t(normals.texture)].image : -1;
+                if (normalImage >= 0 && normals.texCoord == 0 && !s.uv.empty() &&
+                    !placed.tangents.empty()) {
+                    s.normalMap = {&model.images[std::size_t(normalImage)],
+                                   glm::dmat3(normals.transform), double(normals.scale)};
+                    s.tangents = placed.tangents;
+                }
                 s.model = &model;
                 s.glass = decoded.isGlass(model, primitive, character.glass);
                 s.solid = int(solid);

@@ -1,6 +1,7 @@
 // The ground truth every method is scored against: Embree traces the same deformed triangles
-// (CPU reference deformation), the same interpolated shading normals, the same camera and the
-// same environment lookup as the GPU, with real refraction and total internal reflection.
+// (CPU reference deformation), the same interpolated shading normals and normal maps, the same
+// camera and the same environment lookup as the GPU, with real refraction and total internal
+// reflection.
 #pragma once
 
 #include "engine/anim/Pose.h"
@@ -83,7 +84,8 @@ struct ReferenceImage {
  *  leaving glass for air refracts unless totally reflected. Opaque primitives and the
  *  ground plane are traced and shaded like the GPU's opaque pass (metallic-roughness with the
  *  split-sum environment lighting; base colour, metallic-roughness and emissive textures at
- *  level 0; no normal or occlusion maps), so exit rays meet the real nearby scene. */
+ *  level 0; no occlusion maps), so exit rays meet the real nearby scene. Normal maps (level 0)
+ *  perturb the normals of glass and opaque surfaces alike, as on the GPU. */
 core::Result<ReferenceImage>
 traceReference(const scene::World& world, double time, const render::Camera& camera,
                const EnvironmentSampler& environment, const render::RenderSettings& settings,
