@@ -168,11 +168,21 @@ TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {
     EXPECT_GT(antialiased, aliased + 0.8);
 }
 
-/** The default figure (its eyes opaque) playing its walk. */
-scene::World figureWorld() {
-    auto loaded =
-        asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure.glb");
+/** A model of assets/models playing its first clip; without its normal maps where
+ *  `normalMaps` is false (the parts figure has one, on its hammered head: checked). */
+scene::World generatedWorld(const std::string& file, bool normalMaps = true) {
+    auto loaded = asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/" + file);
     EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+    if (!loaded)
+        return {};
+    std::size_t mapped = 0;
+    for (scene::Material& m : loaded->materials)
+        if (m.normalTexture.present()) {
+            if (!normalMaps)
+                m.normalTexture = {};
+            ++mapped;
+        }
+    EXPECT_EQ(mapped, file == "glass_figure_parts.glb" ? 1u : 0u);
     scene::World world =
         scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
     world.characters[0].clip = 0;
@@ -186,7 +196,7 @@ TEST_F(Layers, RaysLeavingGlassBehindAnOpaquePartDoNotSeeIt) {
     // point in front within the refined step of it), not wherever it is behind and within a
     // thickness: there a ring of eye images filled the lower face. 28.0 dB here; 23.7 with the
     // old test, 23.3 with only the start of the ray checked.
-    WorldRig rig(figureWorld(), context(), 256);
+    WorldRig rig(generatedWorld("glass_figure.glb"), context(), 256);
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     const auto reference = rig.reference(0.3);
@@ -214,32 +224,11 @@ TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
     EXPECT_TRUE(has(twoSurface, "refraction.front_faces"));
 }
 
-/** The parts figure playing its walk, with its hammered head's normal map or without it. */
-scene::World partsFigureWorld(bool normalMap) {
-    auto loaded =
-        asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure_parts.glb");
-    EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-    if (!loaded)
-        return {};
-    std::size_t mapped = 0;
-    for (scene::Material& m : loaded->materials)
-        if (m.normalTexture.present()) {
-            if (!normalMap)
-                m.normalTexture = {};
-            ++mapped;
-        }
-    EXPECT_EQ(mapped, 1u);
-    scene::World world =
-        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
-    world.characters[0].clip = 0;
-    return world;
-}
-
 TEST_F(Layers, TheCaptureAppliesNormalMaps) {
     // The parts figure's head is hammered glass (a normal map): the same figure without that
     // texture renders differently, and only there.
     auto image = [&](bool normalMap) {
-        WorldRig rig(partsFigureWorld(normalMap), context());
+        WorldRig rig(generatedWorld("glass_figure_parts.glb", normalMap), context());
         rig.set("method", "dir");
         return rig.render(0.3);
     };
@@ -258,9 +247,10 @@ TEST_F(Layers, TheReferenceAppliesNormalMapsToo) {
     // reference of the mapped figure than that of the smooth one where the map changes it
     // (24.8 dB against 17.9).
     constexpr int kSmall = 128, kFactor = 4;
-    WorldRig fine(partsFigureWorld(true), context(), kSmall * kFactor),
-        mapped(partsFigureWorld(true), context(), kSmall),
-        smooth(partsFigureWorld(false), context(), kSmall);
+    const std::string parts = "glass_figure_parts.glb";
+    WorldRig fine(generatedWorld(parts), context(), kSmall * kFactor),
+        mapped(generatedWorld(parts), context(), kSmall),
+        smooth(generatedWorld(parts, false), context(), kSmall);
     for (WorldRig* rig : {&fine, &mapped, &smooth})
         rig->set("method", "dir");
     const std::vector<float> hdr = fine.renderHdr(0.3);
