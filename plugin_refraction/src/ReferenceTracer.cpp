@@ -147,23 +147,29 @@ glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
     return sum;
 }
 
-/** A material's normal texture as the reference reads it (texture coordinates 0). */
-struct NormalMap {
-    const scene::Image* image = nullptr;
-    glm::dmat3 uvTransform{1.0}; // KHR_texture_transform
-    double scale = 1.0;
-};
+/** The image a material's texture reads, or null (none, or texture coordinates other than 0,
+ *  which the reference does not carry). */
+const scene::Image* textureImage(const scene::Model& model, const scene::TextureRef& t) {
+    if (!t.present() || t.texCoord != 0)
+        return nullptr;
+    const int i = model.textures[std::size_t(t.texture)].image;
+    return i >= 0 ? &model.images[std::size_t(i)] : nullptr;
+}
 
-/** The normal map's normal at uv around the interpolated normal N and tangent (xyz, w the
- *  handedness), as common/normal_map.glsl perturbs it on the GPU. */
-dvec3 perturbNormal(const NormalMap& map, dvec3 N, glm::dvec4 tangent, dvec2 uv) {
+/** uv through the texture's KHR_texture_transform. */
+dvec2 textureUv(const scene::TextureRef& t, dvec2 uv) {
+    return dvec2(glm::dmat3(t.transform) * glm::dvec3(uv, 1.0));
+}
+
+/** The normal texture `map` (`image`) at uv around the interpolated normal N and tangent (xyz,
+ *  w the handedness), as common/normal_map.glsl perturbs it on the GPU. */
+dvec3 perturbNormal(const scene::TextureRef& map, const scene::Image& image, dvec3 N,
+                    glm::dvec4 tangent, dvec2 uv) {
     const dvec3 T = glm::normalize(dvec3(tangent) - N * glm::dot(N, dvec3(tangent)));
     const dvec3 B = glm::cross(N, T) * tangent.w;
-    dvec3 n =
-        dvec3(sampleImage(*map.image, dvec2(map.uvTransform * glm::dvec3(uv, 1.0)), false)) * 2.0 -
-        1.0;
-    n.x *= map.scale;
-    n.y *= map.scale;
+    dvec3 n = dvec3(sampleImage(image, textureUv(map, uv), false)) * 2.0 - 1.0;
+    n.x *= double(map.scale);
+    n.y *= double(map.scale);
     const dvec3 mapped = T * n.x + B * n.y + N * n.z;
     return glm::length(mapped) > 1e-12 ? glm::normalize(mapped) : N;
 }
@@ -172,7 +178,7 @@ struct Surface {
     std::vector<dvec3> positions, normals; // world
     std::vector<glm::dvec4> tangents;      // world, where a normal map needs them
     std::vector<dvec2> uv;
-    NormalMap normalMap; // image null: none
+    const scene::Image* normalImage = nullptr; // the material's normal texture, if it has one
     std::vector<std::uint32_t> indices;
     bool glass = true;
     int solid = 0;                             // the character: one closed solid (media rule)
@@ -316,9 +322,9 @@ public:
                                            s.positions[tri[2]] - s.positions[tri[0]]);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
-            if (s.normalMap.image) // every surface the GPU maps, glass (both sides) or opaque
+            if (s.normalImage) // every surface the GPU maps, glass (both sides) or opaque
                 h.shadingNormal = perturbNormal(
-                    s.normalMap, h.shadingNormal,
+                    s.material->normalTexture, *s.normalImage, h.shadingNormal,
                     w * s.tangents[tri[0]] + u * s.tangents[tri[1]] + v * s.tangents[tri[2]], h.uv);
         }
         if (mGround && std::abs(dir.y) > 1e-12) {
@@ -351,16 +357,8 @@ public:
         double metallic = m ? m->metallicFactor : 1.0, roughness = m ? m->roughnessFactor : 1.0;
         dvec3 emissive = m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
         if (const scene::Model* model = h.surface->model; m && model) {
-            auto image = [&](const scene::TextureRef& t) -> const scene::Image* {
-                if (!t.present() || t.texCoord != 0)
-                    return nullptr;
-                const int i = model->textures[std::size_t(t.texture)].image;
-                return i >= 0 ? &model->images[std::size_t(i)] : nullptr;
-            };
-            auto uv = [&](const scene::TextureRef& t) {
-                return dvec2(glm::dmat3(t.transform) *
-                             glm::dvec3(h.uv, 1.0)); // KHR_texture_transform
-            };
+            auto image = [&](const scene::TextureRef& t) { return textureImage(*model, t); };
+            auto uv = [&](const scene::TextureRef& t) { return textureUv(t, h.uv); };
             if (const auto* img = image(m->baseColorTexture))
                 base *= sampleImage(*img, uv(m->baseColorTexture), true);
             if (m->unlit) // KHR_materials_unlit
@@ -526,15 +524,10 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                     s.uv.emplace_back(uv);
                 const int material = primitive.material;
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-                const scene::TextureRef normals =
-                    s.material ? s.material->normalTexture : scene::TextureRef{};
-                const int normalImage =
-                    normals.present() ? model.textures[std::size_t(normals.texture)].image : -1;
-                if (normalImage >= 0 && normals.texCoord == 0 && !s.uv.empty() &&
-                    !placed.tangents.empty()) {
-                    s.normalMap = {&model.images[std::size_t(normalImage)],
-                                   glm::dmat3(normals.transform), double(normals.scale)};
-                    s.tangents = placed.tangents;
+                if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
+                    s.normalImage = textureImage(model, s.material->normalTexture);
+                    if (s.normalImage)
+                        s.tangents = placed.tangents;
                 }
                 s.model = &model;
                 s.glass = decoded.isGlass(model, primitive, character.glass);

@@ -227,8 +227,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
           Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"},
           Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
           Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
-          Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl",
-               "refraction/deferred.frag.glsl"},
+          Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl", "refraction/deferred.frag.glsl"},
           Spec{&mGpu->layersOutline, "refraction/rectangle.vert.glsl",
                "refraction/layers_outline.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
@@ -294,9 +293,9 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         return;
     }
 
-    // The two-surface path's single geometry pass needs what one shading pass can serve: one glass material with
-    // the same overrides on every glass item, no normal map (no UV or tangent is gathered), the
-    // farthest back surface (MAX blending).
+    // The two-surface path's single geometry pass needs what one shading pass can serve: one glass
+    // material with the same overrides on every glass item, no normal map (no UV or tangent is
+    // gathered), the farthest back surface (MAX blending).
     bool oneMaterial = true;
     for (const render::DrawItem& item : c.frame->items) {
         if (item.owner != this)
@@ -332,9 +331,10 @@ LayerStats RefractionPlugin::layerStats() const {
         return stats;
     const GpuState::LayerStorage& layers = mGpu->layers;
     stats.capacity = layers.capacity;
-    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, mParameters.flag("outline-aa"));
+    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlineAntialiasing);
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
-    const auto counter = mGpu->rectangle.download(10 * sizeof(std::uint32_t), sizeof(std::uint32_t));
+    const auto counter =
+        mGpu->rectangle.download(10 * sizeof(std::uint32_t), sizeof(std::uint32_t));
     std::memcpy(&stats.overflowPixels, counter.data(), sizeof(std::uint32_t));
     return stats;
 }

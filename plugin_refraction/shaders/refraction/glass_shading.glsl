@@ -129,11 +129,10 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
             return path;
         }
         path.tir = true;
-        // At an exit ISR estimated (near the far side, not on it) the normal may be tens of
-        // degrees off: only incidences 20 degrees past the critical angle reflect there.
-        bool estimated = bounce == 0 && uMethod == METHOD_ISR;
+        bool estimated = bounce == 0 && uMethod == METHOD_ISR; // optics.glsl
         if (uTirPolicy == TIR_CLAMP || bounce >= uBounces ||
-            (estimated && acos(clamp(dot(dir, No), 0.0, 1.0)) < asin(1.0 / ior) + radians(20.0))) {
+            (estimated &&
+             acos(clamp(dot(dir, No), 0.0, 1.0)) < asin(1.0 / ior) + kEstimatedTirBand)) {
             path.exitPoint = P;
             path.exitDir = tangentExit(dir, No);
             return path;

@@ -30,13 +30,11 @@ const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
-// enough to tell the two apart, and a grazing exit is the limit refraction tends to there. At
-// an exit ISR estimated (near the far side, not on it) the normal read may be tens of degrees
-// off: only incidences far past the critical angle reflect there. Near an outline the filtered
-// normal is good to 2-4 degrees (filteredNormal), and a segment that began there carries that
-// error to its far end: crossings at or after such a normal have the wider band.
-const float kTirBand = radians(2.5), kOutlineTirBand = radians(4.0),
-            kEstimatedTirBand = radians(20.0);
+// enough to tell the two apart, and a grazing exit is the limit refraction tends to there (at
+// ISR's estimated exits: kEstimatedTirBand, optics.glsl). Near an outline the filtered normal
+// is good to 2-4 degrees (filteredNormal), and a segment that began there carries that error to
+// its far end: crossings at or after such a normal have the wider band.
+const float kTirBand = radians(2.5), kOutlineTirBand = radians(4.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 

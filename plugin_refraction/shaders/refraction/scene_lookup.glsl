@@ -16,6 +16,11 @@ float linearDepth(float d) {
     return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
 }
 
+// The texel of the depth and colour maps a clip-space point falls in (clamped to the map).
+ivec2 clipTexel(vec4 C) {
+    return ivec2(clamp(C.xy / C.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999)) * uViewportSize);
+}
+
 // `roughness` blurs the environment.
 vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
     hitT = -1.0;
@@ -29,9 +34,7 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
         // A surface is met where the ray goes from in front of the depth map to behind it, not
         // where a ray that starts behind a surface (leaving glass behind a small opaque part)
         // stays behind it, nor where it passes behind one from the side (below).
-        vec2 uv0 = clamp(C0.xy / C0.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-        bool inFront =
-            C0.z / C0.w * 0.5 + 0.5 <= texelFetch(uSceneDepth, ivec2(uv0 * uViewportSize), 0).r;
+        bool inFront = C0.z / C0.w * 0.5 + 0.5 <= texelFetch(uSceneDepth, clipTexel(C0), 0).r;
         for (int i = 1; i <= 24; ++i) {
             float t = uNearbyDistance * float(i * i) / 576.0;
             vec4 C = C0 + t * Cd;
@@ -50,23 +53,20 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
                 for (int k = 0; k < 6; ++k) {
                     float mid = 0.5 * (lo + hi);
                     vec4 M = C0 + mid * Cd;
-                    vec2 muv = clamp(M.xy / M.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                    float md = texelFetch(uSceneDepth, ivec2(muv * uViewportSize), 0).r;
+                    float md = texelFetch(uSceneDepth, clipTexel(M), 0).r;
                     if (md < 1.0 && M.z / M.w * 0.5 + 0.5 > md)
                         hi = mid;
                     else
                         lo = mid;
                 }
                 vec4 H = C0 + hi * Cd, L = C0 + lo * Cd;
-                vec2 hitUv = clamp(H.xy / H.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                ivec2 hit = ivec2(hitUv * uViewportSize);
+                ivec2 hit = clipTexel(H);
                 // A crossing of the surface found: the last point in front of the depth map was
                 // in front of that surface too, within the refined step and the change of the
                 // depth map between the two points' pixels (a surface seen at a grazing angle).
                 // A ray that came from the side behind a small opaque part, from pixels of the
                 // environment, was behind it already: it goes on.
-                vec2 frontUv = clamp(L.xy / L.w * 0.5 + 0.5, vec2(0.0), vec2(0.9999));
-                float front = texelFetch(uSceneDepth, ivec2(frontUv * uViewportSize), 0).r;
+                float front = texelFetch(uSceneDepth, clipTexel(L), 0).r;
                 float surface = linearDepth(texelFetch(uSceneDepth, hit, 0).r);
                 float slack = abs(H.w - L.w) + 0.01 * H.w +
                               (front < 1.0 ? abs(linearDepth(front) - surface) : 0.0);
