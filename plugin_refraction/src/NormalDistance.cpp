@@ -6,11 +6,14 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 
 namespace refraction {
 
 namespace {
+
+constexpr std::size_t kVertexFloats = 12; // common/vertex.glsl: position, normal, tangent
 
 struct Box {
     glm::vec3 lo{3e38f}, hi{-3e38f};
@@ -33,7 +36,9 @@ int splitAtMedian(std::span<std::uint32_t> part, std::span<const glm::vec3> cent
         hi = glm::max(hi, centroid[t]);
     }
     const glm::vec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
     const auto middle = part.begin() + std::ptrdiff_t(part.size() / 2);
     std::nth_element(part.begin(), middle, part.end(), [&](std::uint32_t a, std::uint32_t b) {
         return centroid[a][axis] < centroid[b][axis];
@@ -97,9 +102,8 @@ int splitBySurfaceArea(std::span<std::uint32_t> part, std::span<const glm::vec3>
     }
     if (bestAxis < 0)
         return splitAtMedian(part, centroid);
-    const auto middle = std::partition(part.begin(), part.end(), [&](std::uint32_t t) {
-        return binOf(t, bestAxis) < bestPlane;
-    });
+    const auto middle = std::partition(
+        part.begin(), part.end(), [&](std::uint32_t t) { return binOf(t, bestAxis) < bestPlane; });
     return int(middle - part.begin());
 }
 
@@ -133,8 +137,8 @@ Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t
             bvh.nodes[std::size_t(task.node)] = {-1, -1, task.first, task.count};
             continue;
         }
-        const auto part = std::span(bvh.order).subspan(std::size_t(task.first),
-                                                       std::size_t(task.count));
+        const auto part =
+            std::span(bvh.order).subspan(std::size_t(task.first), std::size_t(task.count));
         // Shallow enough for the cast's stack (64 entries): from depth 32 on, halves.
         const int leftCount = task.depth < 32 ? splitBySurfaceArea(part, centroid, bounds)
                                               : splitAtMedian(part, centroid);
@@ -145,8 +149,7 @@ Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t
         depthOf.push_back(task.depth + 1);
         bvh.nodes[std::size_t(task.node)] = {left, right, 0, 0};
         stack.push_back({left, task.first, leftCount, task.depth + 1});
-        stack.push_back(
-            {right, task.first + leftCount, task.count - leftCount, task.depth + 1});
+        stack.push_back({right, task.first + leftCount, task.count - leftCount, task.depth + 1});
     }
     const int maxDepth = *std::max_element(depthOf.begin(), depthOf.end());
     for (int depth = maxDepth; depth >= 0; --depth) {
@@ -160,33 +163,38 @@ Bvh buildBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t
 }
 
 NormalDistance::NormalDistance(std::span<const scene::Primitive* const> primitives) {
-    // The rest positions only shape the tree (each primitive in its own mesh space); the refit
-    // bounds the deformed world-space vertices every frame.
-    std::vector<glm::vec3> positions;
-    std::vector<std::uint32_t> indices;
     for (const scene::Primitive* p : primitives) {
-        const auto base = std::uint32_t(positions.size());
+        const auto base = mVertexCount;
         mBases.push_back(base);
-        positions.insert(positions.end(), p->positions.begin(), p->positions.end());
+        mVertexCount += std::uint32_t(p->positions.size());
         for (std::uint32_t index : p->indices)
-            indices.push_back(base + index);
+            mTriangleIndices.push_back(base + index);
     }
-    mBvh = buildBvh(positions, indices);
-    mVertexCount = std::uint32_t(positions.size());
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const glm::vec3& v : positions) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
+    mVertices = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * kVertexFloats * sizeof(float));
+    mIndices = gl::Buffer(std::span<const std::uint32_t>(mTriangleIndices));
+    mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
+}
+
+void NormalDistance::buildTree() {
+    // Shaped by the first gathered pose, in world space: the primitives' rest positions are each
+    // in their own mesh node's space (a static model's meshes all around one origin), and a tree
+    // shaped there would bound, once refitted, boxes spanning the whole model.
+    const std::vector<std::uint8_t> bytes = mVertices.download();
+    std::vector<glm::vec3> positions(mVertexCount);
+    glm::vec3 lo(3e38f), hi(-3e38f);
+    for (std::uint32_t v = 0; v < mVertexCount; ++v) {
+        std::memcpy(&positions[v], bytes.data() + std::size_t(v) * kVertexFloats * sizeof(float),
+                    sizeof(glm::vec3));
+        lo = glm::min(lo, positions[v]);
+        hi = glm::max(hi, positions[v]);
     }
-    mEpsilon = 1e-4f * glm::length(hi - lo);
-    mVertices = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * 12 * sizeof(float));
-    mIndices = gl::Buffer(std::span<const std::uint32_t>(indices));
+    mEpsilon = mVertexCount > 0 ? 1e-4f * glm::length(hi - lo) : 0.0f;
+    mBvh = buildBvh(positions, mTriangleIndices);
     mNodes = gl::Buffer(std::span<const Bvh::Node>(mBvh.nodes));
     mOrder = gl::Buffer(std::span<const std::uint32_t>(mBvh.order));
     mLevels = gl::Buffer(std::span<const std::int32_t>(mBvh.levelNodes));
     mBounds = gl::Buffer(mBvh.nodes.size() * 2 * sizeof(glm::vec4));
     mLeafCorners = gl::Buffer(std::max<std::size_t>(mBvh.order.size(), 1) * 3 * sizeof(glm::vec4));
-    mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
 }
 
 void NormalDistance::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count,
@@ -202,7 +210,9 @@ void NormalDistance::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t
 }
 
 void NormalDistance::update(const gl::Program& refit, const gl::Program& cast) {
-    gl::memoryBarrier(gl::BarrierStorage); // the gathered cages
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // the gathered cages
+    if (!mNodes)
+        buildTree();
 
     gl::bindStorage(0, mVertices);
     gl::bindStorage(1, mIndices);

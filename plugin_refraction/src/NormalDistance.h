@@ -1,7 +1,8 @@
 // d_N for ISR, recomputed every frame because the mesh deforms: a BVH built once over the static
-// topology of all of a character's glass primitives, refitted on the GPU to their deformed
-// vertices gathered in world space, then one ray per vertex along -N (exact nearest hit). Its
-// cost grows with the character's triangles, not with its primitives. Private to the plugin.
+// topology of all of a character's glass primitives (shaped by their first pose, in world space),
+// refitted on the GPU to their deformed vertices gathered in world space, then one ray per vertex
+// along -N (exact nearest hit). Its cost grows with the character's triangles, not with its
+// primitives. Private to the plugin.
 #pragma once
 
 #include "engine/gl/Buffer.h"
@@ -46,14 +47,20 @@ public:
     void gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count, const glm::mat4& world,
                 const gl::Program& gather) const;
     /** Refits the BVH to the gathered combined cage and writes d_N (world units) per vertex into
-     *  distances(). `refit` and `cast` are bvh_refit.comp.glsl and normal_distance.comp.glsl. */
+     *  distances(). `refit` and `cast` are bvh_refit.comp.glsl and normal_distance.comp.glsl.
+     *  The first call builds the tree from the gathered cage (read back once). */
     void update(const gl::Program& refit, const gl::Program& cast);
 
     const gl::Buffer& distances() const { return mDistances; }
+    /** The tree (empty before the first update()). */
+    const Bvh& tree() const { return mBvh; }
 
 private:
+    void buildTree();
+
     Bvh mBvh;
     std::vector<std::uint32_t> mBases;
+    std::vector<std::uint32_t> mTriangleIndices; ///< into the combined cage
     std::uint32_t mVertexCount = 0;
     float mEpsilon = 0.0f;
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mLevels, mBounds, mLeafCorners, mDistances;

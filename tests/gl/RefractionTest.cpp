@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 std::span<const gl::ShaderFile> refractionShaderFiles();
 
@@ -254,6 +255,52 @@ TEST_F(Refraction, NormalDistanceOfASphereIsItsDiameter) {
     std::printf("d_N on the unit sphere: %zu vertices, %d misses, worst error %.2e\n", gpu.size(),
                 misses, worst);
     EXPECT_EQ(misses, 0);
+    EXPECT_LE(worst, 1e-4);
+}
+
+TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
+    // Two copies of one sphere, the same positions in their mesh space, placed 6 apart (a static
+    // model's meshes, each under its own node). A tree shaped in mesh space mixes both copies in
+    // every node, and each ray then tests both (TransmissionTest's ISR took 43 s a frame).
+    DistanceRig rig;
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), "builtin:sphere"));
+    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
+    ASSERT_TRUE(deformer.ok());
+    (*deformer)->update(anim::evaluate(rig.model, -1, 0.0));
+    const auto& primitive = (*deformer)->instances()[0].primitives[0];
+    const scene::Primitive* primitives[] = {primitive.source, primitive.source};
+    refraction::NormalDistance distance(primitives);
+    for (std::size_t i = 0; i < 2; ++i)
+        distance.gather(i, primitive.deformed, std::uint32_t(primitive.vertexCount),
+                        glm::translate(glm::mat4(1.0f), glm::vec3(i == 0 ? -3.0f : 3.0f, 0, 0)),
+                        rig.gather);
+    distance.update(rig.refit, rig.cast);
+
+    const refraction::Bvh& tree = distance.tree();
+    const std::size_t perCopy = primitive.source->indices.size() / 3;
+    // Which copies the triangles under `node` belong to (bit 0: first, bit 1: second).
+    std::function<int(int)> copies = [&](int node) {
+        const refraction::Bvh::Node& n = tree.nodes[std::size_t(node)];
+        if (n.left >= 0)
+            return copies(n.left) | copies(n.right);
+        int bits = 0;
+        for (int t = n.first; t < n.first + n.count; ++t)
+            bits |= tree.order[std::size_t(t)] < perCopy ? 1 : 2;
+        return bits;
+    };
+    ASSERT_GE(tree.nodes[0].left, 0);
+    const int left = copies(tree.nodes[0].left), right = copies(tree.nodes[0].right);
+    std::printf("d_N tree of two spheres 6 apart: root's children hold copies %d and %d\n", left,
+                right);
+    EXPECT_EQ(left | right, 3);
+    EXPECT_TRUE(left != 3 && right != 3) << "a child of the root holds triangles of both copies";
+
+    const auto bytes = distance.distances().download();
+    std::vector<float> d(2 * std::size_t(primitive.vertexCount));
+    std::memcpy(d.data(), bytes.data(), d.size() * sizeof(float));
+    double worst = 0.0;
+    for (float v : d)
+        worst = std::max(worst, std::abs(double(v) - 2.0));
     EXPECT_LE(worst, 1e-4);
 }
 

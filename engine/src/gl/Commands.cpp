@@ -118,6 +118,8 @@ void memoryBarrier(std::uint32_t b) {
         bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
     if (b & BarrierFramebuffer)
         bits |= GL_FRAMEBUFFER_BARRIER_BIT;
+    if (b & BarrierBufferUpdate)
+        bits |= GL_BUFFER_UPDATE_BARRIER_BIT;
     if (b == BarrierAll)
         bits = GL_ALL_BARRIER_BITS;
     glMemoryBarrier(bits);

@@ -62,11 +62,12 @@ void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write
 void copyTexture(const Texture& source, const Texture& destination);
 
 enum Barrier : std::uint32_t {
-    BarrierStorage = 1u << 0,     ///< SSBO writes -> SSBO reads
-    BarrierVertex = 1u << 1,      ///< SSBO writes -> vertex pulling / index reads
-    BarrierTexture = 1u << 2,     ///< image writes -> texture fetches
-    BarrierImage = 1u << 3,       ///< image writes -> image loads
-    BarrierFramebuffer = 1u << 4, ///< image writes -> framebuffer
+    BarrierStorage = 1u << 0,      ///< SSBO writes -> SSBO reads
+    BarrierVertex = 1u << 1,       ///< SSBO writes -> vertex pulling / index reads
+    BarrierTexture = 1u << 2,      ///< image writes -> texture fetches
+    BarrierImage = 1u << 3,        ///< image writes -> image loads
+    BarrierFramebuffer = 1u << 4,  ///< image writes -> framebuffer
+    BarrierBufferUpdate = 1u << 5, ///< SSBO writes -> buffer reads back (Buffer::download)
     BarrierAll = 0xFFFFFFFFu,
 };
 void memoryBarrier(std::uint32_t barriers);
