@@ -92,23 +92,24 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
         gpu.layerProgramsCapacity = c.settings.layerCapacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
-    const bool dispersion = std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
-                                        [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    const int mode = !dispersion ? 0
+    const bool dispersion =
+        std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
+                    [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
+    const int mode = !dispersion                                                         ? 0
                      : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
-                                                                                          : 2;
+                                                                                         : 2;
     const std::pair key{int(c.settings.method), mode};
     if (!gpu.layerShadePrograms.count(key)) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir}) {
-            auto shade = gl::Program::graphics(
-                *c.frame->shaders, "refraction/rectangle.vert.glsl",
-                "refraction/layers_shade.frag.glsl",
-                {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
-                 "LAYER_METHOD " + std::to_string(int(method)),
-                 "LAYER_DISPERSION " + std::to_string(mode)});
+            auto shade =
+                gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                      "refraction/layers_shade.frag.glsl",
+                                      {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
+                                       "LAYER_METHOD " + std::to_string(int(method)),
+                                       "LAYER_DISPERSION " + std::to_string(mode)});
             if (!shade)
                 return shade.error();
             gpu.layerShadePrograms.insert_or_assign({int(method), mode}, std::move(*shade));
@@ -151,9 +152,9 @@ void assignGlassIds(FrameContext& c) {
         const Optics o = opticsFor(c.settings, m, item.source->overrides);
         const glm::vec3 emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
-        c.gpu->glassOptics.push_back({glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
-                               glm::vec4(glm::vec3(o.baseColor), o.metallic),
-                               glm::vec4(emissive, float(solid))});
+        c.gpu->glassOptics.push_back(
+            {glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
+             glm::vec4(glm::vec3(o.baseColor), o.metallic), glm::vec4(emissive, float(solid))});
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }
@@ -171,7 +172,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
     const fg::TextureHandle sceneDepth = blackboard.get<fg::TextureHandle>(plugin::kSceneDepth);
 
     struct CaptureData {
-        fg::TextureHandle sceneDepth, mask;
+        fg::TextureHandle mask;
         fg::BufferHandle layers, rectangle;
     };
     const auto& captured = graph.addPass<CaptureData>(
@@ -180,7 +181,6 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             b.read(buffers.vertices);
             if (c.settings.usesNormalDistance())
                 b.read(buffers.distances);
-            d.sceneDepth = b.read(sceneDepth);
             d.mask = b.write(b.create("refraction.layers.mask", {size, gl::Format::Depth32F, 1}));
             d.rectangle = b.write(buffers.rectangle);
             d.layers = b.write(buffers.layers);
@@ -190,25 +190,23 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             const glm::ivec2 viewport = c.frame->settings.size;
             ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity);
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
-            gpu.layers.heads.fill(0, pixels, 0u);                     // counts
-            gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu);  // nearest front keys
-            gpu.layers.heads.fill(pixels * 8, pixels, 0u);           // farthest back keys
+            gpu.layers.heads.fill(0, pixels, 0u);                   // counts
+            gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys
+            gpu.layers.heads.fill(pixels * 8, pixels, 0u);          // farthest back keys
             const std::size_t bytes = c.gpu->glassOptics.size() * sizeof(GlassMaterialGpu);
             if (gpu.glassMaterials.size() < bytes)
                 gpu.glassMaterials = gl::Buffer(bytes);
             gpu.glassMaterials.update(0, bytes, c.gpu->glassOptics.data());
             c.growGlassRectangle();
-            // Depth only: the shading pass's mask (the shader tests the scene depth itself).
-            if (auto bound = gpu.framebuffer.bindTargets("refraction.layers", {},
-                                                         &r.texture(d.mask));
+            // Depth only: the shading pass's mask.
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("refraction.layers", {}, &r.texture(d.mask));
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);
             const gl::Program& program = gpu.layersCapture;
             program.use();
             setLayerUniforms(c, program);
-            gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
-            program.set("uSceneDepth", kSceneDepthUnit);
             c.drawGlass(program, {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always},
                         [&c, &program](const render::DrawItem& item, std::size_t index) {
                             program.set("uGlassId", c.gpu->glassIds[index]);
@@ -273,8 +271,8 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             d.sceneDepth = b.read(sceneDepth);
             d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
             if (outlines) // the nearest layer per pixel, for the outline pass
-                d.surface = b.write(b.create("refraction.layers.surface",
-                                             {size, gl::Format::R32UI, 1}));
+                d.surface =
+                    b.write(b.create("refraction.layers.surface", {size, gl::Format::R32UI, 1}));
         },
         [c, outlines](const fg::Resources& r, const ShadeData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;

@@ -1,14 +1,15 @@
-// The layered path's one geometry pass: every glass fragment in front of the opaque scene,
-// front- or back-facing, appends itself to its pixel's fixed array (layers.glsl): depth,
-// outward normal after normal mapping, glass id, facing, d_N. Fragments past K only count; every
-// fragment also bids for the pixel's overflow fallback (nearest front, farthest back). The depth
-// attachment (depth test ALWAYS) is the shading pass's mask: below 1 where any glass was kept.
+// The layered path's one geometry pass: every glass fragment, front- or back-facing, appends
+// itself to its pixel's fixed array (layers.glsl): depth, outward normal after normal mapping,
+// glass id, facing, d_N. Glass behind the opaque scene is kept too (a glass head's far side
+// behind its opaque eyes, which rays inside the head still cross); the shading pass skips pixels
+// whose nearest glass is hidden. Fragments past K only count; every fragment also bids for the
+// pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
+// ALWAYS) is the shading pass's mask: below 1 where any glass was kept.
 #include "common/normal_map.glsl"
 #include "refraction/glass_inputs.glsl"
 #include "refraction/view.glsl"
 #include "refraction/layers.glsl"
 
-uniform sampler2D uSceneDepth;
 uniform int uGlassId;
 uniform int uHasNormalTexture;
 uniform sampler2D uNormalTexture;
@@ -17,8 +18,6 @@ uniform float uNormalScale;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (gl_FragCoord.z >= texelFetch(uSceneDepth, p, 0).r)
-        discard; // behind the opaque scene: never seen
     uint pixel = pixelIndex(p);
     float z = -vViewPosition.z;
     vec3 n = normalize(vViewNormal);

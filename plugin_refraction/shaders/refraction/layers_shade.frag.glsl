@@ -2,7 +2,8 @@
 // nearest captured layer and walks the others (layers.glsl) in texture space, refracting at
 // every interface it crosses (or reflecting under total internal reflection) with the media on
 // both sides, up to N interfaces; then it sees the nearby opaque scene or the environment
-// (scene_lookup.glsl). ARCHITECTURE.md ("How a ray walks the layers") has the figure.
+// (scene_lookup.glsl). An opaque part met between two interfaces (inside the glass, or between
+// two pieces) ends the walk there. ARCHITECTURE.md ("How a ray walks the layers") has the figure.
 //
 // Media (the Embree reference's rule too): crossing a glass surface against its outward normal
 // enters its glass (a stack of up to four, the newest on top); crossing one along its normal
@@ -323,6 +324,8 @@ struct Walk {
     uint lastFrom, lastTo; // glass ids + 1, 0: air
     vec3 firstExit;
     bool tir, fallback;
+    bool opaque;        // the walk ended on the opaque scene, at texel `hit`
+    ivec2 hit;
     int interfaces, steps;
 };
 
@@ -365,6 +368,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     w.reflectedRoughness = 0.0;
     w.tir = false;
     w.fallback = false;
+    w.opaque = false;
+    w.hit = ivec2(0);
     w.interfaces = 1;
     w.steps = 0;
     uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
@@ -399,6 +404,16 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         w.steps += c.steps;
         if (!c.found)
             break;
+        // An opaque part before the next interface (inside the glass, or between two pieces)
+        // ends the walk: the ray sees it, as the lookup after the walk sees the nearby scene.
+        float hitT;
+        if (uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, w.hit)) {
+            if (inside != 0u)
+                w.weight *= exp(-sigma * hitT);
+            P += dir * hitT;
+            w.opaque = true;
+            break;
+        }
         if (inside != 0u)
             w.weight *= exp(-sigma * length(c.point - P));
         P = c.point;
@@ -492,8 +507,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
 vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
     green = walkLayers(P1, V, N1, entryAttr, 1);
-    float hitT;
-    vec3 seen = lookup(green.point, green.dir, m.sigma.w, hitT);
+    float hitT = 0.0;
+    vec3 seen = green.opaque ? texelFetch(uSceneColor, green.hit, 0).rgb
+                             : lookup(green.point, green.dir, m.sigma.w, hitT);
     vec3 transmitted = seen * green.weight + green.reflected;
     bool dispersion = m.ior.r != m.ior.b;
 #if LAYER_DISPERSION == 1 // DISPERSION_SHARED
@@ -524,7 +540,9 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
         for (int c = 0; c < 3; c += 2) {
             Walk w = walkLayers(P1, V, N1, entryAttr, c);
             float unused;
-            transmitted[c] = lookup(w.point, w.dir, m.sigma.w, unused)[c] * w.weight[c] + w.reflected[c];
+            vec3 channelSeen = w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
+                                        : lookup(w.point, w.dir, m.sigma.w, unused);
+            transmitted[c] = channelSeen[c] * w.weight[c] + w.reflected[c];
             green.tir = green.tir || w.tir;
         }
     }
@@ -560,8 +578,8 @@ void main() {
             }
         }
     }
-    if (entry < 0)
-        discard;
+    if (entry < 0 || z >= sceneDepthAt(p))
+        discard; // no glass, or only glass hidden behind the opaque scene
     uvec2 entryAttr = layerAttrAt(p, entry);
     vec4 ray = uInverseProjection * vec4(gl_FragCoord.xy / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     vec3 direction = ray.xyz / ray.w;

@@ -31,7 +31,7 @@ public:
     /** Sets `count` 32-bit words from byte `offset` to `value` on the GPU (a clear: unlike
      *  update(), never waits for earlier draws that read the buffer). */
     void fill(std::size_t offset, std::size_t count, std::uint32_t value);
-    /** Reads the buffer back (synchronises with the GPU: tests and tools only). */
+    /** Reads the buffer back (synchronises with the GPU: tests, tools and one-time set-up). */
     std::vector<std::uint8_t> download(std::size_t offset = 0, std::size_t bytes = SIZE_MAX) const;
 
     std::uint32_t id() const { return mId; }
