@@ -78,6 +78,11 @@ public:
         r.traced = std::move(*traced);
         return r;
     }
+    /** Masked PSNR of the frame at `time` against the reference at the same time. */
+    double psnrAgainstReference(double time = 0.0) {
+        const Reference r = reference(time);
+        return capture::score(render(time), r.image, &r.mask).psnr;
+    }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
     /** Views the world from its scene file's camera instead of framing its bounds. */
     void useSceneCamera() {
@@ -142,8 +147,7 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     rig.set("tir", "reflect");
-    const auto reference = rig.reference();
-    const double psnr = capture::score(rig.render(), reference.image, &reference.mask).psnr;
+    const double psnr = rig.psnrAgainstReference();
     std::printf("two overlapping glass spheres, 256x256, DIR 8, TIR reflect: masked PSNR %.2f dB\n",
                 psnr);
     EXPECT_GE(psnr, 37.6);
@@ -196,13 +200,13 @@ TEST_F(Layers, RaysLeavingGlassBehindAnOpaquePartDoNotSeeIt) {
     // lower face leave the head and pass behind them. The nearby-scene lookup meets a surface
     // only where the ray goes from in front of the depth map to behind that surface (its last
     // point in front within the refined step of it), not wherever it is behind and within a
-    // thickness: there a ring of eye images filled the lower face. 28.0 dB here; 23.7 with the
-    // old test, 23.3 with only the start of the ray checked.
+    // thickness: there a ring of eye images filled the lower face. 27.5 dB here; 23.7 with the
+    // old test, 23.3 with only the start of the ray checked (28.0 before the walk met the eyes
+    // on its way: at this size they come out a pixel larger than the reference's).
     WorldRig rig(generatedWorld("glass_figure.glb"), context(), 256);
     rig.set("method", "dir");
     rig.set("search-steps", "8");
-    const auto reference = rig.reference(0.3);
-    const double psnr = capture::score(rig.render(0.3), reference.image, &reference.mask).psnr;
+    const double psnr = rig.psnrAgainstReference(0.3);
     std::printf("default figure, 256x256, DIR 8: masked PSNR %.2f dB\n", psnr);
     EXPECT_GE(psnr, 27.0);
 }
@@ -213,10 +217,11 @@ TEST_F(Layers, TheWalkMeetsOpaquePartsInsideTheGlass) {
     // refract past it see it, magnified, and rays that leave the sphere beside it see the sky.
     // Glass hidden behind the opaque part, as the capture once dropped it, left the far side
     // missing in those pixels: rays crossed it elsewhere, or ended on the marble from behind.
+    // 30.2 dB here; 26.5 with the old capture, with or without the march; 19.5 with the hidden
+    // glass kept and no march (rays went through the marble).
     test::TempDir dir;
     const std::filesystem::path scene = dir / "marble.json";
     std::ofstream(scene) << R"({
-      "camera": {"position": [0.0, 0.1, 3.4], "target": [0.0, 0.0, 0.0], "yfov": 0.75},
       "characters": [
         {"name": "marble", "model": "builtin:sphere", "translation": [0.3, 0.2, 0.1],
          "scale": [0.3, 0.3, 0.3], "glass": "none"},
@@ -228,10 +233,9 @@ TEST_F(Layers, TheWalkMeetsOpaquePartsInsideTheGlass) {
     WorldRig rig(std::move(*world), context(), 256);
     rig.set("method", "dir");
     rig.set("search-steps", "8");
-    const auto reference = rig.reference(0.0);
-    const double psnr = capture::score(rig.render(0.0), reference.image, &reference.mask).psnr;
+    const double psnr = rig.psnrAgainstReference();
     std::printf("marble inside a glass sphere, 256x256, DIR 8: masked PSNR %.2f dB\n", psnr);
-    EXPECT_GE(psnr, 30.0);
+    EXPECT_GE(psnr, 29.0);
 }
 
 TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
