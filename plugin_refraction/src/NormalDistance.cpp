@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 
@@ -185,6 +186,9 @@ void NormalDistance::buildTree() {
     for (std::uint32_t v = 0; v < mVertexCount; ++v) {
         std::memcpy(&positions[v], bytes.data() + std::size_t(v) * kVertexFloats * sizeof(float),
                     sizeof(glm::vec3));
+        const glm::vec3& q = positions[v];
+        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+            positions[v] = glm::vec3(0.0f); // a degenerate skin: shaped at the origin
         lo = glm::min(lo, positions[v]);
         hi = glm::max(hi, positions[v]);
     }
