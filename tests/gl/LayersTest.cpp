@@ -22,7 +22,7 @@ namespace {
 constexpr int kSize = 128;
 
 /** A world rendered by the refraction plugin (KEY=VALUE parameters) and traced by the
- *  reference with the same parameters. */
+ *  reference with the same parameters; with its ground plane under it if it has one. */
 class WorldRig {
 public:
     WorldRig(scene::World world, gl::Context& context, int size = kSize)
@@ -33,6 +33,7 @@ public:
         mPlugin = std::make_unique<refraction::RefractionPlugin>();
         EXPECT_TRUE(mRenderer->addPlugin(mPlugin.get()).ok());
         mCamera = render::frameBounds(render::worldBounds(mWorld), 1.0f, 0.7f, 0.0f, 0.1f, 1.0f);
+        mRenderer->setGround(render::GroundPlane::under(render::worldBounds(mWorld)));
     }
     void set(const std::string& key, const std::string& value) {
         ASSERT_TRUE(mPlugin->parameters().set(key, value).ok()) << key << "=" << value;
@@ -42,6 +43,7 @@ public:
     std::vector<float> renderHdr(double time = 0.0, std::vector<std::string>* passes = nullptr) {
         render::RenderSettings settings;
         settings.size = {mSize, mSize};
+        settings.ground = mWorld.ground;
         settings.hdrOutput = true;
         auto stats = mRenderer->render(mWorld, mCamera, settings, time);
         EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
@@ -62,12 +64,14 @@ public:
     Reference reference(double time = 0.0) const {
         render::RenderSettings settings;
         settings.size = {mSize, mSize};
+        settings.ground = mWorld.ground;
         refraction::ReferenceOptions options;
         options.samplesPerPixel = 16;
         const auto environment =
             refraction::EnvironmentSampler::fromGpu(mRenderer->environment(), 0.0f, 1.0f);
-        auto traced = refraction::traceReference(mWorld, time, mCamera, environment, settings, {},
-                                                 mPlugin->parameters(), options);
+        auto traced =
+            refraction::traceReference(mWorld, time, mCamera, environment, settings,
+                                       mRenderer->ground(), mPlugin->parameters(), options);
         EXPECT_TRUE(traced.ok()) << (traced.ok() ? "" : traced.error().message);
         Reference r;
         if (!traced)
@@ -236,6 +240,35 @@ TEST_F(Layers, TheWalkMeetsOpaquePartsInsideTheGlass) {
     const double psnr = rig.psnrAgainstReference();
     std::printf("marble inside a glass sphere, 256x256, DIR 8: masked PSNR %.2f dB\n", psnr);
     EXPECT_GE(psnr, 29.0);
+}
+
+TEST_F(Layers, RaysMeetTheGroundAtGrazingAngles) {
+    // A glass sphere on the ground seen from low: its upper half shows the ground behind the
+    // camera upside down, met by rays that fall to it at grazing angles, far away, where one
+    // step of the nearby-scene march goes deep behind the ground. The crossing is refined first
+    // and judged where it is (within the thickness of the surface found), not at the step:
+    // judged at the step, most such rays were refused and saw the sky, a stripe pattern.
+    // 38.1 dB here; 27.8 judged at the step.
+    test::TempDir dir;
+    const std::filesystem::path scene = dir / "low.json";
+    std::ofstream(scene) << R"({
+      "ground": true,
+      "camera": {"position": [0.0, 0.5, 4.0], "target": [0.0, 0.45, 0.0], "yfov": 0.6},
+      "characters": [
+        {"name": "glass", "model": "builtin:sphere", "translation": [0.0, 0.5, 0.0],
+         "scale": [0.5, 0.5, 0.5], "glass": "all"}
+      ]
+    })";
+    auto world = asset::loadScene(scene.string());
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    WorldRig rig(std::move(*world), context(), 256);
+    rig.useSceneCamera();
+    rig.set("method", "dir");
+    rig.set("search-steps", "8");
+    const double psnr = rig.psnrAgainstReference();
+    std::printf("glass sphere on the ground seen from low, 256x256, DIR 8: masked PSNR %.2f dB\n",
+                psnr);
+    EXPECT_GE(psnr, 34.0);
 }
 
 TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {

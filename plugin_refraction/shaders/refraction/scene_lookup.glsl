@@ -68,9 +68,12 @@ bool marchScene(vec3 P, vec3 dir, float distance, int steps, out float hitT, out
         vec2 uv = ndc.xy * 0.5 + 0.5;
         float d = texelFetch(uSceneDepth, ivec2(uv * uViewportSize), 0).r;
         bool behind = d < 1.0 && ndc.z * 0.5 + 0.5 > d;
-        if (behind && inFront && C.w - linearDepth(d) < 0.125 * uNearbyDistance) {
+        if (behind && inFront) {
             // Refine the crossing between the last step in front and this one (binary search),
-            // so the lookup does not band with the step size.
+            // so the lookup does not band with the step size, and judge it there: met if the
+            // refined point lies within a thickness behind the surface and the ray crossed it.
+            // Judged at the step, rays falling to a far ground at a grazing angle, one step deep
+            // behind it, were refused and saw the sky.
             float lo = previous, hi = t;
             for (int k = 0; k < 6; ++k) {
                 float mid = 0.5 * (lo + hi);
@@ -82,7 +85,8 @@ bool marchScene(vec3 P, vec3 dir, float distance, int steps, out float hitT, out
                     lo = mid;
             }
             vec4 H = C0 + hi * Cd, L = C0 + lo * Cd;
-            if (crossesScene(L.w, clipTexel(L), H.w, clipTexel(H))) {
+            if (H.w - sceneDepthAt(clipTexel(H)) < 0.125 * uNearbyDistance &&
+                crossesScene(L.w, clipTexel(L), H.w, clipTexel(H))) {
                 hitT = hi;
                 hit = clipTexel(H);
                 return true;
