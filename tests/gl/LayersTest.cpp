@@ -108,6 +108,16 @@ scene::World loadScene(const std::string& name) {
     return world ? std::move(*world) : scene::World{};
 }
 
+/** A scene written out as `json` and loaded (models by builtin name: nothing outside it). */
+scene::World sceneFromText(const std::string& json) {
+    test::TempDir dir;
+    const std::filesystem::path path = dir / "scene.json";
+    std::ofstream(path) << json;
+    auto world = asset::loadScene(path.string());
+    EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
+    return world ? std::move(*world) : scene::World{};
+}
+
 class Layers : public test::GlTest {};
 
 TEST_F(Layers, GlassBehindGlassBeatsTheTwoSurfaceModel) {
@@ -223,18 +233,14 @@ TEST_F(Layers, TheWalkMeetsOpaquePartsInsideTheGlass) {
     // missing in those pixels: rays crossed it elsewhere, or ended on the marble from behind.
     // 30.2 dB here; 26.5 with the old capture, with or without the march; 19.5 with the hidden
     // glass kept and no march (rays went through the marble).
-    test::TempDir dir;
-    const std::filesystem::path scene = dir / "marble.json";
-    std::ofstream(scene) << R"({
+    WorldRig rig(sceneFromText(R"({
       "characters": [
         {"name": "marble", "model": "builtin:sphere", "translation": [0.3, 0.2, 0.1],
          "scale": [0.3, 0.3, 0.3], "glass": "none"},
         {"name": "glass", "model": "builtin:sphere", "glass": "all"}
       ]
-    })";
-    auto world = asset::loadScene(scene.string());
-    ASSERT_TRUE(world.ok()) << world.error().message;
-    WorldRig rig(std::move(*world), context(), 256);
+    })"),
+                 context(), 256);
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     const double psnr = rig.psnrAgainstReference();
@@ -249,19 +255,15 @@ TEST_F(Layers, RaysMeetTheGroundAtGrazingAngles) {
     // and judged where it is (within the thickness of the surface found), not at the step:
     // judged at the step, most such rays were refused and saw the sky, a stripe pattern.
     // 38.1 dB here; 27.8 judged at the step.
-    test::TempDir dir;
-    const std::filesystem::path scene = dir / "low.json";
-    std::ofstream(scene) << R"({
+    WorldRig rig(sceneFromText(R"({
       "ground": true,
       "camera": {"position": [0.0, 0.5, 4.0], "target": [0.0, 0.45, 0.0], "yfov": 0.6},
       "characters": [
         {"name": "glass", "model": "builtin:sphere", "translation": [0.0, 0.5, 0.0],
          "scale": [0.5, 0.5, 0.5], "glass": "all"}
       ]
-    })";
-    auto world = asset::loadScene(scene.string());
-    ASSERT_TRUE(world.ok()) << world.error().message;
-    WorldRig rig(std::move(*world), context(), 256);
+    })"),
+                 context(), 256);
     rig.useSceneCamera();
     rig.set("method", "dir");
     rig.set("search-steps", "8");

@@ -192,6 +192,14 @@ double bruteForceDistance(const deform::DeformedPrimitive& mesh,
     return best;
 }
 
+/** The first `count` floats of `buffer`, read back. */
+std::vector<float> downloadFloats(const gl::Buffer& buffer, std::size_t count) {
+    const auto bytes = buffer.download(0, count * sizeof(float));
+    std::vector<float> values(count);
+    std::memcpy(values.data(), bytes.data(), bytes.size());
+    return values;
+}
+
 /** CesiumMan with the engine's and the plugin's shaders and ISR's d_N programs. */
 struct DistanceRig {
     scene::Model model;
@@ -224,10 +232,8 @@ struct DistanceRig {
     /** d_N per vertex of `deformer`'s first primitive as it is deformed now, read back. */
     std::vector<float> deformedDistances(const deform::GpuDeformer& deformer) const {
         const auto& primitive = deformer.instances()[0].primitives[0];
-        const auto bytes = distances(*primitive.source, primitive.deformed).distances().download();
-        std::vector<float> values(primitive.vertexCount);
-        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
-        return values;
+        return downloadFloats(distances(*primitive.source, primitive.deformed).distances(),
+                              primitive.vertexCount);
     }
 };
 
@@ -295,11 +301,8 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
     EXPECT_EQ(left | right, 3);
     EXPECT_TRUE(left != 3 && right != 3) << "a child of the root holds triangles of both copies";
 
-    const auto bytes = distance.distances().download();
-    std::vector<float> d(2 * std::size_t(primitive.vertexCount));
-    std::memcpy(d.data(), bytes.data(), d.size() * sizeof(float));
     double worst = 0.0;
-    for (float v : d)
+    for (float v : downloadFloats(distance.distances(), 2 * std::size_t(primitive.vertexCount)))
         worst = std::max(worst, std::abs(double(v) - 2.0));
     EXPECT_LE(worst, 1e-4);
 }
@@ -360,9 +363,7 @@ TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) 
         rig.distances(*primitive.source, (*deformer)->cage(0, 0).vertices);
     gl::Buffer drawn(std::size_t(primitive.vertexCount) * sizeof(float));
     (*deformer)->refineScalar(0, 0, distance.distances(), drawn);
-    const auto bytes = drawn.download();
-    std::vector<float> refined(primitive.vertexCount);
-    std::memcpy(refined.data(), bytes.data(), refined.size() * sizeof(float));
+    const std::vector<float> refined = downloadFloats(drawn, primitive.vertexCount);
 
     const auto surface = (*deformer)->download(0, 0);
     const auto& indices = primitive.topology->indices;

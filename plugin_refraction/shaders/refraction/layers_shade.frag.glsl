@@ -504,12 +504,19 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     return w;
 }
 
+// What a walk's ray sees: the opaque part it ended on (hitT 0), or what lies beyond its last
+// interface (lookup).
+vec3 walkSees(Walk w, float roughness, out float hitT) {
+    hitT = 0.0;
+    return w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
+                    : lookup(w.point, w.dir, roughness, hitT);
+}
+
 vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
     green = walkLayers(P1, V, N1, entryAttr, 1);
-    float hitT = 0.0;
-    vec3 seen = green.opaque ? texelFetch(uSceneColor, green.hit, 0).rgb
-                             : lookup(green.point, green.dir, m.sigma.w, hitT);
+    float hitT;
+    vec3 seen = walkSees(green, m.sigma.w, hitT);
     vec3 transmitted = seen * green.weight + green.reflected;
     bool dispersion = m.ior.r != m.ior.b;
 #if LAYER_DISPERSION == 1 // DISPERSION_SHARED
@@ -540,9 +547,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
         for (int c = 0; c < 3; c += 2) {
             Walk w = walkLayers(P1, V, N1, entryAttr, c);
             float unused;
-            vec3 channelSeen = w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
-                                        : lookup(w.point, w.dir, m.sigma.w, unused);
-            transmitted[c] = channelSeen[c] * w.weight[c] + w.reflected[c];
+            transmitted[c] = walkSees(w, m.sigma.w, unused)[c] * w.weight[c] + w.reflected[c];
             green.tir = green.tir || w.tir;
         }
     }
