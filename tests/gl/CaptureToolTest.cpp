@@ -211,14 +211,32 @@ TEST(CaptureTool, EnvironmentComesFromTheHdrFile) {
 }
 
 TEST(CaptureTool, RefractionPluginLoads) {
+    // The module, loaded with glass on while the built-in plugin is off, draws the sphere as
+    // the built-in plugin does: the same image, and not the opaque one.
     test::TempDir dir;
-    const auto model = test::twoJointModel().save(dir.path(), "twojoint");
+    const std::string sphere = "builtin:sphere --size 32x32 --glass all ";
     std::string out;
-    const int status = capture(model.string() + " --size 32x32 --out " + (dir / "x").string() +
-                                   " --plugin " + kLib + "/libglass_refraction.so",
-                               &out);
+    const int status =
+        capture(sphere + "--method opaque --out " + (dir / "module").string() + " --plugin " +
+                    kLib + "/libglass_refraction.so --set method=dir --set glass=all",
+                &out);
     SKIP_WITHOUT_GL(out);
-    EXPECT_EQ(status, 0) << out;
+    ASSERT_EQ(status, 0) << out;
+    ASSERT_EQ(capture(sphere + "--method dir --out " + (dir / "builtin").string(), &out), 0) << out;
+    ASSERT_EQ(capture(sphere + "--method opaque --out " + (dir / "opaque").string(), &out), 0)
+        << out;
+    auto frame = [&](const char* run) {
+        auto image = capture::readPng(dir / run / "builtin_sphere_rest_t0.000.png");
+        EXPECT_TRUE(image.ok()) << run << ": " << (image.ok() ? "" : image.error().message);
+        return image ? image->rgba : std::vector<std::uint8_t>{};
+    };
+    const auto module = frame("module"), builtin = frame("builtin"), opaque = frame("opaque");
+    ASSERT_EQ(module.size(), opaque.size());
+    std::size_t glass = 0;
+    for (std::size_t i = 0; i < module.size(); ++i)
+        glass += std::abs(int(module[i]) - int(opaque[i])) > 8;
+    EXPECT_GT(glass, 100u) << "the module drew no glass";
+    EXPECT_EQ(module, builtin);
 }
 
 } // namespace

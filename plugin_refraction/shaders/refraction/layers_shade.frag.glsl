@@ -610,6 +610,12 @@ void main() {
         break;
     }
     case 2: color = layerNormal(layerAttrAt(p, farthest)) * 0.5 + 0.5; break; // back-normal
+    case 3: { // dv: from the nearest layer to the farthest, on back-depth's scale
+        vec3 lo, hi;
+        glassBox(lo, hi);
+        color = vec3((far - z) / max(-lo.z, 1e-6));
+        break;
+    }
     case 4: color = vec3(max(layerNormalDistance(entryAttr, z), 0.0) / z); break;
     case 5: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
     case 6: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
