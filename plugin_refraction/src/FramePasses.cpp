@@ -1,8 +1,6 @@
 // The refraction passes of one frame.
 #include "FramePasses.h"
 
-#include "Optics.h"
-
 #include "engine/deform/GpuDeformer.h"
 #include "engine/render/Environment.h"
 #include "engine/render/MaterialTextures.h"
@@ -11,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 
@@ -71,6 +70,7 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
     buffers.range = graph.importBuffer("refraction.depth_range", &gpu.range);
     buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
+    buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
     return buffers;
 }
 
@@ -81,9 +81,8 @@ int GpuState::Distance::find(Part part) const {
 
 void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) {
     std::erase_if(gpu.distances, [&](const auto& entry) {
-        return std::none_of(items.begin(), items.end(), [&](const render::DrawItem& item) {
-            return item.key == entry.first;
-        });
+        return std::none_of(items.begin(), items.end(),
+                            [&](const render::DrawItem& item) { return item.key == entry.first; });
     });
 }
 
@@ -113,20 +112,28 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
                              frame->settings.environmentIntensity);
 }
 
-void FrameContext::setMaterial(const gl::Program& program, const render::DrawItem& item) const {
-    const scene::Model& model = *item.model;
-    const int material = item.material;
-    const scene::Material* m = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-    item.materials->bind(program, model, material, kMaterialUnit);
-    const Optics o = opticsFor(settings, m, item.source->overrides);
-    program.set("uIor", o.ior);
-    program.set("uDispersion", o.dispersion ? 1 : 0);
-    program.set("uSigma", o.sigma);
-    program.set("uTransmission", o.transmission);
-    program.set("uBaseColor", o.baseColor);
-    program.set("uRoughness", o.roughness);
-    program.set("uMetallic", o.metallic);
-    program.set("uEmissive", m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f));
+void FrameContext::setMaterial(const gl::Program& program, std::size_t index) const {
+    const render::DrawItem& item = frame->items[index];
+    item.materials->bind(program, *item.model, item.material, kMaterialUnit);
+    program.set("uGlassId", gpu->glassIds[index]);
+    gl::bindStorage(8, gpu->glassMaterials);
+}
+
+void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
+    struct Data {
+        fg::BufferHandle materials;
+    };
+    const Data& pass = graph.addPass<Data>(
+        "refraction.glass_materials",
+        [&](fg::Builder& b, Data& d) { d.materials = b.write(buffers.materials); },
+        [c](const fg::Resources&, const Data&, gl::Context&) {
+            GpuState& gpu = *c.gpu;
+            const std::size_t bytes = gpu.glassOptics.size() * sizeof(GlassMaterialGpu);
+            if (gpu.glassMaterials.size() < bytes)
+                gpu.glassMaterials = gl::Buffer(bytes);
+            gpu.glassMaterials.update(0, bytes, gpu.glassOptics.data());
+        });
+    buffers.materials = pass.materials;
 }
 
 void FrameContext::drawGlass(
@@ -158,7 +165,8 @@ void FrameContext::drawGlass(
         if (hasDistance) {
             const auto drawn = distance->drawn.find({item.instance, item.primitiveIndex});
             values = drawn != distance->drawn.end() ? &drawn->second : &distance->cage->distances();
-            base = drawn != distance->drawn.end() ? 0 : int(distance->cage->base(std::size_t(part)));
+            base =
+                drawn != distance->drawn.end() ? 0 : int(distance->cage->base(std::size_t(part)));
         }
         program.set("uHasNormalDistance", hasDistance ? 1 : 0);
         program.set("uDistanceBase", base);
@@ -174,11 +182,12 @@ void FrameContext::drawGlass(
 
 void FrameContext::growGlassRectangle() const {
     // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
-    gpu->rectangle.fill(0, 2, std::uint32_t(INT32_MAX));
-    gpu->rectangle.fill(8, 2, std::uint32_t(INT32_MIN));
-    gpu->rectangle.fill(16, 3, std::uint32_t(INT32_MAX));
-    gpu->rectangle.fill(28, 3, std::uint32_t(INT32_MIN));
-    gpu->rectangle.fill(40, 1, 0u);
+    using R = GlassRectangleGpu;
+    gpu->rectangle.fill(offsetof(R, pixelMin), 2, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(offsetof(R, pixelMax), 2, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(offsetof(R, boxMin), 3, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(offsetof(R, boxMax), 3, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(offsetof(R, overflowPixels), 1, 0u);
     gpu->rectangleGrow.use();
     gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
     gl::bindStorage(4, gpu->rectangle);
@@ -340,11 +349,10 @@ SurfaceMaps addGatheredSurfacePasses(fg::FrameGraph& graph, const fg::Blackboard
             gpu.surfaces.use();
             gpu.surfaces.set("uKeyNear", frame.camera.znear);
             gpu.surfaces.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
-            c.drawGlass(gpu.surfaces,
-                        {.cull = gl::Cull::None,
-                         .depthTest = false,
-                         .depthWrite = false,
-                         .blend = gl::Blend::Max});
+            c.drawGlass(gpu.surfaces, {.cull = gl::Cull::None,
+                                       .depthTest = false,
+                                       .depthWrite = false,
+                                       .blend = gl::Blend::Max});
             return {};
         });
     buffers.rectangle = gathered.rectangle;
@@ -438,13 +446,14 @@ void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const Surfa
                 gpu.range.fill(8 * slot + 4, 1, 0u);
             }
             if (!c.onePass) { // the separate passes grow no glass rectangle: the screen
-                gpu.rectangle.fill(0, 2, 0u);
-                gpu.rectangle.fill(8, 1, std::uint32_t(size.x - 1));
-                gpu.rectangle.fill(12, 1, std::uint32_t(size.y - 1));
+                using R = GlassRectangleGpu;
+                gpu.rectangle.fill(offsetof(R, pixelMin), 2, 0u);
+                gpu.rectangle.fill(offsetof(R, pixelMax), 1, std::uint32_t(size.x - 1));
+                gpu.rectangle.fill(offsetof(R, pixelMax) + 4, 1, std::uint32_t(size.y - 1));
             }
             gpu.depthRange.use();
             gl::bindStorage(0, gpu.range);
-            gl::bindStorage(1, gpu.rectangle);
+            gl::bindStorage(4, gpu.rectangle);
             for (int slot = 0; slot < (d.front.valid() ? 2 : 1); ++slot) {
                 gl::bindTexture(0, r.texture(slot == 0 ? d.back : d.front));
                 gpu.depthRange.set("uDepth", 0);
@@ -467,6 +476,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
         if (!c.onePass) // the front faces are drawn again; one pass shades the maps alone
             b.read(buffers.vertices);
         b.read(buffers.rectangle);
+        b.read(buffers.materials);
         if (c.settings.twoInterfaces())
             b.read(buffers.range);
         if (c.settings.usesNormalDistance())
@@ -500,7 +510,7 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
                     !bound)
                     return bound;
                 setShading(c, gpu.deferred, d, r);
-                c.setMaterial(gpu.deferred, *c.glass);
+                c.setMaterial(gpu.deferred, c.glassIndex);
                 gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
                 gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
                 c.drawMaskedRectangle();
@@ -526,8 +536,8 @@ fg::TextureHandle addShadingPasses(fg::FrameGraph& graph, const fg::Blackboard& 
             gl::clearDepth(1.0f);
             setShading(c, c.gpu->front, d, r);
             c.drawGlass(c.gpu->front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
-                        [&c](const render::DrawItem& item, std::size_t) {
-                            c.setMaterial(c.gpu->front, item);
+                        [&c](const render::DrawItem&, std::size_t index) {
+                            c.setMaterial(c.gpu->front, index);
                         });
             return {};
         });

@@ -27,16 +27,18 @@ struct FrameContext {
     const render::FrameInfo* frame = nullptr;
     bool reflect = false; ///< TIR reflect (two interfaces): the front surface is searched too
     bool onePass = false; ///< the single gathered geometry pass
-    /** The first glass item: with one pass, its material and overrides are every one's. */
+    /** The first glass item and its index in the frame's items: with one pass, its material
+     *  and overrides are every one's. */
     const render::DrawItem* glass = nullptr;
+    std::size_t glassIndex = 0;
     const gl::Program* layerShade = nullptr; ///< the shading variant (layerShadeProgram)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** Draws every glass item with `program` (glass.vert.glsl), calling `perItem` (its index
      *  in the frame's items) first when given. */
-    void drawGlass(const gl::Program& program, const gl::PipelineState& state,
-                   const std::function<void(const render::DrawItem&, std::size_t)>& perItem =
-                       {}) const;
+    void
+    drawGlass(const gl::Program& program, const gl::PipelineState& state,
+              const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {}) const;
     /** The glass's pixel rectangle and view-space box from the deformed cages
      *  (rectangle.comp.glsl), into GpuState::rectangle. */
     void growGlassRectangle() const;
@@ -48,9 +50,9 @@ struct FrameContext {
     /** What every shading pass sets alike: method, search, TIR policy, Fresnel, debug view,
      *  camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
-    /** Material and optics uniforms of glass_shading.glsl for `item`'s material and its
-     *  character's overrides. */
-    void setMaterial(const gl::Program& program, const render::DrawItem& item) const;
+    /** The glass id of frame item `index` (its optics in glass_materials.glsl) and its
+     *  material's textures, for `program`. */
+    void setMaterial(const gl::Program& program, std::size_t index) const;
 };
 
 /** Forgets the d_N of characters no longer in `items` (removed, or placed again). */
@@ -62,7 +64,8 @@ void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items);
  *  frame. A pass that writes one leaves the new version here for the passes after it. */
 struct FrameBuffers {
     fg::BufferHandle vertices, distances, rectangle, range;
-    fg::BufferHandle layers; ///< GpuState::layers (the layered path)
+    fg::BufferHandle materials; ///< GpuState::glassMaterials (glass_materials.glsl)
+    fg::BufferHandle layers;    ///< GpuState::layers (the layered path)
 };
 
 /** The maps the searches read. */
@@ -90,9 +93,11 @@ void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const Surfa
  *  variant for K, the method and the dispersion search (compiled in: layers.glsl,
  *  layers_shade.frag.glsl), built when first needed (every method's at once) and kept. */
 core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c);
-/** The layered path's glass ids and their optics (GpuState::glassIds, glassOptics); ids past
- *  the 255 a layer can name share the last, with a warning. */
+/** The frame's glass ids and their optics (GpuState::glassIds, glassOptics); ids past the 255
+ *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
+/** The optics of every glass id into GpuState::glassMaterials, which every shading pass reads. */
+void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 /** The layered path: the capture pass (one geometry pass, every glass layer) and the walk over
  *  the glass pixels; returns the new scene colour. */
 fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& blackboard,

@@ -28,6 +28,14 @@ struct GlassMaterialGpu {
     glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
 };
 
+/** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them
+ *  (std430). */
+struct GlassRectangleGpu {
+    std::int32_t pixelMin[2], pixelMax[2]; ///< inclusive; empty while min > max
+    std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
+    std::uint32_t overflowPixels;          ///< pixels over K in the layered shading
+};
+
 struct GpuState {
     // The papers' two geometry passes, and what both paths share.
     gl::Program surface, front, composite, depthRange, refit, normalDistance, cageGather;
@@ -55,10 +63,8 @@ struct GpuState {
     bool warnedGlassIds = false; // the 256-id limit was reported
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
-    gl::Buffer range{4 * sizeof(std::uint32_t)};    // depth_range.comp.glsl's min/max
-    /** The glass's pixel rectangle (surfaces.glsl) [0..3], its view-space box [4..9]
-     *  (rectangle.comp.glsl), the layered shading's overflowing pixels [10]. */
-    gl::Buffer rectangle{11 * sizeof(std::int32_t)};
+    gl::Buffer range{4 * sizeof(std::uint32_t)}; // depth_range.comp.glsl's min/max
+    gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
     /** d_N of one character's glass: one BVH over all its glass primitives' cages (parts, in
      *  the order of their draw items); with subdivision carried to each part's drawn vertices
      *  by the refinement stencils. */

@@ -179,6 +179,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
         "refraction.layers",
         [&](fg::Builder& b, CaptureData& d) {
             b.read(buffers.vertices);
+            b.read(buffers.materials);
             if (c.settings.usesNormalDistance())
                 b.read(buffers.distances);
             d.mask = b.write(b.create("refraction.layers.mask", {size, gl::Format::Depth32F, 1}));
@@ -193,10 +194,6 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
             gpu.layers.heads.fill(0, pixels, 0u);                   // counts
             gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys
             gpu.layers.heads.fill(pixels * 8, pixels, 0u);          // farthest back keys
-            const std::size_t bytes = c.gpu->glassOptics.size() * sizeof(GlassMaterialGpu);
-            if (gpu.glassMaterials.size() < bytes)
-                gpu.glassMaterials = gl::Buffer(bytes);
-            gpu.glassMaterials.update(0, bytes, c.gpu->glassOptics.data());
             c.growGlassRectangle();
             // Depth only: the shading pass's mask.
             if (auto bound =
@@ -262,6 +259,7 @@ fg::TextureHandle addLayerPasses(fg::FrameGraph& graph, const fg::Blackboard& bl
         "refraction.shade_layers",
         [&](fg::Builder& b, ShadeData& d) {
             d.layers = b.read(buffers.layers);
+            b.read(buffers.materials);
             d.mask = b.read(captured.mask);
             d.depths0 = b.read(resolved.depths0);
             if (resolved.depths1.valid())

@@ -8,14 +8,13 @@
 #include "engine/core/Check.h"
 #include "engine/core/Log.h"
 
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 
 std::span<const gl::ShaderFile> refractionShaderFiles();
 
 namespace refraction {
-
-using Type = plugin::Parameter::Type;
 
 namespace {
 
@@ -55,160 +54,9 @@ void addMaterialPresets(plugin::ParameterSet& parameters) {
 } // namespace
 
 RefractionPlugin::RefractionPlugin() {
-    auto& p = mParameters;
-    p.declare({"method",
-               "Method",
-               Type::Enum,
-               0,
-               0,
-               3,
-               {"opaque", "sir", "isr", "dir"},
-               "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame d_N; "
-               "dir: depth-map search, no preprocessing"});
-    p.declare({"glass",
-               "Glass",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"auto", "all"},
-               "auto: materials with transmission; all: every mesh"});
-    p.declare(
-        {"ior", "IOR", Type::Float, 0.0, 4.0, 0.0, {}, "index of refraction; 0: the material's"});
-    p.declare({"dispersion",
-               "Dispersion",
-               Type::Float,
-               -1.0,
-               10.0,
-               -1.0,
-               {},
-               "20 / Abbe number (KHR_materials_dispersion); -1: the material's"});
-    p.declare({"dispersion-search",
-               "Dispersion search",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"shared", "per-channel"},
-               "shared: one exit search, red and blue bent from green's exit point by their own "
-               "indices; per-channel: red, green and blue each search their exit (three "
-               "searches and lookups)"});
-    p.declare(
-        {"tint", "Tint", Type::Color, 0.0, 1.0, 1.0, {}, "multiplies the attenuation colour"});
-    p.declare({"absorption-distance",
-               "Absorption distance",
-               Type::Float,
-               0.0,
-               1e6,
-               0.0,
-               {},
-               "distance at which light takes the attenuation colour; 0: the material's"});
-    p.declare({"fresnel", "Fresnel", Type::Enum, 0, 0, 0, {"exact", "schlick", "off"}, ""});
-    p.declare({"search-steps",
-               "Search steps",
-               Type::Int,
-               1,
-               16,
-               5,
-               {},
-               "DIR conservative binary search steps"});
-    p.declare({"tir",
-               "TIR",
-               Type::Enum,
-               0,
-               0,
-               1,
-               {"clamp", "reflect"},
-               "reflect (default): bounce inside and search again, as light does; clamp: exit "
-               "tangent (the papers)"});
-    p.declare({"tir-bounces",
-               "TIR bounces",
-               Type::Int,
-               1,
-               8,
-               2,
-               {},
-               "reflections followed with tir=reflect"});
-    p.declare({"back-surface",
-               "Back surface",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"farthest", "first"},
-               "which back face the depth map keeps (ISR paper §3.2)"});
-    p.declare({"surfaces",
-               "Surfaces",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"layers", "two-surface"},
-               "layers: every glass surface a ray crosses (up to layer-capacity per pixel), "
-               "captured in one geometry pass whatever the materials, and walked interface by "
-               "interface; two-surface: the papers' nearest front and one back surface"});
-    p.declare({"layer-capacity",
-               "Layers per pixel (K)",
-               Type::Int,
-               1,
-               8,
-               4,
-               {},
-               "glass fragments kept per pixel; a pixel with more keeps its nearest front and "
-               "farthest back (debug view overflow)"});
-    p.declare({"interfaces",
-               "Interfaces (N)",
-               Type::Int,
-               1,
-               32,
-               8,
-               {},
-               "interfaces a layered ray crosses at most, the entry included"});
-    p.declare({"march-steps",
-               "March steps",
-               Type::Int,
-               1,
-               64,
-               12,
-               {},
-               "layered search: coarse samples along the ray before search-steps halvings"});
-    p.declare({"geometry-passes",
-               "Geometry passes",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"one", "two"},
-               "one: front and back surfaces gathered in one pass (MAX blending), refracted in a "
-               "full-screen pass; two: the papers' back-face pass, then a front-face pass. With "
-               "surfaces=two-surface, one needs a single glass material without a normal map "
-               "and back-surface=farthest, otherwise two runs; layers always draw once"});
-    p.declare({"nearby",
-               "Nearby scene",
-               Type::Bool,
-               0,
-               1,
-               1,
-               {},
-               "exit rays see the opaque scene on screen before the environment"});
-    p.declare({"outline-aa",
-               "Outline anti-aliasing",
-               Type::Bool,
-               0,
-               1,
-               1,
-               {},
-               "layers: the outlines of smooth glass share each pixel with what is behind"});
-    p.declare({"debug",
-               "Debug view",
-               Type::Enum,
-               0,
-               0,
-               0,
-               {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
-                "exit-point", "exit-direction", "layer-count", "overflow"},
-               ""});
-    addMaterialPresets(p);
+    for (const plugin::Parameter& parameter : Settings::parameterTable())
+        mParameters.declare(parameter);
+    addMaterialPresets(mParameters);
 }
 
 RefractionPlugin::~RefractionPlugin() = default;
@@ -275,18 +123,19 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
 
     dropStaleDistances(*mGpu, c.frame->items);
     c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
+    assignGlassIds(c);
+    if (c.gpu->glassOptics.empty())
+        return;
+    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
+    addGlassMaterialsPass(graph, c, buffers);
     if (c.settings.layered()) {
         // Every glass item, whatever its material, in one capture pass; then the walk.
-        assignGlassIds(c);
-        if (c.gpu->glassOptics.empty())
-            return;
         auto program = layerShadeProgram(*mGpu, c);
         if (!program) {
             core::logError("refraction: " + program.error().message);
             return;
         }
         c.layerShade = *program;
-        FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
         if (c.settings.usesNormalDistance())
             addNormalDistancePass(graph, c, buffers);
         blackboard.put(plugin::kSceneColor, addLayerPasses(graph, blackboard, c, buffers));
@@ -297,17 +146,18 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     // material with the same overrides on every glass item, no normal map (no UV or tangent is
     // gathered), the farthest back surface (MAX blending).
     bool oneMaterial = true;
-    for (const render::DrawItem& item : c.frame->items) {
+    for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
+        const render::DrawItem& item = c.frame->items[index];
         if (item.owner != this)
             continue;
-        if (!c.glass)
+        if (!c.glass) {
             c.glass = &item;
+            c.glassIndex = index;
+        }
         oneMaterial = oneMaterial && item.model == c.glass->model &&
                       item.material == c.glass->material &&
                       item.source->overrides == c.glass->source->overrides;
     }
-    if (!c.glass)
-        return;
     const scene::Model& model = *c.glass->model;
     const bool normalMap = c.glass->material >= 0 &&
                            model.materials[std::size_t(c.glass->material)].normalTexture.present();
@@ -315,7 +165,6 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
                 !normalMap && !firstBack;
 
-    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
     if (c.settings.usesNormalDistance())
         addNormalDistancePass(graph, c, buffers);
     const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c, buffers)
@@ -333,8 +182,8 @@ LayerStats RefractionPlugin::layerStats() const {
     stats.capacity = layers.capacity;
     stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlineAntialiasing);
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
-    const auto counter =
-        mGpu->rectangle.download(10 * sizeof(std::uint32_t), sizeof(std::uint32_t));
+    const auto counter = mGpu->rectangle.download(offsetof(GlassRectangleGpu, overflowPixels),
+                                                  sizeof(std::uint32_t));
     std::memcpy(&stats.overflowPixels, counter.data(), sizeof(std::uint32_t));
     return stats;
 }

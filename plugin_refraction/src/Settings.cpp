@@ -1,56 +1,161 @@
-// Decoding the plugin's parameters into Settings.
+// The plugin's parameters as data, and their decoding into Settings.
 #include "Settings.h"
 
-#include "engine/core/Check.h"
-
-#include <initializer_list>
-#include <string>
-
 namespace refraction {
-namespace {
 
-/** The enum value of an Enum parameter's choice, by its position in `names`. */
-template <class E>
-E choose(const plugin::ParameterSet& p, const char* parameter,
-         std::initializer_list<const char*> names) {
-    const std::string& chosen = p.choice(parameter);
-    int index = 0;
-    for (const char* name : names) {
-        if (chosen == name)
-            return E(index);
-        ++index;
-    }
-    ENGINE_CHECK(false,
-                 std::string("refraction settings do not know ") + parameter + " '" + chosen + "'");
-    return E(0);
+using Type = plugin::Parameter::Type;
+
+// Each Enum's choices in the order of its Settings enum, which decode() reads by index.
+const std::vector<plugin::Parameter>& Settings::parameterTable() {
+    static const std::vector<plugin::Parameter> kTable = {
+        {.name = "method",
+         .label = "Method",
+         .type = Type::Enum,
+         .defaultValue = 3,
+         .choices = {"opaque", "sir", "isr", "dir"},
+         .help = "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame "
+                 "d_N; dir: depth-map search, no preprocessing"},
+        {.name = "glass",
+         .label = "Glass",
+         .type = Type::Enum,
+         .choices = {"auto", "all"},
+         .help = "auto: materials with transmission; all: every mesh"},
+        {.name = "ior",
+         .label = "IOR",
+         .max = 4.0,
+         .help = "index of refraction; 0: the material's"},
+        {.name = "dispersion",
+         .label = "Dispersion",
+         .min = -1.0,
+         .max = 10.0,
+         .defaultValue = -1.0,
+         .help = "20 / Abbe number (KHR_materials_dispersion); -1: the material's"},
+        {.name = "dispersion-search",
+         .label = "Dispersion search",
+         .type = Type::Enum,
+         .choices = {"shared", "per-channel"},
+         .help = "shared: one exit search, red and blue bent from green's exit point by their "
+                 "own indices; per-channel: red, green and blue each search their exit (three "
+                 "searches and lookups)"},
+        {.name = "tint",
+         .label = "Tint",
+         .type = Type::Color,
+         .defaultValue = 1.0,
+         .help = "multiplies the attenuation colour"},
+        {.name = "absorption-distance",
+         .label = "Absorption distance",
+         .max = 1e6,
+         .help = "distance at which light takes the attenuation colour; 0: the material's"},
+        {.name = "fresnel",
+         .label = "Fresnel",
+         .type = Type::Enum,
+         .choices = {"exact", "schlick", "off"}},
+        {.name = "search-steps",
+         .label = "Search steps",
+         .type = Type::Int,
+         .min = 1,
+         .max = 16,
+         .defaultValue = 5,
+         .help = "DIR conservative binary search steps"},
+        {.name = "tir",
+         .label = "TIR",
+         .type = Type::Enum,
+         .defaultValue = 1,
+         .choices = {"clamp", "reflect"},
+         .help = "reflect (default): bounce inside and search again, as light does; clamp: "
+                 "exit tangent (the papers)"},
+        {.name = "tir-bounces",
+         .label = "TIR bounces",
+         .type = Type::Int,
+         .min = 1,
+         .max = 8,
+         .defaultValue = 2,
+         .help = "reflections followed with tir=reflect"},
+        {.name = "back-surface",
+         .label = "Back surface",
+         .type = Type::Enum,
+         .choices = {"farthest", "first"},
+         .help = "which back face the depth map keeps (ISR paper §3.2)"},
+        {.name = "surfaces",
+         .label = "Surfaces",
+         .type = Type::Enum,
+         .choices = {"layers", "two-surface"},
+         .help = "layers: every glass surface a ray crosses (up to layer-capacity per pixel), "
+                 "captured in one geometry pass whatever the materials, and walked interface by "
+                 "interface; two-surface: the papers' nearest front and one back surface"},
+        {.name = "layer-capacity",
+         .label = "Layers per pixel (K)",
+         .type = Type::Int,
+         .min = 1,
+         .max = 8,
+         .defaultValue = 4,
+         .help = "glass fragments kept per pixel; a pixel with more keeps its nearest front and "
+                 "farthest back (debug view overflow)"},
+        {.name = "interfaces",
+         .label = "Interfaces (N)",
+         .type = Type::Int,
+         .min = 1,
+         .max = 32,
+         .defaultValue = 8,
+         .help = "interfaces a layered ray crosses at most, the entry included"},
+        {.name = "march-steps",
+         .label = "March steps",
+         .type = Type::Int,
+         .min = 1,
+         .max = 64,
+         .defaultValue = 12,
+         .help = "layered search: coarse samples along the ray before search-steps halvings"},
+        {.name = "geometry-passes",
+         .label = "Geometry passes",
+         .type = Type::Enum,
+         .choices = {"one", "two"},
+         .help = "one: front and back surfaces gathered in one pass (MAX blending), refracted in "
+                 "a full-screen pass; two: the papers' back-face pass, then a front-face pass. "
+                 "With surfaces=two-surface, one needs a single glass material without a normal "
+                 "map and back-surface=farthest, otherwise two runs; layers always draw once"},
+        {.name = "nearby",
+         .label = "Nearby scene",
+         .type = Type::Bool,
+         .defaultValue = 1,
+         .help = "exit rays see the opaque scene on screen before the environment"},
+        {.name = "outline-aa",
+         .label = "Outline anti-aliasing",
+         .type = Type::Bool,
+         .defaultValue = 1,
+         .help = "layers: the outlines of smooth glass share each pixel with what is behind"},
+        {.name = "debug",
+         .label = "Debug view",
+         .type = Type::Enum,
+         .choices = {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
+                     "exit-point", "exit-direction", "layer-count", "overflow"}},
+    };
+    return kTable;
 }
 
-} // namespace
-
 Settings Settings::decode(const plugin::ParameterSet& p) {
+    auto index = [&](const char* name) { return int(p.number(name)); };
     Settings s;
-    s.method = choose<Method>(p, "method", {"opaque", "sir", "isr", "dir"});
-    s.glass = choose<Glass>(p, "glass", {"auto", "all"});
+    s.method = Method(index("method"));
+    s.glass = Glass(index("glass"));
     s.ior = p.number("ior");
     s.dispersion = p.number("dispersion");
     const auto tint = p.color("tint");
     s.tint = {tint[0], tint[1], tint[2]};
     s.absorptionDistance = p.number("absorption-distance");
-    s.fresnel = choose<Fresnel>(p, "fresnel", {"exact", "schlick", "off"});
-    s.searchSteps = int(p.number("search-steps"));
-    s.tir = choose<Tir>(p, "tir", {"clamp", "reflect"});
-    s.tirBounces = int(p.number("tir-bounces"));
-    s.backSurface = choose<BackSurface>(p, "back-surface", {"farthest", "first"});
-    s.geometryPasses = choose<GeometryPasses>(p, "geometry-passes", {"one", "two"});
-    s.dispersionSearch =
-        choose<DispersionSearch>(p, "dispersion-search", {"shared", "per-channel"});
-    s.surfaces = choose<Surfaces>(p, "surfaces", {"layers", "two-surface"});
-    s.layerCapacity = int(p.number("layer-capacity"));
-    s.interfaces = int(p.number("interfaces"));
-    s.marchSteps = int(p.number("march-steps"));
+    s.fresnel = Fresnel(index("fresnel"));
+    s.searchSteps = index("search-steps");
+    s.tir = Tir(index("tir"));
+    s.tirBounces = index("tir-bounces");
+    s.backSurface = BackSurface(index("back-surface"));
+    s.geometryPasses = GeometryPasses(index("geometry-passes"));
+    s.dispersionSearch = DispersionSearch(index("dispersion-search"));
+    s.surfaces = Surfaces(index("surfaces"));
+    s.layerCapacity = index("layer-capacity");
+    s.interfaces = index("interfaces");
+    s.marchSteps = index("march-steps");
     s.nearby = p.flag("nearby");
     s.outlineAntialiasing = p.flag("outline-aa");
-    s.debug = int(p.number("debug"));
+    s.debug = index("debug");
     return s;
 }
 

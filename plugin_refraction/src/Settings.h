@@ -8,10 +8,12 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace refraction {
 
 struct Settings {
-    // Each enum lists its parameter's choices in declaration order (RefractionPlugin.cpp).
+    // Each enum lists its parameter's choices in the order of parameterTable().
     enum class Method { Opaque, Sir, Isr, Dir };
     enum class Glass { Auto, All };
     enum class Fresnel { Exact, Schlick, Off };
@@ -42,6 +44,8 @@ struct Settings {
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
     int debug = 0; ///< index into the "debug" parameter's choices (glass_shading.glsl)
 
+    /** The plugin's parameters as data: name, label, type, range, default, choices, help. */
+    static const std::vector<plugin::Parameter>& parameterTable();
     /** Reads every parameter of the refraction plugin's set (which must declare them all). */
     static Settings decode(const plugin::ParameterSet& parameters);
 

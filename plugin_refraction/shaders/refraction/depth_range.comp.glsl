@@ -6,8 +6,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 uniform sampler2D uDepth;
 uniform int uSlot; // 0: back map, 1: front map
 layout(std430, binding = 0) buffer Range { uint range[]; }; // [slot*2] min bits, [slot*2+1] max bits
-// Texels outside this rectangle hold no surface: min x, min y, max x, max y (surfaces.glsl).
-layout(std430, binding = 1) readonly buffer GlassRectangle { int glassRectangle[]; };
+#include "refraction/glass_rectangle.glsl" // texels outside its rectangle hold no surface
 
 shared float sMin[256];
 shared float sMax[256];
@@ -20,8 +19,8 @@ void main() {
         for (int x = 0; x < 4; ++x) {
             ivec2 texel = base + ivec2(x, y);
             bool inside = all(lessThan(texel, size)) &&
-                          all(greaterThanEqual(texel, ivec2(glassRectangle[0], glassRectangle[1]))) &&
-                          all(lessThanEqual(texel, ivec2(glassRectangle[2], glassRectangle[3])));
+                          all(greaterThanEqual(texel, ivec2(glassPixelMin[0], glassPixelMin[1]))) &&
+                          all(lessThanEqual(texel, ivec2(glassPixelMax[0], glassPixelMax[1])));
             float d = inside ? texelFetch(uDepth, texel, 0).r : 0.0;
             if (d > 0.0) {
                 lo = min(lo, d);

@@ -10,6 +10,7 @@
 #define REFRACTION_GLASS_SHADING_GLSL
 #include "common/brdf.glsl"
 #include "common/normal_map.glsl"
+#include "refraction/glass_materials.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/scene_lookup.glsl"
 #include "refraction/search.glsl"
@@ -20,14 +21,8 @@ const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 
 uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uDebug;
-uniform vec3 uIor;            // per channel (dispersion); all equal without it
-uniform int uDispersion;      // 1: per-channel indices (uIor)
+uniform int uGlassId;          // the glass's entry of glassMaterials
 uniform int uSharedDispersion; // 1: one exit search shared by the channels, 0: one each
-uniform float uTransmission;
-uniform vec4 uBaseColor;
-uniform float uRoughness, uMetallic;
-uniform vec3 uSigma;          // Beer-Lambert absorption per world unit
-uniform vec3 uEmissive;
 uniform int uHasNormalTexture;
 uniform sampler2D uNormalTexture;
 uniform mat3 uNormalUv;       // KHR_texture_transform of the normal texture
@@ -174,52 +169,56 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
         N1 = dot(mapped, V) < 0.0 ? mapped : N1;
     }
 
-    Path path = trace(P1, V, N1, uIor.g);
+    GlassMaterial m = glassMaterials[uGlassId];
+    vec3 ior = m.ior.rgb, sigma = m.sigma.rgb;
+    float roughness = m.sigma.w;
+    Path path = trace(P1, V, N1, ior.g);
     vec3 transmitted;
     bool anyTir = path.tir;
     float hitT;
-    vec3 green = lookup(path.exitPoint, path.exitDir, uRoughness, hitT);
-    if (uDispersion != 0 && uMethod != METHOD_SIR && uSharedDispersion != 0) {
+    vec3 green = lookup(path.exitPoint, path.exitDir, roughness, hitT);
+    bool dispersion = ior.r != ior.b;
+    if (dispersion && uMethod != METHOD_SIR && uSharedDispersion != 0) {
         // One search: red and blue leave from green's exit point, each bent by its own index at
         // both interfaces, and see the scene where green's ray met it (or the environment).
-        transmitted.g = green.g * exp(-uSigma.g * path.length);
+        transmitted.g = green.g * exp(-sigma.g * path.length);
         for (int c = 0; c < 3; c += 2) {
             vec3 T1c, T2c;
-            refractRay(V, N1, 1.0 / uIor[c], T1c);
+            refractRay(V, N1, 1.0 / ior[c], T1c);
             vec3 incoming = normalize(path.exitIncoming + (T1c - path.entryDir));
-            if (!refractRay(incoming, -path.exitNormal, uIor[c], T2c))
+            if (!refractRay(incoming, -path.exitNormal, ior[c], T2c))
                 T2c = path.exitDir;
             vec3 seen;
             if (hitT >= 0.0) {
                 vec2 uv = clamp(projectToUv(path.exitPoint + T2c * hitT), vec2(0.0), vec2(0.9999));
                 seen = texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
             } else {
-                seen = environmentRadiance(uViewToWorld * T2c, uRoughness);
+                seen = environmentRadiance(uViewToWorld * T2c, roughness);
             }
-            transmitted[c] = seen[c] * exp(-uSigma[c] * path.length);
+            transmitted[c] = seen[c] * exp(-sigma[c] * path.length);
         }
-    } else if (uDispersion != 0 && uMethod != 0) {
+    } else if (dispersion && uMethod != 0) {
         // Each channel runs its own search with its own index of refraction.
-        Path red = trace(P1, V, N1, uIor.r);
-        Path blue = trace(P1, V, N1, uIor.b);
+        Path red = trace(P1, V, N1, ior.r);
+        Path blue = trace(P1, V, N1, ior.b);
         float unused;
-        transmitted = vec3(lookup(red.exitPoint, red.exitDir, uRoughness, unused).r * exp(-uSigma.r * red.length),
-                           green.g * exp(-uSigma.g * path.length),
-                           lookup(blue.exitPoint, blue.exitDir, uRoughness, unused).b * exp(-uSigma.b * blue.length));
+        transmitted = vec3(lookup(red.exitPoint, red.exitDir, roughness, unused).r * exp(-sigma.r * red.length),
+                           green.g * exp(-sigma.g * path.length),
+                           lookup(blue.exitPoint, blue.exitDir, roughness, unused).b * exp(-sigma.b * blue.length));
         anyTir = anyTir || red.tir || blue.tir;
     } else {
-        transmitted = green * exp(-uSigma * path.length);
+        transmitted = green * exp(-sigma * path.length);
     }
 
-    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / uIor.g);
-    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), uRoughness);
-    vec3 glass = F * reflected + (1.0 - F) * uBaseColor.rgb * transmitted;
+    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / ior.g);
+    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), roughness);
+    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
     vec3 color = glass;
-    if (uTransmission < 1.0) // a uniform branch: fully transmissive glass skips the opaque term
-        color = mix(shadeMetallicRoughness(uBaseColor.rgb, uMetallic, max(uRoughness, 0.03), 1.0,
+    if (m.ior.w < 1.0) // the same for every pixel: fully transmissive glass skips the opaque term
+        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(roughness, 0.03), 1.0,
                                            uViewToWorld * N1, uViewToWorld * -V),
-                    glass, uTransmission);
-    color += uEmissive;
+                    glass, m.ior.w);
+    color += m.emissive.rgb;
 
     float zBackMax = uintBitsToFloat(range[1]);
     float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;

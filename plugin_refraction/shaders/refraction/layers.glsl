@@ -13,6 +13,7 @@
 // (the two-surface model, never a partial list): see storedDepths.
 #ifndef REFRACTION_LAYERS_GLSL
 #define REFRACTION_LAYERS_GLSL
+#include "refraction/glass_materials.glsl"
 #include "refraction/surfaces.glsl" // uKeyNear, uKeyLogRange: the keys' log depth range
 
 // K (layer-capacity) is compiled in (LAYER_CAPACITY, 1-8): every loop over a pixel's layers has
@@ -29,14 +30,6 @@ layout(std430, binding = 5) coherent buffer LayerHeads { uint layerHeads[]; };
 layout(std430, binding = 6) coherent buffer LayerDepths { vec4 layerDepth4[]; };
 layout(std430, binding = 7) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 
-// One optical material of the frame's glass (a character's material with its overrides).
-struct GlassMaterial {
-    vec4 ior;        // per channel (dispersion), w: transmission
-    vec4 sigma;      // Beer-Lambert absorption per world unit, w: roughness
-    vec4 baseColor;  // w: metallic
-    vec4 emissive;   // w: the solid (character) it belongs to
-};
-layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
 
 const uint kLayerFront = 256u;
 

@@ -68,10 +68,10 @@ float orderedToFloat(int i) {
 
 // The view-space box of every glass vertex this frame (rectangle.comp.glsl).
 void glassBox(out vec3 lo, out vec3 hi) {
-    lo = vec3(orderedToFloat(glassRectangle[4]), orderedToFloat(glassRectangle[5]),
-              orderedToFloat(glassRectangle[6]));
-    hi = vec3(orderedToFloat(glassRectangle[7]), orderedToFloat(glassRectangle[8]),
-              orderedToFloat(glassRectangle[9]));
+    lo = vec3(orderedToFloat(glassBoxMin[0]), orderedToFloat(glassBoxMin[1]),
+              orderedToFloat(glassBoxMin[2]));
+    hi = vec3(orderedToFloat(glassBoxMax[0]), orderedToFloat(glassBoxMax[1]),
+              orderedToFloat(glassBoxMax[2]));
 }
 
 ivec2 pixelOf(vec3 X) {
@@ -601,7 +601,7 @@ void main() {
 
     int stored = storedCount(p);
     if (stored > kLayerCapacity)
-        atomicAdd(glassRectangle[10], 1); // LayerStats::overflowPixels
+        atomicAdd(glassOverflowPixels, 1u);
     switch (uDebug) {
     case 1: { // back-depth: the farthest layer
         vec3 lo, hi;

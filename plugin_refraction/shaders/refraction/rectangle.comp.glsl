@@ -1,8 +1,7 @@
-// Grows the glass rectangle (surfaces.glsl) by the projected vertices of one glass primitive's
+// Grows the glass rectangle (glass_rectangle.glsl) by the projected vertices of one glass primitive's
 // deformed cage: the refined surface lies in the convex hull of its cage (subdivision masks are
 // convex combinations), and so does its projection. One atomic per group and bound. The layered
-// path also takes the view-space box of the vertices (where its searches end): floats as
-// ordered ints, [4..6] min, [7..9] max.
+// path also takes the view-space box of the vertices (where its searches end).
 #include "common/vertex.glsl"
 #include "refraction/surfaces.glsl"
 
@@ -54,13 +53,13 @@ void main() {
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && sBounds.x <= sBounds.z) {
-        atomicMin(glassRectangle[0], sBounds.x);
-        atomicMin(glassRectangle[1], sBounds.y);
-        atomicMax(glassRectangle[2], sBounds.z);
-        atomicMax(glassRectangle[3], sBounds.w);
+        atomicMin(glassPixelMin[0], sBounds.x);
+        atomicMin(glassPixelMin[1], sBounds.y);
+        atomicMax(glassPixelMax[0], sBounds.z);
+        atomicMax(glassPixelMax[1], sBounds.w);
         for (int c = 0; c < 3; ++c) {
-            atomicMin(glassRectangle[4 + c], sBox[c]);
-            atomicMax(glassRectangle[7 + c], sBox[3 + c]);
+            atomicMin(glassBoxMin[c], sBox[c]);
+            atomicMax(glassBoxMax[c], sBox[3 + c]);
         }
     }
 }

@@ -1,4 +1,4 @@
-// The glass rectangle (surfaces.glsl) as two triangles, for the full-screen passes that only
+// The glass rectangle (glass_rectangle.glsl) as two triangles, for the full-screen passes that only
 // matter where the glass is; an empty rectangle draws nothing.
 #include "refraction/surfaces.glsl"
 
@@ -7,8 +7,8 @@ uniform float uRectangleMargin; // pixels added around it (0 unless set)
 
 void main() {
     const vec2 corners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
-    vec2 lo = vec2(glassRectangle[0], glassRectangle[1]);
-    vec2 hi = vec2(glassRectangle[2], glassRectangle[3]) + 1.0;
+    vec2 lo = vec2(glassPixelMin[0], glassPixelMin[1]);
+    vec2 hi = vec2(glassPixelMax[0], glassPixelMax[1]) + 1.0;
     if (any(greaterThan(lo, hi))) {
         hi = lo; // empty
     } else {

@@ -7,7 +7,7 @@
 //   target 1: key(back, normal.x), key(back, normal.y), -key(front, d_N), unused
 // Target 0's red channel is the back-face depth map itself (search.glsl reads .r; no surface is
 // negative). Before it, rectangle.comp.glsl finds the screen rectangle of the glass
-// (GlassRectangle), so the full-screen passes after it rasterise only that rectangle.
+// (glass_rectangle.glsl), so the full-screen passes after it rasterise only that rectangle.
 #ifndef REFRACTION_SURFACES_GLSL
 #define REFRACTION_SURFACES_GLSL
 
@@ -45,9 +45,7 @@ vec3 octDecode(vec2 e) {
     return normalize(n);
 }
 
-// Pixel rectangle the glass covers this frame: min x, min y, max x, max y (inclusive); reset to
-// an empty one (min > max) before the geometry pass.
-layout(std430, binding = 4) buffer GlassRectangle { int glassRectangle[]; };
+#include "refraction/glass_rectangle.glsl"
 
 vec3 octDecodePayload(float keyX, float keyY) {
     return octDecode(vec2(keyPayload(keyX), keyPayload(keyY)) / 1023.0);

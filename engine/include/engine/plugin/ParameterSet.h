@@ -20,8 +20,8 @@ struct Parameter {
     Type type = Type::Float;
     double min = 0.0, max = 1.0; ///< Float, Int, and each Color component
     double defaultValue = 0.0;   ///< Enum: index into choices; Bool: 0 or 1; Color: grey level
-    std::vector<std::string> choices;
-    std::string help;
+    std::vector<std::string> choices{};
+    std::string help{};
 };
 
 /** A named group of values a host offers as one choice (a material: its IOR and dispersion).

@@ -1,0 +1,15 @@
+// The optics of the frame's glass, one entry per glass id (a character's material with its
+// overrides: GlassMaterialGpu in GpuState.h, filled by assignGlassIds), read by every shading
+// pass through the id its glass carries.
+#ifndef REFRACTION_GLASS_MATERIALS_GLSL
+#define REFRACTION_GLASS_MATERIALS_GLSL
+
+struct GlassMaterial {
+    vec4 ior;        // per channel (dispersion), w: transmission
+    vec4 sigma;      // Beer-Lambert absorption per world unit, w: roughness
+    vec4 baseColor;  // w: metallic
+    vec4 emissive;   // w: the solid (character) it belongs to
+};
+layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
+
+#endif

@@ -1,0 +1,15 @@
+// The glass's extent this frame (GlassRectangleGpu in GpuState.h), reset before the geometry
+// pass and grown by rectangle.comp.glsl from the deformed cages: its pixel rectangle
+// (inclusive; empty while min > max), which the full-screen passes rasterise instead of the
+// screen, and its view-space box (floats as ordered ints); then the layered shading's count of
+// pixels holding more than K layers (LayerStats::overflowPixels).
+#ifndef REFRACTION_GLASS_RECTANGLE_GLSL
+#define REFRACTION_GLASS_RECTANGLE_GLSL
+
+layout(std430, binding = 4) buffer GlassRectangle {
+    int glassPixelMin[2], glassPixelMax[2];
+    int glassBoxMin[3], glassBoxMax[3];
+    uint glassOverflowPixels;
+};
+
+#endif
