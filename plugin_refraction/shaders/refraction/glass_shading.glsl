@@ -8,11 +8,8 @@
 //   DIR (Oliveira & Brauwers 2007): T1 intersected with the back-face depth map, in texture space.
 #ifndef REFRACTION_GLASS_SHADING_GLSL
 #define REFRACTION_GLASS_SHADING_GLSL
-#include "common/brdf.glsl"
 #include "common/normal_map.glsl"
-#include "refraction/glass_materials.glsl"
-#include "refraction/optics.glsl"
-#include "refraction/scene_lookup.glsl"
+#include "refraction/glass_surface.glsl"
 #include "refraction/search.glsl"
 
 float gNormalDistance = -1.0; // ISR: d_N at this pixel in view units (-1: no far side)
@@ -20,7 +17,7 @@ float gNormalDistance = -1.0; // ISR: d_N at this pixel in view units (-1: no fa
 const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 
-uniform int uMethod, uSteps, uTirPolicy, uBounces, uFresnelMode, uDebug;
+uniform int uMethod, uSteps, uTirPolicy, uBounces, uDebug;
 uniform int uGlassId;          // the glass's entry of glassMaterials
 uniform int uSharedDispersion; // 1: one exit search shared by the channels, 0: one each
 uniform int uHasNormalTexture;
@@ -84,11 +81,7 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
     if (uMethod == METHOD_ISR) {
         float back = storedDepth(uBackDepth, gl_FragCoord.xy / uViewportSize);
         float dV = back > 0.0 ? max(back + P1.z, 0.0) / max(-V.z, 1e-4) : 0.0;
-        float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
-        float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
-        float ratio = thetaI > 1e-4 ? thetaT / thetaI : 1.0 / ior;
-        float dN = gNormalDistance >= 0.0 ? gNormalDistance : dV;
-        float d = ratio * dV + (1.0 - ratio) * dN;
+        float d = wymanDistance(V, N1, T1, 1.0 / ior, dV, gNormalDistance);
         P2 = P1 + d * T1;
         uv = projectToUv(P2);
         valid = storedDepth(uBackDepth, uv) > 0.0;
@@ -183,19 +176,12 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
         // both interfaces, and see the scene where green's ray met it (or the environment).
         transmitted.g = green.g * exp(-sigma.g * path.length);
         for (int c = 0; c < 3; c += 2) {
-            vec3 T1c, T2c;
+            vec3 T1c;
             refractRay(V, N1, 1.0 / ior[c], T1c);
-            vec3 incoming = normalize(path.exitIncoming + (T1c - path.entryDir));
-            if (!refractRay(incoming, -path.exitNormal, ior[c], T2c))
-                T2c = path.exitDir;
-            vec3 seen;
-            if (hitT >= 0.0) {
-                vec2 uv = clamp(projectToUv(path.exitPoint + T2c * hitT), vec2(0.0), vec2(0.9999));
-                seen = texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
-            } else {
-                seen = environmentRadiance(uViewToWorld * T2c, roughness);
-            }
-            transmitted[c] = seen[c] * exp(-sigma[c] * path.length);
+            vec3 T2c = channelExit(path.exitIncoming, -path.exitNormal, ior[c],
+                                   T1c - path.entryDir, path.exitDir);
+            transmitted[c] = channelSees(path.exitPoint, T2c, hitT, roughness)[c] *
+                             exp(-sigma[c] * path.length);
         }
     } else if (dispersion && uMethod != 0) {
         // Each channel runs its own search with its own index of refraction.
@@ -210,15 +196,7 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
         transmitted = green * exp(-sigma * path.length);
     }
 
-    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / ior.g);
-    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), roughness);
-    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
-    vec3 color = glass;
-    if (m.ior.w < 1.0) // the same for every pixel: fully transmissive glass skips the opaque term
-        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(roughness, 0.03), 1.0,
-                                           uViewToWorld * N1, uViewToWorld * -V),
-                    glass, m.ior.w);
-    color += m.emissive.rgb;
+    vec3 color = glassColor(m, V, N1, transmitted);
 
     float zBackMax = uintBitsToFloat(range[1]);
     float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;

@@ -21,9 +21,7 @@
 // The first sample out of the segment is refined by the conservative binary search (DIR §3.3,
 // search-steps halvings) and the layer crossed is the one that pixel's count passed.
 #define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
-#include "common/brdf.glsl"
-#include "refraction/optics.glsl"
-#include "refraction/scene_lookup.glsl"
+#include "refraction/glass_surface.glsl"
 #include "refraction/surfaces.glsl"
 #include "refraction/layers.glsl"
 
@@ -49,7 +47,7 @@ const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2
 #endif
 const int kMethod = LAYER_METHOD;
 
-uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uFresnelMode, uDebug;
+uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uDebug;
 uniform mat4 uInverseProjection;
 uniform vec3 uViewOriginWorld;
 
@@ -294,11 +292,7 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
                 next = d[k];
     }
     float dV = next > 0.0 ? (next - z1) / max(abs(V.z), 1e-4) : 0.0;
-    float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
-    float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
-    float ratio = thetaI > 1e-4 ? thetaT / thetaI : eta;
-    float dN = layerNormalDistance(entryAttr, z1);
-    float d = ratio * dV + (1.0 - ratio) * (dN >= 0.0 ? dN : dV);
+    float d = wymanDistance(V, N1, T1, eta, dV, layerNormalDistance(entryAttr, z1));
     // Nothing to estimate from (an open surface: no layer behind the entry, no d_N): no exit,
     // as DIR's search finds none there; the ray leaves in its refracted direction.
     c.found = d > 1e-5 * z1;
@@ -526,20 +520,14 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
         vec3 T1g;
         refractRay(V, N1, 1.0 / m.ior.g, T1g);
         for (int c = 0; c < 3; c += 2) {
-            vec3 T1c, Tc;
+            vec3 T1c;
             refractRay(V, N1, 1.0 / m.ior[c], T1c);
-            vec3 incoming = normalize(green.lastIncoming + (T1c - T1g));
             float eta = mediumIor(green.lastFrom, c) / mediumIor(green.lastTo, c);
-            if (green.interfaces < 2 || !refractRay(incoming, green.lastNormal, eta, Tc))
-                Tc = green.interfaces < 2 ? T1c : green.dir;
-            vec3 channelSeen;
-            if (hitT >= 0.0) {
-                vec2 uv = clamp(projectToUv(green.point + Tc * hitT), vec2(0.0), vec2(0.9999));
-                channelSeen = texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
-            } else {
-                channelSeen = environmentRadiance(uViewToWorld * Tc, m.sigma.w);
-            }
-            transmitted[c] = channelSeen[c] * green.weight[c] + green.reflected[c];
+            vec3 Tc = green.interfaces < 2
+                          ? T1c
+                          : channelExit(green.lastIncoming, green.lastNormal, eta, T1c - T1g, green.dir);
+            transmitted[c] = channelSees(green.point, Tc, hitT, m.sigma.w)[c] * green.weight[c] +
+                             green.reflected[c];
         }
     }
 #elif LAYER_DISPERSION == 2 // DISPERSION_PER_CHANNEL
@@ -552,15 +540,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
         }
     }
 #endif
-    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / m.ior.g);
-    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
-    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
-    vec3 color = glass;
-    if (m.ior.w < 1.0)
-        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,
-                                           uViewToWorld * N1, uViewToWorld * -V),
-                    glass, m.ior.w);
-    return color + m.emissive.rgb;
+    return glassColor(m, V, N1, transmitted);
 }
 
 void main() {

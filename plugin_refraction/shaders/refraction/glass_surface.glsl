@@ -1,0 +1,55 @@
+// What both shading paths (glass_shading.glsl over two surfaces, layers_shade.frag.glsl over the
+// layers) do alike around their search for the exit: Wyman's estimate of the exit distance,
+// the shared dispersion search's red and blue rays, and the light at the entry (Fresnel with
+// the reflected environment, base colour, transmission, emission).
+#ifndef REFRACTION_GLASS_SURFACE_GLSL
+#define REFRACTION_GLASS_SURFACE_GLSL
+#include "common/brdf.glsl"
+#include "refraction/glass_materials.glsl"
+#include "refraction/optics.glsl"
+#include "refraction/scene_lookup.glsl"
+
+uniform int uFresnelMode; // FRESNEL_EXACT, _SCHLICK, _OFF (optics.glsl)
+
+// ISR (Wyman 2005): the distance along T1 from the entry to the estimated exit, d_V and d_N
+// interpolated by theta_t / theta_i (d_V alone where no d_N was measured: dN < 0).
+float wymanDistance(vec3 V, vec3 N1, vec3 T1, float eta, float dV, float dN) {
+    float thetaI = acos(clamp(dot(-V, N1), -1.0, 1.0));
+    float thetaT = acos(clamp(dot(T1, -N1), -1.0, 1.0));
+    float ratio = thetaI > 1e-4 ? thetaT / thetaI : eta;
+    return ratio * dV + (1.0 - ratio) * (dN >= 0.0 ? dN : dV);
+}
+
+// The shared dispersion search: one channel's ray leaves by green's last refraction (incoming
+// direction, the normal facing it, eta for this channel) redone with the deviation its own
+// entry refraction gave it; `otherwise` where it reflects totally.
+vec3 channelExit(vec3 incoming, vec3 normal, float eta, vec3 deviation, vec3 otherwise) {
+    vec3 T;
+    return refractRay(normalize(incoming + deviation), normal, eta, T) ? T : otherwise;
+}
+
+// What that channel's ray sees from `point`: the scene where green's ray met it, hitT along
+// (the lookup's hit distance, negative for the environment), else the environment.
+vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
+    if (hitT < 0.0)
+        return environmentRadiance(uViewToWorld * dir, roughness);
+    vec2 uv = clamp(projectToUv(point + dir * hitT), vec2(0.0), vec2(0.9999));
+    return texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+}
+
+// The glass's colour at the entry (view direction V, normal N1 facing it) of light `transmitted`
+// through it: Fresnel between the reflected environment and the transmitted light in the base
+// colour, the opaque term where transmission is partial, and emission.
+vec3 glassColor(GlassMaterial m, vec3 V, vec3 N1, vec3 transmitted) {
+    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / m.ior.g);
+    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
+    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
+    vec3 color = glass;
+    if (m.ior.w < 1.0) // the same for every pixel of a glass: clear glass skips the opaque term
+        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,
+                                           uViewToWorld * N1, uViewToWorld * -V),
+                    glass, m.ior.w);
+    return color + m.emissive.rgb;
+}
+
+#endif
