@@ -27,6 +27,7 @@ install(FILES assets/models/glass_figure.glb DESTINATION ${GLASS_INSTALL_ASSETSD
 install(FILES assets/env/sunset_sky.hdr DESTINATION ${GLASS_INSTALL_ASSETSDIR}/env)
 install(FILES assets/scenes/walk_past.json DESTINATION ${GLASS_INSTALL_ASSETSDIR}/scenes)
 install(FILES README.md ARCHITECTURE.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 
 configure_package_config_file(cmake/GlassConfig.cmake.in
     ${CMAKE_CURRENT_BINARY_DIR}/GlassConfig.cmake

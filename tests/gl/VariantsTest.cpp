@@ -325,7 +325,7 @@ TEST_F(Variants, FramesMatchTheirSourcesGoldens) {
                                                 " --out " + (dir / "frames").string(),
                                             &output);
         EXPECT_EQ(status, 0) << output;
-        std::printf("%s: %s", v.name.c_str(), output.c_str()); // the figures, for the README
+        std::printf("%s: %s", v.name.c_str(), output.c_str()); // the figures, for docs/performance.md
         ++compared;
     }
     EXPECT_GE(compared, 5);
