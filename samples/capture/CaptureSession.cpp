@@ -41,6 +41,9 @@ CaptureSession::create(const SessionOptions& options) {
     asset::HdrImage environment = render::Environment::proceduralSky();
     if (const auto& path = options.environment ? options.environment : s->mWorld.environment) {
         auto hdr = asset::loadHdr(*path);
+        if (!hdr && !options.environment) // the scene file's: name it and its key
+            return core::Error{"glass-capture: " + options.models.front() +
+                               ": environment: " + hdr.error().message};
         if (!hdr)
             return hdr.error();
         environment = std::move(*hdr);

@@ -421,8 +421,9 @@ int run(int argc, char** argv) {
         core::setLogLevel(core::LogLevel::Error); // the warnings are in the lines
         return checkFiles(options.models);
     }
-    asset::LoadOptions loadOptions;
-    loadOptions.decodeImages = false; // inspection needs image sizes, not pixels
+    // Images decoded as every other tool decodes them: a file whose image data is corrupt is
+    // refused here too, not inspected and then refused by glass-capture.
+    const asset::LoadOptions loadOptions;
     const bool isScene = isWorld(options);
     if (isScene && options.clip)
         return usageError("--clip goes with one model; a scene's characters name their clips");

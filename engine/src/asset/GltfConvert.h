@@ -36,10 +36,12 @@ std::vector<scene::Node> convertNodes(const tinygltf::Model& model);
 
 /** Mesh `index`: primitives with attributes, indices, morph targets; generated normals and
  *  tangents where needed (tangents when `materials` gives the primitive a normal map).
- *  POINTS and LINES primitives are left out, each with a line in `warnings`. */
+ *  Attribute formats glTF does not allow are refused. POINTS and LINES primitives are left
+ *  out, and min or max bounds that are not the data's (but for the `lossy` accessors, which
+ *  Draco decoded) named, each with a line in `warnings`. */
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
                         const std::vector<scene::Material>& materials,
-                        std::vector<std::string>& warnings);
+                        const std::set<int>& lossy, std::vector<std::string>& warnings);
 
 /** Skin `index` with inverse bind matrices (identity when absent). */
 scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index);

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <limits>
 #include <string>
 
@@ -399,8 +400,10 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
                     primitive["extensions"][kDraco][kDracoIndices] = primitive["indices"];
                     primitive.erase("indices");
                 }
+    std::map<std::size_t, std::string> fallbacks; // buffer index: its declared byteLength
     if (document.contains("buffers") && document["buffers"].is_array())
-        for (nlohmann::json& buffer : document["buffers"]) {
+        for (std::size_t b = 0; b < document["buffers"].size(); ++b) {
+            nlohmann::json& buffer = document["buffers"][b];
             if (!buffer.is_object() || !buffer.contains("extensions") ||
                 !buffer["extensions"].is_object())
                 continue;
@@ -411,9 +414,30 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
                     continue;
                 // Nothing reads a fallback buffer: every view into it is decoded from another.
                 // One zero byte stands in for it (tinygltf refuses an empty data URI).
+                fallbacks[b] = buffer.contains("byteLength") ? buffer["byteLength"].dump() : "?";
                 buffer["uri"] = "data:application/octet-stream;base64,AA==";
                 buffer["byteLength"] = 1;
             }
+        }
+    // A view that is not decoded from a compressed stream would read the stand-in.
+    if (!fallbacks.empty() && document.contains("bufferViews") &&
+        document["bufferViews"].is_array())
+        for (std::size_t v = 0; v < document["bufferViews"].size(); ++v) {
+            const nlohmann::json& view = document["bufferViews"][v];
+            if (!view.is_object() || !view.contains("buffer") ||
+                !view["buffer"].is_number_unsigned())
+                continue;
+            const auto fallback = fallbacks.find(view["buffer"].get<std::size_t>());
+            bool compressed = false;
+            for (const char* name : kMeshopt)
+                compressed = compressed || (view.contains("extensions") &&
+                                            view["extensions"].is_object() &&
+                                            view["extensions"].contains(name));
+            if (fallback != fallbacks.end() && !compressed)
+                fail("bufferView " + n(v) + " reads buffer " + n(fallback->first) +
+                     ", a meshopt fallback buffer (" + fallback->second +
+                     " bytes declared, never loaded): only a view compressed by "
+                     "EXT_meshopt_compression may point into it");
         }
 
     const std::string text = document.dump();
@@ -422,8 +446,9 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
     return encodeGlb(text, glbChunks(bytes).bin); // unknown chunks after BIN are dropped
 }
 
-void decodeCompressedGeometry(tinygltf::Model& model) {
+std::set<int> decodeCompressedGeometry(tinygltf::Model& model) {
     Budget budget;
+    std::set<int> lossy;
     for (std::size_t i = 0; i < model.bufferViews.size(); ++i)
         for (const char* name : kMeshopt) {
             const auto it = model.bufferViews[i].extensions.find(name);
@@ -436,10 +461,13 @@ void decodeCompressedGeometry(tinygltf::Model& model) {
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
         for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
             tinygltf::Primitive& primitive = model.meshes[m].primitives[p];
-            if (primitive.extensions.count(kDraco))
-                decodeDracoPrimitive(model, primitive, "mesh " + n(m) + " primitive " + n(p),
-                                     budget);
+            if (!primitive.extensions.count(kDraco))
+                continue;
+            decodeDracoPrimitive(model, primitive, "mesh " + n(m) + " primitive " + n(p), budget);
+            for (const auto& [semantic, accessor] : primitive.attributes)
+                lossy.insert(accessor);
         }
+    return lossy;
 }
 
 } // namespace asset::detail

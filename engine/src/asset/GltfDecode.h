@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <span>
 #include <vector>
 
@@ -23,7 +24,8 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
 /** Decodes every meshopt-compressed buffer view and every Draco-compressed primitive into new
  *  buffers, pointing the views and accessors at them. Decoded sizes are checked against the
  *  limits, and what the compressed bytes could justify, before anything is allocated; errors
- *  name the buffer view, or the mesh and primitive. */
-void decodeCompressedGeometry(tinygltf::Model& model);
+ *  name the buffer view, or the mesh and primitive. Returns the accessors Draco decoded: its
+ *  quantisation moves their data off the min and max the file declares. */
+std::set<int> decodeCompressedGeometry(tinygltf::Model& model);
 
 } // namespace asset::detail

@@ -132,6 +132,26 @@ void checkRange(double value, double lo, double hi, const std::string& what) {
              std::to_string(hi) + "]");
 }
 
+/** Which buffer has no uri where one is needed (tinygltf's error names none): every buffer but
+ *  a GLB's first (its BIN chunk) and a meshopt fallback buffer; empty if the JSON does not
+ *  tell. */
+std::string bufferWithoutUri(std::span<const std::uint8_t> bytes, bool isBinary) {
+    const std::string_view text =
+        isBinary ? glbChunks(bytes).json
+                 : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+    if (!json.is_object() || !json.contains("buffers") || !json["buffers"].is_array())
+        return "";
+    for (std::size_t b = isBinary ? 1 : 0; b < json["buffers"].size(); ++b) {
+        const nlohmann::json& buffer = json["buffers"][b];
+        if (buffer.is_object() && !buffer.contains("uri"))
+            return "buffer " + n(b) + " has no uri: only a GLB's first buffer (its BIN chunk) " +
+                   "and a meshopt fallback buffer may leave it out" +
+                   (isBinary ? "" : " (this file is not a GLB)");
+    }
+    return "";
+}
+
 } // namespace
 
 std::vector<scene::Node> convertNodes(const tinygltf::Model& m) {
@@ -388,6 +408,9 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             std::replace(err.begin(), err.end(), '\n', ';');
             if (err.empty())
                 err = "not a valid glTF file";
+            if (err.find("'uri' is missing") != std::string::npos)
+                if (const std::string buffer = bufferWithoutUri(*bytes, isBinary); !buffer.empty())
+                    return core::Error{prefix + buffer};
             // A required extension the engine lacks (Draco, say) makes the parser stumble on
             // what the extension stores elsewhere: name the extension, not the symptom.
             for (const std::string& extension : requiredExtensions(*bytes, isBinary))
@@ -399,8 +422,12 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         }
 
         checkVersion(src.asset);
+        // tinygltf reads a GLB's BIN chunk for any buffer without a uri, not only the first.
+        for (std::size_t b = 1; isBinary && b < src.buffers.size(); ++b)
+            if (src.buffers[b].uri.empty())
+                fail(bufferWithoutUri(*bytes, isBinary));
         validateStructure(src);
-        decodeCompressedGeometry(src);
+        const std::set<int> lossy = decodeCompressedGeometry(src);
         const AccessorReader reader(src, bytes->size());
 
         scene::Model model;
@@ -417,7 +444,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             model.materials.push_back(convertMaterial(src, int(i), model.warnings));
         for (std::size_t i = 0; i < src.meshes.size(); ++i)
             model.meshes.push_back(
-                convertMesh(src, reader, int(i), model.materials, model.warnings));
+                convertMesh(src, reader, int(i), model.materials, lossy, model.warnings));
         for (std::size_t i = 0; i < src.skins.size(); ++i)
             model.skins.push_back(convertSkin(src, reader, int(i)));
         for (std::size_t i = 0; i < src.animations.size(); ++i)

@@ -8,8 +8,11 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <tuple>
 
 namespace asset::detail {
 namespace {
@@ -26,6 +29,121 @@ std::vector<Vec> readVecs(const AccessorReader& reader, int accessor, const std:
         for (int c = 0; c < N; ++c)
             out[i][c] = flat[i * N + std::size_t(c)];
     return out;
+}
+
+const char* componentName(int type) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return "FLOAT";
+    default:
+        return "an unknown type";
+    }
+}
+
+/** Whether glTF allows accessor format (componentType `type`, `normalized`) for vertex
+ *  attribute `semantic` (of a morph target when `target`): glTF 2.0 §3.7.2.1, widened for the
+ *  geometry by KHR_mesh_quantization when `quantized`. Attributes glTF does not define (_FOO)
+ *  take any format. */
+bool formatAllowed(const std::string& semantic, int type, bool normalized, bool quantized,
+                   bool target) {
+    const bool isFloat = type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool small = type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
+    const bool smallUnsigned = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                               type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    auto starts = [&](const char* prefix) { return semantic.rfind(prefix, 0) == 0; };
+    if (semantic == "POSITION")
+        return isFloat || (quantized && (small || (smallUnsigned && !target)));
+    if (semantic == "NORMAL" || semantic == "TANGENT")
+        return isFloat || (quantized && small && normalized);
+    if (starts("TEXCOORD_"))
+        return isFloat || (smallUnsigned && normalized) ||
+               (quantized && (small || smallUnsigned) && (normalized || !target));
+    if (starts("COLOR_") || starts("WEIGHTS_"))
+        return isFloat || (smallUnsigned && normalized);
+    if (starts("JOINTS_"))
+        return smallUnsigned && !normalized;
+    return true;
+}
+
+/** Fails when an attribute's accessor has a format glTF does not allow it (the validator's
+ *  MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT): read anyway, a BYTE texture coordinate
+ *  that is not normalized tiles its texture 127 times. */
+void checkAttributeFormats(const tinygltf::Model& model, const tinygltf::Primitive& src,
+                           const std::string& what) {
+    const bool quantized =
+        std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                  "KHR_mesh_quantization") != model.extensionsUsed.end();
+    auto check = [&](const std::string& semantic, int index, const std::string& where,
+                     bool target) {
+        if (index < 0 || std::size_t(index) >= model.accessors.size())
+            return; // the reader names it
+        const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+        if (formatAllowed(semantic, a.componentType, a.normalized, quantized, target))
+            return;
+        const bool withQuantization =
+            !quantized && formatAllowed(semantic, a.componentType, a.normalized, true, target);
+        fail(where + " (accessor " + n(std::size_t(index)) + ") is " +
+             componentName(a.componentType) + (a.normalized ? ", normalized" : ", not normalized") +
+             ", which glTF does not allow for " + semantic +
+             (withQuantization ? " unless the file uses KHR_mesh_quantization (its extensionsUsed "
+                                 "does not list it)"
+                               : ""));
+    };
+    for (const auto& [semantic, index] : src.attributes)
+        check(semantic, index, what + " " + semantic, false);
+    for (std::size_t t = 0; t < src.targets.size(); ++t)
+        for (const auto& [semantic, index] : src.targets[t])
+            check(semantic, index, what + " target " + n(t) + " " + semantic, true);
+}
+
+/** A warning where an accessor's declared min or max is not what its data (`values`, as read)
+ *  reaches, beyond the precision of a float written as text. Checked for float and plain
+ *  integer accessors, whose bounds are in the units the data is read in. */
+template <class Vec, int N>
+void checkBounds(const tinygltf::Model& model, int index, const std::vector<Vec>& values,
+                 const std::string& what, std::vector<std::string>& warnings) {
+    const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+    if (a.normalized || values.empty())
+        return;
+    Vec lo = values[0], hi = values[0];
+    for (const Vec& v : values)
+        for (int c = 0; c < N; ++c)
+            lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
+    auto text = [](auto&& get) {
+        std::string out = "[";
+        for (int c = 0; c < N; ++c) {
+            char number[32];
+            std::snprintf(number, sizeof number, "%g", double(get(c)));
+            out += (c ? ", " : "") + std::string(number);
+        }
+        return out + "]";
+    };
+    for (const auto& [declared, actual, name] :
+         {std::tuple{&a.minValues, lo, "min"}, std::tuple{&a.maxValues, hi, "max"}}) {
+        if (declared->size() != std::size_t(N))
+            continue;
+        bool differs = false;
+        for (int c = 0; c < N; ++c) {
+            const double d = (*declared)[std::size_t(c)], v = double(actual[c]);
+            differs = differs || std::abs(d - v) > 1e-5 * std::max(1.0, std::abs(v));
+        }
+        if (differs)
+            warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " +
+                               name + " " +
+                               text([&](int c) { return (*declared)[std::size_t(c)]; }) +
+                               ", its data's is " + text([&](int c) { return actual[c]; }) +
+                               ": the data is used");
+    }
 }
 
 /** Triangle-list indices from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN. */
@@ -115,9 +233,10 @@ void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader
     }
 }
 
-scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const AccessorReader& reader,
-                                  const std::string& what,
-                                  const std::vector<scene::Material>& materials) {
+scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& src,
+                                  const AccessorReader& reader, const std::string& what,
+                                  const std::vector<scene::Material>& materials,
+                                  const std::set<int>& lossy, std::vector<std::string>& warnings) {
     const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
@@ -126,9 +245,14 @@ scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const Accessor
     if (!attributes.count("POSITION"))
         fail(what + " has no POSITION attribute");
 
+    checkAttributeFormats(model, src, what);
+
     scene::Primitive p;
     p.material = src.material;
     p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
+    if (!lossy.count(attributes.at("POSITION")))
+        checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions,
+                                  what + " POSITION", warnings);
     p.sourceVertexCount = p.positions.size();
     const std::size_t count = p.vertexCount();
     auto sameCount = [&](std::size_t got, const std::string& attribute) {
@@ -176,6 +300,7 @@ scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const Accessor
         for (const auto& [name, accessor] : src.targets[t]) {
             std::vector<glm::vec3> deltas =
                 readVecs<glm::vec3, 3>(reader, accessor, targetWhat + " " + name);
+            checkBounds<glm::vec3, 3>(model, accessor, deltas, targetWhat + " " + name, warnings);
             sameCount(deltas.size(), "target " + n(t) + " " + name);
             if (name == "POSITION")
                 target.positions = std::move(deltas);
@@ -210,7 +335,7 @@ scene::Primitive convertPrimitive(const tinygltf::Primitive& src, const Accessor
 
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
                         const std::vector<scene::Material>& materials,
-                        std::vector<std::string>& warnings) {
+                        const std::set<int>& lossy, std::vector<std::string>& warnings) {
     const tinygltf::Mesh& src = model.meshes[std::size_t(index)];
     const std::string what = "mesh " + n(std::size_t(index));
     scene::Mesh mesh;
@@ -225,7 +350,8 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
             continue;
         }
         mesh.primitives.push_back(
-            convertPrimitive(src.primitives[i], reader, what + " primitive " + n(i), materials));
+            convertPrimitive(model, src.primitives[i], reader, what + " primitive " + n(i),
+                             materials, lossy, warnings));
     }
     // The morph target count is the file's, even where no drawn primitive is left to carry it
     // (node weights and weight channels are checked against it).

@@ -13,39 +13,76 @@
 
 namespace asset {
 
-core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
+namespace {
+
+/** What decodeHdr() checks before it decodes: the kind and size of the image. */
+struct HdrHeader {
+    detail::ImageKind kind;
+    int width, height;
+};
+
+core::Result<HdrHeader> checkHeader(std::span<const std::uint8_t> bytes,
+                                    const std::string& prefix) {
+    if (bytes.size() > std::size_t(INT32_MAX))
+        return core::Error{prefix + "file too large"};
+    const detail::ImageKind kind = detail::imageKind(bytes);
+    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg &&
+        kind != detail::ImageKind::Radiance)
+        return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
+    const detail::ImageHeader header = detail::readImageHeader(kind, bytes);
+    if (!header.unreadable.empty())
+        return core::Error{prefix + "not a decodable image (" + header.unreadable + ")"};
+    const int width = header.width, height = header.height;
+    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
+        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
+                           " is over the texture limit of " +
+                           std::to_string(core::limits::kMaxTextureSize)};
+    if (auto refuse = detail::implausibleSize(width, height, bytes.size()))
+        return core::Error{prefix + *refuse};
+    if (auto refuse = detail::checkPngStream(bytes))
+        return core::Error{prefix + *refuse};
+    if (width < height || height < 2)
+        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
+                           " is not an equirectangular (2:1) environment"};
+    return HdrHeader{kind, width, height};
+}
+
+core::Result<std::vector<std::uint8_t>> readHdrFile(const std::filesystem::path& path) {
     auto bytes = core::readFile(path, std::uint64_t(1) << 30);
     if (!bytes)
         return core::Error{"asset::loadHdr(): " + path.filename().string() + ": " +
                            bytes.error().message};
+    return bytes;
+}
+
+} // namespace
+
+core::Result<HdrImage> loadHdr(const std::filesystem::path& path) {
+    auto bytes = readHdrFile(path);
+    if (!bytes)
+        return bytes.error();
     return decodeHdr(*bytes, path.filename().string());
+}
+
+core::Status checkHdr(const std::filesystem::path& path) {
+    auto bytes = readHdrFile(path);
+    if (!bytes)
+        return bytes.error();
+    auto header = checkHeader(*bytes, "asset::loadHdr(): " + path.filename().string() + ": ");
+    if (!header)
+        return header.error();
+    return {};
 }
 
 core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> data, const std::string& file) {
     const std::string prefix = "asset::loadHdr(): " + file + ": ";
     const std::span<const std::uint8_t>* bytes = &data;
-    if (bytes->size() > std::size_t(INT32_MAX))
-        return core::Error{prefix + "file too large"};
-    const detail::ImageKind kind = detail::imageKind(*bytes);
-    if (kind != detail::ImageKind::Png && kind != detail::ImageKind::Jpeg &&
-        kind != detail::ImageKind::Radiance)
-        return core::Error{prefix + "not a Radiance HDR, PNG or JPEG image"};
-    const detail::ImageHeader header = detail::readImageHeader(kind, *bytes);
-    if (!header.unreadable.empty())
-        return core::Error{prefix + "not a decodable image (" + header.unreadable + ")"};
-    int width = header.width, height = header.height, components = 0;
+    const auto header = checkHeader(data, prefix);
+    if (!header)
+        return header.error();
+    const detail::ImageKind kind = header->kind;
+    int width = header->width, height = header->height, components = 0;
     const int size = int(bytes->size());
-    if (width > core::limits::kMaxTextureSize || height > core::limits::kMaxTextureSize)
-        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
-                           " is over the texture limit of " +
-                           std::to_string(core::limits::kMaxTextureSize)};
-    if (auto refuse = detail::implausibleSize(width, height, bytes->size()))
-        return core::Error{prefix + *refuse};
-    if (auto refuse = detail::checkPngStream(*bytes))
-        return core::Error{prefix + *refuse};
-    if (width < height || height < 2)
-        return core::Error{prefix + std::to_string(width) + "x" + std::to_string(height) +
-                           " is not an equirectangular (2:1) environment"};
     HdrImage image;
     image.width = width;
     image.height = height;

@@ -7,7 +7,9 @@
 #include <webp/decode.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstring>
 #include <string_view>
 #include <vector>
@@ -47,8 +49,27 @@ ImageHeader readImageHeader(ImageKind kind, std::span<const std::uint8_t> bytes)
         const Jpeg jpeg = jpegHeader(bytes);
         header = {jpeg.width, jpeg.height, jpeg.error};
     } else if (kind == ImageKind::Webp) {
-        if (!WebPGetInfo(bytes.data(), bytes.size(), &header.width, &header.height))
+        // libwebp reads a file cut short as far as it goes (for streaming): the RIFF header's
+        // size is checked here, so that every tool, decoding or not, refuses such a file.
+        const std::uint64_t declared = std::uint64_t(bytes[4]) | std::uint64_t(bytes[5]) << 8 |
+                                       std::uint64_t(bytes[6]) << 16 |
+                                       std::uint64_t(bytes[7]) << 24;
+        if (declared + 8 > bytes.size())
+            header.unreadable = "its RIFF header declares " + std::to_string(declared + 8) +
+                                " bytes, the image has " + std::to_string(bytes.size());
+        else if (!WebPGetInfo(bytes.data(), bytes.size(), &header.width, &header.height))
             header.unreadable = "not a valid WebP image";
+    } else if (kind == ImageKind::Png) {
+        // The size from IHDR itself: stb refuses sizes it finds implausible with a reason that
+        // a later format's probe overwrites ("unknown image type"), while the limits below
+        // have a message of their own.
+        if (bytes.size() < 24 || std::memcmp(bytes.data() + 12, "IHDR", 4) != 0) {
+            header.unreadable = "a PNG without an IHDR chunk first";
+        } else {
+            const std::uint32_t width = bigEndian32(&bytes[16]), height = bigEndian32(&bytes[20]);
+            header.width = int(std::min<std::uint32_t>(width, INT32_MAX));
+            header.height = int(std::min<std::uint32_t>(height, INT32_MAX));
+        }
     } else {
         int components = 0;
         if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &header.width, &header.height,

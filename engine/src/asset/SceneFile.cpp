@@ -1,6 +1,7 @@
 // Scene files: JSON to scene::World (models loaded once each) and back.
 #include "engine/asset/SceneFile.h"
 
+#include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/core/Files.h"
 #include "engine/core/Limits.h"
@@ -8,8 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <string_view>
 
 namespace asset {
 namespace {
@@ -206,8 +209,13 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
         fail("(root)", "expected an object with a \"characters\" array");
     warnUnknownKeys(root, {"environment", "ground", "camera", "characters"}, where);
     scene::World world;
-    if (root.contains("environment") && !root["environment"].is_null())
+    if (root.contains("environment") && !root["environment"].is_null()) {
+        // Checked here (readable, an image of an environment's kind and shape), so that every
+        // tool refuses the scene alike, naming the key.
         world.environment = resolve(directory, text(root["environment"], "environment"));
+        if (auto usable = checkHdr(*world.environment); !usable)
+            fail("environment", usable.error().message);
+    }
     if (root.contains("ground"))
         world.ground = boolean(root["ground"], "ground");
     if (root.contains("camera")) {
@@ -249,6 +257,52 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
                      std::to_string(core::limits::kMaxSceneVertices));
     }
     return world;
+}
+
+/** nlohmann's DOM parser, told where an error is: its messages give a syntax error's line and
+ *  column but not a number's overflow (1e999), and never the key. */
+class LocatingParser : public nlohmann::detail::json_sax_dom_parser<Json> {
+public:
+    LocatingParser(Json& out, std::string_view text) : json_sax_dom_parser(out, false), mText(text) {}
+    bool key(std::string& name) {
+        mKey = name;
+        return json_sax_dom_parser::key(name);
+    }
+    bool parse_error(std::size_t position, const std::string&,
+                     const nlohmann::detail::exception& error) {
+        const std::string_view before = mText.substr(0, std::min(position, mText.size()));
+        const std::size_t line = 1 + std::size_t(std::count(before.begin(), before.end(), '\n'));
+        const std::size_t lineStart = before.rfind('\n');
+        const std::size_t column =
+            lineStart == std::string_view::npos ? before.size() : before.size() - lineStart - 1;
+        // What nlohmann says, less its tag and its own position.
+        std::string what = error.what();
+        if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+            what.erase(0, what.find("] ") + 2);
+        if (what.rfind("parse error at ", 0) == 0 && what.find(": ") != std::string::npos)
+            what.erase(0, what.find(": ") + 2);
+        mError = "not valid JSON at line " + std::to_string(line) + ", column " +
+                 std::to_string(column) +
+                 (mKey.empty() ? std::string() : " (after the key \"" + mKey + "\")") + ": " +
+                 what;
+        return false;
+    }
+    const std::string& error() const { return mError; }
+
+private:
+    std::string_view mText;
+    std::string mKey, mError;
+};
+
+core::Status parseJson(std::string_view text, Json& out) {
+    LocatingParser parser(out, text);
+    try {
+        if (Json::sax_parse(text, &parser) && parser.error().empty())
+            return {};
+    } catch (const std::exception& e) {
+        return core::Error{std::string("not valid JSON (") + e.what() + ")"};
+    }
+    return core::Error{parser.error().empty() ? "not valid JSON" : parser.error()};
 }
 
 /** `path` relative to `directory` when it lies below it, else as it is. */
@@ -300,11 +354,8 @@ core::Result<scene::World> parseScene(std::string_view text, const std::filesyst
                                       const std::string& name, const LoadOptions& options) {
     const std::string where = "asset::loadScene(): " + name + ": ";
     Json root;
-    try {
-        root = Json::parse(text);
-    } catch (const std::exception& e) {
-        return core::Error{where + "not valid JSON (" + e.what() + ")"};
-    }
+    if (auto parsed = parseJson(text, root); !parsed)
+        return core::Error{where + parsed.error().message};
     try {
         scene::World world = readWorld(root, directory, where, options);
         // From here on the paths are the resolved ones (saveScene makes them relative again).

@@ -236,6 +236,10 @@ const std::vector<MalformedCase>& cases() {
          [](auto& b) { addImage(b, pngClaiming(16000, 16000)); },
          {"image 0: 16000x16000 pixels cannot come from"},
          test::GltfFormat::Glb},
+        {"ImageHeaderOverTextureLimit", // stb's probe once made it "unknown image type"
+         [](auto& b) { addImage(b, pngClaiming(60000, 60000)); },
+         {"image 0 is 60000x60000, over the limit of 16384"},
+         test::GltfFormat::Glb},
         {"ImageOverTextureLimit",
          [](auto& b) {
              addImage(b, test::makePng(16385, 1, {9, 9, 9, 255}));
@@ -250,6 +254,21 @@ const std::vector<MalformedCase>& cases() {
              b.doc["meshes"][0].erase("weights");
          },
          {"mesh 0 primitive 0", "4097 morph targets", "4096"}},
+        {"ByteTexcoordWithoutQuantization", // read as it is, it tiled the texture 127 times
+         [](auto& b) {
+             const std::vector<std::int8_t> uv = {0, 127, 127, 0, 64, 64, 0, 0, 127, 127, 64, 0};
+             b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+                 b.addAccessor(uv, 5120, "VEC2", false);
+         },
+         {"mesh 0 primitive 0 TEXCOORD_0 (accessor ", "is BYTE, not normalized, which glTF does "
+          "not allow for TEXCOORD_0 unless the file uses KHR_mesh_quantization"}},
+        {"JointsNormalized",
+         [](auto& b) {
+             const int joints = b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"];
+             b.doc["accessors"][std::size_t(joints)]["normalized"] = true;
+         },
+         {"mesh 0 primitive 0 JOINTS_0 (accessor ", ", normalized, which glTF does not allow for "
+          "JOINTS_0"}},
         {"BadIor",
          [](auto& b) {
              b.doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};
@@ -320,6 +339,28 @@ TEST(Degrade, PointsAndLinesPrimitivesAreLeftOutWithAWarning) {
         << model->warnings[0];
     EXPECT_NE(model->warnings[2].find("primitive 3 has mode LINE_STRIP"), std::string::npos);
     EXPECT_EQ(model->meshes[0].morphTargetCount(), 1u);
+}
+
+TEST(Degrade, BoundsThatAreNotTheDataAreNamed) {
+    // The validator's ACCESSOR_MAX_MISMATCH: the data is what the engine reads, so the file
+    // loads, with a warning naming the accessor and both bounds.
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    const int position = builder.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    auto& accessor = builder.doc["accessors"][std::size_t(position)];
+    ASSERT_TRUE(accessor.contains("max"));
+    accessor["max"][1] = accessor["max"][1].get<double>() + 0.5;
+    const auto model = asset::loadGltf(builder.save(dir.path(), "bounds"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->warnings.size(), 1u);
+    EXPECT_NE(model->warnings[0].find("mesh 0 primitive 0 POSITION (accessor " +
+                                      std::to_string(position) + ") declares max ["),
+              std::string::npos)
+        << model->warnings[0];
+    EXPECT_NE(model->warnings[0].find("its data's is ["), std::string::npos) << model->warnings[0];
+    const auto clean = asset::loadGltf(test::twoJointModel().save(dir.path(), "clean"));
+    ASSERT_TRUE(clean.ok());
+    EXPECT_TRUE(clean->warnings.empty());
 }
 
 TEST(Degrade, ExtensionsUsedButNotRequiredLoadWithAWarningAndALater2xLoads) {

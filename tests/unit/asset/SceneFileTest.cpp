@@ -3,6 +3,7 @@
 // the tools make of model paths (render::loadWorld).
 #include "support/TestSupport.h"
 
+#include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/core/Limits.h"
@@ -88,6 +89,16 @@ std::vector<BadScene> badScenes() {
          "camera: position and target coincide"},
         {"GroundNotABool", scene({character()}, {{"ground", 1}}),
          "ground: expected true or false, got 1"},
+        {"MissingEnvironment", scene({character()}, {{"environment", "env/none.hdr"}}),
+         "environment: asset::loadHdr(): none.hdr: core::readFile(): "},
+        {"EnvironmentNotAnImage", scene({character()}, {{"environment", "models/twojoint.glb"}}),
+         "environment: asset::loadHdr(): twojoint.glb: not a Radiance HDR, PNG or JPEG image"},
+        {"NumberOverflows",
+         "{\"characters\": [\n  {\"model\": \"models/twojoint.glb\", \"speed\": 1e999}\n]}",
+         "not valid JSON at line 2, column 49 (after the key \"speed\"): number overflow "
+         "parsing '1e999'"},
+        {"SyntaxErrorHasItsLine", "{\"characters\": [\n  {\"model\": \"a.glb\",}\n]}",
+         "not valid JSON at line 2, column 21 (after the key \"model\"): syntax error"},
         {"TooManyCharacters",
          scene(Json(std::vector<Json>(core::limits::kMaxCharacters + 1, character()))),
          "characters: 4097 characters, the limit is 4096"},
@@ -156,6 +167,10 @@ TEST(SceneFile, ValidSceneSharesModelsAndKeepsEveryKey) {
                      {"written_by", "another tool"}}), // unknown: a warning, not an error
           character({{"clip", 0}, {"loop", false}, {"glass", "none"}}),
           {{"model", "builtin:sphere?segments=16"}}}}};
+    std::filesystem::create_directories(dir.dir / "env");
+    const auto sky = asset::encodeHdr({4, 2, std::vector<float>(24, 0.5f)});
+    std::ofstream(dir.dir / "env/sky.hdr", std::ios::binary)
+        .write(reinterpret_cast<const char*>(sky.data()), std::streamsize(sky.size()));
     const auto path = dir.write("crowd.json", root.dump());
     const auto world = asset::loadScene(path);
     ASSERT_TRUE(world.ok()) << world.error().message;

@@ -128,6 +128,31 @@ TEST(Meshopt, MalformedExtensionsFailNamingTheView) {
     }
 }
 
+TEST(Meshopt, AFallbackBufferIsNamedWhereItWouldBeRead) {
+    test::TempDir dir;
+    // A view that is not compressed would read the fallback buffer, whose data is never loaded.
+    test::GltfBuilder plainView = meshoptModel();
+    const int position = plainView.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    plainView.doc["bufferViews"][plainView.doc["accessors"][position]["bufferView"].get<int>()]
+        .erase("extensions");
+    const auto read = asset::loadGltf(plainView.save(dir.path(), "plainview"));
+    ASSERT_FALSE(read.ok());
+    EXPECT_NE(read.error().message.find("plainview.gltf: bufferView 0 reads buffer 1, a meshopt "
+                                        "fallback buffer (72 bytes declared, never loaded)"),
+              std::string::npos)
+        << read.error().message;
+    // A buffer with neither data nor the fallback flag (the extension lost by an exporter).
+    test::GltfBuilder lost = meshoptModel();
+    lost.doc["buffers"][1].erase("extensions");
+    for (auto format : {test::GltfFormat::DataUri, test::GltfFormat::Glb}) {
+        const auto model = asset::loadGltf(lost.save(dir.path(), "lost", format));
+        ASSERT_FALSE(model.ok());
+        EXPECT_NE(model.error().message.find("buffer 1 has no uri: only a GLB's first buffer"),
+                  std::string::npos)
+            << model.error().message;
+    }
+}
+
 TEST(Meshopt, AVertexCodecNewerThanTheLibraryIsNamed) {
     test::TempDir dir;
     test::GltfBuilder b = meshoptModel();
@@ -281,6 +306,24 @@ TEST(Images, WebpTextureDecodesToItsPixels) {
     ASSERT_FALSE(bad.ok());
     EXPECT_NE(bad.error().message.find("bad.gltf: image 0"), std::string::npos)
         << bad.error().message;
+
+    // A RIFF size past the data: refused whether or not the pixels are decoded (glass-inspect
+    // reads the sizes alone), so that every tool gives one verdict.
+    std::vector<std::uint8_t> overlong = webp(pixels, 2, 2);
+    const std::uint32_t declared = std::uint32_t(overlong.size()) - 8 + 4000;
+    for (int i = 0; i < 4; ++i)
+        overlong[4 + std::size_t(i)] = std::uint8_t(declared >> (8 * i));
+    const auto path = texturedModel(overlong, "image/webp").save(dir.path(), "riff");
+    for (bool decode : {true, false}) {
+        const auto riff = asset::loadGltf(path, {.decodeImages = decode});
+        ASSERT_FALSE(riff.ok()) << "decode " << decode;
+        EXPECT_NE(riff.error().message.find("riff.gltf: image 0 could not be decoded: its RIFF "
+                                            "header declares " +
+                                            std::to_string(declared + 8) + " bytes, the image has " +
+                                            std::to_string(overlong.size())),
+                  std::string::npos)
+            << riff.error().message;
+    }
 }
 
 TEST(Images, Ktx2TextureUsesItsFallbackOrLoadsWithoutItWithAWarning) {

@@ -12,7 +12,9 @@
 namespace asset {
 
 struct LoadOptions {
-    /** Decode images into scene::Image pixels (tools that only inspect geometry may skip it). */
+    /** Decode images into scene::Image pixels. Without it only their headers are checked, so
+     *  a file whose image data is corrupt loads: glass-cpu-bench times loading both ways, every
+     *  tool decodes. */
     bool decodeImages = true;
 };
 

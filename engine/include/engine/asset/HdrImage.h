@@ -20,6 +20,9 @@ struct HdrImage {
 /** Decodes an HDR image. Fails naming the file when it is missing, does not decode, is not
  *  2:1-ish (width < height) or is over core::limits::kMaxTextureSize. */
 core::Result<HdrImage> loadHdr(const std::filesystem::path& path);
+/** What loadHdr() checks before decoding (the file readable, its kind, size and shape), without
+ *  decoding it: loadScene() checks a scene's environment so. */
+core::Status checkHdr(const std::filesystem::path& path);
 /** loadHdr() over bytes in memory; `file` names them in errors. */
 core::Result<HdrImage> decodeHdr(std::span<const std::uint8_t> bytes, const std::string& file);
 
