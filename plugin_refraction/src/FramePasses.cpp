@@ -149,7 +149,7 @@ void FrameContext::drawGlass(
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
         gl::bindStorage(0, item.gpu->deformed);
-        gl::bindStorage(1, *item.gpu->uv0);
+        gl::bindStorage(1, *item.gpu->uvs);
         // d_N: the character's combined cage values from this part's base, or (subdivision)
         // the part's own drawn values.
         const GpuState::Distance* distance = nullptr;

@@ -147,24 +147,26 @@ glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
     return sum;
 }
 
-/** The image a material's texture reads, or null (none, or texture coordinates other than 0,
- *  which the reference does not carry). */
+/** The image a material's texture reads, or null. */
 const scene::Image* textureImage(const scene::Model& model, const scene::TextureRef& t) {
-    if (!t.present() || t.texCoord != 0)
+    if (!t.present())
         return nullptr;
     const int i = model.textures[std::size_t(t.texture)].image;
     return i >= 0 ? &model.images[std::size_t(i)] : nullptr;
 }
 
 /** uv through the texture's KHR_texture_transform. */
-dvec2 textureUv(const scene::TextureRef& t, dvec2 uv) {
+/** The texture coordinates `t` reads (of `uvs`: TEXCOORD_0 in xy, TEXCOORD_1 in zw, as
+ *  common/material_uv.glsl), through its KHR_texture_transform. */
+dvec2 textureUv(const scene::TextureRef& t, glm::dvec4 uvs) {
+    const dvec2 uv = t.texCoord == 1 ? dvec2(uvs.z, uvs.w) : dvec2(uvs);
     return dvec2(glm::dmat3(t.transform) * glm::dvec3(uv, 1.0));
 }
 
 /** The normal texture `map` (`image`) at uv around the interpolated normal N and tangent (xyz,
  *  w the handedness), as common/normal_map.glsl perturbs it on the GPU. */
 dvec3 perturbNormal(const scene::TextureRef& map, const scene::Image& image, dvec3 N,
-                    glm::dvec4 tangent, dvec2 uv) {
+                    glm::dvec4 tangent, glm::dvec4 uv) {
     const dvec3 T = glm::normalize(dvec3(tangent) - N * glm::dot(N, dvec3(tangent)));
     const dvec3 B = glm::cross(N, T) * tangent.w;
     dvec3 n = dvec3(sampleImage(image, textureUv(map, uv), false)) * 2.0 - 1.0;
@@ -175,9 +177,9 @@ dvec3 perturbNormal(const scene::TextureRef& map, const scene::Image& image, dve
 }
 
 struct Surface {
-    std::vector<dvec3> positions, normals; // world
-    std::vector<glm::dvec4> tangents;      // world, where a normal map needs them
-    std::vector<dvec2> uv;
+    std::vector<dvec3> positions, normals;     // world
+    std::vector<glm::dvec4> tangents;          // world, where a normal map needs them
+    std::vector<glm::dvec4> uv;                // TEXCOORD_0 in xy, TEXCOORD_1 in zw
     const scene::Image* normalImage = nullptr; // the material's normal texture, if it has one
     std::vector<std::uint32_t> indices;
     bool glass = true;
@@ -192,7 +194,7 @@ struct Hit {
     double t = 1e300;
     dvec3 point, shadingNormal;
     dvec3 geometricNormal; // from the winding (glTF: counter-clockwise is outside)
-    dvec2 uv{0.0};
+    glm::dvec4 uv{0.0};    // TEXCOORD_0 in xy, TEXCOORD_1 in zw
     const Surface* surface = nullptr;
 };
 
@@ -520,8 +522,12 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 s.positions = placed.positions;
                 s.normals = placed.normals;
                 s.indices = primitive.indices;
-                for (const glm::vec2& uv : primitive.uv0)
-                    s.uv.emplace_back(uv);
+                if (!primitive.uv0.empty() || !primitive.uv1.empty())
+                    for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
+                        s.uv.emplace_back(v < primitive.uv0.size() ? primitive.uv0[v].x : 0.0f,
+                                          v < primitive.uv0.size() ? primitive.uv0[v].y : 0.0f,
+                                          v < primitive.uv1.size() ? primitive.uv1[v].x : 0.0f,
+                                          v < primitive.uv1.size() ? primitive.uv1[v].y : 0.0f);
                 const int material = primitive.material;
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {

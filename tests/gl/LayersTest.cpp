@@ -464,3 +464,39 @@ TEST_F(Layers, StoredLayersMatchTheSurfacesTheReferenceCounts) {
 }
 
 } // namespace
+
+namespace {
+
+class Materials : public test::GlTest {};
+
+TEST_F(Materials, TexturesOnTheSecondTextureCoordinatesAreReadByTheGpuAndTheReference) {
+    // MultiUVTest's emissive glTF logo reads TEXCOORD_1 (its base colour TEXCOORD_0): the GPU's
+    // frame and the reference's agree, and both show the logo. Dropping the texture (as the
+    // engine did while it read TEXCOORD_0 alone) moves the frame far off the reference.
+    GLASS_REQUIRE_SHARED();
+    const std::string file =
+        (test::sharedDir() / "assets/khronos/MultiUVTest/glTF-Binary/MultiUVTest.glb").string();
+    auto world = [&](bool secondSet) {
+        auto loaded = asset::loadModel(file);
+        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+        if (!loaded)
+            return scene::World{};
+        EXPECT_EQ(loaded->materials[0].emissiveTexture.texCoord, 1);
+        if (!secondSet)
+            loaded->materials[0].emissiveTexture = {};
+        return scene::singleCharacterWorld(
+            std::make_shared<const scene::Model>(std::move(*loaded)));
+    };
+    WorldRig rig(world(true), context());
+    const auto reference = rig.reference();
+    const double both = capture::score(rig.render(), reference.image).psnr;
+    WorldRig dropped(world(false), context());
+    const double without = capture::score(dropped.render(), reference.image).psnr;
+    std::printf("MultiUVTest against the reference: %.2f dB, %.2f dB without its TEXCOORD_1 "
+                "texture\n",
+                both, without);
+    EXPECT_GE(both, 30.0);
+    EXPECT_GT(both, without + 5.0);
+}
+
+} // namespace

@@ -2,7 +2,7 @@
 #include "common/vertex.glsl"
 
 layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = 1) readonly buffer Uv { vec2 uvs[]; };
+layout(std430, binding = 1) readonly buffer Uv { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
 
 uniform mat4 uModel;          // mesh node space -> world
 uniform mat3 uNormalMatrix;   // inverse transpose of uModel's 3x3
@@ -11,7 +11,7 @@ uniform mat4 uViewProjection;
 out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 out vec4 vWorldTangent;
-out vec2 vUv;
+out vec4 vUv;
 
 void main() {
     DeformedVertex v = vertices[gl_VertexID];

@@ -1,11 +1,12 @@
 // Opaque metallic-roughness surface lit by the environment (glTF core material model).
 #include "common/brdf.glsl"
+#include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 in vec4 vWorldTangent;
-in vec2 vUv;
+in vec4 vUv; // TEXCOORD_0 in xy, TEXCOORD_1 in zw
 out vec4 outColor;
 
 uniform vec3 uCameraPosition;
@@ -23,21 +24,18 @@ uniform sampler2D uOcclusionTexture, uEmissiveTexture;
 uniform mat3 uBaseColorUv, uMetallicRoughnessUv, uNormalUv, uOcclusionUv, uEmissiveUv;
 uniform int uUnlit; // KHR_materials_unlit: the base colour, unshaded
 
-vec2 uvOf(mat3 transform) {
-    return (transform * vec3(vUv, 1.0)).xy;
-}
 
 void main() {
     vec4 baseColor = uBaseColorFactor;
     if (uHasBaseColorTexture != 0)
-        baseColor *= texture(uBaseColorTexture, uvOf(uBaseColorUv)); // sRGB: decoded to linear
+        baseColor *= texture(uBaseColorTexture, slotUv(vUv, uBaseColorUv, SLOT_BASE_COLOR)); // sRGB: decoded to linear
     if (uUnlit != 0) {
         outColor = vec4(baseColor.rgb, 1.0);
         return;
     }
     float metallic = uMetallicFactor, roughness = uRoughnessFactor;
     if (uHasMetallicRoughnessTexture != 0) {
-        vec4 mr = texture(uMetallicRoughnessTexture, uvOf(uMetallicRoughnessUv));
+        vec4 mr = texture(uMetallicRoughnessTexture, slotUv(vUv, uMetallicRoughnessUv, SLOT_METALLIC_ROUGHNESS));
         roughness *= mr.g;
         metallic *= mr.b;
     }
@@ -46,15 +44,15 @@ void main() {
     if (!gl_FrontFacing)
         N = -N;
     if (uHasNormalTexture != 0)
-        N = perturbNormal(N, vWorldTangent, uNormalTexture, uvOf(uNormalUv), uNormalScale);
+        N = perturbNormal(N, vWorldTangent, uNormalTexture, slotUv(vUv, uNormalUv, SLOT_NORMAL), uNormalScale);
     float occlusion = 1.0;
     if (uHasOcclusionTexture != 0)
         occlusion =
-            mix(1.0, texture(uOcclusionTexture, uvOf(uOcclusionUv)).r, uOcclusionStrength);
+            mix(1.0, texture(uOcclusionTexture, slotUv(vUv, uOcclusionUv, SLOT_OCCLUSION)).r, uOcclusionStrength);
     vec3 color = shadeMetallicRoughness(baseColor.rgb, clamp(metallic, 0.0, 1.0),
                                         clamp(roughness, 0.03, 1.0), occlusion, N, V);
     vec3 emissive = uEmissive;
     if (uHasEmissiveTexture != 0)
-        emissive *= texture(uEmissiveTexture, uvOf(uEmissiveUv)).rgb;
+        emissive *= texture(uEmissiveTexture, slotUv(vUv, uEmissiveUv, SLOT_EMISSIVE)).rgb;
     outColor = vec4(color + emissive, 1.0);
 }

@@ -40,8 +40,8 @@ std::vector<scene::Node> convertNodes(const tinygltf::Model& model);
  *  out, and min or max bounds that are not the data's (but for the `lossy` accessors, which
  *  Draco decoded) named, each with a line in `warnings`. */
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
-                        const std::vector<scene::Material>& materials,
-                        const std::set<int>& lossy, std::vector<std::string>& warnings);
+                        const std::vector<scene::Material>& materials, const std::set<int>& lossy,
+                        std::vector<std::string>& warnings);
 
 /** Skin `index` with inverse bind matrices (identity when absent). */
 scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index);

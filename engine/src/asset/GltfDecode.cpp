@@ -15,8 +15,8 @@
 
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <limits>
+#include <map>
 #include <string>
 
 namespace asset::detail {
@@ -430,9 +430,9 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
             const auto fallback = fallbacks.find(view["buffer"].get<std::size_t>());
             bool compressed = false;
             for (const char* name : kMeshopt)
-                compressed = compressed || (view.contains("extensions") &&
-                                            view["extensions"].is_object() &&
-                                            view["extensions"].contains(name));
+                compressed =
+                    compressed || (view.contains("extensions") && view["extensions"].is_object() &&
+                                   view["extensions"].contains(name));
             if (fallback != fallbacks.end() && !compressed)
                 fail("bufferView " + n(v) + " reads buffer " + n(fallback->first) +
                      ", a meshopt fallback buffer (" + fallback->second +

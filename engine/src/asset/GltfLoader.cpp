@@ -276,9 +276,9 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
     if (extension("KHR_materials_unlit"))
         mat.unlit = true;
     if (const tinygltf::Value* e = extension("KHR_materials_pbrSpecularGlossiness")) {
-        // Converted to metallic-roughness as a dielectric (docs/importer.md, "glTF as shipped"): diffuse
-        // becomes the base colour, 1 - glossiness the roughness; the specular colour and the
-        // specular-glossiness texture have no counterpart there.
+        // Converted to metallic-roughness as a dielectric (docs/importer.md, "glTF as shipped"):
+        // diffuse becomes the base colour, 1 - glossiness the roughness; the specular colour and
+        // the specular-glossiness texture have no counterpart there.
         mat.baseColorFactor = glm::vec4(1.0f);
         if (e->Has("diffuseFactor") && e->Get("diffuseFactor").IsArray() &&
             e->Get("diffuseFactor").ArrayLen() == 4)

@@ -57,7 +57,8 @@ const char* componentName(int type) {
 bool formatAllowed(const std::string& semantic, int type, bool normalized, bool quantized,
                    bool target) {
     const bool isFloat = type == TINYGLTF_COMPONENT_TYPE_FLOAT;
-    const bool small = type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
+    const bool small =
+        type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
     const bool smallUnsigned = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
     auto starts = [&](const char* prefix) { return semantic.rfind(prefix, 0) == 0; };
@@ -80,9 +81,8 @@ bool formatAllowed(const std::string& semantic, int type, bool normalized, bool 
  *  that is not normalized tiles its texture 127 times. */
 void checkAttributeFormats(const tinygltf::Model& model, const tinygltf::Primitive& src,
                            const std::string& what) {
-    const bool quantized =
-        std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
-                  "KHR_mesh_quantization") != model.extensionsUsed.end();
+    const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
     auto check = [&](const std::string& semantic, int index, const std::string& where,
                      bool target) {
         if (index < 0 || std::size_t(index) >= model.accessors.size())
@@ -138,9 +138,8 @@ void checkBounds(const tinygltf::Model& model, int index, const std::vector<Vec>
             differs = differs || std::abs(d - v) > 1e-5 * std::max(1.0, std::abs(v));
         }
         if (differs)
-            warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " +
-                               name + " " +
-                               text([&](int c) { return (*declared)[std::size_t(c)]; }) +
+            warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " + name +
+                               " " + text([&](int c) { return (*declared)[std::size_t(c)]; }) +
                                ", its data's is " + text([&](int c) { return actual[c]; }) +
                                ": the data is used");
     }
@@ -251,8 +250,8 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
     p.material = src.material;
     p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
     if (!lossy.count(attributes.at("POSITION")))
-        checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions,
-                                  what + " POSITION", warnings);
+        checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions, what + " POSITION",
+                                  warnings);
     p.sourceVertexCount = p.positions.size();
     const std::size_t count = p.vertexCount();
     auto sameCount = [&](std::size_t got, const std::string& attribute) {
@@ -334,8 +333,8 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
 } // namespace
 
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
-                        const std::vector<scene::Material>& materials,
-                        const std::set<int>& lossy, std::vector<std::string>& warnings) {
+                        const std::vector<scene::Material>& materials, const std::set<int>& lossy,
+                        std::vector<std::string>& warnings) {
     const tinygltf::Mesh& src = model.meshes[std::size_t(index)];
     const std::string what = "mesh " + n(std::size_t(index));
     scene::Mesh mesh;
@@ -349,9 +348,9 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
                                ": skipped (this engine draws triangles)");
             continue;
         }
-        mesh.primitives.push_back(
-            convertPrimitive(model, src.primitives[i], reader, what + " primitive " + n(i),
-                             materials, lossy, warnings));
+        mesh.primitives.push_back(convertPrimitive(model, src.primitives[i], reader,
+                                                   what + " primitive " + n(i), materials, lossy,
+                                                   warnings));
     }
     // The morph target count is the file's, even where no drawn primitive is left to carry it
     // (node weights and weight channels are checked against it).

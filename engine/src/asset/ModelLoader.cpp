@@ -73,14 +73,15 @@ scene::Model makeSphere(int segments) {
 scene::Model makeBox() {
     scene::Primitive p;
     // Per face: its normal and two in-face axes u, v (u x v = normal: counter-clockwise outside).
-    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const glm::vec3 normals[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                  {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     for (const glm::vec3& n : normals) {
-        const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) * n.y
-                                                 : glm::vec3(-n.z, 0.0f, n.x);
+        const glm::vec3 u =
+            std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) * n.y : glm::vec3(-n.z, 0.0f, n.x);
         const glm::vec3 v = glm::cross(n, u);
         const auto first = std::uint32_t(p.positions.size());
-        for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1),
-                                       glm::vec2(-1, 1)}) {
+        for (const glm::vec2 corner :
+             {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
             p.positions.push_back(n + corner.x * u + corner.y * v);
             p.normals.push_back(n);
             p.tangents.emplace_back(u, 1.0f);

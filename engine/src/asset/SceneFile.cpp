@@ -263,7 +263,8 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
  *  column but not a number's overflow (1e999), and never the key. */
 class LocatingParser : public nlohmann::detail::json_sax_dom_parser<Json> {
 public:
-    LocatingParser(Json& out, std::string_view text) : json_sax_dom_parser(out, false), mText(text) {}
+    LocatingParser(Json& out, std::string_view text)
+        : json_sax_dom_parser(out, false), mText(text) {}
     bool key(std::string& name) {
         mKey = name;
         return json_sax_dom_parser::key(name);
@@ -283,8 +284,7 @@ public:
             what.erase(0, what.find(": ") + 2);
         mError = "not valid JSON at line " + std::to_string(line) + ", column " +
                  std::to_string(column) +
-                 (mKey.empty() ? std::string() : " (after the key \"" + mKey + "\")") + ": " +
-                 what;
+                 (mKey.empty() ? std::string() : " (after the key \"" + mKey + "\")") + ": " + what;
         return false;
     }
     const std::string& error() const { return mError; }

@@ -108,7 +108,7 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
             gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
             gp.indexCount = std::uint32_t(gp.topology->indices.size());
             gp.deformed = gl::Buffer(gp.vertexCount * sizeof(VertexGpu));
-            gp.uv0 = &s.uv0;
+            gp.uvs = &s.uvs;
             gp.indices = &s.indices;
             instance.primitives.push_back(std::move(gp));
             if (s.subdivision) {

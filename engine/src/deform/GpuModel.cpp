@@ -6,6 +6,18 @@
 namespace deform {
 namespace {
 
+/** TEXCOORD_0 in xy, TEXCOORD_1 in zw, per vertex (zeros for a set the primitive lacks). */
+std::vector<glm::vec4> packUvs(const scene::Primitive& p) {
+    std::vector<glm::vec4> uvs(p.vertexCount(), glm::vec4(0.0f));
+    for (std::size_t v = 0; v < uvs.size(); ++v) {
+        if (v < p.uv0.size())
+            uvs[v].x = p.uv0[v].x, uvs[v].y = p.uv0[v].y;
+        if (v < p.uv1.size())
+            uvs[v].z = p.uv1[v].x, uvs[v].w = p.uv1[v].y;
+    }
+    return uvs;
+}
+
 std::unique_ptr<GpuModel::Primitive> upload(const scene::Primitive& p) {
     auto s = std::make_unique<GpuModel::Primitive>();
     const std::size_t count = p.vertexCount();
@@ -41,9 +53,7 @@ std::unique_ptr<GpuModel::Primitive> upload(const scene::Primitive& p) {
     }
     s->deltas = gl::Buffer(std::span<const glm::vec4>(deltas));
     s->indices = gl::Buffer(std::span<const std::uint32_t>(p.indices));
-    std::vector<glm::vec2> uv =
-        p.uv0.empty() ? std::vector<glm::vec2>(count, glm::vec2(0.0f)) : p.uv0;
-    s->uv0 = gl::Buffer(std::span<const glm::vec2>(uv));
+    s->uvs = gl::Buffer(std::span<const glm::vec4>(packUvs(p)));
     return s;
 }
 
@@ -62,7 +72,7 @@ core::Status refine(GpuModel::Primitive& s, const scene::Primitive& p, int level
     s.corners = gl::Buffer(std::span<const RefinedCorner>(sd.corners));
     s.cageIndices = std::move(s.indices);
     s.indices = gl::Buffer(std::span<const std::uint32_t>(sd.rest.indices));
-    s.uv0 = gl::Buffer(std::span<const glm::vec2>(sd.rest.uv0));
+    s.uvs = gl::Buffer(std::span<const glm::vec4>(packUvs(sd.rest)));
     return {};
 }
 

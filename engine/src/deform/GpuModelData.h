@@ -38,10 +38,10 @@ struct GpuStencils {
 };
 
 struct GpuModel::Primitive {
-    gl::Buffer rest, influences, deltas, indices, uv0;
+    gl::Buffer rest, influences, deltas, indices, uvs;
     gl::Buffer cageIndices; // with subdivision: the file's triangles (indices: the refined)
     std::uint32_t targetCount = 0;
-    // With subdivision: the tables, the drawn mesh's static buffers (indices and uv0 above are
+    // With subdivision: the tables, the drawn mesh's static buffers (indices and uvs above are
     // then the refined ones) and the corners the pack pass reads.
     std::unique_ptr<Subdivision> subdivision;
     std::unique_ptr<GpuStencils> refine, limit, faceVarying;

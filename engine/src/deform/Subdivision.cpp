@@ -11,6 +11,7 @@
 #include <opensubdiv/osd/cpuEvaluator.h>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -43,9 +44,10 @@ struct Combination {
     }
 };
 
+/** TEXCOORD_0 (xy) and TEXCOORD_1 (zw) of a face-varying value. */
 struct Uv {
-    glm::vec2 value{0.0f};
-    void Clear() { value = glm::vec2(0.0f); }
+    glm::vec4 value{0.0f};
+    void Clear() { value = glm::vec4(0.0f); }
     void AddWithWeight(const Uv& source, float weight) { value += weight * source.value; }
 };
 
@@ -187,8 +189,8 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
         for (int v = 0; v < refinedCount; ++v) {
             // Merge the three masks into one stencil over the union of their vertices.
             order.clear();
-            for (const Combination* c : {&position[std::size_t(v)], &du[std::size_t(v)],
-                                         &dv[std::size_t(v)]})
+            for (const Combination* c :
+                 {&position[std::size_t(v)], &du[std::size_t(v)], &dv[std::size_t(v)]})
                 for (const auto& term : c->terms)
                     order.push_back(term.first);
             std::sort(order.begin(), order.end());
@@ -238,13 +240,18 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     const Evaluated limit = evaluateOnCpu(sub.limit, refined.values.data(), 0, 3, 3);
     std::vector<Uv> values(std::size_t(last.GetNumFVarValues()));
     {
-        std::vector<float> uv0(primitive.vertexCount() * 2, 0.0f);
-        if (!primitive.uv0.empty())
-            std::memcpy(uv0.data(), primitive.uv0.data(), uv0.size() * sizeof(float));
-        const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uv0.data(), 0, 2, 2);
+        std::vector<float> uvs(primitive.vertexCount() * 4, 0.0f);
+        for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
+            for (int c = 0; c < 2; ++c) {
+                if (!primitive.uv0.empty())
+                    uvs[4 * v + std::size_t(c)] = primitive.uv0[v][c];
+                if (!primitive.uv1.empty())
+                    uvs[4 * v + 2 + std::size_t(c)] = primitive.uv1[v][c];
+            }
+        const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uvs.data(), 0, 4, 4);
         std::vector<Uv> refinedValues(values.size());
         for (std::size_t i = 0; i < values.size(); ++i)
-            refinedValues[i].value = {refinedUv.values[2 * i], refinedUv.values[2 * i + 1]};
+            refinedValues[i].value = glm::make_vec4(&refinedUv.values[4 * i]);
         primvars.LimitFaceVarying(refinedValues, values);
     }
     auto vec3At = [](const std::vector<float>& a, std::size_t i) {
@@ -263,10 +270,10 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     }
     double agreement = 0.0;
     for (std::size_t v = 0; v < std::size_t(refinedCount); ++v)
-        agreement += glm::dot(glm::cross(vec3At(limit.du, v), vec3At(limit.dv, v)),
-                              faceNormalSum[v]) > 0.0f
-                         ? 1.0
-                         : -1.0;
+        agreement +=
+            glm::dot(glm::cross(vec3At(limit.du, v), vec3At(limit.dv, v)), faceNormalSum[v]) > 0.0f
+                ? 1.0
+                : -1.0;
     sub.flipNormals = agreement < 0.0;
 
     scene::Primitive& rest = sub.rest;
@@ -279,7 +286,10 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
             n = faceNormalSum[c.vertex];
         rest.positions.push_back(vec3At(limit.values, c.vertex));
         rest.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1));
-        rest.uv0.push_back(values[c.faceVarying].value);
+        rest.uv0.push_back(glm::vec2(values[c.faceVarying].value));
+        if (!primitive.uv1.empty())
+            rest.uv1.push_back(
+                glm::vec2(values[c.faceVarying].value.z, values[c.faceVarying].value.w));
     }
     return sub;
 }
@@ -293,17 +303,15 @@ Evaluated evaluateOnCpu(const Stencils& stencils, const float* source, int offse
     if (stencils.duWeights.empty()) {
         Osd::CpuEvaluator::EvalStencils(source, sourceDesc, out.values.data(), packed,
                                         stencils.sizes.data(), stencils.offsets.data(),
-                                        stencils.indices.data(), stencils.weights.data(), 0,
-                                        count);
+                                        stencils.indices.data(), stencils.weights.data(), 0, count);
         return out;
     }
     out.du.assign(out.values.size(), 0.0f);
     out.dv.assign(out.values.size(), 0.0f);
-    Osd::CpuEvaluator::EvalStencils(source, sourceDesc, out.values.data(), packed, out.du.data(),
-                                    packed, out.dv.data(), packed, stencils.sizes.data(),
-                                    stencils.offsets.data(), stencils.indices.data(),
-                                    stencils.weights.data(), stencils.duWeights.data(),
-                                    stencils.dvWeights.data(), 0, count);
+    Osd::CpuEvaluator::EvalStencils(
+        source, sourceDesc, out.values.data(), packed, out.du.data(), packed, out.dv.data(), packed,
+        stencils.sizes.data(), stencils.offsets.data(), stencils.indices.data(),
+        stencils.weights.data(), stencils.duWeights.data(), stencils.dvWeights.data(), 0, count);
     return out;
 }
 

@@ -110,12 +110,13 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
         {m.normalTexture, "uNormalTexture", "uHasNormalTexture", "uNormalUv", false},
         {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", "uOcclusionUv", false},
         {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", "uEmissiveUv", true}};
-    int unit = firstUnit;
+    int unit = firstUnit, texCoords = 0;
     for (const Slot& slot : slots) {
-        // TEXCOORD_1 is not pulled by mesh.vert.glsl yet: such textures are left off.
-        const bool usable = slot.ref.present() && slot.ref.texCoord == 0;
+        // Each slot reads the texture coordinate set its texCoord names (common/material_uv.glsl).
+        if (slot.ref.texCoord == 1)
+            texCoords |= 1 << (unit - firstUnit);
         const auto& textures = slot.srgb ? mSrgb : mLinear;
-        const bool has = usable && textures[std::size_t(slot.ref.texture)];
+        const bool has = slot.ref.present() && textures[std::size_t(slot.ref.texture)];
         program.set(slot.flag, has ? 1 : 0);
         program.set(slot.transform, slot.ref.transform);
         program.set(slot.sampler, unit);
@@ -123,6 +124,7 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
             gl::bindTexture(std::uint32_t(unit), textures[std::size_t(slot.ref.texture)]);
         ++unit;
     }
+    program.set("uTexCoords", texCoords);
 }
 
 } // namespace render

@@ -20,5 +20,5 @@ void main() {
     uint d = keyPayload(texelFetch(uGatherFar, p, 0).z);
     gNormalDistance = d == 0u ? -1.0 : float(d - 1u) / 1022.0 * z;
     outColor = vec4(shadeGlass(P1, octDecodePayload(near.z, near.w), vec4(1.0, 0.0, 0.0, 1.0),
-                               vec2(0.0)), 1.0);
+                               vec4(0.0)), 1.0);
 }

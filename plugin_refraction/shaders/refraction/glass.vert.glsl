@@ -3,7 +3,7 @@
 #include "common/vertex.glsl"
 
 layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = 1) readonly buffer Uv { vec2 uvs[]; };
+layout(std430, binding = 1) readonly buffer Uv { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
 layout(std430, binding = 2) readonly buffer NormalDistance { float normalDistance[]; };
 
 uniform mat4 uModelView;       // mesh node space -> view
@@ -15,7 +15,7 @@ uniform int uDistanceBase; // this primitive's first vertex in the character's d
 out vec3 vViewPosition;
 out vec3 vViewNormal;
 out vec4 vViewTangent;
-out vec2 vUv;
+out vec4 vUv;
 out float vNormalDistance;
 
 void main() {

@@ -4,6 +4,6 @@
 in vec3 vViewPosition;
 in vec3 vViewNormal;
 in vec4 vViewTangent;
-in vec2 vUv;
+in vec4 vUv; // TEXCOORD_0 in xy, TEXCOORD_1 in zw
 in float vNormalDistance; // ISR: d_N in view units (-1: no far side)
 #endif

@@ -8,6 +8,7 @@
 //   DIR (Oliveira & Brauwers 2007): T1 intersected with the back-face depth map, in texture space.
 #ifndef REFRACTION_GLASS_SHADING_GLSL
 #define REFRACTION_GLASS_SHADING_GLSL
+#include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
 #include "refraction/glass_surface.glsl"
 #include "refraction/search.glsl"
@@ -150,14 +151,14 @@ Path trace(vec3 P1, vec3 V, vec3 N1, float ior) {
 }
 
 // The glass colour at the entry point P1 (view space) with the interpolated normal N (and, for
-// the normal map, the tangent and UV), for the pixel at gl_FragCoord.
-vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec2 uv) {
+// the normal map, the tangent and both texture coordinate sets), for the pixel at gl_FragCoord.
+vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec4 uvs) {
     vec3 V = normalize(P1);
     vec3 N1 = normalize(N);
     if (dot(N1, V) > 0.0)
         N1 = -N1;
     if (uHasNormalTexture != 0) {
-        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, (uNormalUv * vec3(uv, 1.0)).xy,
+        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, slotUv(uvs, uNormalUv, SLOT_NORMAL),
                                     uNormalScale);
         N1 = dot(mapped, V) < 0.0 ? mapped : N1;
     }

@@ -5,6 +5,7 @@
 // whose nearest glass is hidden. Fragments past K only count; every fragment also bids for the
 // pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
 // ALWAYS) is the shading pass's mask: below 1 where any glass was kept.
+#include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
 #include "refraction/glass_inputs.glsl"
 #include "refraction/view.glsl"
@@ -22,7 +23,7 @@ void main() {
     float z = -vViewPosition.z;
     vec3 n = normalize(vViewNormal);
     if (uHasNormalTexture != 0)
-        n = perturbNormal(n, vViewTangent, uNormalTexture, (uNormalUv * vec3(vUv, 1.0)).xy,
+        n = perturbNormal(n, vViewTangent, uNormalTexture, slotUv(vUv, uNormalUv, SLOT_NORMAL),
                           uNormalScale);
     uint id = uint(uGlassId);
     uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;

@@ -54,7 +54,8 @@ TEST(Accessor, NormalizedIntegerComponentTypes) {
         b.addAccessor(uvShorts, 5123, "VEC2", true);
     b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
         b.addAccessor(normals, 5120, "VEC3", true);
-    b.doc["extensionsUsed"] = b.doc["extensionsRequired"] = {"KHR_mesh_quantization"}; // BYTE normals
+    b.doc["extensionsUsed"] =
+        b.doc["extensionsRequired"] = {"KHR_mesh_quantization"}; // BYTE normals
     test::TempDir dir;
     const auto model = asset::loadGltf(b.save(dir.path(), "normalized", test::GltfFormat::Glb));
     ASSERT_TRUE(model.ok()) << model.error().message;

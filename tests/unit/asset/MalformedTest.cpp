@@ -260,7 +260,8 @@ const std::vector<MalformedCase>& cases() {
              b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
                  b.addAccessor(uv, 5120, "VEC2", false);
          },
-         {"mesh 0 primitive 0 TEXCOORD_0 (accessor ", "is BYTE, not normalized, which glTF does "
+         {"mesh 0 primitive 0 TEXCOORD_0 (accessor ",
+          "is BYTE, not normalized, which glTF does "
           "not allow for TEXCOORD_0 unless the file uses KHR_mesh_quantization"}},
         {"JointsNormalized",
          [](auto& b) {
@@ -268,7 +269,7 @@ const std::vector<MalformedCase>& cases() {
              b.doc["accessors"][std::size_t(joints)]["normalized"] = true;
          },
          {"mesh 0 primitive 0 JOINTS_0 (accessor ", ", normalized, which glTF does not allow for "
-          "JOINTS_0"}},
+                                                    "JOINTS_0"}},
         {"BadIor",
          [](auto& b) {
              b.doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};

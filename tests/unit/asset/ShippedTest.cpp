@@ -319,7 +319,8 @@ TEST(Images, WebpTextureDecodesToItsPixels) {
         ASSERT_FALSE(riff.ok()) << "decode " << decode;
         EXPECT_NE(riff.error().message.find("riff.gltf: image 0 could not be decoded: its RIFF "
                                             "header declares " +
-                                            std::to_string(declared + 8) + " bytes, the image has " +
+                                            std::to_string(declared + 8) +
+                                            " bytes, the image has " +
                                             std::to_string(overlong.size())),
                   std::string::npos)
             << riff.error().message;

@@ -24,7 +24,7 @@ namespace deform {
 
 /** GPU buffers of one primitive of one mesh node, as drawn. `deformed` holds vertexCount
  *  DeformedVertex (common/vertex.glsl: position, normal, tangent as vec4, mesh-node space),
- *  rewritten by every update(); `uv0` and `indices` are static, shared by the mesh's instances
+ *  rewritten by every update(); `uvs` and `indices` are static, shared by the mesh's instances
  *  and by every placement of the model, owned by the GpuModel. With subdivision all of them are
  *  the refined mesh's. */
 struct GpuPrimitive {
@@ -34,7 +34,7 @@ struct GpuPrimitive {
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;
     gl::Buffer deformed;
-    const gl::Buffer* uv0 = nullptr;     ///< vec2 per vertex (zeros when the file has none)
+    const gl::Buffer* uvs = nullptr;     ///< vec4 per vertex: TEXCOORD_0, TEXCOORD_1 (or zeros)
     const gl::Buffer* indices = nullptr; ///< uint32 triangle list
 };
 

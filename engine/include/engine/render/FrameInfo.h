@@ -74,7 +74,7 @@ struct DrawItem {
     int material = -1;                              ///< index into model->materials, or -1
     const deform::GpuDeformer* geometry = nullptr;  ///< the character's deformer
     std::uint32_t instance = 0, primitiveIndex = 0; ///< into geometry->instances()
-    const deform::GpuPrimitive* gpu = nullptr;      ///< deformed vertices, uv0, index count
+    const deform::GpuPrimitive* gpu = nullptr;      ///< deformed vertices, uvs, index count
     const gl::VertexArray* vertexArray = nullptr;   ///< binds the primitive's index buffer
     const MaterialTextures* materials = nullptr;    ///< the model's textures
     glm::mat4 world{1.0f}; ///< mesh node to world space (the character's placement included)

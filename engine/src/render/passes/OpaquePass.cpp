@@ -44,7 +44,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 gl::apply({.cull = cullFor(*item.model, item.material)});
                 item.materials->bind(p, *item.model, item.material, 2);
                 gl::bindStorage(0, item.gpu->deformed);
-                gl::bindStorage(1, *item.gpu->uv0);
+                gl::bindStorage(1, *item.gpu->uvs);
                 item.vertexArray->bind();
                 gl::drawIndexed(item.gpu->indexCount);
             }
