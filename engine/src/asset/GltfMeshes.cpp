@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <tuple>
 
 namespace asset::detail {
 namespace {
@@ -119,29 +118,34 @@ void checkBounds(const tinygltf::Model& model, int index, const std::vector<Vec>
     for (const Vec& v : values)
         for (int c = 0; c < N; ++c)
             lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
-    auto text = [](auto&& get) {
+    auto text = [](const std::vector<double>& components) {
         std::string out = "[";
         for (int c = 0; c < N; ++c) {
             char number[32];
-            std::snprintf(number, sizeof number, "%g", double(get(c)));
+            std::snprintf(number, sizeof number, "%g", components[std::size_t(c)]);
             out += (c ? ", " : "") + std::string(number);
         }
         return out + "]";
     };
-    for (const auto& [declared, actual, name] :
-         {std::tuple{&a.minValues, lo, "min"}, std::tuple{&a.maxValues, hi, "max"}}) {
-        if (declared->size() != std::size_t(N))
+    struct Bound {
+        const std::vector<double>& declared;
+        Vec actual;
+        const char* name;
+    };
+    for (const Bound& bound : {Bound{a.minValues, lo, "min"}, Bound{a.maxValues, hi, "max"}}) {
+        if (bound.declared.size() != std::size_t(N))
             continue;
+        std::vector<double> actual(N);
         bool differs = false;
         for (int c = 0; c < N; ++c) {
-            const double d = (*declared)[std::size_t(c)], v = double(actual[c]);
+            actual[std::size_t(c)] = double(bound.actual[c]);
+            const double d = bound.declared[std::size_t(c)], v = actual[std::size_t(c)];
             differs = differs || std::abs(d - v) > 1e-5 * std::max(1.0, std::abs(v));
         }
         if (differs)
-            warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " + name +
-                               " " + text([&](int c) { return (*declared)[std::size_t(c)]; }) +
-                               ", its data's is " + text([&](int c) { return actual[c]; }) +
-                               ": the data is used");
+            warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " +
+                               bound.name + " " + text(bound.declared) + ", its data's is " +
+                               text(actual) + ": the data is used");
     }
 }
 
