@@ -158,6 +158,11 @@ void printText(const scene::Model& model) {
                 j["meshes"].get<std::size_t>(), j["primitives"].get<std::size_t>(),
                 j["triangles"].get<std::size_t>(), j["vertices"].get<std::size_t>(),
                 model.nodes.size());
+    for (std::size_t n = 0; n < model.nodes.size(); ++n)
+        if (!model.nodes[n].instances.empty())
+            std::printf("  node %zu '%s': mesh %d drawn %zu times (EXT_mesh_gpu_instancing)\n", n,
+                        model.nodes[n].name.c_str(), model.nodes[n].mesh,
+                        model.nodes[n].instances.size());
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const scene::Mesh& mesh = model.meshes[m];
         std::printf("  mesh %zu '%s': %zu primitive(s), %zu morph target(s)\n", m,

@@ -206,4 +206,25 @@ TEST_F(GpuDeform, EverySharedSkinnedOrMorphingModelMatchesCpu) {
     EXPECT_GE(compared, 7);
 }
 
+TEST_F(GpuDeform, EveryGpuInstanceOfASkinnedNodeIsDeformedAndPlacedAsTheCpuDoes) {
+    // EXT_mesh_gpu_instancing on a skinned node: one placement per instance, each deformed as
+    // the oracle deforms it and moved by its instance transform.
+    test::TempDir dir;
+    auto model = asset::loadGltf(test::instancedTwoJointModel().save(dir.path(), "instanced"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    auto deformer = deform::GpuDeformer::create(*model, shaders());
+    ASSERT_TRUE(deformer.ok()) << deformer.error().message;
+    ASSERT_EQ((*deformer)->instances().size(), 3u);
+    const anim::Pose pose = anim::evaluate(*model, 0, 0.6);
+    (*deformer)->update(pose);
+    expectMatchesCpu(**deformer, *model, pose, 0.6);
+    const auto cpu = deform::deformScene(*model, pose);
+    for (std::size_t i = 0; i < cpu.size(); ++i)
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(glm::distance(glm::dvec4((*deformer)->instances()[i].meshToWorld[c]),
+                                      cpu[i].meshToWorld[c]),
+                        0.0, 1e-5)
+                << "instance " << i;
+}
+
 } // namespace

@@ -88,6 +88,8 @@ public:
         return capture::score(render(time), r.image, &r.mask).psnr;
     }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
+    const render::Camera& camera() const { return mCamera; }
+    void setCamera(const render::Camera& camera) { mCamera = camera; }
     /** Views the world from its scene file's camera instead of framing its bounds. */
     void useSceneCamera() {
         ASSERT_TRUE(mWorld.camera.has_value());
@@ -497,6 +499,46 @@ TEST_F(Materials, TexturesOnTheSecondTextureCoordinatesAreReadByTheGpuAndTheRefe
                 both, without);
     EXPECT_GE(both, 30.0);
     EXPECT_GT(both, without + 5.0);
+}
+
+} // namespace
+
+namespace {
+
+TEST_F(Materials, GpuInstancesArePlacementsOnTheGpuAndInTheReference) {
+    // SimpleInstancing draws one cube 125 times (EXT_mesh_gpu_instancing: translation, rotation
+    // and scale per instance): the GPU's frame and the reference's agree, and a frame of the
+    // cube drawn once, as the engine did without the extension, does not.
+    GLASS_REQUIRE_SHARED();
+    const std::string file =
+        (test::sharedDir() / "assets/khronos/SimpleInstancing/glTF-Binary/SimpleInstancing.glb")
+            .string();
+    auto world = [&](bool instanced) {
+        auto loaded = asset::loadModel(file);
+        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+        if (!loaded)
+            return scene::World{};
+        EXPECT_TRUE(loaded->warnings.empty());
+        std::size_t instances = 0;
+        for (scene::Node& node : loaded->nodes) {
+            instances += node.instances.size();
+            if (!instanced)
+                node.instances.clear();
+        }
+        EXPECT_EQ(instances, 125u);
+        return scene::singleCharacterWorld(
+            std::make_shared<const scene::Model>(std::move(*loaded)));
+    };
+    WorldRig rig(world(true), context());
+    const auto reference = rig.reference();
+    const double instanced = capture::score(rig.render(), reference.image).psnr;
+    WorldRig once(world(false), context());
+    once.setCamera(rig.camera());
+    const double single = capture::score(once.render(), reference.image).psnr;
+    std::printf("SimpleInstancing against the reference: %.2f dB, %.2f dB drawn once\n", instanced,
+                single);
+    EXPECT_GE(instanced, 30.0);
+    EXPECT_GT(instanced, single + 5.0);
 }
 
 } // namespace

@@ -189,6 +189,19 @@ GltfBuilder twoJointModel() {
     return b;
 }
 
+GltfBuilder instancedTwoJointModel() {
+    GltfBuilder b = twoJointModel();
+    const std::vector<float> translations = {0, 0, 0, 2, 0, 0, 0, 0, 3};
+    const std::vector<float> rotations = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.7071068f, 0, 0.7071068f};
+    const std::vector<float> scales = {1, 1, 1, 1, 1, 1, 2, 2, 2};
+    b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+        {"TRANSLATION", b.addAccessor(translations, 5126, "VEC3")},
+        {"ROTATION", b.addAccessor(rotations, 5126, "VEC4")},
+        {"SCALE", b.addAccessor(scales, 5126, "VEC3")}};
+    b.doc["extensionsUsed"] = b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+    return b;
+}
+
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba) {
     std::vector<std::uint8_t> pixels;
     for (int i = 0; i < width * height; ++i)

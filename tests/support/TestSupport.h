@@ -84,6 +84,10 @@ public:
  *  every vertex by +1 in z; animation 0 rotates node 2 about +z from 0 to 90 degrees over 1 s
  *  (LINEAR) and drives the morph weight from 0 to 1. */
 GltfBuilder twoJointModel();
+/** twoJointModel() with its skinned mesh node instanced three times (EXT_mesh_gpu_instancing):
+ *  at the origin, moved 2 along +x, and turned a quarter about +y, doubled and moved 3 along
+ *  +z. */
+GltfBuilder instancedTwoJointModel();
 
 /** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba);

@@ -32,6 +32,80 @@ std::string n(std::size_t v) {
     return std::to_string(v);
 }
 
+/** EXT_mesh_gpu_instancing: the instance transforms of every node that lists them (TRANSLATION
+ *  VEC3 float, ROTATION VEC4 float or normalized BYTE / SHORT, SCALE VEC3 float, each optional,
+ *  all of one count), as T * R * S in scene::Node::instances. */
+void readInstancing(const tinygltf::Model& src, const AccessorReader& reader,
+                    std::vector<scene::Node>& nodes, std::vector<std::string>& warnings) {
+    constexpr const char* kExtension = "EXT_mesh_gpu_instancing";
+    for (std::size_t i = 0; i < src.nodes.size(); ++i) {
+        const auto found = src.nodes[i].extensions.find(kExtension);
+        if (found == src.nodes[i].extensions.end())
+            continue;
+        const std::string what = "node " + n(i) + " " + kExtension;
+        if (src.nodes[i].mesh < 0) {
+            warnings.push_back(what + " on a node without a mesh: ignored");
+            continue;
+        }
+        const tinygltf::Value& ext = found->second;
+        if (!ext.IsObject() || !ext.Has("attributes") || !ext.Get("attributes").IsObject())
+            fail(what + " has no attributes object");
+        const tinygltf::Value& attributes = ext.Get("attributes");
+        std::size_t count = 0;
+        bool any = false;
+        auto read = [&](const char* name, int components, bool quaternion) {
+            if (!attributes.Has(name))
+                return std::vector<float>{};
+            const tinygltf::Value& v = attributes.Get(name);
+            const int index = v.IsNumber() ? v.GetNumberAsInt() : -1;
+            if (index < 0 || std::size_t(index) >= src.accessors.size())
+                fail(what + " " + name + " references accessor " + std::to_string(index) +
+                     ", file has " + n(src.accessors.size()) + " accessors");
+            const tinygltf::Accessor& a = src.accessors[std::size_t(index)];
+            const bool isFloat = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+            const bool smallNormalized =
+                a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                 a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT);
+            if (!isFloat && !(quaternion && smallNormalized))
+                fail(what + " " + name + " (accessor " + std::to_string(index) + ") must be float" +
+                     (quaternion ? " or normalized BYTE or SHORT" : ""));
+            std::vector<float> values = reader.readFloats(index, components, what + " " + name);
+            const std::size_t instances = values.size() / std::size_t(components);
+            if (any && instances != count)
+                fail(what + " " + name + " has " + n(instances) + " instances, the other " +
+                     "attributes " + n(count));
+            count = instances;
+            any = true;
+            return values;
+        };
+        const std::vector<float> translation = read("TRANSLATION", 3, false),
+                                 rotation = read("ROTATION", 4, true),
+                                 scale = read("SCALE", 3, false);
+        if (count > core::limits::kMaxInstancesPerNode)
+            fail(what + " has " + n(count) + " instances, over the limit of " +
+                 n(core::limits::kMaxInstancesPerNode));
+        if (!any || count == 0) {
+            warnings.push_back(what + " lists no instances: the mesh is drawn once");
+            continue;
+        }
+        for (std::size_t k = 0; k < count; ++k) {
+            scene::Trs trs;
+            if (!translation.empty())
+                trs.translation = glm::dvec3(glm::make_vec3(&translation[3 * k]));
+            if (!rotation.empty()) {
+                const glm::dquat q(rotation[4 * k + 3], rotation[4 * k], rotation[4 * k + 1],
+                                   rotation[4 * k + 2]);
+                if (!(glm::length(q) > 1e-6))
+                    fail(what + " ROTATION of instance " + n(k) + " is not a rotation");
+                trs.rotation = glm::normalize(q);
+            }
+            if (!scale.empty())
+                trs.scale = glm::dvec3(glm::make_vec3(&scale[3 * k]));
+            nodes[i].instances.push_back(trs.matrix());
+        }
+    }
+}
+
 /** The file's extensionsRequired, read from its JSON (chunk 0 of a GLB whose container
  *  checkGlbContainer accepted); empty where the JSON does not parse. */
 std::vector<std::string> requiredExtensions(std::span<const std::uint8_t> bytes, bool isBinary) {
@@ -440,6 +514,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
                                          ", which this engine does not implement: loaded "
                                          "without it");
         model.nodes = convertNodes(src);
+        readInstancing(src, reader, model.nodes, model.warnings);
         for (std::size_t i = 0; i < src.materials.size(); ++i)
             model.materials.push_back(convertMaterial(src, int(i), model.warnings));
         for (std::size_t i = 0; i < src.meshes.size(); ++i)

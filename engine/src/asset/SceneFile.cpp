@@ -198,7 +198,7 @@ std::size_t vertexCount(const scene::Model& model) {
     for (int node : model.meshNodes())
         for (const scene::Primitive& p :
              model.meshes[std::size_t(model.nodes[std::size_t(node)].mesh)].primitives)
-            count += p.vertexCount();
+            count += p.vertexCount() * model.nodes[std::size_t(node)].drawCount();
     return count;
 }
 

@@ -95,20 +95,25 @@ std::vector<DeformedInstance> deformScene(const scene::Model& model, const anim:
         DeformedInstance instance;
         instance.node = node;
         instance.mesh = n.mesh;
-        instance.meshToWorld = pose.world[std::size_t(node)];
         std::vector<glm::dmat4> skin;
         if (n.skin >= 0)
             skin = anim::skinMatrices(model, pose, node);
         const std::vector<double>& weights = pose.weights[std::size_t(node)];
         for (const scene::Primitive& primitive : model.meshes[std::size_t(n.mesh)].primitives)
             instance.primitives.push_back(deformPrimitive(primitive, weights, skin));
-        result.push_back(std::move(instance));
+        // EXT_mesh_gpu_instancing: the same deformed mesh at each instance's placement.
+        for (std::size_t k = 0; k < n.drawCount(); ++k) {
+            instance.meshToWorld = pose.world[std::size_t(node)] * n.instance(k);
+            if (k + 1 < n.drawCount())
+                result.push_back(instance);
+            else
+                result.push_back(std::move(instance));
+        }
     }
     return result;
 }
 
-std::vector<DeformedInstance> deformCharacter(const scene::Character& character,
-                                              double sceneTime) {
+std::vector<DeformedInstance> deformCharacter(const scene::Character& character, double sceneTime) {
     ENGINE_CHECK(character.model != nullptr, "deformCharacter() of a character without a model");
     const anim::Pose pose =
         anim::evaluate(*character.model, character.clip, character.clipTime(sceneTime));

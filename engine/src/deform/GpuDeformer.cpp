@@ -91,45 +91,47 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
         d->mEvaluators = std::move(e);
     }
 
-    // The placement: per mesh node, deformed buffers and the per-frame uploads' buffers.
-    for (int node : model.meshNodes()) {
-        const scene::Node& n = model.nodes[std::size_t(node)];
-        const scene::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
-        GpuInstance instance;
-        instance.node = node;
-        instance.mesh = n.mesh;
-        std::vector<Refined> refined;
-        for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
-            const scene::Primitive& p = mesh.primitives[i];
-            const GpuModel::Primitive& s = d->mUpload->primitive(n.mesh, i);
-            GpuPrimitive gp;
-            gp.source = &p;
-            gp.topology = s.subdivision ? &s.subdivision->rest : &p;
-            gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
-            gp.indexCount = std::uint32_t(gp.topology->indices.size());
-            gp.deformed = gl::Buffer(gp.vertexCount * sizeof(VertexGpu));
-            gp.uvs = &s.uvs;
-            gp.indices = &s.indices;
-            instance.primitives.push_back(std::move(gp));
-            if (s.subdivision) {
-                const std::size_t vertices = std::size_t(s.refine->count),
-                                  values = std::size_t(s.faceVarying->count);
-                Refined r;
-                r.cage = gl::Buffer(p.vertexCount() * sizeof(VertexGpu));
-                r.refined = gl::Buffer(vertices * 3 * sizeof(float));
-                r.limit = gl::Buffer(vertices * 3 * sizeof(float));
-                r.du = gl::Buffer(vertices * 3 * sizeof(float));
-                r.dv = gl::Buffer(vertices * 3 * sizeof(float));
-                r.tangents = gl::Buffer(values * 4 * sizeof(float));
-                r.scalarRefined = gl::Buffer(vertices * sizeof(float));
-                r.scalarLimit = gl::Buffer(vertices * sizeof(float));
-                refined.push_back(std::move(r));
+    // The placement: per draw of a mesh node, deformed buffers and the per-frame uploads'.
+    for (int node : model.meshNodes())
+        for (std::size_t k = 0; k < model.nodes[std::size_t(node)].drawCount(); ++k) {
+            const scene::Node& n = model.nodes[std::size_t(node)];
+            const scene::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
+            GpuInstance instance;
+            instance.node = node;
+            instance.mesh = n.mesh;
+            instance.instance = n.instance(k);
+            std::vector<Refined> refined;
+            for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+                const scene::Primitive& p = mesh.primitives[i];
+                const GpuModel::Primitive& s = d->mUpload->primitive(n.mesh, i);
+                GpuPrimitive gp;
+                gp.source = &p;
+                gp.topology = s.subdivision ? &s.subdivision->rest : &p;
+                gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
+                gp.indexCount = std::uint32_t(gp.topology->indices.size());
+                gp.deformed = gl::Buffer(gp.vertexCount * sizeof(VertexGpu));
+                gp.uvs = &s.uvs;
+                gp.indices = &s.indices;
+                instance.primitives.push_back(std::move(gp));
+                if (s.subdivision) {
+                    const std::size_t vertices = std::size_t(s.refine->count),
+                                      values = std::size_t(s.faceVarying->count);
+                    Refined r;
+                    r.cage = gl::Buffer(p.vertexCount() * sizeof(VertexGpu));
+                    r.refined = gl::Buffer(vertices * 3 * sizeof(float));
+                    r.limit = gl::Buffer(vertices * 3 * sizeof(float));
+                    r.du = gl::Buffer(vertices * 3 * sizeof(float));
+                    r.dv = gl::Buffer(vertices * 3 * sizeof(float));
+                    r.tangents = gl::Buffer(values * 4 * sizeof(float));
+                    r.scalarRefined = gl::Buffer(vertices * sizeof(float));
+                    r.scalarLimit = gl::Buffer(vertices * sizeof(float));
+                    refined.push_back(std::move(r));
+                }
             }
+            if (subdivisionLevel > 0)
+                d->mRefined.push_back(std::move(refined));
+            d->mInstances.push_back(std::move(instance));
         }
-        if (subdivisionLevel > 0)
-            d->mRefined.push_back(std::move(refined));
-        d->mInstances.push_back(std::move(instance));
-    }
     d->mStaged.resize(d->mInstances.size());
     return d;
 }
@@ -169,7 +171,7 @@ void GpuDeformer::stage(const anim::Pose& pose, const glm::dmat4& placement, Pos
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
         const auto node = std::size_t(instance.node);
-        instance.meshToWorld = glm::mat4(placement * pose.world[node]);
+        instance.meshToWorld = glm::mat4(placement * pose.world[node] * instance.instance);
         Staged& staged = mStaged[i];
         if (model.nodes[node].skin >= 0) {
             anim::skinMatrices(model, pose, instance.node, mScratchMatrices);
@@ -300,9 +302,9 @@ void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& c
     const OpenSubdiv::Osd::BufferDescriptor none;
     const GpuStencils& t = *s.refine;
     const OpenSubdiv::Osd::BufferDescriptor cage{int(cageOffset), 1, 1};
-    e.scalar->EvalStencils(cageValues.id(), cage, r.scalarRefined.id(), e.packed1, 0, none, 0,
-                           none, t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0, 0,
-                           0, t.count);
+    e.scalar->EvalStencils(cageValues.id(), cage, r.scalarRefined.id(), e.packed1, 0, none, 0, none,
+                           t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0, 0, 0,
+                           t.count);
     gl::memoryBarrier(gl::BarrierStorage);
     const GpuStencils& l = *s.limit;
     e.scalar->EvalStencils(r.scalarRefined.id(), e.packed1, r.scalarLimit.id(), e.packed1, 0, none,

@@ -412,3 +412,67 @@ TEST(Materials, UnlitAndSpecularGlossinessAreRead) {
 }
 
 } // namespace
+
+namespace {
+
+// --- EXT_mesh_gpu_instancing -------------------------------------------------------------------
+
+TEST(Instancing, EachInstanceIsAPlacementOfTheDeformedMesh) {
+    // Skinned or not, the instance transform places the deformed mesh in the node's space: the
+    // skinned pose of every instance is the first's, moved by its transform.
+    test::TempDir dir;
+    const auto model =
+        asset::loadGltf(test::instancedTwoJointModel().save(dir.path(), "instanced"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    EXPECT_TRUE(model->warnings.empty());
+    ASSERT_EQ(model->nodes[0].instances.size(), 3u);
+    for (double time : {0.0, 0.7}) {
+        const auto instances = deform::deformScene(*model, anim::evaluate(*model, 0, time));
+        ASSERT_EQ(instances.size(), 3u);
+        const auto world = [&](std::size_t k) {
+            return deform::toWorld(instances[k].primitives[0], instances[k].meshToWorld).positions;
+        };
+        const auto first = world(0), second = world(1), third = world(2);
+        for (std::size_t v = 0; v < first.size(); ++v) {
+            EXPECT_NEAR(glm::distance(second[v], first[v] + glm::dvec3(2, 0, 0)), 0.0, 1e-9);
+            // A quarter turn about +y takes x to -z; then scale 2 and the translation.
+            const glm::dvec3 expected =
+                glm::dvec3(2.0 * first[v].z, 2.0 * first[v].y, -2.0 * first[v].x) +
+                glm::dvec3(0, 0, 3);
+            EXPECT_NEAR(glm::distance(third[v], expected), 0.0, 1e-6) << v;
+        }
+    }
+}
+
+TEST(Instancing, MalformedInstancesFailNamingTheNode) {
+    test::TempDir dir;
+    const std::pair<std::function<void(test::GltfBuilder&)>, std::string> cases[] = {
+        {[](test::GltfBuilder& b) {
+             auto& attributes =
+                 b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+             attributes["SCALE"] = b.addAccessor(std::vector<float>{1, 1, 1}, 5126, "VEC3");
+         },
+         "node 0 EXT_mesh_gpu_instancing SCALE has 1 instances, the other attributes 3"},
+        {[](test::GltfBuilder& b) {
+             auto& attributes =
+                 b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+             attributes["TRANSLATION"] =
+                 b.addAccessor(std::vector<std::uint16_t>{0, 0, 0, 1, 1, 1, 2, 2, 2}, 5123, "VEC3");
+         },
+         "node 0 EXT_mesh_gpu_instancing TRANSLATION (accessor "},
+        {[](test::GltfBuilder& b) {
+             b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["ROTATION"] =
+                 99;
+         },
+         "node 0 EXT_mesh_gpu_instancing ROTATION references accessor 99"}};
+    for (const auto& [breakIt, expected] : cases) {
+        test::GltfBuilder b = test::instancedTwoJointModel();
+        breakIt(b);
+        const auto model = asset::loadGltf(b.save(dir.path(), "broken"));
+        ASSERT_FALSE(model.ok()) << expected;
+        EXPECT_NE(model.error().message.find("broken.gltf: " + expected), std::string::npos)
+            << model.error().message;
+    }
+}
+
+} // namespace

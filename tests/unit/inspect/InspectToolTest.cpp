@@ -274,13 +274,13 @@ TEST(InspectTool, CheckListsEveryFileAndFailsOnARefusal) {
               std::string::npos)
         << out;
     test::GltfBuilder required = test::twoJointModel();
-    required.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
-    required.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+    required.doc["extensionsUsed"] = {"KHR_gaussian_splatting"};
+    required.doc["extensionsRequired"] = {"KHR_gaussian_splatting"};
     required.save(dir.path() / "sub", "required");
     EXPECT_EQ(test::runCommand(kInspect + " --check " + dir.path().string(), &out), 1) << out;
     EXPECT_NE(out.find("refused  " + (dir / "sub" / "required.gltf").string() +
                        ": asset::loadGltf(): required.gltf: extensionsRequired lists "
-                       "EXT_mesh_gpu_instancing"),
+                       "KHR_gaussian_splatting"),
               std::string::npos)
         << out;
     EXPECT_NE(out.find("3 files: 1 ok, 1 ok with warnings, 1 refused"), std::string::npos) << out;

@@ -38,11 +38,14 @@ struct GpuPrimitive {
     const gl::Buffer* indices = nullptr; ///< uint32 triangle list
 };
 
-/** One mesh node of the default scene on the GPU. */
+/** One draw of a mesh node of the default scene on the GPU (a node with EXT_mesh_gpu_instancing
+ *  has one per instance, each deformed as a placement of its own). */
 struct GpuInstance {
     int node = -1;
     int mesh = -1;
-    /** placement * world(node): mesh space to world space, refreshed by stage() and update(). */
+    glm::dmat4 instance{1.0}; ///< the node's instance transform (scene::Node::instance)
+    /** placement * world(node) * instance: mesh space to world space, refreshed by stage() and
+     *  update(). */
     glm::mat4 meshToWorld{1.0f};
     std::vector<GpuPrimitive> primitives;
 };

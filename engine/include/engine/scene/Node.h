@@ -34,6 +34,17 @@ struct Node {
     int skin = -1;
     int camera = -1;
     std::vector<float> weights; ///< node-level default morph weights (overrides the mesh's)
+    /** EXT_mesh_gpu_instancing: T * R * S of each instance, in the node's space (the mesh is
+     *  drawn once per instance at world * instance; skinned, the skinned mesh is placed so);
+     *  empty: the mesh is drawn once, as usual. */
+    std::vector<glm::dmat4> instances;
+
+    /** How many times the node's mesh is drawn: once per instance, or once. */
+    std::size_t drawCount() const { return instances.empty() ? 1 : instances.size(); }
+    /** Draw `k`'s transform in the node's space (identity without instances). */
+    glm::dmat4 instance(std::size_t k) const {
+        return instances.empty() ? glm::dmat4(1.0) : instances[k];
+    }
 };
 
 } // namespace scene
