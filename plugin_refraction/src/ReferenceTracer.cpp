@@ -528,7 +528,7 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                                           v < primitive.uv0.size() ? primitive.uv0[v].y : 0.0f,
                                           v < primitive.uv1.size() ? primitive.uv1[v].x : 0.0f,
                                           v < primitive.uv1.size() ? primitive.uv1[v].y : 0.0f);
-                const int material = primitive.material;
+                const int material = primitive.materialFor(character.variant);
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
                     s.normalImage = textureImage(model, s.material->normalTexture);
@@ -536,7 +536,7 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                         s.tangents = placed.tangents;
                 }
                 s.model = &model;
-                s.glass = decoded.isGlass(model, primitive, character.glass);
+                s.glass = decoded.isGlass(model, material, character.glass);
                 s.solid = int(solid);
                 s.optics = opticsFor(decoded, s.material, character.overrides);
                 if (!s.optics.dispersion)

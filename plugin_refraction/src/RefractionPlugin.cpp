@@ -106,7 +106,7 @@ const Settings& RefractionPlugin::settings() const {
 }
 
 bool RefractionPlugin::claims(const render::DrawItem& item) const {
-    return mGpu && settings().isGlass(*item.model, *item.primitive, item.source->glass);
+    return mGpu && settings().isGlass(*item.model, item.material, item.source->glass);
 }
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,

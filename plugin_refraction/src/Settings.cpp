@@ -159,14 +159,12 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     return s;
 }
 
-bool Settings::isGlass(const scene::Model& model, const scene::Primitive& primitive,
-                       scene::GlassMode mode) const {
+bool Settings::isGlass(const scene::Model& model, int material, scene::GlassMode mode) const {
     if (method == Method::Opaque || mode == scene::GlassMode::None)
         return false;
     if (glass == Glass::All || mode == scene::GlassMode::All)
         return true;
-    return primitive.material >= 0 &&
-           model.materials[std::size_t(primitive.material)].isTransmissive();
+    return material >= 0 && model.materials[std::size_t(material)].isTransmissive();
 }
 
 } // namespace refraction

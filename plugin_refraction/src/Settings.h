@@ -55,10 +55,11 @@ struct Settings {
     bool layered() const { return surfaces == Surfaces::Layers && method != Method::Opaque; }
     /** Isr measures d_N every frame and reads it. */
     bool usesNormalDistance() const { return method == Method::Isr; }
-    /** Whether `primitive` of a character in glass mode `mode` renders as glass: never with
-     *  Opaque or GlassMode::None, always with GlassMode::All; with GlassMode::Auto every mesh
-     *  under Glass::All, else materials with KHR_materials_transmission. */
-    bool isGlass(const scene::Model& model, const scene::Primitive& primitive,
+    /** Whether a primitive drawn with `material` (of `model`; -1 the default, as its
+     *  character's variant picks it) in glass mode `mode` renders as glass: never with Opaque
+     *  or GlassMode::None, always with GlassMode::All; with GlassMode::Auto every mesh under
+     *  Glass::All, else materials with KHR_materials_transmission. */
+    bool isGlass(const scene::Model& model, int material,
                  scene::GlassMode mode = scene::GlassMode::Auto) const;
 };
 

@@ -41,6 +41,9 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         if (j.contains("clip"))
             c.session.clip = j["clip"].is_string() ? j["clip"].get<std::string>()
                                                    : std::to_string(j["clip"].get<int>());
+        if (j.contains("variant"))
+            c.session.variant = j["variant"].is_string() ? j["variant"].get<std::string>()
+                                                         : std::to_string(j["variant"].get<int>());
         if (!j.contains("times") || !j["times"].is_array() || j["times"].empty())
             return core::Error{where + "\"times\" (a non-empty array of seconds) is required"};
         for (const auto& t : j["times"])

@@ -37,6 +37,22 @@ CaptureSession::create(const SessionOptions& options) {
                                    ") has no clip '" + *options.clip + "'"};
             c.clip = *clip;
         }
+    if (options.variant) {
+        std::string offered;
+        bool any = false;
+        for (scene::Character& c : s->mWorld.characters)
+            if (const auto variant = c.model->findVariant(*options.variant)) {
+                c.variant = *variant;
+                any = true;
+            } else {
+                for (const std::string& name : c.model->variants)
+                    offered += (offered.empty() ? "" : ", ") + name;
+            }
+        if (!any)
+            return core::Error{"glass-capture: --variant: no character's model has a variant '" +
+                               *options.variant +
+                               "' (variants: " + (offered.empty() ? "none" : offered) + ")"};
+    }
     s->mOptions.ground = options.ground || s->mWorld.ground;
     asset::HdrImage environment = render::Environment::proceduralSky();
     if (const auto& path = options.environment ? options.environment : s->mWorld.environment) {

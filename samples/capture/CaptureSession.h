@@ -32,6 +32,8 @@ struct SessionOptions {
     std::vector<std::string> models;
     /** Name or index, for every character; default: a scene file's clips, a model's first. */
     std::optional<std::string> clip;
+    /** KHR_materials_variants: name or index, for every character whose model has it. */
+    std::optional<std::string> variant;
     /** HDR path; default: the scene file's environment, else the procedural sky. */
     std::optional<std::string> environment;
     glm::ivec2 size{256, 256};
@@ -53,8 +55,8 @@ struct RenderedFrame {
     double time = 0.0;
     Image image;
     render::FrameStats stats;
-    std::vector<bool> glassMask; ///< reference frames: pixels whose camera rays hit glass
-    double milliseconds = 0.0;   ///< reference frames: tracing time
+    std::vector<bool> glassMask;    ///< reference frames: pixels whose camera rays hit glass
+    double milliseconds = 0.0;      ///< reference frames: tracing time
     std::size_t trappedSamples = 0; ///< reference frames: paths still in glass at the cap
     /** Reference frames: glass pixels by the number of glass surfaces on their line of sight. */
     std::vector<std::size_t> surfaceHistogram;

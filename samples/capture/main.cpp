@@ -18,7 +18,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    R"(usage: glass-capture MODEL|SCENE [MODEL...] [--clip N|NAME] [--time T | --frames START:END:STEP]
+    R"(usage: glass-capture MODEL|SCENE [MODEL...] [--clip N|NAME] [--variant NAME] [--time T | --frames START:END:STEP]
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--subdiv N]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
@@ -40,6 +40,8 @@ characters; T is the scene time); several MODELs are placed side by side.
 
   --clip N|NAME       clip index or name, for every character (default: the first clip, or the
                       scene file's; the rest pose if none)
+  --variant NAME      a KHR_materials_variants variant (name or index) for every character
+                      whose model has it (glass-inspect lists a file's variants)
   --time T            one time in seconds (default 0)
   --frames S:E:STEP   times S, S+STEP, ... up to E inclusive (at most 10000 frames)
   --size WxH          output size in pixels (default 256x256)
@@ -214,14 +216,17 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             if (auto status = check.set(arg.substr(2), *v); !status)
                 return usageError(arg + ": " + status.error().message);
             o.session.refraction.emplace_back(arg.substr(2), *v);
-        } else if (arg == "--clip" || arg == "--time" || arg == "--frames" || arg == "--size" ||
-                   arg == "--env" || arg == "--out" || arg == "--exposure" || arg == "--plugin" ||
-                   arg == "--contact-sheet" || arg == "--set" || arg == "--case") {
+        } else if (arg == "--clip" || arg == "--variant" || arg == "--time" || arg == "--frames" ||
+                   arg == "--size" || arg == "--env" || arg == "--out" || arg == "--exposure" ||
+                   arg == "--plugin" || arg == "--contact-sheet" || arg == "--set" ||
+                   arg == "--case") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");
             if (arg == "--clip") {
                 o.session.clip = *v;
+            } else if (arg == "--variant") {
+                o.session.variant = *v;
             } else if (arg == "--time") {
                 double t = 0;
                 if (!parseDouble(*v, t) || t < 0)
@@ -437,9 +442,9 @@ int run(int argc, char** argv) {
                 std::vector<bool> both(reference->glassMask.size());
                 for (std::size_t p = 0; p < both.size(); ++p)
                     both[p] = reference->glassMask[p] && previousReference->glassMask[p];
-                const capture::Flicker f = capture::flicker(previous->image, frame->image,
-                                                            previousReference->image,
-                                                            reference->image, both);
+                const capture::Flicker f =
+                    capture::flicker(previous->image, frame->image, previousReference->image,
+                                     reference->image, both);
                 entry["flicker"] = f.meanAbsDifference;
                 flickerSum += f.meanAbsDifference;
                 ++flickerPairs;

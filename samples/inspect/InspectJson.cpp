@@ -62,6 +62,7 @@ nlohmann::ordered_json describe(const scene::Model& model) {
                          {"duration_s", a.duration}});
     }
     j["animation_list"] = clips;
+    j["variants"] = model.variants; // KHR_materials_variants' names
     j["cameras"] = model.cameras.size();
     j["materials"] = model.materials.size();
     nlohmann::ordered_json glass = nlohmann::ordered_json::array();

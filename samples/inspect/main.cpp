@@ -192,6 +192,13 @@ void printText(const scene::Model& model) {
                     clip["name"].get<std::string>().c_str(), clip["duration_s"].get<double>(),
                     clip["channels"].get<std::size_t>(), modes.c_str());
     }
+    if (!model.variants.empty()) {
+        std::string names;
+        for (const std::string& name : model.variants)
+            names += (names.empty() ? "'" : ", '") + name + "'";
+        std::printf("  variants (KHR_materials_variants, glass-capture --variant): %s\n",
+                    names.c_str());
+    }
     for (const auto& g : j["transmissive_materials"]) {
         std::printf("  glass material '%s': transmission %.3g, ior %.4g, dispersion %.3g",
                     g["material"].get<std::string>().c_str(), g["transmission"].get<double>(),

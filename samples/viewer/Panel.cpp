@@ -188,6 +188,18 @@ void Panel::character(Viewer& v, scene::Character& c) {
         widget(s, "clip");
         widget(s, "loop");
     }
+    if (!c.model->variants.empty()) { // KHR_materials_variants: the file's material sets
+        const std::string current =
+            c.variant >= 0 ? c.model->variants[std::size_t(c.variant)] : "as authored";
+        if (ImGui::BeginCombo("Variant", current.c_str())) {
+            if (ImGui::Selectable("as authored", c.variant < 0))
+                c.variant = -1;
+            for (std::size_t i = 0; i < c.model->variants.size(); ++i)
+                if (ImGui::Selectable(c.model->variants[i].c_str(), c.variant == int(i)))
+                    c.variant = int(i);
+            ImGui::EndCombo();
+        }
+    }
     float speed = float(c.speed), phase = float(c.timeOffset);
     if (ImGui::DragFloat("Clip speed", &speed, 0.01f, -4.0f, 4.0f))
         c.speed = double(speed);

@@ -542,3 +542,34 @@ TEST_F(Materials, GpuInstancesArePlacementsOnTheGpuAndInTheReference) {
 }
 
 } // namespace
+
+namespace {
+
+TEST_F(Materials, AVariantDrawsItsMaterialsOnTheGpuAndInTheReference) {
+    // MaterialsVariantsShoe's "street" variant (KHR_materials_variants): black with red stripes
+    // where the file's own materials are blue. The GPU's frame of the variant agrees with the
+    // reference's, and the frame of the file's own materials does not.
+    GLASS_REQUIRE_SHARED();
+    auto loaded = asset::loadModel(
+        (test::sharedDir() / "assets/khronos/MaterialsVariantsShoe/glTF/MaterialsVariantsShoe.gltf")
+            .string());
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    const auto street = loaded->findVariant("street");
+    ASSERT_TRUE(street);
+    scene::World world =
+        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
+    world.characters[0].variant = *street;
+    WorldRig rig(world, context());
+    const auto reference = rig.reference();
+    const double variant = capture::score(rig.render(), reference.image).psnr;
+    world.characters[0].variant = -1;
+    WorldRig authored(world, context());
+    const double own = capture::score(authored.render(), reference.image).psnr;
+    std::printf("MaterialsVariantsShoe 'street' against the reference: %.2f dB, %.2f dB with the "
+                "file's own materials\n",
+                variant, own);
+    EXPECT_GE(variant, 28.0);
+    EXPECT_GT(variant, own + 3.0);
+}
+
+} // namespace

@@ -43,6 +43,9 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
                         const std::vector<scene::Material>& materials, const std::set<int>& lossy,
                         std::vector<std::string>& warnings);
 
+/** KHR_materials_variants: the file's variant names (none without the extension). */
+std::vector<std::string> variantNames(const tinygltf::Model& model);
+
 /** Skin `index` with inverse bind matrices (identity when absent). */
 scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& reader, int index);
 

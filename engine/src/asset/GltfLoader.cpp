@@ -514,6 +514,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
                                          ", which this engine does not implement: loaded "
                                          "without it");
         model.nodes = convertNodes(src);
+        model.variants = variantNames(src);
         readInstancing(src, reader, model.nodes, model.warnings);
         for (std::size_t i = 0; i < src.materials.size(); ++i)
             model.materials.push_back(convertMaterial(src, int(i), model.warnings));

@@ -149,6 +149,38 @@ void checkBounds(const tinygltf::Model& model, int index, const std::vector<Vec>
     }
 }
 
+/** A primitive's KHR_materials_variants mappings: the material of each variant (-2: its own). */
+std::vector<int> variantMaterials(const tinygltf::Model& model, const tinygltf::Value& ext,
+                                  std::size_t materials, const std::string& what) {
+    const std::size_t count = variantNames(model).size();
+    std::vector<int> result(count, -2);
+    if (!ext.Has("mappings") || !ext.Get("mappings").IsArray())
+        fail(what + " KHR_materials_variants has no mappings array");
+    const tinygltf::Value& mappings = ext.Get("mappings");
+    for (std::size_t m = 0; m < mappings.ArrayLen(); ++m) {
+        const tinygltf::Value& mapping = mappings.Get(int(m));
+        const std::string where = what + " KHR_materials_variants mapping " + n(m);
+        const int material = mapping.Has("material") && mapping.Get("material").IsNumber()
+                                 ? mapping.Get("material").GetNumberAsInt()
+                                 : -1;
+        if (material < 0 || std::size_t(material) >= materials)
+            fail(where + " references material " + std::to_string(material) + ", file has " +
+                 n(materials) + " materials");
+        if (!mapping.Has("variants") || !mapping.Get("variants").IsArray())
+            fail(where + " has no variants array");
+        const tinygltf::Value& variants = mapping.Get("variants");
+        for (std::size_t k = 0; k < variants.ArrayLen(); ++k) {
+            const int variant =
+                variants.Get(int(k)).IsNumber() ? variants.Get(int(k)).GetNumberAsInt() : -1;
+            if (variant < 0 || std::size_t(variant) >= count)
+                fail(where + " names variant " + std::to_string(variant) + ", the file has " +
+                     n(count) + " variants");
+            result[std::size_t(variant)] = material;
+        }
+    }
+    return result;
+}
+
 /** Triangle-list indices from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN. */
 std::vector<std::uint32_t> toTriangleList(const std::vector<std::uint32_t>& in, int mode,
                                           const std::string& what) {
@@ -252,6 +284,9 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
 
     scene::Primitive p;
     p.material = src.material;
+    if (const auto variants = src.extensions.find("KHR_materials_variants");
+        variants != src.extensions.end())
+        p.variantMaterials = variantMaterials(model, variants->second, materials.size(), what);
     p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
     if (!lossy.count(attributes.at("POSITION")))
         checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions, what + " POSITION",
@@ -335,6 +370,23 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
 }
 
 } // namespace
+
+/** The file's KHR_materials_variants names (its root extension), or none. */
+std::vector<std::string> variantNames(const tinygltf::Model& model) {
+    std::vector<std::string> names;
+    const auto ext = model.extensions.find("KHR_materials_variants");
+    if (ext == model.extensions.end())
+        return names;
+    if (!ext->second.Has("variants") || !ext->second.Get("variants").IsArray())
+        fail("KHR_materials_variants has no variants array");
+    const tinygltf::Value& variants = ext->second.Get("variants");
+    for (std::size_t i = 0; i < variants.ArrayLen(); ++i) {
+        const tinygltf::Value& v = variants.Get(int(i));
+        names.push_back(v.Has("name") && v.Get("name").IsString() ? v.Get("name").Get<std::string>()
+                                                                  : "variant " + n(i));
+    }
+    return names;
+}
 
 scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& reader, int index,
                         const std::vector<scene::Material>& materials, const std::set<int>& lossy,

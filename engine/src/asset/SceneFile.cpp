@@ -98,7 +98,7 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
         fail(key, "expected an object, got " + j.dump());
     warnUnknownKeys(j,
                     {"name", "model", "translation", "rotation", "scale", "clip", "time_offset",
-                     "speed", "loop", "glass", "ior", "tint", "dispersion"},
+                     "speed", "loop", "glass", "ior", "tint", "dispersion", "variant"},
                     where + key + ".");
     scene::Character c;
     if (!j.contains("model"))
@@ -152,6 +152,20 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
                                         " (clips: " + clipList(m) + ")");
             c.clip = found;
         }
+    }
+    if (j.contains("variant")) { // KHR_materials_variants: by name or index
+        const Json& variant = j["variant"];
+        const std::string wanted =
+            variant.is_number_integer() ? variant.dump() : text(variant, key + ".variant");
+        const auto found = m.findVariant(wanted);
+        if (!found) {
+            std::string names;
+            for (const std::string& name : m.variants)
+                names += (names.empty() ? "" : ", ") + name;
+            fail(key + ".variant", "\"" + wanted + "\" not in " + fileName(c.modelPath) +
+                                       " (variants: " + (names.empty() ? "none" : names) + ")");
+        }
+        c.variant = *found;
     }
     if (j.contains("time_offset"))
         c.timeOffset = number(j["time_offset"], key + ".time_offset");
@@ -391,6 +405,8 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
             j["clip"] = c.model->animations[std::size_t(c.clip)].name;
         else if (c.clip >= 0)
             j["clip"] = c.clip;
+        if (c.variant >= 0 && std::size_t(c.variant) < c.model->variants.size())
+            j["variant"] = c.model->variants[std::size_t(c.variant)];
         j["time_offset"] = c.timeOffset;
         j["speed"] = c.speed;
         j["loop"] = c.loop;

@@ -278,6 +278,7 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
 
     scene::Primitive& rest = sub.rest;
     rest.material = primitive.material;
+    rest.variantMaterials = primitive.variantMaterials;
     rest.indices = std::move(indices);
     for (const RefinedCorner& c : sub.corners) {
         const glm::vec3 du = vec3At(limit.du, c.vertex), dv = vec3At(limit.dv, c.vertex);

@@ -250,7 +250,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
                 item.source = &character;
                 item.model = &model;
                 item.primitive = primitive.source;
-                item.material = primitive.source->material;
+                item.material = primitive.source->materialFor(character.variant);
                 item.geometry = cg.deformer.get();
                 item.instance = std::uint32_t(i);
                 item.primitiveIndex = std::uint32_t(p);

@@ -76,6 +76,18 @@ std::vector<int> Model::meshNodes() const {
     return result;
 }
 
+std::optional<int> Model::findVariant(std::string_view nameOrIndex) const {
+    for (std::size_t i = 0; i < variants.size(); ++i)
+        if (variants[i] == nameOrIndex)
+            return int(i);
+    int index = -1;
+    const char* end = nameOrIndex.data() + nameOrIndex.size();
+    const auto [ptr, ec] = std::from_chars(nameOrIndex.data(), end, index);
+    if (ec == std::errc() && ptr == end && index >= 0 && index < int(variants.size()))
+        return index;
+    return std::nullopt;
+}
+
 std::optional<int> Model::findAnimation(std::string_view nameOrIndex) const {
     for (std::size_t i = 0; i < animations.size(); ++i)
         if (animations[i].name == nameOrIndex)

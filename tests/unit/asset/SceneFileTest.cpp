@@ -89,6 +89,8 @@ std::vector<BadScene> badScenes() {
          "camera: position and target coincide"},
         {"GroundNotABool", scene({character()}, {{"ground", 1}}),
          "ground: expected true or false, got 1"},
+        {"UnknownVariant", scene({character({{"variant", "blue"}})}),
+         "characters[0].variant: \"blue\" not in twojoint.glb (variants: none)"},
         {"MissingEnvironment", scene({character()}, {{"environment", "env/none.hdr"}}),
          "environment: asset::loadHdr(): none.hdr: core::readFile(): "},
         {"EnvironmentNotAnImage", scene({character()}, {{"environment", "models/twojoint.glb"}}),

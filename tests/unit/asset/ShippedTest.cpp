@@ -476,3 +476,58 @@ TEST(Instancing, MalformedInstancesFailNamingTheNode) {
 }
 
 } // namespace
+
+namespace {
+
+// --- KHR_materials_variants --------------------------------------------------------------------
+
+/** The two-joint model with two materials and variants "red" (material 1) and "plain" (the
+ *  primitive's own, material 0, by no mapping). */
+test::GltfBuilder variantModel() {
+    test::GltfBuilder b = test::twoJointModel();
+    b.doc["materials"] = {{{"name", "plain"}}, {{"name", "red"}}};
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+        {{"material", 1}, {"variants", {0}}}};
+    b.doc["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "red"}},
+                                                                 {{"name", "plain"}}};
+    b.doc["extensionsUsed"] = {"KHR_materials_variants"};
+    return b;
+}
+
+TEST(MaterialVariants, EachVariantNamesItsMaterials) {
+    test::TempDir dir;
+    const auto model = asset::loadGltf(variantModel().save(dir.path(), "variants"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    EXPECT_TRUE(model->warnings.empty());
+    EXPECT_EQ(model->variants, (std::vector<std::string>{"red", "plain"}));
+    const scene::Primitive& p = model->meshes[0].primitives[0];
+    EXPECT_EQ(p.materialFor(-1), 0);
+    EXPECT_EQ(p.materialFor(0), 1);
+    EXPECT_EQ(p.materialFor(1), 0); // no mapping: the primitive's own
+    EXPECT_EQ(model->findVariant("plain"), 1);
+    EXPECT_EQ(model->findVariant("0"), 0);
+    EXPECT_FALSE(model->findVariant("blue"));
+}
+
+TEST(MaterialVariants, MalformedMappingsFailNamingThePrimitive) {
+    test::TempDir dir;
+    const std::pair<std::function<void(Json&)>, std::string> cases[] = {
+        {[](Json& m) { m[0]["material"] = 7; },
+         "mesh 0 primitive 0 KHR_materials_variants mapping 0 references material 7, file has 2 "
+         "materials"},
+        {[](Json& m) { m[0]["variants"] = {5}; },
+         "mesh 0 primitive 0 KHR_materials_variants mapping 0 names variant 5, the file has 2 "
+         "variants"}};
+    for (const auto& [breakIt, expected] : cases) {
+        test::GltfBuilder b = variantModel();
+        breakIt(b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]
+                     ["mappings"]);
+        const auto model = asset::loadGltf(b.save(dir.path(), "broken"));
+        ASSERT_FALSE(model.ok()) << expected;
+        EXPECT_NE(model.error().message.find("broken.gltf: " + expected), std::string::npos)
+            << model.error().message;
+    }
+}
+
+} // namespace

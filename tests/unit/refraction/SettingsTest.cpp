@@ -80,9 +80,7 @@ TEST(Settings, GlassFollowsMethodAndSelection) {
     model.materials[1].hasTransmission = true;
     model.materials[1].transmissionFactor = 1.0f;
     ASSERT_TRUE(model.materials[1].isTransmissive());
-    scene::Primitive plain, transmissive;
-    plain.material = 0;
-    transmissive.material = 1;
+    const int plain = 0, transmissive = 1;
     using S = refraction::Settings;
     EXPECT_FALSE(S::decode(p).isGlass(model, plain));
     EXPECT_TRUE(S::decode(p).isGlass(model, transmissive));

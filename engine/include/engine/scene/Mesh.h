@@ -33,6 +33,16 @@ struct Primitive {
     std::vector<std::uint32_t> indices; ///< three per triangle; generated for non-indexed input
     std::vector<MorphTarget> targets;
     int material = -1; ///< index into Model::materials, -1 for the default material
+    /** KHR_materials_variants: the material of each of the model's variants (Model::variants),
+     *  -2 where the variant keeps `material`; empty without mappings. */
+    std::vector<int> variantMaterials;
+    /** The material drawn under `variant` (-1: the file's default). */
+    int materialFor(int variant) const {
+        return variant >= 0 && std::size_t(variant) < variantMaterials.size() &&
+                       variantMaterials[std::size_t(variant)] != -2
+                   ? variantMaterials[std::size_t(variant)]
+                   : material;
+    }
 
     /** True when the file had no NORMAL: normals are flat (vertices unwelded per triangle) and
      *  deformation recomputes them from the deformed triangle. */

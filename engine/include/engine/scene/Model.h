@@ -22,6 +22,7 @@ struct Model {
     std::vector<Mesh> meshes;
     std::vector<Skin> skins;
     std::vector<Animation> animations;
+    std::vector<std::string> variants; ///< KHR_materials_variants' names, in the file's order
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<Image> images;
@@ -41,6 +42,8 @@ struct Model {
     std::vector<int> meshNodes() const;
     /** Clip index by name, or by decimal index when `nameOrIndex` is a number. */
     std::optional<int> findAnimation(std::string_view nameOrIndex) const;
+    /** The variant named `nameOrIndex` (KHR_materials_variants: a name, or an index). */
+    std::optional<int> findVariant(std::string_view nameOrIndex) const;
 };
 
 } // namespace scene

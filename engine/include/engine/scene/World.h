@@ -36,6 +36,7 @@ struct Character {
     /** Model space to world space, as glTF nodes spell it (translation, rotation, scale). */
     Trs placement;
     int clip = -1;           ///< index into model->animations; -1: the rest pose
+    int variant = -1;        ///< index into model->variants; -1: the file's default materials
     double timeOffset = 0.0; ///< seconds added to the scene time
     double speed = 1.0;      ///< clip seconds per scene second (negative plays backwards)
     bool loop = true;        ///< else the clip holds its ends
