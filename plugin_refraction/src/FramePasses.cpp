@@ -20,9 +20,9 @@ constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets
 // The mip level the searches read the surface normals at (DIR §3.1: mip-filtered normals); the
 // normal maps need no level above it.
 constexpr int kNormalLod = 1;
-// Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-13 the
+// Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-14 the
 // material's textures, then the gathered far target of the single geometry pass.
-constexpr std::uint32_t kMaterialUnit = 8, kGatherFarUnit = 14;
+constexpr std::uint32_t kMaterialUnit = 8, kGatherFarUnit = 15;
 
 gl::TextureDesc depthDesc(glm::ivec2 size) {
     return {size, gl::Format::R32F, 1};

@@ -20,7 +20,7 @@ namespace {
 /** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
 constexpr std::size_t kMaxGlassIds = 255;
 // Texture units: 0-1 the environment, 2-3 the scene colour and depth, 4-5 the layer depth maps,
-// 6 the outline pass's nearest layers, 8-13 the material's.
+// 6 the outline pass's nearest layers, 8-14 the material's.
 constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6,
               kMaterialUnit = 8;
 constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth

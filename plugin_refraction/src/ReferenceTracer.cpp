@@ -106,14 +106,19 @@ dvec2 environmentBrdf(double NoV, double roughness) {
     return dvec2(-1.04, 1.04) * a004 + dvec2(r.z, r.w);
 }
 
+/** As common/brdf.glsl: the dielectric's lobe with F0 `dielectricF0` (at most 1) and weight
+ *  `specularWeight` (KHR_materials_specular), a metal's with its base colour. */
 dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double metallic,
-                             double roughness, dvec3 N, dvec3 V) {
+                             double roughness, dvec3 N, dvec3 V, dvec3 dielectricF0 = dvec3(0.04),
+                             double specularWeight = 1.0) {
     const double NoV = std::clamp(glm::dot(N, V), 1e-4, 1.0);
-    const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
     const dvec2 ab = environmentBrdf(NoV, roughness);
-    const dvec3 specular = env.radiance(glm::reflect(-V, N), roughness) * (f0 * ab.x + ab.y);
+    const dvec3 radiance = env.radiance(glm::reflect(-V, N), roughness);
+    const dvec3 dielectric =
+        specularWeight * radiance * (glm::min(dielectricF0, dvec3(1.0)) * ab.x + ab.y);
+    const dvec3 metal = radiance * (base * ab.x + ab.y);
     const dvec3 diffuse = env.irradiance(N) * base * (1.0 - metallic);
-    return diffuse + specular;
+    return diffuse + glm::mix(dielectric, metal, metallic);
 }
 
 double srgbToLinear(double c) {
@@ -358,6 +363,9 @@ public:
         glm::dvec4 base = m ? glm::dvec4(m->baseColorFactor) : glm::dvec4(1.0);
         double metallic = m ? m->metallicFactor : 1.0, roughness = m ? m->roughnessFactor : 1.0;
         dvec3 emissive = m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
+        // KHR_materials_specular: as MaterialTextures::bind and render/pbr.frag.glsl
+        double specularWeight = m && m->hasSpecular ? m->specularFactor : 1.0;
+        dvec3 specularColor = m && m->hasSpecular ? dvec3(m->specularColorFactor) : dvec3(1.0);
         if (const scene::Model* model = h.surface->model; m && model) {
             auto image = [&](const scene::TextureRef& t) { return textureImage(*model, t); };
             auto uv = [&](const scene::TextureRef& t) { return textureUv(t, h.uv); };
@@ -372,12 +380,18 @@ public:
             }
             if (const auto* img = image(m->emissiveTexture))
                 emissive *= dvec3(sampleImage(*img, uv(m->emissiveTexture), true));
+            if (const auto* img = image(m->specularTexture))
+                specularWeight *= sampleImage(*img, uv(m->specularTexture), false).a;
+            if (const auto* img = image(m->specularColorTexture))
+                specularColor *= dvec3(sampleImage(*img, uv(m->specularColorTexture), true));
         }
         dvec3 N = h.shadingNormal;
         if (glm::dot(N, V) < 0)
             N = -N;
+        const double f0 = m ? double(m->dielectricF0()) : 0.04;
         return shadeMetallicRoughness(mEnv, dvec3(base), std::clamp(metallic, 0.0, 1.0),
-                                      std::clamp(roughness, 0.03, 1.0), N, V) +
+                                      std::clamp(roughness, 0.03, 1.0), N, V, f0 * specularColor,
+                                      specularWeight) +
                emissive;
     }
 

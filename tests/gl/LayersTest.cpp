@@ -573,3 +573,50 @@ TEST_F(Materials, AVariantDrawsItsMaterialsOnTheGpuAndInTheReference) {
 }
 
 } // namespace
+
+namespace {
+
+TEST_F(Materials, SpecularWeightsAndColoursTheDielectricReflectionOnTheGpuAndInTheReference) {
+    // SpecularTest's spheres (KHR_materials_specular: factor, texture, colour factor and
+    // texture, a colour over 1): the GPU's frame and the reference's agree; the same spheres
+    // with the extension dropped (glTF's core F0, weight 1) do not.
+    GLASS_REQUIRE_SHARED();
+    const std::string file =
+        (test::sharedDir() / "assets/khronos/SpecularTest/glTF-Binary/SpecularTest.glb").string();
+    auto world = [&](bool specular) {
+        auto loaded = asset::loadModel(file);
+        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+        if (!loaded)
+            return scene::World{};
+        std::size_t with = 0;
+        for (scene::Material& m : loaded->materials) {
+            with += m.hasSpecular;
+            if (!specular)
+                m.hasSpecular = false;
+        }
+        EXPECT_GT(with, 20u);
+        return scene::singleCharacterWorld(
+            std::make_shared<const scene::Model>(std::move(*loaded)));
+    };
+    WorldRig rig(world(true), context(), 256);
+    const auto reference = rig.reference();
+    WorldRig core(world(false), context(), 256);
+    const capture::Image with = rig.render(), without = core.render();
+    // Scored where the extension changes the GPU's frame (the spheres, not the labels).
+    std::vector<bool> changed(with.rgba.size() / 4);
+    for (std::size_t px = 0; px < changed.size(); ++px)
+        for (int c = 0; c < 3; ++c)
+            changed[px] = changed[px] || std::abs(int(with.rgba[px * 4 + std::size_t(c)]) -
+                                                  int(without.rgba[px * 4 + std::size_t(c)])) > 2;
+    const double followed = capture::score(with, reference.image, &changed).psnr;
+    const double ignored = capture::score(without, reference.image, &changed).psnr;
+    std::printf("SpecularTest against the reference, where the extension changes the frame: "
+                "%.2f dB, %.2f dB without the extension\n",
+                followed, ignored);
+    // Measured 21.5 against 14.6 dB: what is left is the spheres' outlines, which the
+    // reference's 16 rays a pixel smooth and the GPU's one does not.
+    EXPECT_GE(followed, 19.0);
+    EXPECT_GT(followed, ignored + 5.0);
+}
+
+} // namespace

@@ -4,7 +4,7 @@
 #define COMMON_MATERIAL_UV_GLSL
 
 const int SLOT_BASE_COLOR = 0, SLOT_METALLIC_ROUGHNESS = 1, SLOT_NORMAL = 2, SLOT_OCCLUSION = 3,
-          SLOT_EMISSIVE = 4;
+          SLOT_EMISSIVE = 4, SLOT_SPECULAR = 5, SLOT_SPECULAR_COLOR = 6;
 uniform int uTexCoords; // bit `slot` set: that slot reads TEXCOORD_1
 
 // `uvs`: TEXCOORD_0 in xy, TEXCOORD_1 in zw (the vertex's, interpolated).

@@ -23,6 +23,12 @@ uniform sampler2D uOcclusionTexture, uEmissiveTexture;
 // KHR_texture_transform of each slot (identity without it)
 uniform mat3 uBaseColorUv, uMetallicRoughnessUv, uNormalUv, uOcclusionUv, uEmissiveUv;
 uniform int uUnlit; // KHR_materials_unlit: the base colour, unshaded
+// KHR_materials_specular: weight (factor, texture alpha) and F0 colour (factor, texture rgb)
+uniform float uSpecularFactor, uDielectricF0;
+uniform vec3 uSpecularColorFactor;
+uniform int uHasSpecularTexture, uHasSpecularColorTexture;
+uniform sampler2D uSpecularTexture, uSpecularColorTexture;
+uniform mat3 uSpecularUv, uSpecularColorUv;
 
 
 void main() {
@@ -49,8 +55,16 @@ void main() {
     if (uHasOcclusionTexture != 0)
         occlusion =
             mix(1.0, texture(uOcclusionTexture, slotUv(vUv, uOcclusionUv, SLOT_OCCLUSION)).r, uOcclusionStrength);
-    vec3 color = shadeMetallicRoughness(baseColor.rgb, clamp(metallic, 0.0, 1.0),
-                                        clamp(roughness, 0.03, 1.0), occlusion, N, V);
+    float specularWeight = uSpecularFactor;
+    if (uHasSpecularTexture != 0)
+        specularWeight *= texture(uSpecularTexture, slotUv(vUv, uSpecularUv, SLOT_SPECULAR)).a;
+    vec3 specularColor = uSpecularColorFactor;
+    if (uHasSpecularColorTexture != 0)
+        specularColor *=
+            texture(uSpecularColorTexture, slotUv(vUv, uSpecularColorUv, SLOT_SPECULAR_COLOR)).rgb;
+    vec3 color = shadeMetallicRoughnessSpecular(baseColor.rgb, clamp(metallic, 0.0, 1.0),
+                                                clamp(roughness, 0.03, 1.0), occlusion, N, V,
+                                                uDielectricF0 * specularColor, specularWeight);
     vec3 emissive = uEmissive;
     if (uHasEmissiveTexture != 0)
         emissive *= texture(uEmissiveTexture, slotUv(vUv, uEmissiveUv, SLOT_EMISSIVE)).rgb;

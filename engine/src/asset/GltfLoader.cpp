@@ -372,6 +372,23 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.emissiveStrength = float(number(*e, "emissiveStrength", 1.0));
         checkRange(mat.emissiveStrength, 0.0, 1e9, what + " emissiveStrength");
     }
+    if (const tinygltf::Value* e = extension("KHR_materials_specular")) {
+        mat.hasSpecular = true;
+        mat.specularFactor = float(number(*e, "specularFactor", 1.0));
+        checkRange(mat.specularFactor, 0.0, 1.0, what + " specularFactor");
+        mat.specularTexture = textureInfo(m, *e, "specularTexture", what);
+        if (e->Has("specularColorFactor") && e->Get("specularColorFactor").IsArray() &&
+            e->Get("specularColorFactor").ArrayLen() == 3)
+            for (int c = 0; c < 3; ++c) {
+                mat.specularColorFactor[c] =
+                    float(e->Get("specularColorFactor").Get(c).GetNumberAsDouble());
+                checkRange(mat.specularColorFactor[c], 0.0, 1e6, what + " specularColorFactor");
+            }
+        mat.specularColorTexture = textureInfo(m, *e, "specularColorTexture", what);
+        if (extension("KHR_materials_transmission"))
+            warnings.push_back(what + " (glass) has KHR_materials_specular: the opaque shading "
+                                      "follows it, the glass's Fresnel does not yet");
+    }
     if (const tinygltf::Value* e = extension("KHR_materials_transmission")) {
         mat.hasTransmission = true;
         mat.transmissionFactor = float(number(*e, "transmissionFactor", 0.0));

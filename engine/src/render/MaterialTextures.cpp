@@ -28,12 +28,13 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
     MaterialTextures result;
     std::vector<bool> srgb(model.textures.size(), false), linear(model.textures.size(), false);
     for (const scene::Material& m : model.materials) {
-        for (const scene::TextureRef* t : {&m.baseColorTexture, &m.emissiveTexture})
+        for (const scene::TextureRef* t :
+             {&m.baseColorTexture, &m.emissiveTexture, &m.specularColorTexture})
             if (t->present())
                 srgb[std::size_t(t->texture)] = true;
         for (const scene::TextureRef* t :
              {&m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-              &m.transmissionTexture, &m.thicknessTexture})
+              &m.transmissionTexture, &m.thicknessTexture, &m.specularTexture})
             if (t->present())
                 linear[std::size_t(t->texture)] = true;
     }
@@ -96,6 +97,10 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
     program.set("uNormalScale", m.normalTexture.scale);
     program.set("uOcclusionStrength", m.occlusionTexture.scale);
     program.set("uUnlit", m.unlit ? 1 : 0);
+    // KHR_materials_specular (without it: weight 1, colour white, F0 0.04 or the ior's)
+    program.set("uSpecularFactor", m.hasSpecular ? m.specularFactor : 1.0f);
+    program.set("uSpecularColorFactor", m.hasSpecular ? m.specularColorFactor : glm::vec3(1.0f));
+    program.set("uDielectricF0", m.dielectricF0());
     struct Slot {
         const scene::TextureRef& ref;
         const char* sampler;
@@ -109,7 +114,10 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
          "uMetallicRoughnessUv", false},
         {m.normalTexture, "uNormalTexture", "uHasNormalTexture", "uNormalUv", false},
         {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", "uOcclusionUv", false},
-        {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", "uEmissiveUv", true}};
+        {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", "uEmissiveUv", true},
+        {m.specularTexture, "uSpecularTexture", "uHasSpecularTexture", "uSpecularUv", false},
+        {m.specularColorTexture, "uSpecularColorTexture", "uHasSpecularColorTexture",
+         "uSpecularColorUv", true}};
     int unit = firstUnit, texCoords = 0;
     for (const Slot& slot : slots) {
         // Each slot reads the texture coordinate set its texCoord names (common/material_uv.glsl).

@@ -19,7 +19,7 @@ public:
 
     /** Sets the material uniforms (factors, unlit, texture flags and KHR_texture_transform
      *  matrices `u<Slot>Uv`) and binds its textures to units
-     *  `firstUnit`..`firstUnit + 4`. Material -1 is the glTF default material. */
+     *  `firstUnit`..`firstUnit + 6`. Material -1 is the glTF default material. */
     void bind(const gl::Program& program, const scene::Model& model, int material,
               int firstUnit) const;
 

@@ -54,9 +54,25 @@ struct Material {
     // KHR_materials_ior
     bool hasIor = false;
     float ior = 1.5f;
+    // KHR_materials_specular: the dielectric's specular weight (alpha of its texture) and its
+    // F0's colour (rgb of its texture, sRGB)
+    bool hasSpecular = false;
+    float specularFactor = 1.0f;
+    TextureRef specularTexture;
+    glm::vec3 specularColorFactor{1.0f};
+    TextureRef specularColorTexture;
     // KHR_materials_dispersion: 20 / Abbe number
     bool hasDispersion = false;
     float dispersion = 0.0f;
+
+    /** The dielectric's reflectance at normal incidence before KHR_materials_specular's colour:
+     *  0.04 in glTF's core model, from the index of refraction with KHR_materials_ior. */
+    float dielectricF0() const {
+        if (!hasIor || ior < 1.0f)
+            return 0.04f;
+        const float r = (ior - 1.0f) / (ior + 1.0f);
+        return r * r;
+    }
 
     /** Glass as the plugin sees it: any transmission. */
     bool isTransmissive() const { return hasTransmission && transmissionFactor > 0.0f; }
