@@ -43,6 +43,10 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
                         const std::vector<scene::Material>& materials, const std::set<int>& lossy,
                         std::vector<std::string>& warnings);
 
+/** A KHR_materials_ extension: one the engine lacks loads without it, with a warning, even
+ *  when the file requires it. */
+bool isMaterialExtension(const std::string& extension);
+
 /** KHR_materials_variants: the file's variant names (none without the extension). */
 std::vector<std::string> variantNames(const tinygltf::Model& model);
 

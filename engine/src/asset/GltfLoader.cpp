@@ -505,7 +505,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             // A required extension the engine lacks (Draco, say) makes the parser stumble on
             // what the extension stores elsewhere: name the extension, not the symptom.
             for (const std::string& extension : requiredExtensions(*bytes, isBinary))
-                if (!supportedRequiredExtensions().count(extension))
+                if (!supportedRequiredExtensions().count(extension) &&
+                    !isMaterialExtension(extension))
                     return core::Error{prefix + "extensionsRequired lists " + extension +
                                        ", which this engine does not support (the parser: " + err +
                                        ")"};
@@ -528,6 +529,13 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (const std::string& extension : src.extensionsUsed)
             if (!supportedRequiredExtensions().count(extension))
                 model.warnings.push_back("extensionsUsed lists " + extension +
+                                         ", which this engine does not implement: loaded "
+                                         "without it");
+        for (const std::string& extension : src.extensionsRequired) // a material one, then
+            if (!supportedRequiredExtensions().count(extension) &&
+                std::find(src.extensionsUsed.begin(), src.extensionsUsed.end(), extension) ==
+                    src.extensionsUsed.end())
+                model.warnings.push_back("extensionsRequired lists " + extension +
                                          ", which this engine does not implement: loaded "
                                          "without it");
         model.nodes = convertNodes(src);

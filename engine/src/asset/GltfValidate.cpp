@@ -74,9 +74,15 @@ void checkVersion(const tinygltf::Asset& asset) {
     }
 }
 
+bool isMaterialExtension(const std::string& extension) { // GltfConvert.h
+    return extension.rfind("KHR_materials_", 0) == 0;
+}
+
 void validateStructure(const tinygltf::Model& m) {
+    // A material extension the engine lacks leaves the geometry whole: the file loads without
+    // it, with a warning (GltfLoader), even when it is required. What else it lacks refuses.
     for (const std::string& extension : m.extensionsRequired)
-        if (!supportedRequiredExtensions().count(extension))
+        if (!supportedRequiredExtensions().count(extension) && !isMaterialExtension(extension))
             fail("extensionsRequired lists " + extension + ", which this engine does not support");
 
     if (m.nodes.size() > core::limits::kMaxNodes)

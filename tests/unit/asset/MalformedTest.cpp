@@ -144,12 +144,12 @@ const std::vector<MalformedCase>& cases() {
              std::memcpy(b.bin.data() + offset + 16 * 4, &nan, 4); // vertex 4
          },
          {"WEIGHTS_0", "element 4 is not finite"}},
-        {"UnsupportedRequiredExtension",
+        {"UnsupportedRequiredExtension", // geometry the engine cannot read
          [](auto& b) {
-             b.doc["extensionsUsed"] = {"KHR_materials_anisotropy"};
-             b.doc["extensionsRequired"] = {"KHR_materials_anisotropy"};
+             b.doc["extensionsUsed"] = {"KHR_gaussian_splatting"};
+             b.doc["extensionsRequired"] = {"KHR_gaussian_splatting"};
          },
-         {"extensionsRequired lists KHR_materials_anisotropy"}},
+         {"extensionsRequired lists KHR_gaussian_splatting"}},
         {"TooManyInfluenceSets",
          [](auto& b) {
              auto& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
@@ -340,6 +340,19 @@ TEST(Degrade, PointsAndLinesPrimitivesAreLeftOutWithAWarning) {
         << model->warnings[0];
     EXPECT_NE(model->warnings[2].find("primitive 3 has mode LINE_STRIP"), std::string::npos);
     EXPECT_EQ(model->meshes[0].morphTargetCount(), 1u);
+}
+
+TEST(Degrade, ARequiredMaterialExtensionTheEngineLacksIsAWarning) {
+    // A material extension leaves the geometry whole: the file loads without it, whether it is
+    // required or only used.
+    test::TempDir dir;
+    test::GltfBuilder builder = test::twoJointModel();
+    builder.doc["extensionsUsed"] = builder.doc["extensionsRequired"] = {"KHR_materials_sheen"};
+    const auto model = asset::loadGltf(builder.save(dir.path(), "sheen"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->warnings.size(), 1u);
+    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_materials_sheen, which this engine "
+                                  "does not implement: loaded without it");
 }
 
 TEST(Degrade, BoundsThatAreNotTheDataAreNamed) {
