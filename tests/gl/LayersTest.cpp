@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 namespace {
 
@@ -465,35 +466,51 @@ TEST_F(Layers, StoredLayersMatchTheSurfacesTheReferenceCounts) {
     EXPECT_NEAR(gpuShare, referenceShare, 0.03);
 }
 
-} // namespace
+/** A shared Khronos model, loaded and changed by `change` (nothing when null). */
+scene::World sharedWorld(const std::string& file,
+                         const std::function<void(scene::Model&)>& change = {}) {
+    auto loaded = asset::loadModel((test::sharedDir() / "assets/khronos" / file).string());
+    EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+    if (!loaded)
+        return {};
+    if (change)
+        change(*loaded);
+    return scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
+}
 
-namespace {
-
-class Materials : public test::GlTest {};
+class Materials : public test::GlTest {
+protected:
+    /** Masked PSNR against the reference of `on` of the GPU's frames of `on` and of `off` (the
+     *  same world with the feature under test switched off), from `on`'s camera: over the whole
+     *  image, or (`changed`) over the pixels where the two frames differ. */
+    std::pair<double, double> againstReference(scene::World on, scene::World off, int size,
+                                               bool changed = false) {
+        WorldRig rig(std::move(on), context(), size), without(std::move(off), context(), size);
+        without.setCamera(rig.camera());
+        const auto reference = rig.reference();
+        const capture::Image a = rig.render(), b = without.render();
+        std::vector<bool> mask(a.rgba.size() / 4, true);
+        for (std::size_t px = 0; changed && px < mask.size(); ++px) {
+            mask[px] = false;
+            for (int c = 0; c < 3; ++c)
+                mask[px] = mask[px] || std::abs(int(a.rgba[px * 4 + std::size_t(c)]) -
+                                                int(b.rgba[px * 4 + std::size_t(c)])) > 2;
+        }
+        return {capture::score(a, reference.image, &mask).psnr,
+                capture::score(b, reference.image, &mask).psnr};
+    }
+};
 
 TEST_F(Materials, TexturesOnTheSecondTextureCoordinatesAreReadByTheGpuAndTheReference) {
     // MultiUVTest's emissive glTF logo reads TEXCOORD_1 (its base colour TEXCOORD_0): the GPU's
     // frame and the reference's agree, and both show the logo. Dropping the texture (as the
     // engine did while it read TEXCOORD_0 alone) moves the frame far off the reference.
     GLASS_REQUIRE_SHARED();
-    const std::string file =
-        (test::sharedDir() / "assets/khronos/MultiUVTest/glTF-Binary/MultiUVTest.glb").string();
-    auto world = [&](bool secondSet) {
-        auto loaded = asset::loadModel(file);
-        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-        if (!loaded)
-            return scene::World{};
-        EXPECT_EQ(loaded->materials[0].emissiveTexture.texCoord, 1);
-        if (!secondSet)
-            loaded->materials[0].emissiveTexture = {};
-        return scene::singleCharacterWorld(
-            std::make_shared<const scene::Model>(std::move(*loaded)));
-    };
-    WorldRig rig(world(true), context());
-    const auto reference = rig.reference();
-    const double both = capture::score(rig.render(), reference.image).psnr;
-    WorldRig dropped(world(false), context());
-    const double without = capture::score(dropped.render(), reference.image).psnr;
+    const std::string file = "MultiUVTest/glTF-Binary/MultiUVTest.glb";
+    const auto [both, without] = againstReference(
+        sharedWorld(file,
+                    [](scene::Model& m) { EXPECT_EQ(m.materials[0].emissiveTexture.texCoord, 1); }),
+        sharedWorld(file, [](scene::Model& m) { m.materials[0].emissiveTexture = {}; }), kSize);
     std::printf("MultiUVTest against the reference: %.2f dB, %.2f dB without its TEXCOORD_1 "
                 "texture\n",
                 both, without);
@@ -501,115 +518,64 @@ TEST_F(Materials, TexturesOnTheSecondTextureCoordinatesAreReadByTheGpuAndTheRefe
     EXPECT_GT(both, without + 5.0);
 }
 
-} // namespace
-
-namespace {
-
 TEST_F(Materials, GpuInstancesArePlacementsOnTheGpuAndInTheReference) {
     // SimpleInstancing draws one cube 125 times (EXT_mesh_gpu_instancing: translation, rotation
     // and scale per instance): the GPU's frame and the reference's agree, and a frame of the
     // cube drawn once, as the engine did without the extension, does not.
     GLASS_REQUIRE_SHARED();
-    const std::string file =
-        (test::sharedDir() / "assets/khronos/SimpleInstancing/glTF-Binary/SimpleInstancing.glb")
-            .string();
-    auto world = [&](bool instanced) {
-        auto loaded = asset::loadModel(file);
-        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-        if (!loaded)
-            return scene::World{};
-        EXPECT_TRUE(loaded->warnings.empty());
-        std::size_t instances = 0;
-        for (scene::Node& node : loaded->nodes) {
-            instances += node.instances.size();
-            if (!instanced)
-                node.instances.clear();
-        }
-        EXPECT_EQ(instances, 125u);
-        return scene::singleCharacterWorld(
-            std::make_shared<const scene::Model>(std::move(*loaded)));
-    };
-    WorldRig rig(world(true), context());
-    const auto reference = rig.reference();
-    const double instanced = capture::score(rig.render(), reference.image).psnr;
-    WorldRig once(world(false), context());
-    once.setCamera(rig.camera());
-    const double single = capture::score(once.render(), reference.image).psnr;
+    const std::string file = "SimpleInstancing/glTF-Binary/SimpleInstancing.glb";
+    const auto [instanced, single] = againstReference(
+        sharedWorld(file,
+                    [](scene::Model& m) {
+                        EXPECT_TRUE(m.warnings.empty());
+                        EXPECT_EQ(m.nodes[0].instances.size(), 125u);
+                    }),
+        sharedWorld(file, [](scene::Model& m) { m.nodes[0].instances.clear(); }), kSize);
     std::printf("SimpleInstancing against the reference: %.2f dB, %.2f dB drawn once\n", instanced,
                 single);
     EXPECT_GE(instanced, 30.0);
     EXPECT_GT(instanced, single + 5.0);
 }
 
-} // namespace
-
-namespace {
-
 TEST_F(Materials, AVariantDrawsItsMaterialsOnTheGpuAndInTheReference) {
     // MaterialsVariantsShoe's "street" variant (KHR_materials_variants): black with red stripes
     // where the file's own materials are blue. The GPU's frame of the variant agrees with the
     // reference's, and the frame of the file's own materials does not.
     GLASS_REQUIRE_SHARED();
-    auto loaded = asset::loadModel(
-        (test::sharedDir() / "assets/khronos/MaterialsVariantsShoe/glTF/MaterialsVariantsShoe.gltf")
-            .string());
-    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
-    const auto street = loaded->findVariant("street");
-    ASSERT_TRUE(street);
-    scene::World world =
-        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
-    world.characters[0].variant = *street;
-    WorldRig rig(world, context());
-    const auto reference = rig.reference();
-    const double variant = capture::score(rig.render(), reference.image).psnr;
-    world.characters[0].variant = -1;
-    WorldRig authored(world, context());
-    const double own = capture::score(authored.render(), reference.image).psnr;
+    scene::World street = sharedWorld("MaterialsVariantsShoe/glTF/MaterialsVariantsShoe.gltf");
+    scene::World own = street;
+    const auto variant = street.characters[0].model->findVariant("street");
+    ASSERT_TRUE(variant);
+    street.characters[0].variant = *variant;
+    const auto [drawn, authored] = againstReference(street, own, kSize);
     std::printf("MaterialsVariantsShoe 'street' against the reference: %.2f dB, %.2f dB with the "
                 "file's own materials\n",
-                variant, own);
-    EXPECT_GE(variant, 28.0);
-    EXPECT_GT(variant, own + 3.0);
+                drawn, authored);
+    EXPECT_GE(drawn, 28.0);
+    EXPECT_GT(drawn, authored + 3.0);
 }
-
-} // namespace
-
-namespace {
 
 TEST_F(Materials, SpecularWeightsAndColoursTheDielectricReflectionOnTheGpuAndInTheReference) {
     // SpecularTest's spheres (KHR_materials_specular: factor, texture, colour factor and
-    // texture, a colour over 1): the GPU's frame and the reference's agree; the same spheres
+    // texture, a colour over 1), scored where the extension changes the GPU's frame (the
+    // spheres, not the labels): the GPU's frame and the reference's agree; the same spheres
     // with the extension dropped (glTF's core F0, weight 1) do not.
     GLASS_REQUIRE_SHARED();
-    const std::string file =
-        (test::sharedDir() / "assets/khronos/SpecularTest/glTF-Binary/SpecularTest.glb").string();
-    auto world = [&](bool specular) {
-        auto loaded = asset::loadModel(file);
-        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-        if (!loaded)
-            return scene::World{};
-        std::size_t with = 0;
-        for (scene::Material& m : loaded->materials) {
-            with += m.hasSpecular;
-            if (!specular)
-                m.hasSpecular = false;
-        }
-        EXPECT_GT(with, 20u);
-        return scene::singleCharacterWorld(
-            std::make_shared<const scene::Model>(std::move(*loaded)));
-    };
-    WorldRig rig(world(true), context(), 256);
-    const auto reference = rig.reference();
-    WorldRig core(world(false), context(), 256);
-    const capture::Image with = rig.render(), without = core.render();
-    // Scored where the extension changes the GPU's frame (the spheres, not the labels).
-    std::vector<bool> changed(with.rgba.size() / 4);
-    for (std::size_t px = 0; px < changed.size(); ++px)
-        for (int c = 0; c < 3; ++c)
-            changed[px] = changed[px] || std::abs(int(with.rgba[px * 4 + std::size_t(c)]) -
-                                                  int(without.rgba[px * 4 + std::size_t(c)])) > 2;
-    const double followed = capture::score(with, reference.image, &changed).psnr;
-    const double ignored = capture::score(without, reference.image, &changed).psnr;
+    const std::string file = "SpecularTest/glTF-Binary/SpecularTest.glb";
+    const auto [followed, ignored] = againstReference(
+        sharedWorld(file,
+                    [](scene::Model& m) {
+                        EXPECT_GT(
+                            std::count_if(m.materials.begin(), m.materials.end(),
+                                          [](const scene::Material& x) { return x.hasSpecular; }),
+                            20);
+                    }),
+        sharedWorld(file,
+                    [](scene::Model& m) {
+                        for (scene::Material& x : m.materials)
+                            x.hasSpecular = false;
+                    }),
+        256, true);
     std::printf("SpecularTest against the reference, where the extension changes the frame: "
                 "%.2f dB, %.2f dB without the extension\n",
                 followed, ignored);

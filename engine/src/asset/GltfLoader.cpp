@@ -206,6 +206,17 @@ void checkRange(double value, double lo, double hi, const std::string& what) {
              std::to_string(hi) + "]");
 }
 
+/** The three numbers `key` of `object` into `out` when present, each checked in [0, hi]. */
+void readColor(const tinygltf::Value& object, const char* key, double hi, const std::string& what,
+               glm::vec3& out) {
+    if (!object.Has(key) || !object.Get(key).IsArray() || object.Get(key).ArrayLen() != 3)
+        return;
+    for (int c = 0; c < 3; ++c) {
+        out[c] = float(object.Get(key).Get(c).GetNumberAsDouble());
+        checkRange(out[c], 0.0, hi, what + " " + key);
+    }
+}
+
 /** Which buffer has no uri where one is needed (tinygltf's error names none): every buffer but
  *  a GLB's first (its BIN chunk) and a meshopt fallback buffer; empty if the JSON does not
  *  tell. */
@@ -377,13 +388,7 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.specularFactor = float(number(*e, "specularFactor", 1.0));
         checkRange(mat.specularFactor, 0.0, 1.0, what + " specularFactor");
         mat.specularTexture = textureInfo(m, *e, "specularTexture", what);
-        if (e->Has("specularColorFactor") && e->Get("specularColorFactor").IsArray() &&
-            e->Get("specularColorFactor").ArrayLen() == 3)
-            for (int c = 0; c < 3; ++c) {
-                mat.specularColorFactor[c] =
-                    float(e->Get("specularColorFactor").Get(c).GetNumberAsDouble());
-                checkRange(mat.specularColorFactor[c], 0.0, 1e6, what + " specularColorFactor");
-            }
+        readColor(*e, "specularColorFactor", 1e6, what, mat.specularColorFactor);
         mat.specularColorTexture = textureInfo(m, *e, "specularColorTexture", what);
         if (extension("KHR_materials_transmission"))
             warnings.push_back(what + " (glass) has KHR_materials_specular: the opaque shading "
@@ -403,13 +408,7 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.attenuationDistance = float(number(*e, "attenuationDistance", double(INFINITY)));
         if (!(mat.attenuationDistance > 0.0f))
             fail(what + " attenuationDistance must be positive");
-        if (e->Has("attenuationColor") && e->Get("attenuationColor").IsArray() &&
-            e->Get("attenuationColor").ArrayLen() == 3)
-            for (int c = 0; c < 3; ++c) {
-                mat.attenuationColor[c] =
-                    float(e->Get("attenuationColor").Get(c).GetNumberAsDouble());
-                checkRange(mat.attenuationColor[c], 0.0, 1.0, what + " attenuationColor");
-            }
+        readColor(*e, "attenuationColor", 1.0, what, mat.attenuationColor);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_ior")) {
         mat.hasIor = true;

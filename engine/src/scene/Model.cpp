@@ -76,28 +76,35 @@ std::vector<int> Model::meshNodes() const {
     return result;
 }
 
-std::optional<int> Model::findVariant(std::string_view nameOrIndex) const {
-    for (std::size_t i = 0; i < variants.size(); ++i)
-        if (variants[i] == nameOrIndex)
+namespace {
+
+/** The index of the name `nameOrIndex` among `count` names (`nameOf(i)`), or of the index it
+ *  spells when no name matches. */
+template <class NameOf>
+std::optional<int> findNamed(std::size_t count, NameOf nameOf, std::string_view nameOrIndex) {
+    for (std::size_t i = 0; i < count; ++i)
+        if (nameOf(i) == nameOrIndex)
             return int(i);
     int index = -1;
     const char* end = nameOrIndex.data() + nameOrIndex.size();
     const auto [ptr, ec] = std::from_chars(nameOrIndex.data(), end, index);
-    if (ec == std::errc() && ptr == end && index >= 0 && index < int(variants.size()))
+    if (ec == std::errc() && ptr == end && index >= 0 && index < int(count))
         return index;
     return std::nullopt;
 }
 
+} // namespace
+
+std::optional<int> Model::findVariant(std::string_view nameOrIndex) const {
+    return findNamed(
+        variants.size(), [&](std::size_t i) -> const std::string& { return variants[i]; },
+        nameOrIndex);
+}
+
 std::optional<int> Model::findAnimation(std::string_view nameOrIndex) const {
-    for (std::size_t i = 0; i < animations.size(); ++i)
-        if (animations[i].name == nameOrIndex)
-            return int(i);
-    int index = -1;
-    const char* end = nameOrIndex.data() + nameOrIndex.size();
-    const auto [ptr, ec] = std::from_chars(nameOrIndex.data(), end, index);
-    if (ec == std::errc() && ptr == end && index >= 0 && index < int(animations.size()))
-        return index;
-    return std::nullopt;
+    return findNamed(
+        animations.size(), [&](std::size_t i) -> const std::string& { return animations[i].name; },
+        nameOrIndex);
 }
 
 } // namespace scene

@@ -411,9 +411,6 @@ TEST(Materials, UnlitAndSpecularGlossinessAreRead) {
         << model->warnings[0];
 }
 
-} // namespace
-
-namespace {
 
 // --- EXT_mesh_gpu_instancing -------------------------------------------------------------------
 
@@ -475,9 +472,6 @@ TEST(Instancing, MalformedInstancesFailNamingTheNode) {
     }
 }
 
-} // namespace
-
-namespace {
 
 // --- KHR_materials_variants --------------------------------------------------------------------
 
