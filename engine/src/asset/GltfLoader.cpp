@@ -545,6 +545,20 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (std::size_t i = 0; i < src.meshes.size(); ++i)
             model.meshes.push_back(
                 convertMesh(src, reader, int(i), model.materials, lossy, model.warnings));
+        // Each instance is deformed as a placement of its own: the instances of one node must
+        // fit the scene's vertex limit on their own (the scene's total is checked when placed).
+        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+            const scene::Node& node = model.nodes[i];
+            if (node.instances.empty())
+                continue;
+            std::size_t vertices = 0;
+            for (const scene::Primitive& p : model.meshes[std::size_t(node.mesh)].primitives)
+                vertices += p.vertexCount();
+            if (vertices * node.instances.size() > core::limits::kMaxSceneVertices)
+                fail("node " + n(i) + " EXT_mesh_gpu_instancing: " + n(node.instances.size()) +
+                     " instances of " + n(vertices) + " vertices are over the limit of " +
+                     n(core::limits::kMaxSceneVertices) + " deformed vertices");
+        }
         for (std::size_t i = 0; i < src.skins.size(); ++i)
             model.skins.push_back(convertSkin(src, reader, int(i)));
         for (std::size_t i = 0; i < src.animations.size(); ++i)

@@ -411,7 +411,6 @@ TEST(Materials, UnlitAndSpecularGlossinessAreRead) {
         << model->warnings[0];
 }
 
-
 // --- EXT_mesh_gpu_instancing -------------------------------------------------------------------
 
 TEST(Instancing, EachInstanceIsAPlacementOfTheDeformedMesh) {
@@ -439,6 +438,29 @@ TEST(Instancing, EachInstanceIsAPlacementOfTheDeformedMesh) {
             EXPECT_NEAR(glm::distance(third[v], expected), 0.0, 1e-6) << v;
         }
     }
+}
+
+TEST(Instancing, InstancesOverTheVertexLimitAreRefused) {
+    // Each instance is a placement of its own: 65,536 instances of 2,049 vertices are 2^27.
+    test::GltfBuilder b;
+    const std::vector<float> positions(3 * 2049, 0.0f), translations(3 * 65536, 0.0f);
+    b.doc["meshes"] = {
+        {{"primitives",
+          {{{"attributes", {{"POSITION", b.addAccessor(positions, 5126, "VEC3")}}}}}}}};
+    b.doc["nodes"] = {
+        {{"mesh", 0},
+         {"extensions",
+          {{"EXT_mesh_gpu_instancing",
+            {{"attributes", {{"TRANSLATION", b.addAccessor(translations, 5126, "VEC3")}}}}}}}}};
+    b.doc["scenes"] = {{{"nodes", {0}}}};
+    b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    test::TempDir dir;
+    const auto model = asset::loadGltf(b.save(dir.path(), "crowd", test::GltfFormat::Glb));
+    ASSERT_FALSE(model.ok());
+    EXPECT_NE(model.error().message.find("crowd.glb: node 0 EXT_mesh_gpu_instancing: 65536 "
+                                         "instances of 2049 vertices are over the limit"),
+              std::string::npos)
+        << model.error().message;
 }
 
 TEST(Instancing, MalformedInstancesFailNamingTheNode) {
@@ -471,7 +493,6 @@ TEST(Instancing, MalformedInstancesFailNamingTheNode) {
             << model.error().message;
     }
 }
-
 
 // --- KHR_materials_variants --------------------------------------------------------------------
 
