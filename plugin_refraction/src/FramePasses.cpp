@@ -148,7 +148,7 @@ void FrameContext::drawGlass(
         const glm::mat4 modelView = frame->camera.view * item.world;
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
-        gl::bindStorage(0, item.gpu->deformed);
+        gl::bindStorage(0, *item.gpu->deformed);
         gl::bindStorage(1, *item.gpu->uvs);
         // d_N: the character's combined cage values from this part's base, or (subdivision)
         // the part's own drawn values.
@@ -171,7 +171,7 @@ void FrameContext::drawGlass(
         program.set("uHasNormalDistance", hasDistance ? 1 : 0);
         program.set("uDistanceBase", base);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
-        gl::bindStorage(2, values ? *values : item.gpu->deformed);
+        gl::bindStorage(2, values ? *values : *item.gpu->deformed);
         if (perItem)
             perItem(item, index);
         gl::apply(state);

@@ -538,10 +538,7 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 s.indices = primitive.indices;
                 if (!primitive.uv0.empty() || !primitive.uv1.empty())
                     for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
-                        s.uv.emplace_back(v < primitive.uv0.size() ? primitive.uv0[v].x : 0.0f,
-                                          v < primitive.uv0.size() ? primitive.uv0[v].y : 0.0f,
-                                          v < primitive.uv1.size() ? primitive.uv1[v].x : 0.0f,
-                                          v < primitive.uv1.size() ? primitive.uv1[v].y : 0.0f);
+                        s.uv.emplace_back(primitive.uvs(v));
                 const int material = primitive.materialFor(character.variant);
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {

@@ -110,7 +110,7 @@ TEST_F(GpuDeform, PlacementsOfOneUploadDeformIndependently) {
     const auto& b = (*second)->instances()[0].primitives[0];
     EXPECT_EQ(a.indices, b.indices);
     EXPECT_EQ(a.uvs, b.uvs);
-    EXPECT_NE(&a.deformed, &b.deformed);
+    EXPECT_NE(a.deformed, b.deformed);
     const anim::Pose early = anim::evaluate(*model, 0, 0.2), late = anim::evaluate(*model, 0, 0.9);
     (*first)->update(early);
     (*second)->update(late);

@@ -240,7 +240,7 @@ struct DistanceRig {
     /** d_N per vertex of `deformer`'s first primitive as it is deformed now, read back. */
     std::vector<float> deformedDistances(const deform::GpuDeformer& deformer) const {
         const auto& primitive = deformer.instances()[0].primitives[0];
-        return downloadFloats(distances(*primitive.source, primitive.deformed).distances(),
+        return downloadFloats(distances(*primitive.source, *primitive.deformed).distances(),
                               primitive.vertexCount);
     }
 };
@@ -285,7 +285,7 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
     const scene::Primitive* primitives[] = {primitive.source, primitive.source};
     refraction::NormalDistance distance(primitives);
     for (std::size_t i = 0; i < 2; ++i)
-        distance.gather(i, primitive.deformed, std::uint32_t(primitive.vertexCount),
+        distance.gather(i, *primitive.deformed, std::uint32_t(primitive.vertexCount),
                         glm::translate(glm::mat4(1.0f), glm::vec3(i == 0 ? -3.0f : 3.0f, 0, 0)),
                         rig.gather);
     distance.update(rig.refit, rig.cast);

@@ -217,9 +217,15 @@ void readColor(const tinygltf::Value& object, const char* key, double hi, const 
     }
 }
 
-/** Which buffer has no uri where one is needed (tinygltf's error names none): every buffer but
- *  a GLB's first (its BIN chunk) and a meshopt fallback buffer; empty if the JSON does not
- *  tell. */
+/** Why buffer `b` may not leave out its uri. */
+std::string bufferWithoutUri(std::size_t b, bool isBinary) {
+    return "buffer " + n(b) + " has no uri: only a GLB's first buffer (its BIN chunk) and a " +
+           "meshopt fallback buffer may leave it out" +
+           (isBinary ? "" : " (this file is not a GLB)");
+}
+
+/** Which buffer has no uri where one is needed, read from the JSON (tinygltf's error names
+ *  none), or empty if the JSON does not tell. */
 std::string bufferWithoutUri(std::span<const std::uint8_t> bytes, bool isBinary) {
     const std::string_view text =
         isBinary ? glbChunks(bytes).json
@@ -227,13 +233,9 @@ std::string bufferWithoutUri(std::span<const std::uint8_t> bytes, bool isBinary)
     const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
     if (!json.is_object() || !json.contains("buffers") || !json["buffers"].is_array())
         return "";
-    for (std::size_t b = isBinary ? 1 : 0; b < json["buffers"].size(); ++b) {
-        const nlohmann::json& buffer = json["buffers"][b];
-        if (buffer.is_object() && !buffer.contains("uri"))
-            return "buffer " + n(b) + " has no uri: only a GLB's first buffer (its BIN chunk) " +
-                   "and a meshopt fallback buffer may leave it out" +
-                   (isBinary ? "" : " (this file is not a GLB)");
-    }
+    for (std::size_t b = isBinary ? 1 : 0; b < json["buffers"].size(); ++b)
+        if (json["buffers"][b].is_object() && !json["buffers"][b].contains("uri"))
+            return bufferWithoutUri(b, isBinary);
     return "";
 }
 
@@ -516,7 +518,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         // tinygltf reads a GLB's BIN chunk for any buffer without a uri, not only the first.
         for (std::size_t b = 1; isBinary && b < src.buffers.size(); ++b)
             if (src.buffers[b].uri.empty())
-                fail(bufferWithoutUri(*bytes, isBinary));
+                fail(bufferWithoutUri(b, isBinary));
         validateStructure(src);
         const std::set<int> lossy = decodeCompressedGeometry(src);
         const AccessorReader reader(src, bytes->size());
@@ -545,7 +547,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (std::size_t i = 0; i < src.meshes.size(); ++i)
             model.meshes.push_back(
                 convertMesh(src, reader, int(i), model.materials, lossy, model.warnings));
-        // Each instance is deformed as a placement of its own: the instances of one node must
+        // Each instance is drawn as a placement of its own: the instances of one node must
         // fit the scene's vertex limit on their own (the scene's total is checked when placed).
         for (std::size_t i = 0; i < model.nodes.size(); ++i) {
             const scene::Node& node = model.nodes[i];

@@ -69,14 +69,19 @@ void warnUnknownKeys(const Json& object, std::initializer_list<const char*> know
     }
 }
 
-std::string clipList(const scene::Model& model) {
+/** `names` for an error, each unnamed one by its index ("none" for no names). */
+std::string nameList(const std::vector<std::string>& names) {
     std::string list;
-    for (std::size_t i = 0; i < model.animations.size(); ++i) {
-        if (!list.empty())
-            list += ", ";
-        list += model.animations[i].name.empty() ? std::to_string(i) : model.animations[i].name;
-    }
+    for (std::size_t i = 0; i < names.size(); ++i)
+        list += (list.empty() ? "" : ", ") + (names[i].empty() ? std::to_string(i) : names[i]);
     return list.empty() ? "none" : list;
+}
+
+std::string clipList(const scene::Model& model) {
+    std::vector<std::string> names;
+    for (const scene::Animation& a : model.animations)
+        names.push_back(a.name);
+    return nameList(names);
 }
 
 std::string fileName(const std::string& path) {
@@ -158,13 +163,9 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
         const std::string wanted =
             variant.is_number_integer() ? variant.dump() : text(variant, key + ".variant");
         const auto found = m.findVariant(wanted);
-        if (!found) {
-            std::string names;
-            for (const std::string& name : m.variants)
-                names += (names.empty() ? "" : ", ") + name;
+        if (!found)
             fail(key + ".variant", "\"" + wanted + "\" not in " + fileName(c.modelPath) +
-                                       " (variants: " + (names.empty() ? "none" : names) + ")");
-        }
+                                       " (variants: " + nameList(m.variants) + ")");
         c.variant = *found;
     }
     if (j.contains("time_offset"))

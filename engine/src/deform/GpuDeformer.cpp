@@ -91,47 +91,52 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
         d->mEvaluators = std::move(e);
     }
 
-    // The placement: per draw of a mesh node, deformed buffers and the per-frame uploads'.
-    for (int node : model.meshNodes())
-        for (std::size_t k = 0; k < model.nodes[std::size_t(node)].drawCount(); ++k) {
-            const scene::Node& n = model.nodes[std::size_t(node)];
-            const scene::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
-            GpuInstance instance;
-            instance.node = node;
-            instance.mesh = n.mesh;
-            instance.instance = n.instance(k);
-            std::vector<Refined> refined;
-            for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
-                const scene::Primitive& p = mesh.primitives[i];
-                const GpuModel::Primitive& s = d->mUpload->primitive(n.mesh, i);
-                GpuPrimitive gp;
-                gp.source = &p;
-                gp.topology = s.subdivision ? &s.subdivision->rest : &p;
-                gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
-                gp.indexCount = std::uint32_t(gp.topology->indices.size());
-                gp.deformed = gl::Buffer(gp.vertexCount * sizeof(VertexGpu));
-                gp.uvs = &s.uvs;
-                gp.indices = &s.indices;
-                instance.primitives.push_back(std::move(gp));
-                if (s.subdivision) {
-                    const std::size_t vertices = std::size_t(s.refine->count),
-                                      values = std::size_t(s.faceVarying->count);
-                    Refined r;
-                    r.cage = gl::Buffer(p.vertexCount() * sizeof(VertexGpu));
-                    r.refined = gl::Buffer(vertices * 3 * sizeof(float));
-                    r.limit = gl::Buffer(vertices * 3 * sizeof(float));
-                    r.du = gl::Buffer(vertices * 3 * sizeof(float));
-                    r.dv = gl::Buffer(vertices * 3 * sizeof(float));
-                    r.tangents = gl::Buffer(values * 4 * sizeof(float));
-                    r.scalarRefined = gl::Buffer(vertices * sizeof(float));
-                    r.scalarLimit = gl::Buffer(vertices * sizeof(float));
-                    refined.push_back(std::move(r));
-                }
+    // The placement: per mesh node, deformed buffers and the per-frame uploads'; a node's later
+    // instances (EXT_mesh_gpu_instancing) draw its first one's buffers from their own place.
+    for (int node : model.meshNodes()) {
+        const scene::Node& n = model.nodes[std::size_t(node)];
+        const scene::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
+        GpuInstance instance;
+        instance.node = node;
+        instance.mesh = n.mesh;
+        instance.deformation = d->mInstances.size();
+        std::vector<Refined> refined;
+        for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+            const scene::Primitive& p = mesh.primitives[i];
+            const GpuModel::Primitive& s = d->mUpload->primitive(n.mesh, i);
+            GpuPrimitive gp;
+            gp.source = &p;
+            gp.topology = s.subdivision ? &s.subdivision->rest : &p;
+            gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
+            gp.indexCount = std::uint32_t(gp.topology->indices.size());
+            gp.deformed = std::make_shared<gl::Buffer>(gp.vertexCount * sizeof(VertexGpu));
+            gp.uvs = &s.uvs;
+            gp.indices = &s.indices;
+            instance.primitives.push_back(std::move(gp));
+            if (s.subdivision) {
+                const std::size_t vertices = std::size_t(s.refine->count),
+                                  values = std::size_t(s.faceVarying->count);
+                Refined r;
+                r.cage = gl::Buffer(p.vertexCount() * sizeof(VertexGpu));
+                r.refined = gl::Buffer(vertices * 3 * sizeof(float));
+                r.limit = gl::Buffer(vertices * 3 * sizeof(float));
+                r.du = gl::Buffer(vertices * 3 * sizeof(float));
+                r.dv = gl::Buffer(vertices * 3 * sizeof(float));
+                r.tangents = gl::Buffer(values * 4 * sizeof(float));
+                r.scalarRefined = gl::Buffer(vertices * sizeof(float));
+                r.scalarLimit = gl::Buffer(vertices * sizeof(float));
+                refined.push_back(std::move(r));
             }
-            if (subdivisionLevel > 0)
-                d->mRefined.push_back(std::move(refined));
-            d->mInstances.push_back(std::move(instance));
         }
+        if (subdivisionLevel > 0)
+            d->mRefined.push_back(std::move(refined));
+        for (std::size_t k = 0; k < n.drawCount(); ++k) {
+            instance.instance = n.instance(k);
+            d->mInstances.push_back(instance); // copies share the deformed buffers
+            if (subdivisionLevel > 0 && k > 0)
+                d->mRefined.emplace_back(); // unused: the first instance's refine
+        }
+    }
     d->mStaged.resize(d->mInstances.size());
     return d;
 }
@@ -172,6 +177,8 @@ void GpuDeformer::stage(const anim::Pose& pose, const glm::dmat4& placement, Pos
         GpuInstance& instance = mInstances[i];
         const auto node = std::size_t(instance.node);
         instance.meshToWorld = glm::mat4(placement * pose.world[node] * instance.instance);
+        if (instance.deformation != i)
+            continue; // draws another's deformation
         Staged& staged = mStaged[i];
         if (model.nodes[node].skin >= 0) {
             anim::skinMatrices(model, pose, instance.node, mScratchMatrices);
@@ -199,6 +206,8 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
     gl::bindStorage(4, upload.matrices());
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
+        if (instance.deformation != i)
+            continue;
         const Staged& staged = mStaged[i];
         const bool skinned = model.nodes[std::size_t(instance.node)].skin >= 0;
         mDeform.set("uSkinBase", int(staged.matrices));
@@ -209,7 +218,7 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
             gl::bindStorage(0, s.rest);
             gl::bindStorage(1, s.influences);
             gl::bindStorage(2, s.deltas);
-            gl::bindStorage(5, subdivisionLevel() > 0 ? mRefined[i][p].cage : gp.deformed);
+            gl::bindStorage(5, subdivisionLevel() > 0 ? mRefined[i][p].cage : *gp.deformed);
             mDeform.set("uVertexCount", int(gp.source->vertexCount()));
             mDeform.set("uTargetCount", int(std::min(s.targetCount, staged.weightCount)));
             mDeform.set("uSkinned", skinned && gp.source->isSkinned() ? 1 : 0);
@@ -227,11 +236,11 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
     if (anyFlat) {
         gl::memoryBarrier(gl::BarrierStorage);
         mFlatNormals.use();
-        for (GpuInstance& instance : mInstances)
-            for (GpuPrimitive& gp : instance.primitives) {
-                if (!gp.source->flatNormals)
+        for (std::size_t i = 0; i < mInstances.size(); ++i)
+            for (GpuPrimitive& gp : mInstances[i].primitives) {
+                if (!gp.source->flatNormals || mInstances[i].deformation != i)
                     continue;
-                gl::bindStorage(5, gp.deformed);
+                gl::bindStorage(5, *gp.deformed);
                 gl::bindStorage(6, *gp.indices);
                 mFlatNormals.set("uTriangleCount", int(gp.indexCount / 3));
                 gl::dispatch(groups(gp.indexCount / 3));
@@ -246,7 +255,8 @@ void GpuDeformer::refine() {
     const Evaluators& e = *mEvaluators;
     auto each = [this](auto&& f) {
         for (std::size_t i = 0; i < mInstances.size(); ++i)
-            for (std::size_t p = 0; p < mInstances[i].primitives.size(); ++p)
+            for (std::size_t p = 0;
+                 i == mInstances[i].deformation && p < mInstances[i].primitives.size(); ++p)
                 f(mUpload->primitive(mInstances[i].mesh, p), mRefined[i][p],
                   mInstances[i].primitives[p]);
     };
@@ -277,7 +287,7 @@ void GpuDeformer::refine() {
         gl::bindStorage(2, r.du);
         gl::bindStorage(3, r.dv);
         gl::bindStorage(4, r.tangents);
-        gl::bindStorage(5, gp.deformed);
+        gl::bindStorage(5, *gp.deformed);
         mPack.set("uCornerCount", int(gp.vertexCount));
         mPack.set("uFlipNormals", s.subdivision->flipNormals ? 1 : 0);
         gl::dispatch(groups(gp.vertexCount));
@@ -288,8 +298,9 @@ void GpuDeformer::refine() {
 GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
     if (subdivisionLevel() == 0)
-        return {gp.deformed, *gp.indices};
-    return {mRefined.at(i).at(p).cage, mUpload->primitive(mInstances.at(i).mesh, p).cageIndices};
+        return {*gp.deformed, *gp.indices};
+    return {mRefined.at(mInstances.at(i).deformation).at(p).cage,
+            mUpload->primitive(mInstances.at(i).mesh, p).cageIndices};
 }
 
 void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
@@ -297,7 +308,7 @@ void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& c
     ENGINE_CHECK(subdivisionLevel() > 0, "GpuDeformer::refineScalar() needs a subdivision level");
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
     const GpuModel::Primitive& s = mUpload->primitive(mInstances[i].mesh, p);
-    const Refined& r = mRefined.at(i).at(p);
+    const Refined& r = mRefined.at(mInstances[i].deformation).at(p);
     const Evaluators& e = *mEvaluators;
     const OpenSubdiv::Osd::BufferDescriptor none;
     const GpuStencils& t = *s.refine;
@@ -343,12 +354,13 @@ DeformedPrimitive unpack(const gl::Buffer& buffer, std::size_t count) {
 
 DeformedPrimitive GpuDeformer::download(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    return unpack(gp.deformed, gp.vertexCount);
+    return unpack(*gp.deformed, gp.vertexCount);
 }
 
 DeformedPrimitive GpuDeformer::downloadCage(std::size_t i, std::size_t p) const {
     const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    return unpack(subdivisionLevel() > 0 ? mRefined.at(i).at(p).cage : gp.deformed,
+    return unpack(subdivisionLevel() > 0 ? mRefined.at(mInstances.at(i).deformation).at(p).cage
+                                         : *gp.deformed,
                   gp.source->vertexCount());
 }
 

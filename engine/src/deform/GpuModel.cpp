@@ -6,15 +6,11 @@
 namespace deform {
 namespace {
 
-/** TEXCOORD_0 in xy, TEXCOORD_1 in zw, per vertex (zeros for a set the primitive lacks). */
+/** Both texture coordinate sets of every vertex (scene::Primitive::uvs). */
 std::vector<glm::vec4> packUvs(const scene::Primitive& p) {
-    std::vector<glm::vec4> uvs(p.vertexCount(), glm::vec4(0.0f));
-    for (std::size_t v = 0; v < uvs.size(); ++v) {
-        if (v < p.uv0.size())
-            uvs[v].x = p.uv0[v].x, uvs[v].y = p.uv0[v].y;
-        if (v < p.uv1.size())
-            uvs[v].z = p.uv1[v].x, uvs[v].w = p.uv1[v].y;
-    }
+    std::vector<glm::vec4> uvs(p.vertexCount());
+    for (std::size_t v = 0; v < uvs.size(); ++v)
+        uvs[v] = p.uvs(v);
     return uvs;
 }
 

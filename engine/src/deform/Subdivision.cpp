@@ -240,14 +240,9 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     const Evaluated limit = evaluateOnCpu(sub.limit, refined.values.data(), 0, 3, 3);
     std::vector<Uv> values(std::size_t(last.GetNumFVarValues()));
     {
-        std::vector<float> uvs(primitive.vertexCount() * 4, 0.0f);
+        std::vector<float> uvs(primitive.vertexCount() * 4);
         for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
-            for (int c = 0; c < 2; ++c) {
-                if (!primitive.uv0.empty())
-                    uvs[4 * v + std::size_t(c)] = primitive.uv0[v][c];
-                if (!primitive.uv1.empty())
-                    uvs[4 * v + 2 + std::size_t(c)] = primitive.uv1[v][c];
-            }
+            std::memcpy(&uvs[4 * v], glm::value_ptr(primitive.uvs(v)), 4 * sizeof(float));
         const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uvs.data(), 0, 4, 4);
         std::vector<Uv> refinedValues(values.size());
         for (std::size_t i = 0; i < values.size(); ++i)

@@ -22,8 +22,8 @@ struct ModelGpu {
     std::shared_ptr<const scene::Model> model;
     std::shared_ptr<const deform::GpuModel> upload;
     std::shared_ptr<MaterialTextures> materials; ///< kept when the level changes
-    /** Per mesh node instance, per primitive: a vertex array binding its index buffer (the
-     *  same for every placement). */
+    /** Per mesh, per primitive: a vertex array binding its index buffer (the same for every
+     *  node, instance and placement that draws the mesh; empty for meshes no node draws). */
     std::vector<std::vector<gl::VertexArray>> vertexArrays;
 };
 

@@ -87,17 +87,17 @@ core::Result<std::shared_ptr<ModelGpu>> uploadModel(std::shared_ptr<const scene:
         materials = std::make_shared<MaterialTextures>(std::move(*created));
     }
     m->materials = std::move(materials);
-    // One set per draw of a mesh node, in the deformer's instances' order.
-    for (int node : model->meshNodes())
-        for (std::size_t k = 0; k < model->nodes[std::size_t(node)].drawCount(); ++k) {
-            const int mesh = model->nodes[std::size_t(node)].mesh;
-            auto& arrays = m->vertexArrays.emplace_back();
-            for (std::size_t p = 0; p < model->meshes[std::size_t(mesh)].primitives.size(); ++p) {
-                gl::VertexArray vao;
-                vao.setIndexBuffer(m->upload->indices(mesh, p));
-                arrays.push_back(std::move(vao));
-            }
+    m->vertexArrays.resize(model->meshes.size());
+    for (int node : model->meshNodes()) {
+        const int mesh = model->nodes[std::size_t(node)].mesh;
+        auto& arrays = m->vertexArrays[std::size_t(mesh)];
+        for (std::size_t p = arrays.size(); p < model->meshes[std::size_t(mesh)].primitives.size();
+             ++p) {
+            gl::VertexArray vao;
+            vao.setIndexBuffer(m->upload->indices(mesh, p));
+            arrays.push_back(std::move(vao));
         }
+    }
     m->model = std::move(model);
     return m;
 }
@@ -255,7 +255,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
                 item.instance = std::uint32_t(i);
                 item.primitiveIndex = std::uint32_t(p);
                 item.gpu = &primitive;
-                item.vertexArray = &cg.model->vertexArrays[i][p];
+                item.vertexArray = &cg.model->vertexArrays[std::size_t(instances[i].mesh)][p];
                 item.materials = cg.model->materials.get();
                 item.world = instances[i].meshToWorld;
                 item.key = cg.deformer->serial();

@@ -49,8 +49,9 @@ inline constexpr std::size_t kMaxCharacters = 4096;
  *  far larger is not a scene, and is refused before it is parsed. */
 inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(64) << 20;
 
-/** EXT_mesh_gpu_instancing instances of one mesh node: each is deformed and drawn as a
- *  placement of its own (its vertices count against kMaxSceneVertices too). */
+/** EXT_mesh_gpu_instancing instances of one mesh node: each is drawn (and shaded, and traced by
+ *  the reference) as a placement of its own, so its vertices count against kMaxSceneVertices
+ *  too, though the GPU deforms the node once. */
 inline constexpr std::size_t kMaxInstancesPerNode = 65536;
 
 /** Deformed vertices of a whole scene (every character's, counted at level 0): the GPU holds

@@ -33,17 +33,22 @@ struct GpuPrimitive {
     const scene::Primitive* topology = nullptr;
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;
-    gl::Buffer deformed;
+    /** Shared by the draws of one mesh node: EXT_mesh_gpu_instancing's instances draw one
+     *  deformation. */
+    std::shared_ptr<gl::Buffer> deformed;
     const gl::Buffer* uvs = nullptr;     ///< vec4 per vertex: TEXCOORD_0, TEXCOORD_1 (or zeros)
     const gl::Buffer* indices = nullptr; ///< uint32 triangle list
 };
 
 /** One draw of a mesh node of the default scene on the GPU (a node with EXT_mesh_gpu_instancing
- *  has one per instance, each deformed as a placement of its own). */
+ *  has one per instance: each placed on its own, all drawing the first one's deformation). */
 struct GpuInstance {
     int node = -1;
     int mesh = -1;
     glm::dmat4 instance{1.0}; ///< the node's instance transform (scene::Node::instance)
+    /** The index of the draw that deforms the buffers this one draws: itself, or the node's
+     *  first instance. */
+    std::size_t deformation = 0;
     /** placement * world(node) * instance: mesh space to world space, refreshed by stage() and
      *  update(). */
     glm::mat4 meshToWorld{1.0f};

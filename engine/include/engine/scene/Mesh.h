@@ -36,6 +36,12 @@ struct Primitive {
     /** KHR_materials_variants: the material of each of the model's variants (Model::variants),
      *  -2 where the variant keeps `material`; empty without mappings. */
     std::vector<int> variantMaterials;
+    /** TEXCOORD_0 in xy and TEXCOORD_1 in zw of vertex `v` (zeros for a set it lacks). */
+    glm::vec4 uvs(std::size_t v) const {
+        const glm::vec2 a = v < uv0.size() ? uv0[v] : glm::vec2(0.0f);
+        const glm::vec2 b = v < uv1.size() ? uv1[v] : glm::vec2(0.0f);
+        return {a, b};
+    }
     /** The material drawn under `variant` (-1: the file's default). */
     int materialFor(int variant) const {
         return variant >= 0 && std::size_t(variant) < variantMaterials.size() &&

@@ -43,7 +43,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
                 gl::apply({.cull = cullFor(*item.model, item.material)});
                 item.materials->bind(p, *item.model, item.material, 2);
-                gl::bindStorage(0, item.gpu->deformed);
+                gl::bindStorage(0, *item.gpu->deformed);
                 gl::bindStorage(1, *item.gpu->uvs);
                 item.vertexArray->bind();
                 gl::drawIndexed(item.gpu->indexCount);
