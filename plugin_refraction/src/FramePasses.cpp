@@ -22,7 +22,8 @@ constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets
 constexpr int kNormalLod = 1;
 // Texture units of the shading passes: 0-1 environment, 2-7 the maps (setShading), 8-14 the
 // material's textures, then the gathered far target of the single geometry pass.
-constexpr std::uint32_t kMaterialUnit = 8, kGatherFarUnit = 15;
+constexpr std::uint32_t kMaterialUnit = 8,
+                        kGatherFarUnit = kMaterialUnit + render::MaterialTextures::kSlotCount;
 
 gl::TextureDesc depthDesc(glm::ivec2 size) {
     return {size, gl::Format::R32F, 1};

@@ -26,6 +26,10 @@ struct GlassMaterialGpu {
     glm::vec4 sigma;     ///< absorption per world unit; w: roughness
     glm::vec4 baseColor; ///< w: metallic
     glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
+    glm::vec4 specular;  ///< KHR_materials_specular: colour, w: weight
+    glm::vec4 layers;    ///< clearcoat, its roughness, iridescence, the film's index
+    glm::vec4 sheen;     ///< colour, w: roughness
+    glm::vec4 film;      ///< x: the film's thickness (nm)
 };
 
 /** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them

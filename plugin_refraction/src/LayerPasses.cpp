@@ -154,7 +154,11 @@ void assignGlassIds(FrameContext& c) {
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
         c.gpu->glassOptics.push_back(
             {glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
-             glm::vec4(glm::vec3(o.baseColor), o.metallic), glm::vec4(emissive, float(solid))});
+             glm::vec4(glm::vec3(o.baseColor), o.metallic), glm::vec4(emissive, float(solid)),
+             glm::vec4(o.specularColor, o.specularWeight),
+             glm::vec4(o.clearcoat, o.clearcoatRoughness, o.iridescence, o.iridescenceIor),
+             glm::vec4(o.sheenColor, o.sheenRoughness),
+             glm::vec4(o.iridescenceThickness, 0.0f, 0.0f, 0.0f)});
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }

@@ -1,6 +1,7 @@
 // Per-material optics under the settings' overrides.
 #include "Optics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,6 +36,23 @@ Optics opticsFor(const Settings& s, const scene::Material* m,
     if (m && m->isTransmissive()) {
         o.roughness = m->roughnessFactor;
         o.metallic = m->metallicFactor;
+        if (m->hasSpecular) {
+            o.specularColor = m->specularColorFactor;
+            o.specularWeight = m->specularFactor;
+        }
+        if (m->hasClearcoat) {
+            o.clearcoat = m->clearcoatFactor;
+            o.clearcoatRoughness = std::max(m->clearcoatRoughnessFactor, 0.03f);
+        }
+        if (m->hasSheen) {
+            o.sheenColor = m->sheenColorFactor;
+            o.sheenRoughness = m->sheenRoughnessFactor;
+        }
+        if (m->hasIridescence) {
+            o.iridescence = m->iridescenceFactor;
+            o.iridescenceIor = m->iridescenceIor;
+            o.iridescenceThickness = m->iridescenceThicknessMaximum;
+        }
     }
     return o;
 }

@@ -22,6 +22,15 @@ struct Optics {
     /** The material's for glass materials; 0 for meshes forced to glass (--glass all plays
      *  them as clear glass, not as frosted copies of their opaque materials). */
     float roughness = 0.0f, metallic = 0.0f;
+    // The glass material's surface layers (none for meshes forced to glass): its
+    // KHR_materials_specular colour and weight, its clear coat, sheen and iridescent film (the
+    // factors: glass reads no textures but its normal map)
+    glm::vec3 specularColor{1.0f};
+    float specularWeight = 1.0f;
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+    glm::vec3 sheenColor{0.0f};
+    float sheenRoughness = 0.0f;
+    float iridescence = 0.0f, iridescenceIor = 1.3f, iridescenceThickness = 0.0f;
 };
 
 Optics opticsFor(const Settings& settings, const scene::Material* material,

@@ -5,7 +5,8 @@
 #include "Optics.h"
 
 #include "engine/deform/CpuDeformer.h"
-#include "engine/render/Environment.h"
+#include "engine/render/CpuShading.h"
+#include "engine/render/Lighting.h"
 
 #include <embree3/rtcore.h>
 
@@ -21,169 +22,15 @@ namespace refraction {
 
 using glm::dvec2;
 using glm::dvec3;
-
-// ---- Environment, as render/prefilter.comp.glsl and common/environment.glsl leave it
-
-EnvironmentSampler::EnvironmentSampler(const asset::HdrImage& image, float rotation,
-                                       float intensity)
-    : mRotation(rotation), mIntensity(intensity) {
-    Level level{image.width, image.height,
-                std::vector<float>(std::size_t(image.width) * std::size_t(image.height) * 4, 1.0f)};
-    for (std::size_t i = 0; i < std::size_t(image.width) * std::size_t(image.height); ++i)
-        for (int c = 0; c < 3; ++c)
-            level.rgba[i * 4 + std::size_t(c)] = image.rgb[i * 3 + std::size_t(c)];
-    mLevels.push_back(std::move(level));
-    mIrradiance = Level{1, 1, {0.0f, 0.0f, 0.0f, 1.0f}};
-}
-
-EnvironmentSampler EnvironmentSampler::fromGpu(const render::Environment& environment,
-                                               float rotation, float intensity) {
-    EnvironmentSampler s;
-    s.mRotation = rotation;
-    s.mIntensity = intensity;
-    const gl::Texture& prefiltered = environment.prefiltered();
-    for (int level = 0; level < prefiltered.levels(); ++level)
-        s.mLevels.push_back({prefiltered.size(level).x, prefiltered.size(level).y,
-                             prefiltered.downloadFloat(level)});
-    const gl::Texture& irradiance = environment.irradiance();
-    s.mIrradiance = {irradiance.size().x, irradiance.size().y, irradiance.downloadFloat(0)};
-    return s;
-}
-
-dvec3 EnvironmentSampler::rotate(dvec3 d) const {
-    const double c = std::cos(mRotation), s = std::sin(mRotation);
-    return glm::normalize(dvec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
-}
-
-dvec3 EnvironmentSampler::bilinear(const Level& level, dvec2 uv) {
-    const double x = uv.x * level.width - 0.5, y = uv.y * level.height - 0.5;
-    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    const double fx = x - x0, fy = y - y0;
-    dvec3 sum(0.0);
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) { // GL_REPEAT on both axes, as the GPU samples it
-            const int xi = ((x0 + i) % level.width + level.width) % level.width;
-            const int yi = ((y0 + j) % level.height + level.height) % level.height;
-            const float* p =
-                &level.rgba[(std::size_t(yi) * std::size_t(level.width) + std::size_t(xi)) * 4];
-            sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * dvec3(p[0], p[1], p[2]);
-        }
-    return sum;
-}
+using glm::dvec4;
+using render::cpu::perturbNormal;
+using render::cpu::textureImage;
 
 namespace {
-
-dvec2 equirectUv(dvec3 d) {
-    return {0.5 + std::atan2(d.x, -d.z) / (2.0 * M_PI),
-            std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI};
-}
-
-} // namespace
-
-dvec3 EnvironmentSampler::radiance(dvec3 direction, double roughness) const {
-    const dvec2 uv = equirectUv(rotate(direction));
-    const double lod = std::clamp(roughness, 0.0, 1.0) * double(mLevels.size() - 1);
-    const int l0 = int(std::floor(lod));
-    const int l1 = std::min(l0 + 1, int(mLevels.size()) - 1);
-    const double f = lod - l0;
-    const dvec3 a = bilinear(mLevels[std::size_t(l0)], uv);
-    return double(mIntensity) *
-           (f > 0.0 ? glm::mix(a, bilinear(mLevels[std::size_t(l1)], uv), f) : a);
-}
-
-dvec3 EnvironmentSampler::irradiance(dvec3 normal) const {
-    return double(mIntensity) * bilinear(mIrradiance, equirectUv(rotate(normal)));
-}
-
-namespace {
-
-// ---- Shading shared with render/pbr.frag.glsl and common/brdf.glsl
-
-dvec2 environmentBrdf(double NoV, double roughness) {
-    const glm::dvec4 c0(-1.0, -0.0275, -0.572, 0.022), c1(1.0, 0.0425, 1.04, -0.04);
-    const glm::dvec4 r = roughness * c0 + c1;
-    const double a004 = std::min(r.x * r.x, std::exp2(-9.28 * NoV)) * r.x + r.y;
-    return dvec2(-1.04, 1.04) * a004 + dvec2(r.z, r.w);
-}
-
-/** As common/brdf.glsl: the dielectric's lobe with F0 `dielectricF0` (at most 1) and weight
- *  `specularWeight` (KHR_materials_specular), a metal's with its base colour. */
-dvec3 shadeMetallicRoughness(const EnvironmentSampler& env, dvec3 base, double metallic,
-                             double roughness, dvec3 N, dvec3 V, dvec3 dielectricF0 = dvec3(0.04),
-                             double specularWeight = 1.0) {
-    const double NoV = std::clamp(glm::dot(N, V), 1e-4, 1.0);
-    const dvec2 ab = environmentBrdf(NoV, roughness);
-    const dvec3 radiance = env.radiance(glm::reflect(-V, N), roughness);
-    const dvec3 dielectric =
-        specularWeight * radiance * (glm::min(dielectricF0, dvec3(1.0)) * ab.x + ab.y);
-    const dvec3 metal = radiance * (base * ab.x + ab.y);
-    const dvec3 diffuse = env.irradiance(N) * base * (1.0 - metallic);
-    return diffuse + glm::mix(dielectric, metal, metallic);
-}
-
-double srgbToLinear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-/** Bilinear RGBA of a glTF image at uv with wrapping (level 0; the GPU's mip filtering of
- *  distant texels is not reproduced). */
-glm::dvec4 sampleImage(const scene::Image& image, dvec2 uv, bool srgb) {
-    if (image.pixels.empty() || image.width <= 0)
-        return glm::dvec4(1.0);
-    const double x = uv.x * image.width - 0.5, y = uv.y * image.height - 0.5;
-    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    const double fx = x - x0, fy = y - y0;
-    const std::size_t bytes = image.bitsPerChannel == 16 ? 2 : 1;
-    glm::dvec4 sum(0.0);
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-            const int xi = ((x0 + i) % image.width + image.width) % image.width;
-            const int yi = ((y0 + j) % image.height + image.height) % image.height;
-            const std::size_t at =
-                (std::size_t(yi) * std::size_t(image.width) + std::size_t(xi)) * 4 * bytes;
-            glm::dvec4 texel;
-            for (int c = 0; c < 4; ++c)
-                texel[c] = double(image.pixels[at + std::size_t(c) * bytes + (bytes - 1)]) / 255.0;
-            if (srgb)
-                for (int c = 0; c < 3; ++c)
-                    texel[c] = srgbToLinear(texel[c]);
-            sum += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * texel;
-        }
-    return sum;
-}
-
-/** The image a material's texture reads, or null. */
-const scene::Image* textureImage(const scene::Model& model, const scene::TextureRef& t) {
-    if (!t.present())
-        return nullptr;
-    const int i = model.textures[std::size_t(t.texture)].image;
-    return i >= 0 ? &model.images[std::size_t(i)] : nullptr;
-}
-
-/** uv through the texture's KHR_texture_transform. */
-/** The texture coordinates `t` reads (of `uvs`: TEXCOORD_0 in xy, TEXCOORD_1 in zw, as
- *  common/material_uv.glsl), through its KHR_texture_transform. */
-dvec2 textureUv(const scene::TextureRef& t, glm::dvec4 uvs) {
-    const dvec2 uv = t.texCoord == 1 ? dvec2(uvs.z, uvs.w) : dvec2(uvs);
-    return dvec2(glm::dmat3(t.transform) * glm::dvec3(uv, 1.0));
-}
-
-/** The normal texture `map` (`image`) at uv around the interpolated normal N and tangent (xyz,
- *  w the handedness), as common/normal_map.glsl perturbs it on the GPU. */
-dvec3 perturbNormal(const scene::TextureRef& map, const scene::Image& image, dvec3 N,
-                    glm::dvec4 tangent, glm::dvec4 uv) {
-    const dvec3 T = glm::normalize(dvec3(tangent) - N * glm::dot(N, dvec3(tangent)));
-    const dvec3 B = glm::cross(N, T) * tangent.w;
-    dvec3 n = dvec3(sampleImage(image, textureUv(map, uv), false)) * 2.0 - 1.0;
-    n.x *= double(map.scale);
-    n.y *= double(map.scale);
-    const dvec3 mapped = T * n.x + B * n.y + N * n.z;
-    return glm::length(mapped) > 1e-12 ? glm::normalize(mapped) : N;
-}
 
 struct Surface {
     std::vector<dvec3> positions, normals;     // world
-    std::vector<glm::dvec4> tangents;          // world, where a normal map needs them
+    std::vector<glm::dvec4> tangents;          // world, where a map or anisotropy needs them
     std::vector<glm::dvec4> uv;                // TEXCOORD_0 in xy, TEXCOORD_1 in zw
     const scene::Image* normalImage = nullptr; // the material's normal texture, if it has one
     std::vector<std::uint32_t> indices;
@@ -198,6 +45,8 @@ struct Hit {
     bool hit = false, ground = false;
     double t = 1e300;
     dvec3 point, shadingNormal;
+    dvec3 interpolatedNormal; // before the normal map
+    dvec4 tangent{0.0};
     dvec3 geometricNormal; // from the winding (glTF: counter-clockwise is outside)
     glm::dvec4 uv{0.0};    // TEXCOORD_0 in xy, TEXCOORD_1 in zw
     const Surface* surface = nullptr;
@@ -270,9 +119,10 @@ class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
-           Settings::Fresnel fresnelMode, double epsilon)
-        : mSurfaces(surfaces), mEnv(env), mGround(ground), mOptions(options), mFresnel(fresnelMode),
-          mEpsilon(epsilon), mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)) {
+           Settings::Fresnel fresnelMode, double epsilon, std::vector<scene::PlacedLight> lights)
+        : mSurfaces(surfaces), mEnv(env), mLights(std::move(lights)), mGround(ground),
+          mOptions(options), mFresnel(fresnelMode), mEpsilon(epsilon),
+          mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)) {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto* v = static_cast<float*>(
@@ -323,16 +173,18 @@ public:
             h.t = rh.ray.tfar;
             h.surface = &s;
             h.point = w * s.positions[tri[0]] + u * s.positions[tri[1]] + v * s.positions[tri[2]];
-            h.shadingNormal = glm::normalize(w * s.normals[tri[0]] + u * s.normals[tri[1]] +
-                                             v * s.normals[tri[2]]);
+            h.shadingNormal = h.interpolatedNormal = glm::normalize(
+                w * s.normals[tri[0]] + u * s.normals[tri[1]] + v * s.normals[tri[2]]);
             h.geometricNormal = glm::cross(s.positions[tri[1]] - s.positions[tri[0]],
                                            s.positions[tri[2]] - s.positions[tri[0]]);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
+            if (!s.tangents.empty())
+                h.tangent =
+                    w * s.tangents[tri[0]] + u * s.tangents[tri[1]] + v * s.tangents[tri[2]];
             if (s.normalImage) // every surface the GPU maps, glass (both sides) or opaque
-                h.shadingNormal = perturbNormal(
-                    s.material->normalTexture, *s.normalImage, h.shadingNormal,
-                    w * s.tangents[tri[0]] + u * s.tangents[tri[1]] + v * s.tangents[tri[2]], h.uv);
+                h.shadingNormal = perturbNormal(s.material->normalTexture, *s.normalImage,
+                                                h.shadingNormal, h.tangent, h.uv);
         }
         if (mGround && std::abs(dir.y) > 1e-12) {
             const double t = (double(mGround->height) - origin.y) / dir.y;
@@ -352,47 +204,49 @@ public:
     /** An opaque surface or the ground, lit like render/pbr.frag.glsl or ground.frag.glsl. */
     dvec3 shadeOpaque(const Hit& h, const dvec3& dir) const {
         const dvec3 V = -dir;
+        const render::cpu::Lighting lighting{mEnv, mLights};
+        render::cpu::Surface surface;
         if (h.ground) {
             const double tile = mGround->halfSize / 8.0;
             const double checker =
                 std::fmod(std::floor(h.point.x / tile) + std::floor(h.point.z / tile), 2.0);
-            const dvec3 base = glm::mix(dvec3(0.30), dvec3(0.42), std::abs(checker));
-            return shadeMetallicRoughness(mEnv, base, 0.0, 0.8, dvec3(0, 1, 0), V);
+            surface.baseColor = glm::mix(dvec3(0.30), dvec3(0.42), std::abs(checker));
+            surface.metallic = 0.0;
+            surface.roughness = 0.8;
+            return render::cpu::shadeSurface(surface, lighting, h.point, dvec3(0, 1, 0), V);
         }
         const scene::Material* m = h.surface->material;
-        glm::dvec4 base = m ? glm::dvec4(m->baseColorFactor) : glm::dvec4(1.0);
-        double metallic = m ? m->metallicFactor : 1.0, roughness = m ? m->roughnessFactor : 1.0;
-        dvec3 emissive = m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
-        // KHR_materials_specular: as MaterialTextures::bind and render/pbr.frag.glsl
-        double specularWeight = m && m->hasSpecular ? m->specularFactor : 1.0;
-        dvec3 specularColor = m && m->hasSpecular ? dvec3(m->specularColorFactor) : dvec3(1.0);
-        if (const scene::Model* model = h.surface->model; m && model) {
-            auto image = [&](const scene::TextureRef& t) { return textureImage(*model, t); };
-            auto uv = [&](const scene::TextureRef& t) { return textureUv(t, h.uv); };
-            if (const auto* img = image(m->baseColorTexture))
-                base *= sampleImage(*img, uv(m->baseColorTexture), true);
-            if (m->unlit) // KHR_materials_unlit
-                return dvec3(base);
-            if (const auto* img = image(m->metallicRoughnessTexture)) {
-                const glm::dvec4 mr = sampleImage(*img, uv(m->metallicRoughnessTexture), false);
-                roughness *= mr.g;
-                metallic *= mr.b;
-            }
-            if (const auto* img = image(m->emissiveTexture))
-                emissive *= dvec3(sampleImage(*img, uv(m->emissiveTexture), true));
-            if (const auto* img = image(m->specularTexture))
-                specularWeight *= sampleImage(*img, uv(m->specularTexture), false).a;
-            if (const auto* img = image(m->specularColorTexture))
-                specularColor *= dvec3(sampleImage(*img, uv(m->specularColorTexture), true));
+        const double side = glm::dot(h.shadingNormal, V) < 0 ? -1.0 : 1.0; // toward the viewer
+        const render::cpu::Point point{h.point, side * h.interpolatedNormal, side * h.shadingNormal,
+                                       h.tangent, h.uv};
+        dvec3 emissive(0.0);
+        if (m && h.surface->model)
+            surface = render::cpu::readSurface(*h.surface->model, *m, point, emissive);
+        if (m && m->unlit) // KHR_materials_unlit
+            return surface.baseColor;
+        surface.clearcoatNormal =
+            m && m->hasClearcoat ? surface.clearcoatNormal : point.interpolatedNormal;
+        return render::cpu::shadeSurface(surface, lighting, h.point, point.normal, V) + emissive;
+    }
+
+    /** The reflectance of glass `o` from air at cosI in channel `c`, as glass_surface.glsl's
+     *  glassReflectance: the Fresnel mode's, coloured and weighted by KHR_materials_specular,
+     *  through the iridescent film. */
+    double glassReflectance(const Optics& o, double cosI, int c) const {
+        const double eta = 1.0 / o.ior.g;
+        double F = fresnelEntry(mFresnel, cosI, eta);
+        if (o.specularColor != glm::vec3(1.0f) || o.specularWeight != 1.0f) {
+            const double f0 = fresnelEntry(mFresnel, 1.0, eta);
+            const double coloured = std::min(f0 * o.specularColor[c], 1.0);
+            F = o.specularWeight *
+                (coloured + (1.0 - coloured) * (f0 < 1.0 ? (F - f0) / (1.0 - f0) : 1.0));
         }
-        dvec3 N = h.shadingNormal;
-        if (glm::dot(N, V) < 0)
-            N = -N;
-        const double f0 = m ? double(m->dielectricF0()) : 0.04;
-        return shadeMetallicRoughness(mEnv, dvec3(base), std::clamp(metallic, 0.0, 1.0),
-                                      std::clamp(roughness, 0.03, 1.0), N, V, f0 * specularColor,
-                                      specularWeight) +
-               emissive;
+        if (o.iridescence > 0.0f && mFresnel != Settings::Fresnel::Off)
+            F = glm::mix(F,
+                         render::cpu::thinFilmReflectance(
+                             cosI, o.iridescenceIor, o.iridescenceThickness, dvec3(o.ior.g))[c],
+                         double(o.iridescence));
+        return F;
     }
 
     /** Radiance of channel `c` arriving along a ray from `origin` inside `media`, through
@@ -439,8 +293,9 @@ public:
                 n = -n;
             dvec3 t;
             const bool refracts = refractRay(dir, n, n1 / n2, t);
-            const double f =
-                refracts && to ? fresnelEntry(mFresnel, -glm::dot(dir, n), n1 / n2) : 0.0;
+            const double f = !refracts || !to ? 0.0
+                             : inside         ? fresnelEntry(mFresnel, -glm::dot(dir, n), n1 / n2)
+                                              : glassReflectance(to->optics, -glm::dot(dir, n), c);
             if (refracts && f > 0.0 && splits > 0) {
                 // Both branches, weighted (the first few times: far less noise than choosing).
                 Media entered = after;
@@ -476,7 +331,9 @@ public:
         dvec3 n = h.shadingNormal;
         if (glm::dot(n, dir) > 0)
             n = -n;
-        const double f = fresnelEntry(mFresnel, -glm::dot(dir, n), 1.0 / o.ior.g);
+        const double cosI = -glm::dot(dir, n);
+        const dvec3 F(glassReflectance(o, cosI, 0), glassReflectance(o, cosI, 1),
+                      glassReflectance(o, cosI, 2));
         const dvec3 reflected = mEnv.radiance(glm::reflect(dir, n), o.roughness);
         Media media;
         media.enter(h.surface);
@@ -486,8 +343,45 @@ public:
             refractRay(dir, n, 1.0 / o.ior[c], d); // air into glass never reflects totally
             transmitted[c] = follow(h.point, d, c, media, 1.0, kSplits, rng, trapped);
         }
-        return double(o.transmission) *
-               (f * reflected + (1 - f) * dvec3(o.baseColor) * transmitted);
+        return glassColor(h, o, n, -dir,
+                          F * reflected + (1.0 - F) * dvec3(o.baseColor) * transmitted);
+    }
+
+    /** What glass_surface.glsl's glassColor adds at the entry (normal n and view V facing each
+     *  other) to `glass`, its reflection and transmission: the lights' highlights, the opaque
+     *  term where transmission is partial, the clear coat and sheen, emission. */
+    dvec3 glassColor(const Hit& h, const Optics& o, dvec3 n, dvec3 V, dvec3 glass) const {
+        const render::cpu::Lighting lighting{mEnv, mLights};
+        const double NoV = std::clamp(glm::dot(n, V), 1e-4, 1.0);
+        const double alpha = std::pow(std::max(double(o.roughness), 0.03), 2.0);
+        for (const scene::PlacedLight& light : mLights) {
+            dvec3 L;
+            const dvec3 arriving = render::cpu::lightArriving(light, h.point, L);
+            const dvec3 H = glm::normalize(L + V);
+            const double NoL = glm::dot(n, L), VoH = std::max(glm::dot(V, H), 0.0);
+            if (NoL > 0.0)
+                glass += arriving * NoL *
+                         dvec3(glassReflectance(o, VoH, 0), glassReflectance(o, VoH, 1),
+                               glassReflectance(o, VoH, 2)) *
+                         render::cpu::ggxLobe(NoL, NoV, std::max(glm::dot(n, H), 0.0), alpha);
+        }
+        render::cpu::Surface surface;
+        surface.baseColor = dvec3(o.baseColor);
+        surface.metallic = o.metallic;
+        surface.roughness = std::max(double(o.roughness), 0.03);
+        dvec3 color = glass;
+        if (o.transmission < 1.0f)
+            color = glm::mix(render::cpu::shadeSurface(surface, lighting, h.point, n, V), glass,
+                             double(o.transmission));
+        surface.clearcoat = o.clearcoat;
+        surface.clearcoatRoughness = o.clearcoatRoughness;
+        surface.clearcoatNormal = n;
+        surface.sheenColor = dvec3(o.sheenColor);
+        surface.sheenRoughness = o.sheenRoughness;
+        const scene::Material* m = h.surface->material;
+        const dvec3 emissive =
+            m ? dvec3(m->emissiveFactor) * double(m->emissiveStrength) : dvec3(0.0);
+        return render::cpu::layersOver(color, surface, lighting, h.point, n, V) + emissive;
     }
 
     /** How many glass surfaces the straight line from `origin` along `dir` crosses before an
@@ -506,6 +400,7 @@ public:
 private:
     const std::vector<Surface>& mSurfaces;
     const EnvironmentSampler& mEnv;
+    std::vector<scene::PlacedLight> mLights; // world space
     const render::GroundPlane* mGround;
     const ReferenceOptions& mOptions;
     Settings::Fresnel mFresnel;
@@ -543,7 +438,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
                     s.normalImage = textureImage(model, s.material->normalTexture);
-                    if (s.normalImage)
+                    if (s.normalImage || s.material->hasAnisotropy ||
+                        s.material->clearcoatNormalTexture.present())
                         s.tangents = placed.tangents;
                 }
                 s.model = &model;
@@ -562,14 +458,14 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     }
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
-                  decoded.fresnel, epsilon);
+                  decoded.fresnel, epsilon, render::worldLights(world, time));
 
     ReferenceImage image;
     image.size = settings.size;
     const int w = settings.size.x, h = settings.size.y;
     image.rgba.assign(std::size_t(w) * std::size_t(h) * 4, 0.0f);
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
-    const int spp = std::max(1, options.samplesPerPixel);
+    const int spp = options.pixelCentres ? 1 : std::max(1, options.samplesPerPixel);
     const int grid = int(std::lround(std::sqrt(double(spp))));
     const bool stratified = grid * grid == spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
@@ -590,7 +486,9 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                     std::uint32_t rng = std::uint32_t(row) * 73856093u ^
                                         std::uint32_t(x) * 19349663u ^ std::uint32_t(s) * 83492791u;
                     double jx = random01(rng), jy = random01(rng);
-                    if (stratified) {
+                    if (options.pixelCentres) {
+                        jx = jy = 0.5;
+                    } else if (stratified) {
                         jx = (double(s % grid) + jx) / grid;
                         const int stratum =
                             s / grid; // integer division: the sample's row in the grid

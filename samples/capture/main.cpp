@@ -30,7 +30,7 @@ constexpr const char* kUsage =
                      [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
                      [--outline-aa on|off]
                      [--march-steps M]
-                     [--method reference] [--compare-reference] [--spp K] [--max-bounces N]
+                     [--method reference] [--compare-reference] [--spp K | --pixel-centres] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
 
 Renders MODEL headless (EGL: a GPU device, else Mesa llvmpipe) and writes one PNG per time to
@@ -85,6 +85,8 @@ characters; T is the scene time); several MODELs are placed side by side.
                       mask and the whole image, write MODEL_..._tT.reference.png and
                       .heatmap.png beside the frame
   --spp K             reference samples per pixel, jittered (default 16)
+  --pixel-centres     the reference traces one ray through each pixel centre, where the GPU
+                      samples (instead of --spp jittered rays)
   --max-bounces N     interfaces (refractions and reflections) a reference path follows after
                       its entry before it counts as trapped (default 1024)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
@@ -189,6 +191,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                 return usageError("--subdiv needs a level 0.." +
                                   std::to_string(core::limits::kMaxSubdivisionLevel));
             o.session.subdivision = int(n);
+        } else if (arg == "--pixel-centres") {
+            o.referenceOptions.pixelCentres = true;
         } else if (arg == "--spp" || arg == "--max-bounces") {
             const auto v = next();
             double n = 0;

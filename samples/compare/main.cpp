@@ -13,10 +13,14 @@ namespace {
 
 constexpr const char* kUsage =
     R"(usage: glass-compare A.png B.png [--mask M.png] [--heatmap OUT.png] [--json]
+       glass-compare --contact-sheet OUT.png [--columns N] [--cell W] IMAGE...
 
 Scores image A against image B (same size): PSNR over RGB and mean SSIM of luminance (8x8
 windows), over every pixel and, with --mask, over the pixels where M is not black. --heatmap
 writes the per-pixel error as a colour ramp (black, blue, yellow, red at 64/255 and over).
+
+--contact-sheet lays the images (PNG or JPEG, any sizes) out in a grid of N columns (default
+2) of cells W pixels wide (default 256), each image fitted to its cell, and writes it to OUT.
 
 Exit status: 0 success, 1 an image could not be read or the sizes differ, 2 bad arguments.
 )";
@@ -30,7 +34,8 @@ int usageError(const std::string& message) {
 
 int run(int argc, char** argv) {
     std::vector<std::string> images;
-    std::optional<std::string> maskPath, heatmapPath;
+    std::optional<std::string> maskPath, heatmapPath, sheetPath;
+    int columns = 2, cell = 256;
     bool json = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -39,15 +44,42 @@ int run(int argc, char** argv) {
             return 0;
         } else if (arg == "--json") {
             json = true;
-        } else if (arg == "--mask" || arg == "--heatmap") {
+        } else if (arg == "--mask" || arg == "--heatmap" || arg == "--contact-sheet") {
             if (i + 1 >= argc)
                 return usageError(arg + " needs a value");
-            (arg == "--mask" ? maskPath : heatmapPath) = argv[++i];
+            (arg == "--mask" ? maskPath : arg == "--heatmap" ? heatmapPath : sheetPath) = argv[++i];
+        } else if (arg == "--columns" || arg == "--cell") {
+            int n = 0;
+            if (i + 1 >= argc || std::sscanf(argv[i + 1], "%d", &n) != 1 || n < 1 || n > 4096)
+                return usageError(arg + " needs a whole number from 1 to 4096");
+            (arg == "--columns" ? columns : cell) = n;
+            ++i;
         } else if (!arg.empty() && arg[0] == '-') {
             return usageError("unknown option " + arg);
         } else {
             images.push_back(arg);
         }
+    }
+    if (sheetPath) {
+        if (images.empty())
+            return usageError("--contact-sheet needs images");
+        std::vector<capture::Image> read;
+        for (const std::string& path : images) {
+            auto image = capture::readPng(path);
+            if (!image) {
+                std::fprintf(stderr, "glass-compare: %s\n", image.error().message.c_str());
+                return 1;
+            }
+            read.push_back(std::move(*image));
+        }
+        if (auto written =
+                capture::writePng(*sheetPath, capture::contactSheet(read, columns, cell));
+            !written) {
+            std::fprintf(stderr, "glass-compare: %s\n", written.error().message.c_str());
+            return 1;
+        }
+        std::printf("%s (%zu images)\n", sheetPath->c_str(), images.size());
+        return 0;
     }
     if (images.size() != 2)
         return usageError("needs exactly two images");

@@ -64,7 +64,28 @@ nlohmann::ordered_json describe(const scene::Model& model) {
     j["animation_list"] = clips;
     j["variants"] = model.variants; // KHR_materials_variants' names
     j["cameras"] = model.cameras.size();
+    nlohmann::ordered_json lights = nlohmann::ordered_json::array();
+    for (const scene::Light& l : model.lights) // KHR_lights_punctual
+        lights.push_back({{"name", l.name},
+                          {"type", l.type == scene::Light::Type::Directional ? "directional"
+                                   : l.type == scene::Light::Type::Spot      ? "spot"
+                                                                             : "point"},
+                          {"intensity", l.intensity}});
+    j["lights"] = lights;
     j["materials"] = model.materials.size();
+    // The layers glTF's material extensions put on the materials, and how many use each.
+    nlohmann::ordered_json layers = nlohmann::ordered_json::object();
+    auto count = [&](const char* name, bool (*has)(const scene::Material&)) {
+        const auto n = std::count_if(model.materials.begin(), model.materials.end(), has);
+        if (n > 0)
+            layers[name] = n;
+    };
+    count("KHR_materials_specular", [](const scene::Material& m) { return m.hasSpecular; });
+    count("KHR_materials_clearcoat", [](const scene::Material& m) { return m.hasClearcoat; });
+    count("KHR_materials_sheen", [](const scene::Material& m) { return m.hasSheen; });
+    count("KHR_materials_iridescence", [](const scene::Material& m) { return m.hasIridescence; });
+    count("KHR_materials_anisotropy", [](const scene::Material& m) { return m.hasAnisotropy; });
+    j["material_layers"] = layers;
     nlohmann::ordered_json glass = nlohmann::ordered_json::array();
     for (const scene::Material& m : model.materials) {
         if (!m.isTransmissive())

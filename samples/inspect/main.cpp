@@ -209,6 +209,16 @@ void printText(const scene::Model& model) {
                         g["attenuationDistance"].dump().c_str());
         std::printf("\n");
     }
+    for (const auto& [name, n] : j["material_layers"].items())
+        std::printf("  %s: %d material(s)\n", name.c_str(), n.get<int>());
+    if (!model.lights.empty()) {
+        std::string lights;
+        for (const auto& l : j["lights"])
+            lights += (lights.empty() ? "" : ", ") + l["type"].get<std::string>() + " '" +
+                      l["name"].get<std::string>() + "'";
+        std::printf("  lights (KHR_lights_punctual) %zu: %s\n", model.lights.size(),
+                    lights.c_str());
+    }
     if (model.cameras.size())
         std::printf("  cameras %zu\n", model.cameras.size());
     for (const std::string& warning : model.warnings)

@@ -1,16 +1,37 @@
-// The texture coordinates a material's texture slot reads: TEXCOORD_0 or TEXCOORD_1 (each slot's
-// texCoord, MaterialTextures::bind sets the mask), through its KHR_texture_transform.
+// A material's texture slots as MaterialTextures::bind sets them: whether each has a texture,
+// the texture, and the texture coordinates it reads: TEXCOORD_0 or TEXCOORD_1 (each slot's
+// texCoord, a mask) through its KHR_texture_transform.
 #ifndef COMMON_MATERIAL_UV_GLSL
 #define COMMON_MATERIAL_UV_GLSL
 
+// The slots in MaterialTextures::bind's order (its units from the first it is given).
 const int SLOT_BASE_COLOR = 0, SLOT_METALLIC_ROUGHNESS = 1, SLOT_NORMAL = 2, SLOT_OCCLUSION = 3,
-          SLOT_EMISSIVE = 4, SLOT_SPECULAR = 5, SLOT_SPECULAR_COLOR = 6;
-uniform int uTexCoords; // bit `slot` set: that slot reads TEXCOORD_1
+          SLOT_EMISSIVE = 4, SLOT_SPECULAR = 5, SLOT_SPECULAR_COLOR = 6, SLOT_CLEARCOAT = 7,
+          SLOT_CLEARCOAT_ROUGHNESS = 8, SLOT_CLEARCOAT_NORMAL = 9, SLOT_SHEEN_COLOR = 10,
+          SLOT_SHEEN_ROUGHNESS = 11, SLOT_IRIDESCENCE = 12, SLOT_IRIDESCENCE_THICKNESS = 13,
+          SLOT_ANISOTROPY = 14;
+const int SLOTS = 15;
+uniform int uHasTexture[SLOTS];
+uniform sampler2D uTexture[SLOTS];
+uniform mat3 uTextureUv[SLOTS]; // KHR_texture_transform (identity without it)
+uniform int uTexCoords;         // bit `slot` set: that slot reads TEXCOORD_1
 
 // `uvs`: TEXCOORD_0 in xy, TEXCOORD_1 in zw (the vertex's, interpolated).
 vec2 slotUv(vec4 uvs, mat3 transform, int slot) {
     vec2 uv = ((uTexCoords >> slot) & 1) != 0 ? uvs.zw : uvs.xy;
     return (transform * vec3(uv, 1.0)).xy;
+}
+
+vec2 slotUv(vec4 uvs, int slot) {
+    return slotUv(uvs, uTextureUv[slot], slot);
+}
+
+bool hasTexture(int slot) {
+    return uHasTexture[slot] != 0;
+}
+
+vec4 readTexture(int slot, vec4 uvs) {
+    return texture(uTexture[slot], slotUv(uvs, slot));
 }
 
 #endif

@@ -13,6 +13,6 @@ void main() {
     float checker = mod(cell.x + cell.y, 2.0);
     vec3 base = mix(vec3(0.30), vec3(0.42), checker);
     vec3 V = normalize(uCameraPosition - vWorldPosition);
-    vec3 color = shadeMetallicRoughness(base, 0.0, 0.8, 1.0, vec3(0.0, 1.0, 0.0), V);
+    vec3 color = shadeMetallicRoughness(base, 0.0, 0.8, 1.0, vWorldPosition, vec3(0.0, 1.0, 0.0), V);
     outColor = vec4(color, 1.0);
 }

@@ -1,4 +1,5 @@
-// Opaque metallic-roughness surface lit by the environment (glTF core material model).
+// Opaque surfaces: glTF's material model with its extensions' layers (common/brdf.glsl), lit by
+// the environment and the punctual lights.
 #include "common/brdf.glsl"
 #include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
@@ -16,57 +17,91 @@ uniform float uRoughnessFactor;
 uniform vec3 uEmissive; // factor * strength
 uniform float uNormalScale;
 uniform float uOcclusionStrength;
-uniform int uHasBaseColorTexture, uHasMetallicRoughnessTexture, uHasNormalTexture;
-uniform int uHasOcclusionTexture, uHasEmissiveTexture;
-uniform sampler2D uBaseColorTexture, uMetallicRoughnessTexture, uNormalTexture;
-uniform sampler2D uOcclusionTexture, uEmissiveTexture;
-// KHR_texture_transform of each slot (identity without it)
-uniform mat3 uBaseColorUv, uMetallicRoughnessUv, uNormalUv, uOcclusionUv, uEmissiveUv;
 uniform int uUnlit; // KHR_materials_unlit: the base colour, unshaded
 // KHR_materials_specular: weight (factor, texture alpha) and F0 colour (factor, texture rgb)
 uniform float uSpecularFactor, uDielectricF0;
 uniform vec3 uSpecularColorFactor;
-uniform int uHasSpecularTexture, uHasSpecularColorTexture;
-uniform sampler2D uSpecularTexture, uSpecularColorTexture;
-uniform mat3 uSpecularUv, uSpecularColorUv;
+// KHR_materials_clearcoat, _sheen, _iridescence, _anisotropy (MaterialTextures::bind)
+uniform float uClearcoatFactor, uClearcoatRoughnessFactor, uClearcoatNormalScale;
+uniform vec3 uSheenColorFactor;
+uniform float uSheenRoughnessFactor;
+uniform float uIridescenceFactor, uIridescenceIor;
+uniform vec2 uIridescenceThickness; // minimum, maximum (nm)
+uniform float uAnisotropyStrength;
+uniform vec2 uAnisotropyRotation; // cos, sin
 
+bool has(int slot) {
+    return hasTexture(slot);
+}
+
+vec4 read(int slot) {
+    return readTexture(slot, vUv);
+}
 
 void main() {
     vec4 baseColor = uBaseColorFactor;
-    if (uHasBaseColorTexture != 0)
-        baseColor *= texture(uBaseColorTexture, slotUv(vUv, uBaseColorUv, SLOT_BASE_COLOR)); // sRGB: decoded to linear
+    if (has(SLOT_BASE_COLOR))
+        baseColor *= read(SLOT_BASE_COLOR); // sRGB: decoded to linear
     if (uUnlit != 0) {
         outColor = vec4(baseColor.rgb, 1.0);
         return;
     }
     float metallic = uMetallicFactor, roughness = uRoughnessFactor;
-    if (uHasMetallicRoughnessTexture != 0) {
-        vec4 mr = texture(uMetallicRoughnessTexture, slotUv(vUv, uMetallicRoughnessUv, SLOT_METALLIC_ROUGHNESS));
+    if (has(SLOT_METALLIC_ROUGHNESS)) {
+        vec4 mr = read(SLOT_METALLIC_ROUGHNESS);
         roughness *= mr.g;
         metallic *= mr.b;
     }
-    vec3 N = normalize(vWorldNormal);
+    vec3 geometric = normalize(vWorldNormal);
     vec3 V = normalize(uCameraPosition - vWorldPosition);
     if (!gl_FrontFacing)
-        N = -N;
-    if (uHasNormalTexture != 0)
-        N = perturbNormal(N, vWorldTangent, uNormalTexture, slotUv(vUv, uNormalUv, SLOT_NORMAL), uNormalScale);
+        geometric = -geometric;
+    vec3 N = geometric;
+    if (has(SLOT_NORMAL))
+        N = perturbNormal(N, vWorldTangent, uTexture[SLOT_NORMAL],
+                          slotUv(vUv, SLOT_NORMAL), uNormalScale);
     float occlusion = 1.0;
-    if (uHasOcclusionTexture != 0)
-        occlusion =
-            mix(1.0, texture(uOcclusionTexture, slotUv(vUv, uOcclusionUv, SLOT_OCCLUSION)).r, uOcclusionStrength);
-    float specularWeight = uSpecularFactor;
-    if (uHasSpecularTexture != 0)
-        specularWeight *= texture(uSpecularTexture, slotUv(vUv, uSpecularUv, SLOT_SPECULAR)).a;
-    vec3 specularColor = uSpecularColorFactor;
-    if (uHasSpecularColorTexture != 0)
-        specularColor *=
-            texture(uSpecularColorTexture, slotUv(vUv, uSpecularColorUv, SLOT_SPECULAR_COLOR)).rgb;
-    vec3 color = shadeMetallicRoughnessSpecular(baseColor.rgb, clamp(metallic, 0.0, 1.0),
-                                                clamp(roughness, 0.03, 1.0), occlusion, N, V,
-                                                uDielectricF0 * specularColor, specularWeight);
+    if (has(SLOT_OCCLUSION))
+        occlusion = mix(1.0, read(SLOT_OCCLUSION).r, uOcclusionStrength);
+    SurfaceMaterial m = coreSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0),
+                                    clamp(roughness, 0.03, 1.0), occlusion, geometric);
+    m.specularWeight = uSpecularFactor * (has(SLOT_SPECULAR) ? read(SLOT_SPECULAR).a : 1.0);
+    m.dielectricF0 = uDielectricF0 * uSpecularColorFactor *
+                     (has(SLOT_SPECULAR_COLOR) ? read(SLOT_SPECULAR_COLOR).rgb : vec3(1.0));
+    m.clearcoat = uClearcoatFactor * (has(SLOT_CLEARCOAT) ? read(SLOT_CLEARCOAT).r : 1.0);
+    m.clearcoatRoughness = clamp(uClearcoatRoughnessFactor *
+                                     (has(SLOT_CLEARCOAT_ROUGHNESS) ? read(SLOT_CLEARCOAT_ROUGHNESS).g : 1.0),
+                                 0.03, 1.0);
+    if (has(SLOT_CLEARCOAT_NORMAL))
+        m.clearcoatNormal = perturbNormal(geometric, vWorldTangent, uTexture[SLOT_CLEARCOAT_NORMAL],
+                                          slotUv(vUv, SLOT_CLEARCOAT_NORMAL),
+                                          uClearcoatNormalScale);
+    m.sheenColor = uSheenColorFactor * (has(SLOT_SHEEN_COLOR) ? read(SLOT_SHEEN_COLOR).rgb : vec3(1.0));
+    m.sheenRoughness = uSheenRoughnessFactor * (has(SLOT_SHEEN_ROUGHNESS) ? read(SLOT_SHEEN_ROUGHNESS).a : 1.0);
+    m.iridescence = uIridescenceFactor * (has(SLOT_IRIDESCENCE) ? read(SLOT_IRIDESCENCE).r : 1.0);
+    m.iridescenceIor = uIridescenceIor;
+    m.iridescenceThickness = has(SLOT_IRIDESCENCE_THICKNESS)
+                                 ? mix(uIridescenceThickness.x, uIridescenceThickness.y,
+                                       read(SLOT_IRIDESCENCE_THICKNESS).g)
+                                 : uIridescenceThickness.y;
+    if (uAnisotropyStrength > 0.0) {
+        // The texture's direction (rg in [-1, 1], tangent space) turned by the rotation, its
+        // strength (b) times the factor.
+        vec3 a = has(SLOT_ANISOTROPY) ? read(SLOT_ANISOTROPY).rgb : vec3(1.0, 0.5, 1.0);
+        vec2 d = a.rg * 2.0 - 1.0;
+        d = vec2(uAnisotropyRotation.x * d.x - uAnisotropyRotation.y * d.y,
+                 uAnisotropyRotation.y * d.x + uAnisotropyRotation.x * d.y);
+        vec3 T = normalize(vWorldTangent.xyz - N * dot(N, vWorldTangent.xyz));
+        vec3 B = cross(N, T) * vWorldTangent.w;
+        vec3 direction = T * d.x + B * d.y;
+        if (dot(direction, direction) > 1e-8) {
+            m.anisotropy = clamp(uAnisotropyStrength * a.b, 0.0, 1.0);
+            m.anisotropyDirection = normalize(direction);
+        }
+    }
+    vec3 color = shadeSurface(m, vWorldPosition, N, V);
     vec3 emissive = uEmissive;
-    if (uHasEmissiveTexture != 0)
-        emissive *= texture(uEmissiveTexture, slotUv(vUv, uEmissiveUv, SLOT_EMISSIVE)).rgb;
+    if (has(SLOT_EMISSIVE))
+        emissive *= read(SLOT_EMISSIVE).rgb;
     outColor = vec4(color + emissive, 1.0);
 }

@@ -70,6 +70,8 @@ scene::Texture convertTexture(const tinygltf::Model& model, int index,
                               const std::set<int>& undecoded, std::vector<std::string>& warnings);
 
 scene::Camera convertCamera(const tinygltf::Model& model, int index);
+/** KHR_lights_punctual light `index`, checked (type, colour, cone angles). */
+scene::Light convertLight(const tinygltf::Model& model, int index);
 
 /** Joints with non-zero weight index into the node's skin; zero-weight joints are set to 0. */
 void validateSkinnedMeshes(const scene::Model& model);

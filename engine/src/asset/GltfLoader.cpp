@@ -252,6 +252,13 @@ std::vector<scene::Node> convertNodes(const tinygltf::Model& m) {
         node.mesh = src.mesh;
         node.skin = src.skin;
         node.camera = src.camera;
+        if (const auto it = src.extensions.find("KHR_lights_punctual");
+            it != src.extensions.end()) {
+            node.light = intNumber(it->second, "light", -1);
+            if (node.light < 0 || std::size_t(node.light) >= m.lights.size())
+                fail(what + " KHR_lights_punctual light " + std::to_string(node.light) +
+                     " is not a light of the file's " + n(m.lights.size()));
+        }
         for (int child : src.children)
             nodes[std::size_t(child)].parent = int(i);
         for (double w : src.weights) {
@@ -392,9 +399,50 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.specularTexture = textureInfo(m, *e, "specularTexture", what);
         readColor(*e, "specularColorFactor", 1e6, what, mat.specularColorFactor);
         mat.specularColorTexture = textureInfo(m, *e, "specularColorTexture", what);
-        if (extension("KHR_materials_transmission"))
-            warnings.push_back(what + " (glass) has KHR_materials_specular: the opaque shading "
-                                      "follows it, the glass's Fresnel does not yet");
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_clearcoat")) {
+        mat.hasClearcoat = true;
+        mat.clearcoatFactor = float(number(*e, "clearcoatFactor", 0.0));
+        checkRange(mat.clearcoatFactor, 0.0, 1.0, what + " clearcoatFactor");
+        mat.clearcoatTexture = textureInfo(m, *e, "clearcoatTexture", what);
+        mat.clearcoatRoughnessFactor = float(number(*e, "clearcoatRoughnessFactor", 0.0));
+        checkRange(mat.clearcoatRoughnessFactor, 0.0, 1.0, what + " clearcoatRoughnessFactor");
+        mat.clearcoatRoughnessTexture = textureInfo(m, *e, "clearcoatRoughnessTexture", what);
+        mat.clearcoatNormalTexture = textureInfo(m, *e, "clearcoatNormalTexture", what);
+        if (e->Has("clearcoatNormalTexture"))
+            mat.clearcoatNormalTexture.scale =
+                float(number(e->Get("clearcoatNormalTexture"), "scale", 1.0));
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_sheen")) {
+        mat.hasSheen = true;
+        readColor(*e, "sheenColorFactor", 1.0, what, mat.sheenColorFactor);
+        mat.sheenColorTexture = textureInfo(m, *e, "sheenColorTexture", what);
+        mat.sheenRoughnessFactor = float(number(*e, "sheenRoughnessFactor", 0.0));
+        checkRange(mat.sheenRoughnessFactor, 0.0, 1.0, what + " sheenRoughnessFactor");
+        mat.sheenRoughnessTexture = textureInfo(m, *e, "sheenRoughnessTexture", what);
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_iridescence")) {
+        mat.hasIridescence = true;
+        mat.iridescenceFactor = float(number(*e, "iridescenceFactor", 0.0));
+        checkRange(mat.iridescenceFactor, 0.0, 1.0, what + " iridescenceFactor");
+        mat.iridescenceTexture = textureInfo(m, *e, "iridescenceTexture", what);
+        mat.iridescenceIor = float(number(*e, "iridescenceIor", 1.3));
+        checkRange(mat.iridescenceIor, 1.0, 1e3, what + " iridescenceIor");
+        mat.iridescenceThicknessMinimum = float(number(*e, "iridescenceThicknessMinimum", 100.0));
+        mat.iridescenceThicknessMaximum = float(number(*e, "iridescenceThicknessMaximum", 400.0));
+        checkRange(mat.iridescenceThicknessMinimum, 0.0, 1e6,
+                   what + " iridescenceThicknessMinimum");
+        checkRange(mat.iridescenceThicknessMaximum, 0.0, 1e6,
+                   what + " iridescenceThicknessMaximum");
+        mat.iridescenceThicknessTexture = textureInfo(m, *e, "iridescenceThicknessTexture", what);
+    }
+    if (const tinygltf::Value* e = extension("KHR_materials_anisotropy")) {
+        mat.hasAnisotropy = true;
+        mat.anisotropyStrength = float(number(*e, "anisotropyStrength", 0.0));
+        checkRange(mat.anisotropyStrength, 0.0, 1.0, what + " anisotropyStrength");
+        mat.anisotropyRotation = float(number(*e, "anisotropyRotation", 0.0));
+        checkRange(mat.anisotropyRotation, -1e6, 1e6, what + " anisotropyRotation");
+        mat.anisotropyTexture = textureInfo(m, *e, "anisotropyTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_transmission")) {
         mat.hasTransmission = true;
@@ -423,14 +471,48 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.dispersion = float(number(*e, "dispersion", 0.0));
         checkRange(mat.dispersion, 0.0, 1e6, what + " dispersion");
     }
-    for (const scene::TextureRef* t :
-         {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
-          &mat.occlusionTexture, &mat.emissiveTexture, &mat.transmissionTexture,
-          &mat.thicknessTexture})
-        if (t->present() && (t->texCoord < 0 || t->texCoord > 1))
-            fail(what + " uses TEXCOORD_" + std::to_string(t->texCoord) +
+    mat.forEachTexture([&](const scene::TextureRef& t, bool) {
+        if (t.present() && (t.texCoord < 0 || t.texCoord > 1))
+            fail(what + " uses TEXCOORD_" + std::to_string(t.texCoord) +
                  "; only TEXCOORD_0 and TEXCOORD_1 are supported");
+    });
     return mat;
+}
+
+scene::Light convertLight(const tinygltf::Model& m, int index) {
+    const tinygltf::Light& src = m.lights[std::size_t(index)];
+    const std::string what = "KHR_lights_punctual light " + n(std::size_t(index));
+    scene::Light light;
+    light.name = src.name;
+    if (src.type == "directional")
+        light.type = scene::Light::Type::Directional;
+    else if (src.type == "point")
+        light.type = scene::Light::Type::Point;
+    else if (src.type == "spot")
+        light.type = scene::Light::Type::Spot;
+    else
+        fail(what + " type \"" + src.type + "\" is not directional, point or spot");
+    if (!src.color.empty()) {
+        if (src.color.size() != 3)
+            fail(what + " color has " + n(src.color.size()) + " values, expected 3");
+        for (int c = 0; c < 3; ++c) {
+            light.color[c] = float(src.color[std::size_t(c)]);
+            checkRange(light.color[c], 0.0, 1.0, what + " color");
+        }
+    }
+    light.intensity = float(src.intensity);
+    checkRange(light.intensity, 0.0, 1e12, what + " intensity");
+    light.range = float(src.range);
+    checkRange(light.range, 0.0, 1e12, what + " range");
+    light.innerConeAngle = float(src.spot.innerConeAngle);
+    light.outerConeAngle = float(src.spot.outerConeAngle);
+    if (light.type == scene::Light::Type::Spot &&
+        !(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle &&
+          light.outerConeAngle <= float(M_PI / 2.0) + 1e-6f))
+        fail(what + " spot cone angles (inner " + std::to_string(light.innerConeAngle) +
+             ", outer " + std::to_string(light.outerConeAngle) +
+             ") must satisfy 0 <= inner < outer <= pi/2");
+    return light;
 }
 
 scene::Camera convertCamera(const tinygltf::Model& m, int index) {
@@ -567,6 +649,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
             model.animations.push_back(convertAnimation(src, reader, int(i), model.meshes));
         for (std::size_t i = 0; i < src.cameras.size(); ++i)
             model.cameras.push_back(convertCamera(src, int(i)));
+        for (std::size_t i = 0; i < src.lights.size(); ++i)
+            model.lights.push_back(convertLight(src, int(i)));
         for (std::size_t i = 0; i < model.nodes.size(); ++i) {
             const scene::Node& node = model.nodes[i];
             if (node.mesh >= 0 && !node.weights.empty() &&

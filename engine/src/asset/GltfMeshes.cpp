@@ -357,13 +357,19 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
         p.flatNormals = true;
     }
     if (p.material >= 0) {
-        const scene::TextureRef& normalMap = materials[std::size_t(p.material)].normalTexture;
-        if (normalMap.present() && p.tangents.empty()) {
-            const auto& uv = normalMap.texCoord == 1 ? p.uv1 : p.uv0;
-            if (uv.size() != p.vertexCount())
-                fail(what + " uses a normal map on TEXCOORD_" + std::to_string(normalMap.texCoord) +
-                     " but has no such attribute");
-            generateTangents(p, normalMap.texCoord);
+        // Normal maps (the base's, the clear coat's) and anisotropy need a tangent frame.
+        const scene::Material& m = materials[std::size_t(p.material)];
+        const scene::TextureRef& map = m.normalTexture.present() ? m.normalTexture
+                                       : m.clearcoatNormalTexture.present()
+                                           ? m.clearcoatNormalTexture
+                                           : m.anisotropyTexture;
+        if ((map.present() || m.hasAnisotropy) && p.tangents.empty()) {
+            const auto& uv = map.texCoord == 1 ? p.uv1 : p.uv0;
+            if (uv.size() == p.vertexCount())
+                generateTangents(p, map.texCoord);
+            else if (map.present())
+                fail(what + " uses a normal or anisotropy map on TEXCOORD_" +
+                     std::to_string(map.texCoord) + " but has no such attribute");
         }
     }
     return p;

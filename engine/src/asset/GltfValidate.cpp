@@ -18,7 +18,9 @@ const std::set<std::string>& supportedRequiredExtensions() {
         "KHR_materials_dispersion", "KHR_materials_emissive_strength", "KHR_draco_mesh_compression",
         "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization",
         "KHR_texture_transform", "KHR_materials_unlit", "EXT_texture_webp",
-        "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing", "KHR_materials_variants", "KHR_materials_specular",
+        "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing", "KHR_materials_variants",
+        "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
+        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_lights_punctual",
         // only its fallback images are used; a texture with none loads without it (warning)
         "KHR_texture_basisu"};
     return supported;

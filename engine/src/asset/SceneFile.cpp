@@ -95,6 +95,70 @@ std::string resolve(const std::filesystem::path& directory, const std::string& p
     return (directory / path).lexically_normal().string();
 }
 
+const char* lightTypeName(scene::Light::Type type) {
+    return type == scene::Light::Type::Directional ? "directional"
+           : type == scene::Light::Type::Spot      ? "spot"
+                                                   : "point";
+}
+
+/** A light of the scene's "lights" array (README "Scene files"): KHR_lights_punctual's
+ *  properties, placed in world space by position and direction. */
+scene::PlacedLight readLight(const Json& j, const std::string& key, const std::string& where) {
+    if (!j.is_object())
+        fail(key, "expected an object, got " + j.dump());
+    warnUnknownKeys(j,
+                    {"name", "type", "position", "direction", "color", "intensity", "range",
+                     "inner_cone_angle", "outer_cone_angle"},
+                    where + key + ".");
+    scene::PlacedLight placed;
+    scene::Light& light = placed.light;
+    if (!j.contains("type"))
+        fail(key + ".type", "missing (directional, point or spot)");
+    const std::string type = text(j["type"], key + ".type");
+    if (type == "directional")
+        light.type = scene::Light::Type::Directional;
+    else if (type == "point")
+        light.type = scene::Light::Type::Point;
+    else if (type == "spot")
+        light.type = scene::Light::Type::Spot;
+    else
+        fail(key + ".type", "expected directional, point or spot, got \"" + type + "\"");
+    light.name = j.contains("name") ? text(j["name"], key + ".name") : key;
+    if (j.contains("position"))
+        placed.position = vector<3>(j["position"], key + ".position");
+    else if (light.type != scene::Light::Type::Directional)
+        fail(key + ".position", "missing (a " + type + " light's position in the world)");
+    if (j.contains("direction")) {
+        const glm::vec3 d = vector<3>(j["direction"], key + ".direction");
+        if (!(glm::length(d) > 0.0f))
+            fail(key + ".direction", "a zero vector points nowhere");
+        placed.direction = glm::normalize(d);
+    } else if (light.type != scene::Light::Type::Point) {
+        fail(key + ".direction", "missing (where the " + type + " light shines)");
+    }
+    if (j.contains("color")) {
+        light.color = vector<3>(j["color"], key + ".color");
+        for (int c = 0; c < 3; ++c)
+            if (!(light.color[c] >= 0.0f && light.color[c] <= 1.0f))
+                fail(key + ".color", "expected linear RGB in [0, 1], got " + j["color"].dump());
+    }
+    auto nonNegative = [&](const char* name, float& out) {
+        if (!j.contains(name))
+            return;
+        out = float(number(j[name], key + "." + name));
+        if (!(out >= 0.0f))
+            fail(key + "." + name, "expected a number of at least 0, got " + j[name].dump());
+    };
+    nonNegative("intensity", light.intensity);
+    nonNegative("range", light.range);
+    nonNegative("inner_cone_angle", light.innerConeAngle);
+    nonNegative("outer_cone_angle", light.outerConeAngle);
+    if (light.type == scene::Light::Type::Spot &&
+        !(light.innerConeAngle < light.outerConeAngle && light.outerConeAngle <= 1.5708f))
+        fail(key, "a spot light needs inner_cone_angle < outer_cone_angle <= pi/2 (radians)");
+    return placed;
+}
+
 scene::Character readCharacter(const Json& j, const std::string& key, const std::string& where,
                                const std::filesystem::path& directory,
                                std::map<std::string, std::shared_ptr<const scene::Model>>& models,
@@ -222,7 +286,7 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
                        const std::string& where, const LoadOptions& options) {
     if (!root.is_object())
         fail("(root)", "expected an object with a \"characters\" array");
-    warnUnknownKeys(root, {"environment", "ground", "camera", "characters"}, where);
+    warnUnknownKeys(root, {"environment", "ground", "camera", "lights", "characters"}, where);
     scene::World world;
     if (root.contains("environment") && !root["environment"].is_null()) {
         // Checked here (readable, an image of an environment's kind and shape), so that every
@@ -251,6 +315,17 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
         if (glm::length(camera.target - camera.position) <= 0.0f)
             fail("camera", "position and target coincide");
         world.camera = camera;
+    }
+    if (root.contains("lights")) {
+        const Json& lights = root["lights"];
+        if (!lights.is_array())
+            fail("lights", "expected an array of lights, got " + lights.dump());
+        if (lights.size() > core::limits::kMaxLights)
+            fail("lights", std::to_string(lights.size()) + " lights, the limit is " +
+                               std::to_string(core::limits::kMaxLights));
+        for (std::size_t i = 0; i < lights.size(); ++i)
+            world.lights.push_back(
+                readLight(lights[i], "lights[" + std::to_string(i) + "]", where));
     }
     if (!root.contains("characters") || !root["characters"].is_array())
         fail("characters", "missing (an array of characters)");
@@ -393,6 +468,23 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
              {world.camera->position.x, world.camera->position.y, world.camera->position.z}},
             {"target", {world.camera->target.x, world.camera->target.y, world.camera->target.z}},
             {"yfov", world.camera->yfov}};
+    for (const scene::PlacedLight& l : world.lights) {
+        Json j = {{"name", l.light.name},
+                  {"type", lightTypeName(l.light.type)},
+                  {"color", {l.light.color.x, l.light.color.y, l.light.color.z}},
+                  {"intensity", l.light.intensity}};
+        if (l.light.type != scene::Light::Type::Directional)
+            j["position"] = {l.position.x, l.position.y, l.position.z};
+        if (l.light.type != scene::Light::Type::Point)
+            j["direction"] = {l.direction.x, l.direction.y, l.direction.z};
+        if (l.light.range > 0.0f)
+            j["range"] = l.light.range;
+        if (l.light.type == scene::Light::Type::Spot) {
+            j["inner_cone_angle"] = l.light.innerConeAngle;
+            j["outer_cone_angle"] = l.light.outerConeAngle;
+        }
+        root["lights"].push_back(j);
+    }
     root["characters"] = Json::array();
     for (const scene::Character& c : world.characters) {
         Json j;

@@ -87,14 +87,24 @@ Image contactSheet(const std::vector<Image>& images, int columns, int cellWidth,
     for (std::size_t i = 0; i < sheet.rgba.size(); i += 4)
         sheet.rgba[i] = sheet.rgba[i + 1] = sheet.rgba[i + 2] = 24, sheet.rgba[i + 3] = 255;
     for (std::size_t n = 0; n < images.size(); ++n) {
+        // Each image fits its cell whole (its own aspect kept), centred.
         const Image& image = images[n];
-        const int x0 = gap + int(n % std::size_t(columns)) * (cellWidth + gap);
-        const int y0 = gap + int(n / std::size_t(columns)) * (cellHeight + gap);
-        for (int y = 0; y < cellHeight; ++y)
-            for (int x = 0; x < cellWidth; ++x) {
-                const int sx = std::min(image.width - 1, x * image.width / cellWidth);
-                const int sy = std::min(image.height - 1, y * image.height / cellHeight);
-                const std::size_t from = (std::size_t(sy) * std::size_t(image.width) + std::size_t(sx)) * 4u;
+        if (image.width < 1 || image.height < 1)
+            continue;
+        const double scale =
+            std::min(double(cellWidth) / image.width, double(cellHeight) / image.height);
+        const int w = std::max(1, int(image.width * scale)),
+                  h = std::max(1, int(image.height * scale));
+        const int x0 =
+            gap + int(n % std::size_t(columns)) * (cellWidth + gap) + (cellWidth - w) / 2;
+        const int y0 =
+            gap + int(n / std::size_t(columns)) * (cellHeight + gap) + (cellHeight - h) / 2;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const int sx = std::min(image.width - 1, x * image.width / w);
+                const int sy = std::min(image.height - 1, y * image.height / h);
+                const std::size_t from =
+                    (std::size_t(sy) * std::size_t(image.width) + std::size_t(sx)) * 4u;
                 const std::size_t to =
                     (std::size_t(y0 + y) * std::size_t(sheet.width) + std::size_t(x0 + x)) * 4u;
                 std::copy_n(image.rgba.begin() + std::ptrdiff_t(from), 4,

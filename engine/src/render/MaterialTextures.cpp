@@ -3,6 +3,11 @@
 
 #include "engine/gl/Commands.h"
 
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
 namespace render {
 namespace {
 
@@ -27,17 +32,11 @@ gl::Wrap wrapOf(const scene::Sampler* s) {
 core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& model) {
     MaterialTextures result;
     std::vector<bool> srgb(model.textures.size(), false), linear(model.textures.size(), false);
-    for (const scene::Material& m : model.materials) {
-        for (const scene::TextureRef* t :
-             {&m.baseColorTexture, &m.emissiveTexture, &m.specularColorTexture})
-            if (t->present())
-                srgb[std::size_t(t->texture)] = true;
-        for (const scene::TextureRef* t :
-             {&m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-              &m.transmissionTexture, &m.thicknessTexture, &m.specularTexture})
-            if (t->present())
-                linear[std::size_t(t->texture)] = true;
-    }
+    for (const scene::Material& m : model.materials)
+        m.forEachTexture([&](const scene::TextureRef& t, bool colour) {
+            if (t.present())
+                (colour ? srgb : linear)[std::size_t(t.texture)] = true;
+        });
     result.mLinear.resize(model.textures.size());
     result.mSrgb.resize(model.textures.size());
     for (std::size_t i = 0; i < model.textures.size(); ++i) {
@@ -101,36 +100,62 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
     program.set("uSpecularFactor", m.hasSpecular ? m.specularFactor : 1.0f);
     program.set("uSpecularColorFactor", m.hasSpecular ? m.specularColorFactor : glm::vec3(1.0f));
     program.set("uDielectricF0", m.dielectricF0());
-    struct Slot {
-        const scene::TextureRef& ref;
-        const char* sampler;
-        const char* flag;
-        const char* transform;
-        bool srgb;
+    // The layers (without their extension: none, their factors 0)
+    program.set("uClearcoatFactor", m.hasClearcoat ? m.clearcoatFactor : 0.0f);
+    program.set("uClearcoatRoughnessFactor", m.clearcoatRoughnessFactor);
+    program.set("uClearcoatNormalScale", m.clearcoatNormalTexture.scale);
+    program.set("uSheenColorFactor", m.hasSheen ? m.sheenColorFactor : glm::vec3(0.0f));
+    program.set("uSheenRoughnessFactor", m.sheenRoughnessFactor);
+    program.set("uIridescenceFactor", m.hasIridescence ? m.iridescenceFactor : 0.0f);
+    program.set("uIridescenceIor", m.iridescenceIor);
+    program.set("uIridescenceThickness",
+                glm::vec2(m.iridescenceThicknessMinimum, m.iridescenceThicknessMaximum));
+    program.set("uAnisotropyStrength", m.hasAnisotropy ? m.anisotropyStrength : 0.0f);
+    program.set("uAnisotropyRotation",
+                glm::vec2(std::cos(m.anisotropyRotation), std::sin(m.anisotropyRotation)));
+    // In common/material_uv.glsl's order: colour slots sample the sRGB copy.
+    const std::pair<const scene::TextureRef*, bool> slots[kSlotCount] = {
+        {&m.baseColorTexture, true},
+        {&m.metallicRoughnessTexture, false},
+        {&m.normalTexture, false},
+        {&m.occlusionTexture, false},
+        {&m.emissiveTexture, true},
+        {&m.specularTexture, false},
+        {&m.specularColorTexture, true},
+        {&m.clearcoatTexture, false},
+        {&m.clearcoatRoughnessTexture, false},
+        {&m.clearcoatNormalTexture, false},
+        {&m.sheenColorTexture, true},
+        {&m.sheenRoughnessTexture, false},
+        {&m.iridescenceTexture, false},
+        {&m.iridescenceThicknessTexture, false},
+        {&m.anisotropyTexture, false}};
+    struct SlotNames {
+        std::string has, transform, sampler;
     };
-    const Slot slots[] = {
-        {m.baseColorTexture, "uBaseColorTexture", "uHasBaseColorTexture", "uBaseColorUv", true},
-        {m.metallicRoughnessTexture, "uMetallicRoughnessTexture", "uHasMetallicRoughnessTexture",
-         "uMetallicRoughnessUv", false},
-        {m.normalTexture, "uNormalTexture", "uHasNormalTexture", "uNormalUv", false},
-        {m.occlusionTexture, "uOcclusionTexture", "uHasOcclusionTexture", "uOcclusionUv", false},
-        {m.emissiveTexture, "uEmissiveTexture", "uHasEmissiveTexture", "uEmissiveUv", true},
-        {m.specularTexture, "uSpecularTexture", "uHasSpecularTexture", "uSpecularUv", false},
-        {m.specularColorTexture, "uSpecularColorTexture", "uHasSpecularColorTexture",
-         "uSpecularColorUv", true}};
-    int unit = firstUnit, texCoords = 0;
-    for (const Slot& slot : slots) {
-        // Each slot reads the texture coordinate set its texCoord names (common/material_uv.glsl).
-        if (slot.ref.texCoord == 1)
-            texCoords |= 1 << (unit - firstUnit);
-        const auto& textures = slot.srgb ? mSrgb : mLinear;
-        const bool has = slot.ref.present() && textures[std::size_t(slot.ref.texture)];
-        program.set(slot.flag, has ? 1 : 0);
-        program.set(slot.transform, slot.ref.transform);
-        program.set(slot.sampler, unit);
+    static const auto names = [] {
+        std::array<SlotNames, kSlotCount> n;
+        for (int slot = 0; slot < kSlotCount; ++slot) {
+            const std::string index = "[" + std::to_string(slot) + "]";
+            n[std::size_t(slot)] = {"uHasTexture" + index, "uTextureUv" + index,
+                                    "uTexture" + index};
+        }
+        return n;
+    }();
+    int texCoords = 0;
+    for (int slot = 0; slot < kSlotCount; ++slot) {
+        const auto [ref, srgb] = slots[slot];
+        // Each slot reads the texture coordinate set its texCoord names.
+        if (ref->texCoord == 1)
+            texCoords |= 1 << slot;
+        const auto& textures = srgb ? mSrgb : mLinear;
+        const bool has = ref->present() && textures[std::size_t(ref->texture)];
+        const SlotNames& name = names[std::size_t(slot)];
+        program.set(name.has.c_str(), has ? 1 : 0);
+        program.set(name.transform.c_str(), ref->transform);
+        program.set(name.sampler.c_str(), firstUnit + slot);
         if (has)
-            gl::bindTexture(std::uint32_t(unit), textures[std::size_t(slot.ref.texture)]);
-        ++unit;
+            gl::bindTexture(std::uint32_t(firstUnit + slot), textures[std::size_t(ref->texture)]);
     }
     program.set("uTexCoords", texCoords);
 }

@@ -10,6 +10,7 @@
 #include "engine/gl/Program.h"
 #include "engine/render/Environment.h"
 #include "engine/render/FrameInfo.h"
+#include "engine/render/Lighting.h"
 #include "engine/render/MaterialTextures.h"
 
 #include <memory>
@@ -40,6 +41,8 @@ struct RenderGpu {
     std::vector<CharacterGpu> characters;               // the prepared world's, in its order
     deform::PoseUpload poses;                           // every character's, this frame
     std::vector<DrawItem> items;                        // this frame's (storage reused)
+    std::vector<scene::PlacedLight> lights;             // this frame's, in world space
+    LightingBuffer lighting;                            // the lights on the GPU (binding 9)
     std::unique_ptr<Environment> environment;
     gl::Program background, opaque, ground, tonemap;
     gl::VertexArray emptyVao;

@@ -2,6 +2,8 @@
 // recorded into a frame graph with the plugins', executed and timed.
 #include "engine/render/Renderer.h"
 
+#include "engine/core/Limits.h"
+
 #include "RenderGpu.h"
 #include "passes/Passes.h"
 
@@ -233,6 +235,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     RenderGpu& gpu = *mGpu;
     gpu.poses.clear();
     gpu.items.clear();
+    gpu.lights.clear();
     bool opaqueGeometry = settings.ground;
     for (std::size_t c = 0; c < world.characters.size(); ++c) {
         const scene::Character& character = world.characters[c];
@@ -241,6 +244,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         anim::applyClip(model, character.playingClip(), character.clipTime(time), cg.pose);
         anim::updateWorld(model, cg.pose);
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
+        placeLights(model, cg.pose, character.transform(), gpu.lights);
         const auto& instances = cg.deformer->instances();
         for (std::size_t i = 0; i < instances.size(); ++i)
             for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
@@ -269,6 +273,12 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
             }
     }
     gpu.poses.upload(); // every character's, at once; the deform pass reads them
+    gpu.lights.insert(gpu.lights.end(), world.lights.begin(), world.lights.end());
+    if (gpu.lights.size() > core::limits::kMaxLights)
+        return core::Error{
+            "render::Renderer::render(): the scene places " + std::to_string(gpu.lights.size()) +
+            " punctual lights, over the limit of " + std::to_string(core::limits::kMaxLights)};
+    gpu.lighting.upload(gpu.lights); // bound for every pass of the frame
     FrameInfo frame;
     frame.world = &world;
     frame.items = gpu.items;

@@ -9,48 +9,23 @@
 #include "engine/core/Result.h"
 #include "engine/plugin/ParameterSet.h"
 #include "engine/render/Camera.h"
+#include "engine/render/CpuShading.h"
 #include "engine/render/FrameInfo.h"
 #include "engine/scene/Model.h"
 #include "engine/scene/World.h"
 
 #include <vector>
 
-namespace render {
-class Environment;
-}
-
 namespace refraction {
 
-/** The environment as the GPU samples it: the prefiltered equirectangular levels (level 0 is
- *  the source; roughness r reads level r * (levels - 1), trilinear, both axes wrapping), the
- *  diffuse irradiance map, rotation about +y and intensity. */
-class EnvironmentSampler {
-public:
-    /** One level from an image (no prefiltered levels: any roughness reads level 0; irradiance
-     *  unavailable, black). */
-    EnvironmentSampler(const asset::HdrImage& image, float rotation, float intensity);
-    /** Reads the renderer's environment textures back (needs its GL context current). */
-    static EnvironmentSampler fromGpu(const render::Environment& environment, float rotation,
-                                      float intensity);
-
-    glm::dvec3 radiance(glm::dvec3 direction, double roughness) const;
-    glm::dvec3 irradiance(glm::dvec3 normal) const;
-
-private:
-    EnvironmentSampler() = default;
-    struct Level {
-        int width = 0, height = 0;
-        std::vector<float> rgba;
-    };
-    static glm::dvec3 bilinear(const Level& level, glm::dvec2 uv);
-    glm::dvec3 rotate(glm::dvec3 d) const;
-    std::vector<Level> mLevels;
-    Level mIrradiance;
-    float mRotation = 0.0f, mIntensity = 1.0f;
-};
+/** The environment as the GPU samples it (the engine's CPU twin of its shading). */
+using EnvironmentSampler = render::EnvironmentSampler;
 
 struct ReferenceOptions {
     int samplesPerPixel = 16; ///< jittered in a stratified grid when a square
+    /** One ray through each pixel's centre, as the GPU rasterises (samplesPerPixel unused):
+     *  the two then see the same point of every surface, outlines included. */
+    bool pixelCentres = false;
     /** Interfaces a path crosses or reflects at after the entry before it is given up (black,
      *  counted as trapped when in glass); paths whose throughput falls under 1e-4 end first. */
     int maxBounces = 1024;

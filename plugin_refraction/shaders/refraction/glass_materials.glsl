@@ -9,6 +9,10 @@ struct GlassMaterial {
     vec4 sigma;      // Beer-Lambert absorption per world unit, w: roughness
     vec4 baseColor;  // w: metallic
     vec4 emissive;   // w: the solid (character) it belongs to
+    vec4 specular;   // KHR_materials_specular: rgb its colour, w its weight (all 1 without it)
+    vec4 layers;     // x: clearcoat, y: its roughness, z: iridescence, w: the film's index
+    vec4 sheen;      // rgb: sheen colour, w: its roughness
+    vec4 film;       // x: the iridescent film's thickness (nm)
 };
 layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
 

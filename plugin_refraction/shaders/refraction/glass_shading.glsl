@@ -21,13 +21,9 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 uniform int uMethod, uSteps, uTirPolicy, uBounces, uDebug;
 uniform int uGlassId;          // the glass's entry of glassMaterials
 uniform int uSharedDispersion; // 1: one exit search shared by the channels, 0: one each
-uniform int uHasNormalTexture;
-uniform sampler2D uNormalTexture;
-uniform mat3 uNormalUv;       // KHR_texture_transform of the normal texture
 uniform float uNormalScale;
 uniform sampler2D uBackDepth, uBackNormal, uFrontDepth, uFrontNormal;
 uniform float uNormalLod;
-uniform vec3 uViewOriginWorld;
 
 layout(std430, binding = 3) readonly buffer Range { uint range[]; }; // back min/max, front min/max
 
@@ -157,8 +153,8 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec4 uvs) {
     vec3 N1 = normalize(N);
     if (dot(N1, V) > 0.0)
         N1 = -N1;
-    if (uHasNormalTexture != 0) {
-        vec3 mapped = perturbNormal(N1, tangent, uNormalTexture, slotUv(uvs, uNormalUv, SLOT_NORMAL),
+    if (hasTexture(SLOT_NORMAL)) {
+        vec3 mapped = perturbNormal(N1, tangent, uTexture[SLOT_NORMAL], slotUv(uvs, SLOT_NORMAL),
                                     uNormalScale);
         N1 = dot(mapped, V) < 0.0 ? mapped : N1;
     }
@@ -197,7 +193,7 @@ vec3 shadeGlass(vec3 P1, vec3 N, vec4 tangent, vec4 uvs) {
         transmitted = green * exp(-sigma * path.length);
     }
 
-    vec3 color = glassColor(m, V, N1, transmitted);
+    vec3 color = glassColor(m, P1, V, N1, transmitted);
 
     float zBackMax = uintBitsToFloat(range[1]);
     float scale = zBackMax > 0.0 ? 1.0 / zBackMax : 1.0;

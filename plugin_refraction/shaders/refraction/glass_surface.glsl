@@ -37,19 +37,52 @@ vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
     return texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
 }
 
-// The glass's colour at the entry (view direction V, normal N1 facing it) of light `transmitted`
-// through it: Fresnel between the reflected environment and the transmitted light in the base
-// colour, the opaque term where transmission is partial, and emission.
-vec3 glassColor(GlassMaterial m, vec3 V, vec3 N1, vec3 transmitted) {
-    float F = fresnel(uFresnelMode, dot(-V, N1), 1.0 / m.ior.g);
+// The glass's reflectance from air at cosI, per channel: the Fresnel mode's, its F0 coloured and
+// weighted by KHR_materials_specular (the rise toward grazing kept), seen through the
+// iridescent film where it has one.
+vec3 glassReflectance(GlassMaterial m, float cosI) {
+    float eta = 1.0 / m.ior.g;
+    vec3 F = vec3(fresnel(uFresnelMode, cosI, eta));
+    if (m.specular != vec4(1.0)) {
+        float f0 = fresnel(uFresnelMode, 1.0, eta);
+        vec3 coloured = min(f0 * m.specular.rgb, vec3(1.0));
+        F = m.specular.w * (coloured + (1.0 - coloured) * (f0 < 1.0 ? (F - f0) / (1.0 - f0) : vec3(1.0)));
+    }
+    if (m.layers.z > 0.0 && uFresnelMode != FRESNEL_OFF)
+        F = mix(F, thinFilmReflectance(cosI, m.layers.w, m.film.x, vec3(m.ior.g)), m.layers.z);
+    return F;
+}
+
+// The glass's colour at the entry P (view space; view direction V, normal N1 facing it) of light
+// `transmitted` through it: its reflectance between the reflected environment and the lights'
+// highlights and the transmitted light in the base colour, the opaque term where transmission
+// is partial, the clear coat and sheen over it, and emission.
+vec3 glassColor(GlassMaterial m, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
+    vec3 Pw = uViewToWorld * P + uViewOriginWorld, Nw = uViewToWorld * N1, Vw = uViewToWorld * -V;
+    vec3 F = glassReflectance(m, dot(-V, N1));
     vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
     vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
+    float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0), alpha = max(m.sigma.w, 0.03) * max(m.sigma.w, 0.03);
+    for (uint i = 0u; i < lightCount.x; ++i) {
+        vec3 L;
+        vec3 arriving = lightArriving(i, Pw, L);
+        vec3 H = normalize(L + Vw);
+        float NoL = dot(Nw, L);
+        if (NoL > 0.0)
+            glass += arriving * NoL * glassReflectance(m, max(dot(Vw, H), 0.0)) *
+                     ggxLobe(NoL, NoV, max(dot(Nw, H), 0.0), alpha);
+    }
     vec3 color = glass;
     if (m.ior.w < 1.0) // the same for every pixel of a glass: clear glass skips the opaque term
         color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,
-                                           uViewToWorld * N1, uViewToWorld * -V),
+                                           Pw, Nw, Vw),
                     glass, m.ior.w);
-    return color + m.emissive.rgb;
+    SurfaceMaterial layers = coreSurface(m.baseColor.rgb, m.baseColor.w, m.sigma.w, 1.0, Nw);
+    layers.clearcoat = m.layers.x;
+    layers.clearcoatRoughness = m.layers.y;
+    layers.sheenColor = m.sheen.rgb;
+    layers.sheenRoughness = m.sheen.w;
+    return layersOver(color, layers, Pw, Nw, Vw) + m.emissive.rgb;
 }
 
 #endif

@@ -12,9 +12,6 @@
 #include "refraction/layers.glsl"
 
 uniform int uGlassId;
-uniform int uHasNormalTexture;
-uniform sampler2D uNormalTexture;
-uniform mat3 uNormalUv; // KHR_texture_transform of the normal texture
 uniform float uNormalScale;
 
 void main() {
@@ -22,8 +19,8 @@ void main() {
     uint pixel = pixelIndex(p);
     float z = -vViewPosition.z;
     vec3 n = normalize(vViewNormal);
-    if (uHasNormalTexture != 0)
-        n = perturbNormal(n, vViewTangent, uNormalTexture, slotUv(vUv, uNormalUv, SLOT_NORMAL),
+    if (hasTexture(SLOT_NORMAL))
+        n = perturbNormal(n, vViewTangent, uTexture[SLOT_NORMAL], slotUv(vUv, SLOT_NORMAL),
                           uNormalScale);
     uint id = uint(uGlassId);
     uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;

@@ -49,7 +49,6 @@ const int kMethod = LAYER_METHOD;
 
 uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uDebug;
 uniform mat4 uInverseProjection;
-uniform vec3 uViewOriginWorld;
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
 // otherwise move the test after it, for every pixel of the rectangle).
@@ -540,7 +539,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
         }
     }
 #endif
-    return glassColor(m, V, N1, transmitted);
+    return glassColor(m, P1, V, N1, transmitted);
 }
 
 void main() {

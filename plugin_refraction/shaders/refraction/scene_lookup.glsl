@@ -10,6 +10,7 @@ uniform int uNearby;
 uniform sampler2D uSceneColor, uSceneDepth;
 uniform float uNear, uFar, uNearbyDistance;
 uniform mat3 uViewToWorld; // rotation part of the inverse view matrix
+uniform vec3 uViewOriginWorld; // the camera in world space
 
 float linearDepth(float d) {
     float z = d * 2.0 - 1.0;

@@ -3,6 +3,8 @@
 #include "support/TestSupport.h"
 
 #include "engine/asset/GltfLoader.h"
+#include "engine/render/Lighting.h"
+#include "engine/scene/World.h"
 
 namespace {
 
@@ -191,6 +193,109 @@ TEST(Accessor, GlassExtensionsAreRead) {
     EXPECT_FLOAT_EQ(m.ior, 1.33f);
     EXPECT_FLOAT_EQ(m.dispersion, 0.1f);
     EXPECT_FLOAT_EQ(m.emissiveStrength, 4.0f);
+}
+
+TEST(Accessor, SurfaceLayerExtensionsAreRead) {
+    // KHR_materials_clearcoat, _sheen, _iridescence and _anisotropy with their factors and a
+    // texture each; the anisotropy gives the primitive generated tangents.
+    test::GltfBuilder b = triangle();
+    auto& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
+    attributes["NORMAL"] =
+        b.addAccessor(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1}, 5126, "VEC3");
+    attributes["TEXCOORD_0"] = b.addAccessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2");
+    const std::vector<std::uint8_t> png = test::makePng(1, 1, {128, 128, 255, 255});
+    b.doc["images"] = {
+        {{"bufferView", b.addView(png.data(), png.size())}, {"mimeType", "image/png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    b.doc["materials"] = {{{"extensions",
+                            {{"KHR_materials_clearcoat",
+                              {{"clearcoatFactor", 0.7},
+                               {"clearcoatRoughnessFactor", 0.2},
+                               {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}},
+                             {"KHR_materials_sheen",
+                              {{"sheenColorFactor", {0.9, 0.4, 0.1}},
+                               {"sheenRoughnessFactor", 0.6},
+                               {"sheenColorTexture", {{"index", 0}, {"texCoord", 1}}}}},
+                             {"KHR_materials_iridescence",
+                              {{"iridescenceFactor", 1.0},
+                               {"iridescenceIor", 1.8},
+                               {"iridescenceThicknessMinimum", 200},
+                               {"iridescenceThicknessMaximum", 500},
+                               {"iridescenceThicknessTexture", {{"index", 0}}}}},
+                             {"KHR_materials_anisotropy",
+                              {{"anisotropyStrength", 0.6},
+                               {"anisotropyRotation", 1.5},
+                               {"anisotropyTexture", {{"index", 0}}}}}}}}};
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_materials_sheen",
+                               "KHR_materials_iridescence", "KHR_materials_anisotropy"};
+    b.doc["extensionsRequired"] = {"KHR_materials_clearcoat", "KHR_materials_iridescence"};
+    test::TempDir dir;
+    const auto model = asset::loadGltf(b.save(dir.path(), "layers", test::GltfFormat::Glb));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    EXPECT_TRUE(model->warnings.empty()) << model->warnings.front();
+    const scene::Material& m = model->materials[0];
+    EXPECT_TRUE(m.hasClearcoat);
+    EXPECT_FLOAT_EQ(m.clearcoatFactor, 0.7f);
+    EXPECT_FLOAT_EQ(m.clearcoatRoughnessFactor, 0.2f);
+    EXPECT_EQ(m.clearcoatNormalTexture.texture, 0);
+    EXPECT_FLOAT_EQ(m.clearcoatNormalTexture.scale, 0.5f);
+    EXPECT_TRUE(m.hasSheen);
+    EXPECT_FLOAT_EQ(m.sheenColorFactor.g, 0.4f);
+    EXPECT_FLOAT_EQ(m.sheenRoughnessFactor, 0.6f);
+    EXPECT_EQ(m.sheenColorTexture.texCoord, 1);
+    EXPECT_TRUE(m.hasIridescence);
+    EXPECT_FLOAT_EQ(m.iridescenceIor, 1.8f);
+    EXPECT_FLOAT_EQ(m.iridescenceThicknessMinimum, 200.0f);
+    EXPECT_FLOAT_EQ(m.iridescenceThicknessMaximum, 500.0f);
+    EXPECT_TRUE(m.iridescenceThicknessTexture.present());
+    EXPECT_TRUE(m.hasAnisotropy);
+    EXPECT_FLOAT_EQ(m.anisotropyStrength, 0.6f);
+    EXPECT_FLOAT_EQ(m.anisotropyRotation, 1.5f);
+    EXPECT_TRUE(m.anisotropyTexture.present());
+    EXPECT_TRUE(model->meshes[0].primitives[0].generatedTangents);
+}
+
+TEST(Accessor, PunctualLightsArePlacedOnTheirNodes) {
+    // KHR_lights_punctual: a spot on a node turned to look down +x, a point light with a range,
+    // a directional light; render::worldLights places them in world space.
+    test::GltfBuilder b = triangle();
+    b.doc["extensions"] = {{"KHR_lights_punctual",
+                            {{"lights",
+                              {{{"type", "spot"},
+                                {"color", {1.0, 0.5, 0.25}},
+                                {"intensity", 20},
+                                {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.4}}}},
+                               {{"type", "point"}, {"intensity", 5}, {"range", 3}},
+                               {{"type", "directional"}}}}}}};
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    // -z turned to +x: a quarter turn about +y (quaternion [0, -sin 45, 0, cos 45])
+    b.doc["nodes"].push_back({{"translation", {0, 2, 0}},
+                              {"rotation", {0, -0.7071068, 0, 0.7071068}},
+                              {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc["nodes"].push_back(
+        {{"translation", {1, 1, 1}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    b.doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+    b.doc["scenes"][0]["nodes"] = {0, 1, 2, 3};
+    test::TempDir dir;
+    const auto model = asset::loadGltf(b.save(dir.path(), "lights"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    EXPECT_TRUE(model->warnings.empty()) << model->warnings.front();
+    ASSERT_EQ(model->lights.size(), 3u);
+    EXPECT_EQ(model->lights[0].type, scene::Light::Type::Spot);
+    EXPECT_FLOAT_EQ(model->lights[0].outerConeAngle, 0.4f);
+    EXPECT_FLOAT_EQ(model->lights[1].range, 3.0f);
+    EXPECT_EQ(model->lights[2].type, scene::Light::Type::Directional);
+    EXPECT_EQ(model->nodes[1].light, 0);
+    scene::World world = scene::singleCharacterWorld(std::make_shared<const scene::Model>(*model));
+    world.characters[0].placement.translation = {10.0, 0.0, 0.0};
+    const auto lights = render::worldLights(world, 0.0);
+    ASSERT_EQ(lights.size(), 3u);
+    EXPECT_NEAR(lights[0].position.x, 10.0f, 1e-5f);
+    EXPECT_NEAR(lights[0].position.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(lights[0].direction.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(lights[1].position.z, 1.0f, 1e-5f);
+    EXPECT_NEAR(lights[2].direction.z, -1.0f, 1e-5f);
 }
 
 TEST(Accessor, MatrixNodeAndCamera) {

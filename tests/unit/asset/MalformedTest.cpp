@@ -275,6 +275,44 @@ const std::vector<MalformedCase>& cases() {
              b.doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};
          },
          {"material 0 ior"}},
+        {"ClearcoatOverOne",
+         [](auto& b) {
+             b.doc["materials"] = {
+                 {{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 2.0}}}}}}};
+         },
+         {"material 0 clearcoatFactor is 2.000000, outside [0.000000, 1.000000]"}},
+        {"SheenTextureMissing",
+         [](auto& b) {
+             b.doc["materials"] = {
+                 {{"extensions",
+                   {{"KHR_materials_sheen", {{"sheenColorTexture", {{"index", 4}}}}}}}}};
+         },
+         {"material 0 sheenColorTexture references texture 4, file has 0 textures"}},
+        {"IridescenceIorBelowOne",
+         [](auto& b) {
+             b.doc["materials"] = {
+                 {{"extensions", {{"KHR_materials_iridescence", {{"iridescenceIor", 0.5}}}}}}};
+         },
+         {"material 0 iridescenceIor is 0.500000, outside [1.000000"}},
+        {"LightOfAnUnknownType",
+         [](auto& b) {
+             b.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "area"}}}}}}};
+         },
+         {"KHR_lights_punctual light 0 type \"area\" is not directional, point or spot"}},
+        {"SpotConeInsideOut",
+         [](auto& b) {
+             b.doc["extensions"] = {
+                 {"KHR_lights_punctual",
+                  {{"lights",
+                    {{{"type", "spot"},
+                      {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.2}}}}}}}}};
+         },
+         {"KHR_lights_punctual light 0 spot cone angles", "must satisfy 0 <= inner < outer"}},
+        {"NodeNamesAMissingLight",
+         [](auto& b) {
+             b.doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 2}}}};
+         },
+         {"node 0 KHR_lights_punctual light 2 is not a light of the file's 0"}},
     };
     return all;
 }
@@ -347,12 +385,13 @@ TEST(Degrade, ARequiredMaterialExtensionTheEngineLacksIsAWarning) {
     // required or only used.
     test::TempDir dir;
     test::GltfBuilder builder = test::twoJointModel();
-    builder.doc["extensionsUsed"] = builder.doc["extensionsRequired"] = {"KHR_materials_sheen"};
-    const auto model = asset::loadGltf(builder.save(dir.path(), "sheen"));
+    builder.doc["extensionsUsed"] =
+        builder.doc["extensionsRequired"] = {"KHR_materials_diffuse_transmission"};
+    const auto model = asset::loadGltf(builder.save(dir.path(), "diffuse"));
     ASSERT_TRUE(model.ok()) << model.error().message;
     ASSERT_EQ(model->warnings.size(), 1u);
-    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_materials_sheen, which this engine "
-                                  "does not implement: loaded without it");
+    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_materials_diffuse_transmission, which "
+                                  "this engine does not implement: loaded without it");
 }
 
 TEST(Degrade, BoundsThatAreNotTheDataAreNamed) {
@@ -380,13 +419,13 @@ TEST(Degrade, BoundsThatAreNotTheDataAreNamed) {
 TEST(Degrade, ExtensionsUsedButNotRequiredLoadWithAWarningAndALater2xLoads) {
     test::TempDir dir;
     test::GltfBuilder builder = test::twoJointModel();
-    builder.doc["extensionsUsed"] = {"KHR_materials_anisotropy", "KHR_materials_ior"};
+    builder.doc["extensionsUsed"] = {"KHR_materials_diffuse_transmission", "KHR_materials_ior"};
     builder.doc["asset"]["version"] = "2.1";
     const auto model = asset::loadGltf(builder.save(dir.path(), "used"));
     ASSERT_TRUE(model.ok()) << model.error().message;
     ASSERT_EQ(model->warnings.size(), 1u) << "KHR_materials_ior is implemented";
-    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_materials_anisotropy, which this "
-                                  "engine does not implement: loaded without it");
+    EXPECT_EQ(model->warnings[0], "extensionsUsed lists KHR_materials_diffuse_transmission, "
+                                  "which this engine does not implement: loaded without it");
     const auto clean = asset::loadGltf(test::twoJointModel().save(dir.path(), "clean"));
     ASSERT_TRUE(clean.ok());
     EXPECT_TRUE(clean->warnings.empty());

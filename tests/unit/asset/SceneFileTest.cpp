@@ -101,6 +101,36 @@ std::vector<BadScene> badScenes() {
          "parsing '1e999'"},
         {"SyntaxErrorHasItsLine", "{\"characters\": [\n  {\"model\": \"a.glb\",}\n]}",
          "not valid JSON at line 2, column 21 (after the key \"model\"): syntax error"},
+        {"LightsNotAnArray", scene({character()}, {{"lights", 3}}),
+         "lights: expected an array of lights, got 3"},
+        {"LightOfAnUnknownType", scene({character()}, {{"lights", {{{"type", "area"}}}}}),
+         "lights[0].type: expected directional, point or spot, got \"area\""},
+        {"PointLightWithoutPosition", scene({character()}, {{"lights", {{{"type", "point"}}}}}),
+         "lights[0].position: missing (a point light's position in the world)"},
+        {"SpotLightPointingNowhere",
+         scene(
+             {character()},
+             {{"lights", {{{"type", "spot"}, {"position", {0, 1, 0}}, {"direction", {0, 0, 0}}}}}}),
+         "lights[0].direction: a zero vector points nowhere"},
+        {"SpotConeInsideOut",
+         scene({character()}, {{"lights",
+                                {{{"type", "spot"},
+                                  {"position", {0, 1, 0}},
+                                  {"direction", {0, -1, 0}},
+                                  {"inner_cone_angle", 0.6},
+                                  {"outer_cone_angle", 0.3}}}}}),
+         "lights[0]: a spot light needs inner_cone_angle < outer_cone_angle <= pi/2"},
+        {"NegativeIntensity",
+         scene({character()},
+               {{"lights",
+                 {{{"type", "directional"}, {"direction", {0, -1, 0}}, {"intensity", -2}}}}}),
+         "lights[0].intensity: expected a number of at least 0, got -2"},
+        {"TooManyLights",
+         scene({character()},
+               {{"lights", Json(std::vector<Json>(
+                               core::limits::kMaxLights + 1,
+                               Json{{"type", "directional"}, {"direction", {0, -1, 0}}}))}}),
+         "lights: 257 lights, the limit is 256"},
         {"TooManyCharacters",
          scene(Json(std::vector<Json>(core::limits::kMaxCharacters + 1, character()))),
          "characters: 4097 characters, the limit is 4096"},
@@ -214,6 +244,17 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
     SceneDir dir;
     const Json root = {
         {"ground", true},
+        {"lights",
+         {{{"name", "key"},
+           {"type", "spot"},
+           {"position", {1, 2, 3}},
+           {"direction", {0, -1, 0}},
+           {"color", {1, 0.5, 0.25}},
+           {"intensity", 40},
+           {"range", 9},
+           {"inner_cone_angle", 0.2},
+           {"outer_cone_angle", 0.6}},
+          {{"type", "directional"}, {"direction", {0, 0, -2}}}}},
         {"characters",
          {character({{"translation", {-1, 0, 0.5}},
                      {"rotation", {0, 0, 0.3826834, 0.9238795}},
@@ -238,6 +279,24 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
     ASSERT_TRUE(second.ok()) << second.error().message;
     ASSERT_EQ(second->characters.size(), first->characters.size());
     EXPECT_EQ(second->ground, first->ground);
+    ASSERT_EQ(first->lights.size(), 2u);
+    ASSERT_EQ(second->lights.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const scene::PlacedLight &a = first->lights[i], &b = second->lights[i];
+        EXPECT_EQ(b.light.type, a.light.type);
+        EXPECT_EQ(b.light.name, a.light.name);
+        EXPECT_EQ(b.light.color, a.light.color);
+        EXPECT_EQ(b.light.intensity, a.light.intensity);
+        EXPECT_EQ(b.light.range, a.light.range);
+        EXPECT_EQ(b.light.innerConeAngle, a.light.innerConeAngle);
+        EXPECT_EQ(b.light.outerConeAngle, a.light.outerConeAngle);
+        EXPECT_EQ(b.position, a.position);
+        EXPECT_EQ(b.direction, a.direction);
+    }
+    EXPECT_EQ(first->lights[0].light.type, scene::Light::Type::Spot);
+    EXPECT_FLOAT_EQ(first->lights[0].light.outerConeAngle, 0.6f);
+    EXPECT_EQ(first->lights[1].direction, glm::vec3(0.0f, 0.0f, -1.0f)); // normalised
+    EXPECT_EQ(first->lights[1].light.name, "lights[1]");
     for (std::size_t i = 0; i < first->characters.size(); ++i) {
         const scene::Character& a = first->characters[i];
         const scene::Character& b = second->characters[i];

@@ -264,13 +264,13 @@ TEST(InspectTool, CheckListsEveryFileAndFailsOnARefusal) {
     std::filesystem::create_directories(dir / "sub");
     test::twoJointModel().save(dir.path(), "good", test::GltfFormat::Glb);
     test::GltfBuilder used = test::twoJointModel();
-    used.doc["extensionsUsed"] = {"KHR_materials_anisotropy"};
+    used.doc["extensionsUsed"] = {"KHR_materials_diffuse_transmission"};
     used.save(dir.path() / "sub", "used");
     std::string out;
     ASSERT_EQ(test::runCommand(kInspect + " --check " + dir.path().string(), &out), 0) << out;
     EXPECT_NE(out.find("ok       " + (dir / "good.glb").string()), std::string::npos) << out;
     EXPECT_NE(out.find("warnings " + (dir / "sub" / "used.gltf").string() +
-                       ": extensionsUsed lists KHR_materials_anisotropy"),
+                       ": extensionsUsed lists KHR_materials_diffuse_transmission"),
               std::string::npos)
         << out;
     test::GltfBuilder required = test::twoJointModel();

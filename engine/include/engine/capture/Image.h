@@ -19,11 +19,12 @@ struct Image {
 std::vector<std::uint8_t> encodePng(const Image& image);
 /** Encodes `image` as PNG and writes it atomically (no partial file on failure). */
 core::Status writePng(const std::filesystem::path& path, const Image& image);
-/** Reads a PNG (any channel count, expanded to RGBA8); fails naming the file. */
+/** Reads a PNG or JPEG (any channel count, expanded to RGBA8); fails naming the file. */
 core::Result<Image> readPng(const std::filesystem::path& path);
 
-/** The images in a grid of `columns` (rows as needed), left to right then top to bottom, each
- *  scaled to `cellWidth` wide (height by its aspect, nearest texel) with a `gap` of dark grey. */
+/** The images in a grid of `columns` (rows as needed), left to right then top to bottom, with
+ *  a `gap` of dark grey: cells `cellWidth` wide and as high as the first image's aspect makes
+ *  them, each image scaled to fit its cell whole (its aspect kept, nearest texel), centred. */
 Image contactSheet(const std::vector<Image>& images, int columns, int cellWidth, int gap = 4);
 
 struct Tolerance {

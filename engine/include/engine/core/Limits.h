@@ -45,6 +45,10 @@ inline constexpr std::size_t kMaxRefinedTriangles = std::size_t(1) << 23;
  *  or opaque primitive every frame; a crowd larger than this is not real time anywhere. */
 inline constexpr std::size_t kMaxCharacters = 4096;
 
+/** Punctual lights in one frame (a scene file's and its characters' KHR_lights_punctual lights):
+ *  every shaded pixel evaluates each of them. */
+inline constexpr std::size_t kMaxLights = 256;
+
 /** Bytes of a scene file: 4096 characters at a few hundred bytes each need about 2 MB; a file
  *  far larger is not a scene, and is refused before it is parsed. */
 inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(64) << 20;

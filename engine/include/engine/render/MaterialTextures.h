@@ -1,5 +1,5 @@
-// A model's textures on the GPU (base colour and emissive as sRGB, the rest linear), plus
-// per-material binding of the metallic-roughness uniforms of render/pbr.frag.glsl.
+// A model's textures on the GPU (colour slots as sRGB, the rest linear), plus per-material
+// binding of the material uniforms of render/pbr.frag.glsl and common/material_uv.glsl.
 #pragma once
 
 #include "engine/core/Result.h"
@@ -17,9 +17,12 @@ public:
      *  when one is over GL_MAX_TEXTURE_SIZE or was not decoded. */
     static core::Result<MaterialTextures> create(const scene::Model& model);
 
-    /** Sets the material uniforms (factors, unlit, texture flags and KHR_texture_transform
-     *  matrices `u<Slot>Uv`) and binds its textures to units
-     *  `firstUnit`..`firstUnit + 6`. Material -1 is the glTF default material. */
+    /** Texture slots a material binds (common/material_uv.glsl's SLOT_*). */
+    static constexpr int kSlotCount = 15;
+
+    /** Sets the material uniforms (factors, unlit, and per slot its texture flag, texture
+     *  coordinate set and KHR_texture_transform matrix) and binds its textures to units
+     *  `firstUnit`..`firstUnit + kSlotCount - 1`. Material -1 is the glTF default material. */
     void bind(const gl::Program& program, const scene::Model& model, int material,
               int firstUnit) const;
 

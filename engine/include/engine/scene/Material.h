@@ -1,5 +1,6 @@
-// Engine-owned materials: metallic-roughness plus the glass extensions the refraction plugin
-// reads (transmission, volume, ior, dispersion) and emissive strength.
+// Engine-owned materials: metallic-roughness, the glass extensions the refraction plugin reads
+// (transmission, volume, ior, dispersion) and the layers over the base every shading path
+// follows (specular, clearcoat, sheen, iridescence, anisotropy, emissive strength).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -61,6 +62,37 @@ struct Material {
     TextureRef specularTexture;
     glm::vec3 specularColorFactor{1.0f};
     TextureRef specularColorTexture;
+    // KHR_materials_clearcoat: a second, colourless specular layer (F0 0.04) over the base, its
+    // strength (texture r), roughness (texture g) and own normal map
+    bool hasClearcoat = false;
+    float clearcoatFactor = 0.0f;
+    TextureRef clearcoatTexture;
+    float clearcoatRoughnessFactor = 0.0f;
+    TextureRef clearcoatRoughnessTexture;
+    TextureRef clearcoatNormalTexture;
+    // KHR_materials_sheen: a cloth-like retro-reflective layer, its colour (texture rgb, sRGB)
+    // and roughness (texture alpha)
+    bool hasSheen = false;
+    glm::vec3 sheenColorFactor{0.0f};
+    TextureRef sheenColorTexture;
+    float sheenRoughnessFactor = 0.0f;
+    TextureRef sheenRoughnessTexture;
+    // KHR_materials_iridescence: a thin film on the surface, its strength (texture r), index of
+    // refraction and thickness in nanometres (between minimum and maximum by texture g; the
+    // maximum without a texture)
+    bool hasIridescence = false;
+    float iridescenceFactor = 0.0f;
+    TextureRef iridescenceTexture;
+    float iridescenceIor = 1.3f;
+    float iridescenceThicknessMinimum = 100.0f;
+    float iridescenceThicknessMaximum = 400.0f;
+    TextureRef iridescenceThicknessTexture;
+    // KHR_materials_anisotropy: the specular lobe stretched along a direction in the tangent
+    // plane, `anisotropyRotation` radians from the tangent (texture rg: direction, b: strength)
+    bool hasAnisotropy = false;
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;
+    TextureRef anisotropyTexture;
     // KHR_materials_dispersion: 20 / Abbe number
     bool hasDispersion = false;
     float dispersion = 0.0f;
@@ -72,6 +104,19 @@ struct Material {
             return 0.04f;
         const float r = (ior - 1.0f) / (ior + 1.0f);
         return r * r;
+    }
+
+    /** Every texture slot, with whether its texture holds colour (sRGB) rather than data. */
+    template <typename F> void forEachTexture(F&& f) const {
+        for (const TextureRef* t :
+             {&baseColorTexture, &emissiveTexture, &specularColorTexture, &sheenColorTexture})
+            f(*t, true);
+        for (const TextureRef* t :
+             {&metallicRoughnessTexture, &normalTexture, &occlusionTexture, &transmissionTexture,
+              &thicknessTexture, &specularTexture, &clearcoatTexture, &clearcoatRoughnessTexture,
+              &clearcoatNormalTexture, &sheenRoughnessTexture, &iridescenceTexture,
+              &iridescenceThicknessTexture, &anisotropyTexture})
+            f(*t, false);
     }
 
     /** Glass as the plugin sees it: any transmission. */

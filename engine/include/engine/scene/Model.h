@@ -3,6 +3,7 @@
 
 #include "engine/scene/Animation.h"
 #include "engine/scene/Camera.h"
+#include "engine/scene/Light.h"
 #include "engine/scene/Material.h"
 #include "engine/scene/Mesh.h"
 #include "engine/scene/Node.h"
@@ -28,6 +29,7 @@ struct Model {
     std::vector<Image> images;
     std::vector<Sampler> samplers;
     std::vector<Camera> cameras;
+    std::vector<Light> lights; ///< KHR_lights_punctual, placed by the nodes that name them
     std::vector<std::vector<int>> scenes; ///< root nodes of each scene
     int defaultScene = 0;                 ///< -1 when the file has no scene
     /** What loading skipped or could not honour, each naming its element (an extension the

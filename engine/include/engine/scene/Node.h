@@ -33,6 +33,7 @@ struct Node {
     int mesh = -1;
     int skin = -1;
     int camera = -1;
+    int light = -1;             ///< KHR_lights_punctual: index into Model::lights
     std::vector<float> weights; ///< node-level default morph weights (overrides the mesh's)
     /** EXT_mesh_gpu_instancing: T * R * S of each instance, in the node's space (the mesh is
      *  drawn once per instance at world * instance; skinned, the skinned mesh is placed so);

@@ -68,6 +68,8 @@ struct World {
     std::optional<std::string> environment; ///< an HDR path (absolute once loaded); else the sky
     bool ground = false;
     std::optional<WorldCamera> camera; ///< else the tools frame every character
+    /** Lights the scene file places (its characters' own lights come with their models). */
+    std::vector<PlacedLight> lights;
 
     /** The longest Character::clipPeriod() of the characters; 0 when none plays a clip. */
     double longestClipPeriod() const;

@@ -1,0 +1,53 @@
+// The frame's lighting beyond the environment: the punctual lights placed in the world, and the
+// sheen layer's albedo table, in the storage buffer common/lighting.glsl reads (binding 9).
+#pragma once
+
+#include "engine/gl/Buffer.h"
+#include "engine/scene/Light.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace anim {
+struct Pose;
+}
+namespace scene {
+struct Model;
+struct World;
+} // namespace scene
+
+namespace render {
+
+/** The storage binding of the lighting buffer, bound for the whole frame. */
+constexpr std::uint32_t kLightingBinding = 9;
+constexpr int kSheenTableSize = 16;
+
+/** E(NoV, roughness), the directional albedo of KHR_materials_sheen's lobe (Charlie
+ *  distribution, Ashikhmin visibility) integrated numerically once: row r holds roughness
+ *  r / (size - 1), column c NoV c / (size - 1). */
+const std::array<float, kSheenTableSize * kSheenTableSize>& sheenAlbedoTable();
+/** The table read bilinearly, as common/lighting.glsl reads it on the GPU. */
+double sheenAlbedo(double NoV, double roughness);
+
+/** The lights of `model`'s nodes (KHR_lights_punctual) in `pose`, placed by `placement`,
+ *  appended to `out`. */
+void placeLights(const scene::Model& model, const anim::Pose& pose, const glm::dmat4& placement,
+                 std::vector<scene::PlacedLight>& out);
+/** Every light of `world` at scene time `time`: its characters' (posed) and its own. */
+std::vector<scene::PlacedLight> worldLights(const scene::World& world, double time);
+
+/** The lighting buffer on the GPU: the sheen table, then the light count and the lights. */
+class LightingBuffer {
+public:
+    /** Writes `lights` (growing the buffer when they do not fit) and binds it. */
+    void upload(const std::vector<scene::PlacedLight>& lights);
+
+private:
+    gl::Buffer mBuffer;
+    std::size_t mCapacity = 0;
+};
+
+} // namespace render

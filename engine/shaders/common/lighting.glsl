@@ -1,0 +1,61 @@
+// The frame's punctual lights (KHR_lights_punctual, a scene file's "lights") and the table of the
+// sheen layer's directional albedo: one storage buffer the renderer binds for every pass
+// (render::Lighting; its C++ layout is render::LightingGpu).
+#ifndef COMMON_LIGHTING_GLSL
+#define COMMON_LIGHTING_GLSL
+
+const int LIGHT_DIRECTIONAL = 0, LIGHT_POINT = 1, LIGHT_SPOT = 2;
+const int SHEEN_TABLE_SIZE = 16;
+
+struct PunctualLight {
+    vec4 position;  // world; w: LIGHT_*
+    vec4 direction; // where it shines (unit, world); w: range, 0 for unlimited
+    vec4 radiance;  // colour * intensity; w: cosine of the outer cone angle
+    vec4 cone;      // x: cosine of the inner cone angle
+};
+layout(std430, binding = 9) readonly buffer Lighting {
+    // E(NoV, roughness) of the sheen lobe, row r: roughness r / (size - 1), column c: NoV
+    // c / (size - 1)
+    float sheenAlbedoTable[SHEEN_TABLE_SIZE * SHEEN_TABLE_SIZE];
+    uvec4 lightCount; // x
+    PunctualLight punctualLights[];
+};
+
+// Light `i` as it arrives at P: its radiance after the distance, range and cone falloffs, and
+// the unit direction L toward it.
+vec3 lightArriving(uint i, vec3 P, out vec3 L) {
+    PunctualLight light = punctualLights[i];
+    if (int(light.position.w) == LIGHT_DIRECTIONAL) {
+        L = -light.direction.xyz;
+        return light.radiance.rgb;
+    }
+    vec3 toLight = light.position.xyz - P;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    L = toLight * inversesqrt(d2);
+    float falloff = 1.0 / d2;
+    if (light.direction.w > 0.0) { // the extension's smooth window to zero at the range
+        float x = d2 / (light.direction.w * light.direction.w);
+        float window = clamp(1.0 - x * x, 0.0, 1.0);
+        falloff *= window * window;
+    }
+    if (int(light.position.w) == LIGHT_SPOT) {
+        float t = clamp((dot(light.direction.xyz, -L) - light.radiance.w) /
+                            max(light.cone.x - light.radiance.w, 1e-4),
+                        0.0, 1.0);
+        falloff *= t * t;
+    }
+    return light.radiance.rgb * falloff;
+}
+
+// The sheen lobe's albedo, bilinear in the table as render::sheenAlbedo reads it.
+float sheenAlbedo(float NoV, float roughness) {
+    vec2 x = clamp(vec2(NoV, roughness), 0.0, 1.0) * float(SHEEN_TABLE_SIZE - 1);
+    ivec2 i = min(ivec2(x), ivec2(SHEEN_TABLE_SIZE - 2));
+    vec2 f = x - vec2(i);
+    int row = i.y * SHEEN_TABLE_SIZE + i.x;
+    float lo = mix(sheenAlbedoTable[row], sheenAlbedoTable[row + 1], f.x);
+    float hi = mix(sheenAlbedoTable[row + SHEEN_TABLE_SIZE],
+                   sheenAlbedoTable[row + SHEEN_TABLE_SIZE + 1], f.x);
+    return mix(lo, hi, f.y);
+}
+#endif

@@ -1,0 +1,129 @@
+// Punctual lights placed for a frame and the sheen albedo table (engine/render/Lighting.h).
+#include "engine/render/Lighting.h"
+
+#include "engine/anim/Pose.h"
+#include "engine/gl/Commands.h"
+#include "engine/scene/World.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace render {
+namespace {
+
+/** One light as common/lighting.glsl's PunctualLight lays it out (std430). */
+struct PunctualLightGpu {
+    glm::vec4 position;  // w: type
+    glm::vec4 direction; // w: range
+    glm::vec4 radiance;  // w: cos outer
+    glm::vec4 cone;      // x: cos inner
+};
+constexpr std::size_t kTableBytes = sizeof(float) * kSheenTableSize * kSheenTableSize;
+constexpr std::size_t kHeaderBytes = kTableBytes + 16; // the table, then uvec4 lightCount
+
+/** The sheen lobe's albedo at NoV and roughness, integrated over half vectors (the lobe is
+ *  narrow around half vectors in the tangent plane, which a dense grid in theta resolves). */
+double integrateSheenAlbedo(double NoV, double roughness) {
+    const double r = std::max(roughness, 0.07), alpha = r * r; // as common/brdf.glsl
+    const glm::dvec3 V(std::sqrt(std::max(1.0 - NoV * NoV, 0.0)), 0.0, NoV);
+    constexpr int kTheta = 256, kPhi = 64;
+    double sum = 0.0;
+    for (int i = 0; i < kTheta; ++i) {
+        const double theta = (i + 0.5) * (M_PI / 2.0) / kTheta;
+        const double sinH = std::sin(theta), cosH = std::cos(theta);
+        const double D = (2.0 + 1.0 / alpha) * std::pow(sinH, 1.0 / alpha) / (2.0 * M_PI);
+        for (int j = 0; j < kPhi; ++j) {
+            const double phi = (j + 0.5) * (2.0 * M_PI) / kPhi;
+            const glm::dvec3 H(sinH * std::cos(phi), sinH * std::sin(phi), cosH);
+            const double VoH = glm::dot(V, H);
+            const glm::dvec3 L = 2.0 * VoH * H - V;
+            if (VoH <= 0.0 || L.z <= 0.0)
+                continue;
+            const double visibility = 1.0 / (4.0 * (L.z + NoV - L.z * NoV));
+            // dL = 4 VoH dH, dH = sin(theta) dtheta dphi
+            sum += D * visibility * L.z * 4.0 * VoH * sinH;
+        }
+    }
+    return std::clamp(sum * (M_PI / 2.0 / kTheta) * (2.0 * M_PI / kPhi), 0.0, 1.0);
+}
+
+} // namespace
+
+const std::array<float, kSheenTableSize * kSheenTableSize>& sheenAlbedoTable() {
+    static const auto table = [] {
+        std::array<float, kSheenTableSize * kSheenTableSize> t{};
+        for (int row = 0; row < kSheenTableSize; ++row)
+            for (int col = 0; col < kSheenTableSize; ++col)
+                t[std::size_t(row * kSheenTableSize + col)] =
+                    float(integrateSheenAlbedo(std::max(double(col) / (kSheenTableSize - 1), 1e-3),
+                                               double(row) / (kSheenTableSize - 1)));
+        return t;
+    }();
+    return table;
+}
+
+double sheenAlbedo(double NoV, double roughness) {
+    const auto& t = sheenAlbedoTable();
+    const double x = std::clamp(NoV, 0.0, 1.0) * (kSheenTableSize - 1),
+                 y = std::clamp(roughness, 0.0, 1.0) * (kSheenTableSize - 1);
+    const int i = std::min(int(x), kSheenTableSize - 2), j = std::min(int(y), kSheenTableSize - 2);
+    const double fx = x - i, fy = y - j;
+    auto at = [&](int c, int r) { return double(t[std::size_t(r * kSheenTableSize + c)]); };
+    const double lo = at(i, j) + (at(i + 1, j) - at(i, j)) * fx;
+    const double hi = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * fx;
+    return lo + (hi - lo) * fy;
+}
+
+void placeLights(const scene::Model& model, const anim::Pose& pose, const glm::dmat4& placement,
+                 std::vector<scene::PlacedLight>& out) {
+    if (model.lights.empty())
+        return;
+    for (int node : model.sceneNodes()) {
+        const int light = model.nodes[std::size_t(node)].light;
+        if (light < 0)
+            continue;
+        const glm::dmat4 world = placement * pose.world[std::size_t(node)];
+        const glm::dvec3 axis(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)); // scale does not count
+        out.push_back({model.lights[std::size_t(light)], glm::vec3(world[3]),
+                       glm::length(axis) > 0.0 ? glm::vec3(glm::normalize(axis))
+                                               : glm::vec3(0.0f, 0.0f, -1.0f)});
+    }
+}
+
+std::vector<scene::PlacedLight> worldLights(const scene::World& world, double time) {
+    std::vector<scene::PlacedLight> lights;
+    for (const scene::Character& character : world.characters)
+        if (!character.model->lights.empty())
+            placeLights(
+                *character.model,
+                anim::evaluate(*character.model, character.playingClip(), character.clipTime(time)),
+                character.transform(), lights);
+    lights.insert(lights.end(), world.lights.begin(), world.lights.end());
+    return lights;
+}
+
+void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights) {
+    if (!mBuffer || lights.size() > mCapacity) {
+        mCapacity = std::max<std::size_t>(lights.size(), 8);
+        mBuffer = gl::Buffer(kHeaderBytes + mCapacity * sizeof(PunctualLightGpu));
+        mBuffer.update(0, kTableBytes, sheenAlbedoTable().data());
+    }
+    std::vector<PunctualLightGpu> packed;
+    packed.reserve(lights.size());
+    for (const scene::PlacedLight& l : lights) {
+        const int type = l.light.type == scene::Light::Type::Directional ? 0
+                         : l.light.type == scene::Light::Type::Point     ? 1
+                                                                         : 2;
+        packed.push_back(
+            {glm::vec4(l.position, float(type)), glm::vec4(l.direction, l.light.range),
+             glm::vec4(l.light.color * l.light.intensity, std::cos(l.light.outerConeAngle)),
+             glm::vec4(std::cos(l.light.innerConeAngle), 0.0f, 0.0f, 0.0f)});
+    }
+    const std::uint32_t count[4] = {std::uint32_t(packed.size()), 0, 0, 0};
+    mBuffer.update(kTableBytes, sizeof(count), count);
+    if (!packed.empty())
+        mBuffer.update(kHeaderBytes, packed.size() * sizeof(PunctualLightGpu), packed.data());
+    gl::bindStorage(kLightingBinding, mBuffer);
+}
+
+} // namespace render
