@@ -7,6 +7,13 @@
 #include "common/environment.glsl"
 #include "common/lighting.glsl"
 
+// The layers compiled in (a program per set its materials use: a layer's code costs a CPU
+// rasteriser even where it is switched off): clear coat, sheen, iridescence, anisotropy.
+const int LAYER_CLEARCOAT = 1, LAYER_SHEEN = 2, LAYER_IRIDESCENCE = 4, LAYER_ANISOTROPY = 8;
+#ifndef SURFACE_LAYERS
+#define SURFACE_LAYERS 15
+#endif
+
 // Karis' analytic fit of the split-sum environment BRDF scale and bias.
 vec2 environmentBrdf(float NoV, float roughness) {
     const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
@@ -119,6 +126,9 @@ float sheenLobe(float NoL, float NoV, float NoH, float roughness) {
 // the sheen passes on all but its albedo and adds its lobe, the clear coat all but its Fresnel
 // at the view and adds its reflection. Without layers, `under` itself.
 vec3 layersOver(vec3 under, SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
+#if (SURFACE_LAYERS & 3) == 0
+    return under;
+#endif
     bool sheenLayer = maxOf(m.sheenColor) > 0.0, coatLayer = m.clearcoat > 0.0;
     if (!sheenLayer && !coatLayer)
         return under;
@@ -158,6 +168,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
     float alpha = max(m.roughness * m.roughness, 1e-3);
     // Reflectance at normal incidence of the dielectric and of the metal, seen through the film.
     vec3 f0Dielectric = min(m.dielectricF0, vec3(1.0)), f0Metal = m.baseColor;
+#if (SURFACE_LAYERS & 4) != 0
     if (m.iridescence > 0.0) {
         f0Dielectric = mix(f0Dielectric,
                            thinFilmReflectance(NoV, m.iridescenceIor, m.iridescenceThickness,
@@ -168,17 +179,20 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
                                           iorFromF0(f0Metal)),
                       m.iridescence);
     }
+#endif
     // Anisotropy stretches the lobe along its direction T (alpha `along`) and reads the
     // environment along the reflection off a normal bent toward T.
     vec3 T = m.anisotropyDirection, B = cross(N, T);
     float along = mix(alpha, 1.0, m.anisotropy * m.anisotropy);
     vec3 R = reflect(-V, N);
+#if (SURFACE_LAYERS & 8) != 0
     if (m.anisotropy > 0.0) {
         vec3 stretchedNormal = cross(cross(B, V), B);
         float bend = 1.0 - m.anisotropy * (1.0 - m.roughness);
         bend *= bend;
         R = reflect(-V, normalize(mix(stretchedNormal, N, bend * bend)));
     }
+#endif
 
     vec2 dfg = environmentBrdf(NoV, m.roughness);
     vec3 radiance = environmentRadiance(R, m.roughness);
@@ -194,8 +208,12 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
         float NoL = dot(N, L), VoH = max(dot(V, H), 0.0), NoH = max(dot(N, H), 0.0);
         if (NoL <= 0.0)
             continue;
+#if (SURFACE_LAYERS & 8) != 0
         float lobe = m.anisotropy > 0.0 ? ggxLobe(N, T, B, L, V, H, along, alpha)
                                         : ggxLobe(NoL, NoV, NoH, alpha);
+#else
+        float lobe = ggxLobe(NoL, NoV, NoH, alpha);
+#endif
         vec3 specular = mix(m.specularWeight * schlick(f0Dielectric, VoH), schlick(f0Metal, VoH),
                             m.metallic) *
                         lobe;

@@ -1,4 +1,5 @@
 // Ground: a soft two-tone checker, rough dielectric, lit by the environment, fading at the edge.
+#define SURFACE_LAYERS 0
 #include "common/brdf.glsl"
 
 in vec3 vWorldPosition;

@@ -1,5 +1,5 @@
 // Opaque surfaces: glTF's material model with its extensions' layers (common/brdf.glsl), lit by
-// the environment and the punctual lights.
+// the environment and the punctual lights; compiled per set of layers (SURFACE_LAYERS).
 #include "common/brdf.glsl"
 #include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
@@ -65,29 +65,57 @@ void main() {
         occlusion = mix(1.0, read(SLOT_OCCLUSION).r, uOcclusionStrength);
     SurfaceMaterial m = coreSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0),
                                     clamp(roughness, 0.03, 1.0), occlusion, geometric);
-    m.specularWeight = uSpecularFactor * (has(SLOT_SPECULAR) ? read(SLOT_SPECULAR).a : 1.0);
-    m.dielectricF0 = uDielectricF0 * uSpecularColorFactor *
-                     (has(SLOT_SPECULAR_COLOR) ? read(SLOT_SPECULAR_COLOR).rgb : vec3(1.0));
-    m.clearcoat = uClearcoatFactor * (has(SLOT_CLEARCOAT) ? read(SLOT_CLEARCOAT).r : 1.0);
-    m.clearcoatRoughness = clamp(uClearcoatRoughnessFactor *
-                                     (has(SLOT_CLEARCOAT_ROUGHNESS) ? read(SLOT_CLEARCOAT_ROUGHNESS).g : 1.0),
-                                 0.03, 1.0);
-    if (has(SLOT_CLEARCOAT_NORMAL))
-        m.clearcoatNormal = perturbNormal(geometric, vWorldTangent, uTexture[SLOT_CLEARCOAT_NORMAL],
-                                          slotUv(vUv, SLOT_CLEARCOAT_NORMAL),
-                                          uClearcoatNormalScale);
-    m.sheenColor = uSheenColorFactor * (has(SLOT_SHEEN_COLOR) ? read(SLOT_SHEEN_COLOR).rgb : vec3(1.0));
-    m.sheenRoughness = uSheenRoughnessFactor * (has(SLOT_SHEEN_ROUGHNESS) ? read(SLOT_SHEEN_ROUGHNESS).a : 1.0);
-    m.iridescence = uIridescenceFactor * (has(SLOT_IRIDESCENCE) ? read(SLOT_IRIDESCENCE).r : 1.0);
-    m.iridescenceIor = uIridescenceIor;
-    m.iridescenceThickness = has(SLOT_IRIDESCENCE_THICKNESS)
-                                 ? mix(uIridescenceThickness.x, uIridescenceThickness.y,
-                                       read(SLOT_IRIDESCENCE_THICKNESS).g)
-                                 : uIridescenceThickness.y;
+    // Each texture is read inside an if of its own: a ternary would have the compiler sample
+    // every slot's texture for every pixel.
+    m.specularWeight = uSpecularFactor;
+    if (has(SLOT_SPECULAR))
+        m.specularWeight *= read(SLOT_SPECULAR).a;
+    m.dielectricF0 = uDielectricF0 * uSpecularColorFactor;
+    if (has(SLOT_SPECULAR_COLOR))
+        m.dielectricF0 *= read(SLOT_SPECULAR_COLOR).rgb;
+#if (SURFACE_LAYERS & 1) != 0
+    if (uClearcoatFactor > 0.0) {
+        m.clearcoat = uClearcoatFactor;
+        if (has(SLOT_CLEARCOAT))
+            m.clearcoat *= read(SLOT_CLEARCOAT).r;
+        m.clearcoatRoughness = uClearcoatRoughnessFactor;
+        if (has(SLOT_CLEARCOAT_ROUGHNESS))
+            m.clearcoatRoughness *= read(SLOT_CLEARCOAT_ROUGHNESS).g;
+        m.clearcoatRoughness = clamp(m.clearcoatRoughness, 0.03, 1.0);
+        if (has(SLOT_CLEARCOAT_NORMAL))
+            m.clearcoatNormal = perturbNormal(geometric, vWorldTangent, uTexture[SLOT_CLEARCOAT_NORMAL],
+                                              slotUv(vUv, SLOT_CLEARCOAT_NORMAL), uClearcoatNormalScale);
+    }
+#endif
+#if (SURFACE_LAYERS & 2) != 0
+    if (max(uSheenColorFactor.r, max(uSheenColorFactor.g, uSheenColorFactor.b)) > 0.0) {
+        m.sheenColor = uSheenColorFactor;
+        if (has(SLOT_SHEEN_COLOR))
+            m.sheenColor *= read(SLOT_SHEEN_COLOR).rgb;
+        m.sheenRoughness = uSheenRoughnessFactor;
+        if (has(SLOT_SHEEN_ROUGHNESS))
+            m.sheenRoughness *= read(SLOT_SHEEN_ROUGHNESS).a;
+    }
+#endif
+#if (SURFACE_LAYERS & 4) != 0
+    if (uIridescenceFactor > 0.0) {
+        m.iridescence = uIridescenceFactor;
+        if (has(SLOT_IRIDESCENCE))
+            m.iridescence *= read(SLOT_IRIDESCENCE).r;
+        m.iridescenceIor = uIridescenceIor;
+        m.iridescenceThickness = uIridescenceThickness.y;
+        if (has(SLOT_IRIDESCENCE_THICKNESS))
+            m.iridescenceThickness = mix(uIridescenceThickness.x, uIridescenceThickness.y,
+                                         read(SLOT_IRIDESCENCE_THICKNESS).g);
+    }
+#endif
+#if (SURFACE_LAYERS & 8) != 0
     if (uAnisotropyStrength > 0.0) {
         // The texture's direction (rg in [-1, 1], tangent space) turned by the rotation, its
         // strength (b) times the factor.
-        vec3 a = has(SLOT_ANISOTROPY) ? read(SLOT_ANISOTROPY).rgb : vec3(1.0, 0.5, 1.0);
+        vec3 a = vec3(1.0, 0.5, 1.0);
+        if (has(SLOT_ANISOTROPY))
+            a = read(SLOT_ANISOTROPY).rgb;
         vec2 d = a.rg * 2.0 - 1.0;
         d = vec2(uAnisotropyRotation.x * d.x - uAnisotropyRotation.y * d.y,
                  uAnisotropyRotation.y * d.x + uAnisotropyRotation.x * d.y);
@@ -99,6 +127,7 @@ void main() {
             m.anisotropyDirection = normalize(direction);
         }
     }
+#endif
     vec3 color = shadeSurface(m, vWorldPosition, N, V);
     vec3 emissive = uEmissive;
     if (has(SLOT_EMISSIVE))

@@ -13,6 +13,7 @@
 #include "engine/render/Lighting.h"
 #include "engine/render/MaterialTextures.h"
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -44,7 +45,10 @@ struct RenderGpu {
     std::vector<scene::PlacedLight> lights;             // this frame's, in world space
     LightingBuffer lighting;                            // the lights on the GPU (binding 9)
     std::unique_ptr<Environment> environment;
-    gl::Program background, opaque, ground, tonemap;
+    gl::Program background, ground, tonemap;
+    /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()), compiled
+     *  when a prepared model first uses it. */
+    std::map<int, gl::Program> opaque;
     gl::VertexArray emptyVao;
     gl::Framebuffer framebuffer;
 };

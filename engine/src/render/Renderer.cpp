@@ -125,7 +125,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     for (const ProgramSpec& spec :
          {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
-          ProgramSpec{&gpu.opaque, "render/mesh.vert.glsl", "render/pbr.frag.glsl"},
           ProgramSpec{&gpu.ground, "render/ground.vert.glsl", "render/ground.frag.glsl"},
           ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
@@ -177,6 +176,22 @@ core::Status Renderer::prepare(const scene::World& world) {
     }
     std::swap(gpu.models, used);
     used.clear();
+    // The opaque program of every set of layers the models' materials use (and the default
+    // material's, none).
+    std::vector<int> layerSets{0};
+    for (const auto& m : gpu.models)
+        for (const scene::Material& material : m->model->materials)
+            layerSets.push_back(material.surfaceLayers());
+    for (const int layers : layerSets) {
+        if (gpu.opaque.count(layers))
+            continue;
+        auto program =
+            gl::Program::graphics(mShaders, "render/mesh.vert.glsl", "render/pbr.frag.glsl",
+                                  {"SURFACE_LAYERS " + std::to_string(layers)});
+        if (!program)
+            return core::Error{"render::Renderer::prepare(): " + program.error().message};
+        gpu.opaque.emplace(layers, std::move(*program));
+    }
     return {};
 }
 

@@ -119,6 +119,18 @@ struct Material {
             f(*t, false);
     }
 
+    /** The layers it puts on its base, as common/brdf.glsl's SURFACE_LAYERS bits (1 clear
+     *  coat, 2 sheen, 4 iridescence, 8 anisotropy): the shader variant that shades it. */
+    int surfaceLayers() const {
+        return (hasClearcoat && clearcoatFactor > 0.0f ? 1 : 0) |
+               (hasSheen && glm::max(sheenColorFactor.r,
+                                     glm::max(sheenColorFactor.g, sheenColorFactor.b)) > 0.0f
+                    ? 2
+                    : 0) |
+               (hasIridescence && iridescenceFactor > 0.0f ? 4 : 0) |
+               (hasAnisotropy && anisotropyStrength > 0.0f ? 8 : 0);
+    }
+
     /** Glass as the plugin sees it: any transmission. */
     bool isTransmissive() const { return hasTransmission && transmissionFactor > 0.0f; }
 };

@@ -1,4 +1,5 @@
-// `opaque`: the primitives no plugin claims, metallic-roughness with image-based lighting.
+// `opaque`: the primitives no plugin claims, glTF's material model (render/pbr.frag.glsl, one
+// program per set of material layers) lit by the environment and the punctual lights.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -30,15 +31,22 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                                                          &r.texture(d.depth));
                 !bound)
                 return bound;
-            gl::Program& p = gpu.opaque;
-            p.use();
-            gpu.environment->bind(p, 0, frame.settings.environmentRotation,
-                                  frame.settings.environmentIntensity);
-            p.set("uViewProjection", frame.camera.viewProjection());
-            p.set("uCameraPosition", frame.camera.position);
+            for (auto& [layers, program] : gpu.opaque) {
+                gpu.environment->bind(program, 0, frame.settings.environmentRotation,
+                                      frame.settings.environmentIntensity);
+                program.set("uViewProjection", frame.camera.viewProjection());
+                program.set("uCameraPosition", frame.camera.position);
+            }
             for (const DrawItem& item : frame.items) {
                 if (item.owner)
                     continue;
+                // The program of the layers its material puts on the base.
+                const int layers =
+                    item.material >= 0
+                        ? item.model->materials[std::size_t(item.material)].surfaceLayers()
+                        : 0;
+                const gl::Program& p = gpu.opaque.at(layers);
+                p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
                 gl::apply({.cull = cullFor(*item.model, item.material)});
