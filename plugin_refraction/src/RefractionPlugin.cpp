@@ -1,9 +1,9 @@
 // The refraction plugin: its parameters, GL objects and the frame's choice of passes
-// (FramePasses.h records them).
+// (recorded by the passes in src/passes/, one file each).
 #include "refraction/RefractionPlugin.h"
 
-#include "FramePasses.h"
 #include "GpuState.h"
+#include "passes/Passes.h"
 
 #include "engine/core/Check.h"
 #include "engine/core/Log.h"
@@ -127,6 +127,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (c.gpu->glassOptics.empty())
         return;
     FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
+    const SceneInputs scene = sceneInputs(blackboard);
     addGlassMaterialsPass(graph, c, buffers);
     if (c.settings.layered()) {
         // Every glass item, whatever its material, in one capture pass; then the walk.
@@ -138,7 +139,12 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         c.layerShade = *program;
         if (c.settings.usesNormalDistance())
             addNormalDistancePass(graph, c, buffers);
-        blackboard.put(plugin::kSceneColor, addLayerPasses(graph, blackboard, c, buffers));
+        const fg::TextureHandle mask = addLayerCapturePass(graph, c, buffers);
+        const LayerDepths depths = addLayerDepthsPass(graph, c, buffers, mask);
+        const LayerShade shaded = addLayerShadePass(graph, c, buffers, scene, mask, depths);
+        blackboard.put(plugin::kSceneColor, c.settings.outlineAntialiasing
+                                                ? addLayerOutlinePass(graph, c, buffers, shaded)
+                                                : shaded.color);
         return;
     }
 
@@ -167,11 +173,15 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
 
     if (c.settings.usesNormalDistance())
         addNormalDistancePass(graph, c, buffers);
-    const SurfaceMaps maps = c.onePass ? addGatheredSurfacePasses(graph, blackboard, c, buffers)
-                                       : addSeparateSurfacePasses(graph, c, buffers, firstBack);
+    const SurfaceMaps maps =
+        c.onePass ? addResolvePass(graph, c, buffers, scene, addGatherPass(graph, c, buffers))
+                  : addSurfacePasses(graph, c, buffers, firstBack);
     if (c.settings.twoInterfaces())
         addDepthRangePass(graph, c, maps, buffers);
-    blackboard.put(plugin::kSceneColor, addShadingPasses(graph, blackboard, c, maps, buffers));
+    blackboard.put(plugin::kSceneColor,
+                   c.onePass ? addShadePass(graph, c, maps, buffers, scene)
+                             : addCompositePass(graph, c, scene,
+                                                addFrontFacesPass(graph, c, maps, buffers, scene)));
 }
 
 LayerStats RefractionPlugin::layerStats() const {

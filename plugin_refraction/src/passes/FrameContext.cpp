@@ -1,0 +1,335 @@
+// What the refraction passes share: the frame's buffers and glass ids, the glass items drawn and
+// the glass rectangle, the uniforms the shading passes set alike, the layered path's programs.
+#include "Passes.h"
+
+#include "engine/deform/GpuDeformer.h"
+
+#include "../Optics.h"
+
+#include "engine/core/Log.h"
+#include "engine/render/Environment.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace refraction {
+namespace {
+
+/** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
+constexpr std::size_t kMaxGlassIds = 255;
+
+} // namespace
+
+gl::TextureDesc colorDesc(glm::ivec2 size) {
+    return {size, gl::Format::RGBA16F, 1};
+}
+gl::TextureDesc depthDesc(glm::ivec2 size) {
+    return {size, gl::Format::R32F, 1};
+}
+gl::TextureDesc normalDesc(glm::ivec2 size) {
+    return {size, gl::Format::RGBA16F, kNormalLod + 1};
+}
+gl::TextureDesc zDesc(glm::ivec2 size) {
+    return {size, gl::Format::Depth32F, 1};
+}
+
+FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu) {
+    FrameBuffers buffers;
+    buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
+    buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
+    buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
+    buffers.range = graph.importBuffer("refraction.depth_range", &gpu.range);
+    buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
+    buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
+    return buffers;
+}
+
+int GpuState::Distance::find(Part part) const {
+    const auto at = std::find(parts.begin(), parts.end(), part);
+    return at == parts.end() ? -1 : int(at - parts.begin());
+}
+
+void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) {
+    std::erase_if(gpu.distances, [&](const auto& entry) {
+        return std::none_of(items.begin(), items.end(),
+                            [&](const render::DrawItem& item) { return item.key == entry.first; });
+    });
+}
+
+SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
+    return {blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
+            blackboard.get<fg::TextureHandle>(plugin::kSceneDepth)};
+}
+
+void FrameContext::setWalkUniforms(const gl::Program& f) const {
+    const Settings& s = settings;
+    f.use();
+    f.set("uMethod", int(s.method)); // 1 sir, 2 isr, 3 dir
+    f.set("uSteps", s.searchSteps);
+    f.set("uTirPolicy", reflect ? 1 : 0);
+    f.set("uBounces", s.tirBounces);
+    f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off
+    // Without opaque geometry the walk could only find the background, which is the
+    // environment the lookup falls back to: skip it (the same image, cheaper).
+    f.set("uNearby", s.nearby && frame->opaqueGeometry ? 1 : 0);
+    f.set("uDebug", s.debug);
+    f.set("uSharedDispersion", s.dispersionSearch == Settings::DispersionSearch::Shared ? 1 : 0);
+    f.set("uViewportSize", glm::vec2(frame->settings.size));
+    f.set("uProjection", frame->camera.projection);
+    f.set("uInverseProjection", glm::inverse(frame->camera.projection));
+    f.set("uNear", frame->camera.znear);
+    f.set("uFar", frame->camera.zfar);
+    f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+    const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
+    f.set("uViewToWorld", glm::mat3(viewToWorld));
+    f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
+    frame->environment->bind(f, 0, frame->settings.environmentRotation,
+                             frame->settings.environmentIntensity);
+}
+
+void FrameContext::setMaterial(const gl::Program& program, std::size_t index) const {
+    const render::DrawItem& item = frame->items[index];
+    item.materials->bind(program, *item.model, item.material, kMaterialUnit);
+    program.set("uGlassId", gpu->glassIds[index]);
+    gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
+}
+
+void FrameContext::drawGlass(
+    const gl::Program& program, const gl::PipelineState& state,
+    const std::function<void(const render::DrawItem&, std::size_t)>& perItem) const {
+    program.use();
+    program.set("uProjection", frame->camera.projection);
+    for (std::size_t index = 0; index < frame->items.size(); ++index) {
+        const render::DrawItem& item = frame->items[index];
+        if (!isGlass(item))
+            continue;
+        const glm::mat4 modelView = frame->camera.view * item.world;
+        program.set("uModelView", modelView);
+        program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
+        gl::bindStorage(kVerticesBinding, *item.gpu->deformed);
+        gl::bindStorage(kUvsBinding, *item.gpu->uvs);
+        // d_N: the character's combined cage values from this part's base, or (subdivision)
+        // the part's own drawn values.
+        const GpuState::Distance* distance = nullptr;
+        int part = -1;
+        if (settings.usesNormalDistance())
+            if (const auto found = gpu->distances.find(item.key); found != gpu->distances.end()) {
+                distance = &found->second;
+                part = distance->find({item.instance, item.primitiveIndex});
+            }
+        const bool hasDistance = distance && part >= 0 && distance->cage;
+        const gl::Buffer* values = nullptr;
+        int base = 0;
+        if (hasDistance) {
+            const auto drawn = distance->drawn.find({item.instance, item.primitiveIndex});
+            values = drawn != distance->drawn.end() ? &drawn->second : &distance->cage->distances();
+            base =
+                drawn != distance->drawn.end() ? 0 : int(distance->cage->base(std::size_t(part)));
+        }
+        program.set("uHasNormalDistance", hasDistance ? 1 : 0);
+        program.set("uDistanceBase", base);
+        // Without d_N the binding still needs a buffer: the vertices stand in (unread).
+        gl::bindStorage(kDistancesBinding, values ? *values : *item.gpu->deformed);
+        if (perItem)
+            perItem(item, index);
+        gl::apply(state);
+        item.vertexArray->bind();
+        gl::drawIndexed(item.gpu->indexCount);
+    }
+}
+
+void FrameContext::growGlassRectangle() const {
+    // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
+    using R = GlassRectangleGpu;
+    gpu->rectangle.fill(offsetof(R, pixelMin), 2, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(offsetof(R, pixelMax), 2, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(offsetof(R, boxMin), 3, std::uint32_t(INT32_MAX));
+    gpu->rectangle.fill(offsetof(R, boxMax), 3, std::uint32_t(INT32_MIN));
+    gpu->rectangle.fill(offsetof(R, overflowPixels), 1, 0u);
+    gpu->rectangleGrow.use();
+    gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
+    gl::bindStorage(kRectangleBinding, gpu->rectangle);
+    for (const render::DrawItem& item : frame->items) {
+        if (!isGlass(item))
+            continue;
+        gpu->rectangleGrow.set("uModelViewProjection", frame->camera.viewProjection() * item.world);
+        gpu->rectangleGrow.set("uModelView", frame->camera.view * item.world);
+        const int count = int(item.primitive->vertexCount());
+        gpu->rectangleGrow.set("uVertexCount", count);
+        gl::bindStorage(0, item.geometry->cage(item.instance, item.primitiveIndex)
+                               .vertices); // rectangle.comp.glsl
+        gl::dispatch(std::uint32_t((count + 63) / 64));
+    }
+    gl::memoryBarrier(gl::BarrierStorage);
+}
+
+void FrameContext::drawMaskedRectangle() const {
+    // The rectangle lies at depth 1: it passes only where the mask holds less.
+    gl::apply({.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Greater});
+    drawRectangle();
+}
+
+void FrameContext::drawRectangle() const {
+    gl::bindStorage(kRectangleBinding, gpu->rectangle);
+    gpu->emptyVao.bind();
+    gl::drawArrays(6);
+}
+
+void FrameContext::setLayerUniforms(const gl::Program& program) const {
+    const glm::ivec2 size = frame->settings.size;
+    program.set("uPixelCount", size.x * size.y);
+    program.set("uViewportWidth", size.x);
+    program.set("uViewportSize", glm::vec2(size));
+    program.set("uKeyNear", frame->camera.znear);
+    program.set("uKeyLogRange", std::log2(frame->camera.zfar / frame->camera.znear));
+    const GpuState::LayerStorage& layers = gpu->layers;
+    gl::bindStorage(kLayerHeadsBinding, layers.heads);
+    gl::bindStorage(kLayerDepthsBinding, layers.depths);
+    gl::bindStorage(kLayerAttrsBinding, layers.attrs);
+    gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
+}
+
+void setTwoSurfaceShading(const FrameContext& c, const gl::Program& f, const TwoSurfaceShadeData& d,
+                          const fg::Resources& r) {
+    c.setWalkUniforms(f);
+    f.set("uNormalLod", float(kNormalLod));
+    const std::pair<const char*, fg::TextureHandle> samplers[] = {
+        {"uBackDepth", d.maps.backDepth},   {"uBackNormal", d.maps.backNormal},
+        {"uFrontDepth", d.maps.frontDepth}, {"uFrontNormal", d.maps.frontNormal},
+        {"uSceneColor", d.sceneColor},      {"uSceneDepth", d.sceneDepth}};
+    int unit = 2;
+    for (const auto& [uniform, handle] : samplers) {
+        // Maps this method does not read are absent: the scene depth stands in (unread).
+        gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
+        f.set(uniform, unit++);
+    }
+    gl::bindStorage(kRangeBinding, c.gpu->range);
+}
+
+void readTwoSurfaceInputs(fg::Builder& b, const FrameContext& c, const SurfaceMaps& maps,
+                          const FrameBuffers& buffers, const SceneInputs& scene,
+                          TwoSurfaceShadeData& d) {
+    if (!c.onePass) // the front faces are drawn again; one pass shades the maps alone
+        b.read(buffers.vertices);
+    b.read(buffers.rectangle);
+    b.read(buffers.materials);
+    if (c.settings.twoInterfaces())
+        b.read(buffers.range);
+    if (c.settings.usesNormalDistance())
+        b.read(buffers.distances);
+    for (auto [from, to] :
+         {std::pair{maps.backDepth, &d.maps.backDepth},
+          std::pair{maps.backNormal, &d.maps.backNormal},
+          std::pair{maps.frontDepth, &d.maps.frontDepth},
+          std::pair{maps.frontNormal, &d.maps.frontNormal},
+          std::pair{maps.gatheredFar, &d.maps.gatheredFar}, std::pair{maps.mask, &d.maps.mask}})
+        if (from.valid())
+            *to = b.read(from);
+    d.sceneColor = b.read(scene.color);
+    d.sceneDepth = b.read(scene.depth);
+}
+
+core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
+    if (gpu.layerProgramsCapacity != c.settings.layerCapacity) {
+        gpu.layerShadePrograms.clear();
+        const std::vector<std::string> defines{"LAYER_CAPACITY " +
+                                               std::to_string(c.settings.layerCapacity)};
+        auto capture = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
+                                             "refraction/layers_capture.frag.glsl", defines);
+        if (!capture)
+            return capture.error();
+        auto resolve = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                             "refraction/layers_resolve.frag.glsl", defines);
+        if (!resolve)
+            return resolve.error();
+        gpu.layersCapture = std::move(*capture);
+        gpu.layersResolve = std::move(*resolve);
+        gpu.layerProgramsCapacity = c.settings.layerCapacity;
+    }
+    // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
+    const bool dispersion =
+        std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
+                    [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
+    const int mode = !dispersion                                                         ? 0
+                     : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
+                                                                                         : 2;
+    const std::pair key{int(c.settings.method), mode};
+    if (!gpu.layerShadePrograms.count(key)) {
+        // Every method's variant at once: switching methods (the viewer's panel) then compiles
+        // nothing, and the live programs do not depend on which methods ran.
+        for (const Settings::Method method :
+             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir}) {
+            auto shade =
+                gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                      "refraction/layers_shade.frag.glsl",
+                                      {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
+                                       "LAYER_METHOD " + std::to_string(int(method)),
+                                       "LAYER_DISPERSION " + std::to_string(mode)});
+            if (!shade)
+                return shade.error();
+            gpu.layerShadePrograms.insert_or_assign({int(method), mode}, std::move(*shade));
+        }
+    }
+    return &gpu.layerShadePrograms.at(key);
+}
+
+std::size_t layerDepthSlots(int capacity) {
+    return (std::size_t(capacity) + 3) / 4 * 4;
+}
+
+std::size_t layerBytesPerPixel(int capacity, bool outlines) {
+    // The arrays (head, depth slots, attributes), the depth maps the resolve pass writes, and
+    // the nearest layers' map the outline pass reads.
+    return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
+           std::size_t(capacity) * 2 * sizeof(std::uint32_t) +
+           layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
+}
+
+void assignGlassIds(FrameContext& c) {
+    const auto& items = c.frame->items;
+    c.gpu->glassIds.assign(items.size(), -1);
+    c.gpu->glassOptics.clear();
+    std::map<std::pair<std::uint64_t, int>, int> ids;
+    std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
+    bool full = false;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const render::DrawItem& item = items[i];
+        if (!c.isGlass(item))
+            continue;
+        const auto key = std::pair{item.key, item.material};
+        if (const auto known = ids.find(key); known != ids.end()) {
+            c.gpu->glassIds[i] = known->second;
+            continue;
+        }
+        if (c.gpu->glassOptics.size() == kMaxGlassIds) {
+            full = true;
+            c.gpu->glassIds[i] = int(kMaxGlassIds) - 1;
+            continue;
+        }
+        const scene::Material* m =
+            item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+        const Optics o = opticsFor(c.settings, m, item.source->overrides);
+        const glm::vec3 emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
+        const int solid = solids.emplace(item.key, int(solids.size())).first->second;
+        c.gpu->glassOptics.push_back(
+            {glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
+             glm::vec4(glm::vec3(o.baseColor), o.metallic), glm::vec4(emissive, float(solid)),
+             glm::vec4(o.specularColor, o.specularWeight),
+             glm::vec4(o.clearcoat, o.clearcoatRoughness, o.iridescence, o.iridescenceIor),
+             glm::vec4(o.sheenColor, o.sheenRoughness),
+             glm::vec4(o.iridescenceThickness, 0.0f, 0.0f, 0.0f)});
+        ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
+        c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
+    }
+    if (full && !c.gpu->warnedGlassIds) {
+        core::logWarning("refraction: more than 255 glass materials (character x material) in "
+                         "one frame; the layered path draws the rest with the 255th's optics");
+        c.gpu->warnedGlassIds = true;
+    }
+}
+
+} // namespace refraction

@@ -1,0 +1,74 @@
+// `refraction.layers`: the layered capture. Every glass item of every character in one geometry
+// pass, each fragment into its pixel's layer arrays (at most K, the nearest front and farthest
+// back kept aside for a pixel with more: layers_capture.frag.glsl), growing the glass rectangle
+// first; the depth attachment becomes the glass pixels' mask.
+#include "Passes.h"
+
+namespace refraction {
+namespace {
+
+/** The layer arrays for `size` and capacity K, reallocated only when either changes. */
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {
+    if (layers.size == size && layers.capacity == capacity)
+        return;
+    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
+    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
+    layers.attrs = gl::Buffer(pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t));
+    layers.size = size;
+    layers.capacity = capacity;
+}
+
+} // namespace
+
+fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
+                                      FrameBuffers& buffers) {
+    const glm::ivec2 size = c.frame->settings.size;
+    struct CaptureData {
+        fg::TextureHandle mask;
+        fg::BufferHandle layers, rectangle;
+    };
+    const auto& captured = graph.addPass<CaptureData>(
+        "refraction.layers",
+        [&](fg::Builder& b, CaptureData& d) {
+            b.read(buffers.vertices);
+            b.read(buffers.materials);
+            if (c.settings.usesNormalDistance())
+                b.read(buffers.distances);
+            d.mask = b.write(b.create("refraction.layers.mask", {size, gl::Format::Depth32F, 1}));
+            d.rectangle = b.write(buffers.rectangle);
+            d.layers = b.write(buffers.layers);
+        },
+        [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            const glm::ivec2 viewport = c.frame->settings.size;
+            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity);
+            const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
+            gpu.layers.heads.fill(0, pixels, 0u);                   // counts
+            gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys
+            gpu.layers.heads.fill(pixels * 8, pixels, 0u);          // farthest back keys
+            c.growGlassRectangle();
+            // Depth only: the shading pass's mask.
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("refraction.layers", {}, &r.texture(d.mask));
+                !bound)
+                return bound;
+            gl::clearDepth(1.0f);
+            const gl::Program& program = gpu.layersCapture;
+            program.use();
+            c.setLayerUniforms(program);
+            c.drawGlass(program, {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always},
+                        [&c, &program](const render::DrawItem& item, std::size_t index) {
+                            program.set("uGlassId", c.gpu->glassIds[index]);
+                            item.materials->bind(program, *item.model, item.material,
+                                                 kMaterialUnit);
+                        });
+            gl::memoryBarrier(gl::BarrierStorage);
+            return {};
+        });
+    buffers.layers = captured.layers;
+    buffers.rectangle = captured.rectangle;
+    return captured.mask;
+}
+
+} // namespace refraction

@@ -1,0 +1,55 @@
+// `refraction.layer_depths`: the layers' depths resolved, over the glass pixels, into the one or
+// two RGBA32F maps the walk's searches read (one texel fetch per sample; the overflow pair in
+// place, negated: layers_resolve.frag.glsl).
+#include "Passes.h"
+
+#include <vector>
+
+namespace refraction {
+namespace {
+
+constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth
+
+} // namespace
+
+LayerDepths addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
+                               const FrameBuffers& buffers, fg::TextureHandle mask) {
+    const glm::ivec2 size = c.frame->settings.size;
+    // The depths the walk's searches read, as maps (one texel fetch per sample).
+    struct ResolveData {
+        fg::TextureHandle mask, depths0, depths1;
+        fg::BufferHandle layers, rectangle;
+    };
+    const bool twoMaps = c.settings.layerCapacity > 4;
+    const gl::TextureDesc depthsDesc{size, gl::Format::RGBA32F, 1};
+    const auto& resolved = graph.addPass<ResolveData>(
+        "refraction.layer_depths",
+        [&](fg::Builder& b, ResolveData& d) {
+            d.layers = b.read(buffers.layers);
+            d.rectangle = b.read(buffers.rectangle);
+            d.mask = b.read(mask);
+            d.depths0 = b.write(b.create("refraction.layers.depths0", depthsDesc));
+            if (twoMaps)
+                d.depths1 = b.write(b.create("refraction.layers.depths1", depthsDesc));
+        },
+        [c, twoMaps](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
+            if (twoMaps)
+                targets.push_back(&r.texture(d.depths1));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.layer_depths", targets,
+                                                         &r.texture(d.mask));
+                !bound)
+                return bound;
+            for (int i = 0; i < int(targets.size()); ++i)
+                gl::clearColor(i, glm::vec4(kNoLayer));
+            gpu.layersResolve.use();
+            c.setLayerUniforms(gpu.layersResolve);
+            c.drawMaskedRectangle();
+            return {};
+        });
+
+    return {resolved.depths0, resolved.depths1};
+}
+
+} // namespace refraction

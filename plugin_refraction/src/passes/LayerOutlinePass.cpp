@@ -1,0 +1,45 @@
+// `refraction.layer_outlines`: the outlines of smooth glass anti-aliased, over the glass
+// rectangle and a pixel around it (the pixels an outline only grazes lie outside the glass:
+// layers_outline.frag.glsl).
+#include "Passes.h"
+
+namespace refraction {
+
+fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
+                                      const FrameBuffers& buffers, const LayerShade& shaded) {
+    const glm::ivec2 size = c.frame->settings.size;
+    struct OutlineData {
+        fg::TextureHandle shaded, surface, out;
+        fg::BufferHandle rectangle;
+    };
+    const auto& outlined = graph.addPass<OutlineData>(
+        "refraction.layer_outlines",
+        [&](fg::Builder& b, OutlineData& d) {
+            d.rectangle = b.read(buffers.rectangle);
+            d.shaded = b.read(shaded.color);
+            d.surface = b.read(shaded.surface);
+            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+        },
+        [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            gl::copyTexture(r.texture(d.shaded), r.texture(d.out));
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.layer_outlines",
+                                                         {&r.texture(d.out)}, nullptr);
+                !bound)
+                return bound;
+            const gl::Program& program = gpu.layersOutline;
+            program.use();
+            program.set("uViewportSize", glm::vec2(c.frame->settings.size));
+            program.set("uRectangleMargin", 1.0f);
+            gl::bindTexture(kSceneColorUnit, r.texture(d.shaded));
+            program.set("uColor", kSceneColorUnit);
+            gl::bindTexture(kSurfaceUnit, r.texture(d.surface));
+            program.set("uSurface", kSurfaceUnit);
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            c.drawRectangle();
+            return {};
+        });
+    return outlined.out;
+}
+
+} // namespace refraction
