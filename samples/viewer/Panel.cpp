@@ -3,6 +3,8 @@
 
 #include "Viewer.h"
 
+#include "engine/core/Limits.h"
+
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -285,6 +287,67 @@ void Panel::environment(Viewer& v) {
         widget(v.mSettings, name);
 }
 
+void Panel::lights(Viewer& v) {
+    if (!section("Lights", !v.mWorld.lights.empty()))
+        return;
+    // The characters' own (KHR_lights_punctual, on their nodes: as the files place them).
+    std::size_t own = 0;
+    for (const scene::Character& c : v.mWorld.characters)
+        for (const scene::Node& node : c.model->nodes)
+            own += node.light >= 0 ? 1 : 0;
+    if (own > 0)
+        ImGui::TextDisabled("%zu light(s) of the characters' files (KHR_lights_punctual)", own);
+    // The scene's (saved with it, README "Scene files").
+    std::vector<scene::PlacedLight>& lights = v.mWorld.lights;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        scene::PlacedLight& l = lights[i];
+        ImGui::PushID(int(i));
+        ImGui::Separator();
+        int type = int(l.light.type);
+        ImGui::SetNextItemWidth(110.0f);
+        ImGui::Combo("##type", &type, "directional\0point\0spot\0");
+        l.light.type = scene::Light::Type(type);
+        ImGui::SameLine();
+        ImGui::InputText("##name", &l.light.name);
+        ImGui::SameLine();
+        const bool remove = ImGui::SmallButton("x");
+        ImGui::ColorEdit3("Colour", &l.light.color.x);
+        ImGui::DragFloat("Intensity", &l.light.intensity, 0.1f, 0.0f, 1e6f, "%.2f",
+                         ImGuiSliderFlags_Logarithmic);
+        if (l.light.type != scene::Light::Type::Directional) {
+            ImGui::DragFloat3("Position", &l.position.x, 0.01f);
+            ImGui::DragFloat("Range (0: none)", &l.light.range, 0.05f, 0.0f, 1e4f);
+        }
+        if (l.light.type != scene::Light::Type::Point &&
+            ImGui::DragFloat3("Direction", &l.direction.x, 0.01f, -1.0f, 1.0f))
+            l.direction = glm::length(l.direction) > 1e-6f ? glm::normalize(l.direction)
+                                                           : glm::vec3(0.0f, -1.0f, 0.0f);
+        if (l.light.type == scene::Light::Type::Spot) {
+            ImGui::SliderFloat("Inner cone", &l.light.innerConeAngle, 0.0f,
+                               l.light.outerConeAngle - 0.01f, "%.2f rad");
+            ImGui::SliderFloat("Outer cone", &l.light.outerConeAngle,
+                               l.light.innerConeAngle + 0.01f, 1.5707f, "%.2f rad");
+        }
+        ImGui::PopID();
+        if (remove) {
+            lights.erase(lights.begin() + std::ptrdiff_t(i));
+            break;
+        }
+    }
+    ImGui::BeginDisabled(lights.size() >= core::limits::kMaxLights);
+    if (ImGui::Button("Add a point light")) {
+        // Above and in front of the camera's target, bright enough to see at its distance.
+        scene::PlacedLight l;
+        l.light.name = "light " + std::to_string(lights.size());
+        const Orbit& orbit = v.mCamera.orbitState();
+        const float distance = orbit.distance;
+        l.position = orbit.target + glm::vec3(0.0f, 0.5f, 0.5f) * distance;
+        l.light.intensity = 2.0f * distance * distance;
+        lights.push_back(l);
+    }
+    ImGui::EndDisabled();
+}
+
 void Panel::plugins(Viewer& v) {
     for (const Scope& scope : v.scopes()) {
         if (scope.name == "viewer")
@@ -413,6 +476,7 @@ void Panel::draw(Viewer& v) {
     animation(v);
     camera(v);
     environment(v);
+    lights(v);
     plugins(v);
     split(v);
     timings(v);

@@ -744,7 +744,9 @@ TEST_F(Materials, EachLayerOnASphereAgreesWithTheReference) {
              m.iridescenceIor = 1.3f;
              m.iridescenceThicknessMaximum = 350.0f;
          }}};
-    for (const auto& [name, layer] : layers) {
+    for (const auto& entry : layers) {
+        const char* name = entry.first;
+        const std::function<void(scene::Material&)>& layer = entry.second;
         auto sphere = [&layer](bool on) {
             return withTestLights(sphereWorld([&](scene::Model& model) {
                 scene::Material& m = model.materials[0];
