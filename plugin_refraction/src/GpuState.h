@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -42,15 +43,17 @@ struct GlassRectangleGpu {
 
 struct GpuState {
     // The papers' two geometry passes, and what both paths share.
-    gl::Program surface, front, composite, depthRange, refit, normalDistance, cageGather;
+    gl::Program surface, composite, depthRange, refit, normalDistance, cageGather;
     // The single geometry pass.
-    gl::Program surfaces, resolve, deferred, rectangleGrow;
+    gl::Program surfaces, resolve, rectangleGrow;
+    // The two-surface shading, without and with the punctual lights (PUNCTUAL_LIGHTS).
+    gl::Program front[2], deferred[2];
     // The layered path (layers.glsl).
     gl::Program layersCapture, layersResolve; // for K = layerProgramsCapacity (compiled in)
     gl::Program layersOutline;
     int layerProgramsCapacity = 0;
-    /** Shading variants for that K by (method, dispersion search). */
-    std::map<std::pair<int, int>, gl::Program> layerShadePrograms;
+    /** Shading variants for that K by (method, dispersion search, punctual lights). */
+    std::map<std::tuple<int, int, bool>, gl::Program> layerShadePrograms;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {
         gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel

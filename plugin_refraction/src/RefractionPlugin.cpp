@@ -71,11 +71,9 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     };
     for (const Spec& spec :
          {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
-          Spec{&mGpu->front, "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
           Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"},
           Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
           Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
-          Spec{&mGpu->deferred, "refraction/rectangle.vert.glsl", "refraction/deferred.frag.glsl"},
           Spec{&mGpu->layersOutline, "refraction/rectangle.vert.glsl",
                "refraction/layers_outline.frag.glsl"}}) {
         auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
@@ -83,6 +81,17 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
             return program.error();
         *spec.target = std::move(*program);
     }
+    for (int lit = 0; lit < 2; ++lit)
+        for (const Spec& spec :
+             {Spec{&mGpu->front[lit], "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
+              Spec{&mGpu->deferred[lit], "refraction/rectangle.vert.glsl",
+                   "refraction/deferred.frag.glsl"}}) {
+            auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment,
+                                                 {"PUNCTUAL_LIGHTS " + std::to_string(lit)});
+            if (!program)
+                return program.error();
+            *spec.target = std::move(*program);
+        }
     for (auto [target, name] :
          {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
           std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},

@@ -145,6 +145,7 @@ vec3 layersOver(vec3 under, SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
         coat = environmentRadiance(reflect(-V, Nc), m.clearcoatRoughness) *
                (0.04 * dfg.x + dfg.y) * m.occlusion;
     }
+#if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
         vec3 arriving = lightArriving(i, P, L);
@@ -157,6 +158,7 @@ vec3 layersOver(vec3 under, SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
             coat += arriving * NoLc * schlick(vec3(0.04), max(dot(V, H), 0.0)) *
                     ggxLobe(NoLc, NoVc, max(dot(Nc, H), 0.0), coatAlpha);
     }
+#endif
     vec3 color = under * (1.0 - maxOf(m.sheenColor) * sheenE) + sheen;
     float coatFresnel = 0.04 + 0.96 * pow(1.0 - NoVc, 5.0);
     return color * (1.0 - m.clearcoat * coatFresnel) + m.clearcoat * coat;
@@ -201,6 +203,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
     vec3 metal = radiance * (f0Metal * dfg.x + dfg.y);
     vec3 base = (irradiance * m.baseColor * (1.0 - m.metallic) + mix(dielectric, metal, m.metallic)) *
                 m.occlusion;
+#if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
         vec3 arriving = lightArriving(i, P, L);
@@ -219,6 +222,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
                         lobe;
         base += arriving * NoL * (m.baseColor * (1.0 - m.metallic) / PI + specular);
     }
+#endif
     return layersOver(base, m, P, N, V);
 }
 

@@ -5,6 +5,11 @@
 #define COMMON_LIGHTING_GLSL
 
 const int LIGHT_DIRECTIONAL = 0, LIGHT_POINT = 1, LIGHT_SPOT = 2;
+// Whether the program evaluates the punctual lights: compiled out for frames without any (a CPU
+// rasteriser pays for an empty loop on every shaded pixel).
+#ifndef PUNCTUAL_LIGHTS
+#define PUNCTUAL_LIGHTS 1
+#endif
 const int SHEEN_TABLE_SIZE = 16;
 
 struct PunctualLight {

@@ -45,10 +45,14 @@ struct RenderGpu {
     std::vector<scene::PlacedLight> lights;             // this frame's, in world space
     LightingBuffer lighting;                            // the lights on the GPU (binding 9)
     std::unique_ptr<Environment> environment;
-    gl::Program background, ground, tonemap;
-    /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()), compiled
-     *  when a prepared model first uses it. */
+    gl::Program background, tonemap;
+    gl::Program ground[2]; ///< without and with the punctual lights (PUNCTUAL_LIGHTS)
+    /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()) and with or
+     *  without the punctual lights (opaqueKey), compiled when a frame first needs it. */
     std::map<int, gl::Program> opaque;
+    std::vector<int> layerSets; ///< the sets of layers the prepared models' materials use
+
+    static int opaqueKey(int layers, bool lit) { return layers | (lit ? 16 : 0); }
     gl::VertexArray emptyVao;
     gl::Framebuffer framebuffer;
 };

@@ -125,12 +125,19 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     for (const ProgramSpec& spec :
          {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
-          ProgramSpec{&gpu.ground, "render/ground.vert.glsl", "render/ground.frag.glsl"},
           ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
         if (!program)
             return core::Error{"render::Renderer::create(): " + program.error().message};
         *spec.target = std::move(*program);
+    }
+    for (int lit = 0; lit < 2; ++lit) {
+        auto program =
+            gl::Program::graphics(r->mShaders, "render/ground.vert.glsl", "render/ground.frag.glsl",
+                                  {"PUNCTUAL_LIGHTS " + std::to_string(lit)});
+        if (!program)
+            return core::Error{"render::Renderer::create(): " + program.error().message};
+        gpu.ground[lit] = std::move(*program);
     }
     r->mAllocator = std::make_unique<Allocator>();
     r->mPool = std::make_unique<fg::TexturePool>(*r->mAllocator);
@@ -176,22 +183,15 @@ core::Status Renderer::prepare(const scene::World& world) {
     }
     std::swap(gpu.models, used);
     used.clear();
-    // The opaque program of every set of layers the models' materials use (and the default
-    // material's, none).
-    std::vector<int> layerSets{0};
+    // The sets of layers the models' materials use (and the default material's, none): the
+    // opaque programs a frame may need.
+    gpu.layerSets = {0};
     for (const auto& m : gpu.models)
         for (const scene::Material& material : m->model->materials)
-            layerSets.push_back(material.surfaceLayers());
-    for (const int layers : layerSets) {
-        if (gpu.opaque.count(layers))
-            continue;
-        auto program =
-            gl::Program::graphics(mShaders, "render/mesh.vert.glsl", "render/pbr.frag.glsl",
-                                  {"SURFACE_LAYERS " + std::to_string(layers)});
-        if (!program)
-            return core::Error{"render::Renderer::prepare(): " + program.error().message};
-        gpu.opaque.emplace(layers, std::move(*program));
-    }
+            gpu.layerSets.push_back(material.surfaceLayers());
+    std::sort(gpu.layerSets.begin(), gpu.layerSets.end());
+    gpu.layerSets.erase(std::unique(gpu.layerSets.begin(), gpu.layerSets.end()),
+                        gpu.layerSets.end());
     return {};
 }
 
@@ -293,10 +293,23 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         return core::Error{
             "render::Renderer::render(): the scene places " + std::to_string(gpu.lights.size()) +
             " punctual lights, over the limit of " + std::to_string(core::limits::kMaxLights)};
-    gpu.lighting.upload(gpu.lights); // bound for every pass of the frame
+    gpu.lighting.upload(gpu.lights);         // bound for every pass of the frame
+    for (const int layers : gpu.layerSets) { // the opaque programs this frame draws with
+        const int key = RenderGpu::opaqueKey(layers, !gpu.lights.empty());
+        if (gpu.opaque.count(key))
+            continue;
+        auto program = gl::Program::graphics(
+            mShaders, "render/mesh.vert.glsl", "render/pbr.frag.glsl",
+            {"SURFACE_LAYERS " + std::to_string(layers),
+             std::string("PUNCTUAL_LIGHTS ") + (gpu.lights.empty() ? "0" : "1")});
+        if (!program)
+            return core::Error{"render::Renderer::render(): " + program.error().message};
+        gpu.opaque.emplace(key, std::move(*program));
+    }
     FrameInfo frame;
     frame.world = &world;
     frame.items = gpu.items;
+    frame.lights = gpu.lights;
     frame.environment = gpu.environment.get();
     frame.shaders = &mShaders;
     frame.camera = camera;

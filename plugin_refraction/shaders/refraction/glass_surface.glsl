@@ -63,6 +63,7 @@ vec3 glassColor(GlassMaterial m, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
     vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
     vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
     float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0), alpha = max(m.sigma.w, 0.03) * max(m.sigma.w, 0.03);
+#if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
         vec3 arriving = lightArriving(i, Pw, L);
@@ -72,6 +73,7 @@ vec3 glassColor(GlassMaterial m, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
             glass += arriving * NoL * glassReflectance(m, max(dot(Vw, H), 0.0)) *
                      ggxLobe(NoL, NoV, max(dot(Nw, H), 0.0), alpha);
     }
+#endif
     vec3 color = glass;
     if (m.ior.w < 1.0) // the same for every pixel of a glass: clear glass skips the opaque term
         color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,

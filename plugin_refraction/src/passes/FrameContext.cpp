@@ -257,7 +257,8 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
     const int mode = !dispersion                                                         ? 0
                      : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
                                                                                          : 2;
-    const std::pair key{int(c.settings.method), mode};
+    const bool lit = c.lit();
+    const std::tuple key{int(c.settings.method), mode, lit};
     if (!gpu.layerShadePrograms.count(key)) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
@@ -268,10 +269,11 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
                                       "refraction/layers_shade.frag.glsl",
                                       {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
                                        "LAYER_METHOD " + std::to_string(int(method)),
-                                       "LAYER_DISPERSION " + std::to_string(mode)});
+                                       "LAYER_DISPERSION " + std::to_string(mode),
+                                       std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0")});
             if (!shade)
                 return shade.error();
-            gpu.layerShadePrograms.insert_or_assign({int(method), mode}, std::move(*shade));
+            gpu.layerShadePrograms.insert_or_assign({int(method), mode, lit}, std::move(*shade));
         }
     }
     return &gpu.layerShadePrograms.at(key);

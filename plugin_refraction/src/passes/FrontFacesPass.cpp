@@ -23,10 +23,11 @@ fg::TextureHandle addFrontFacesPass(fg::FrameGraph& graph, const FrameContext& c
                 return bound;
             gl::clearColor(0, glm::vec4(0.0f));
             gl::clearDepth(1.0f);
-            setTwoSurfaceShading(c, c.gpu->front, d, r);
-            c.drawGlass(c.gpu->front, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
-                        [&c](const render::DrawItem&, std::size_t index) {
-                            c.setMaterial(c.gpu->front, index);
+            const gl::Program& program = c.gpu->front[c.lit() ? 1 : 0];
+            setTwoSurfaceShading(c, program, d, r);
+            c.drawGlass(program, {.cull = gl::Cull::Back, .depthFunc = gl::DepthFunc::Less},
+                        [&c, &program](const render::DrawItem&, std::size_t index) {
+                            c.setMaterial(program, index);
                         });
             return {};
         });

@@ -62,6 +62,8 @@ struct FrameContext {
     const gl::Program* layerShade = nullptr; ///< the shading variant (layerShadeProgram)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
+    /** Whether the frame has punctual lights (the shading variants with them compiled in). */
+    bool lit() const { return !frame->lights.empty(); }
     /** Draws every glass item with `program` (glass.vert.glsl), calling `perItem` (its index
      *  in the frame's items) first when given. */
     void

@@ -22,10 +22,11 @@ fg::TextureHandle addShadePass(fg::FrameGraph& graph, const FrameContext& c,
                                                          &r.texture(d.maps.mask));
                 !bound)
                 return bound;
-            setTwoSurfaceShading(c, gpu.deferred, d, r);
-            c.setMaterial(gpu.deferred, c.glassIndex);
+            const gl::Program& program = gpu.deferred[c.lit() ? 1 : 0];
+            setTwoSurfaceShading(c, program, d, r);
+            c.setMaterial(program, c.glassIndex);
             gl::bindTexture(kGatherFarUnit, r.texture(d.maps.gatheredFar));
-            gpu.deferred.set("uGatherFar", int(kGatherFarUnit));
+            program.set("uGatherFar", int(kGatherFarUnit));
             c.drawMaskedRectangle();
             return {};
         });

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/render/Camera.h"
+#include "engine/scene/Light.h"
 
 #include <glm/glm.hpp>
 
@@ -92,6 +93,9 @@ struct FrameInfo {
      *  its deformer's order (GpuDeformer::instances(), then primitives). */
     std::span<const DrawItem> items;
     const Environment* environment = nullptr;
+    /** The frame's punctual lights in world space (a file's on its nodes, a scene file's),
+     *  also in the storage buffer at render::kLightingBinding. */
+    std::span<const scene::PlacedLight> lights;
     const gl::ShaderLibrary* shaders = nullptr;
     Camera camera;
     RenderSettings settings;

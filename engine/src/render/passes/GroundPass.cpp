@@ -20,7 +20,7 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None});
-            gl::Program& p = gpu.ground;
+            gl::Program& p = gpu.ground[frame.lights.empty() ? 0 : 1];
             p.use();
             gpu.environment->bind(p, 0, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);

@@ -31,7 +31,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                                                          &r.texture(d.depth));
                 !bound)
                 return bound;
-            for (auto& [layers, program] : gpu.opaque) {
+            for (auto& [key, program] : gpu.opaque) {
                 gpu.environment->bind(program, 0, frame.settings.environmentRotation,
                                       frame.settings.environmentIntensity);
                 program.set("uViewProjection", frame.camera.viewProjection());
@@ -45,7 +45,8 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                     item.material >= 0
                         ? item.model->materials[std::size_t(item.material)].surfaceLayers()
                         : 0;
-                const gl::Program& p = gpu.opaque.at(layers);
+                const gl::Program& p =
+                    gpu.opaque.at(RenderGpu::opaqueKey(layers, !frame.lights.empty()));
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
