@@ -367,6 +367,13 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         const auto it = src.extensions.find(name);
         return it == src.extensions.end() ? nullptr : &it->second;
     };
+    // A number of an extension's object, `fallback` when absent, checked in [lo, hi].
+    auto factor = [&](const tinygltf::Value& e, const char* key, double fallback, double lo,
+                      double hi) {
+        const float value = float(number(e, key, fallback));
+        checkRange(value, lo, hi, what + " " + key);
+        return value;
+    };
     if (extension("KHR_materials_unlit"))
         mat.unlit = true;
     if (const tinygltf::Value* e = extension("KHR_materials_pbrSpecularGlossiness")) {
@@ -389,24 +396,20 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
                                       "glossiness factor is)");
     }
     if (const tinygltf::Value* e = extension("KHR_materials_emissive_strength")) {
-        mat.emissiveStrength = float(number(*e, "emissiveStrength", 1.0));
-        checkRange(mat.emissiveStrength, 0.0, 1e9, what + " emissiveStrength");
+        mat.emissiveStrength = factor(*e, "emissiveStrength", 1.0, 0.0, 1e9);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_specular")) {
         mat.hasSpecular = true;
-        mat.specularFactor = float(number(*e, "specularFactor", 1.0));
-        checkRange(mat.specularFactor, 0.0, 1.0, what + " specularFactor");
+        mat.specularFactor = factor(*e, "specularFactor", 1.0, 0.0, 1.0);
         mat.specularTexture = textureInfo(m, *e, "specularTexture", what);
         readColor(*e, "specularColorFactor", 1e6, what, mat.specularColorFactor);
         mat.specularColorTexture = textureInfo(m, *e, "specularColorTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_clearcoat")) {
         mat.hasClearcoat = true;
-        mat.clearcoatFactor = float(number(*e, "clearcoatFactor", 0.0));
-        checkRange(mat.clearcoatFactor, 0.0, 1.0, what + " clearcoatFactor");
+        mat.clearcoatFactor = factor(*e, "clearcoatFactor", 0.0, 0.0, 1.0);
         mat.clearcoatTexture = textureInfo(m, *e, "clearcoatTexture", what);
-        mat.clearcoatRoughnessFactor = float(number(*e, "clearcoatRoughnessFactor", 0.0));
-        checkRange(mat.clearcoatRoughnessFactor, 0.0, 1.0, what + " clearcoatRoughnessFactor");
+        mat.clearcoatRoughnessFactor = factor(*e, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0);
         mat.clearcoatRoughnessTexture = textureInfo(m, *e, "clearcoatRoughnessTexture", what);
         mat.clearcoatNormalTexture = textureInfo(m, *e, "clearcoatNormalTexture", what);
         if (e->Has("clearcoatNormalTexture"))
@@ -417,43 +420,34 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
         mat.hasSheen = true;
         readColor(*e, "sheenColorFactor", 1.0, what, mat.sheenColorFactor);
         mat.sheenColorTexture = textureInfo(m, *e, "sheenColorTexture", what);
-        mat.sheenRoughnessFactor = float(number(*e, "sheenRoughnessFactor", 0.0));
-        checkRange(mat.sheenRoughnessFactor, 0.0, 1.0, what + " sheenRoughnessFactor");
+        mat.sheenRoughnessFactor = factor(*e, "sheenRoughnessFactor", 0.0, 0.0, 1.0);
         mat.sheenRoughnessTexture = textureInfo(m, *e, "sheenRoughnessTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_iridescence")) {
         mat.hasIridescence = true;
-        mat.iridescenceFactor = float(number(*e, "iridescenceFactor", 0.0));
-        checkRange(mat.iridescenceFactor, 0.0, 1.0, what + " iridescenceFactor");
+        mat.iridescenceFactor = factor(*e, "iridescenceFactor", 0.0, 0.0, 1.0);
         mat.iridescenceTexture = textureInfo(m, *e, "iridescenceTexture", what);
-        mat.iridescenceIor = float(number(*e, "iridescenceIor", 1.3));
-        checkRange(mat.iridescenceIor, 1.0, 1e3, what + " iridescenceIor");
-        mat.iridescenceThicknessMinimum = float(number(*e, "iridescenceThicknessMinimum", 100.0));
-        mat.iridescenceThicknessMaximum = float(number(*e, "iridescenceThicknessMaximum", 400.0));
-        checkRange(mat.iridescenceThicknessMinimum, 0.0, 1e6,
-                   what + " iridescenceThicknessMinimum");
-        checkRange(mat.iridescenceThicknessMaximum, 0.0, 1e6,
-                   what + " iridescenceThicknessMaximum");
+        mat.iridescenceIor = factor(*e, "iridescenceIor", 1.3, 1.0, 1e3);
+        mat.iridescenceThicknessMinimum =
+            factor(*e, "iridescenceThicknessMinimum", 100.0, 0.0, 1e6);
+        mat.iridescenceThicknessMaximum =
+            factor(*e, "iridescenceThicknessMaximum", 400.0, 0.0, 1e6);
         mat.iridescenceThicknessTexture = textureInfo(m, *e, "iridescenceThicknessTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_anisotropy")) {
         mat.hasAnisotropy = true;
-        mat.anisotropyStrength = float(number(*e, "anisotropyStrength", 0.0));
-        checkRange(mat.anisotropyStrength, 0.0, 1.0, what + " anisotropyStrength");
-        mat.anisotropyRotation = float(number(*e, "anisotropyRotation", 0.0));
-        checkRange(mat.anisotropyRotation, -1e6, 1e6, what + " anisotropyRotation");
+        mat.anisotropyStrength = factor(*e, "anisotropyStrength", 0.0, 0.0, 1.0);
+        mat.anisotropyRotation = factor(*e, "anisotropyRotation", 0.0, -1e6, 1e6);
         mat.anisotropyTexture = textureInfo(m, *e, "anisotropyTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_transmission")) {
         mat.hasTransmission = true;
-        mat.transmissionFactor = float(number(*e, "transmissionFactor", 0.0));
-        checkRange(mat.transmissionFactor, 0.0, 1.0, what + " transmissionFactor");
+        mat.transmissionFactor = factor(*e, "transmissionFactor", 0.0, 0.0, 1.0);
         mat.transmissionTexture = textureInfo(m, *e, "transmissionTexture", what);
     }
     if (const tinygltf::Value* e = extension("KHR_materials_volume")) {
         mat.hasVolume = true;
-        mat.thicknessFactor = float(number(*e, "thicknessFactor", 0.0));
-        checkRange(mat.thicknessFactor, 0.0, 1e9, what + " thicknessFactor");
+        mat.thicknessFactor = factor(*e, "thicknessFactor", 0.0, 0.0, 1e9);
         mat.thicknessTexture = textureInfo(m, *e, "thicknessTexture", what);
         mat.attenuationDistance = float(number(*e, "attenuationDistance", double(INFINITY)));
         if (!(mat.attenuationDistance > 0.0f))
@@ -468,8 +462,7 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
     }
     if (const tinygltf::Value* e = extension("KHR_materials_dispersion")) {
         mat.hasDispersion = true;
-        mat.dispersion = float(number(*e, "dispersion", 0.0));
-        checkRange(mat.dispersion, 0.0, 1e6, what + " dispersion");
+        mat.dispersion = factor(*e, "dispersion", 0.0, 0.0, 1e6);
     }
     mat.forEachTexture([&](const scene::TextureRef& t, bool) {
         if (t.present() && (t.texCoord < 0 || t.texCoord > 1))
