@@ -224,8 +224,6 @@ public:
             surface = render::cpu::readSurface(*h.surface->model, *m, point, emissive);
         if (m && m->unlit) // KHR_materials_unlit
             return surface.baseColor;
-        surface.clearcoatNormal =
-            m && m->hasClearcoat ? surface.clearcoatNormal : point.interpolatedNormal;
         return render::cpu::shadeSurface(surface, lighting, h.point, point.normal, V) + emissive;
     }
 

@@ -65,8 +65,11 @@ namespace plugin {
  *  History: 1 first interface; 2 ParameterSet presets, buffer resources in the frame graph
  *  ("scene.vertices"), execute callbacks that may return a core::Status; 3 worlds of characters:
  *  FrameInfo::items (render::DrawItem) and Plugin::claims instead of FrameInfo::model,
- *  FrameInfo::geometry, FrameInfo::materials and Plugin::drawsPrimitive. */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/3";
+ *  FrameInfo::geometry, FrameInfo::materials and Plugin::drawsPrimitive; 4 materials' layers and
+ *  lights: FrameInfo::lights, MaterialTextures::bind's fifteen slots as uniform arrays
+ *  (uHasTexture[], uTexture[], uTextureUv[]: common/material_uv.glsl), the lighting buffer at
+ *  storage binding 9 (render::kLightingBinding), instances sharing deformed buffers. */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/4";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
