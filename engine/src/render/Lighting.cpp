@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace render {
 namespace {
@@ -74,14 +75,19 @@ double sheenAlbedo(double NoV, double roughness) {
     return lo + (hi - lo) * fy;
 }
 
-void placeLights(const scene::Model& model, const anim::Pose& pose, const glm::dmat4& placement,
-                 std::vector<scene::PlacedLight>& out) {
-    if (model.lights.empty())
-        return;
-    for (int node : model.sceneNodes()) {
+std::vector<int> lightNodes(const scene::Model& model) {
+    std::vector<int> nodes;
+    if (!model.lights.empty())
+        for (int node : model.sceneNodes())
+            if (model.nodes[std::size_t(node)].light >= 0)
+                nodes.push_back(node);
+    return nodes;
+}
+
+void placeLights(const scene::Model& model, std::span<const int> nodes, const anim::Pose& pose,
+                 const glm::dmat4& placement, std::vector<scene::PlacedLight>& out) {
+    for (int node : nodes) {
         const int light = model.nodes[std::size_t(node)].light;
-        if (light < 0)
-            continue;
         const glm::dmat4 world = placement * pose.world[std::size_t(node)];
         const glm::dvec3 axis(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)); // scale does not count
         out.push_back({model.lights[std::size_t(light)], glm::vec3(world[3]),
@@ -95,7 +101,7 @@ std::vector<scene::PlacedLight> worldLights(const scene::World& world, double ti
     for (const scene::Character& character : world.characters)
         if (!character.model->lights.empty())
             placeLights(
-                *character.model,
+                *character.model, lightNodes(*character.model),
                 anim::evaluate(*character.model, character.playingClip(), character.clipTime(time)),
                 character.transform(), lights);
     lights.insert(lights.end(), world.lights.begin(), world.lights.end());
@@ -108,21 +114,22 @@ void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights) {
         mBuffer = gl::Buffer(kHeaderBytes + mCapacity * sizeof(PunctualLightGpu));
         mBuffer.update(0, kTableBytes, sheenAlbedoTable().data());
     }
-    std::vector<PunctualLightGpu> packed;
-    packed.reserve(lights.size());
-    for (const scene::PlacedLight& l : lights) {
+    // The count (a uvec4), then the lights, written at once from storage kept across frames.
+    mStaging.resize(16 + lights.size() * sizeof(PunctualLightGpu));
+    const std::uint32_t count[4] = {std::uint32_t(lights.size()), 0, 0, 0};
+    std::memcpy(mStaging.data(), count, sizeof(count));
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const scene::PlacedLight& l = lights[i];
         const int type = l.light.type == scene::Light::Type::Directional ? 0
                          : l.light.type == scene::Light::Type::Point     ? 1
                                                                          : 2;
-        packed.push_back(
-            {glm::vec4(l.position, float(type)), glm::vec4(l.direction, l.light.range),
-             glm::vec4(l.light.color * l.light.intensity, std::cos(l.light.outerConeAngle)),
-             glm::vec4(std::cos(l.light.innerConeAngle), 0.0f, 0.0f, 0.0f)});
+        const PunctualLightGpu packed{
+            glm::vec4(l.position, float(type)), glm::vec4(l.direction, l.light.range),
+            glm::vec4(l.light.color * l.light.intensity, std::cos(l.light.outerConeAngle)),
+            glm::vec4(std::cos(l.light.innerConeAngle), 0.0f, 0.0f, 0.0f)};
+        std::memcpy(mStaging.data() + 16 + i * sizeof(PunctualLightGpu), &packed, sizeof(packed));
     }
-    const std::uint32_t count[4] = {std::uint32_t(packed.size()), 0, 0, 0};
-    mBuffer.update(kTableBytes, sizeof(count), count);
-    if (!packed.empty())
-        mBuffer.update(kHeaderBytes, packed.size() * sizeof(PunctualLightGpu), packed.data());
+    mBuffer.update(kTableBytes, mStaging.size(), mStaging.data());
     gl::bindStorage(kLightingBinding, mBuffer);
 }
 

@@ -24,6 +24,7 @@ struct ModelGpu {
     std::shared_ptr<const scene::Model> model;
     std::shared_ptr<const deform::GpuModel> upload;
     std::shared_ptr<MaterialTextures> materials; ///< kept when the level changes
+    std::vector<int> lightNodes; ///< nodes with a KHR_lights_punctual light (render::lightNodes)
     /** Per mesh, per primitive: a vertex array binding its index buffer (the same for every
      *  node, instance and placement that draws the mesh; empty for meshes no node draws). */
     std::vector<std::vector<gl::VertexArray>> vertexArrays;

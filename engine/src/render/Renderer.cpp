@@ -89,6 +89,7 @@ core::Result<std::shared_ptr<ModelGpu>> uploadModel(std::shared_ptr<const scene:
         materials = std::make_shared<MaterialTextures>(std::move(*created));
     }
     m->materials = std::move(materials);
+    m->lightNodes = lightNodes(*model);
     m->vertexArrays.resize(model->meshes.size());
     for (int node : model->meshNodes()) {
         const int mesh = model->nodes[std::size_t(node)].mesh;
@@ -259,7 +260,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         anim::applyClip(model, character.playingClip(), character.clipTime(time), cg.pose);
         anim::updateWorld(model, cg.pose);
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
-        placeLights(model, cg.pose, character.transform(), gpu.lights);
+        placeLights(model, cg.model->lightNodes, cg.pose, character.transform(), gpu.lights);
         const auto& instances = cg.deformer->instances();
         for (std::size_t i = 0; i < instances.size(); ++i)
             for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace anim {
@@ -32,10 +33,11 @@ const std::array<float, kSheenTableSize * kSheenTableSize>& sheenAlbedoTable();
 /** The table read bilinearly, as common/lighting.glsl reads it on the GPU. */
 double sheenAlbedo(double NoV, double roughness);
 
-/** The lights of `model`'s nodes (KHR_lights_punctual) in `pose`, placed by `placement`,
- *  appended to `out`. */
-void placeLights(const scene::Model& model, const anim::Pose& pose, const glm::dmat4& placement,
-                 std::vector<scene::PlacedLight>& out);
+/** The nodes of `model`'s default scene that carry a light (KHR_lights_punctual). */
+std::vector<int> lightNodes(const scene::Model& model);
+/** The lights on `nodes` (lightNodes) in `pose`, placed by `placement`, appended to `out`. */
+void placeLights(const scene::Model& model, std::span<const int> nodes, const anim::Pose& pose,
+                 const glm::dmat4& placement, std::vector<scene::PlacedLight>& out);
 /** Every light of `world` at scene time `time`: its characters' (posed) and its own. */
 std::vector<scene::PlacedLight> worldLights(const scene::World& world, double time);
 
@@ -48,6 +50,7 @@ public:
 private:
     gl::Buffer mBuffer;
     std::size_t mCapacity = 0;
+    std::vector<std::uint8_t> mStaging; ///< the count and the packed lights (storage reused)
 };
 
 } // namespace render

@@ -1,0 +1,106 @@
+// A world as the GL tests of the glass render and score it: the refraction plugin's frame (its
+// parameters as KEY=VALUE) and the Embree reference's, from one camera.
+#pragma once
+
+#include "engine/capture/Metrics.h"
+#include "engine/render/Renderer.h"
+#include "refraction/ReferenceTracer.h"
+#include "refraction/RefractionPlugin.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace test {
+
+inline constexpr int kWorldRigSize = 128;
+
+/** A world rendered by the refraction plugin (KEY=VALUE parameters) and traced by the
+ *  reference with the same parameters; with its ground plane under it if it has one. */
+class WorldRig {
+public:
+    WorldRig(scene::World world, gl::Context& context, int size = kWorldRigSize)
+        : mWorld(std::move(world)), mSize(size) {
+        auto renderer = render::Renderer::create(render::Environment::proceduralSky(128), context);
+        EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
+        mRenderer = std::move(*renderer);
+        mPlugin = std::make_unique<refraction::RefractionPlugin>();
+        EXPECT_TRUE(mRenderer->addPlugin(mPlugin.get()).ok());
+        mCamera = render::frameBounds(render::worldBounds(mWorld), 1.0f, 0.7f, 0.0f, 0.1f, 1.0f);
+        mRenderer->setGround(render::GroundPlane::under(render::worldBounds(mWorld)));
+    }
+    void set(const std::string& key, const std::string& value) {
+        ASSERT_TRUE(mPlugin->parameters().set(key, value).ok()) << key << "=" << value;
+    }
+    /** The HDR frame at scene time `time` (rows top to bottom); `passes` gets the frame's pass
+     *  names. */
+    std::vector<float> renderHdr(double time = 0.0, std::vector<std::string>* passes = nullptr) {
+        render::RenderSettings settings;
+        settings.size = {mSize, mSize};
+        settings.ground = mWorld.ground;
+        settings.hdrOutput = true;
+        auto stats = mRenderer->render(mWorld, mCamera, settings, time);
+        EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
+        if (stats && passes)
+            for (const render::PassStats& p : stats->passes)
+                passes->push_back(p.name);
+        return mRenderer->readHdrOutput();
+    }
+    /** renderHdr() tonemapped. */
+    capture::Image render(double time = 0.0, std::vector<std::string>* passes = nullptr) {
+        return {mSize, mSize, refraction::tonemap(renderHdr(time, passes), 1.0f)};
+    }
+    struct Reference {
+        capture::Image image;
+        std::vector<bool> mask;
+        refraction::ReferenceImage traced;
+    };
+    /** The reference's frame at `time`: 16 rays a pixel, or one through each pixel's centre
+     *  (`pixelCentres`), as the GPU samples. */
+    Reference reference(double time = 0.0, bool pixelCentres = false) const {
+        render::RenderSettings settings;
+        settings.size = {mSize, mSize};
+        settings.ground = mWorld.ground;
+        refraction::ReferenceOptions options;
+        options.samplesPerPixel = 16;
+        options.pixelCentres = pixelCentres;
+        const auto environment =
+            refraction::EnvironmentSampler::fromGpu(mRenderer->environment(), 0.0f, 1.0f);
+        auto traced =
+            refraction::traceReference(mWorld, time, mCamera, environment, settings,
+                                       mRenderer->ground(), mPlugin->parameters(), options);
+        EXPECT_TRUE(traced.ok()) << (traced.ok() ? "" : traced.error().message);
+        Reference r;
+        if (!traced)
+            return r;
+        r.image = {mSize, mSize, refraction::tonemap(traced->rgba, 1.0f)};
+        for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
+            r.mask.push_back(traced->rgba[i] > 0.5f);
+        r.traced = std::move(*traced);
+        return r;
+    }
+    /** Masked PSNR of the frame at `time` against the reference at the same time. */
+    double psnrAgainstReference(double time = 0.0) {
+        const Reference r = reference(time);
+        return capture::score(render(time), r.image, &r.mask).psnr;
+    }
+    const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
+    const render::Camera& camera() const { return mCamera; }
+    void setCamera(const render::Camera& camera) { mCamera = camera; }
+    /** Views the world from its scene file's camera instead of framing its bounds. */
+    void useSceneCamera() {
+        ASSERT_TRUE(mWorld.camera.has_value());
+        mCamera = render::worldCamera(*mWorld.camera, 1.0f, render::worldBounds(mWorld));
+    }
+
+private:
+    scene::World mWorld;
+    std::unique_ptr<render::Renderer> mRenderer;
+    std::unique_ptr<refraction::RefractionPlugin> mPlugin;
+    render::Camera mCamera;
+    int mSize;
+};
+
+} // namespace test
