@@ -22,7 +22,6 @@
 namespace {
 
 using test::WorldRig;
-constexpr int kSize = test::kWorldRigSize;
 
 scene::World loadScene(const std::string& name) {
     auto world = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
