@@ -38,22 +38,22 @@ struct GlassMaterialGpu {
 struct GlassRectangleGpu {
     std::int32_t pixelMin[2], pixelMax[2]; ///< inclusive; empty while min > max
     std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
-    std::uint32_t overflowPixels;          ///< pixels over K in the layered shading
+    std::uint32_t overflowPixels;          ///< pixels over K in the walk
+    std::uint32_t backRange[2], frontMin;  ///< the pair's depth ranges (float bits)
 };
 
 struct GpuState {
-    // The papers' two geometry passes, and what both paths share.
-    gl::Program surface, composite, depthRange, refit, normalDistance, cageGather;
-    // The single geometry pass.
-    gl::Program surfaces, resolve, rectangleGrow;
-    // The two-surface shading, without and with the punctual lights (PUNCTUAL_LIGHTS).
-    gl::Program front[2], deferred[2];
-    // The layered path (layers.glsl).
-    gl::Program layersCapture, layersResolve; // for K = layerProgramsCapacity (compiled in)
-    gl::Program layersOutline;
+    gl::Program refit, normalDistance, cageGather, rectangleGrow; // d_N; the glass rectangle
+    // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1).
+    gl::Program surface, surfaces, resolve[2];
+    // The layers (layers.glsl): the capture and its depth maps for K = layerProgramsCapacity
+    // (compiled in); the outline pass.
+    gl::Program layersCapture, layersResolve, layersOutline;
     int layerProgramsCapacity = 0;
-    /** Shading variants for that K by (method, dispersion search, punctual lights). */
-    std::map<std::tuple<int, int, bool>, gl::Program> layerShadePrograms;
+    /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
+     *  punctual lights). */
+    using WalkKey = std::tuple<int, int, int, bool>;
+    std::map<WalkKey, gl::Program> walkPrograms;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {
         gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
@@ -70,7 +70,6 @@ struct GpuState {
     bool warnedGlassIds = false; // the 256-id limit was reported
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
-    gl::Buffer range{4 * sizeof(std::uint32_t)}; // depth_range.comp.glsl's min/max
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
     /** d_N of one character's glass: one BVH over all its glass primitives' cages (parts, in
      *  the order of their draw items); with subdivision carried to each part's drawn vertices

@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <vector>
 
 std::span<const gl::ShaderFile> refractionShaderFiles();
 
@@ -64,44 +66,35 @@ RefractionPlugin::~RefractionPlugin() = default;
 core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     shaders.add(refractionShaderFiles());
     mGpu = std::make_unique<GpuState>();
+    // The programs every frame may use; the capture's for K and the walk's variants are built
+    // when a frame first needs them (walkProgram).
     struct Spec {
         gl::Program* target;
-        const char* vertex;
-        const char* fragment;
+        const char* vertex; // null: a compute program
+        const char* shader;
+        std::vector<std::string> defines;
     };
-    for (const Spec& spec :
-         {Spec{&mGpu->surface, "refraction/glass.vert.glsl", "refraction/surface.frag.glsl"},
-          Spec{&mGpu->composite, "render/fullscreen.vert.glsl", "refraction/composite.frag.glsl"},
-          Spec{&mGpu->surfaces, "refraction/glass.vert.glsl", "refraction/surfaces.frag.glsl"},
-          Spec{&mGpu->resolve, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl"},
-          Spec{&mGpu->layersOutline, "refraction/rectangle.vert.glsl",
-               "refraction/layers_outline.frag.glsl"}}) {
-        auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment);
+    const char* glass = "refraction/glass.vert.glsl";
+    const char* rectangle = "refraction/rectangle.vert.glsl";
+    const Spec specs[] = {
+        {&mGpu->surface, glass, "refraction/surface.frag.glsl", {}},
+        {&mGpu->surfaces, glass, "refraction/surfaces.frag.glsl", {}},
+        {&mGpu->resolve[0], rectangle, "refraction/resolve.frag.glsl",
+         {"LAYER_CAPACITY 2", "PAIR_GATHERED 0"}},
+        {&mGpu->resolve[1], rectangle, "refraction/resolve.frag.glsl",
+         {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
+        {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
+        {&mGpu->refit, nullptr, "refraction/bvh_refit.comp.glsl", {}},
+        {&mGpu->rectangleGrow, nullptr, "refraction/rectangle.comp.glsl", {}},
+        {&mGpu->normalDistance, nullptr, "refraction/normal_distance.comp.glsl", {}},
+        {&mGpu->cageGather, nullptr, "refraction/cage_gather.comp.glsl", {}}};
+    for (const Spec& spec : specs) {
+        auto program = spec.vertex
+                           ? gl::Program::graphics(shaders, spec.vertex, spec.shader, spec.defines)
+                           : gl::Program::compute(shaders, spec.shader);
         if (!program)
             return program.error();
         *spec.target = std::move(*program);
-    }
-    for (int lit = 0; lit < 2; ++lit)
-        for (const Spec& spec :
-             {Spec{&mGpu->front[lit], "refraction/glass.vert.glsl", "refraction/front.frag.glsl"},
-              Spec{&mGpu->deferred[lit], "refraction/rectangle.vert.glsl",
-                   "refraction/deferred.frag.glsl"}}) {
-            auto program = gl::Program::graphics(shaders, spec.vertex, spec.fragment,
-                                                 {"PUNCTUAL_LIGHTS " + std::to_string(lit)});
-            if (!program)
-                return program.error();
-            *spec.target = std::move(*program);
-        }
-    for (auto [target, name] :
-         {std::pair{&mGpu->depthRange, "refraction/depth_range.comp.glsl"},
-          std::pair{&mGpu->refit, "refraction/bvh_refit.comp.glsl"},
-          std::pair{&mGpu->rectangleGrow, "refraction/rectangle.comp.glsl"},
-          std::pair{&mGpu->normalDistance, "refraction/normal_distance.comp.glsl"},
-          std::pair{&mGpu->cageGather, "refraction/cage_gather.comp.glsl"}}) {
-        auto program = gl::Program::compute(shaders, name);
-        if (!program)
-            return program.error();
-        *target = std::move(*program);
     }
     return {};
 }
@@ -138,59 +131,50 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
     const SceneInputs scene = sceneInputs(blackboard);
     addGlassMaterialsPass(graph, c, buffers);
-    if (c.settings.layered()) {
-        // Every glass item, whatever its material, in one capture pass; then the walk.
-        auto program = layerShadeProgram(*mGpu, c);
-        if (!program) {
-            core::logError("refraction: " + program.error().message);
-            return;
-        }
-        c.layerShade = *program;
-        if (c.settings.usesNormalDistance())
-            addNormalDistancePass(graph, c, buffers);
-        const fg::TextureHandle mask = addLayerCapturePass(graph, c, buffers);
-        const LayerDepths depths = addLayerDepthsPass(graph, c, buffers, mask);
-        const LayerShade shaded = addLayerShadePass(graph, c, buffers, scene, mask, depths);
-        blackboard.put(plugin::kSceneColor, c.settings.outlineAntialiasing
-                                                ? addLayerOutlinePass(graph, c, buffers, shaded)
-                                                : shaded.color);
+    auto walk = walkProgram(*mGpu, c);
+    if (!walk) {
+        core::logError("refraction: " + walk.error().message);
         return;
     }
-
-    // The two-surface path's single geometry pass needs what one shading pass can serve: one glass
-    // material with the same overrides on every glass item, no normal map (no UV or tangent is
-    // gathered), the farthest back surface (MAX blending).
-    bool oneMaterial = true;
-    for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
-        const render::DrawItem& item = c.frame->items[index];
-        if (item.owner != this)
-            continue;
-        if (!c.glass) {
-            c.glass = &item;
-            c.glassIndex = index;
-        }
-        oneMaterial = oneMaterial && item.model == c.glass->model &&
-                      item.material == c.glass->material &&
-                      item.source->overrides == c.glass->source->overrides;
-    }
-    const scene::Model& model = *c.glass->model;
-    const bool normalMap = c.glass->material >= 0 &&
-                           model.materials[std::size_t(c.glass->material)].normalTexture.present();
-    const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
-    c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
-                !normalMap && !firstBack;
-
+    c.walk = *walk;
     if (c.settings.usesNormalDistance())
         addNormalDistancePass(graph, c, buffers);
-    const SurfaceMaps maps =
-        c.onePass ? addResolvePass(graph, c, buffers, scene, addGatherPass(graph, c, buffers))
-                  : addSurfacePasses(graph, c, buffers, firstBack);
-    if (c.settings.twoInterfaces())
-        addDepthRangePass(graph, c, maps, buffers);
-    blackboard.put(plugin::kSceneColor,
-                   c.onePass ? addShadePass(graph, c, maps, buffers, scene)
-                             : addCompositePass(graph, c, scene,
-                                                addFrontFacesPass(graph, c, maps, buffers, scene)));
+    // The capture: the layers (every glass item, whatever its material, in one geometry pass),
+    // or the pair. The pair's single geometry pass serves what one resolve can: one glass
+    // material with the same overrides on every glass item, no normal map (no UV or tangent is
+    // gathered), the farthest back surface (MAX blending); else the papers' two passes.
+    Capture capture;
+    if (c.settings.layered()) {
+        capture = addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers));
+    } else {
+        const render::DrawItem* first = nullptr;
+        bool oneMaterial = true;
+        for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
+            const render::DrawItem& item = c.frame->items[index];
+            if (item.owner != this)
+                continue;
+            if (!first) {
+                first = &item;
+                c.firstGlassId = mGpu->glassIds[index];
+            }
+            oneMaterial = oneMaterial && item.model == first->model &&
+                          item.material == first->material &&
+                          item.source->overrides == first->source->overrides;
+        }
+        const bool normalMap =
+            first->material >= 0 &&
+            first->model->materials[std::size_t(first->material)].normalTexture.present();
+        const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
+        c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
+                    !normalMap && !firstBack;
+        const PairTargets pair = c.onePass ? addGatherPass(graph, c, buffers)
+                                           : addSurfacePasses(graph, c, buffers, firstBack);
+        capture = addResolvePass(graph, c, buffers, scene, pair);
+    }
+    const Walked walked = addWalkPass(graph, c, buffers, scene, capture);
+    blackboard.put(plugin::kSceneColor, c.settings.layered() && c.settings.outlineAntialiasing
+                                            ? addLayerOutlinePass(graph, c, buffers, walked)
+                                            : walked.color);
 }
 
 LayerStats RefractionPlugin::layerStats() const {

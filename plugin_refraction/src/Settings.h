@@ -42,7 +42,7 @@ struct Settings {
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
-    int debug = 0; ///< index into the "debug" parameter's choices (glass_shading.glsl)
+    int debug = 0; ///< index into the "debug" parameter's choices (walk.frag.glsl)
 
     /** The plugin's parameters as data: name, label, type, range, default, choices, help. */
     static const std::vector<plugin::Parameter>& parameterTable();

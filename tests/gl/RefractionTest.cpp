@@ -629,19 +629,12 @@ TEST_F(Refraction, EveryDebugViewShowsWhatItNamesOnTheSphere) {
                     differ += glm::length(none[i].color - opaque[i].color) > 0.05;
                 EXPECT_GT(double(differ) / double(none.size()), 0.9) << "the glass looks opaque";
             }
-            // The two-surface model's SIR gathers no back faces: its two-interface views stay
-            // black.
-            const bool noBackFaces = sir && !layered;
             auto black = [&](const std::vector<ViewPixel>& pixels) {
                 EXPECT_EQ(fractionOf(pixels, [&](const ViewPixel& p) { return is(p, {}); }), 1.0);
             };
             for (const char* debug : {"back-depth", "dv"}) {
                 SCOPED_TRACE(debug);
                 const auto pixels = render(debug);
-                if (noBackFaces) {
-                    black(pixels);
-                    continue;
-                }
                 // Both in view depth over one scale for the frame: in proportion to the exact.
                 std::vector<double> ratio;
                 for (const ViewPixel& p : pixels) {
@@ -654,34 +647,26 @@ TEST_F(Refraction, EveryDebugViewShowsWhatItNamesOnTheSphere) {
                 EXPECT_LT(spread(ratio), 1.1);
             }
             {
-                const auto pixels = render("back-normal");
-                if (noBackFaces) {
-                    black(pixels);
-                } else { // the outward normal of the back face, in view space
-                    EXPECT_GT(fractionOf(pixels,
-                                         [&](const ViewPixel& p) {
-                                             const glm::dvec3 n = p.color * 2.0 - 1.0;
-                                             const glm::dvec3 exact =
-                                                 glm::dmat3(view) * p.exact.behind;
-                                             return glm::dot(n, exact) > 0.98;
-                                         }),
-                              0.98);
-                }
+                // The outward normal of the back face, in view space.
+                EXPECT_GT(fractionOf(render("back-normal"),
+                                     [&](const ViewPixel& p) {
+                                         const glm::dvec3 n = p.color * 2.0 - 1.0;
+                                         const glm::dvec3 exact = glm::dmat3(view) * p.exact.behind;
+                                         return glm::dot(n, exact) > 0.98;
+                                     }),
+                          0.98);
             }
             if (dir) {
                 black(render("dn")); // DIR needs no d_N
             } else if (!sir) {
-                // d_N of a unit sphere is its diameter: the layers show it over the entry's
-                // depth, the two-surface model over one scale for the frame.
+                // d_N of a unit sphere is its diameter, shown over the entry's depth.
                 const auto pixels = render("dn");
                 std::vector<double> value;
                 for (const ViewPixel& p : pixels)
-                    value.push_back(layered ? p.color.r * depth(p.exact.p1) / 2.0 : p.color.r);
+                    value.push_back(p.color.r * depth(p.exact.p1) / 2.0);
                 EXPECT_EQ(fractionOf(pixels, grey), 1.0);
                 EXPECT_LT(spread(value), 1.1);
-                if (layered) {
-                    EXPECT_NEAR(value[value.size() / 2], 1.0, 0.05);
-                }
+                EXPECT_NEAR(value[value.size() / 2], 1.0, 0.05);
             }
             {
                 // Where the refracted ray leaves, and its direction; SIR refracts once, so its
@@ -707,15 +692,11 @@ TEST_F(Refraction, EveryDebugViewShowsWhatItNamesOnTheSphere) {
                 if (!sir) {
                     EXPECT_LT(percentile(point, 0.95), dir ? 0.03 : 0.3);
                     EXPECT_LT(percentile(uvError, 0.95), dir ? 0.005 : 0.03);
-                } else if (noBackFaces) {
-                    black(uvs);
                 }
             }
             {
                 const auto steps = render("steps");
-                if (noBackFaces) {
-                    black(steps);
-                } else if (dir) { // the search ran, and ended inside the glass
+                if (dir) { // the search ran, and ended inside the glass
                     EXPECT_EQ(fractionOf(steps,
                                          [&](const ViewPixel& p) {
                                              return p.color.r > 0.0 && p.color.r <= 1.0 &&
@@ -733,14 +714,16 @@ TEST_F(Refraction, EveryDebugViewShowsWhatItNamesOnTheSphere) {
                         return !is(p, {1.0, 0.0, 0.0});
                     }));
             }
-            if (layered) {
-                // Two layers per pixel of the four kept; with room for one, every pixel overflows.
-                EXPECT_EQ(fractionOf(render("layer-count"),
-                                     [&](const ViewPixel& p) { return is(p, glm::dvec3(0.5)); }),
-                          1.0);
-                EXPECT_EQ(fractionOf(render("overflow"),
-                                     [&](const ViewPixel& p) { return is(p, glm::dvec3(0.1)); }),
-                          1.0);
+            // Two layers per pixel, of the four the layers keep or the pair's two; none overflows.
+            EXPECT_EQ(fractionOf(render("layer-count"),
+                                 [&](const ViewPixel& p) {
+                                     return is(p, glm::dvec3(layered ? 0.5 : 1.0));
+                                 }),
+                      1.0);
+            EXPECT_EQ(fractionOf(render("overflow"),
+                                 [&](const ViewPixel& p) { return is(p, glm::dvec3(0.1)); }),
+                      1.0);
+            if (layered) { // with room for one layer, every pixel overflows
                 rig.set("layer-capacity", "1");
                 EXPECT_EQ(fractionOf(render("overflow"),
                                      [&](const ViewPixel& p) {

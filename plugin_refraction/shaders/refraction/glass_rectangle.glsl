@@ -1,8 +1,10 @@
 // The glass's extent this frame (GlassRectangleGpu in GpuState.h), reset before the geometry
 // pass and grown by rectangle.comp.glsl from the deformed cages: its pixel rectangle
 // (inclusive; empty while min > max), which the full-screen passes rasterise instead of the
-// screen, and its view-space box (floats as ordered ints); then the layered shading's count of
-// pixels holding more than K layers (LayerStats::overflowPixels).
+// screen, and its view-space box (floats as ordered ints); then the walk's count of pixels
+// holding more than K layers (LayerStats::overflowPixels) and, for the papers' search over the
+// pair capture, the depth range of its back and front surfaces (resolve.frag.glsl; positive
+// floats' bits, whose unsigned order is theirs).
 #ifndef REFRACTION_GLASS_RECTANGLE_GLSL
 #define REFRACTION_GLASS_RECTANGLE_GLSL
 
@@ -10,6 +12,8 @@ layout(std430, binding = 4) buffer GlassRectangle {
     int glassPixelMin[2], glassPixelMax[2];
     int glassBoxMin[3], glassBoxMax[3];
     uint glassOverflowPixels;
+    uint glassBackRange[2]; // nearest, farthest back depth (0: none)
+    uint glassFrontMin;     // nearest front depth (FLT_MAX: none)
 };
 
 #endif

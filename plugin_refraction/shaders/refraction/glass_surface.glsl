@@ -1,5 +1,4 @@
-// What both shading paths (glass_shading.glsl over two surfaces, layers_shade.frag.glsl over the
-// layers) do alike around their search for the exit: Wyman's estimate of the exit distance,
+// The walk's optics around its search (walk.frag.glsl): Wyman's estimate of the exit distance,
 // the shared dispersion search's red and blue rays, and the light at the entry (Fresnel with
 // the reflected environment, base colour, transmission, emission).
 #ifndef REFRACTION_GLASS_SURFACE_GLSL

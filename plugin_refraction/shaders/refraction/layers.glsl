@@ -10,11 +10,13 @@
 //               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
 //               d_N relative to the depth (bits 16-31, 0: none)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
-// (the two-surface model, never a partial list): see storedDepths.
+// (the two-surface model, never a partial list): see storedDepths. The pair capture
+// (resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
 #ifndef REFRACTION_LAYERS_GLSL
 #define REFRACTION_LAYERS_GLSL
 #include "refraction/glass_materials.glsl"
 #include "refraction/surfaces.glsl" // uKeyNear, uKeyLogRange: the keys' log depth range
+#include "refraction/view.glsl"
 
 // K (layer-capacity) is compiled in (LAYER_CAPACITY, 1-8): every loop over a pixel's layers has
 // a constant bound and unrolls.

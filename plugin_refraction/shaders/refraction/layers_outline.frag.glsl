@@ -15,7 +15,7 @@ out vec4 outColor;
 const float kSameSurface = 0.05; // neighbours on one surface: depths within 5%
 const float kNone = 3.0e38;
 
-// Pixel p's nearest layer (layers_shade.frag.glsl): x its depth (kNone: none), y its glass id,
+// Pixel p's nearest layer (walk.frag.glsl): x its depth (kNone: none), y its glass id,
 // z the part across.
 vec3 nearestSurface(ivec2 p) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))

@@ -47,7 +47,7 @@ vec3 tangentExit(vec3 I, vec3 No) {
     return length(t) > 1e-6 ? normalize(t) : No;
 }
 // At an exit ISR estimated (near the far side, not on it) the normal read may be tens of degrees
-// off: only incidences this far past the critical angle reflect totally there (both paths).
+// off: only incidences this far past the critical angle reflect totally there.
 const float kEstimatedTirBand = radians(20.0);
 
 #endif

@@ -1,25 +1,80 @@
-// After the single geometry pass, inside the glass rectangle: the back normals as a texture (the
-// search reads their mip level 1, DIR §3.1), for TIR reflection the front depth and normals, and
-// the depth mask of the shading pass: 0 where the nearest glass lies in front of the opaque scene.
-#include "refraction/surfaces.glsl"
+// The pair capture resolved over the glass rectangle (the papers' two-surface model as a capture
+// of the one walk, surfaces=two-surface): each pixel's nearest front surface as its layer 0 and
+// its back surface as layer 1 (layers.glsl: their attributes in the layer arrays, their depths
+// in the first depth map, 3e38 where absent), the depth ranges the papers' search is bounded by
+// (glass_rectangle.glsl), and the walk's mask: 0 where the front lies before the opaque scene.
+//   PAIR_GATHERED 1: from the one MAX-blended geometry pass (surfaces.glsl), also writing the
+//     normals as the maps the papers' search reads mip-filtered (DIR §3.1);
+//   PAIR_GATHERED 0: from the two depth-tested passes (surface.frag.glsl), whose normal maps
+//     are those maps already.
+#include "refraction/layers.glsl"
 
-uniform sampler2D uGatherNear, uGatherFar, uSceneDepth;
+uniform sampler2D uSceneDepth;
 uniform float uNear, uFar;
 
-layout(location = 0) out vec4 outBackNormal;
-layout(location = 1) out float outFrontDepth;
-layout(location = 2) out vec4 outFrontNormal;
+layout(location = 0) out vec4 outDepths0;
+
+struct Surface {
+    bool present;
+    float z, normalDistance; // view depth; d_N in view units, -1: none
+    vec3 normal;
+    uint glass;
+};
+
+#if PAIR_GATHERED
+uniform sampler2D uGatherNear, uGatherFar;
+uniform int uGlassId; // one pass serves one glass
+layout(location = 1) out vec4 outFrontNormal;
+layout(location = 2) out vec4 outBackNormal;
+
+void readPair(ivec2 p, out Surface front, out Surface back) {
+    vec4 near = texelFetch(uGatherNear, p, 0), far = texelFetch(uGatherFar, p, 0);
+    front.present = near.y > 0.5 * kNoSurface;
+    front.z = -near.y;
+    front.normal = octDecodePayload(near.z, near.w);
+    uint d = keyPayload(far.z);
+    front.normalDistance = d == 0u ? -1.0 : float(d - 1u) / 1022.0 * front.z;
+    back.present = near.x > 0.0;
+    back.z = near.x;
+    back.normal = octDecodePayload(far.x, far.y);
+    back.normalDistance = -1.0;
+    front.glass = back.glass = uint(uGlassId);
+    outFrontNormal = front.present ? vec4(front.normal, 1.0) : vec4(0.0);
+    outBackNormal = back.present ? vec4(back.normal, 1.0) : vec4(0.0);
+}
+#else
+uniform sampler2D uFrontDepth, uFrontNormal, uBackDepth, uBackNormal;
+
+Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
+    vec2 d = texelFetch(depth, p, 0).xy;
+    vec4 n = texelFetch(normal, p, 0);
+    return Surface(n.w > 0.5, d.x, d.y, normalize(n.xyz + vec3(0.0, 0.0, 1e-12)), uint(n.w - 0.5));
+}
+
+void readPair(ivec2 p, out Surface front, out Surface back) {
+    front = readSurface(uFrontDepth, uFrontNormal, p);
+    back = readSurface(uBackDepth, uBackNormal, p);
+}
+#endif
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 near = texelFetch(uGatherNear, p, 0);
-    vec4 far = texelFetch(uGatherFar, p, 0);
-    bool back = near.x > 0.0, front = near.y > 0.5 * kNoSurface;
-    float z = -near.y;
-    outBackNormal = back ? vec4(octDecodePayload(far.x, far.y), 1.0) : vec4(0.0);
-    outFrontDepth = front ? z : 0.0;
-    outFrontNormal = front ? vec4(octDecodePayload(near.z, near.w), 1.0) : vec4(0.0);
+    Surface front, back;
+    readPair(p, front, back);
+    uint pixel = pixelIndex(p), d = 0u;
+    if (front.normalDistance >= 0.0)
+        d = 1u + uint(round(clamp(front.normalDistance / front.z, 0.0, 1.0) * 65534.0));
+    layerHeads[pixel] = uint(front.present) + uint(back.present);
+    layerAttr[pixel * 2u] = uvec2(packOctNormal(front.normal), front.glass | kLayerFront | (d << 16));
+    layerAttr[pixel * 2u + 1u] = uvec2(packOctNormal(back.normal), back.glass);
+    outDepths0 = vec4(front.present ? front.z : 3.0e38, back.present ? back.z : 3.0e38, 3.0e38, 3.0e38);
+    if (back.present) {
+        atomicMin(glassBackRange[0], floatBitsToUint(back.z));
+        atomicMax(glassBackRange[1], floatBitsToUint(back.z));
+    }
+    if (front.present)
+        atomicMin(glassFrontMin, floatBitsToUint(front.z));
     float scene = texelFetch(uSceneDepth, p, 0).r;
     float sceneZ = 2.0 * uNear * uFar / (uFar + uNear - (scene * 2.0 - 1.0) * (uFar - uNear));
-    gl_FragDepth = front && (scene >= 1.0 || z <= sceneZ) ? 0.0 : 1.0;
+    gl_FragDepth = front.present && (scene >= 1.0 || front.z <= sceneZ) ? 0.0 : 1.0;
 }

@@ -1,13 +1,23 @@
-// Back faces (DIR §3.1, ISR §3.2) or front faces (for TIR reflection): linear view depth
-// (positive) and the outward view-space normal of the kept surface. Texels no surface covers
-// keep the clear value 0 (invalid).
+// The pair capture drawn as the papers' two geometry passes (geometry-passes=two, and wherever
+// one MAX-blended pass cannot serve): the back faces (the farthest, or the nearest with
+// back-surface=first) and the nearest front faces, each under its own depth test. Per texel:
+// linear view depth and d_N (-1: none), and the outward view normal after the normal map with
+// the glass id + 1 in w (0: no surface, the clear value). resolve.frag.glsl reads them.
+#include "common/material_uv.glsl"
+#include "common/normal_map.glsl"
 #include "refraction/glass_inputs.glsl"
 
-layout(location = 0) out float outDepth;
+uniform int uGlassId;
+uniform float uNormalScale;
+
+layout(location = 0) out vec2 outDepth;
 layout(location = 1) out vec4 outNormal;
 
 void main() {
-    outDepth = -vViewPosition.z;
-    // Interpolated normals point outward; a back face's normal points away from the camera.
-    outNormal = vec4(normalize(vViewNormal), 1.0);
+    vec3 n = normalize(vViewNormal); // outward: a back face's points away from the camera
+    if (hasTexture(SLOT_NORMAL))
+        n = perturbNormal(n, vViewTangent, uTexture[SLOT_NORMAL], slotUv(vUv, SLOT_NORMAL),
+                          uNormalScale);
+    outDepth = vec2(-vViewPosition.z, vNormalDistance);
+    outNormal = vec4(n, float(uGlassId + 1));
 }

@@ -27,9 +27,6 @@ constexpr std::size_t kMaxGlassIds = 255;
 gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
 }
-gl::TextureDesc depthDesc(glm::ivec2 size) {
-    return {size, gl::Format::R32F, 1};
-}
 gl::TextureDesc normalDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, kNormalLod + 1};
 }
@@ -42,7 +39,6 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
     buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
     buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
-    buffers.range = graph.importBuffer("refraction.depth_range", &gpu.range);
     buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
     return buffers;
@@ -68,7 +64,6 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
 void FrameContext::setWalkUniforms(const gl::Program& f) const {
     const Settings& s = settings;
     f.use();
-    f.set("uMethod", int(s.method)); // 1 sir, 2 isr, 3 dir
     f.set("uSteps", s.searchSteps);
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -77,7 +72,6 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     // environment the lookup falls back to: skip it (the same image, cheaper).
     f.set("uNearby", s.nearby && frame->opaqueGeometry ? 1 : 0);
     f.set("uDebug", s.debug);
-    f.set("uSharedDispersion", s.dispersionSearch == Settings::DispersionSearch::Shared ? 1 : 0);
     f.set("uViewportSize", glm::vec2(frame->settings.size));
     f.set("uProjection", frame->camera.projection);
     f.set("uInverseProjection", glm::inverse(frame->camera.projection));
@@ -91,11 +85,13 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
                              frame->settings.environmentIntensity);
 }
 
-void FrameContext::setMaterial(const gl::Program& program, std::size_t index) const {
-    const render::DrawItem& item = frame->items[index];
-    item.materials->bind(program, *item.model, item.material, kMaterialUnit);
-    program.set("uGlassId", gpu->glassIds[index]);
+void FrameContext::drawGlassMaterials(const gl::Program& program,
+                                      const gl::PipelineState& state) const {
     gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
+    drawGlass(program, state, [this, &program](const render::DrawItem& item, std::size_t index) {
+        program.set("uGlassId", gpu->glassIds[index]);
+        item.materials->bind(program, *item.model, item.material, kMaterialUnit);
+    });
 }
 
 void FrameContext::drawGlass(
@@ -150,6 +146,9 @@ void FrameContext::growGlassRectangle() const {
     gpu->rectangle.fill(offsetof(R, boxMin), 3, std::uint32_t(INT32_MAX));
     gpu->rectangle.fill(offsetof(R, boxMax), 3, std::uint32_t(INT32_MIN));
     gpu->rectangle.fill(offsetof(R, overflowPixels), 1, 0u);
+    gpu->rectangle.fill(offsetof(R, backRange), 1, 0x7F7FFFFFu); // FLT_MAX
+    gpu->rectangle.fill(offsetof(R, backRange) + 4, 1, 0u);
+    gpu->rectangle.fill(offsetof(R, frontMin), 1, 0x7F7FFFFFu);
     gpu->rectangleGrow.use();
     gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
     gl::bindStorage(kRectangleBinding, gpu->rectangle);
@@ -193,51 +192,11 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
 }
 
-void setTwoSurfaceShading(const FrameContext& c, const gl::Program& f, const TwoSurfaceShadeData& d,
-                          const fg::Resources& r) {
-    c.setWalkUniforms(f);
-    f.set("uNormalLod", float(kNormalLod));
-    const std::pair<const char*, fg::TextureHandle> samplers[] = {
-        {"uBackDepth", d.maps.backDepth},   {"uBackNormal", d.maps.backNormal},
-        {"uFrontDepth", d.maps.frontDepth}, {"uFrontNormal", d.maps.frontNormal},
-        {"uSceneColor", d.sceneColor},      {"uSceneDepth", d.sceneDepth}};
-    int unit = 2;
-    for (const auto& [uniform, handle] : samplers) {
-        // Maps this method does not read are absent: the scene depth stands in (unread).
-        gl::bindTexture(std::uint32_t(unit), r.texture(handle.valid() ? handle : d.sceneDepth));
-        f.set(uniform, unit++);
-    }
-    gl::bindStorage(kRangeBinding, c.gpu->range);
-}
-
-void readTwoSurfaceInputs(fg::Builder& b, const FrameContext& c, const SurfaceMaps& maps,
-                          const FrameBuffers& buffers, const SceneInputs& scene,
-                          TwoSurfaceShadeData& d) {
-    if (!c.onePass) // the front faces are drawn again; one pass shades the maps alone
-        b.read(buffers.vertices);
-    b.read(buffers.rectangle);
-    b.read(buffers.materials);
-    if (c.settings.twoInterfaces())
-        b.read(buffers.range);
-    if (c.settings.usesNormalDistance())
-        b.read(buffers.distances);
-    for (auto [from, to] :
-         {std::pair{maps.backDepth, &d.maps.backDepth},
-          std::pair{maps.backNormal, &d.maps.backNormal},
-          std::pair{maps.frontDepth, &d.maps.frontDepth},
-          std::pair{maps.frontNormal, &d.maps.frontNormal},
-          std::pair{maps.gatheredFar, &d.maps.gatheredFar}, std::pair{maps.mask, &d.maps.mask}})
-        if (from.valid())
-            *to = b.read(from);
-    d.sceneColor = b.read(scene.color);
-    d.sceneDepth = b.read(scene.depth);
-}
-
-core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c) {
-    if (gpu.layerProgramsCapacity != c.settings.layerCapacity) {
-        gpu.layerShadePrograms.clear();
-        const std::vector<std::string> defines{"LAYER_CAPACITY " +
-                                               std::to_string(c.settings.layerCapacity)};
+core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& c) {
+    const bool pair = !c.settings.layered();
+    const int capacity = pair ? 2 : c.settings.layerCapacity;
+    if (!pair && gpu.layerProgramsCapacity != capacity) {
+        const std::vector<std::string> defines{"LAYER_CAPACITY " + std::to_string(capacity)};
         auto capture = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
                                              "refraction/layers_capture.frag.glsl", defines);
         if (!capture)
@@ -248,7 +207,7 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
             return resolve.error();
         gpu.layersCapture = std::move(*capture);
         gpu.layersResolve = std::move(*resolve);
-        gpu.layerProgramsCapacity = c.settings.layerCapacity;
+        gpu.layerProgramsCapacity = capacity;
     }
     // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
     const bool dispersion =
@@ -258,25 +217,39 @@ core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameCon
                      : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
                                                                                          : 2;
     const bool lit = c.lit();
-    const std::tuple key{int(c.settings.method), mode, lit};
-    if (!gpu.layerShadePrograms.count(key)) {
+    const int captureKey = pair ? 0 : capacity; // the pair, or K layers
+    auto key = [&](Settings::Method method) {
+        return GpuState::WalkKey{captureKey, int(method), mode, lit};
+    };
+    if (!gpu.walkPrograms.count(key(c.settings.method))) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir}) {
-            auto shade =
-                gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                      "refraction/layers_shade.frag.glsl",
-                                      {"LAYER_CAPACITY " + std::to_string(c.settings.layerCapacity),
-                                       "LAYER_METHOD " + std::to_string(int(method)),
-                                       "LAYER_DISPERSION " + std::to_string(mode),
-                                       std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0")});
-            if (!shade)
-                return shade.error();
-            gpu.layerShadePrograms.insert_or_assign({int(method), mode, lit}, std::move(*shade));
+            auto walk = gl::Program::graphics(
+                *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
+                {"LAYER_CAPACITY " + std::to_string(capacity),
+                 std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
+                 "LAYER_METHOD " + std::to_string(int(method)),
+                 "LAYER_DISPERSION " + std::to_string(mode),
+                 std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0")});
+            if (!walk)
+                return walk.error();
+            gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
         }
     }
-    return &gpu.layerShadePrograms.at(key);
+    return &gpu.walkPrograms.at(key(c.settings.method));
+}
+
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {
+    if (layers.size == size && layers.capacity == capacity)
+        return;
+    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
+    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
+    layers.attrs = gl::Buffer(pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t));
+    layers.size = size;
+    layers.capacity = capacity;
 }
 
 std::size_t layerDepthSlots(int capacity) {

@@ -1,6 +1,6 @@
-// `refraction.surfaces`: the two-surface path's single geometry pass, every glass item at once
-// over MAX-blended targets that keep each pixel's nearest front and farthest back with their
-// normals and d_N keys (surfaces.frag.glsl), growing the glass rectangle first.
+// `refraction.surfaces`: the pair capture in one geometry pass, every glass item at once over
+// MAX-blended targets that keep each pixel's nearest front and farthest back with their normals
+// and d_N keys (surfaces.frag.glsl), growing the glass rectangle first.
 #include "Passes.h"
 
 #include <cmath>
@@ -12,7 +12,7 @@ constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets
 
 } // namespace
 
-Gathered addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
+PairTargets addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;
     struct GatherData {
         fg::TextureHandle nearTargets, farTargets;
@@ -50,7 +50,10 @@ Gathered addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
             return {};
         });
     buffers.rectangle = gathered.rectangle;
-    return {gathered.nearTargets, gathered.farTargets};
+    PairTargets pair;
+    pair.nearTargets = gathered.nearTargets;
+    pair.farTargets = gathered.farTargets;
+    return pair;
 }
 
 } // namespace refraction

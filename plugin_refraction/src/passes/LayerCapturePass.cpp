@@ -5,22 +5,6 @@
 #include "Passes.h"
 
 namespace refraction {
-namespace {
-
-/** The layer arrays for `size` and capacity K, reallocated only when either changes. */
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {
-    if (layers.size == size && layers.capacity == capacity)
-        return;
-    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
-    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
-    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
-    layers.attrs = gl::Buffer(pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t));
-    layers.size = size;
-    layers.capacity = capacity;
-}
-
-} // namespace
-
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;
@@ -57,12 +41,8 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             const gl::Program& program = gpu.layersCapture;
             program.use();
             c.setLayerUniforms(program);
-            c.drawGlass(program, {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always},
-                        [&c, &program](const render::DrawItem& item, std::size_t index) {
-                            program.set("uGlassId", c.gpu->glassIds[index]);
-                            item.materials->bind(program, *item.model, item.material,
-                                                 kMaterialUnit);
-                        });
+            c.drawGlassMaterials(program,
+                                 {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
             gl::memoryBarrier(gl::BarrierStorage);
             return {};
         });

@@ -12,8 +12,8 @@ constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth
 
 } // namespace
 
-LayerDepths addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
-                               const FrameBuffers& buffers, fg::TextureHandle mask) {
+Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
+                           const FrameBuffers& buffers, fg::TextureHandle mask) {
     const glm::ivec2 size = c.frame->settings.size;
     // The depths the walk's searches read, as maps (one texel fetch per sample).
     struct ResolveData {
@@ -49,7 +49,11 @@ LayerDepths addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
             return {};
         });
 
-    return {resolved.depths0, resolved.depths1};
+    Capture capture;
+    capture.mask = mask;
+    capture.depths0 = resolved.depths0;
+    capture.depths1 = resolved.depths1;
+    return capture;
 }
 
 } // namespace refraction

@@ -6,7 +6,7 @@
 namespace refraction {
 
 fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
-                                      const FrameBuffers& buffers, const LayerShade& shaded) {
+                                      const FrameBuffers& buffers, const Walked& shaded) {
     const glm::ivec2 size = c.frame->settings.size;
     struct OutlineData {
         fg::TextureHandle shaded, surface, out;

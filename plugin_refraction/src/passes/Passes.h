@@ -1,15 +1,16 @@
 // The refraction plugin's passes, one file each in this folder, recorded into the frame graph by
-// RefractionPlugin::addPasses (ARCHITECTURE.md, "One frame"). Both paths start alike: d_N for
-// ISR (NormalDistancePass) and the frame's glass optics (GlassMaterialsPass). Then
-//   the layers (default): LayerCapturePass (every glass surface of every character, one
-//     geometry pass) -> LayerDepthsPass (the depths as maps) -> LayerShadePass (the walk over
-//     the glass pixels) -> LayerOutlinePass (optional: anti-aliased outlines);
-//   the papers' two surfaces: SurfacePass (the papers' geometry passes, back faces and for TIR
-//     the front) or GatherPass + ResolvePass (one gathered geometry pass), DepthRangePass,
-//     then ShadePass (deferred over the glass pixels, after the gathered pass) or
-//     FrontFacesPass + CompositePass.
-// Each pass's function declares what it reads and writes; the buffers the passes order
-// themselves by (FrameBuffers) carry the version the last writer left. Private to the plugin.
+// RefractionPlugin::addPasses (ARCHITECTURE.md, "One frame"): one pipeline, a capture and the
+// walk. First d_N for ISR (NormalDistancePass) and the frame's glass optics
+// (GlassMaterialsPass); then the capture, either
+//   the layers (default): LayerCapturePass (every glass surface of every character, K a pixel,
+//     one geometry pass) -> LayerDepthsPass (their depths as maps), or
+//   the pair (the papers' two-surface model): GatherPass (one MAX-blended geometry pass) or
+//     SurfacePass (the papers' two depth-tested ones) -> ResolvePass (the pair as layers 0 and
+//     1, with the maps the papers' search reads);
+// then WalkPass (the walk over the glass pixels) and, over the layers, LayerOutlinePass
+// (optional: anti-aliased outlines). Each pass's function declares what it reads and writes;
+// the buffers the passes order themselves by (FrameBuffers) carry the version the last writer
+// left. Private to the plugin.
 #pragma once
 
 #include "../GpuState.h"
@@ -30,20 +31,18 @@ namespace refraction {
 constexpr std::uint32_t kVerticesBinding = 0;  ///< common/vertex.glsl: a draw item's vertices
 constexpr std::uint32_t kUvsBinding = 1;       ///< glass.vert.glsl: its texture coordinates
 constexpr std::uint32_t kDistancesBinding = 2; ///< glass.vert.glsl: its d_N values
-constexpr std::uint32_t kRangeBinding = 3;     ///< surfaces.glsl: the depth range
 constexpr std::uint32_t kRectangleBinding = 4; ///< glass_rectangle.glsl
 constexpr std::uint32_t kLayerHeadsBinding = 5, kLayerDepthsBinding = 6,
                         kLayerAttrsBinding = 7;     ///< layers.glsl
 constexpr std::uint32_t kGlassMaterialsBinding = 8; ///< glass_materials.glsl
 
-// The mip level the two-surface searches read the surface normals at (DIR §3.1: mip-filtered
-// normals); the normal maps need no level above it.
+// The mip level the papers' search over the pair reads the surface normals at (DIR §3.1:
+// mip-filtered normals); the normal maps need no level above it.
 constexpr int kNormalLod = 1;
 
 // Texture units: 0-1 the environment; then the pass's maps; the material's slots from
-// kMaterialUnit; the gathered far target after them.
+// kMaterialUnit.
 constexpr std::uint32_t kMaterialUnit = 8;
-constexpr std::uint32_t kGatherFarUnit = kMaterialUnit + render::MaterialTextures::kSlotCount;
 constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6;
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
@@ -53,13 +52,11 @@ struct FrameContext {
     const plugin::Plugin* plugin = nullptr; ///< owner of the glass items (DrawItem::owner)
     Settings settings;                      ///< the parameters, decoded once this frame
     const render::FrameInfo* frame = nullptr;
-    bool reflect = false; ///< TIR reflect (two interfaces): the front surface is searched too
-    bool onePass = false; ///< the two-surface path's single gathered geometry pass
-    /** The first glass item and its index in the frame's items: with one pass, its material
-     *  and overrides are every one's. */
-    const render::DrawItem* glass = nullptr;
-    std::size_t glassIndex = 0;
-    const gl::Program* layerShade = nullptr; ///< the shading variant (layerShadeProgram)
+    bool reflect = false; ///< TIR reflect (two interfaces): the pair's front is searched too
+    bool onePass = false; ///< the pair drawn in one MAX-blended geometry pass
+    /** The first glass item's glass id: with the pair in one pass, every one's. */
+    int firstGlassId = 0;
+    const gl::Program* walk = nullptr; ///< the walk's variant (walkProgram)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** Whether the frame has punctual lights (the shading variants with them compiled in). */
@@ -77,24 +74,22 @@ struct FrameContext {
     void drawMaskedRectangle() const;
     /** The glass rectangle with the state as it is (no mask test unless set). */
     void drawRectangle() const;
-    /** What every shading pass sets alike: method, search, TIR policy, Fresnel, debug view,
+    /** What the walk and the outline pass set alike: search, TIR policy, Fresnel, debug view,
      *  camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
-    /** The glass id of frame item `index` (its optics in glass_materials.glsl) and its
-     *  material's textures, for `program`. */
-    void setMaterial(const gl::Program& program, std::size_t index) const;
+    /** Draws every glass item with `program`, its glass id and material textures set. */
+    void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state) const;
     /** layers.glsl's uniforms and the layer arrays. */
     void setLayerUniforms(const gl::Program& program) const;
 };
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
- *  and the plugin's own (GpuState: d_N, the glass rectangle, the depth range, the layers, the
- *  optics), imported each frame. A pass that writes one leaves the new version here for the
- *  passes after it. */
+ *  and the plugin's own (GpuState: d_N, the glass rectangle, the layers, the optics), imported
+ *  each frame. A pass that writes one leaves the new version here for the passes after it. */
 struct FrameBuffers {
-    fg::BufferHandle vertices, distances, rectangle, range;
+    fg::BufferHandle vertices, distances, rectangle;
     fg::BufferHandle materials; ///< GpuState::glassMaterials (glass_materials.glsl)
-    fg::BufferHandle layers;    ///< GpuState::layers (the layered path)
+    fg::BufferHandle layers;    ///< GpuState::layers (what the capture holds)
 };
 
 /** The scene the glass is drawn over, from the blackboard. */
@@ -102,11 +97,11 @@ struct SceneInputs {
     fg::TextureHandle color, depth;
 };
 
-/** The two-surface path's maps the searches read. */
-struct SurfaceMaps {
-    fg::TextureHandle backDepth, backNormal;   ///< DIR §3.1 (one pass: the gathered near target)
-    fg::TextureHandle frontDepth, frontNormal; ///< TIR reflection only
-    fg::TextureHandle gatheredFar, mask;       ///< one pass: d_N keys; the glass pixels
+/** What a capture leaves the walk: the glass pixels' mask and the depth maps (layers.glsl);
+ *  the pair's mip-filtered front and back normals for the papers' search. */
+struct Capture {
+    fg::TextureHandle mask, depths0, depths1;
+    fg::TextureHandle normals[2];
 };
 
 // ---- Shared by the passes (FrameContext.cpp)
@@ -119,10 +114,12 @@ void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items);
 /** The frame's glass ids and their optics (GpuState::glassIds, glassOptics); ids past the 255
  *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
-/** The layered path's programs for this frame: the capture for capacity K and the shading
- *  variant for K, the method and the dispersion search (compiled in: layers.glsl,
- *  layers_shade.frag.glsl), built when first needed (every method's at once) and kept. */
-core::Result<const gl::Program*> layerShadeProgram(GpuState& gpu, const FrameContext& c);
+/** The capture's programs for this frame (the layers' for capacity K, the pair resolve's) and the
+ *  walk's variant for the capture, the method, the dispersion search and the lights (compiled
+ *  in: walk.frag.glsl), built when first needed (every method's at once) and kept. */
+core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& c);
+/** The layer arrays for `size` and capacity K, reallocated only when either changes. */
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity);
 /** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers, the
  *  depth maps the walk reads and, with `outlines`, the outline pass's map. */
 std::size_t layerBytesPerPixel(int capacity, bool outlines);
@@ -130,83 +127,56 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines);
 std::size_t layerDepthSlots(int capacity);
 
 gl::TextureDesc colorDesc(glm::ivec2 size);
-gl::TextureDesc depthDesc(glm::ivec2 size);
 gl::TextureDesc normalDesc(glm::ivec2 size);
 gl::TextureDesc zDesc(glm::ivec2 size);
 
-// ---- Both paths
+// ---- Before the capture
 
 /** ISR: d_N of every deformed vertex, cast on the cage every frame (writes distances). */
 void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
-/** The optics of every glass id into GpuState::glassMaterials, which every shading pass reads. */
+/** The optics of every glass id into GpuState::glassMaterials, which the walk reads. */
 void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 
-// ---- The layers
+// ---- The capture: the layers
 
 /** Every glass surface into the layer arrays (writes layers, rectangle); returns the glass
  *  pixels' mask. */
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers);
 /** The layers' depths as the maps the walk's searches read (one or two RGBA32F). */
-struct LayerDepths {
-    fg::TextureHandle depths0, depths1;
+Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
+                           const FrameBuffers& buffers, fg::TextureHandle mask);
+
+// ---- The capture: the pair
+
+/** The pair as the geometry passes leave it: the MAX-blended targets of one pass, or the
+ *  front and back maps (depth and d_N; normal and glass id) of the papers' two. */
+struct PairTargets {
+    fg::TextureHandle nearTargets, farTargets;
+    fg::TextureHandle frontDepth, frontNormal, backDepth, backNormal;
 };
-LayerDepths addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
-                               const FrameBuffers& buffers, fg::TextureHandle mask);
+/** One geometry pass, MAX blending, over the glass (writes rectangle). */
+PairTargets addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** The papers' two geometry passes: back faces (farthest, or `firstBack`) and front faces
+ *  (writes rectangle). */
+PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                             bool firstBack);
+/** The pair resolved into layers 0 and 1, the depth ranges and the mask (writes layers,
+ *  rectangle). */
+Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                       const SceneInputs& scene, const PairTargets& pair);
+
+// ---- The walk
+
 /** The walk over the glass pixels: the new scene colour and, for the outline pass, each
  *  pixel's nearest layer (writes rectangle: the overflow count). */
-struct LayerShade {
+struct Walked {
     fg::TextureHandle color, surface;
 };
-LayerShade addLayerShadePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
-                             const SceneInputs& scene, fg::TextureHandle mask,
-                             const LayerDepths& depths);
+Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                   const SceneInputs& scene, const Capture& capture);
 /** The outlines of smooth glass anti-aliased; returns the new scene colour. */
 fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
-                                      const FrameBuffers& buffers, const LayerShade& shaded);
-
-// ---- The papers' two surfaces
-
-/** The papers' geometry passes: back faces (farthest or `firstBack`), and front faces for TIR
- *  reflection. */
-SurfaceMaps addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
-                             const FrameBuffers& buffers, bool firstBack);
-/** One geometry pass, MAX blending, over the glass (writes rectangle). */
-struct Gathered {
-    fg::TextureHandle nearTargets, farTargets;
-};
-Gathered addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
-/** The gathered targets resolved into the maps and the glass mask. */
-SurfaceMaps addResolvePass(fg::FrameGraph& graph, const FrameContext& c,
-                           const FrameBuffers& buffers, const SceneInputs& scene,
-                           const Gathered& gathered);
-/** The depth range of the back (and front) maps, into GpuState::range (writes range,
- *  rectangle). */
-void addDepthRangePass(fg::FrameGraph& graph, const FrameContext& c, const SurfaceMaps& maps,
-                       FrameBuffers& buffers);
-/** The glass shaded over the glass pixels after the gathered pass; returns the new scene
- *  colour. */
-fg::TextureHandle addShadePass(fg::FrameGraph& graph, const FrameContext& c,
-                               const SurfaceMaps& maps, const FrameBuffers& buffers,
-                               const SceneInputs& scene);
-/** The front faces refracted and shaded, depth-tested; returns the glass image. */
-fg::TextureHandle addFrontFacesPass(fg::FrameGraph& graph, const FrameContext& c,
-                                    const SurfaceMaps& maps, const FrameBuffers& buffers,
-                                    const SceneInputs& scene);
-/** The glass image over the scene colour; returns the new scene colour. */
-fg::TextureHandle addCompositePass(fg::FrameGraph& graph, const FrameContext& c,
-                                   const SceneInputs& scene, fg::TextureHandle glass);
-
-/** What ShadePass and FrontFacesPass read alike, and the uniforms and maps of
- *  glass_shading.glsl they set alike. */
-struct TwoSurfaceShadeData {
-    SurfaceMaps maps;
-    fg::TextureHandle sceneColor, sceneDepth, out, zbuffer;
-};
-void readTwoSurfaceInputs(fg::Builder& b, const FrameContext& c, const SurfaceMaps& maps,
-                          const FrameBuffers& buffers, const SceneInputs& scene,
-                          TwoSurfaceShadeData& d);
-void setTwoSurfaceShading(const FrameContext& c, const gl::Program& program,
-                          const TwoSurfaceShadeData& d, const fg::Resources& r);
+                                      const FrameBuffers& buffers, const Walked& walked);
 
 } // namespace refraction

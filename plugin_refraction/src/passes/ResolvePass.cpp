@@ -1,78 +1,97 @@
-// `refraction.resolve`: the gathered targets resolved, over the glass rectangle, into the maps
-// the two-surface searches read (back normal, and for TIR the front depth and normal, their
-// normals mip-filtered) and the glass pixels' mask (resolve.frag.glsl).
+// `refraction.resolve`: the pair capture resolved over the glass rectangle into layers 0 and 1
+// of the layer arrays (K = 2) and the first depth map, the depth ranges of its back and front,
+// and the walk's mask; from one gathered pass also the mip-filtered normal maps the papers'
+// search reads (resolve.frag.glsl).
 #include "Passes.h"
 
 #include <vector>
 
 namespace refraction {
 
-SurfaceMaps addResolvePass(fg::FrameGraph& graph, const FrameContext& c,
-                           const FrameBuffers& buffers, const SceneInputs& scene,
-                           const Gathered& gathered) {
+Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                       const SceneInputs& scene, const PairTargets& pair) {
     const glm::ivec2 size = c.frame->settings.size;
     struct ResolveData {
-        fg::TextureHandle nearTargets, farTargets, sceneDepth, backNormal, frontDepth, frontNormal,
-            mask;
+        PairTargets pair;
+        fg::TextureHandle sceneDepth, depths0, normals[2], mask;
+        fg::BufferHandle layers, rectangle;
     };
+    const bool gathered = pair.nearTargets.valid();
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.resolve",
         [&](fg::Builder& b, ResolveData& d) {
-            b.read(buffers.rectangle);
-            d.nearTargets = b.read(gathered.nearTargets);
-            d.farTargets = b.read(gathered.farTargets);
+            d.rectangle = b.write(buffers.rectangle); // the depth ranges
+            d.layers = b.write(buffers.layers);
+            for (auto [from, to] :
+                 {std::pair{pair.nearTargets, &d.pair.nearTargets},
+                  std::pair{pair.farTargets, &d.pair.farTargets},
+                  std::pair{pair.frontDepth, &d.pair.frontDepth},
+                  std::pair{pair.frontNormal, &d.pair.frontNormal},
+                  std::pair{pair.backDepth, &d.pair.backDepth},
+                  std::pair{pair.backNormal, &d.pair.backNormal}})
+                if (from.valid())
+                    *to = b.read(from);
             d.sceneDepth = b.read(scene.depth);
-            d.backNormal = b.write(b.create("refraction.back.normal", normalDesc(size)));
-            if (c.reflect) {
-                d.frontDepth = b.write(b.create("refraction.front.depth", depthDesc(size)));
-                d.frontNormal = b.write(b.create("refraction.front.normal", normalDesc(size)));
-            }
+            d.depths0 =
+                b.write(b.create("refraction.layers.depths0", {size, gl::Format::RGBA32F, 1}));
+            if (gathered)
+                for (int i = 0; i < 2; ++i)
+                    d.normals[i] = b.write(b.create(
+                        i == 0 ? "refraction.front.normal" : "refraction.back.normal",
+                        normalDesc(size)));
             d.mask = b.write(b.create("refraction.glass_mask", zDesc(size)));
         },
-        [c](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
+        [c, gathered](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
-            std::vector<const gl::Texture*> targets{&r.texture(d.backNormal)};
-            if (c.reflect)
+            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2);
+            std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
+            if (gathered)
                 targets.insert(targets.end(),
-                               {&r.texture(d.frontDepth), &r.texture(d.frontNormal)});
+                               {&r.texture(d.normals[0]), &r.texture(d.normals[1])});
             if (auto bound =
                     gpu.framebuffer.bindTargets("refraction.resolve", targets, &r.texture(d.mask));
                 !bound)
                 return bound;
             // Outside the glass rectangle: no surface, and the mask rejects.
-            for (int i = 0; i < int(targets.size()); ++i)
+            gl::clearColor(0, glm::vec4(3.0e38f));
+            for (int i = 1; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(0.0f));
             gl::clearDepth(1.0f);
             gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
-            gpu.resolve.use();
+            const gl::Program& program = gpu.resolve[gathered ? 1 : 0];
+            program.use();
+            c.setLayerUniforms(program);
             const std::pair<const char*, fg::TextureHandle> inputs[] = {
-                {"uGatherNear", d.nearTargets},
-                {"uGatherFar", d.farTargets},
+                {"uGatherNear", d.pair.nearTargets},  {"uGatherFar", d.pair.farTargets},
+                {"uFrontDepth", d.pair.frontDepth},   {"uFrontNormal", d.pair.frontNormal},
+                {"uBackDepth", d.pair.backDepth},     {"uBackNormal", d.pair.backNormal},
                 {"uSceneDepth", d.sceneDepth}};
             int unit = 0;
-            for (const auto& [uniform, handle] : inputs) {
-                gl::bindTexture(std::uint32_t(unit), r.texture(handle));
-                gpu.resolve.set(uniform, unit++);
+            for (const auto& [uniform, handle] : inputs)
+                if (handle.valid()) {
+                    gl::bindTexture(std::uint32_t(unit), r.texture(handle));
+                    program.set(uniform, unit++);
+                }
+            program.set("uGlassId", c.firstGlassId);
+            program.set("uNear", c.frame->camera.znear);
+            program.set("uFar", c.frame->camera.zfar);
+            c.drawRectangle();
+            gl::memoryBarrier(gl::BarrierStorage);
+            if (gathered) {
+                r.texture(d.normals[1]).generateMipmaps(); // DIR §3.1: mip-filtered normals
+                if (c.reflect) // only TIR bounces toward the front read its normals' mips
+                    r.texture(d.normals[0]).generateMipmaps();
             }
-            gpu.resolve.set("uNear", c.frame->camera.znear);
-            gpu.resolve.set("uFar", c.frame->camera.zfar);
-            gpu.resolve.set("uViewportSize", glm::vec2(c.frame->settings.size));
-            gl::bindStorage(kRectangleBinding, gpu.rectangle);
-            gpu.emptyVao.bind();
-            gl::drawArrays(6);
-            r.texture(d.backNormal).generateMipmaps(); // DIR §3.1: mip-filtered normals
-            if (c.reflect) // only TIR bounces toward the front read its normals' mips
-                r.texture(d.frontNormal).generateMipmaps();
             return {};
         });
-    SurfaceMaps maps;
-    maps.backDepth = gathered.nearTargets; // back depth in .r (surfaces.glsl)
-    maps.backNormal = resolved.backNormal;
-    maps.frontDepth = resolved.frontDepth;
-    maps.frontNormal = resolved.frontNormal;
-    maps.gatheredFar = gathered.farTargets;
-    maps.mask = resolved.mask;
-    return maps;
+    buffers.rectangle = resolved.rectangle;
+    buffers.layers = resolved.layers;
+    Capture capture;
+    capture.mask = resolved.mask;
+    capture.depths0 = resolved.depths0;
+    capture.normals[0] = gathered ? resolved.normals[0] : pair.frontNormal;
+    capture.normals[1] = gathered ? resolved.normals[1] : pair.backNormal;
+    return capture;
 }
 
 } // namespace refraction

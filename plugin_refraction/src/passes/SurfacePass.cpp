@@ -1,16 +1,18 @@
-// `refraction.back_faces` and `refraction.front_depth`: the papers' geometry passes, the back
-// faces (farthest, or first) and, for TIR reflection, the nearest front faces, each into a
-// depth and a mip-filtered normal map (surface.frag.glsl).
+// `refraction.back_faces` and `refraction.front_faces`: the pair capture drawn as the papers'
+// two geometry passes, the back faces (farthest, or first) and the nearest front faces, each
+// into a depth map (with d_N) and a mip-filtered normal map (with the glass id) under its own
+// depth test (surface.frag.glsl), growing the glass rectangle first.
 #include "Passes.h"
 
 #include <string>
 
 namespace refraction {
 
-SurfaceMaps addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
-                             const FrameBuffers& buffers, bool firstBack) {
+PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                             bool firstBack) {
     struct SurfaceData {
         fg::TextureHandle depth, normal, zbuffer;
+        fg::BufferHandle rectangle;
     };
     const glm::ivec2 size = c.frame->settings.size;
     // Farthest: GREATER from 0; nearest: LESS from 1.
@@ -19,14 +21,19 @@ SurfaceMaps addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
             name,
             [&](fg::Builder& b, SurfaceData& d) {
                 b.read(buffers.vertices);
+                b.read(buffers.materials);
                 if (c.settings.usesNormalDistance())
                     b.read(buffers.distances);
-                d.depth = b.write(b.create(std::string(name) + ".depth", depthDesc(size)));
+                d.rectangle = b.write(buffers.rectangle);
+                d.depth = b.write(
+                    b.create(std::string(name) + ".depth", {size, gl::Format::RG32F, 1}));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
                 d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc(size)));
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
                                           gl::Context&) -> core::Status {
+                if (backFaces)
+                    c.growGlassRectangle();
                 if (auto bound = c.gpu->framebuffer.bindTargets(
                         name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
                     !bound)
@@ -34,25 +41,26 @@ SurfaceMaps addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
                 gl::clearColor(0, glm::vec4(0.0f));
                 gl::clearColor(1, glm::vec4(0.0f));
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
-                c.drawGlass(c.gpu->surface,
-                            {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
-                             .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
-                r.texture(d.normal).generateMipmaps(); // DIR §3.1: mip-filtered normals
+                c.drawGlassMaterials(
+                    c.gpu->surface,
+                    {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
+                     .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
+                // DIR §3.1: mip-filtered normals (the front's only for TIR bounces toward it)
+                if (backFaces || c.reflect)
+                    r.texture(d.normal).generateMipmaps();
                 return {};
             });
     };
-    SurfaceMaps maps;
-    if (c.settings.twoInterfaces()) {
-        const SurfaceData& back = surfacePass("refraction.back_faces", true, firstBack);
-        maps.backDepth = back.depth;
-        maps.backNormal = back.normal;
-    }
-    if (c.reflect) {
-        const SurfaceData& front = surfacePass("refraction.front_depth", false, true);
-        maps.frontDepth = front.depth;
-        maps.frontNormal = front.normal;
-    }
-    return maps;
+    const SurfaceData& back = surfacePass("refraction.back_faces", true, firstBack);
+    buffers.rectangle = back.rectangle;
+    const SurfaceData& front = surfacePass("refraction.front_faces", false, true);
+    buffers.rectangle = front.rectangle;
+    PairTargets pair;
+    pair.frontDepth = front.depth;
+    pair.frontNormal = front.normal;
+    pair.backDepth = back.depth;
+    pair.backNormal = back.normal;
+    return pair;
 }
 
 } // namespace refraction

@@ -1,9 +1,12 @@
-// The layered path's shading, over the glass rectangle: a pixel's primary ray enters the
-// nearest captured layer and walks the others (layers.glsl) in texture space, refracting at
-// every interface it crosses (or reflecting under total internal reflection) with the media on
-// both sides, up to N interfaces; then it sees the nearby opaque scene or the environment
-// (scene_lookup.glsl). An opaque part met between two interfaces (inside the glass, or between
-// two pieces) ends the walk there. ARCHITECTURE.md ("How a ray walks the layers") has the figure.
+// The walk, the one shading pass over the glass pixels, whichever capture filled the layers: a
+// pixel's primary ray enters the nearest captured layer and walks the others (layers.glsl) in
+// texture space, refracting at every interface it crosses (or reflecting under total internal
+// reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
+// scene or the environment (scene_lookup.glsl). An opaque part met between two interfaces
+// (inside the glass, or between two pieces) ends the walk there. ARCHITECTURE.md ("How a ray
+// walks the layers") has the figure. Compiled in: the capture (CAPTURE_PAIR), K, the method
+// (how the walk finds an exit: SIR none, ISR Wyman's estimate, DIR a search), the dispersion
+// search and the punctual lights.
 //
 // Media (the Embree reference's rule too): crossing a glass surface against its outward normal
 // enters its glass (a stack of up to four, the newest on top); crossing one along its normal
@@ -12,7 +15,7 @@
 // where it does not change (overlapping glass, a surface crossed twice in the samples) the ray
 // goes straight on.
 //
-// Finding the next interface generalises DIR's search: the ray from the last crossing is
+// DIR over the layers generalises the papers' search: the ray from the last crossing is
 // sampled in texture space (perspective-correct, coarse samples up to where it leaves the
 // glass's view-space box) and, at each sample, the number of layers of that pixel in front of
 // the sample's depth is counted. Closed surfaces come in pairs along any line of sight, so the
@@ -20,9 +23,14 @@
 // two); a layer between two samples' depths in one pixel is a crossing along the line of sight.
 // The first sample out of the segment is refined by the conservative binary search (DIR §3.3,
 // search-steps halvings) and the layer crossed is the one that pixel's count passed.
+//
+// Over the pair capture (CAPTURE_PAIR, the papers' two-surface model: layer 0 the nearest
+// front, layer 1 the back, resolve.frag.glsl) the walk is the papers' path: one piece of glass
+// entered at the front and left at the back, its exit searched in the back depths (DIR §3.2-3.3)
+// and, after a total internal reflection toward the camera, in the front ones, the normal there
+// read mip-filtered (DIR §3.1); past the pair there is nothing more to cross.
 #define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
 #include "refraction/glass_surface.glsl"
-#include "refraction/surfaces.glsl"
 #include "refraction/layers.glsl"
 
 const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
@@ -33,12 +41,17 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // ISR's estimated exits: kEstimatedTirBand, optics.glsl). Near an outline the filtered normal
 // is good to 2-4 degrees (filteredNormal), and a segment that began there carries that error to
 // its far end: crossings at or after such a normal have the wider band.
-const float kTirBand = radians(2.5), kOutlineTirBand = radians(4.0);
+// The pair's normals are the papers' mip-filtered maps, whose limit the TIR is judged at.
+#ifndef CAPTURE_PAIR
+#define CAPTURE_PAIR 0
+#endif
+const bool kPairCapture = CAPTURE_PAIR != 0;
+const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
-// The method and the dispersion search are compiled in (a variant each, LayerPasses.cpp): on a
-// CPU rasteriser a shader pays for the code it carries.
+// The method and the dispersion search are compiled in (a variant each, walkProgram): on a CPU
+// rasteriser a shader pays for the code it carries.
 #ifndef LAYER_METHOD
 #define LAYER_METHOD METHOD_DIR
 #endif
@@ -75,34 +88,10 @@ ivec2 pixelOf(vec3 X) {
     return ivec2(floor(projectToUv(X) * uViewportSize));
 }
 
-// A ray segment in screen space (DIR Eqs. 3-4): texture coordinates are linear along it and so
-// is 1/z, so a sample costs no matrix product.
-struct ScreenRay {
-    vec3 S, E;       // view-space ends
-    vec2 uvS, uvE;
-    float invS, invE; // 1 / depth
-};
-
-ScreenRay screenRay(vec3 S, vec3 E) {
-    return ScreenRay(S, E, projectToUv(S), projectToUv(E), -1.0 / S.z, -1.0 / E.z);
-}
-
-float depthAt(ScreenRay r, float a) {
-    return 1.0 / mix(r.invS, r.invE, a);
-}
-
-// Whether the ray, from screen fraction `from` (in the segment) to `a`, is still in a segment of
-// layer parity `parity` (inSegment, at a's pixel).
-bool stillIn(ScreenRay r, float from, float a, int parity) {
-    vec2 uv = mix(r.uvS, r.uvE, a);
-    return inSegment(ivec2(floor(uv * uViewportSize)), depthAt(r, from), depthAt(r, a), parity);
-}
-
-// The view-space point at screen fraction a.
-vec3 pointAt(ScreenRay r, float a) {
-    float z = 1.0 / mix(r.invS, r.invE, a);
-    float s = abs(r.E.z - r.S.z) > 1e-7 * abs(r.S.z) ? (-z - r.S.z) / (r.E.z - r.S.z) : a;
-    return mix(r.S, r.E, clamp(s, 0.0, 1.0));
+// Wyman's exit normal where the ray leaves the glass's outline: its direction in the plane square
+// to the line of sight.
+vec3 silhouetteNormal(vec3 dir) {
+    return normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6));
 }
 
 struct Crossing {
@@ -212,13 +201,7 @@ vec3 filteredNormal(vec3 X, uvec2 attr, out bool outline) {
 // The next interface along P + t dir after a crossing, the ray in a segment of layer parity
 // `parity`.
 Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
-    Crossing c;
-    c.found = false;
-    c.silhouette = false;
-    c.point = P;
-    c.beyond = P;
-    c.attr = uvec2(0u);
-    c.steps = 0;
+    Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
     vec3 lo, hi;
     glassBox(lo, hi);
     float margin = 1e-3 * length(hi - lo);
@@ -246,7 +229,7 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
         outside = -1.0;
         for (int i = 1; i <= steps; ++i) {
             float a = start + (1.0 - start) * float(i) / float(steps);
-            if (!stillIn(r, inside, a, parity)) {
+            if (!marchHolds(r, inside, a, MARCH_LAYERS, parity)) {
                 outside = a;
                 break;
             }
@@ -254,17 +237,9 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
         }
         if (outside < 0.0)
             return c;
-        for (int k = 0; k < uSteps; ++k) {
-            float mid = 0.5 * (inside + outside);
-            if (stillIn(r, inside, mid, parity)) {
-                inside = mid;
-                ++c.steps;
-            } else {
-                outside = mid;
-            }
-        }
+        c.steps += refine(r, MARCH_LAYERS, parity, inside, outside, uSteps, false);
         float past = outside + 1.5 * pixel;
-        if (pass == 2 || past >= 1.0 || !stillIn(r, past, past, parity))
+        if (pass == 2 || past >= 1.0 || !marchHolds(r, past, past, MARCH_LAYERS, parity))
             break;
         start = past;
     }
@@ -276,13 +251,64 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     return c;
 }
 
+#if CAPTURE_PAIR
+uniform sampler2D uPairNormals[2]; // the front's and the back's outward normals, with mips
+uniform float uNormalLod;
+
+// The papers' search (DIR §3.2-3.3): the one march between the depths zFrom and zTo, refined
+// from end to end (no coarse samples: the pair holds one surface a pixel to meet).
+Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
+    Crossing c = Crossing(false, true, P, P, uvec2(0u), 0);
+    if (!inGlass)
+        return c; // past the pair: nothing more
+    bool back = dir.z < 0.0;
+    float zBackMin = uintBitsToFloat(glassBackRange[0]), zBackMax = uintBitsToFloat(glassBackRange[1]);
+    float zFrontMin = uintBitsToFloat(glassFrontMin);
+    float zFrom = back ? max(zBackMin, -P.z) : -P.z, zTo = back ? zBackMax : zFrontMin;
+    // The first exit is searched for only going deeper, the way to the back; where it cannot be,
+    // the ray leaves where it is, by the silhouette's normal (as where the search left the map).
+    if (back ? zBackMax <= 0.0 || (first && dir.z > -1e-6)
+             : first || zFrontMin <= 0.0 || zFrontMin >= 3.0e38) {
+        c.found = first;
+        return c;
+    }
+    ScreenRay r = screenRay(P + dir * ((-zFrom - P.z) / dir.z), P + dir * ((-zTo - P.z) / dir.z));
+    int test = back ? MARCH_BACK : MARCH_FRONT;
+    float inside = 0.0, outside = 1.0;
+    c.steps = refine(r, test, 0, inside, outside, uSteps, true);
+    ivec2 p = pixelAt(r, fractionAt(r, inside));
+    c.silhouette = storedMap(p, 0)[back ? 1 : 0] >= 1.0e38;
+    c.found = first || !c.silhouette;
+    c.point = c.beyond = mix(r.S, r.E, inside);
+    c.attr = layerAttrAt(p, back ? 1 : 0);
+    return c;
+}
+
+// The normal where a crossing of the pair leaves the glass, read from the layer's mip-filtered
+// map; where it faces the ray (the exit missed the far side), the silhouette's.
+vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
+    outline = false;
+    vec3 n = textureLod(uPairNormals[layerFront(c.attr) ? 0 : 1], projectToUv(c.beyond), uNormalLod).xyz;
+    return length(n) > 1e-4 && dot(n, dir) > 0.0 ? normalize(n) : silhouetteNormal(dir);
+}
+
+Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
+    return searchPair(P, dir, inGlass, first);
+}
+#else
+vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
+    return filteredNormal(c.beyond, c.attr, outline);
+}
+
+Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
+    return searchLayers(P, dir, parity, inGlass);
+}
+#endif
+
 // ISR (Wyman 2005) on the layers: the exit estimated from the entry, d interpolated between
 // d_V (to the next layer of the entry's pixel) and the entry layer's d_N by theta_t / theta_i.
 Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryAttr) {
-    Crossing c;
-    c.found = true;
-    c.steps = 0;
-    c.attr = uvec2(0u);
+    Crossing c = Crossing(true, false, P1, P1, uvec2(0u), 0);
     float z1 = -P1.z, next = 0.0;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(pixelOf(P1), g);
@@ -297,10 +323,16 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     c.found = d > 1e-5 * z1;
     c.point = P1 + d * T1;
     c.beyond = c.point;
+#if CAPTURE_PAIR
+    // The back there, or Wyman's silhouette normal (crossingNormal).
+    c.attr = layerAttrAt(pixelOf(c.point), 1);
+    c.silhouette = layerDepths(pixelOf(c.point), 0).y >= 1.0e38;
+#else
     // No layer there, or one facing the ray (the estimate fell short of the far side, or past
-    // the outline): Wyman's silhouette normal, as the two-surface ISR does.
+    // the outline): Wyman's silhouette normal.
     c.silhouette = !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, true, c.attr) ||
                    dot(layerNormal(c.attr), T1) <= 0.0;
+#endif
     return c;
 }
 
@@ -393,7 +425,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         uint inside = topMedium(media);
         Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
             ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
-            : searchLayers(P, dir, parity, inside != 0u);
+            : searchExit(P, dir, parity, inside != 0u, segmentFromEntry);
         w.steps += c.steps;
         if (!c.found)
             break;
@@ -423,12 +455,13 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         // glass the ray is in, with Wyman's silhouette normal.
         if (c.silhouette && inside == 0u)
             break; // in air and off every layer: nothing more to cross
-        uint glass = c.silhouette ? inside : layerGlass(c.attr) + 1u;
-        vec3 N = c.silhouette ? normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6))
-                              : layerNormal(c.attr);
+        // Every crossing of the pair from its glass leaves it.
+        bool leaves = c.silhouette || kPairCapture;
+        uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
+        vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
         uvec2 before = media;
-        media = crossMedium(media, glass, c.silhouette ? false : dot(dir, N) < 0.0);
+        media = crossMedium(media, glass, !leaves && dot(dir, N) < 0.0);
         uint to = topMedium(media);
         segmentFromEntry = inside == 0u && to != 0u;
         segmentEntry = c.attr;
@@ -442,7 +475,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
         bool outline = false;
         if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
-            N = filteredNormal(c.beyond, c.attr, outline);
+            N = crossingNormal(c, dir, outline);
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
         if (refractRay(dir, facing, n1 / n2, T)) {
