@@ -6,6 +6,7 @@
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/gl/Debug.h"
+#include "engine/render/CpuShading.h"
 #include "engine/render/WorldLoader.h"
 #include "refraction/RefractionPlugin.h"
 
@@ -206,7 +207,7 @@ CaptureSession::renderReference(double time, const refraction::ReferenceOptions&
     frame.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     frame.image = Image{mOptions.size.x, mOptions.size.y,
-                        refraction::tonemap(traced->rgba, mOptions.exposure)};
+                        render::cpu::tonemap(traced->rgba, mOptions.exposure)};
     for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
         frame.glassMask.push_back(traced->rgba[i] > 0.5f);
     frame.trappedSamples = traced->trappedSamples;

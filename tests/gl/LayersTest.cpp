@@ -286,7 +286,7 @@ TEST_F(Layers, TheReferenceAppliesNormalMapsToo) {
                 averaged[(std::size_t(y / kFactor) * kSmall + std::size_t(x / kFactor)) * 4 + c] +=
                     hdr[(std::size_t(y) * kSmall * kFactor + std::size_t(x)) * 4 + c] /
                     float(kFactor * kFactor);
-    const capture::Image image{kSmall, kSmall, refraction::tonemap(averaged, 1.0f)};
+    const capture::Image image{kSmall, kSmall, render::cpu::tonemap(averaged, 1.0f)};
     const capture::Image withMap = mapped.render(0.3), without = smooth.render(0.3);
     std::vector<bool> head(image.rgba.size() / 4, false);
     for (std::size_t i = 0; i < image.rgba.size(); ++i)

@@ -417,7 +417,7 @@ Reference traceReference(const RefractionRig& rig) {
     Reference r;
     if (!traced)
         return r;
-    r.image = {kSize, kSize, refraction::tonemap(traced->rgba, 1.0f)};
+    r.image = {kSize, kSize, render::cpu::tonemap(traced->rgba, 1.0f)};
     r.mask.resize(std::size_t(kSize) * kSize);
     for (std::size_t i = 0; i < r.mask.size(); ++i)
         r.mask[i] = traced->rgba[i * 4 + 3] > 0.5f;
@@ -425,7 +425,7 @@ Reference traceReference(const RefractionRig& rig) {
 }
 
 double maskedPsnr(RefractionRig& rig, const Reference& reference) {
-    const capture::Image image{kSize, kSize, refraction::tonemap(rig.render(), 1.0f)};
+    const capture::Image image{kSize, kSize, render::cpu::tonemap(rig.render(), 1.0f)};
     return capture::score(image, reference.image, &reference.mask).psnr;
 }
 

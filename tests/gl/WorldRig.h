@@ -50,7 +50,7 @@ public:
     }
     /** renderHdr() tonemapped. */
     capture::Image render(double time = 0.0, std::vector<std::string>* passes = nullptr) {
-        return {mSize, mSize, refraction::tonemap(renderHdr(time, passes), 1.0f)};
+        return {mSize, mSize, render::cpu::tonemap(renderHdr(time, passes), 1.0f)};
     }
     struct Reference {
         capture::Image image;
@@ -75,7 +75,7 @@ public:
         Reference r;
         if (!traced)
             return r;
-        r.image = {mSize, mSize, refraction::tonemap(traced->rgba, 1.0f)};
+        r.image = {mSize, mSize, render::cpu::tonemap(traced->rgba, 1.0f)};
         for (std::size_t i = 3; i < traced->rgba.size(); i += 4)
             r.mask.push_back(traced->rgba[i] > 0.5f);
         r.traced = std::move(*traced);

@@ -395,5 +395,19 @@ dvec3 shadeSurface(const Surface& s, const Lighting& lighting, dvec3 P, dvec3 N,
     return layersOver(base, s, lighting, P, N, V);
 }
 
+std::vector<std::uint8_t> tonemap(std::span<const float> rgba, float exposure) {
+    std::vector<std::uint8_t> out(rgba.size());
+    for (std::size_t i = 0; i < rgba.size(); i += 4) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            double x = std::max(0.0, double(rgba[i + c]) * exposure);
+            x = std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+            x = x < 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+            out[i + c] = std::uint8_t(std::lround(std::clamp(x, 0.0, 1.0) * 255.0));
+        }
+        out[i + 3] = 255;
+    }
+    return out;
+}
+
 } // namespace cpu
 } // namespace render

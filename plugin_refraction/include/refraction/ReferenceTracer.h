@@ -67,7 +67,4 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                const render::GroundPlane& ground, const plugin::ParameterSet& glass,
                const ReferenceOptions& options);
 
-/** The display image of an HDR image, exactly as render/tonemap.frag.glsl makes it. */
-std::vector<std::uint8_t> tonemap(const std::vector<float>& rgba, float exposure);
-
 } // namespace refraction

@@ -36,17 +36,11 @@ layout(std430, binding = 7) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 const uint kLayerFront = 256u;
 
 uint packOctNormal(vec3 n) {
-    n /= abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return packUnorm2x16(e * 0.5 + 0.5);
+    return packUnorm2x16(octEncode(n));
 }
 
 vec3 unpackOctNormal(uint bits) {
-    vec2 e = unpackUnorm2x16(bits) * 2.0 - 1.0;
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0)
-        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
+    return octDecode(unpackUnorm2x16(bits));
 }
 
 // The overflow fallback's keys: 16 bits of log depth, then the glass id (8 bits) and an
@@ -56,9 +50,7 @@ vec3 unpackOctNormal(uint bits) {
 uint fallbackKey(float z, vec3 n, uint id) {
     float t = clamp(log2(max(z, uKeyNear) / uKeyNear) / uKeyLogRange, 0.0, 1.0);
     uint q = min(uint(t * 65536.0), 65535u);
-    n /= abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    uvec2 o = uvec2(round(clamp(e * 0.5 + 0.5, 0.0, 1.0) * 15.0));
+    uvec2 o = uvec2(round(clamp(octEncode(n), 0.0, 1.0) * 15.0));
     return (q << 16) | ((id & 255u) << 8) | (o.x << 4) | o.y;
 }
 
@@ -68,11 +60,7 @@ float fallbackDepth(uint key) {
 }
 
 vec3 fallbackNormal(uint key) {
-    vec2 e = vec2(float((key >> 4) & 15u), float(key & 15u)) / 15.0 * 2.0 - 1.0;
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0)
-        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
+    return octDecode(vec2(float((key >> 4) & 15u), float(key & 15u)) / 15.0);
 }
 
 uint pixelIndex(ivec2 p) {

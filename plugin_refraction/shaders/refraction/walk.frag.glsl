@@ -386,17 +386,6 @@ uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
 }
 
 Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
-    Walk w;
-    w.weight = vec3(1.0);
-    w.reflected = vec3(0.0);
-    w.reflectedDir = vec3(0.0);
-    w.reflectedRoughness = 0.0;
-    w.tir = false;
-    w.fallback = false;
-    w.opaque = false;
-    w.hit = ivec2(0);
-    w.interfaces = 1;
-    w.steps = 0;
     uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
     // The medium's index and absorption (kept with it: a crossing reads one material).
     GlassMaterial entered = glassMaterials[layerGlass(entryAttr)];
@@ -404,11 +393,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     vec3 sigma = entered.sigma.rgb;
     vec3 dir;
     refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
-    w.lastIncoming = V;
-    w.lastNormal = N1;
-    w.lastFrom = 0u;
-    w.lastTo = topMedium(media);
-    w.firstExit = P1;
+    // Nothing crossed yet but the entry (from air into the top medium), reflected or hit.
+    Walk w = Walk(P1, dir, vec3(1.0), vec3(0.0), vec3(0.0), 0.0, V, N1, 0u, topMedium(media), P1,
+                  false, false, false, ivec2(0), 1, 0);
     vec3 P = P1;
     int parity = 1;
     int bounces = 0;
@@ -479,6 +466,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
         if (refractRay(dir, facing, n1 / n2, T)) {
+            segmentFromOutline = outline;
             if (to != 0u) {
                 // Into glass: Fresnel splits the light; the reflected part sees the environment,
                 // the transmitted part goes on in the glass's colour.
@@ -488,36 +476,28 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
                 w.reflectedRoughness = g.sigma.w;
                 w.weight *= (1.0 - F) * g.baseColor.rgb;
             }
-            w.lastIncoming = dir;
-            w.lastNormal = facing;
-            w.lastFrom = inside;
-            w.lastTo = to;
-            dir = T;
-            segmentFromOutline = outline;
-            ior = n2;
-            sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
-            P = c.beyond; // the refracted ray starts on the far side of the interface
-            continue;
+        } else {
+            w.tir = true;
+            float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
+            float band = estimated ? kEstimatedTirBand
+                                   : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
+            bool grazing = incidence < asin(n2 / n1) + band;
+            if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
+                ++bounces;
+                dir = reflect(dir, facing);
+                media = before; // still in the same medium
+                parity = parityBefore;
+                segmentFromEntry = false;
+                continue;
+            }
+            T = tangentExit(dir, -facing); // the papers' clamp: leave tangent to the surface
         }
-        w.tir = true;
-        float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-        float band = estimated ? kEstimatedTirBand
-                               : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
-        bool grazing = incidence < asin(n2 / n1) + band;
-        if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
-            ++bounces;
-            dir = reflect(dir, facing);
-            media = before; // still in the same medium
-            parity = parityBefore;
-            segmentFromEntry = false;
-            continue;
-        }
-        // The papers' clamp: leave tangent to the surface.
+        // Across the interface: the refracted ray starts on its far side, in the new medium.
         w.lastIncoming = dir;
         w.lastNormal = facing;
         w.lastFrom = inside;
         w.lastTo = to;
-        dir = tangentExit(dir, -facing);
+        dir = T;
         ior = n2;
         sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
         P = c.beyond;
@@ -595,6 +575,11 @@ void main() {
             }
         }
     }
+#if CAPTURE_PAIR
+    // The papers' model enters at the nearest front (a back face nearer than it is not entered).
+    entry = z < 3.0e38 && layerDepths(p, 0).x < 1.0e38 ? 0 : -1;
+    z = layerDepths(p, 0).x;
+#endif
     if (entry < 0 || z >= sceneDepthAt(p))
         discard; // no glass, or only glass hidden behind the opaque scene
     uvec2 entryAttr = layerAttrAt(p, entry);
@@ -614,20 +599,12 @@ void main() {
     int stored = storedCount(p);
     if (stored > kLayerCapacity)
         atomicAdd(glassOverflowPixels, 1u);
+    vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
+    glassBox(lo, hi);
     switch (uDebug) {
-    case 1: { // back-depth: the farthest layer
-        vec3 lo, hi;
-        glassBox(lo, hi);
-        color = vec3(far / max(-lo.z, 1e-6));
-        break;
-    }
+    case 1: color = vec3(far / max(-lo.z, 1e-6)); break; // back-depth: the farthest layer
     case 2: color = layerNormal(layerAttrAt(p, farthest)) * 0.5 + 0.5; break; // back-normal
-    case 3: { // dv: from the nearest layer to the farthest, on back-depth's scale
-        vec3 lo, hi;
-        glassBox(lo, hi);
-        color = vec3((far - z) / max(-lo.z, 1e-6));
-        break;
-    }
+    case 3: color = vec3((far - z) / max(-lo.z, 1e-6)); break; // dv: nearest to farthest
     case 4: color = vec3(max(layerNormalDistance(entryAttr, z), 0.0) / z); break;
     case 5: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
     case 6: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),

@@ -1,5 +1,5 @@
 // What the refraction passes share: the frame's buffers and glass ids, the glass items drawn and
-// the glass rectangle, the uniforms the shading passes set alike, the layered path's programs.
+// the glass rectangle, the walk's uniforms, the capture's and the walk's programs.
 #include "Passes.h"
 
 #include "engine/deform/GpuDeformer.h"
@@ -65,6 +65,9 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     const Settings& s = settings;
     f.use();
     f.set("uSteps", s.searchSteps);
+    f.set("uMarchSteps", s.marchSteps);
+    f.set("uInterfaces", s.interfaces);
+    f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
     f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off

@@ -74,8 +74,8 @@ struct FrameContext {
     void drawMaskedRectangle() const;
     /** The glass rectangle with the state as it is (no mask test unless set). */
     void drawRectangle() const;
-    /** What the walk and the outline pass set alike: search, TIR policy, Fresnel, debug view,
-     *  camera, the lookup's parameters and the environment (texture units 0-1). */
+    /** What the walk and the outline pass set alike: searches and march, TIR policy, Fresnel,
+     *  debug view, camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
     /** Draws every glass item with `program`, its glass id and material textures set. */
     void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state) const;

@@ -51,9 +51,6 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 gl::clearColorUint(1, 0u); // no glass
             const gl::Program& program = *c.walk;
             c.setWalkUniforms(program);
-            program.set("uMarchSteps", c.settings.marchSteps);
-            program.set("uInterfaces", c.settings.interfaces);
-            program.set("uNormalLod", float(kNormalLod));
             c.setLayerUniforms(program);
             gl::bindTexture(kSceneColorUnit, r.texture(d.sceneColor));
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));

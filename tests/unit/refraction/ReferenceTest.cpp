@@ -60,7 +60,7 @@ std::vector<float> closedForm(const render::Camera& camera,
 }
 
 capture::Image display(const std::vector<float>& hdr) {
-    return {kSize, kSize, refraction::tonemap(hdr, 1.0f)};
+    return {kSize, kSize, render::cpu::tonemap(hdr, 1.0f)};
 }
 
 TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {

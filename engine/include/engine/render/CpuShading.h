@@ -1,7 +1,8 @@
 // The CPU twin of the GPU's material model, in double precision: the environment as
 // common/environment.glsl samples it, a material read as render/pbr.frag.glsl reads it, and
-// shaded as common/brdf.glsl shades it (its layers and the punctual lights included). What the
-// Embree reference shades its opaque surfaces and its glass's layers with.
+// shaded as common/brdf.glsl shades it (its layers and the punctual lights included), and the
+// display image as render/tonemap.frag.glsl makes it. What the Embree reference shades its
+// opaque surfaces and its glass's layers with.
 #pragma once
 
 #include "engine/asset/HdrImage.h"
@@ -10,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -110,6 +112,10 @@ dvec3 layersOver(dvec3 under, const Surface& s, const Lighting& lighting, dvec3 
                  dvec3 V);
 /** The light the surface sends toward V (common/brdf.glsl shadeSurface). */
 dvec3 shadeSurface(const Surface& s, const Lighting& lighting, dvec3 P, dvec3 N, dvec3 V);
+
+/** The display image (RGBA8, alpha 255) of an HDR RGBA image, exactly as
+ *  render/tonemap.frag.glsl makes it: exposure, the ACES fit, sRGB. */
+std::vector<std::uint8_t> tonemap(std::span<const float> rgba, float exposure);
 
 } // namespace cpu
 } // namespace render
