@@ -2,7 +2,7 @@
 // the plugin.
 #pragma once
 
-#include "NormalDistance.h"
+#include "GlassBvh.h"
 
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Commands.h"
@@ -43,7 +43,8 @@ struct GlassRectangleGpu {
 };
 
 struct GpuState {
-    gl::Program refit, normalDistance, cageGather, rectangleGrow; // d_N; the glass rectangle
+    BvhPrograms bvh;          // the glass BVH's build and refit, the d_N cast
+    gl::Program rectangleGrow; // the glass rectangle
     // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1).
     gl::Program surface, surfaces, resolve[2];
     // The layers (layers.glsl): the capture and its depth maps for K = layerProgramsCapacity
@@ -71,20 +72,17 @@ struct GpuState {
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
-    /** d_N of one character's glass: one BVH over all its glass primitives' cages (parts, in
-     *  the order of their draw items); with subdivision carried to each part's drawn vertices
-     *  by the refinement stencils. */
-    struct Distance {
-        using Part = std::pair<std::uint32_t, std::uint32_t>; // (instance, primitive)
+    /** The BVH over the frame's glass (parts: its draw items' (character, instance,
+     *  primitive), in frame order), rebuilt from scratch when the parts change; with
+     *  subdivision d_N carried to each part's drawn vertices by the refinement stencils. */
+    struct Glass {
+        using Part = std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>;
         std::vector<Part> parts;
-        std::unique_ptr<NormalDistance> cage;
+        std::unique_ptr<GlassBvh> bvh;
         std::map<Part, gl::Buffer> drawn; // with subdivision: one float per drawn vertex
         /** Part `part`'s index in `parts`, or -1. */
-        int find(Part part) const;
-    };
-    /** Keyed by DrawItem::key (the character); entries of characters gone from the frame are
-     *  dropped. */
-    std::map<std::uint64_t, Distance> distances;
+        int find(const Part& part) const;
+    } glass;
 };
 
 } // namespace refraction

@@ -84,14 +84,19 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         {&mGpu->resolve[1], rectangle, "refraction/resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
-        {&mGpu->refit, nullptr, "refraction/bvh_refit.comp.glsl", {}},
         {&mGpu->rectangleGrow, nullptr, "refraction/rectangle.comp.glsl", {}},
-        {&mGpu->normalDistance, nullptr, "refraction/normal_distance.comp.glsl", {}},
-        {&mGpu->cageGather, nullptr, "refraction/cage_gather.comp.glsl", {}}};
+        {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
+        {&mGpu->bvh.gather, nullptr, "refraction/cage_gather.comp.glsl", {}},
+        {&mGpu->bvh.stages[0], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 1"}},
+        {&mGpu->bvh.stages[1], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 2"}},
+        {&mGpu->bvh.stages[2], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 3"}},
+        {&mGpu->bvh.stages[3], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 4"}},
+        {&mGpu->bvh.stages[4], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 5"}},
+        {&mGpu->bvh.stages[5], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 6"}}};
     for (const Spec& spec : specs) {
         auto program = spec.vertex
                            ? gl::Program::graphics(shaders, spec.vertex, spec.shader, spec.defines)
-                           : gl::Program::compute(shaders, spec.shader);
+                           : gl::Program::compute(shaders, spec.shader, spec.defines);
         if (!program)
             return program.error();
         *spec.target = std::move(*program);
@@ -123,7 +128,6 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.plugin = this;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
 
-    dropStaleDistances(*mGpu, c.frame->items);
     c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
@@ -137,8 +141,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         return;
     }
     c.walk = *walk;
-    if (c.settings.usesNormalDistance())
-        addNormalDistancePass(graph, c, buffers);
+    if (c.settings.usesGlassBvh())
+        addGlassBvhPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),
     // or the pair. The pair's single geometry pass serves what one resolve can: one glass
     // material with the same overrides on every glass item, no normal map (no UV or tangent is

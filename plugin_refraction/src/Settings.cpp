@@ -9,9 +9,10 @@ using Type = plugin::Parameter::Type;
 const std::vector<plugin::Parameter>& Settings::parameterTable() {
     static const std::vector<plugin::Parameter> kTable = {
         {.name = "method", .label = "Method", .type = Type::Enum, .defaultValue = 3,
-         .choices = {"opaque", "sir", "isr", "dir"},
+         .choices = {"opaque", "sir", "isr", "dir", "trace"},
          .help = "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame d_N; "
-                 "dir: depth-map search, no preprocessing"},
+                 "dir: depth-map search, no preprocessing; trace: the refracted path traced "
+                 "through the glass BVH from the first layer"},
         {.name = "glass", .label = "Glass", .type = Type::Enum, .choices = {"auto", "all"},
          .help = "auto: materials with transmission; all: every mesh"},
         {.name = "ior", .label = "IOR", .max = 4.0,
@@ -61,6 +62,9 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .help = "how surfaces=two-surface captures its pair: one pass (MAX blending; a single "
                  "glass material without a normal map and back-surface=farthest, else two), or "
                  "the papers' back-face pass then front-face pass; layers always draw once"},
+        {.name = "trace-samples", .label = "Trace samples", .type = Type::Int, .min = 1,
+         .max = 16, .defaultValue = 1,
+         .help = "trace: rays per glass pixel, the first at its centre, the others jittered"},
         {.name = "nearby", .label = "Nearby scene", .type = Type::Bool, .defaultValue = 1,
          .help = "exit rays see the opaque scene on screen before the environment"},
         {.name = "outline-aa", .label = "Outline anti-aliasing", .type = Type::Bool,
@@ -94,6 +98,7 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.layerCapacity = index("layer-capacity");
     s.interfaces = index("interfaces");
     s.marchSteps = index("march-steps");
+    s.traceSamples = index("trace-samples");
     s.nearby = p.flag("nearby");
     s.outlineAntialiasing = p.flag("outline-aa");
     s.debug = index("debug");

@@ -14,7 +14,7 @@ namespace refraction {
 
 struct Settings {
     // Each enum lists its parameter's choices in the order of parameterTable().
-    enum class Method { Opaque, Sir, Isr, Dir };
+    enum class Method { Opaque, Sir, Isr, Dir, Trace };
     enum class Glass { Auto, All };
     enum class Fresnel { Exact, Schlick, Off };
     enum class Tir { Clamp, Reflect };
@@ -40,6 +40,7 @@ struct Settings {
     int layerCapacity = 4; ///< K: fragments kept per pixel by the layered capture
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
+    int traceSamples = 1;  ///< trace: rays per glass pixel
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
     int debug = 0; ///< index into the "debug" parameter's choices (walk.frag.glsl)
@@ -49,12 +50,14 @@ struct Settings {
     /** Reads every parameter of the refraction plugin's set (which must declare them all). */
     static Settings decode(const plugin::ParameterSet& parameters);
 
-    /** Isr and Dir search an exit through a back surface; Sir refracts once. */
-    bool twoInterfaces() const { return method == Method::Isr || method == Method::Dir; }
+    /** Isr, Dir and Trace find an exit through a back surface; Sir refracts once. */
+    bool twoInterfaces() const { return method != Method::Opaque && method != Method::Sir; }
     /** The layered path: every glass layer in one geometry pass (any materials, normal maps). */
     bool layered() const { return surfaces == Surfaces::Layers && method != Method::Opaque; }
     /** Isr measures d_N every frame and reads it. */
     bool usesNormalDistance() const { return method == Method::Isr; }
+    /** Isr (its d_N) and Trace (its rays) need the glass BVH. */
+    bool usesGlassBvh() const { return method == Method::Isr || method == Method::Trace; }
     /** Whether a primitive drawn with `material` (of `model`; -1 the default, as its
      *  character's variant picks it) in glass mode `mode` renders as glass: never with Opaque
      *  or GlassMode::None, always with GlassMode::All; with GlassMode::Auto every mesh under

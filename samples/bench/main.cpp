@@ -229,7 +229,8 @@ capture::Image plot(const nlohmann::json& report) {
         {"opaque", {120, 120, 120}},
         {"sir", {52, 101, 164}},
         {"isr", {230, 126, 34}},
-        {"dir", {46, 139, 87}}};
+        {"dir", {46, 139, 87}},
+        {"trace", {142, 68, 173}}};
     bench::Chart chart;
     const std::string name =
         std::filesystem::path(report["model"].get<std::string>()).filename().string();

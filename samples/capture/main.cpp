@@ -22,13 +22,13 @@ constexpr const char* kUsage =
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--subdiv N]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
-                     [--method opaque|sir|isr|dir] [--glass auto|all] [--ior N] [--dispersion D]
+                     [--method opaque|sir|isr|dir|trace] [--glass auto|all] [--ior N] [--dispersion D]
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
                      [--geometry-passes one|two] [--dispersion-search shared|per-channel]
                      [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
-                     [--outline-aa on|off]
+                     [--outline-aa on|off] [--trace-samples S]
                      [--march-steps M]
                      [--method reference] [--compare-reference] [--spp K | --pixel-centres] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
@@ -53,7 +53,8 @@ characters; T is the scene time); several MODELs are placed side by side.
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
   Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
   --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
-                      depth-map search, no preprocessing)
+                      depth-map search, no preprocessing), trace (the path traced exactly
+                      through the glass BVH from the first layer)
   --glass auto|all    auto: transmissive materials (default); all: play every mesh as glass
   --ior N             index of refraction, 0 = the material's (default)
   --dispersion D      20/Abbe number, -1 = the material's (default)
@@ -73,6 +74,8 @@ characters; T is the scene time); several MODELs are placed side by side.
                       coarse samples (default 12) then --search-steps halvings; two-surface:
                       the papers' nearest front and one back surface
   --outline-aa on|off layers: the outlines of smooth glass anti-aliased (default on)
+  --trace-samples S   trace: rays per glass pixel, the first at its centre, the others jittered
+                      within it (1..16, default 1)
   --geometry-passes G two-surface only: one (default): front and back surfaces gathered in one
                       geometry pass (MAX blending) and refracted in a full-screen pass; two: the
                       papers' back-face pass then front-face pass (also used where one cannot:
@@ -208,7 +211,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
                    arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug" ||
                    arg == "--surfaces" || arg == "--layer-capacity" || arg == "--interfaces" ||
-                   arg == "--march-steps" || arg == "--outline-aa") {
+                   arg == "--march-steps" || arg == "--outline-aa" || arg == "--trace-samples") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");

@@ -113,7 +113,8 @@ int run(int argc, char** argv) {
                                                                       {"sir", "clamp"},
                                                                       {"isr", "clamp"},
                                                                       {"dir", "clamp"},
-                                                                      {"dir", "reflect"}};
+                                                                      {"dir", "reflect"},
+                                                                      {"trace", "reflect"}};
     const std::vector<glm::ivec2> sizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
     const int cycle = std::max(switchEvery * int(methods.size()), resizeEvery * int(sizes.size()));
 

@@ -3,7 +3,7 @@
 #include "support/GlTest.h"
 #include "support/TestSupport.h"
 
-#include "NormalDistance.h"
+#include "GlassBvh.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/capture/Metrics.h"
@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 std::span<const gl::ShaderFile> refractionShaderFiles();
@@ -212,35 +213,50 @@ std::vector<float> downloadFloats(const gl::Buffer& buffer, std::size_t count) {
 struct DistanceRig {
     scene::Model model;
     gl::ShaderLibrary library;
-    gl::Program refit, cast, gather;
+    refraction::BvhPrograms programs;
     void open(const gl::ShaderLibrary& engineShaders, const std::string& path) {
         auto loaded = asset::loadModel(path);
         ASSERT_TRUE(loaded.ok()) << loaded.error().message;
         model = std::move(*loaded);
         library = engineShaders;
         library.add(refractionShaderFiles());
-        auto r = gl::Program::compute(library, "refraction/bvh_refit.comp.glsl");
+        for (int stage = 0; stage < 6; ++stage) {
+            auto built = gl::Program::compute(library, "refraction/bvh_build.comp.glsl",
+                                              {"BVH_STAGE " + std::to_string(stage + 1)});
+            ASSERT_TRUE(built.ok()) << built.error().message;
+            programs.stages[std::size_t(stage)] = std::move(*built);
+        }
         auto c = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
         auto g = gl::Program::compute(library, "refraction/cage_gather.comp.glsl");
-        ASSERT_TRUE(r.ok() && c.ok() && g.ok());
-        refit = std::move(*r);
-        cast = std::move(*c);
-        gather = std::move(*g);
+        ASSERT_TRUE(c.ok() && g.ok());
+        programs.cast = std::move(*c);
+        programs.gather = std::move(*g);
     }
-    /** d_N of one primitive's deformed cage `vertices` (identity placement: mesh space). */
-    refraction::NormalDistance distances(const scene::Primitive& primitive,
-                                         const gl::Buffer& vertices) const {
+    /** The glass BVH of one primitive's deformed cage `vertices` (identity placement: mesh
+     *  space), with its d_N. */
+    std::unique_ptr<refraction::GlassBvh> distances(const scene::Primitive& primitive,
+                                                    const gl::Buffer& vertices) const {
         const scene::Primitive* primitives[] = {&primitive};
-        refraction::NormalDistance distance(primitives);
-        distance.gather(0, vertices, std::uint32_t(primitive.vertexCount()), glm::mat4(1.0f),
-                        gather);
-        distance.update(refit, cast);
-        return distance;
+        auto bvh = std::make_unique<refraction::GlassBvh>(primitives);
+        bvh->gather(0, vertices, std::uint32_t(primitive.vertexCount()), glm::mat4(1.0f),
+                    programs);
+        bvh->update(programs);
+        bvh->castNormalDistances(programs);
+        return bvh;
+    }
+    /** The rig's model deformed by clip `clip` at `time` (-1: the rest pose), at `level`. */
+    std::unique_ptr<deform::GpuDeformer> deform(int clip, double time, int level = 0) const {
+        auto deformer = deform::GpuDeformer::create(model, library, level);
+        EXPECT_TRUE(deformer.ok()) << (deformer.ok() ? "" : deformer.error().message);
+        if (!deformer)
+            return nullptr;
+        (*deformer)->update(anim::evaluate(model, clip, time));
+        return std::move(*deformer);
     }
     /** d_N per vertex of `deformer`'s first primitive as it is deformed now, read back. */
     std::vector<float> deformedDistances(const deform::GpuDeformer& deformer) const {
         const auto& primitive = deformer.instances()[0].primitives[0];
-        return downloadFloats(distances(*primitive.source, *primitive.deformed).distances(),
+        return downloadFloats(distances(*primitive.source, *primitive.deformed)->distances(),
                               primitive.vertexCount);
     }
 };
@@ -256,10 +272,9 @@ TEST_F(Refraction, NormalDistanceOfASphereIsItsDiameter) {
     // slip between them.
     DistanceRig rig;
     ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), "builtin:sphere"));
-    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
-    ASSERT_TRUE(deformer.ok());
-    (*deformer)->update(anim::evaluate(rig.model, -1, 0.0));
-    const std::vector<float> gpu = rig.deformedDistances(**deformer);
+    const auto deformer = rig.deform(-1, 0.0);
+    ASSERT_TRUE(deformer);
+    const std::vector<float> gpu = rig.deformedDistances(*deformer);
     int misses = 0;
     double worst = 0.0;
     for (float d : gpu) {
@@ -278,19 +293,19 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
     // every node, and each ray then tests both (TransmissionTest's ISR took 43 s a frame).
     DistanceRig rig;
     ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), "builtin:sphere"));
-    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
-    ASSERT_TRUE(deformer.ok());
-    (*deformer)->update(anim::evaluate(rig.model, -1, 0.0));
-    const auto& primitive = (*deformer)->instances()[0].primitives[0];
+    const auto deformer = rig.deform(-1, 0.0);
+    ASSERT_TRUE(deformer);
+    const auto& primitive = deformer->instances()[0].primitives[0];
     const scene::Primitive* primitives[] = {primitive.source, primitive.source};
-    refraction::NormalDistance distance(primitives);
+    refraction::GlassBvh distance(primitives);
     for (std::size_t i = 0; i < 2; ++i)
         distance.gather(i, *primitive.deformed, std::uint32_t(primitive.vertexCount),
                         glm::translate(glm::mat4(1.0f), glm::vec3(i == 0 ? -3.0f : 3.0f, 0, 0)),
-                        rig.gather);
-    distance.update(rig.refit, rig.cast);
+                        rig.programs);
+    distance.update(rig.programs);
+    distance.castNormalDistances(rig.programs);
 
-    const refraction::Bvh& tree = distance.tree();
+    const refraction::Bvh tree = distance.download();
     const std::size_t perCopy = primitive.source->indices.size() / 3;
     // Which copies the triangles under `node` belong to (bit 0: first, bit 1: second).
     std::function<int(int)> copies = [&](int node) {
@@ -315,18 +330,118 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
     EXPECT_LE(worst, 1e-4);
 }
 
+/** Checks `bvh` as the GPU holds it: every triangle in exactly one leaf, every node its
+ *  parent's child, every leaf's box its triangle's corners' (as gathered: exact) and every
+ *  inner box the union of its children's. */
+void expectSoundTree(const refraction::GlassBvh& bvh) {
+    const refraction::Bvh tree = bvh.download();
+    const std::uint32_t n = bvh.triangleCount();
+    ASSERT_EQ(tree.nodes.size(), 2 * std::size_t(n) - 1);
+    const std::vector<std::uint8_t> cage = bvh.cage().download();
+    auto corner = [&](std::uint32_t triangle, int k) {
+        glm::vec3 p;
+        const std::uint32_t v = bvh.triangles()[3 * triangle + std::uint32_t(k)];
+        std::memcpy(&p, cage.data() + std::size_t(v) * 12 * sizeof(float), sizeof p);
+        return p;
+    };
+    std::vector<int> seen(n, 0);
+    std::size_t wrongParents = 0, wrongBoxes = 0;
+    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+        const refraction::Bvh::Node& node = tree.nodes[i];
+        glm::vec3 lo(3e38f), hi(-3e38f);
+        if (node.left < 0) {
+            for (int t = node.first; t < node.first + node.count; ++t) {
+                const std::uint32_t triangle = tree.order[std::size_t(t)];
+                ++seen[triangle];
+                for (int k = 0; k < 3; ++k) {
+                    lo = glm::min(lo, corner(triangle, k));
+                    hi = glm::max(hi, corner(triangle, k));
+                }
+            }
+        } else {
+            for (const int child : {node.left, node.right}) {
+                wrongParents += tree.parents[std::size_t(child)] != int(i);
+                lo = glm::min(lo, tree.lo[std::size_t(child)]);
+                hi = glm::max(hi, tree.hi[std::size_t(child)]);
+            }
+        }
+        wrongBoxes += lo != tree.lo[i] || hi != tree.hi[i];
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(n))
+        << "triangles missing from the leaves, or in several";
+    EXPECT_EQ(tree.parents[0], -1);
+    EXPECT_EQ(wrongParents, 0u);
+    EXPECT_EQ(wrongBoxes, 0u) << "boxes that do not bound what is under them";
+}
+
+TEST_F(Refraction, GlassBvhKeepsEveryTriangleThroughRefitsAndRebuildsWhenWorn) {
+    // Built on the GPU from the first pose, refitted to the next ones: every triangle stays in
+    // the tree and every box bounds it. Two spheres built where they overlap, then moved a
+    // little, refit; moved apart (two characters that crossed), their tree's cost wears past
+    // the rebuild ratio and a later update rebuilds it; so does a pose whose vertices are
+    // thrown about (an exploding skin). The cost is read back frames later, never waited for.
+    DistanceRig rig;
+    ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), "builtin:sphere"));
+    const auto deformer = rig.deform(-1, 0.0);
+    ASSERT_TRUE(deformer);
+    const auto& primitive = deformer->instances()[0].primitives[0];
+    const std::uint32_t count = std::uint32_t(primitive.vertexCount);
+    // The same vertices in a scrambled order: every triangle spans the sphere.
+    std::vector<std::uint8_t> bytes = primitive.deformed->download();
+    const std::size_t stride = 12 * sizeof(float);
+    std::vector<std::uint8_t> scrambled(bytes.size());
+    for (std::uint32_t v = 0; v < count; ++v)
+        std::memcpy(scrambled.data() + std::size_t(v) * stride,
+                    bytes.data() + std::size_t((v * 7919u) % count) * stride, stride);
+    const gl::Buffer exploded(scrambled.size(), scrambled.data());
+
+    const scene::Primitive* primitives[] = {primitive.source, primitive.source};
+    refraction::GlassBvh bvh(primitives);
+    auto pose = [&](float apart, const gl::Buffer& second) {
+        for (std::size_t i = 0; i < 2; ++i)
+            bvh.gather(i, i == 0 ? *primitive.deformed : second, count,
+                       glm::translate(glm::mat4(1.0f), glm::vec3(i == 0 ? 0.0f : apart, 0, 0)),
+                       rig.programs);
+        bvh.update(rig.programs);
+        gl::finish(); // the cost's fence passes before the next update
+    };
+    pose(1.0f, *primitive.deformed);
+    EXPECT_EQ(bvh.builds(), 1);
+    expectSoundTree(bvh);
+    for (const float apart : {1.1f, 1.2f, 1.3f})
+        pose(apart, *primitive.deformed);
+    const double moved = bvh.costRatio();
+    EXPECT_EQ(bvh.builds(), 1) << "a small move rebuilt the tree";
+    expectSoundTree(bvh);
+    pose(50.0f, *primitive.deformed); // refitted: boxes reach across both
+    pose(50.0f, *primitive.deformed); // that cost read back, over the ratio: rebuilt
+    const double apart = bvh.costRatio();
+    EXPECT_EQ(bvh.builds(), 2);
+    expectSoundTree(bvh);
+    pose(50.0f, exploded);
+    pose(50.0f, exploded);
+    const double scattered = bvh.costRatio();
+    std::printf("glass BVH refitted, over its fresh cost: two spheres moved 0.3 %.2f; 49 %.2f; "
+                "one exploded %.2f; %d builds\n",
+                moved, apart, scattered, bvh.builds());
+    EXPECT_LT(moved, refraction::GlassBvh::kRebuildRatio);
+    EXPECT_GT(apart, refraction::GlassBvh::kRebuildRatio);
+    EXPECT_GT(scattered, refraction::GlassBvh::kRebuildRatio);
+    EXPECT_EQ(bvh.builds(), 3);
+    expectSoundTree(bvh);
+}
+
 TEST_F(Refraction, NormalDistanceMatchesBruteForceOnDeformedCesiumMan) {
     GLASS_REQUIRE_SHARED();
     DistanceRig rig;
     ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), cesiumMan()));
-    auto deformer = deform::GpuDeformer::create(rig.model, rig.library);
-    ASSERT_TRUE(deformer.ok());
-    (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
-    const std::vector<float> gpu = rig.deformedDistances(**deformer);
-    const auto& primitive = (*deformer)->instances()[0].primitives[0];
+    const auto deformer = rig.deform(0, 1.0);
+    ASSERT_TRUE(deformer);
+    const std::vector<float> gpu = rig.deformedDistances(*deformer);
+    const auto& primitive = deformer->instances()[0].primitives[0];
 
     // Brute force over every triangle of the same deformed vertices.
-    const auto deformed = (*deformer)->download(0, 0);
+    const auto deformed = deformer->download(0, 0);
     const auto& indices = primitive.source->indices;
     glm::dvec3 lo(1e30), hi(-1e30);
     for (const auto& p : primitive.source->positions) {
@@ -363,17 +478,15 @@ TEST_F(Refraction, CageDistanceRefinedByStencilsApproximatesTheRefinedSurfaces) 
     GLASS_REQUIRE_SHARED();
     DistanceRig rig;
     ASSERT_NO_FATAL_FAILURE(rig.open(shaders(), cesiumMan()));
-    auto deformer = deform::GpuDeformer::create(rig.model, rig.library, 2);
-    ASSERT_TRUE(deformer.ok()) << deformer.error().message;
-    (*deformer)->update(anim::evaluate(rig.model, 0, 1.0));
-    const auto& primitive = (*deformer)->instances()[0].primitives[0];
-    const refraction::NormalDistance distance =
-        rig.distances(*primitive.source, (*deformer)->cage(0, 0).vertices);
+    const auto deformer = rig.deform(0, 1.0, 2);
+    ASSERT_TRUE(deformer);
+    const auto& primitive = deformer->instances()[0].primitives[0];
+    const auto distance = rig.distances(*primitive.source, deformer->cage(0, 0).vertices);
     gl::Buffer drawn(std::size_t(primitive.vertexCount) * sizeof(float));
-    (*deformer)->refineScalar(0, 0, distance.distances(), drawn);
+    deformer->refineScalar(0, 0, distance->distances(), drawn);
     const std::vector<float> refined = downloadFloats(drawn, primitive.vertexCount);
 
-    const auto surface = (*deformer)->download(0, 0);
+    const auto surface = deformer->download(0, 0);
     const auto& indices = primitive.topology->indices;
     glm::dvec3 lo(1e30), hi(-1e30);
     for (const auto& p : surface.positions) {

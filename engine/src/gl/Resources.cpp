@@ -354,4 +354,36 @@ std::optional<std::uint64_t> TimerQuery::resultNs(bool wait) const {
     return end > begin ? std::uint64_t(end - begin) : std::uint64_t(0);
 }
 
+// ---- Fence
+
+Fence::~Fence() {
+    if (mSync)
+        glDeleteSync(static_cast<GLsync>(mSync));
+}
+
+Fence::Fence(Fence&& o) noexcept {
+    std::swap(mSync, o.mSync);
+}
+
+Fence& Fence::operator=(Fence&& o) noexcept {
+    if (this != &o)
+        std::swap(mSync, o.mSync);
+    return *this;
+}
+
+void Fence::insert() {
+    if (mSync)
+        glDeleteSync(static_cast<GLsync>(mSync));
+    mSync = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+}
+
+bool Fence::passed() const {
+    if (!mSync)
+        return false;
+    // No flush: the frame's end flushes anyway, and a flush mid-frame would cost a CPU
+    // rasteriser the batching of what follows.
+    const GLenum state = glClientWaitSync(static_cast<GLsync>(mSync), 0, 0);
+    return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
+}
+
 } // namespace gl

@@ -1,5 +1,8 @@
-// Bounding-volume hierarchy over a primitive's triangles with static topology, refitted to the
-// deformed vertices every frame (for d_N).
+// The BVH over the frame's deformed glass (GlassBvh.h): the world cage of every glass part, its
+// static triangles, and a linear BVH over them built on the GPU (bvh_build.comp.glsl: Morton
+// codes of the triangles' centroids, sorted; Karras 2012's hierarchy) and refitted to the
+// deformed vertices every frame. Internal nodes 0..n-2 (the root is node 0), leaf k (one
+// triangle, the k-th in Morton order) is node n-1+k; with one triangle the root is that leaf.
 #ifndef REFRACTION_BVH_GLSL
 #define REFRACTION_BVH_GLSL
 #include "common/vertex.glsl"
@@ -9,12 +12,107 @@ struct BvhNode {
     int first, count;     // leaf: range in the triangle order
 };
 
-layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
-layout(std430, binding = 2) readonly buffer Nodes { BvhNode nodes[]; };
-layout(std430, binding = 3) readonly buffer Order { uint triangleOrder[]; };
-layout(std430, binding = 4) buffer Bounds { vec4 bounds[]; }; // [2 * node]: min, [2 * node + 1]: max
+// The bindings from BVH_BINDINGS (0 unless the includer sets it: the walk binds the tree beside
+// its own buffers).
+#ifndef BVH_BINDINGS
+#define BVH_BINDINGS 0
+#endif
+layout(std430, binding = BVH_BINDINGS + 0) readonly buffer Deformed { DeformedVertex vertices[]; };
+layout(std430, binding = BVH_BINDINGS + 1) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = BVH_BINDINGS + 2) coherent buffer Nodes { BvhNode nodes[]; };
+layout(std430, binding = BVH_BINDINGS + 3) coherent buffer Order { uint triangleOrder[]; };
+// [2 node]: min, [2 node + 1]: max
+layout(std430, binding = BVH_BINDINGS + 4) coherent buffer Bounds { vec4 bounds[]; };
 // The deformed corners of each triangle in leaf order (3 per triangle, written by the refit), so
 // that a ray test reads them directly instead of through the order and the index buffer.
-layout(std430, binding = 7) buffer LeafTriangles { vec4 leafCorners[]; };
+layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorners[]; };
+// Each triangle's glass id (glass_materials.glsl), in the original order.
+layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleGlass { uint triangleGlass[]; };
+
+// Where the ray enters the box [lo, hi] padded by `pad` before tMax, or -1 when it misses (a ray
+// along one of its faces, a sphere's -N from a pole through the opposite pole, is inside it,
+// whichever side of the face it lies on).
+float bvhEnterBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, float pad, float tMax) {
+    vec3 t0 = (lo - pad - origin) * inverseDir, t1 = (hi + pad - origin) * inverseDir;
+    vec3 tNear = min(t0, t1), tFar = max(t0, t1);
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+    float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
+    return enter <= exit ? enter : -1.0;
+}
+
+// Möller-Trumbore: t, or -1, with the barycentrics of b and c. Barycentrics within 1e-4 of an
+// edge hit: a ray through an edge or vertex hits one of the triangles there, whatever the
+// rounding of the deformed vertices.
+float bvhHitTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, out vec2 uv) {
+    vec3 e1 = b - a, e2 = c - a;
+    vec3 p = cross(dir, e2);
+    float det = dot(e1, p);
+    uv = vec2(0.0);
+    if (abs(det) < 1e-20)
+        return -1.0;
+    float inv = 1.0 / det;
+    vec3 s = origin - a;
+    uv.x = dot(s, p) * inv;
+    if (uv.x < -1e-4 || uv.x > 1.0 + 1e-4)
+        return -1.0;
+    vec3 q = cross(s, e1);
+    uv.y = dot(dir, q) * inv;
+    if (uv.y < -1e-4 || uv.x + uv.y > 1.0 + 1e-4)
+        return -1.0;
+    return dot(e2, q) * inv;
+}
+
+// The nearest triangle along origin + t dir with epsilon < t < tMax: true with t, the hit leaf
+// (its position in Morton order) and the barycentrics. Nearer child first, so that the first
+// hits shorten the ray; a node waiting on the stack is dropped once a hit is nearer than where
+// the ray enters it.
+bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, out int leaf,
+                out vec2 uv) {
+    vec3 inverseDir = 1.0 / (dir + vec3(equal(dir, vec3(0.0))) * 1e-30);
+    t = tMax;
+    leaf = -1;
+    uv = vec2(0.0);
+    int stack[64];
+    float entered[64];
+    int top = 0;
+    if (bvhEnterBox(origin, inverseDir, bounds[0].xyz, bounds[1].xyz, epsilon, t) >= 0.0) {
+        stack[0] = 0;
+        entered[0] = 0.0;
+        top = 1;
+    }
+    while (top > 0) {
+        BvhNode node = nodes[stack[--top]];
+        if (node.left < 0) {
+            for (int k = node.first; k < node.first + node.count; ++k) {
+                vec2 b;
+                float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz,
+                                         leafCorners[3 * k + 1].xyz, leafCorners[3 * k + 2].xyz, b);
+                if (h > epsilon && h < t) {
+                    t = h;
+                    leaf = k;
+                    uv = b;
+                }
+            }
+        } else {
+            float tLeft = bvhEnterBox(origin, inverseDir, bounds[2 * node.left].xyz,
+                                      bounds[2 * node.left + 1].xyz, epsilon, t);
+            float tRight = bvhEnterBox(origin, inverseDir, bounds[2 * node.right].xyz,
+                                       bounds[2 * node.right + 1].xyz, epsilon, t);
+            bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
+            int near = leftFirst ? node.left : node.right, far = leftFirst ? node.right : node.left;
+            float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
+            if (tFar >= 0.0 && top < 63) {
+                stack[top] = far;
+                entered[top++] = tFar;
+            }
+            if (tNear >= 0.0 && top < 63) {
+                stack[top] = near;
+                entered[top++] = tNear;
+            }
+        }
+        while (top > 0 && entered[top - 1] > t)
+            --top;
+    }
+    return leaf >= 0;
+}
 #endif

@@ -33,7 +33,7 @@
 #include "refraction/glass_surface.glsl"
 #include "refraction/layers.glsl"
 
-const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3;
+const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3, METHOD_TRACE = 4;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
@@ -41,20 +41,20 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // ISR's estimated exits: kEstimatedTirBand, optics.glsl). Near an outline the filtered normal
 // is good to 2-4 degrees (filteredNormal), and a segment that began there carries that error to
 // its far end: crossings at or after such a normal have the wider band.
-// The pair's normals are the papers' mip-filtered maps, whose limit the TIR is judged at.
 #ifndef CAPTURE_PAIR
 #define CAPTURE_PAIR 0
 #endif
-const bool kPairCapture = CAPTURE_PAIR != 0;
-const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
+#ifndef LAYER_METHOD
+#define LAYER_METHOD 3 // METHOD_DIR
+#endif
+const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE;
+// The pair's normals and the traced ones are exact enough to judge TIR at its limit.
+const float kTirBand = kPairCapture || kTrace ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
 // The method and the dispersion search are compiled in (a variant each, walkProgram): on a CPU
 // rasteriser a shader pays for the code it carries.
-#ifndef LAYER_METHOD
-#define LAYER_METHOD METHOD_DIR
-#endif
 #ifndef LAYER_DISPERSION
 #define LAYER_DISPERSION 0 // DISPERSION_NONE
 #endif
@@ -286,24 +286,76 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
 
 // The normal where a crossing of the pair leaves the glass, read from the layer's mip-filtered
 // map; where it faces the ray (the exit missed the far side), the silhouette's.
-vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
+vec3 pairNormal(Crossing c, vec3 dir, out bool outline) {
     outline = false;
     vec3 n = textureLod(uPairNormals[layerFront(c.attr) ? 0 : 1], projectToUv(c.beyond), uNormalLod).xyz;
     return length(n) > 1e-4 && dot(n, dir) > 0.0 ? normalize(n) : silhouetteNormal(dir);
 }
+#endif
 
-Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
-    return searchPair(P, dir, inGlass, first);
-}
-#else
-vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
-    return filteredNormal(c.beyond, c.attr, outline);
-}
+#if LAYER_METHOD == 4 // METHOD_TRACE
+#define BVH_BINDINGS 12 // kWalkBvhBinding
+#include "refraction/bvh.glsl"
 
-Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
-    return searchLayers(P, dir, parity, inGlass);
+// The exact next interface: the ray traced through the glass BVH (world space), the triangle's
+// interpolated normal, its glass and which way the ray crosses it (by the winding, the
+// reference's rule: against the outward face enters).
+Crossing traceCrossing(vec3 P, vec3 dir) {
+    Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
+    vec3 origin = uViewToWorld * P + uViewOriginWorld, along = uViewToWorld * dir;
+    float epsilon = 1e-5 * length(bounds[1].xyz - bounds[0].xyz), t;
+    int leaf;
+    vec2 uv;
+    if (!bvhNearest(origin, along, epsilon, 3.0e38, t, leaf, uv))
+        return c;
+    uint triangle = triangleOrder[leaf];
+    uvec3 v = uvec3(indices[3u * triangle], indices[3u * triangle + 1u], indices[3u * triangle + 2u]);
+    vec3 n = (1.0 - uv.x - uv.y) * vertices[v.x].normal.xyz + uv.x * vertices[v.y].normal.xyz +
+             uv.y * vertices[v.z].normal.xyz;
+    vec3 a = leafCorners[3 * leaf].xyz;
+    vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
+    bool entering = dot(face, along) < 0.0;
+    c.found = true;
+    c.point = P + dir * max(t - epsilon, 0.0);
+    c.beyond = P + dir * (t + epsilon);
+    c.attr = uvec2(packOctNormal(normalize(transpose(uViewToWorld) * n)),
+                   triangleGlass[triangle] | (entering ? kLayerFront : 0u));
+    return c;
+}
+uniform int uTraceSamples;
+
+// The entry of a camera ray along view direction V, traced: false where it meets no glass before
+// the opaque scene at pixel p (the sample sees what lies behind the glass there).
+bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
+    Crossing c = traceCrossing(vec3(0.0), V);
+    P1 = c.point;
+    attr = c.attr;
+    return c.found && -c.point.z < sceneDepthAt(p);
 }
 #endif
+
+// The next interface along P + t dir (the walk's exit finder, but ISR's first): traced, searched
+// in the pair or searched in the layers; and its normal.
+Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
+#if LAYER_METHOD == 4
+    return traceCrossing(P, dir);
+#elif CAPTURE_PAIR
+    return searchPair(P, dir, inGlass, first);
+#else
+    return searchLayers(P, dir, parity, inGlass);
+#endif
+}
+
+vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
+#if LAYER_METHOD == 4
+    outline = false;
+    return layerNormal(c.attr);
+#elif CAPTURE_PAIR
+    return pairNormal(c, dir, outline);
+#else
+    return filteredNormal(c.beyond, c.attr, outline);
+#endif
+}
 
 // ISR (Wyman 2005) on the layers: the exit estimated from the entry, d interpolated between
 // d_V (to the next layer of the entry's pixel) and the entry layer's d_N by theta_t / theta_i.
@@ -448,7 +500,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
         uvec2 before = media;
-        media = crossMedium(media, glass, !leaves && dot(dir, N) < 0.0);
+        // A traced crossing knows its side from the winding; a layer's from its normal.
+        media = crossMedium(media, glass, !leaves && (kTrace ? layerFront(c.attr) : dot(dir, N) < 0.0));
         uint to = topMedium(media);
         segmentFromEntry = inside == 0u && to != 0u;
         segmentEntry = c.attr;
@@ -482,7 +535,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             float band = estimated ? kEstimatedTirBand
                                    : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
             bool grazing = incidence < asin(n2 / n1) + band;
-            if (uTirPolicy == TIR_REFLECT && bounces < uBounces && !grazing) {
+            // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
+            // image-space searches, whose error grows with every bounce).
+            if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
                 ++bounces;
                 dir = reflect(dir, facing);
                 media = before; // still in the same medium
@@ -594,9 +649,38 @@ void main() {
     outSurface = (packHalf2x16(vec2(z, 0.0)) & 0xFFFFu) | (layerGlass(entryAttr) << 16) |
                  (uint(round(abs(along) * 255.0)) << 24);
     Walk walk;
-    vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
-
     int stored = storedCount(p);
+#if LAYER_METHOD == 4 // METHOD_TRACE
+    // trace-samples rays through the pixel: the first from the capture's nearest layer at its
+    // centre (its normal map), traced from the camera instead where the pixel overflowed (the
+    // fallback's normal is coarse); the others from jittered points of the pixel (a fixed R2
+    // sequence), their entry traced from the camera, each seeing what is behind the glass where
+    // it meets none.
+    vec3 color = vec3(0.0);
+    for (int s = 0; s < uTraceSamples; ++s) {
+        vec3 Vs = V, P1s = P1;
+        uvec2 attr = entryAttr;
+        if (s > 0 || stored > kLayerCapacity) {
+            vec2 jitter = s == 0 ? vec2(0.0) : fract(0.5 + float(s) * vec2(0.7548777, 0.5698403)) - 0.5;
+            vec4 sub = uInverseProjection *
+                       vec4((gl_FragCoord.xy + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+            Vs = normalize(sub.xyz / sub.w);
+            if (!traceEntry(Vs, p, P1s, attr)) {
+                color += texelFetch(uSceneColor, p, 0).rgb;
+                continue;
+            }
+        }
+        vec3 N = layerNormal(attr);
+        Walk w;
+        color += shadeLayers(P1s, Vs, dot(N, Vs) > 0.0 ? -N : N, attr, w);
+        if (s == 0)
+            walk = w;
+    }
+    color /= float(uTraceSamples);
+#else
+    vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
+#endif
+
     if (stored > kLayerCapacity)
         atomicAdd(glassOverflowPixels, 1u);
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame

@@ -37,23 +37,16 @@ gl::TextureDesc zDesc(glm::ivec2 size) {
 FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu) {
     FrameBuffers buffers;
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
-    buffers.distances = graph.importBuffer("refraction.distances", &gpu.distances);
+    buffers.distances = graph.importBuffer("refraction.distances", &gpu.glass);
     buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
     buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
     return buffers;
 }
 
-int GpuState::Distance::find(Part part) const {
+int GpuState::Glass::find(const Part& part) const {
     const auto at = std::find(parts.begin(), parts.end(), part);
     return at == parts.end() ? -1 : int(at - parts.begin());
-}
-
-void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items) {
-    std::erase_if(gpu.distances, [&](const auto& entry) {
-        return std::none_of(items.begin(), items.end(),
-                            [&](const render::DrawItem& item) { return item.key == entry.first; });
-    });
 }
 
 SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
@@ -67,6 +60,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uSteps", s.searchSteps);
     f.set("uMarchSteps", s.marchSteps);
     f.set("uInterfaces", s.interfaces);
+    f.set("uTraceSamples", s.traceSamples);
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -111,23 +105,18 @@ void FrameContext::drawGlass(
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
         gl::bindStorage(kVerticesBinding, *item.gpu->deformed);
         gl::bindStorage(kUvsBinding, *item.gpu->uvs);
-        // d_N: the character's combined cage values from this part's base, or (subdivision)
-        // the part's own drawn values.
-        const GpuState::Distance* distance = nullptr;
-        int part = -1;
-        if (settings.usesNormalDistance())
-            if (const auto found = gpu->distances.find(item.key); found != gpu->distances.end()) {
-                distance = &found->second;
-                part = distance->find({item.instance, item.primitiveIndex});
-            }
-        const bool hasDistance = distance && part >= 0 && distance->cage;
+        // d_N: the world cage's values from this part's base, or (subdivision) the part's own
+        // drawn values.
+        const GpuState::Glass& glass = gpu->glass;
+        const GpuState::Glass::Part key{item.key, item.instance, item.primitiveIndex};
+        const int part = settings.usesNormalDistance() && glass.bvh ? glass.find(key) : -1;
+        const bool hasDistance = part >= 0;
         const gl::Buffer* values = nullptr;
         int base = 0;
         if (hasDistance) {
-            const auto drawn = distance->drawn.find({item.instance, item.primitiveIndex});
-            values = drawn != distance->drawn.end() ? &drawn->second : &distance->cage->distances();
-            base =
-                drawn != distance->drawn.end() ? 0 : int(distance->cage->base(std::size_t(part)));
+            const auto drawn = glass.drawn.find(key);
+            values = drawn != glass.drawn.end() ? &drawn->second : &glass.bvh->distances();
+            base = drawn != glass.drawn.end() ? 0 : int(glass.bvh->base(std::size_t(part)));
         }
         program.set("uHasNormalDistance", hasDistance ? 1 : 0);
         program.set("uDistanceBase", base);
@@ -228,7 +217,8 @@ core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& 
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
         for (const Settings::Method method :
-             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir}) {
+             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
+              Settings::Method::Trace}) {
             auto walk = gl::Program::graphics(
                 *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
                 {"LAYER_CAPACITY " + std::to_string(capacity),

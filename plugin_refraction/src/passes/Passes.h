@@ -35,6 +35,7 @@ constexpr std::uint32_t kRectangleBinding = 4; ///< glass_rectangle.glsl
 constexpr std::uint32_t kLayerHeadsBinding = 5, kLayerDepthsBinding = 6,
                         kLayerAttrsBinding = 7;     ///< layers.glsl
 constexpr std::uint32_t kGlassMaterialsBinding = 8; ///< glass_materials.glsl
+constexpr std::uint32_t kWalkBvhBinding = 12; ///< walk.frag.glsl: the glass BVH (bvh.glsl) from here
 
 // The mip level the papers' search over the pair reads the surface normals at (DIR §3.1:
 // mip-filtered normals); the normal maps need no level above it.
@@ -109,8 +110,6 @@ struct Capture {
 /** The frame's buffers: the engine's vertices from the blackboard, the plugin's imported. */
 FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu);
 SceneInputs sceneInputs(const fg::Blackboard& blackboard);
-/** Forgets the d_N of characters no longer in `items` (removed, or placed again). */
-void dropStaleDistances(GpuState& gpu, std::span<const render::DrawItem> items);
 /** The frame's glass ids and their optics (GpuState::glassIds, glassOptics); ids past the 255
  *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
@@ -132,8 +131,9 @@ gl::TextureDesc zDesc(glm::ivec2 size);
 
 // ---- Before the capture
 
-/** ISR: d_N of every deformed vertex, cast on the cage every frame (writes distances). */
-void addNormalDistancePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
+ *  d_N of every deformed vertex cast against it (writes distances: the BVH and d_N). */
+void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 /** The optics of every glass id into GpuState::glassMaterials, which the walk reads. */
 void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 

@@ -22,6 +22,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         [&](fg::Builder& b, WalkData& d) {
             b.read(buffers.layers);
             b.read(buffers.materials);
+            if (c.settings.method == Settings::Method::Trace)
+                b.read(buffers.distances); // the glass BVH
             for (auto [from, to] : {std::pair{capture.mask, &d.capture.mask},
                                     std::pair{capture.depths0, &d.capture.depths0},
                                     std::pair{capture.depths1, &d.capture.depths1},
@@ -68,6 +70,11 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 gl::bindTexture(std::uint32_t(unit),
                                 r.texture(handle.valid() ? handle : d.capture.depths0));
                 program.set(uniform, unit++);
+            }
+            if (c.settings.method == Settings::Method::Trace) {
+                if (!gpu.glass.bvh)
+                    return core::Error{"refraction.walk: the trace has no glass BVH"};
+                gpu.glass.bvh->bind(kWalkBvhBinding);
             }
             c.drawMaskedRectangle();
             return {};

@@ -1,0 +1,165 @@
+// The BVH's build and refit on the GPU (bvh.glsl), one stage a dispatch (BVH_STAGE):
+//   1 centroid bounds: the box of the triangles' centroids (ordered-int atomics)
+//   2 Morton codes: 30 bits of each centroid within that box, the key of a (key, triangle) pair
+//     (pairs padded to a power of two sort last); the leaves
+//   3 sort: one step (uSortSize, uSortStride) of a bitonic sort of the pairs
+//   4 hierarchy (Karras 2012, "Maximizing parallelism in the construction of BVHs"): each
+//     internal node's range of leaves from the sorted keys' common prefixes, its split, its
+//     children and their parent
+//   5 refit: from every leaf up, each node's box once both children have theirs (the second to
+//     arrive computes it), the leaves' corners copied in leaf order
+//   6 cost: the surface-area cost of the tree, sum of each node's area over the root's (fixed
+//     point, 1/256), which tells when a refitted tree has degraded enough to rebuild
+#include "refraction/bvh.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 7) coherent buffer Build {
+    int centroidMin[3], centroidMax[3]; // floats as ordered ints
+    uint cost;                          // stage 6, 1/256 of the root's area
+};
+layout(std430, binding = 8) coherent buffer Keys { uint keys[]; }; // sorted with triangleOrder
+layout(std430, binding = 9) coherent buffer Parents { int parents[]; };
+layout(std430, binding = 10) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
+
+uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), nodes (6)
+uniform int uTriangles; // n
+uniform int uSortSize, uSortStride; // stage 3
+
+int orderedInt(float f) {
+    int i = floatBitsToInt(f);
+    return i < 0 ? i ^ 0x7FFFFFFF : i;
+}
+
+float orderedToFloat(int i) {
+    return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
+}
+
+vec3 corner(uint triangle, uint k) {
+    vec3 p = vertices[indices[3u * triangle + k]].position.xyz;
+    // An exploded pose (non-finite positions) still builds a tree: such corners sit at the origin.
+    return any(isnan(p)) || any(isinf(p)) ? vec3(0.0) : p;
+}
+
+vec3 centreOf(uint triangle) {
+    return (corner(triangle, 0u) + corner(triangle, 1u) + corner(triangle, 2u)) / 3.0;
+}
+
+// 10 bits of x spread to every third bit.
+uint spreadBits(uint x) {
+    x = (x | (x << 16)) & 0x030000FFu;
+    x = (x | (x << 8)) & 0x0300F00Fu;
+    x = (x | (x << 4)) & 0x030C30C3u;
+    return (x | (x << 2)) & 0x09249249u;
+}
+
+// The length of the common prefix of sorted leaves i and j (ties broken by their positions:
+// every key is unique), -1 outside the leaves.
+int delta(int i, int j) {
+    if (j < 0 || j >= uCount)
+        return -1;
+    uint a = keys[i], b = keys[j];
+    return a != b ? 31 - findMSB(a ^ b) : 32 + 31 - findMSB(uint(i ^ j));
+}
+
+float area(vec3 lo, vec3 hi) {
+    vec3 d = max(hi - lo, vec3(0.0));
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= uCount)
+        return;
+#if BVH_STAGE == 1
+    vec3 c = centreOf(uint(i));
+    for (int a = 0; a < 3; ++a) {
+        atomicMin(centroidMin[a], orderedInt(c[a]));
+        atomicMax(centroidMax[a], orderedInt(c[a]));
+    }
+#elif BVH_STAGE == 2
+    // Every slot of the padded pairs; the real triangles' leaves too.
+    uint key = 0xFFFFFFFFu;
+    if (i < uTriangles) {
+        vec3 lo = vec3(orderedToFloat(centroidMin[0]), orderedToFloat(centroidMin[1]),
+                       orderedToFloat(centroidMin[2]));
+        vec3 hi = vec3(orderedToFloat(centroidMax[0]), orderedToFloat(centroidMax[1]),
+                       orderedToFloat(centroidMax[2]));
+        uvec3 q = uvec3(clamp((centreOf(uint(i)) - lo) / max(hi - lo, vec3(1e-30)), 0.0, 1.0) *
+                        1023.0);
+        key = (spreadBits(q.x) << 2) | (spreadBits(q.y) << 1) | spreadBits(q.z);
+        nodes[uTriangles - 1 + i] = BvhNode(-1, -1, i, 1);
+    }
+    keys[i] = key;
+    triangleOrder[i] = uint(i);
+#elif BVH_STAGE == 3
+    int j = i ^ uSortStride;
+    if (j > i) {
+        bool ascending = (i & uSortSize) == 0;
+        uint ki = keys[i], kj = keys[j], vi = triangleOrder[i], vj = triangleOrder[j];
+        bool greater = ki > kj || (ki == kj && vi > vj);
+        if (greater == ascending) {
+            keys[i] = kj;
+            keys[j] = ki;
+            triangleOrder[i] = vj;
+            triangleOrder[j] = vi;
+        }
+    }
+#elif BVH_STAGE == 4
+    if (i == uCount - 1)
+        return; // n - 1 internal nodes
+    int d = delta(i, i + 1) > delta(i, i - 1) ? 1 : -1;
+    int dMin = delta(i, i - d);
+    int lMax = 2;
+    while (delta(i, i + lMax * d) > dMin)
+        lMax *= 2;
+    int l = 0;
+    for (int t = lMax / 2; t >= 1; t /= 2)
+        if (delta(i, i + (l + t) * d) > dMin)
+            l += t;
+    int j = i + l * d;
+    int dNode = delta(i, j);
+    int s = 0, t = l;
+    do {
+        t = (t + 1) / 2;
+        if (delta(i, i + (s + t) * d) > dNode)
+            s += t;
+    } while (t > 1);
+    int gamma = i + s * d + min(d, 0);
+    int leaves = uCount - 1;
+    int left = min(i, j) == gamma ? leaves + gamma : gamma;
+    int right = max(i, j) == gamma + 1 ? leaves + gamma + 1 : gamma + 1;
+    nodes[i] = BvhNode(left, right, 0, 0);
+    parents[left] = i;
+    parents[right] = i;
+    if (i == 0)
+        parents[0] = -1;
+#elif BVH_STAGE == 5
+    int node = uCount - 1 + i;
+    uint triangle = triangleOrder[i];
+    vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
+    for (uint k = 0u; k < 3u; ++k) {
+        vec3 p = corner(triangle, k);
+        leafCorners[3 * i + int(k)] = vec4(p, 0.0);
+        lo = min(lo, p);
+        hi = max(hi, p);
+    }
+    bounds[2 * node] = vec4(lo, 0.0);
+    bounds[2 * node + 1] = vec4(hi, 0.0);
+    memoryBarrierBuffer();
+    int p = uCount > 1 ? parents[node] : -1;
+    while (p >= 0) {
+        if (atomicAdd(visits[p], 1u) == 0u)
+            return; // the sibling's subtree is not done: its last thread goes on
+        memoryBarrierBuffer();
+        BvhNode n = nodes[p];
+        bounds[2 * p] = min(bounds[2 * n.left], bounds[2 * n.right]);
+        bounds[2 * p + 1] = max(bounds[2 * n.left + 1], bounds[2 * n.right + 1]);
+        memoryBarrierBuffer();
+        p = parents[p];
+    }
+#elif BVH_STAGE == 6
+    float root = max(area(bounds[0].xyz, bounds[1].xyz), 1e-30);
+    float share = area(bounds[2 * i].xyz, bounds[2 * i + 1].xyz) / root;
+    atomicAdd(cost, uint(round(clamp(share, 0.0, 1.0) * 256.0)));
+#endif
+}

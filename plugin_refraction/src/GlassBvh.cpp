@@ -1,0 +1,197 @@
+// The frame's glass BVH: the world cage, its GPU build (Morton codes, bitonic sort, Karras'
+// hierarchy), the bottom-up refit and the cost that decides a rebuild, the d_N cast.
+#include "GlassBvh.h"
+
+#include "engine/gl/Commands.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+namespace refraction {
+
+namespace {
+
+constexpr std::size_t kVertexFloats = 12; // common/vertex.glsl: position, normal, tangent
+constexpr std::uint32_t kCostOffset = 6 * sizeof(std::uint32_t); // bvh_build.comp.glsl's cost
+
+std::uint32_t groups(std::uint32_t threads) {
+    return (threads + 63) / 64;
+}
+
+/** One stage over `threads` (its buffers bound), then a barrier for the next. */
+void run(const gl::Program& stage, std::uint32_t threads, std::uint32_t triangles) {
+    stage.use();
+    stage.set("uCount", int(threads));
+    stage.set("uTriangles", int(triangles));
+    gl::dispatch(groups(threads));
+    gl::memoryBarrier(gl::BarrierStorage);
+}
+
+} // namespace
+
+GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
+    for (const scene::Primitive* p : parts) {
+        const auto base = mVertexCount;
+        mBases.push_back(base);
+        mVertexCount += std::uint32_t(p->positions.size());
+        for (std::uint32_t index : p->indices)
+            mTriangleIndices.push_back(base + index);
+        mPartTriangles.push_back(std::uint32_t(p->indices.size() / 3));
+    }
+    const std::size_t n = std::max<std::size_t>(triangleCount(), 1), nodes = 2 * n - 1;
+    mPairs = std::bit_ceil(std::uint32_t(n));
+    mVertices = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * kVertexFloats * sizeof(float));
+    mIndices = gl::Buffer(std::max<std::size_t>(mTriangleIndices.size(), 3) * sizeof(std::uint32_t),
+                          mTriangleIndices.data());
+    mNodes = gl::Buffer(nodes * sizeof(Bvh::Node));
+    mOrder = gl::Buffer(mPairs * sizeof(std::uint32_t));
+    mKeys = gl::Buffer(mPairs * sizeof(std::uint32_t));
+    mParents = gl::Buffer(nodes * sizeof(std::int32_t));
+    mVisits = gl::Buffer(n * sizeof(std::uint32_t));
+    mBounds = gl::Buffer(nodes * 2 * sizeof(glm::vec4));
+    mLeafCorners = gl::Buffer(n * 3 * sizeof(glm::vec4));
+    mBuild = gl::Buffer(8 * sizeof(std::uint32_t));
+    mTriangleGlass = gl::Buffer(n * sizeof(std::uint32_t));
+    mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
+}
+
+void GlassBvh::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count,
+                      const glm::mat4& world, const BvhPrograms& programs) const {
+    const gl::Program& gather = programs.gather;
+    gather.use();
+    gather.set("uWorld", world);
+    gather.set("uNormalMatrix", glm::mat3(glm::transpose(glm::inverse(world))));
+    gather.set("uBase", int(mBases[i]));
+    gather.set("uVertexCount", int(count));
+    gl::bindStorage(0, cage);
+    gl::bindStorage(1, mVertices);
+    gl::dispatch(groups(count));
+}
+
+void GlassBvh::build(const BvhPrograms& programs) {
+    const std::uint32_t n = triangleCount();
+    mBuild.fill(0, 3, std::uint32_t(INT32_MAX)); // empty centroid box: min > max
+    mBuild.fill(12, 3, std::uint32_t(INT32_MIN));
+    run(programs.stages[0], n, n);
+    run(programs.stages[1], mPairs, n);
+    const gl::Program& sort = programs.stages[2];
+    sort.use();
+    for (std::uint32_t size = 2; size <= mPairs; size *= 2)
+        for (std::uint32_t stride = size / 2; stride > 0; stride /= 2) {
+            sort.set("uSortSize", int(size));
+            sort.set("uSortStride", int(stride));
+            run(sort, mPairs, n);
+        }
+    run(programs.stages[3], n, n);
+    mBuilt = true;
+    mRebuild = false;
+    ++mBuilds;
+}
+
+void GlassBvh::readCosts() {
+    // Fences pass in order: a tree's fresh measure is read no later than its later ones. Measures
+    // of a tree since rebuilt are dropped.
+    for (const bool fresh : {true, false})
+        for (Measure& m : mMeasures) {
+            if (!m.pending || m.fresh != fresh || !m.fence.passed())
+                continue;
+            m.pending = false;
+            if (m.tree != mBuilds)
+                continue;
+            std::uint32_t cost = 0;
+            std::memcpy(&cost, m.cost.download(kCostOffset, sizeof cost).data(), sizeof cost);
+            if (fresh) {
+                mFreshCost = std::max(double(cost), 1.0);
+                mCostRatio = 1.0;
+            } else if (mFreshCost > 0.0) {
+                mCostRatio = double(cost) / mFreshCost;
+                mRebuild = mRebuild || mCostRatio > kRebuildRatio;
+            }
+        }
+}
+
+void GlassBvh::update(const BvhPrograms& programs) {
+    const std::uint32_t n = triangleCount();
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // the gathered cages
+    if (n == 0)
+        return;
+    readCosts();
+    const bool fresh = !mBuilt || mRebuild;
+    bind(0);
+    gl::bindStorage(7, mBuild);
+    gl::bindStorage(8, mKeys);
+    gl::bindStorage(9, mParents);
+    gl::bindStorage(10, mVisits);
+    if (fresh) {
+        build(programs);
+        mFreshCost = 0.0;
+    }
+    mVisits.fill(0, n, 0u);
+    run(programs.stages[4], n, n);
+    // The cost, into the next measure not waiting on a read.
+    Measure& m = mMeasures[mNext];
+    if (!m.pending) {
+        mNext = (mNext + 1) % mMeasures.size();
+        m.cost.fill(kCostOffset, 1, 0u);
+        gl::bindStorage(7, m.cost);
+        run(programs.stages[5], 2 * n - 1, n);
+        m.fence.insert();
+        m.pending = true;
+        m.fresh = fresh;
+        m.tree = mBuilds;
+    }
+}
+
+void GlassBvh::castNormalDistances(const BvhPrograms& programs) {
+    const gl::Program& cast = programs.cast;
+    cast.use();
+    bind(0);
+    gl::bindStorage(11, mDistances);
+    cast.set("uVertexCount", int(mVertexCount));
+    gl::dispatch(groups(mVertexCount));
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
+}
+
+void GlassBvh::bind(std::uint32_t base) const {
+    // bvh.glsl's order: vertices, indices, nodes, order, bounds, leaf corners, glass ids.
+    const gl::Buffer* buffers[] = {&mVertices, &mIndices,     &mNodes,        &mOrder,
+                                   &mBounds,   &mLeafCorners, &mTriangleGlass};
+    for (std::uint32_t i = 0; i < std::size(buffers); ++i)
+        gl::bindStorage(base + i, *buffers[i]);
+}
+
+void GlassBvh::setGlassIds(std::span<const int> partGlass) {
+    if (std::equal(partGlass.begin(), partGlass.end(), mPartGlass.begin(), mPartGlass.end()))
+        return;
+    mPartGlass.assign(partGlass.begin(), partGlass.end());
+    std::vector<std::uint32_t> glass(std::max<std::size_t>(triangleCount(), 1), 0u);
+    for (std::size_t part = 0, t = 0; part < mPartGlass.size(); ++part)
+        for (std::uint32_t k = 0; k < mPartTriangles[part]; ++k)
+            glass[t++] = std::uint32_t(std::max(mPartGlass[part], 0));
+    mTriangleGlass.update(std::span<const std::uint32_t>(glass));
+}
+
+Bvh GlassBvh::download() const {
+    gl::memoryBarrier(gl::BarrierBufferUpdate);
+    const std::size_t n = std::max<std::size_t>(triangleCount(), 1), nodes = 2 * n - 1;
+    Bvh tree;
+    tree.nodes.resize(nodes);
+    tree.order.resize(n);
+    tree.parents.resize(nodes);
+    std::memcpy(tree.nodes.data(), mNodes.download().data(), nodes * sizeof(Bvh::Node));
+    std::memcpy(tree.order.data(), mOrder.download().data(), n * sizeof(std::uint32_t));
+    std::memcpy(tree.parents.data(), mParents.download().data(), nodes * sizeof(std::int32_t));
+    const std::vector<std::uint8_t> bounds = mBounds.download();
+    for (std::size_t i = 0; i < nodes; ++i) {
+        glm::vec4 box[2];
+        std::memcpy(box, bounds.data() + i * sizeof box, sizeof box);
+        tree.lo.emplace_back(box[0]);
+        tree.hi.emplace_back(box[1]);
+    }
+    if (n == 1)
+        tree.parents[0] = -1;
+    return tree;
+}
+
+} // namespace refraction

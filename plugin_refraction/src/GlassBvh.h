@@ -1,0 +1,108 @@
+// The one structure over the frame's deformed glass: every glass part's deformed cage gathered
+// into one world-space cage, and a BVH over its static triangles built on the GPU (a linear BVH
+// from Morton codes, bvh_build.comp.glsl) and refitted to the deformed vertices every frame,
+// rebuilt when refitting has worn its surface-area cost past kRebuildRatio of the fresh tree's
+// (a moving character, an exploding pose); no CPU-GPU sync in a frame (the cost is read back
+// frames later, once a fence says it is there). ISR's d_N is cast against it (one ray per vertex
+// along -N, exact nearest hit). Private to the plugin.
+#pragma once
+
+#include "engine/gl/Buffer.h"
+#include "engine/gl/Program.h"
+#include "engine/gl/Query.h"
+#include "engine/scene/Mesh.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace refraction {
+
+/** A BVH over triangles as the GPU holds it, read back (tests, tools). Internal nodes
+ *  0..n-2 (node 0 the root), leaf k (the k-th triangle in Morton order) node n-1+k. */
+struct Bvh {
+    struct Node {
+        std::int32_t left = -1, right = -1; ///< children; -1 for a leaf
+        std::int32_t first = 0, count = 0;  ///< leaf: range in `order`
+    };
+    std::vector<Node> nodes;
+    std::vector<std::uint32_t> order;        ///< triangle indices, leaves' ranges
+    std::vector<glm::vec3> lo, hi;           ///< each node's box
+    std::vector<std::int32_t> parents;       ///< -1 for the root
+};
+
+/** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */
+struct BvhPrograms {
+    std::array<gl::Program, 6> stages; ///< BVH_STAGE 1-6
+    gl::Program gather, cast;          ///< cage_gather.comp.glsl, normal_distance.comp.glsl
+};
+
+class GlassBvh {
+public:
+    /** A tree whose cost has grown past this ratio of the fresh tree's is rebuilt. Measured:
+     *  CesiumMan's walk refitted from its first pose stays under 1.3; two characters crossing
+     *  grow past 2 (docs/methods.md). */
+    static constexpr double kRebuildRatio = 1.5;
+
+    /** The parts' static topology, one after another (vertex `base(i) + v` is part i's vertex
+     *  v). */
+    explicit GlassBvh(std::span<const scene::Primitive* const> parts);
+
+    /** Where part i's vertices start in the world cage and in distances(). */
+    std::uint32_t base(std::size_t i) const { return mBases[i]; }
+    /** Copies part i's deformed cage (`count` vertices in its mesh node's space, placed by
+     *  `world`) into the world cage at base(i). No sync. */
+    void gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count, const glm::mat4& world,
+                const BvhPrograms& programs) const;
+    /** Builds the tree from the gathered cage when it has none or its cost has worn past
+     *  kRebuildRatio, else refits it; then measures its cost (read back frames later). */
+    void update(const BvhPrograms& programs);
+    /** Each part's glass id (glass_materials.glsl), uploaded per triangle when it changes. */
+    void setGlassIds(std::span<const int> partGlass);
+    /** Binds what a traversal reads (bvh.glsl) from binding `base`. */
+    void bind(std::uint32_t base) const;
+    /** d_N (world units) per world-cage vertex into distances(). */
+    void castNormalDistances(const BvhPrograms& programs);
+
+    const gl::Buffer& distances() const { return mDistances; }
+    /** The world cage (common/vertex.glsl's layout) and its triangles' indices into it. */
+    const gl::Buffer& cage() const { return mVertices; }
+    std::span<const std::uint32_t> triangles() const { return mTriangleIndices; }
+    std::uint32_t triangleCount() const { return std::uint32_t(mTriangleIndices.size() / 3); }
+    /** Builds so far (the first included). */
+    int builds() const { return mBuilds; }
+    /** The last cost read back over its tree's when fresh (what decided the last rebuild until
+     *  the new tree's is read; 0 before any). */
+    double costRatio() const { return mCostRatio; }
+    /** The tree as the GPU holds it now (synchronises: tests and tools). */
+    Bvh download() const;
+
+private:
+    void build(const BvhPrograms& programs);
+    void readCosts();
+
+    std::vector<std::uint32_t> mBases;
+    std::vector<std::uint32_t> mTriangleIndices; ///< into the world cage
+    std::vector<std::uint32_t> mPartTriangles;   ///< each part's triangle count
+    std::vector<int> mPartGlass;
+    std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
+    gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
+        mLeafCorners, mBuild, mTriangleGlass, mDistances;
+    /** The cost measured after each update, read back once its fence has passed. */
+    struct Measure {
+        gl::Buffer cost{sizeof(std::uint32_t) * 8};
+        gl::Fence fence;
+        bool pending = false, fresh = false; ///< fresh: measured right after a build
+        int tree = 0;                        ///< the build it measured (builds() then)
+    };
+    std::array<Measure, 3> mMeasures;
+    std::size_t mNext = 0;
+    bool mBuilt = false, mRebuild = false;
+    int mBuilds = 0;
+    double mFreshCost = 0.0, mCostRatio = 0.0;
+};
+
+} // namespace refraction
