@@ -328,7 +328,7 @@ uniform int uTraceSamples;
 // the opaque scene at pixel p (the sample sees what lies behind the glass there).
 bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
     Crossing c = traceCrossing(vec3(0.0), V);
-    P1 = c.point;
+    P1 = 0.5 * (c.point + c.beyond); // on the surface: the refracted ray does not meet it again
     attr = c.attr;
     return c.found && -c.point.z < sceneDepthAt(p);
 }
