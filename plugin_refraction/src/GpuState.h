@@ -80,6 +80,8 @@ struct GpuState {
         std::vector<Part> parts;
         std::unique_ptr<GlassBvh> bvh;
         std::map<Part, gl::Buffer> drawn; // with subdivision: one float per drawn vertex
+        /** The frame's glass items, their parts and glass ids (refilled in place). */
+        std::tuple<std::vector<const render::DrawItem*>, std::vector<Part>, std::vector<int>> frame;
         /** Part `part`'s index in `parts`, or -1. */
         int find(const Part& part) const;
     } glass;

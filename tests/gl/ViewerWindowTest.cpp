@@ -31,8 +31,12 @@ protected:
     }
     /** Runs `command` in a fresh X server (1024x768) with a private config folder. */
     int inX(const std::string& command, std::string* output) {
+        // The X authority in the test's own folder: xvfb-run then makes no temporary folder of
+        // its own, whose removal failed now and then with tests running side by side (exit 5,
+        // "problem while cleaning up temporary directory", whatever the viewer returned).
         return test::runCommand("XDG_CONFIG_HOME='" + mConfig.path().string() +
-                                    "' xvfb-run -a -s '-screen 0 1024x768x24' " + command,
+                                    "' xvfb-run -a -f '" + (mConfig / "Xauthority").string() +
+                                    "' -s '-screen 0 1024x768x24' " + command,
                                 output);
     }
     /** An interactive run (no --frames) in a fresh X server: the viewer started with

@@ -48,7 +48,8 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 #define LAYER_METHOD 3 // METHOD_DIR
 #endif
 const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE;
-// The pair's normals and the traced ones are exact enough to judge TIR at its limit.
+// The papers' model judges TIR at its limit, by its mip-filtered normals; the traced normals are
+// the surface's own.
 const float kTirBand = kPairCapture || kTrace ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;

@@ -22,9 +22,11 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
         [c](const fg::Resources&, const Data&, gl::Context&) {
             GpuState& gpu = *c.gpu;
             GpuState::Glass& glass = gpu.glass;
-            std::vector<const render::DrawItem*> items;
-            std::vector<GpuState::Glass::Part> parts;
-            std::vector<int> glassIds;
+            // This frame's glass items, parts and glass ids, in storage kept across frames.
+            auto& [items, parts, glassIds] = glass.frame;
+            items.clear();
+            parts.clear();
+            glassIds.clear();
             for (std::size_t index = 0; index < c.frame->items.size(); ++index)
                 if (const render::DrawItem& item = c.frame->items[index]; c.isGlass(item)) {
                     items.push_back(&item);
