@@ -84,7 +84,6 @@ void GlassBvh::build(const BvhPrograms& programs) {
             run(sort, mPairs, n);
         }
     run(programs.stages[3], n, n);
-    mBuilt = true;
     mRebuild = false;
     ++mBuilds;
 }
@@ -117,7 +116,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
     if (n == 0)
         return;
     readCosts();
-    const bool fresh = !mBuilt || mRebuild;
+    const bool fresh = mBuilds == 0 || mRebuild;
     bind(0);
     gl::bindStorage(7, mBuild);
     gl::bindStorage(8, mKeys);

@@ -43,7 +43,7 @@ struct BvhPrograms {
 class GlassBvh {
 public:
     /** A tree whose cost has grown past this ratio of the fresh tree's is rebuilt. Measured
-     *  (gl_refraction's GlassBvh tests, llvmpipe): CesiumMan walking reaches it about once in
+     *  (gl_glass_bvh, llvmpipe): CesiumMan walking reaches it about once in
      *  two seconds, and a build costs what about 24 refits do (20.7 against 0.85 ms), while
      *  every ray through a tree worn to 1.5 pays up to half as much again; two characters that
      *  crossed and parted reach 2.6, a scrambled pose 108. */
@@ -102,7 +102,7 @@ private:
     };
     std::array<Measure, 3> mMeasures;
     std::size_t mNext = 0;
-    bool mBuilt = false, mRebuild = false;
+    bool mRebuild = false;
     int mBuilds = 0;
     double mFreshCost = 0.0, mCostRatio = 0.0;
 };

@@ -23,12 +23,6 @@ namespace {
 
 using test::WorldRig;
 
-scene::World loadScene(const std::string& name) {
-    auto world = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
-    EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
-    return world ? std::move(*world) : scene::World{};
-}
-
 /** A scene written out as `json` and loaded (models by builtin name: nothing outside it). */
 scene::World sceneFromText(const std::string& json) {
     test::TempDir dir;
@@ -44,7 +38,7 @@ class Layers : public test::GlTest {};
 TEST_F(Layers, GlassBehindGlassBeatsTheTwoSurfaceModel) {
     // Two spheres overlapping on screen: the far one is refracted at its own surfaces through
     // the near one only when the walk goes on after the first glass.
-    WorldRig rig(loadScene("glass_spheres.json"), context());
+    WorldRig rig(test::projectScene("glass_spheres.json"), context());
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     const auto reference = rig.reference();
@@ -81,7 +75,7 @@ TEST_F(Layers, GrazingEntriesIntoTheFarGlassRefract) {
     // good to no better). 37.8 dB here; 37.4 with 2.5 degrees throughout, 31.6 with the front
     // layers only, 31.0 with the pixel's own normal at entries, 36.0 without the band, 35.2
     // without the texels past the outline.
-    WorldRig rig(loadScene("glass_spheres.json"), context(), 256);
+    WorldRig rig(test::projectScene("glass_spheres.json"), context(), 256);
     rig.useSceneCamera();
     rig.set("method", "dir");
     rig.set("search-steps", "8");
@@ -96,7 +90,7 @@ TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {
     // The reference's pixels average 16 rays: along the small sphere's outline they mix it with
     // the large sphere behind. The outline pass places the outline within each pixel from the
     // normals and mixes in the neighbour's colour across it (35.2 dB here, 34.1 without).
-    WorldRig rig(loadScene("sphere_in_front.json"), context(), 256);
+    WorldRig rig(test::projectScene("sphere_in_front.json"), context(), 256);
     rig.useSceneCamera();
     rig.set("method", "dir");
     rig.set("search-steps", "8");
@@ -329,7 +323,7 @@ TEST_F(Layers, IsrOnAnOpenSurfaceEndsWhereDirDoes) {
 TEST_F(Layers, OverflowingPixelsKeepTheirNearestFrontAndFarthestBack) {
     // One layer per pixel: every glass pixel of a sphere overflows and keeps its nearest front
     // and farthest back, which for a sphere are all its surfaces: the image barely changes.
-    WorldRig rig(loadScene("glass_spheres.json"), context());
+    WorldRig rig(test::projectScene("glass_spheres.json"), context());
     rig.set("method", "dir");
     const capture::Image full = rig.render();
     const auto fullStats = rig.plugin().layerStats();
@@ -356,7 +350,7 @@ TEST_F(Layers, OverflowingPixelsKeepTheirNearestFrontAndFarthestBack) {
 TEST_F(Layers, StoredLayersMatchTheSurfacesTheReferenceCounts) {
     // The layer-count view (count / K, grey) against the reference's count of the surfaces on
     // each glass pixel's line of sight: the share of pixels with four.
-    WorldRig rig(loadScene("sphere_in_front.json"), context());
+    WorldRig rig(test::projectScene("sphere_in_front.json"), context());
     rig.set("method", "dir");
     const auto reference = rig.reference();
     const auto& histogram = reference.traced.surfaceHistogram;

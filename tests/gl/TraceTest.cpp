@@ -4,7 +4,6 @@
 #include "WorldRig.h"
 #include "support/GlTest.h"
 
-#include "engine/asset/SceneFile.h"
 #include "engine/capture/Metrics.h"
 
 #include <string>
@@ -12,12 +11,6 @@
 namespace {
 
 using test::WorldRig;
-
-scene::World world(const std::string& name) {
-    auto loaded = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
-    EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-    return loaded ? std::move(*loaded) : scene::World{};
-}
 
 class Trace : public test::GlTest {};
 
@@ -30,7 +23,7 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
         double floor;
     };
     for (const Case& c : {Case{"glass_spheres.json", 52.0}, Case{"sphere_in_front.json", 45.0}}) {
-        WorldRig rig(world(c.scene), context());
+        WorldRig rig(test::projectScene(c.scene), context());
         rig.set("outline-aa", "off");
         const WorldRig::Reference reference = rig.reference(0.0, true);
         auto psnr = [&](const char* method) {
@@ -50,7 +43,7 @@ TEST_F(Trace, GlassBehindGlassPastTheCapturesLayersStaysClean) {
     // A small sphere in front of a large one: four surfaces along most lines of sight. With room
     // for two layers a pixel, DIR walks the overflow's two-surface pair; the trace meets every
     // surface in the BVH (those pixels' entries traced from the camera), as with room for all.
-    WorldRig rig(world("sphere_in_front.json"), context());
+    WorldRig rig(test::projectScene("sphere_in_front.json"), context());
     const WorldRig::Reference reference = rig.reference();
     auto psnr = [&](const char* method, const char* capacity) {
         rig.set("method", method);
@@ -69,7 +62,7 @@ TEST_F(Trace, GlassBehindGlassPastTheCapturesLayersStaysClean) {
 
 TEST_F(Trace, SubPixelSamplesComeCloserToTheReference) {
     // The reference averages 16 rays a pixel; trace-samples 4 averages four, jittered within it.
-    WorldRig rig(world("glass_spheres.json"), context());
+    WorldRig rig(test::projectScene("glass_spheres.json"), context());
     rig.set("method", "trace");
     rig.set("outline-aa", "off");
     const WorldRig::Reference reference = rig.reference();

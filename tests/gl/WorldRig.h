@@ -2,6 +2,7 @@
 // parameters as KEY=VALUE) and the Embree reference's, from one camera.
 #pragma once
 
+#include "engine/asset/SceneFile.h"
 #include "engine/capture/Metrics.h"
 #include "engine/render/Renderer.h"
 #include "refraction/ReferenceTracer.h"
@@ -16,6 +17,15 @@
 namespace test {
 
 inline constexpr int kWorldRigSize = 128;
+
+#ifdef GLASS_SOURCE_DIR
+/** One of the project's scene files (assets/scenes/NAME), loaded. */
+inline scene::World projectScene(const std::string& name) {
+    auto world = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
+    EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
+    return world ? std::move(*world) : scene::World{};
+}
+#endif
 
 /** A world rendered by the refraction plugin (KEY=VALUE parameters) and traced by the
  *  reference with the same parameters; with its ground plane under it if it has one. */

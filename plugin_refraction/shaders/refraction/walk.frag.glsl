@@ -295,8 +295,7 @@ vec3 pairNormal(Crossing c, vec3 dir, out bool outline) {
 #endif
 
 #if LAYER_METHOD == 4 // METHOD_TRACE
-#define BVH_BINDINGS 12 // kWalkBvhBinding
-#include "refraction/bvh.glsl"
+#include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram
 
 // The exact next interface: the ray traced through the glass BVH (world space), the triangle's
 // interpolated normal, its glass and which way the ray crosses it (by the winding, the

@@ -225,7 +225,8 @@ core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& 
                  std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
                  "LAYER_METHOD " + std::to_string(int(method)),
                  "LAYER_DISPERSION " + std::to_string(mode),
-                 std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0")});
+                 std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
+                 "BVH_BINDINGS " + std::to_string(kWalkBvhBinding)});
             if (!walk)
                 return walk.error();
             gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
