@@ -31,10 +31,13 @@ void run(const gl::Program& stage, std::uint32_t threads, std::uint32_t triangle
 } // namespace
 
 GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
+    std::vector<glm::vec4> uvs;
     for (const scene::Primitive* p : parts) {
         const auto base = mVertexCount;
         mBases.push_back(base);
         mVertexCount += std::uint32_t(p->positions.size());
+        for (std::size_t v = 0; v < p->positions.size(); ++v)
+            uvs.push_back(p->uvs(v));
         for (std::uint32_t index : p->indices)
             mTriangleIndices.push_back(base + index);
         mPartTriangles.push_back(std::uint32_t(p->indices.size() / 3));
@@ -54,6 +57,8 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
     mBuild = gl::Buffer(8 * sizeof(std::uint32_t));
     mTriangleGlass = gl::Buffer(n * sizeof(std::uint32_t));
     mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
+    uvs.resize(std::max<std::size_t>(uvs.size(), 1));
+    mUvs = gl::Buffer(uvs.size() * sizeof(glm::vec4), uvs.data());
 }
 
 void GlassBvh::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count,

@@ -74,6 +74,9 @@ public:
     const gl::Buffer& cage() const { return mVertices; }
     std::span<const std::uint32_t> triangles() const { return mTriangleIndices; }
     std::uint32_t triangleCount() const { return std::uint32_t(mTriangleIndices.size() / 3); }
+    /** The world cage's texture coordinates (TEXCOORD_0 in xy, _1 in zw; static), for the
+     *  normal maps at traced hits. */
+    const gl::Buffer& uvs() const { return mUvs; }
     /** Builds so far (the first included). */
     int builds() const { return mBuilds; }
     /** The last cost read back over its tree's when fresh (what decided the last rebuild until
@@ -92,7 +95,7 @@ private:
     std::vector<int> mPartGlass;
     std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
-        mLeafCorners, mBuild, mTriangleGlass, mDistances;
+        mLeafCorners, mBuild, mTriangleGlass, mDistances, mUvs;
     /** The cost measured after each update, read back once its fence has passed. */
     struct Measure {
         gl::Buffer cost{sizeof(std::uint32_t) * 8};

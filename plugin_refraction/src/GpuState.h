@@ -31,6 +31,10 @@ struct GlassMaterialGpu {
     glm::vec4 layers;    ///< clearcoat, its roughness, iridescence, the film's index
     glm::vec4 sheen;     ///< colour, w: roughness
     glm::vec4 film;      ///< x: the film's thickness (nm)
+    /** The normal map traced hits read: x its index in GpuState::tracedNormalMaps (-1: none), y
+     *  its scale, z its texture coordinate set; its texture transform's rows. */
+    glm::vec4 normalMap{-1.0f, 1.0f, 0.0f, 0.0f};
+    glm::vec4 normalUv[2]{{1.0f, 0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f, 0.0f}};
 };
 
 /** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them
@@ -40,6 +44,7 @@ struct GlassRectangleGpu {
     std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
     std::uint32_t overflowPixels;          ///< pixels over K in the walk
     std::uint32_t backRange[2], frontMin;  ///< the pair's depth ranges (float bits)
+    std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's counts (LayerStats)
 };
 
 struct GpuState {
@@ -69,6 +74,9 @@ struct GpuState {
     std::vector<int> glassIds;
     std::vector<GlassMaterialGpu> glassOptics;
     bool warnedGlassIds = false; // the 256-id limit was reported
+    /** The glass normal maps the trace reads (walk.frag.glsl's uTracedNormalMaps), this frame. */
+    std::vector<const gl::Texture*> tracedNormalMaps;
+    bool warnedNormalMaps = false; // more than kTracedNormalMaps was reported
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};

@@ -189,9 +189,13 @@ LayerStats RefractionPlugin::layerStats() const {
     stats.capacity = layers.capacity;
     stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlineAntialiasing);
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
-    const auto counter = mGpu->rectangle.download(offsetof(GlassRectangleGpu, overflowPixels),
-                                                  sizeof(std::uint32_t));
-    std::memcpy(&stats.overflowPixels, counter.data(), sizeof(std::uint32_t));
+    GlassRectangleGpu counts{};
+    const auto bytes = mGpu->rectangle.download(0, sizeof counts);
+    std::memcpy(&counts, bytes.data(), sizeof counts);
+    stats.overflowPixels = counts.overflowPixels;
+    stats.traceRays = counts.traceRays;
+    stats.traceSteps = counts.traceSteps[0] | std::uint64_t(counts.traceSteps[1]) << 32;
+    stats.traceMaxSteps = counts.traceMaxSteps;
     return stats;
 }
 

@@ -200,9 +200,17 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
         if (r.layers.capacity > 0)
             std::snprintf(layers, sizeof layers, "K=%d: %zu B/px, %u px over", r.layers.capacity,
                           r.layers.bytesPerPixel, r.layers.overflowPixels);
-        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s |\n",
+        // The trace's rays (a frame), BVH nodes a ray, and rays a second of the whole frame.
+        const double rays = double(r.layers.traceRays);
+        const double nodesPerRay = rays > 0.0 ? double(r.layers.traceSteps) / rays : 0.0;
+        const double raysPerSecond = median > 0.0 ? rays / (median * 1e-3) : 0.0;
+        char trace[64] = "-";
+        if (rays > 0.0)
+            std::snprintf(trace, sizeof trace, "%.0fk rays, %.0f nodes/ray, %.2f Mrays/s",
+                          rays / 1e3, nodesPerRay, raysPerSecond / 1e6);
+        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s | %s |\n",
                     r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
-                    double(r.transientBytes) / 1048576.0, layers, top.c_str());
+                    double(r.transientBytes) / 1048576.0, layers, trace, top.c_str());
         std::fflush(stdout);
         rows.push_back({{"method", r.method},
                         {"level", level},
@@ -218,6 +226,10 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                         {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
                         {"layer_bytes", r.layers.bytes},
                         {"layer_overflow_pixels", r.layers.overflowPixels},
+                        {"trace_rays", r.layers.traceRays},
+                        {"trace_nodes_per_ray", nodesPerRay},
+                        {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
+                        {"trace_rays_per_second", raysPerSecond},
                         {"passes", passes}});
     }
     return rows;
@@ -365,8 +377,8 @@ int run(int argc, char** argv) {
     std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), size.x, size.y,
                 frames, warmup, gl::rendererString());
     std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
-                "cpu ms | animate+record ms | transients MiB | layers | slowest passes (GPU ms) |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+                "cpu ms | animate+record ms | transients MiB | layers | trace | slowest passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
     nlohmann::json report = {{"model", model},
                              {"paths", paths},
                              {"renderer", gl::rendererString()},

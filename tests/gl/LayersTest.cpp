@@ -107,26 +107,6 @@ TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {
     EXPECT_GT(antialiased, aliased + 0.8);
 }
 
-/** A model of assets/models playing its first clip; without its normal maps where
- *  `normalMaps` is false (the parts figure has one, on its hammered head: checked). */
-scene::World generatedWorld(const std::string& file, bool normalMaps = true) {
-    auto loaded = asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/" + file);
-    EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
-    if (!loaded)
-        return {};
-    std::size_t mapped = 0;
-    for (scene::Material& m : loaded->materials)
-        if (m.normalTexture.present()) {
-            if (!normalMaps)
-                m.normalTexture = {};
-            ++mapped;
-        }
-    EXPECT_EQ(mapped, file == "glass_figure_parts.glb" ? 1u : 0u);
-    scene::World world =
-        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
-    world.characters[0].clip = 0;
-    return world;
-}
 
 TEST_F(Layers, RaysLeavingGlassBehindAnOpaquePartDoNotSeeIt) {
     // The figure's eyes are opaque spheres at the front of its glass head. Rays through the
@@ -136,7 +116,7 @@ TEST_F(Layers, RaysLeavingGlassBehindAnOpaquePartDoNotSeeIt) {
     // thickness: there a ring of eye images filled the lower face. 27.5 dB here; 23.7 with the
     // old test, 23.3 with only the start of the ray checked (28.0 before the walk met the eyes
     // on its way: at this size they come out a pixel larger than the reference's).
-    WorldRig rig(generatedWorld("glass_figure.glb"), context(), 256);
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 256);
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     const double psnr = rig.psnrAgainstReference(0.3);
@@ -192,6 +172,20 @@ TEST_F(Layers, RaysMeetTheGroundAtGrazingAngles) {
     EXPECT_GE(psnr, 34.0);
 }
 
+TEST_F(Layers, RaysPastTheNearbyDistanceMeetTheGround) {
+    // A figure behind a glass pane on the ground: rays leaving the pane low toward the horizon
+    // meet the ground far beyond the nearby-scene march's reach. They are intersected with the
+    // ground square exactly and see it shaded there (the environment instead: a stripe of sky
+    // along the ground's far edge through the pane, 26.2 dB against 27.5).
+    WorldRig rig(test::projectScene("glass_pane.json"), context(), 256);
+    rig.useSceneCamera();
+    rig.set("method", "dir");
+    rig.set("search-steps", "8");
+    const double psnr = rig.psnrAgainstReference(0.5);
+    std::printf("figure behind a pane, 256x256, DIR 8: masked PSNR %.2f dB\n", psnr);
+    EXPECT_GE(psnr, 27.0);
+}
+
 TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
     // The parts figure: four glasses (IOR 1.5 to 1.6, each its own tint, the head hammered by a
     // normal map) and opaque eyes. The layered path draws the glass once and shades each
@@ -199,7 +193,7 @@ TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
     // of its glasses, unmapped, scored against the same reference (23.8 dB against 22.5 at
     // best, 19.3 all blue). The two-surface path falls back to the papers' two passes.
     const std::string parts = "glass_figure_parts.glb";
-    WorldRig rig(generatedWorld(parts), context());
+    WorldRig rig(test::generatedWorld(parts), context());
     rig.set("method", "dir");
     rig.set("search-steps", "8");
     const auto reference = rig.reference(0.3);
@@ -208,12 +202,12 @@ TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
     const double mixed = capture::score(image, reference.image, &reference.mask).psnr;
 
     // The same figure made of each one of its glasses, unmapped.
-    const scene::World ownWorld = generatedWorld(parts);
+    const scene::World ownWorld = test::generatedWorld(parts);
     double best = 0.0;
     for (const scene::Material& glass : ownWorld.characters[0].model->materials) {
         if (!glass.isTransmissive())
             continue;
-        scene::World oneGlass = generatedWorld(parts, false);
+        scene::World oneGlass = test::generatedWorld(parts, false);
         auto model = std::make_shared<scene::Model>(*oneGlass.characters[0].model);
         for (scene::Material& m : model->materials)
             if (m.isTransmissive())
@@ -247,7 +241,7 @@ TEST_F(Layers, TheCaptureAppliesNormalMaps) {
     // The parts figure's head is hammered glass (a normal map): the same figure without that
     // texture renders differently, and only there.
     auto image = [&](bool normalMap) {
-        WorldRig rig(generatedWorld("glass_figure_parts.glb", normalMap), context());
+        WorldRig rig(test::generatedWorld("glass_figure_parts.glb", normalMap), context());
         rig.set("method", "dir");
         return rig.render(0.3);
     };
@@ -267,9 +261,9 @@ TEST_F(Layers, TheReferenceAppliesNormalMapsToo) {
     // (24.8 dB against 17.9).
     constexpr int kSmall = 128, kFactor = 4;
     const std::string parts = "glass_figure_parts.glb";
-    WorldRig fine(generatedWorld(parts), context(), kSmall * kFactor),
-        mapped(generatedWorld(parts), context(), kSmall),
-        smooth(generatedWorld(parts, false), context(), kSmall);
+    WorldRig fine(test::generatedWorld(parts), context(), kSmall * kFactor),
+        mapped(test::generatedWorld(parts), context(), kSmall),
+        smooth(test::generatedWorld(parts, false), context(), kSmall);
     for (WorldRig* rig : {&fine, &mapped, &smooth})
         rig->set("method", "dir");
     const std::vector<float> hdr = fine.renderHdr(0.3);

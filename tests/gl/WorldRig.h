@@ -2,6 +2,7 @@
 // parameters as KEY=VALUE) and the Embree reference's, from one camera.
 #pragma once
 
+#include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
 #include "engine/capture/Metrics.h"
 #include "engine/render/Renderer.h"
@@ -24,6 +25,27 @@ inline scene::World projectScene(const std::string& name) {
     auto world = asset::loadScene(std::string(GLASS_SOURCE_DIR) + "/assets/scenes/" + name);
     EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
     return world ? std::move(*world) : scene::World{};
+}
+
+/** A model of assets/models playing its first clip; without its normal maps where
+ *  `normalMaps` is false (the parts figure has one, on its hammered head: checked). */
+inline scene::World generatedWorld(const std::string& file, bool normalMaps = true) {
+    auto loaded = asset::loadModel(std::string(GLASS_SOURCE_DIR) + "/assets/models/" + file);
+    EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+    if (!loaded)
+        return {};
+    std::size_t mapped = 0;
+    for (scene::Material& m : loaded->materials)
+        if (m.normalTexture.present()) {
+            if (!normalMaps)
+                m.normalTexture = {};
+            ++mapped;
+        }
+    EXPECT_EQ(mapped, file == "glass_figure_parts.glb" ? 1u : 0u);
+    scene::World world =
+        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
+    world.characters[0].clip = 0;
+    return world;
 }
 #endif
 

@@ -28,6 +28,9 @@ struct LayerStats {
     std::size_t bytesPerPixel = 0;  ///< the per-pixel arrays and maps at K
     std::size_t bytes = 0;          ///< all of them at the frame's size
     std::uint32_t overflowPixels = 0; ///< glass pixels with more than K layers (last frame)
+    std::uint64_t traceRays = 0;      ///< method trace: rays traced through the glass BVH
+    std::uint64_t traceSteps = 0;     ///< their BVH nodes visited
+    std::uint32_t traceMaxSteps = 0;  ///< the most one pixel's sample visited
 };
 
 /** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,

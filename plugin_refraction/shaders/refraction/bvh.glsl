@@ -63,11 +63,13 @@ float bvhHitTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, out vec2 uv)
 }
 
 // The nearest triangle along origin + t dir with epsilon < t < tMax: true with t, the hit leaf
-// (its position in Morton order) and the barycentrics. Nearer child first, so that the first
-// hits shorten the ray; a node waiting on the stack is dropped once a hit is nearer than where
-// the ray enters it.
+// (its position in Morton order) and the barycentrics; `steps` counts the nodes visited. Nearer
+// child first, so that the first hits shorten the ray; a node waiting on the stack is dropped
+// once a hit is nearer than where the ray enters it. One loop iteration a node (a leaf holds
+// one triangle): Mesa's llvmpipe ends every loop of a shader invocation after 65535 iterations
+// in all, so the traversal spends none on inner loops.
 bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, out int leaf,
-                out vec2 uv) {
+                out vec2 uv, inout int steps) {
     vec3 inverseDir = 1.0 / (dir + vec3(equal(dir, vec3(0.0))) * 1e-30);
     t = tMax;
     leaf = -1;
@@ -81,37 +83,38 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         top = 1;
     }
     while (top > 0) {
-        BvhNode node = nodes[stack[--top]];
+        --top;
+        if (entered[top] > t)
+            continue; // a nearer hit was found since it was pushed
+        ++steps;
+        BvhNode node = nodes[stack[top]];
         if (node.left < 0) {
-            for (int k = node.first; k < node.first + node.count; ++k) {
-                vec2 b;
-                float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz,
-                                         leafCorners[3 * k + 1].xyz, leafCorners[3 * k + 2].xyz, b);
-                if (h > epsilon && h < t) {
-                    t = h;
-                    leaf = k;
-                    uv = b;
-                }
+            int k = node.first;
+            vec2 b;
+            float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz, leafCorners[3 * k + 1].xyz,
+                                     leafCorners[3 * k + 2].xyz, b);
+            if (h > epsilon && h < t) {
+                t = h;
+                leaf = k;
+                uv = b;
             }
-        } else {
-            float tLeft = bvhEnterBox(origin, inverseDir, bounds[2 * node.left].xyz,
-                                      bounds[2 * node.left + 1].xyz, epsilon, t);
-            float tRight = bvhEnterBox(origin, inverseDir, bounds[2 * node.right].xyz,
-                                       bounds[2 * node.right + 1].xyz, epsilon, t);
-            bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
-            int near = leftFirst ? node.left : node.right, far = leftFirst ? node.right : node.left;
-            float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
-            if (tFar >= 0.0 && top < 63) {
-                stack[top] = far;
-                entered[top++] = tFar;
-            }
-            if (tNear >= 0.0 && top < 63) {
-                stack[top] = near;
-                entered[top++] = tNear;
-            }
+            continue;
         }
-        while (top > 0 && entered[top - 1] > t)
-            --top;
+        float tLeft = bvhEnterBox(origin, inverseDir, bounds[2 * node.left].xyz,
+                                  bounds[2 * node.left + 1].xyz, epsilon, t);
+        float tRight = bvhEnterBox(origin, inverseDir, bounds[2 * node.right].xyz,
+                                   bounds[2 * node.right + 1].xyz, epsilon, t);
+        bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
+        int near = leftFirst ? node.left : node.right, far = leftFirst ? node.right : node.left;
+        float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
+        if (tFar >= 0.0 && top < 63) {
+            stack[top] = far;
+            entered[top++] = tFar;
+        }
+        if (tNear >= 0.0 && top < 63) {
+            stack[top] = near;
+            entered[top++] = tNear;
+        }
     }
     return leaf >= 0;
 }

@@ -19,5 +19,7 @@ void main() {
     DeformedVertex d = cage[v];
     d.position = vec4((uWorld * vec4(d.position.xyz, 1.0)).xyz, 1.0);
     d.normal = vec4(normalize(uNormalMatrix * d.normal.xyz), 0.0);
+    vec3 tangent = mat3(uWorld) * d.tangent.xyz; // none (zero) where no normal map needs one
+    d.tangent.xyz = dot(tangent, tangent) > 0.0 ? normalize(tangent) : tangent;
     combined[uint(uBase) + v] = d;
 }

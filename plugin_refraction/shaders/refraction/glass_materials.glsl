@@ -13,6 +13,10 @@ struct GlassMaterial {
     vec4 layers;     // x: clearcoat, y: its roughness, z: iridescence, w: the film's index
     vec4 sheen;      // rgb: sheen colour, w: its roughness
     vec4 film;       // x: the iridescent film's thickness (nm)
+    // The normal map the trace reads at its hits: x its index among uTracedNormalMaps (-1:
+    // none), y its scale, z its texture coordinate set; its KHR_texture_transform's rows.
+    vec4 normalMap;
+    vec4 normalUv[2];
 };
 layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
 

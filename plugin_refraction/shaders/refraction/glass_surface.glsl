@@ -28,12 +28,17 @@ vec3 channelExit(vec3 incoming, vec3 normal, float eta, vec3 deviation, vec3 oth
 }
 
 // What that channel's ray sees from `point`: the scene where green's ray met it, hitT along
-// (the lookup's hit distance, negative for the environment), else the environment.
+// (the lookup's hit distance, negative for the environment), on screen; off it, the ground
+// where the ray meets it; else the environment.
 vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
     if (hitT < 0.0)
         return environmentRadiance(uViewToWorld * dir, roughness);
-    vec2 uv = clamp(projectToUv(point + dir * hitT), vec2(0.0), vec2(0.9999));
-    return texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+    vec3 X = point + dir * hitT;
+    vec2 uv = projectToUv(X);
+    if (X.z < 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))
+        return texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+    float t = groundHit(point, dir);
+    return t > 0.0 ? groundSeen(point, dir, t) : environmentRadiance(uViewToWorld * dir, roughness);
 }
 
 // The glass's reflectance from air at cosI, per channel: the Fresnel mode's, its F0 coloured and

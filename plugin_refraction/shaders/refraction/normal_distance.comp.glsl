@@ -15,7 +15,8 @@ void main() {
     float t;
     int leaf;
     vec2 uv;
+    int steps = 0;
     bool hit = bvhNearest(vertices[vid].position.xyz, -normalize(vertices[vid].normal.xyz),
-                          epsilon, 3.0e38, t, leaf, uv);
+                          epsilon, 3.0e38, t, leaf, uv, steps);
     distances[vid] = hit ? t : -1.0;
 }

@@ -1,11 +1,15 @@
 // What a ray leaving the glass sees (the walk, walk.frag.glsl): the opaque scene where the ray
-// meets it on screen (the one march, march.glsl), else the environment.
+// meets it on screen (the one march, march.glsl), else the ground where it meets its square,
+// else the environment.
 #ifndef REFRACTION_SCENE_LOOKUP_GLSL
 #define REFRACTION_SCENE_LOOKUP_GLSL
 #include "common/environment.glsl"
+#include "common/ground.glsl"
 #include "refraction/march.glsl"
 
 uniform int uNearby;
+uniform int uGround;       // the ground square is drawn (render::GroundPlane):
+uniform vec4 uGroundPlane; // its height, centre x and z, half size
 uniform sampler2D uSceneColor;
 uniform float uNearbyDistance;
 uniform mat3 uViewToWorld; // rotation part of the inverse view matrix
@@ -67,14 +71,32 @@ bool marchScene(vec3 P, vec3 dir, float distance, int steps, out float hitT, out
     return false;
 }
 
-// What a ray leaving the glass sees: the opaque scene within the nearby distance (when the
-// nearby scene is on), else the environment, which `roughness` blurs.
+// Where the ray P + t dir (view space), t > 0, meets the ground square: t, or -1. Exact, at any
+// distance and off screen (a ray through a pane sees the ground's far edge where it is).
+float groundHit(vec3 P, vec3 dir) {
+    vec3 o = uViewToWorld * P + uViewOriginWorld, d = uViewToWorld * dir;
+    if (uGround == 0 || abs(d.y) < 1e-9)
+        return -1.0;
+    float t = (uGroundPlane.x - o.y) / d.y;
+    vec2 q = abs(o.xz + t * d.xz - uGroundPlane.yz);
+    return t > 0.0 && max(q.x, q.y) <= uGroundPlane.w ? t : -1.0;
+}
+
+// The ground shaded where the ray P + t dir meets it, seen along the ray.
+vec3 groundSeen(vec3 P, vec3 dir, float t) {
+    vec3 d = uViewToWorld * dir;
+    return groundColor(uViewToWorld * P + uViewOriginWorld + t * d, -d, uGroundPlane.w / 8.0);
+}
+
+// What a ray leaving the glass sees, when the nearby scene is on: the opaque scene within the
+// nearby distance, else the ground; else (or with it off) the environment, which `roughness`
+// blurs. hitT: where along the ray, -1 for the environment.
 vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
     ivec2 hit;
     if (uNearby != 0 && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
         return texelFetch(uSceneColor, hit, 0).rgb;
-    hitT = -1.0;
-    return environmentRadiance(uViewToWorld * dir, roughness);
+    hitT = uNearby != 0 ? groundHit(P, dir) : -1.0;
+    return hitT > 0.0 ? groundSeen(P, dir, hitT) : environmentRadiance(uViewToWorld * dir, roughness);
 }
 
 #endif

@@ -63,6 +63,11 @@ const int kMethod = LAYER_METHOD;
 
 uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uDebug;
 uniform mat4 uInverseProjection;
+// trace-samples rays a pixel, one draw each (Mesa's llvmpipe ends a shader invocation's loops
+// after 65535 iterations in all: a draw a sample keeps each within that): this draw's, and the
+// weight of each.
+uniform int uTraceSample;
+uniform float uTraceWeight;
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
 // otherwise move the test after it, for every pixel of the rectangle).
@@ -297,6 +302,24 @@ vec3 pairNormal(Crossing c, vec3 dir, out bool outline) {
 #if LAYER_METHOD == 4 // METHOD_TRACE
 #include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram
 
+#include "common/normal_map.glsl"
+int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
+// The world cage's texture coordinates (GlassBvh::uvs) and the glass normal maps
+// (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
+layout(std430, binding = BVH_BINDINGS + 7) readonly buffer CageUv { vec4 cageUvs[]; };
+uniform sampler2D uTracedNormalMaps[4];
+
+// Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index
+// in each branch, as an array of samplers requires.
+vec3 tracedNormalTexel(int map, vec2 uv) {
+    switch (map) {
+    case 0: return textureLod(uTracedNormalMaps[0], uv, 0.0).xyz;
+    case 1: return textureLod(uTracedNormalMaps[1], uv, 0.0).xyz;
+    case 2: return textureLod(uTracedNormalMaps[2], uv, 0.0).xyz;
+    default: return textureLod(uTracedNormalMaps[3], uv, 0.0).xyz;
+    }
+}
+
 // The exact next interface: the ray traced through the glass BVH (world space), the triangle's
 // interpolated normal, its glass and which way the ray crosses it (by the winding, the
 // reference's rule: against the outward face enters).
@@ -306,23 +329,34 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     float epsilon = 1e-5 * length(bounds[1].xyz - bounds[0].xyz), t;
     int leaf;
     vec2 uv;
-    if (!bvhNearest(origin, along, epsilon, 3.0e38, t, leaf, uv))
+    ++gTraceRays;
+    if (!bvhNearest(origin, along, epsilon, 3.0e38, t, leaf, uv, gTraceSteps))
         return c;
     uint triangle = triangleOrder[leaf];
     uvec3 v = uvec3(indices[3u * triangle], indices[3u * triangle + 1u], indices[3u * triangle + 2u]);
-    vec3 n = (1.0 - uv.x - uv.y) * vertices[v.x].normal.xyz + uv.x * vertices[v.y].normal.xyz +
-             uv.y * vertices[v.z].normal.xyz;
+    vec3 w = vec3(1.0 - uv.x - uv.y, uv);
+    vec3 n = normalize(w.x * vertices[v.x].normal.xyz + w.y * vertices[v.y].normal.xyz +
+                       w.z * vertices[v.z].normal.xyz);
+    GlassMaterial m = glassMaterials[triangleGlass[triangle]];
+    if (m.normalMap.x >= 0.0) { // its normal map, as the capture and the reference read it
+        vec4 uvs = w.x * cageUvs[v.x] + w.y * cageUvs[v.y] + w.z * cageUvs[v.z];
+        vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
+                       w.z * vertices[v.z].tangent;
+        vec3 st = vec3(m.normalMap.z != 0.0 ? uvs.zw : uvs.xy, 1.0);
+        st.xy = vec2(dot(m.normalUv[0].xyz, st), dot(m.normalUv[1].xyz, st));
+        if (dot(tangent.xyz, tangent.xyz) > 0.0)
+            n = perturbNormal(n, tangent, tracedNormalTexel(int(m.normalMap.x), st.xy), m.normalMap.y);
+    }
     vec3 a = leafCorners[3 * leaf].xyz;
     vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
     bool entering = dot(face, along) < 0.0;
     c.found = true;
     c.point = P + dir * max(t - epsilon, 0.0);
     c.beyond = P + dir * (t + epsilon);
-    c.attr = uvec2(packOctNormal(normalize(transpose(uViewToWorld) * n)),
+    c.attr = uvec2(packOctNormal(transpose(uViewToWorld) * n),
                    triangleGlass[triangle] | (entering ? kLayerFront : 0u));
     return c;
 }
-uniform int uTraceSamples;
 
 // The entry of a camera ray along view direction V, traced: false where it meets no glass before
 // the opaque scene at pixel p (the sample sees what lies behind the glass there).
@@ -651,37 +685,41 @@ void main() {
     Walk walk;
     int stored = storedCount(p);
 #if LAYER_METHOD == 4 // METHOD_TRACE
-    // trace-samples rays through the pixel: the first from the capture's nearest layer at its
+    // This draw's ray through the pixel: the first from the capture's nearest layer at its
     // centre (its normal map), traced from the camera instead where the pixel overflowed (the
     // fallback's normal is coarse); the others from jittered points of the pixel (a fixed R2
     // sequence), their entry traced from the camera, each seeing what is behind the glass where
     // it meets none.
-    vec3 color = vec3(0.0);
-    for (int s = 0; s < uTraceSamples; ++s) {
-        vec3 Vs = V, P1s = P1;
-        uvec2 attr = entryAttr;
-        if (s > 0 || stored > kLayerCapacity) {
-            vec2 jitter = s == 0 ? vec2(0.0) : fract(0.5 + float(s) * vec2(0.7548777, 0.5698403)) - 0.5;
-            vec4 sub = uInverseProjection *
-                       vec4((gl_FragCoord.xy + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
-            Vs = normalize(sub.xyz / sub.w);
-            if (!traceEntry(Vs, p, P1s, attr)) {
-                color += texelFetch(uSceneColor, p, 0).rgb;
-                continue;
-            }
-        }
-        vec3 N = layerNormal(attr);
-        Walk w;
-        color += shadeLayers(P1s, Vs, dot(N, Vs) > 0.0 ? -N : N, attr, w);
-        if (s == 0)
-            walk = w;
+    vec3 color;
+    uvec2 attr = entryAttr;
+    bool entered = true;
+    if (uTraceSample > 0 || stored > kLayerCapacity) {
+        float s = float(uTraceSample);
+        vec2 jitter = s == 0.0 ? vec2(0.0) : fract(0.5 + s * vec2(0.7548777, 0.5698403)) - 0.5;
+        vec4 sub = uInverseProjection *
+                   vec4((gl_FragCoord.xy + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+        V = normalize(sub.xyz / sub.w);
+        entered = traceEntry(V, p, P1, attr);
     }
-    color /= float(uTraceSamples);
+    if (entered) {
+        vec3 N = layerNormal(attr);
+        color = shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, walk);
+    } else {
+        color = texelFetch(uSceneColor, p, 0).rgb;
+    }
+    if (gTraceRays > 0) {
+        atomicAdd(glassTraceRays, uint(gTraceRays));
+        uint before = atomicAdd(glassTraceSteps[0], uint(gTraceSteps));
+        if (before + uint(gTraceSteps) < before)
+            atomicAdd(glassTraceSteps[1], 1u); // the carry: the high word
+        atomicMax(glassTraceMaxSteps, uint(gTraceSteps));
+    }
+    color *= uTraceWeight;
 #else
     vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 #endif
 
-    if (stored > kLayerCapacity)
+    if (stored > kLayerCapacity && (!kTrace || uTraceSample == 0))
         atomicAdd(glassOverflowPixels, 1u);
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
     glassBox(lo, hi);

@@ -60,7 +60,6 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uSteps", s.searchSteps);
     f.set("uMarchSteps", s.marchSteps);
     f.set("uInterfaces", s.interfaces);
-    f.set("uTraceSamples", s.traceSamples);
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -75,6 +74,9 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uNear", frame->camera.znear);
     f.set("uFar", frame->camera.zfar);
     f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+    const render::GroundPlane& ground = frame->ground;
+    f.set("uGround", frame->settings.ground ? 1 : 0);
+    f.set("uGroundPlane", glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
     const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
     f.set("uViewToWorld", glm::mat3(viewToWorld));
     f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
@@ -141,6 +143,7 @@ void FrameContext::growGlassRectangle() const {
     gpu->rectangle.fill(offsetof(R, backRange), 1, 0x7F7FFFFFu); // FLT_MAX
     gpu->rectangle.fill(offsetof(R, backRange) + 4, 1, 0u);
     gpu->rectangle.fill(offsetof(R, frontMin), 1, 0x7F7FFFFFu);
+    gpu->rectangle.fill(offsetof(R, traceRays), 4, 0u);
     gpu->rectangleGrow.use();
     gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
     gl::bindStorage(kRectangleBinding, gpu->rectangle);
@@ -158,9 +161,12 @@ void FrameContext::growGlassRectangle() const {
     gl::memoryBarrier(gl::BarrierStorage);
 }
 
-void FrameContext::drawMaskedRectangle() const {
+void FrameContext::drawMaskedRectangle(gl::Blend blend) const {
     // The rectangle lies at depth 1: it passes only where the mask holds less.
-    gl::apply({.cull = gl::Cull::None, .depthWrite = false, .depthFunc = gl::DepthFunc::Greater});
+    gl::apply({.cull = gl::Cull::None,
+               .depthWrite = false,
+               .depthFunc = gl::DepthFunc::Greater,
+               .blend = blend});
     drawRectangle();
 }
 
@@ -258,10 +264,39 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines) {
            layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
 }
 
+namespace {
+
+/** Gives glass `glass` the normal map `map` of `item`'s model for the trace, among the first
+ *  kTracedNormalMaps distinct ones (past them: a warning, traced hits keep the vertex normal). */
+void traceNormalMap(FrameContext& c, const render::DrawItem& item, const scene::TextureRef& map,
+                    GlassMaterialGpu& glass) {
+    const gl::Texture* texture = item.materials->linear(map.texture);
+    if (!texture)
+        return;
+    auto& maps = c.gpu->tracedNormalMaps;
+    auto at = std::find(maps.begin(), maps.end(), texture);
+    if (at == maps.end() && maps.size() < kTracedNormalMaps)
+        at = maps.insert(maps.end(), texture);
+    if (at == maps.end()) {
+        if (!c.gpu->warnedNormalMaps)
+            core::logWarning("refraction: more than " + std::to_string(kTracedNormalMaps) +
+                             " glass normal maps in one frame; the trace meets the others' "
+                             "surfaces with their vertex normals");
+        c.gpu->warnedNormalMaps = true;
+        return;
+    }
+    glass.normalMap = {float(at - maps.begin()), map.scale, float(map.texCoord), 0.0f};
+    for (int row = 0; row < 2; ++row)
+        glass.normalUv[row] = {map.transform[0][row], map.transform[1][row], map.transform[2][row], 0.0f};
+}
+
+} // namespace
+
 void assignGlassIds(FrameContext& c) {
     const auto& items = c.frame->items;
     c.gpu->glassIds.assign(items.size(), -1);
     c.gpu->glassOptics.clear();
+    c.gpu->tracedNormalMaps.clear();
     std::map<std::pair<std::uint64_t, int>, int> ids;
     std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
     bool full = false;
@@ -291,6 +326,8 @@ void assignGlassIds(FrameContext& c) {
              glm::vec4(o.clearcoat, o.clearcoatRoughness, o.iridescence, o.iridescenceIor),
              glm::vec4(o.sheenColor, o.sheenRoughness),
              glm::vec4(o.iridescenceThickness, 0.0f, 0.0f, 0.0f)});
+        if (m && m->normalTexture.present())
+            traceNormalMap(c, item, m->normalTexture, c.gpu->glassOptics.back());
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }

@@ -44,6 +44,9 @@ constexpr int kNormalLod = 1;
 // Texture units: 0-1 the environment; then the pass's maps; the material's slots from
 // kMaterialUnit.
 constexpr std::uint32_t kMaterialUnit = 8;
+/** The trace's glass normal maps (walk.frag.glsl): this many, from kMaterialUnit (the walk binds
+ *  no material). */
+constexpr std::size_t kTracedNormalMaps = 4;
 constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6;
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
@@ -72,7 +75,7 @@ struct FrameContext {
     void growGlassRectangle() const;
     /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
      *  mask: the early depth test runs the program only on glass pixels. */
-    void drawMaskedRectangle() const;
+    void drawMaskedRectangle(gl::Blend blend = gl::Blend::None) const;
     /** The glass rectangle with the state as it is (no mask test unless set). */
     void drawRectangle() const;
     /** What the walk and the outline pass set alike: searches and march, TIR policy, Fresnel,

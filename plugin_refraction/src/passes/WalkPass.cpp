@@ -4,6 +4,8 @@
 // nearest layer for the outline pass.
 #include "Passes.h"
 
+#include <algorithm>
+#include <string>
 #include <vector>
 
 namespace refraction {
@@ -75,8 +77,24 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
                 gpu.glass.bvh->bind(kWalkBvhBinding);
+                gl::bindStorage(kWalkBvhBinding + 7, gpu.glass.bvh->uvs()); // walk.frag.glsl
+                // The glass normal maps, the first standing in for absent ones (unread).
+                const auto& normalMaps = gpu.tracedNormalMaps;
+                for (std::size_t i = 0; i < kTracedNormalMaps; ++i) {
+                    const std::string name = "uTracedNormalMaps[" + std::to_string(i) + "]";
+                    if (!normalMaps.empty())
+                        gl::bindTexture(kMaterialUnit + std::uint32_t(i),
+                                        *normalMaps[std::min(i, normalMaps.size() - 1)]);
+                    program.set(name.c_str(), int(kMaterialUnit + i));
+                }
             }
-            c.drawMaskedRectangle();
+            // The trace's samples one draw each, added up (their weights sum to 1).
+            const int draws = c.settings.method == Settings::Method::Trace ? c.settings.traceSamples : 1;
+            program.set("uTraceWeight", 1.0f / float(draws));
+            for (int s = 0; s < draws; ++s) {
+                program.set("uTraceSample", s);
+                c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
+            }
             return {};
         });
     buffers.rectangle = walked.rectangle;

@@ -26,6 +26,14 @@ public:
     void bind(const gl::Program& program, const scene::Model& model, int material,
               int firstUnit) const;
 
+    /** Texture `index` as the slots that read linear data (normals, metallic-roughness) have
+     *  it; null where the model's materials never read it so. */
+    const gl::Texture* linear(int index) const {
+        return index >= 0 && std::size_t(index) < mLinear.size() && mLinear[std::size_t(index)]
+                   ? &mLinear[std::size_t(index)]
+                   : nullptr;
+    }
+
 private:
     std::vector<gl::Texture> mLinear, mSrgb; // per texture; empty Texture where not needed
 };
