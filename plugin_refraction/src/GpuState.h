@@ -45,6 +45,7 @@ struct GlassRectangleGpu {
     std::uint32_t overflowPixels;          ///< pixels over K in the walk
     std::uint32_t backRange[2], frontMin;  ///< the pair's depth ranges (float bits)
     std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's counts (LayerStats)
+    std::uint32_t walkedPixels, hybridTraced, hybridBy[4];  ///< the hybrid's (LayerStats)
 };
 
 struct GpuState {

@@ -8,6 +8,7 @@
 #include "engine/core/Check.h"
 #include "engine/core/Log.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
@@ -196,6 +197,9 @@ LayerStats RefractionPlugin::layerStats() const {
     stats.traceRays = counts.traceRays;
     stats.traceSteps = counts.traceSteps[0] | std::uint64_t(counts.traceSteps[1]) << 32;
     stats.traceMaxSteps = counts.traceMaxSteps;
+    stats.walkedPixels = counts.walkedPixels;
+    stats.hybridTraced = counts.hybridTraced;
+    std::copy(std::begin(counts.hybridBy), std::end(counts.hybridBy), stats.hybridBy.begin());
     return stats;
 }
 

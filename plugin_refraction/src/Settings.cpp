@@ -9,10 +9,11 @@ using Type = plugin::Parameter::Type;
 const std::vector<plugin::Parameter>& Settings::parameterTable() {
     static const std::vector<plugin::Parameter> kTable = {
         {.name = "method", .label = "Method", .type = Type::Enum, .defaultValue = 3,
-         .choices = {"opaque", "sir", "isr", "dir", "trace"},
+         .choices = {"opaque", "sir", "isr", "dir", "trace", "hybrid"},
          .help = "opaque: no glass; sir: one interface; isr: Wyman's estimate with per-frame d_N; "
                  "dir: depth-map search, no preprocessing; trace: the refracted path traced "
-                 "through the glass BVH from the first layer"},
+                 "through the glass BVH from the first layer; hybrid: dir, and the trace for the "
+                 "pixels the layers may not represent (hybrid-criteria)"},
         {.name = "glass", .label = "Glass", .type = Type::Enum, .choices = {"auto", "all"},
          .help = "auto: materials with transmission; all: every mesh"},
         {.name = "ior", .label = "IOR", .max = 4.0,
@@ -65,6 +66,11 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
         {.name = "trace-samples", .label = "Trace samples", .type = Type::Int, .min = 1,
          .max = 16, .defaultValue = 1,
          .help = "trace: rays per glass pixel, the first at its centre, the others jittered"},
+        {.name = "hybrid-criteria", .label = "Hybrid criteria", .type = Type::Int, .min = 1,
+         .max = 15, .defaultValue = 15,
+         .help = "hybrid: what hands a pixel to the trace, a sum of 1 more than K layers, 2 the "
+                 "walk left the layers, 4 a total internal reflection, 8 a crossing near an "
+                 "outline"},
         {.name = "nearby", .label = "Nearby scene", .type = Type::Bool, .defaultValue = 1,
          .help = "exit rays see the opaque scene on screen before the environment"},
         {.name = "outline-aa", .label = "Outline anti-aliasing", .type = Type::Bool,
@@ -72,7 +78,9 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .help = "layers: the outlines of smooth glass share each pixel with what is behind"},
         {.name = "debug", .label = "Debug view", .type = Type::Enum,
          .choices = {"none", "back-depth", "back-normal", "dv", "dn", "exit-uv", "steps", "tir",
-                     "exit-point", "exit-direction", "layer-count", "overflow"}},
+                     "exit-point", "exit-direction", "layer-count", "overflow", "hybrid"},
+         .help = "hybrid: the pixels traced for overflow red, leaving the layers yellow, TIR blue, "
+                 "an outline green"},
     };
     return kTable;
 }
@@ -99,6 +107,7 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.interfaces = index("interfaces");
     s.marchSteps = index("march-steps");
     s.traceSamples = index("trace-samples");
+    s.hybridCriteria = index("hybrid-criteria");
     s.nearby = p.flag("nearby");
     s.outlineAntialiasing = p.flag("outline-aa");
     s.debug = index("debug");

@@ -14,7 +14,7 @@ namespace refraction {
 
 struct Settings {
     // Each enum lists its parameter's choices in the order of parameterTable().
-    enum class Method { Opaque, Sir, Isr, Dir, Trace };
+    enum class Method { Opaque, Sir, Isr, Dir, Trace, Hybrid };
     enum class Glass { Auto, All };
     enum class Fresnel { Exact, Schlick, Off };
     enum class Tir { Clamp, Reflect };
@@ -41,6 +41,7 @@ struct Settings {
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     int traceSamples = 1;  ///< trace: rays per glass pixel
+    int hybridCriteria = 15; ///< hybrid: what hands a pixel to the trace (walk.frag.glsl's bits)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
     int debug = 0; ///< index into the "debug" parameter's choices (walk.frag.glsl)
@@ -56,8 +57,10 @@ struct Settings {
     bool layered() const { return surfaces == Surfaces::Layers && method != Method::Opaque; }
     /** Isr measures d_N every frame and reads it. */
     bool usesNormalDistance() const { return method == Method::Isr; }
-    /** Isr (its d_N) and Trace (its rays) need the glass BVH. */
-    bool usesGlassBvh() const { return method == Method::Isr || method == Method::Trace; }
+    /** Trace and Hybrid trace rays through the glass BVH. */
+    bool traces() const { return method == Method::Trace || method == Method::Hybrid; }
+    /** Isr (its d_N) and the tracing methods need the glass BVH. */
+    bool usesGlassBvh() const { return method == Method::Isr || traces(); }
     /** Whether a primitive drawn with `material` (of `model`; -1 the default, as its
      *  character's variant picks it) in glass mode `mode` renders as glass: never with Opaque
      *  or GlassMode::None, always with GlassMode::All; with GlassMode::Auto every mesh under

@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -204,10 +205,20 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
         const double rays = double(r.layers.traceRays);
         const double nodesPerRay = rays > 0.0 ? double(r.layers.traceSteps) / rays : 0.0;
         const double raysPerSecond = median > 0.0 ? rays / (median * 1e-3) : 0.0;
-        char trace[64] = "-";
+        // The hybrid's share of the glass pixels it traced, in all and for each reason.
+        const double walked = std::max(double(r.layers.walkedPixels), 1.0);
+        auto share = [&](std::uint32_t pixels) { return 100.0 * double(pixels) / walked; };
+        const auto& by = r.layers.hybridBy;
+        char trace[192] = "-";
         if (rays > 0.0)
             std::snprintf(trace, sizeof trace, "%.0fk rays, %.0f nodes/ray, %.2f Mrays/s",
                           rays / 1e3, nodesPerRay, raysPerSecond / 1e6);
+        if (r.method == "hybrid")
+            std::snprintf(trace + std::strlen(trace), sizeof trace - std::strlen(trace),
+                          "; traced %.1f%% of the glass (over K %.1f, off the layers %.1f, TIR "
+                          "%.1f, outline %.1f)",
+                          share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
+                          share(by[3]));
         std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s | %s |\n",
                     r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
                     double(r.transientBytes) / 1048576.0, layers, trace, top.c_str());
@@ -230,6 +241,10 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                         {"trace_nodes_per_ray", nodesPerRay},
                         {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
                         {"trace_rays_per_second", raysPerSecond},
+                        {"walked_pixels", r.layers.walkedPixels},
+                        {"hybrid_traced_pixels", r.layers.hybridTraced},
+                        {"hybrid_traced_by", {{"overflow", by[0]}, {"off_the_layers", by[1]},
+                                              {"tir", by[2]}, {"outline", by[3]}}},
                         {"passes", passes}});
     }
     return rows;
@@ -242,7 +257,8 @@ capture::Image plot(const nlohmann::json& report) {
         {"sir", {52, 101, 164}},
         {"isr", {230, 126, 34}},
         {"dir", {46, 139, 87}},
-        {"trace", {142, 68, 173}}};
+        {"trace", {142, 68, 173}},
+        {"hybrid", {196, 160, 0}}};
     bench::Chart chart;
     const std::string name =
         std::filesystem::path(report["model"].get<std::string>()).filename().string();

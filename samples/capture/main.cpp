@@ -22,13 +22,13 @@ constexpr const char* kUsage =
                      [--size WxH] [--env HDR] [--out DIR] [--json] [--ground] [--exposure E]
                      [--subdiv N]
                      [--plugin PATH [--set KEY=VALUE]...]... [--dump-graph] [--contact-sheet PNG] [--force]
-                     [--method opaque|sir|isr|dir|trace] [--glass auto|all] [--ior N] [--dispersion D]
+                     [--method opaque|sir|isr|dir|trace|hybrid] [--glass auto|all] [--ior N] [--dispersion D]
                      [--tint R,G,B] [--absorption-distance D] [--fresnel exact|schlick|off]
                      [--search-steps N] [--tir clamp|reflect] [--tir-bounces B]
                      [--back-surface farthest|first] [--nearby on|off] [--debug VIEW]
                      [--geometry-passes one|two] [--dispersion-search shared|per-channel]
                      [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
-                     [--outline-aa on|off] [--trace-samples S]
+                     [--outline-aa on|off] [--trace-samples S] [--hybrid-criteria C]
                      [--march-steps M]
                      [--method reference] [--compare-reference] [--spp K | --pixel-centres] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
@@ -54,7 +54,8 @@ characters; T is the scene time); several MODELs are placed side by side.
   Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
   --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
                       depth-map search, no preprocessing), trace (the path traced exactly
-                      through the glass BVH from the first layer)
+                      through the glass BVH from the first layer), hybrid (dir, and the trace
+                      where the layers may not hold the path)
   --glass auto|all    auto: transmissive materials (default); all: play every mesh as glass
   --ior N             index of refraction, 0 = the material's (default)
   --dispersion D      20/Abbe number, -1 = the material's (default)
@@ -76,6 +77,9 @@ characters; T is the scene time); several MODELs are placed side by side.
   --outline-aa on|off layers: the outlines of smooth glass anti-aliased (default on)
   --trace-samples S   trace: rays per glass pixel, the first at its centre, the others jittered
                       within it (1..16, default 1)
+  --hybrid-criteria C hybrid: what hands a pixel to the trace, a sum of 1 (more than K layers),
+                      2 (the walk left the layers), 4 (a total internal reflection), 8 (a
+                      crossing near an outline); default 15, all
   --geometry-passes G two-surface only: one (default): front and back surfaces gathered in one
                       geometry pass (MAX blending) and refracted in a full-screen pass; two: the
                       papers' back-face pass then front-face pass (also used where one cannot:
@@ -211,7 +215,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                    arg == "--tir-bounces" || arg == "--back-surface" || arg == "--nearby" ||
                    arg == "--geometry-passes" || arg == "--dispersion-search" || arg == "--debug" ||
                    arg == "--surfaces" || arg == "--layer-capacity" || arg == "--interfaces" ||
-                   arg == "--march-steps" || arg == "--outline-aa" || arg == "--trace-samples") {
+                   arg == "--march-steps" || arg == "--outline-aa" || arg == "--trace-samples" ||
+                   arg == "--hybrid-criteria") {
             const auto v = next();
             if (!v)
                 return usageError(arg + " needs a value");

@@ -114,7 +114,8 @@ int run(int argc, char** argv) {
                                                                       {"isr", "clamp"},
                                                                       {"dir", "clamp"},
                                                                       {"dir", "reflect"},
-                                                                      {"trace", "reflect"}};
+                                                                      {"trace", "reflect"},
+                                                                      {"hybrid", "reflect"}};
     const std::vector<glm::ivec2> sizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
     const int cycle = std::max(switchEvery * int(methods.size()), resizeEvery * int(sizes.size()));
 

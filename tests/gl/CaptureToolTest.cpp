@@ -32,7 +32,7 @@ TEST(CaptureTool, BadArgumentsExitTwo) {
     EXPECT_EQ(capture("model.glb --set a=b", &out), 2);
     EXPECT_EQ(capture("--help", &out), 0);
     EXPECT_EQ(capture("builtin:sphere --method magic", &out), 2);
-    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir|trace, got 'magic'"),
+    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir|trace|hybrid, got 'magic'"),
               std::string::npos)
         << out;
     EXPECT_EQ(capture("builtin:sphere --ior 9", &out), 2);

@@ -80,6 +80,37 @@ TEST_F(Trace, SubPixelSamplesComeCloserToTheReference) {
     EXPECT_GT(four, one + 1.0);
 }
 
+TEST_F(Trace, TheHybridTracesThePixelsTheLayersCannotHold) {
+    // A small sphere in front of a large one with room for two layers a pixel: the overlap
+    // overflows. The hybrid walks the layers and hands to the trace (criterion 1) every pixel
+    // that overflowed or whose walk crossed a surface at an overflowing pixel, and the trace
+    // meets all four surfaces; handing over only where the walk left the layers (criterion 2)
+    // leaves the overflow to the two-surface pair, as DIR does.
+    WorldRig rig(test::projectScene("sphere_in_front.json"), context());
+    rig.set("layer-capacity", "2");
+    rig.set("search-steps", "8");
+    const WorldRig::Reference reference = rig.reference();
+    auto psnr = [&](const char* method, const char* criteria) {
+        rig.set("method", method);
+        rig.set("hybrid-criteria", criteria);
+        return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+    };
+    const double searched = psnr("dir", "15"), traced = psnr("trace", "15");
+    const double overflow = psnr("hybrid", "1");
+    const refraction::LayerStats stats = rig.plugin().layerStats();
+    const double offLayers = psnr("hybrid", "2");
+    std::printf("small sphere in front, K=2, against the reference: DIR 8 %.2f dB, trace %.2f, "
+                "hybrid tracing the overflow %.2f (%u of %u glass pixels), tracing only where "
+                "the walk left the layers %.2f\n",
+                searched, traced, overflow, stats.hybridTraced, stats.walkedPixels, offLayers);
+    EXPECT_GT(stats.overflowPixels, 100u);
+    EXPECT_GE(stats.hybridBy[0], stats.overflowPixels); // every overflowing pixel traced
+    EXPECT_EQ(stats.hybridTraced, stats.hybridBy[0]);    // for that reason alone
+    EXPECT_GT(overflow, searched + 5.0);
+    EXPECT_GT(overflow, offLayers + 5.0);
+    EXPECT_GE(overflow, traced - 1.0);
+}
+
 TEST_F(Trace, EveryHitReadsItsNormalMap) {
     // The parts figure's hammered head: the capture's entry and every surface the trace meets
     // after it are normal-mapped, as the reference maps them. With the vertex normal at the

@@ -8,6 +8,7 @@
 
 #include "engine/plugin/Plugin.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -31,6 +32,11 @@ struct LayerStats {
     std::uint64_t traceRays = 0;      ///< method trace: rays traced through the glass BVH
     std::uint64_t traceSteps = 0;     ///< their BVH nodes visited
     std::uint32_t traceMaxSteps = 0;  ///< the most one pixel's sample visited
+    std::uint32_t walkedPixels = 0;   ///< glass pixels the walk shaded
+    std::uint32_t hybridTraced = 0;   ///< method hybrid: those it traced
+    /** Those it traced for each reason: more than K layers, the walk left the layers, a total
+     *  internal reflection, a crossing near an outline (a pixel may have several). */
+    std::array<std::uint32_t, 4> hybridBy{};
 };
 
 /** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,

@@ -17,6 +17,8 @@ layout(std430, binding = 4) buffer GlassRectangle {
     // The trace's rays, BVH nodes visited (low, high word) and the most one pixel's ray visited
     // in one draw.
     uint glassTraceRays, glassTraceSteps[2], glassTraceMaxSteps;
+    // The glass pixels walked, and those the hybrid traced: all, and for each of its reasons.
+    uint glassWalkedPixels, glassHybridTraced, glassHybridBy[4];
 };
 
 #endif

@@ -33,7 +33,7 @@
 #include "refraction/glass_surface.glsl"
 #include "refraction/layers.glsl"
 
-const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3, METHOD_TRACE = 4;
+const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3, METHOD_TRACE = 4, METHOD_HYBRID = 5;
 const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
@@ -47,10 +47,17 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 #ifndef LAYER_METHOD
 #define LAYER_METHOD 3 // METHOD_DIR
 #endif
-const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE;
+const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE,
+           kHybrid = LAYER_METHOD == METHOD_HYBRID;
 // The papers' model judges TIR at its limit, by its mip-filtered normals; the traced normals are
-// the surface's own.
-const float kTirBand = kPairCapture || kTrace ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
+// the surface's own (no band).
+const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
+// The hybrid's pixel the walk handed to the trace.
+bool gHandedOver = false;
+// Whether the walk's exits are traced: always in the trace, in the hybrid once handed over.
+bool tracing() {
+    return kTrace || (kHybrid && gHandedOver);
+}
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
@@ -68,6 +75,7 @@ uniform mat4 uInverseProjection;
 // weight of each.
 uniform int uTraceSample;
 uniform float uTraceWeight;
+uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
 // otherwise move the test after it, for every pixel of the rectangle).
@@ -299,7 +307,7 @@ vec3 pairNormal(Crossing c, vec3 dir, out bool outline) {
 }
 #endif
 
-#if LAYER_METHOD == 4 // METHOD_TRACE
+#if LAYER_METHOD >= 4 // METHOD_TRACE, METHOD_HYBRID
 #include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram
 
 #include "common/normal_map.glsl"
@@ -371,8 +379,12 @@ bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
 // The next interface along P + t dir (the walk's exit finder, but ISR's first): traced, searched
 // in the pair or searched in the layers; and its normal.
 Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
+#if LAYER_METHOD >= 4
+    if (tracing())
+        return traceCrossing(P, dir);
+#endif
 #if LAYER_METHOD == 4
-    return traceCrossing(P, dir);
+    return Crossing(false, false, P, P, uvec2(0u), 0); // unreached
 #elif CAPTURE_PAIR
     return searchPair(P, dir, inGlass, first);
 #else
@@ -381,9 +393,11 @@ Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
 }
 
 vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
-#if LAYER_METHOD == 4
     outline = false;
-    return layerNormal(c.attr);
+    if (tracing())
+        return layerNormal(c.attr);
+#if LAYER_METHOD == 4
+    return vec3(0.0); // unreached
 #elif CAPTURE_PAIR
     return pairNormal(c, dir, outline);
 #else
@@ -435,6 +449,8 @@ struct Walk {
     uint lastFrom, lastTo; // glass ids + 1, 0: air
     vec3 firstExit;
     bool tir, fallback;
+    bool outline;       // a crossing's normal was filtered near an outline
+    bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
     bool opaque;        // the walk ended on the opaque scene, at texel `hit`
     ivec2 hit;
     int interfaces, steps;
@@ -481,7 +497,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
     // Nothing crossed yet but the entry (from air into the top medium), reflected or hit.
     Walk w = Walk(P1, dir, vec3(1.0), vec3(0.0), vec3(0.0), 0.0, V, N1, 0u, topMedium(media), P1,
-                  false, false, false, ivec2(0), 1, 0);
+                  false, false, false, false, false, ivec2(0), 1, 0);
     vec3 P = P1;
     int parity = 1;
     int bounces = 0;
@@ -533,9 +549,10 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
         vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
+        w.overflowed = w.overflowed || (!tracing() && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
         uvec2 before = media;
         // A traced crossing knows its side from the winding; a layer's from its normal.
-        media = crossMedium(media, glass, !leaves && (kTrace ? layerFront(c.attr) : dot(dir, N) < 0.0));
+        media = crossMedium(media, glass, !leaves && (tracing() ? layerFront(c.attr) : dot(dir, N) < 0.0));
         uint to = topMedium(media);
         segmentFromEntry = inside == 0u && to != 0u;
         segmentEntry = c.attr;
@@ -550,6 +567,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         bool outline = false;
         if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
             N = crossingNormal(c, dir, outline);
+        w.outline = w.outline || outline;
         vec3 facing = dot(N, dir) < 0.0 ? N : -N;
         vec3 T;
         if (refractRay(dir, facing, n1 / n2, T)) {
@@ -566,12 +584,13 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         } else {
             w.tir = true;
             float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-            float band = estimated ? kEstimatedTirBand
-                                   : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
+            float band = tracing()   ? 0.0
+                         : estimated ? kEstimatedTirBand
+                         : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
             bool grazing = incidence < asin(n2 / n1) + band;
             // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
             // image-space searches, whose error grows with every bounce).
-            if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
+            if (uTirPolicy == TIR_REFLECT && (tracing() || bounces < uBounces) && !grazing) {
                 ++bounces;
                 dir = reflect(dir, facing);
                 media = before; // still in the same medium
@@ -644,6 +663,19 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     return glassColor(m, P1, V, N1, transmitted);
 }
 
+#if LAYER_METHOD >= 4
+// The traced path along V from P1 (attr), the capture's entry, or (fromCamera) where the camera
+// ray meets the BVH first; what lies behind the glass at p where it meets none first.
+vec3 tracedColor(ivec2 p, vec3 V, vec3 P1, uvec2 attr, bool fromCamera, out Walk walk) {
+    if (fromCamera && !traceEntry(V, p, P1, attr)) {
+        walk.fallback = walk.tir = walk.outline = walk.overflowed = false;
+        return texelFetch(uSceneColor, p, 0).rgb;
+    }
+    vec3 N = layerNormal(attr);
+    return shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, walk);
+}
+#endif
+
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     // The nearest and farthest layers from the depth map, then the nearest's attributes alone.
@@ -684,29 +716,43 @@ void main() {
                  (uint(round(abs(along) * 255.0)) << 24);
     Walk walk;
     int stored = storedCount(p);
+    uint handedOver = 0u; // the hybrid's reasons to trace this pixel (uHybridCriteria's bits)
 #if LAYER_METHOD == 4 // METHOD_TRACE
     // This draw's ray through the pixel: the first from the capture's nearest layer at its
     // centre (its normal map), traced from the camera instead where the pixel overflowed (the
     // fallback's normal is coarse); the others from jittered points of the pixel (a fixed R2
-    // sequence), their entry traced from the camera, each seeing what is behind the glass where
-    // it meets none.
-    vec3 color;
-    uvec2 attr = entryAttr;
-    bool entered = true;
-    if (uTraceSample > 0 || stored > kLayerCapacity) {
-        float s = float(uTraceSample);
-        vec2 jitter = s == 0.0 ? vec2(0.0) : fract(0.5 + s * vec2(0.7548777, 0.5698403)) - 0.5;
+    // sequence), their entry traced from the camera.
+    if (uTraceSample > 0) {
+        vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
         vec4 sub = uInverseProjection *
                    vec4((gl_FragCoord.xy + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
         V = normalize(sub.xyz / sub.w);
-        entered = traceEntry(V, p, P1, attr);
     }
-    if (entered) {
-        vec3 N = layerNormal(attr);
-        color = shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, walk);
-    } else {
-        color = texelFetch(uSceneColor, p, 0).rgb;
+    bool fromCamera = uTraceSample > 0 || stored > kLayerCapacity;
+    vec3 color = tracedColor(p, V, P1, entryAttr, fromCamera, walk) * uTraceWeight;
+#else
+    vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
+#if LAYER_METHOD == 5 // METHOD_HYBRID
+    // The walk's path where the layers represent it, the trace's where they may not, judged
+    // from what the walk knows (each a bit of uHybridCriteria): the pixel, or one where the
+    // walk crossed a surface, held more than K layers (1); the walk left the layers where it found no surface and took Wyman's
+    // silhouette normal (2); it reflected totally (4: a chain of reflections, each searched
+    // with normals good to a few degrees, bounded by tir-bounces); it crossed a surface whose
+    // normal was filtered near an outline (8).
+    handedOver = uint(uHybridCriteria) & ((stored > kLayerCapacity || walk.overflowed ? 1u : 0u) |
+                                          (walk.fallback ? 2u : 0u) | (walk.tir ? 4u : 0u) |
+                                          (walk.outline ? 8u : 0u));
+    if (handedOver != 0u) {
+        gHandedOver = true;
+        color = tracedColor(p, V, P1, entryAttr, stored > kLayerCapacity, walk);
+        atomicAdd(glassHybridTraced, 1u);
+        for (int k = 0; k < 4; ++k)
+            if ((handedOver & (1u << k)) != 0u)
+                atomicAdd(glassHybridBy[k], 1u);
     }
+#endif
+#endif
+#if LAYER_METHOD >= 4
     if (gTraceRays > 0) {
         atomicAdd(glassTraceRays, uint(gTraceRays));
         uint before = atomicAdd(glassTraceSteps[0], uint(gTraceSteps));
@@ -714,11 +760,9 @@ void main() {
             atomicAdd(glassTraceSteps[1], 1u); // the carry: the high word
         atomicMax(glassTraceMaxSteps, uint(gTraceSteps));
     }
-    color *= uTraceWeight;
-#else
-    vec3 color = shadeLayers(P1, V, N1, entryAttr, walk);
 #endif
-
+    if (!kTrace || uTraceSample == 0)
+        atomicAdd(glassWalkedPixels, 1u);
     if (stored > kLayerCapacity && (!kTrace || uTraceSample == 0))
         atomicAdd(glassOverflowPixels, 1u);
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
@@ -739,6 +783,13 @@ void main() {
                                         : vec3(float(stored) / float(kLayerCapacity));
         break;
     case 11: color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case 12: // hybrid: traced for overflow red, off the layers yellow, TIR blue, an outline green
+        color = (handedOver & 1u) != 0u   ? vec3(1.0, 0.0, 0.0)
+                : (handedOver & 2u) != 0u ? vec3(1.0, 1.0, 0.0)
+                : (handedOver & 4u) != 0u ? vec3(0.0, 0.3, 1.0)
+                : (handedOver & 8u) != 0u ? vec3(0.0, 1.0, 0.0)
+                                          : vec3(0.1);
+        break;
     default: break;
     }
     outColor = vec4(color, 1.0);

@@ -60,6 +60,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uSteps", s.searchSteps);
     f.set("uMarchSteps", s.marchSteps);
     f.set("uInterfaces", s.interfaces);
+    f.set("uHybridCriteria", s.hybridCriteria);
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -143,7 +144,7 @@ void FrameContext::growGlassRectangle() const {
     gpu->rectangle.fill(offsetof(R, backRange), 1, 0x7F7FFFFFu); // FLT_MAX
     gpu->rectangle.fill(offsetof(R, backRange) + 4, 1, 0u);
     gpu->rectangle.fill(offsetof(R, frontMin), 1, 0x7F7FFFFFu);
-    gpu->rectangle.fill(offsetof(R, traceRays), 4, 0u);
+    gpu->rectangle.fill(offsetof(R, traceRays), 10, 0u); // the trace's and the hybrid's counts
     gpu->rectangleGrow.use();
     gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
     gl::bindStorage(kRectangleBinding, gpu->rectangle);
@@ -224,7 +225,7 @@ core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& 
         // nothing, and the live programs do not depend on which methods ran.
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
-              Settings::Method::Trace}) {
+              Settings::Method::Trace, Settings::Method::Hybrid}) {
             auto walk = gl::Program::graphics(
                 *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
                 {"LAYER_CAPACITY " + std::to_string(capacity),

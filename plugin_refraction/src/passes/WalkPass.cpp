@@ -24,7 +24,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         [&](fg::Builder& b, WalkData& d) {
             b.read(buffers.layers);
             b.read(buffers.materials);
-            if (c.settings.method == Settings::Method::Trace)
+            if (c.settings.traces())
                 b.read(buffers.distances); // the glass BVH
             for (auto [from, to] : {std::pair{capture.mask, &d.capture.mask},
                                     std::pair{capture.depths0, &d.capture.depths0},
@@ -73,7 +73,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                                 r.texture(handle.valid() ? handle : d.capture.depths0));
                 program.set(uniform, unit++);
             }
-            if (c.settings.method == Settings::Method::Trace) {
+            if (c.settings.traces()) {
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
                 gpu.glass.bvh->bind(kWalkBvhBinding);
