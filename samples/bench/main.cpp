@@ -219,7 +219,8 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                           "%.1f, outline %.1f)",
                           share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
                           share(by[3]));
-        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s | %s |\n",
+        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s "
+                    "| %s |\n",
                     r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
                     double(r.transientBytes) / 1048576.0, layers, trace, top.c_str());
         std::fflush(stdout);

@@ -8,5 +8,6 @@ uniform vec3 uCameraPosition;
 uniform float uTileSize;
 
 void main() {
-    outColor = vec4(groundColor(vWorldPosition, normalize(uCameraPosition - vWorldPosition), uTileSize), 1.0);
+    vec3 V = normalize(uCameraPosition - vWorldPosition);
+    outColor = vec4(groundColor(vWorldPosition, V, uTileSize), 1.0);
 }

@@ -91,8 +91,8 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         if (node.left < 0) {
             int k = node.first;
             vec2 b;
-            float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz, leafCorners[3 * k + 1].xyz,
-                                     leafCorners[3 * k + 2].xyz, b);
+            float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz,
+                                     leafCorners[3 * k + 1].xyz, leafCorners[3 * k + 2].xyz, b);
             if (h > epsilon && h < t) {
                 t = h;
                 leaf = k;

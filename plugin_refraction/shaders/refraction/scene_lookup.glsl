@@ -96,7 +96,8 @@ vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
     if (uNearby != 0 && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
         return texelFetch(uSceneColor, hit, 0).rgb;
     hitT = uNearby != 0 ? groundHit(P, dir) : -1.0;
-    return hitT > 0.0 ? groundSeen(P, dir, hitT) : environmentRadiance(uViewToWorld * dir, roughness);
+    return hitT > 0.0 ? groundSeen(P, dir, hitT)
+                      : environmentRadiance(uViewToWorld * dir, roughness);
 }
 
 #endif

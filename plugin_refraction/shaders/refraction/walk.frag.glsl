@@ -5,8 +5,9 @@
 // scene or the environment (scene_lookup.glsl). An opaque part met between two interfaces
 // (inside the glass, or between two pieces) ends the walk there. ARCHITECTURE.md ("How a ray
 // walks the layers") has the figure. Compiled in: the capture (CAPTURE_PAIR), K, the method
-// (how the walk finds an exit: SIR none, ISR Wyman's estimate, DIR a search), the dispersion
-// search and the punctual lights.
+// (how the walk finds an exit: SIR none, ISR Wyman's estimate, DIR a search, the trace the
+// exact hit in the glass BVH, the hybrid DIR's search then the trace where the walk hands the
+// pixel over), the dispersion search and the punctual lights.
 //
 // Media (the Embree reference's rule too): crossing a glass surface against its outward normal
 // enters its glass (a stack of up to four, the newest on top); crossing one along its normal
@@ -353,7 +354,8 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
         vec3 st = vec3(m.normalMap.z != 0.0 ? uvs.zw : uvs.xy, 1.0);
         st.xy = vec2(dot(m.normalUv[0].xyz, st), dot(m.normalUv[1].xyz, st));
         if (dot(tangent.xyz, tangent.xyz) > 0.0)
-            n = perturbNormal(n, tangent, tracedNormalTexel(int(m.normalMap.x), st.xy), m.normalMap.y);
+            n = perturbNormal(n, tangent, tracedNormalTexel(int(m.normalMap.x), st.xy),
+                              m.normalMap.y);
     }
     vec3 a = leafCorners[3 * leaf].xyz;
     vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
@@ -549,10 +551,12 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
         vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
         w.fallback = w.fallback || c.silhouette;
-        w.overflowed = w.overflowed || (!tracing() && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
+        w.overflowed =
+            w.overflowed || (!tracing() && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
         uvec2 before = media;
         // A traced crossing knows its side from the winding; a layer's from its normal.
-        media = crossMedium(media, glass, !leaves && (tracing() ? layerFront(c.attr) : dot(dir, N) < 0.0));
+        bool enters = tracing() ? layerFront(c.attr) : dot(dir, N) < 0.0;
+        media = crossMedium(media, glass, !leaves && enters);
         uint to = topMedium(media);
         segmentFromEntry = inside == 0u && to != 0u;
         segmentEntry = c.attr;
@@ -735,10 +739,10 @@ void main() {
 #if LAYER_METHOD == 5 // METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
     // from what the walk knows (each a bit of uHybridCriteria): the pixel, or one where the
-    // walk crossed a surface, held more than K layers (1); the walk left the layers where it found no surface and took Wyman's
-    // silhouette normal (2); it reflected totally (4: a chain of reflections, each searched
-    // with normals good to a few degrees, bounded by tir-bounces); it crossed a surface whose
-    // normal was filtered near an outline (8).
+    // walk crossed a surface, held more than K layers (1); the walk left the layers where it
+    // found no surface and took Wyman's silhouette normal (2); it reflected totally (4: a
+    // chain of reflections, each searched with normals good to a few degrees, bounded by
+    // tir-bounces); it crossed a surface whose normal was filtered near an outline (8).
     handedOver = uint(uHybridCriteria) & ((stored > kLayerCapacity || walk.overflowed ? 1u : 0u) |
                                           (walk.fallback ? 2u : 0u) | (walk.tir ? 4u : 0u) |
                                           (walk.outline ? 8u : 0u));

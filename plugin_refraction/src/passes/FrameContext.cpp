@@ -77,7 +77,8 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
     const render::GroundPlane& ground = frame->ground;
     f.set("uGround", frame->settings.ground ? 1 : 0);
-    f.set("uGroundPlane", glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
+    f.set("uGroundPlane",
+          glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
     const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
     f.set("uViewToWorld", glm::mat3(viewToWorld));
     f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
@@ -288,7 +289,8 @@ void traceNormalMap(FrameContext& c, const render::DrawItem& item, const scene::
     }
     glass.normalMap = {float(at - maps.begin()), map.scale, float(map.texCoord), 0.0f};
     for (int row = 0; row < 2; ++row)
-        glass.normalUv[row] = {map.transform[0][row], map.transform[1][row], map.transform[2][row], 0.0f};
+        glass.normalUv[row] = {map.transform[0][row], map.transform[1][row],
+                               map.transform[2][row], 0.0f};
 }
 
 } // namespace

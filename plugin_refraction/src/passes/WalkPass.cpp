@@ -89,7 +89,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 }
             }
             // The trace's samples one draw each, added up (their weights sum to 1).
-            const int draws = c.settings.method == Settings::Method::Trace ? c.settings.traceSamples : 1;
+            const int draws =
+                c.settings.method == Settings::Method::Trace ? c.settings.traceSamples : 1;
             program.set("uTraceWeight", 1.0f / float(draws));
             for (int s = 0; s < draws; ++s) {
                 program.set("uTraceSample", s);
