@@ -69,8 +69,8 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
         {.name = "hybrid-criteria", .label = "Hybrid criteria", .type = Type::Int, .min = 1,
          .max = 15, .defaultValue = 15,
          .help = "hybrid: what hands a pixel to the trace, a sum of 1 more than K layers, 2 the "
-                 "walk left the layers, 4 a total internal reflection, 8 a crossing near an "
-                 "outline"},
+                 "walk left the layers, 4 a total internal reflection it followed, 8 a crossing "
+                 "near an outline"},
         {.name = "nearby", .label = "Nearby scene", .type = Type::Bool, .defaultValue = 1,
          .help = "exit rays see the opaque scene on screen before the environment"},
         {.name = "outline-aa", .label = "Outline anti-aliasing", .type = Type::Bool,

@@ -78,8 +78,8 @@ characters; T is the scene time); several MODELs are placed side by side.
   --trace-samples S   trace: rays per glass pixel, the first at its centre, the others jittered
                       within it (1..16, default 1)
   --hybrid-criteria C hybrid: what hands a pixel to the trace, a sum of 1 (more than K layers),
-                      2 (the walk left the layers), 4 (a total internal reflection), 8 (a
-                      crossing near an outline); default 15, all
+                      2 (the walk left the layers), 4 (a total internal reflection it
+                      followed), 8 (a crossing near an outline); default 15, all
   --geometry-passes G two-surface only: one (default): front and back surfaces gathered in one
                       geometry pass (MAX blending) and refracted in a full-screen pass; two: the
                       papers' back-face pass then front-face pass (also used where one cannot:
