@@ -1,0 +1,73 @@
+// The walk's traced crossings (method trace, and the hybrid's handed-over pixels): the exact
+// next interface of a ray in the glass BVH (bvh.glsl) with its normal-mapped normal, and the
+// entry of a camera ray. Included by walk.frag.glsl after its Crossing, layers and materials.
+#ifndef REFRACTION_TRACE_GLSL
+#define REFRACTION_TRACE_GLSL
+#include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram
+
+#include "common/normal_map.glsl"
+int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
+// The world cage's texture coordinates (GlassBvh::uvs) and the glass normal maps
+// (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
+layout(std430, binding = BVH_BINDINGS + 7) readonly buffer CageUv { vec4 cageUvs[]; };
+uniform sampler2D uTracedNormalMaps[4];
+
+// Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index
+// in each branch, as an array of samplers requires.
+vec3 tracedNormalTexel(int map, vec2 uv) {
+    switch (map) {
+    case 0: return textureLod(uTracedNormalMaps[0], uv, 0.0).xyz;
+    case 1: return textureLod(uTracedNormalMaps[1], uv, 0.0).xyz;
+    case 2: return textureLod(uTracedNormalMaps[2], uv, 0.0).xyz;
+    default: return textureLod(uTracedNormalMaps[3], uv, 0.0).xyz;
+    }
+}
+
+// The exact next interface: the ray traced through the glass BVH (world space), the triangle's
+// interpolated normal, its glass and which way the ray crosses it (by the winding, the
+// reference's rule: against the outward face enters).
+Crossing traceCrossing(vec3 P, vec3 dir) {
+    Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
+    vec3 origin = uViewToWorld * P + uViewOriginWorld, along = uViewToWorld * dir;
+    float epsilon = 1e-5 * length(bounds[1].xyz - bounds[0].xyz), t;
+    int leaf;
+    vec2 uv;
+    ++gTraceRays;
+    if (!bvhNearest(origin, along, epsilon, 3.0e38, t, leaf, uv, gTraceSteps))
+        return c;
+    uint triangle = triangleOrder[leaf];
+    uvec3 v = uvec3(indices[3u * triangle], indices[3u * triangle + 1u], indices[3u * triangle + 2u]);
+    vec3 w = vec3(1.0 - uv.x - uv.y, uv);
+    vec3 n = normalize(w.x * vertices[v.x].normal.xyz + w.y * vertices[v.y].normal.xyz +
+                       w.z * vertices[v.z].normal.xyz);
+    GlassMaterial m = glassMaterials[triangleGlass[triangle]];
+    if (m.normalMap.x >= 0.0) { // its normal map, as the capture and the reference read it
+        vec4 uvs = w.x * cageUvs[v.x] + w.y * cageUvs[v.y] + w.z * cageUvs[v.z];
+        vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
+                       w.z * vertices[v.z].tangent;
+        vec3 st = vec3(m.normalMap.z != 0.0 ? uvs.zw : uvs.xy, 1.0);
+        st.xy = vec2(dot(m.normalUv[0].xyz, st), dot(m.normalUv[1].xyz, st));
+        if (dot(tangent.xyz, tangent.xyz) > 0.0)
+            n = perturbNormal(n, tangent, tracedNormalTexel(int(m.normalMap.x), st.xy),
+                              m.normalMap.y);
+    }
+    vec3 a = leafCorners[3 * leaf].xyz;
+    vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
+    bool entering = dot(face, along) < 0.0;
+    c.found = true;
+    c.point = P + dir * max(t - epsilon, 0.0);
+    c.beyond = P + dir * (t + epsilon);
+    c.attr = uvec2(packOctNormal(transpose(uViewToWorld) * n),
+                   triangleGlass[triangle] | (entering ? kLayerFront : 0u));
+    return c;
+}
+
+// The entry of a camera ray along view direction V, traced: false where it meets no glass before
+// the opaque scene at pixel p (the sample sees what lies behind the glass there).
+bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
+    Crossing c = traceCrossing(vec3(0.0), V);
+    P1 = 0.5 * (c.point + c.beyond); // on the surface: the refracted ray does not meet it again
+    attr = c.attr;
+    return c.found && -c.point.z < sceneDepthAt(p);
+}
+#endif
