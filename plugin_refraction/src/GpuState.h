@@ -61,6 +61,10 @@ struct GpuState {
      *  punctual lights). */
     using WalkKey = std::tuple<int, int, int, bool>;
     std::map<WalkKey, gl::Program> walkPrograms;
+    std::map<WalkKey, gl::Program> handedOverTrace; // the hybrid's trace pass, by the same key
+    /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
+     *  word a pixel; reallocated when the viewport grows. */
+    gl::Buffer handedOver;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {
         gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
@@ -75,7 +79,7 @@ struct GpuState {
     std::vector<int> glassIds;
     std::vector<GlassMaterialGpu> glassOptics;
     bool warnedGlassIds = false; // the 256-id limit was reported
-    /** The glass normal maps the trace reads (walk.frag.glsl's uTracedNormalMaps), this frame. */
+    /** The glass normal maps the trace reads (trace.glsl's uTracedNormalMaps), this frame. */
     std::vector<const gl::Texture*> tracedNormalMaps;
     bool warnedNormalMaps = false; // more than kTracedNormalMaps was reported
     gl::Framebuffer framebuffer;

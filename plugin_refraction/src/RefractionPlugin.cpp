@@ -68,7 +68,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     shaders.add(refractionShaderFiles());
     mGpu = std::make_unique<GpuState>();
     // The programs every frame may use; the capture's for K and the walk's variants are built
-    // when a frame first needs them (walkProgram).
+    // when a frame first needs them (walkPrograms).
     struct Spec {
         gl::Program* target;
         const char* vertex; // null: a compute program
@@ -136,12 +136,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
     const SceneInputs scene = sceneInputs(blackboard);
     addGlassMaterialsPass(graph, c, buffers);
-    auto walk = walkProgram(*mGpu, c);
-    if (!walk) {
-        core::logError("refraction: " + walk.error().message);
+    if (auto built = walkPrograms(*mGpu, c); !built) {
+        core::logError("refraction: " + built.error().message);
         return;
     }
-    c.walk = *walk;
     if (c.settings.usesGlassBvh())
         addGlassBvhPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),

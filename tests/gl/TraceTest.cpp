@@ -120,11 +120,21 @@ TEST_F(Trace, TheHybridTracesThePixelsTheLayersCannotHold) {
     const double searched = psnr("dir", "15"), traced = psnr("trace", "15");
     const double overflow = psnr("hybrid", "1");
     const refraction::LayerStats stats = rig.plugin().layerStats();
+    // Its trace pass traces each handed-over pixel trace-samples times, the walk's pixels once.
+    rig.set("trace-samples", "4");
+    const double sampled = psnr("hybrid", "1");
+    const refraction::LayerStats sampledStats = rig.plugin().layerStats();
+    rig.set("trace-samples", "1");
     const double offLayers = psnr("hybrid", "2");
     std::printf("small sphere in front, K=2, against the reference: DIR 8 %.2f dB, trace %.2f, "
-                "hybrid tracing the overflow %.2f (%u of %u glass pixels), tracing only where "
-                "the walk left the layers %.2f\n",
-                searched, traced, overflow, stats.hybridTraced, stats.walkedPixels, offLayers);
+                "hybrid tracing the overflow %.2f (%u of %u glass pixels; 4 samples %.2f, %llu "
+                "rays against %llu), tracing only where the walk left the layers %.2f\n",
+                searched, traced, overflow, stats.hybridTraced, stats.walkedPixels, sampled,
+                static_cast<unsigned long long>(sampledStats.traceRays),
+                static_cast<unsigned long long>(stats.traceRays), offLayers);
+    EXPECT_EQ(sampledStats.hybridTraced, stats.hybridTraced);
+    EXPECT_GT(sampledStats.traceRays, 3 * stats.traceRays);
+    EXPECT_GT(sampled, overflow);
     EXPECT_GT(stats.overflowPixels, 100u);
     EXPECT_GE(stats.hybridBy[0], stats.overflowPixels); // every overflowing pixel traced
     EXPECT_EQ(stats.hybridTraced, stats.hybridBy[0]);    // for that reason alone

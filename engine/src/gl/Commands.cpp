@@ -64,6 +64,12 @@ void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
     glDispatchCompute(x, y, z);
 }
 
+void dispatchIndirect(const Buffer& groups, std::size_t offset) {
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, groups.id());
+    glDispatchComputeIndirect(GLintptr(offset));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
 void bindStorage(std::uint32_t binding, const Buffer& buffer) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
 }
@@ -120,6 +126,8 @@ void memoryBarrier(std::uint32_t b) {
         bits |= GL_FRAMEBUFFER_BARRIER_BIT;
     if (b & BarrierBufferUpdate)
         bits |= GL_BUFFER_UPDATE_BARRIER_BIT;
+    if (b & BarrierCommand)
+        bits |= GL_COMMAND_BARRIER_BIT;
     if (b == BarrierAll)
         bits = GL_ALL_BARRIER_BITS;
     glMemoryBarrier(bits);

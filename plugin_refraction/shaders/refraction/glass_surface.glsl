@@ -1,4 +1,4 @@
-// The walk's optics around its search (walk.frag.glsl): Wyman's estimate of the exit distance,
+// The walk's optics around its search (walk.glsl): Wyman's estimate of the exit distance,
 // the shared dispersion search's red and blue rays, and the light at the entry (Fresnel with
 // the reflected environment, base colour, transmission, emission).
 #ifndef REFRACTION_GLASS_SURFACE_GLSL

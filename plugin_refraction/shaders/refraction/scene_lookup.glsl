@@ -1,4 +1,4 @@
-// What a ray leaving the glass sees (the walk, walk.frag.glsl): the opaque scene where the ray
+// What a ray leaving the glass sees (the walk, walk.glsl): the opaque scene where the ray
 // meets it on screen (the one march, march.glsl), else the ground where it meets its square,
 // else the environment.
 #ifndef REFRACTION_SCENE_LOOKUP_GLSL

@@ -1,6 +1,6 @@
 // The walk's traced crossings (method trace, and the hybrid's handed-over pixels): the exact
 // next interface of a ray in the glass BVH (bvh.glsl) with its normal-mapped normal, and the
-// entry of a camera ray. Included by walk.frag.glsl after its Crossing, layers and materials.
+// entry of a camera ray. Included by walk.glsl after its Crossing, layers and materials.
 #ifndef REFRACTION_TRACE_GLSL
 #define REFRACTION_TRACE_GLSL
 #include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram

@@ -192,7 +192,7 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
 }
 
-core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& c) {
+core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const bool pair = !c.settings.layered();
     const int capacity = pair ? 2 : c.settings.layerCapacity;
     if (!pair && gpu.layerProgramsCapacity != capacity) {
@@ -224,23 +224,32 @@ core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& 
     if (!gpu.walkPrograms.count(key(c.settings.method))) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
+        std::vector<std::string> defines{"LAYER_CAPACITY " + std::to_string(capacity),
+                                         std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
+                                         "LAYER_DISPERSION " + std::to_string(mode),
+                                         std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
+                                         "BVH_BINDINGS " + std::to_string(kWalkBvhBinding), ""};
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
               Settings::Method::Trace, Settings::Method::Hybrid}) {
-            auto walk = gl::Program::graphics(
-                *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
-                {"LAYER_CAPACITY " + std::to_string(capacity),
-                 std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
-                 "LAYER_METHOD " + std::to_string(int(method)),
-                 "LAYER_DISPERSION " + std::to_string(mode),
-                 std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
-                 "BVH_BINDINGS " + std::to_string(kWalkBvhBinding)});
+            defines.back() = "LAYER_METHOD " + std::to_string(int(method));
+            auto walk = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
+                                              "refraction/walk.frag.glsl", defines);
             if (!walk)
                 return walk.error();
             gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
         }
+        // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels.
+        defines.back() = "LAYER_METHOD " + std::to_string(int(Settings::Method::Trace));
+        auto trace = gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl",
+                                          defines);
+        if (!trace)
+            return trace.error();
+        gpu.handedOverTrace.insert_or_assign(key(Settings::Method::Hybrid), std::move(*trace));
     }
-    return &gpu.walkPrograms.at(key(c.settings.method));
+    c.walk = &gpu.walkPrograms.at(key(c.settings.method));
+    c.handedOverTrace = &gpu.handedOverTrace.at(key(Settings::Method::Hybrid));
+    return {};
 }
 
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {

@@ -35,7 +35,8 @@ constexpr std::uint32_t kRectangleBinding = 4; ///< glass_rectangle.glsl
 constexpr std::uint32_t kLayerHeadsBinding = 5, kLayerDepthsBinding = 6,
                         kLayerAttrsBinding = 7;     ///< layers.glsl
 constexpr std::uint32_t kGlassMaterialsBinding = 8; ///< glass_materials.glsl
-constexpr std::uint32_t kWalkBvhBinding = 12; ///< walk.frag.glsl: the glass BVH (bvh.glsl) from here
+constexpr std::uint32_t kHandedOverBinding = 10;    ///< walk.glsl: the hybrid's traced pixels
+constexpr std::uint32_t kWalkBvhBinding = 12; ///< trace.glsl: the glass BVH (bvh.glsl) from here
 
 // The mip level the papers' search over the pair reads the surface normals at (DIR §3.1:
 // mip-filtered normals); the normal maps need no level above it.
@@ -44,7 +45,7 @@ constexpr int kNormalLod = 1;
 // Texture units: 0-1 the environment; then the pass's maps; the material's slots from
 // kMaterialUnit.
 constexpr std::uint32_t kMaterialUnit = 8;
-/** The trace's glass normal maps (walk.frag.glsl): this many, from kMaterialUnit (the walk binds
+/** The trace's glass normal maps (trace.glsl): this many, from kMaterialUnit (the walk binds
  *  no material). */
 constexpr std::size_t kTracedNormalMaps = 4;
 constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6;
@@ -60,7 +61,8 @@ struct FrameContext {
     bool onePass = false; ///< the pair drawn in one MAX-blended geometry pass
     /** The first glass item's glass id: with the pair in one pass, every one's. */
     int firstGlassId = 0;
-    const gl::Program* walk = nullptr; ///< the walk's variant (walkProgram)
+    const gl::Program* walk = nullptr; ///< the walk's variant (walkPrograms)
+    const gl::Program* handedOverTrace = nullptr; ///< the hybrid's trace pass (walkPrograms)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** Whether the frame has punctual lights (the shading variants with them compiled in). */
@@ -116,10 +118,11 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard);
 /** The frame's glass ids and their optics (GpuState::glassIds, glassOptics); ids past the 255
  *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
-/** The capture's programs for this frame (the layers' for capacity K, the pair resolve's) and the
- *  walk's variant for the capture, the method, the dispersion search and the lights (compiled
- *  in: walk.frag.glsl), built when first needed (every method's at once) and kept. */
-core::Result<const gl::Program*> walkProgram(GpuState& gpu, const FrameContext& c);
+/** The capture's programs for this frame (the layers' for capacity K, the pair resolve's), and
+ *  into `c` the walk's variant for the capture, the method, the dispersion search and the lights
+ *  (compiled in: walk.frag.glsl) and the hybrid's trace pass for them (walk_trace.comp.glsl),
+ *  built when first needed (every method's at once) and kept. */
+core::Status walkPrograms(GpuState& gpu, FrameContext& c);
 /** The layer arrays for `size` and capacity K, reallocated only when either changes. */
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity);
 /** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers, the

@@ -1,7 +1,8 @@
 // `refraction.walk`: over the glass pixels (the capture's mask), each pixel's refracted path
-// walked through what the capture holds, SIR, ISR or DIR finding each exit (compiled in:
-// walk.frag.glsl), and shaded over the copied scene colour; with outlines on, each pixel's
-// nearest layer for the outline pass.
+// walked through what the capture holds, SIR, ISR, DIR or the trace finding each exit (compiled
+// in: walk.frag.glsl), and shaded over the copied scene colour; the hybrid's walk then hands the
+// pixels the layers cannot represent to its trace pass (walk_trace.comp.glsl), which shades
+// them over that. With outlines on, each pixel's nearest layer for the outline pass.
 #include "Passes.h"
 
 #include <algorithm>
@@ -41,7 +42,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 d.surface =
                     b.write(b.create("refraction.layers.surface", {size, gl::Format::R32UI, 1}));
         },
-        [c, outlines](const fg::Resources& r, const WalkData& d, gl::Context&) -> core::Status {
+        [c, outlines, size](const fg::Resources& r, const WalkData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
             std::vector<const gl::Texture*> targets{&r.texture(d.out)};
@@ -53,15 +54,13 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 return bound;
             if (outlines)
                 gl::clearColorUint(1, 0u); // no glass
-            const gl::Program& program = *c.walk;
-            c.setWalkUniforms(program);
-            c.setLayerUniforms(program);
+            // The walk's inputs; the hybrid's trace pass reads the same (its uniforms by
+            // `prepare`). The layer depth maps as uLayerDepths0/1 (layers.glsl), the pair's
+            // normals as uPairNormals; an absent map: the first depth map stands in (unread).
+            std::vector<std::pair<std::string, int>> samplers{{"uSceneColor", kSceneColorUnit},
+                                                              {"uSceneDepth", kSceneDepthUnit}};
             gl::bindTexture(kSceneColorUnit, r.texture(d.sceneColor));
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
-            program.set("uSceneColor", kSceneColorUnit);
-            program.set("uSceneDepth", kSceneDepthUnit);
-            // The layer depth maps as uLayerDepths0/1 (layers.glsl), the pair's normals as
-            // uPairNormals; an absent map: the first depth map stands in (unread).
             const std::pair<const char*, fg::TextureHandle> maps[] = {
                 {"uLayerDepths0", d.capture.depths0},
                 {"uLayerDepths1", d.capture.depths1},
@@ -71,31 +70,61 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             for (const auto& [uniform, handle] : maps) {
                 gl::bindTexture(std::uint32_t(unit),
                                 r.texture(handle.valid() ? handle : d.capture.depths0));
-                program.set(uniform, unit++);
+                samplers.emplace_back(uniform, unit++);
             }
             if (c.settings.traces()) {
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
                 gpu.glass.bvh->bind(kWalkBvhBinding);
-                gl::bindStorage(kWalkBvhBinding + 7, gpu.glass.bvh->uvs()); // walk.frag.glsl
+                gl::bindStorage(kWalkBvhBinding + 7, gpu.glass.bvh->uvs()); // trace.glsl
                 // The glass normal maps, the first standing in for absent ones (unread).
                 const auto& normalMaps = gpu.tracedNormalMaps;
                 for (std::size_t i = 0; i < kTracedNormalMaps; ++i) {
-                    const std::string name = "uTracedNormalMaps[" + std::to_string(i) + "]";
                     if (!normalMaps.empty())
                         gl::bindTexture(kMaterialUnit + std::uint32_t(i),
                                         *normalMaps[std::min(i, normalMaps.size() - 1)]);
-                    program.set(name.c_str(), int(kMaterialUnit + i));
+                    samplers.emplace_back("uTracedNormalMaps[" + std::to_string(i) + "]",
+                                          int(kMaterialUnit + i));
                 }
             }
+            const int samples = c.settings.traceSamples;
+            const bool trace = c.settings.method == Settings::Method::Trace;
+            const bool hybrid = c.settings.method == Settings::Method::Hybrid;
+            auto prepare = [&](const gl::Program& program, int weights) {
+                c.setWalkUniforms(program);
+                c.setLayerUniforms(program);
+                for (const auto& [uniform, samplerUnit] : samplers)
+                    program.set(uniform.c_str(), samplerUnit);
+                program.set("uTraceWeight", 1.0f / float(weights));
+            };
+            prepare(*c.walk, trace ? samples : 1);
+            if (hybrid) { // an empty list of handed-over pixels: no work group
+                const std::size_t bytes =
+                    (4 + std::size_t(size.x) * std::size_t(size.y)) * sizeof(std::uint32_t);
+                if (gpu.handedOver.size() < bytes)
+                    gpu.handedOver = gl::Buffer(bytes);
+                gpu.handedOver.fill(0, 2, 0u);
+                gpu.handedOver.fill(2 * sizeof(std::uint32_t), 2, 1u);
+                gl::bindStorage(kHandedOverBinding, gpu.handedOver);
+            }
             // The trace's samples one draw each, added up (their weights sum to 1).
-            const int draws =
-                c.settings.method == Settings::Method::Trace ? c.settings.traceSamples : 1;
-            program.set("uTraceWeight", 1.0f / float(draws));
-            for (int s = 0; s < draws; ++s) {
-                program.set("uTraceSample", s);
+            for (int s = 0; s < (trace ? samples : 1); ++s) {
+                c.walk->set("uTraceSample", s);
                 c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
             }
+            // The hybrid's handed-over pixels traced over the walk's colour (a debug view shows
+            // the walk's own), a dispatch each sample of as many work groups as the walk counted.
+            if (!hybrid || c.settings.debug != 0)
+                return {};
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            prepare(*c.handedOverTrace, samples);
+            gl::bindImage(0, r.texture(d.out), 0, true);
+            for (int s = 0; s < samples; ++s) {
+                c.handedOverTrace->set("uTraceSample", s);
+                gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));
+                gl::memoryBarrier(gl::BarrierImage);
+            }
+            gl::memoryBarrier(gl::BarrierTexture | gl::BarrierFramebuffer);
             return {};
         });
     buffers.rectangle = walked.rectangle;

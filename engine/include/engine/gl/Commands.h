@@ -54,6 +54,9 @@ void drawIndexed(std::uint32_t indexCount);
 /** Draws `vertexCount` vertices with no index buffer (full-screen triangle: 3). */
 void drawArrays(std::uint32_t vertexCount);
 void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
+/** Dispatches the work groups that three 32-bit words of `groups` at byte `offset` count, as
+ *  the GPU left them (no read back). */
+void dispatchIndirect(const Buffer& groups, std::size_t offset);
 
 void bindStorage(std::uint32_t binding, const Buffer& buffer);
 void bindTexture(std::uint32_t unit, const Texture& texture);
@@ -68,6 +71,7 @@ enum Barrier : std::uint32_t {
     BarrierImage = 1u << 3,        ///< image writes -> image loads
     BarrierFramebuffer = 1u << 4,  ///< image writes -> framebuffer
     BarrierBufferUpdate = 1u << 5, ///< SSBO writes -> buffer reads back (Buffer::download)
+    BarrierCommand = 1u << 6,      ///< SSBO writes -> indirect command arguments
     BarrierAll = 0xFFFFFFFFu,
 };
 void memoryBarrier(std::uint32_t barriers);

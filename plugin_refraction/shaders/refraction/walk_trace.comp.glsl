@@ -1,0 +1,23 @@
+// The hybrid's trace pass: the pixels its walk handed over (walk.frag.glsl, LAYER_METHOD 5)
+// traced as the trace traces them (walk.glsl compiled with LAYER_METHOD 4), a dispatch each
+// trace sample, over the walk's colour. A list, not the rectangle again: the trace's loops run
+// as long as their longest lane, and a handed-over pixel among walked ones would hold its
+// whole block of lanes through them (a CPU rasteriser's 4x4 block, a GPU's warp).
+#include "refraction/walk.glsl"
+
+layout(local_size_x = 64) in;
+layout(rgba16f, binding = 0) uniform image2D uShaded; // the walk's colour target
+
+void main() {
+    if (gl_GlobalInvocationID.x >= handedOverCount)
+        return;
+    uint pixel = handedOverPixels[gl_GlobalInvocationID.x];
+    ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
+    Entry e;
+    pixelEntry(p, e); // the walk found it
+    Walk walk;
+    vec3 color = tracedSample(p, e, walk);
+    if (uTraceSample > 0)
+        color += imageLoad(uShaded, p).rgb;
+    imageStore(uShaded, p, vec4(color, 1.0));
+}
