@@ -175,7 +175,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         capture = addResolvePass(graph, c, buffers, scene, pair);
     }
     const Walked walked = addWalkPass(graph, c, buffers, scene, capture);
-    blackboard.put(plugin::kSceneColor, c.settings.layered() && c.settings.outlineAntialiasing
+    blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
                                             ? addLayerOutlinePass(graph, c, buffers, walked)
                                             : walked.color);
 }
@@ -186,7 +186,7 @@ LayerStats RefractionPlugin::layerStats() const {
         return stats;
     const GpuState::LayerStorage& layers = mGpu->layers;
     stats.capacity = layers.capacity;
-    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlineAntialiasing);
+    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlinePass());
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
     GlassRectangleGpu counts{};
     const auto bytes = mGpu->rectangle.download(0, sizeof counts);

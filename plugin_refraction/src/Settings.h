@@ -59,6 +59,11 @@ struct Settings {
     bool usesNormalDistance() const { return method == Method::Isr; }
     /** Trace and Hybrid trace rays through the glass BVH. */
     bool traces() const { return method == Method::Trace || method == Method::Hybrid; }
+    /** The layers' outline pass runs: on, and the glass one sample a pixel (the trace's
+     *  samples anti-alias its outlines themselves; the pass over them cost 0.5 dB). */
+    bool outlinePass() const {
+        return layered() && outlineAntialiasing && !(method == Method::Trace && traceSamples > 1);
+    }
     /** Isr (its d_N) and the tracing methods need the glass BVH. */
     bool usesGlassBvh() const { return method == Method::Isr || traces(); }
     /** Whether a primitive drawn with `material` (of `model`; -1 the default, as its

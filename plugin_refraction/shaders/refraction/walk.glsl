@@ -1,5 +1,6 @@
 // The walk (walk.frag.glsl, the one shading pass over the glass pixels, and the hybrid's trace
-// pass, walk_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray enters the nearest captured layer and walks the others (layers.glsl) in
+// pass, walk_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
+// enters the nearest captured layer and walks the others (layers.glsl) in
 // texture space, refracting at every interface it crosses (or reflecting under total internal
 // reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
 // scene or the environment (scene_lookup.glsl). An opaque part met between two interfaces
@@ -410,6 +411,14 @@ uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
     return media;
 }
 
+// What a walk's ray sees: the opaque part it ended on (hitT 0), or what lies beyond its last
+// interface (lookup).
+vec3 walkSees(Walk w, float roughness, out float hitT) {
+    hitT = 0.0;
+    return w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
+                    : lookup(w.point, w.dir, roughness, hitT);
+}
+
 Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
     // The medium's index and absorption (kept with it: a crossing reads one material).
@@ -433,123 +442,163 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     // once after it, in their mean direction (exact for one such interface).
     int passes = 0;
     bool segmentFromOutline = false; // the segment began at a normal filtered near an outline
-    while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
-        uint inside = topMedium(media);
-        Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
-            ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
-            : searchExit(P, dir, parity, inside != 0u, segmentFromEntry);
-        w.steps += c.steps;
-        if (!c.found)
-            break;
-        // An opaque part before the next interface (inside the glass, or between two pieces)
-        // ends the walk: the ray sees it, as the lookup after the walk sees the nearby scene.
-        float hitT;
-        if (uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, w.hit)) {
-            if (inside != 0u)
-                w.weight *= exp(-sigma * hitT);
-            P += dir * hitT;
-            w.opaque = true;
-            break;
-        }
-        if (inside != 0u)
-            w.weight *= exp(-sigma * length(c.point - P));
-        P = c.point;
-        if (w.interfaces == 1)
-            w.firstExit = P;
-        ++w.interfaces;
-        // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on, the
-        // far side: there the count is read afresh.
-        bool estimated = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
-        int parityBefore = parity;
-        parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
-                           : parity ^ 1;
-        // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
-        // glass the ray is in, with Wyman's silhouette normal.
-        if (c.silhouette && inside == 0u)
-            break; // in air and off every layer: nothing more to cross
-        // Every crossing of the pair from its glass leaves it.
-        bool leaves = c.silhouette || kPairCapture;
-        uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
-        vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
-        w.fallback = w.fallback || c.silhouette;
-        w.overflowed =
-            w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
-        uvec2 before = media;
-        // A traced crossing knows its side from the winding; a layer's from its normal.
-        bool enters = kTrace ? layerFront(c.attr) : dot(dir, N) < 0.0;
-        media = crossMedium(media, glass, !leaves && enters);
-        uint to = topMedium(media);
-        segmentFromEntry = inside == 0u && to != 0u;
-        segmentEntry = c.attr;
-        if (inside == to) { // inside a glass that overlaps the one crossed: no interface
-            P = c.beyond;
-            --w.interfaces;
-            ++passes;
-            continue;
-        }
-        GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
-        float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
-        bool outline = false;
-        if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
-            N = crossingNormal(c, dir, outline);
-        w.outline = w.outline || outline;
-        vec3 facing = dot(N, dir) < 0.0 ? N : -N;
-        vec3 T;
-        if (refractRay(dir, facing, n1 / n2, T)) {
-            segmentFromOutline = outline;
-            if (to != 0u) {
-                // Into glass: Fresnel splits the light; the reflected part sees the environment,
-                // the transmitted part goes on in the glass's colour.
-                float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
-                w.reflected += w.weight * F;
-                w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
-                w.reflectedRoughness = g.sigma.w;
-                w.weight *= (1.0 - F) * g.baseColor.rgb;
+    // The trace follows the first reflection at a later interface into glass as a path of its
+    // own once this one ends (the reference follows both branches there): where it left, in
+    // what, and its weight; the walk's, and the trace's others, see the environment.
+    bool split = false;
+    vec3 splitP, splitDir, splitSigma, splitWeight, splitSeen = vec3(0.0);
+    uvec2 splitMedia;
+    float splitIor;
+    int splitInterfaces;
+    Walk primary;
+    for (int path = 0;; ++path) {
+        while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
+            uint inside = topMedium(media);
+            Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
+                ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
+                : searchExit(P, dir, parity, inside != 0u, segmentFromEntry);
+            w.steps += c.steps;
+            if (!c.found)
+                break;
+            // An opaque part before the next interface (inside the glass, or between two pieces)
+            // ends the walk: the ray sees it, as the lookup after the walk sees the nearby scene.
+            float hitT;
+            if (uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, w.hit)) {
+                if (inside != 0u)
+                    w.weight *= exp(-sigma * hitT);
+                P += dir * hitT;
+                w.opaque = true;
+                break;
             }
-        } else {
-            w.tir = true;
-            float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-            float band = kTrace      ? 0.0
-                         : estimated ? kEstimatedTirBand
-                         : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
-            bool grazing = incidence < asin(n2 / n1) + band;
-            // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
-            // image-space searches, whose error grows with every bounce).
-            if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
-                ++bounces;
-                w.bounced = true;
-                dir = reflect(dir, facing);
-                media = before; // still in the same medium
-                parity = parityBefore;
-                segmentFromEntry = false;
+            if (inside != 0u)
+                w.weight *= exp(-sigma * length(c.point - P));
+            P = c.point;
+            if (w.interfaces == 1)
+                w.firstExit = P;
+            ++w.interfaces;
+            // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on,
+            // the far side: there the count is read afresh.
+            bool estimated = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
+            int parityBefore = parity;
+            parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
+                               : parity ^ 1;
+            // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
+            // glass the ray is in, with Wyman's silhouette normal.
+            if (c.silhouette && inside == 0u)
+                break; // in air and off every layer: nothing more to cross
+            // Every crossing of the pair from its glass leaves it.
+            bool leaves = c.silhouette || kPairCapture;
+            uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
+            vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
+            w.fallback = w.fallback || c.silhouette;
+            w.overflowed =
+                w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
+            uvec2 before = media;
+            // A traced crossing knows its side from the winding; a layer's from its normal.
+            bool enters = kTrace ? layerFront(c.attr) : dot(dir, N) < 0.0;
+            media = crossMedium(media, glass, !leaves && enters);
+            uint to = topMedium(media);
+            segmentFromEntry = inside == 0u && to != 0u;
+            segmentEntry = c.attr;
+            if (inside == to) { // inside a glass that overlaps the one crossed: no interface
+                P = c.beyond;
+                --w.interfaces;
+                ++passes;
                 continue;
             }
-            T = tangentExit(dir, -facing); // the papers' clamp: leave tangent to the surface
+            GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
+            float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
+            bool outline = false;
+            if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
+                N = crossingNormal(c, dir, outline);
+            w.outline = w.outline || outline;
+            vec3 facing = dot(N, dir) < 0.0 ? N : -N;
+            vec3 T;
+            if (refractRay(dir, facing, n1 / n2, T)) {
+                segmentFromOutline = outline;
+                if (to != 0u) {
+                    // Into glass: Fresnel splits the light; the reflected part sees the
+                    // environment (the trace's first: its path), the transmitted part goes on in
+                    // the glass's colour.
+                    float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
+                    if (kTrace && path == 0 && !split) {
+                        split = true;
+                        splitP = c.point;
+                        splitDir = reflect(dir, facing);
+                        splitMedia = before;
+                        splitIor = n1;
+                        splitSigma = sigma;
+                        splitWeight = w.weight * F;
+                        splitInterfaces = w.interfaces;
+                    } else {
+                        w.reflected += w.weight * F;
+                        w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
+                        w.reflectedRoughness = g.sigma.w;
+                    }
+                    w.weight *= (1.0 - F) * g.baseColor.rgb;
+                }
+            } else {
+                w.tir = true;
+                float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
+                float band = kTrace      ? 0.0
+                             : estimated ? kEstimatedTirBand
+                             : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
+                bool grazing = incidence < asin(n2 / n1) + band;
+                // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
+                // image-space searches, whose error grows with every bounce).
+                if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
+                    ++bounces;
+                    w.bounced = true;
+                    dir = reflect(dir, facing);
+                    media = before; // still in the same medium
+                    parity = parityBefore;
+                    segmentFromEntry = false;
+                    continue;
+                }
+                T = tangentExit(dir, -facing); // the papers' clamp: leave tangent to the surface
+            }
+            // Across the interface: the refracted ray starts on its far side, in the new medium.
+            w.lastIncoming = dir;
+            w.lastNormal = facing;
+            w.lastFrom = inside;
+            w.lastTo = to;
+            dir = T;
+            ior = n2;
+            sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
+            P = c.beyond;
         }
-        // Across the interface: the refracted ray starts on its far side, in the new medium.
-        w.lastIncoming = dir;
-        w.lastNormal = facing;
-        w.lastFrom = inside;
-        w.lastTo = to;
-        dir = T;
-        ior = n2;
-        sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
-        P = c.beyond;
+        w.point = P;
+        w.dir = dir;
+        if (path == 1) { // the reflection's path ended: what it sees, then the first path's end
+            float unused;
+            splitSeen = walkSees(w, entered.sigma.w, unused) * w.weight;
+            primary.reflected = w.reflected;
+            primary.reflectedDir = w.reflectedDir;
+            primary.reflectedRoughness = w.reflectedRoughness;
+            primary.tir = primary.tir || w.tir;
+            primary.bounced = primary.bounced || w.bounced;
+            primary.steps = w.steps;
+            w = primary;
+            break;
+        }
+        if (!split)
+            break;
+        primary = w;
+        P = splitP;
+        dir = splitDir;
+        media = splitMedia;
+        ior = splitIor;
+        sigma = splitSigma;
+        w.weight = splitWeight;
+        w.interfaces = splitInterfaces;
+        w.opaque = false;
+        passes = 0;
     }
-    w.point = P;
-    w.dir = dir;
     if (dot(w.reflectedDir, w.reflectedDir) > 0.0)
         w.reflected *= environmentRadiance(uViewToWorld * normalize(w.reflectedDir),
                                            w.reflectedRoughness);
+    w.reflected += splitSeen;
     return w;
-}
-
-// What a walk's ray sees: the opaque part it ended on (hitT 0), or what lies beyond its last
-// interface (lookup).
-vec3 walkSees(Walk w, float roughness, out float hitT) {
-    hitT = 0.0;
-    return w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
-                    : lookup(w.point, w.dir, roughness, hitT);
 }
 
 vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {

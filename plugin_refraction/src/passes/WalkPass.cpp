@@ -19,7 +19,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         fg::TextureHandle sceneColor, sceneDepth, out, surface;
         fg::BufferHandle rectangle;
     };
-    const bool outlines = c.settings.layered() && c.settings.outlineAntialiasing;
+    const bool outlines = c.settings.outlinePass();
     const auto& walked = graph.addPass<WalkData>(
         "refraction.walk",
         [&](fg::Builder& b, WalkData& d) {
