@@ -55,7 +55,7 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
     mBounds = gl::Buffer(nodes * 2 * sizeof(glm::vec4));
     mLeafCorners = gl::Buffer(n * 3 * sizeof(glm::vec4));
     mBuild = gl::Buffer(8 * sizeof(std::uint32_t));
-    mTriangleGlass = gl::Buffer(n * sizeof(std::uint32_t));
+    mTriangleTags = gl::Buffer(n * sizeof(std::uint32_t));
     mDistances = gl::Buffer(std::max<std::size_t>(mVertexCount, 1) * sizeof(float));
     uvs.resize(std::max<std::size_t>(uvs.size(), 1));
     mUvs = gl::Buffer(uvs.size() * sizeof(glm::vec4), uvs.data());
@@ -160,20 +160,20 @@ void GlassBvh::castNormalDistances(const BvhPrograms& programs) {
 void GlassBvh::bind(std::uint32_t base) const {
     // bvh.glsl's order: vertices, indices, nodes, order, bounds, leaf corners, glass ids.
     const gl::Buffer* buffers[] = {&mVertices, &mIndices,     &mNodes,        &mOrder,
-                                   &mBounds,   &mLeafCorners, &mTriangleGlass};
+                                   &mBounds,   &mLeafCorners, &mTriangleTags};
     for (std::uint32_t i = 0; i < std::size(buffers); ++i)
         gl::bindStorage(base + i, *buffers[i]);
 }
 
-void GlassBvh::setGlassIds(std::span<const int> partGlass) {
-    if (std::equal(partGlass.begin(), partGlass.end(), mPartGlass.begin(), mPartGlass.end()))
+void GlassBvh::setTags(std::span<const std::uint32_t> partTags) {
+    if (std::equal(partTags.begin(), partTags.end(), mPartTags.begin(), mPartTags.end()))
         return;
-    mPartGlass.assign(partGlass.begin(), partGlass.end());
-    std::vector<std::uint32_t> glass(std::max<std::size_t>(triangleCount(), 1), 0u);
-    for (std::size_t part = 0, t = 0; part < mPartGlass.size(); ++part)
+    mPartTags.assign(partTags.begin(), partTags.end());
+    std::vector<std::uint32_t> tags(std::max<std::size_t>(triangleCount(), 1), 0u);
+    for (std::size_t part = 0, t = 0; part < mPartTags.size(); ++part)
         for (std::uint32_t k = 0; k < mPartTriangles[part]; ++k)
-            glass[t++] = std::uint32_t(std::max(mPartGlass[part], 0));
-    mTriangleGlass.update(std::span<const std::uint32_t>(glass));
+            tags[t++] = mPartTags[part];
+    mTriangleTags.update(std::span<const std::uint32_t>(tags));
 }
 
 Bvh GlassBvh::download() const {

@@ -62,8 +62,13 @@ public:
     /** Builds the tree from the gathered cage when it has none or its cost has worn past
      *  kRebuildRatio, else refits it; then measures its cost (read back frames later). */
     void update(const BvhPrograms& programs);
-    /** Each part's glass id (glass_materials.glsl), uploaded per triangle when it changes. */
-    void setGlassIds(std::span<const int> partGlass);
+    /** A part's tag: its glass id (glass_materials.glsl), or kOpaqueTag with an opaque part's
+     *  material factors (bits 0-20 the square root of its base colour, 7 a channel, red
+     *  lowest; 21-25 roughness, 26-29 metallic) and kOpaqueTextured where it has a base
+     *  colour texture. */
+    static constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+    /** Each part's tag, uploaded per triangle when they change. */
+    void setTags(std::span<const std::uint32_t> partTags);
     /** Binds what a traversal reads (bvh.glsl) from binding `base`. */
     void bind(std::uint32_t base) const;
     /** d_N (world units) per world-cage vertex into distances(). */
@@ -92,10 +97,10 @@ private:
     std::vector<std::uint32_t> mBases;
     std::vector<std::uint32_t> mTriangleIndices; ///< into the world cage
     std::vector<std::uint32_t> mPartTriangles;   ///< each part's triangle count
-    std::vector<int> mPartGlass;
+    std::vector<std::uint32_t> mPartTags;
     std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
-        mLeafCorners, mBuild, mTriangleGlass, mDistances, mUvs;
+        mLeafCorners, mBuild, mTriangleTags, mDistances, mUvs;
     /** The cost measured after each update, read back once its fence has passed. */
     struct Measure {
         gl::Buffer cost{sizeof(std::uint32_t) * 8};

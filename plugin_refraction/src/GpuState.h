@@ -85,16 +85,20 @@ struct GpuState {
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
-    /** The BVH over the frame's glass (parts: its draw items' (character, instance,
-     *  primitive), in frame order), rebuilt from scratch when the parts change; with
-     *  subdivision d_N carried to each part's drawn vertices by the refinement stencils. */
+    /** The BVH over the frame's glass, and for the tracing methods its opaque parts too
+     *  (parts: its draw items' (character, instance, primitive), in frame order), rebuilt from
+     *  scratch when the parts change; with subdivision d_N carried to each part's drawn
+     *  vertices by the refinement stencils. */
     struct Glass {
         using Part = std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>;
         std::vector<Part> parts;
         std::unique_ptr<GlassBvh> bvh;
         std::map<Part, gl::Buffer> drawn; // with subdivision: one float per drawn vertex
-        /** The frame's glass items, their parts and glass ids (refilled in place). */
-        std::tuple<std::vector<const render::DrawItem*>, std::vector<Part>, std::vector<int>> frame;
+        /** The frame's items in the BVH, their parts and tags (GlassBvh::setTags; refilled in
+         *  place). */
+        std::tuple<std::vector<const render::DrawItem*>, std::vector<Part>,
+                   std::vector<std::uint32_t>>
+            frame;
         /** Part `part`'s index in `parts`, or -1. */
         int find(const Part& part) const;
     } glass;

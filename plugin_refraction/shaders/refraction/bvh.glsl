@@ -1,4 +1,5 @@
-// The BVH over the frame's deformed glass (GlassBvh.h): the world cage of every glass part, its
+// The BVH over the frame's deformed glass (GlassBvh.h): the world cage of every glass part (and
+// for the tracing methods every opaque one), its
 // static triangles, and a linear BVH over them built on the GPU (bvh_build.comp.glsl: Morton
 // codes of the triangles' centroids, sorted; Karras 2012's hierarchy) and refitted to the
 // deformed vertices every frame. Internal nodes 0..n-2 (the root is node 0), leaf k (one
@@ -26,8 +27,10 @@ layout(std430, binding = BVH_BINDINGS + 4) coherent buffer Bounds { vec4 bounds[
 // The deformed corners of each triangle in leaf order (3 per triangle, written by the refit), so
 // that a ray test reads them directly instead of through the order and the index buffer.
 layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorners[]; };
-// Each triangle's glass id (glass_materials.glsl), in the original order.
-layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleGlass { uint triangleGlass[]; };
+// Each triangle's tag (GlassBvh::setTags), in the original order: its glass id
+// (glass_materials.glsl), or kOpaqueTag with an opaque part's material factors.
+layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleTags { uint triangleTags[]; };
+const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
 
 // Where the ray enters the box [lo, hi] padded by `pad` before tMax, or -1 when it misses (a ray
 // along one of its faces, a sphere's -N from a pole through the opposite pole, is inside it,

@@ -89,11 +89,12 @@ vec3 groundSeen(vec3 P, vec3 dir, float t) {
 }
 
 // What a ray leaving the glass sees, when the nearby scene is on: the opaque scene within the
-// nearby distance, else the ground; else (or with it off) the environment, which `roughness`
-// blurs. hitT: where along the ray, -1 for the environment.
-vec3 lookup(vec3 P, vec3 dir, float roughness, out float hitT) {
+// nearby distance (with `march`: the trace met none in its BVH), else the ground; else (or with
+// it off) the environment, which `roughness` blurs. hitT: where along the ray, -1 for the
+// environment.
+vec3 lookup(vec3 P, vec3 dir, float roughness, bool march, out float hitT) {
     ivec2 hit;
-    if (uNearby != 0 && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
+    if (uNearby != 0 && march && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
         return texelFetch(uSceneColor, hit, 0).rgb;
     hitT = uNearby != 0 ? groundHit(P, dir) : -1.0;
     return hitT > 0.0 ? groundSeen(P, dir, hitT)

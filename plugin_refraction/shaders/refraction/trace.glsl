@@ -25,7 +25,7 @@ vec3 tracedNormalTexel(int map, vec2 uv) {
 
 // The exact next interface: the ray traced through the glass BVH (world space), the triangle's
 // interpolated normal, its glass and which way the ray crosses it (by the winding, the
-// reference's rule: against the outward face enters).
+// reference's rule: against the outward face enters); or the opaque part it meets first.
 Crossing traceCrossing(vec3 P, vec3 dir) {
     Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
     vec3 origin = uViewToWorld * P + uViewOriginWorld, along = uViewToWorld * dir;
@@ -40,8 +40,9 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     vec3 w = vec3(1.0 - uv.x - uv.y, uv);
     vec3 n = normalize(w.x * vertices[v.x].normal.xyz + w.y * vertices[v.y].normal.xyz +
                        w.z * vertices[v.z].normal.xyz);
-    GlassMaterial m = glassMaterials[triangleGlass[triangle]];
-    if (m.normalMap.x >= 0.0) { // its normal map, as the capture and the reference read it
+    uint tag = triangleTags[triangle];
+    GlassMaterial m = glassMaterials[(tag & kOpaqueTag) != 0u ? 0u : tag];
+    if ((tag & kOpaqueTag) == 0u && m.normalMap.x >= 0.0) { // as the capture and the reference
         vec4 uvs = w.x * cageUvs[v.x] + w.y * cageUvs[v.y] + w.z * cageUvs[v.z];
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
                        w.z * vertices[v.z].tangent;
@@ -58,8 +59,34 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     c.point = P + dir * max(t - epsilon, 0.0);
     c.beyond = P + dir * (t + epsilon);
     c.attr = uvec2(packOctNormal(transpose(uViewToWorld) * n),
-                   triangleGlass[triangle] | (entering ? kLayerFront : 0u));
+                   (tag & kOpaqueTag) != 0u ? tag : tag | (entering ? kLayerFront : 0u));
     return c;
+}
+
+// Whether the crossing is an opaque part's (its attr.y the part's tag).
+bool tracedOpaque(Crossing c) {
+    return (c.attr.y & kOpaqueTag) != 0u;
+}
+
+// What a traced ray sees where it meets an opaque part: its material shaded there by the tag's
+// factors as the frame shades an untextured surface (common/brdf.glsl); for a textured part the
+// frame's colour where the frame shows that point (its texture, though seen from the camera:
+// on the untextured core of a glass sphere that cost 5 dB against shading it).
+vec3 opaqueSeen(Crossing c, vec3 dir) {
+    uint tag = c.attr.y;
+    vec2 uv = projectToUv(c.beyond);
+    if ((tag & kOpaqueTextured) != 0u && all(greaterThanEqual(uv, vec2(0.0))) &&
+        all(lessThan(uv, vec2(1.0)))) {
+        ivec2 pixel = ivec2(uv * uViewportSize);
+        if (abs(sceneDepthAt(pixel) + c.beyond.z) < 0.01 * -c.beyond.z)
+            return texelFetch(uSceneColor, pixel, 0).rgb;
+    }
+    vec3 base = vec3(uvec3(tag, tag >> 7, tag >> 14) & 127u) / 127.0;
+    float roughness = float((tag >> 21) & 31u) / 31.0, metallic = float((tag >> 26) & 15u) / 15.0;
+    vec3 N = uViewToWorld * layerNormal(c.attr), V = -(uViewToWorld * dir);
+    return shadeMetallicRoughness(base * base, metallic, roughness, 1.0,
+                                  uViewToWorld * c.point + uViewOriginWorld,
+                                  dot(N, V) < 0.0 ? -N : N, V);
 }
 
 // The entry of a camera ray along view direction V, traced: false where it meets no glass before
@@ -68,6 +95,6 @@ bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
     Crossing c = traceCrossing(vec3(0.0), V);
     P1 = 0.5 * (c.point + c.beyond); // on the surface: the refracted ray does not meet it again
     attr = c.attr;
-    return c.found && -c.point.z < sceneDepthAt(p);
+    return c.found && !tracedOpaque(c) && -c.point.z < sceneDepthAt(p);
 }
 #endif

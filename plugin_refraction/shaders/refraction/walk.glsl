@@ -375,8 +375,8 @@ struct Walk {
     bool bounced;       // it reflected totally at least once (tir also counts grazing exits)
     bool outline;       // a crossing's normal was filtered near an outline
     bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
-    bool opaque;        // the walk ended on the opaque scene, at texel `hit`
-    ivec2 hit;
+    bool opaque;        // the walk ended on the opaque scene, which it sees as `seen`
+    vec3 seen;
     int interfaces, steps;
 };
 
@@ -411,12 +411,29 @@ uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
     return media;
 }
 
+// An opaque part along P + t dir before c, the next crossing: the trace's in its BVH (c itself),
+// the others' on screen; where along the ray, and what the ray sees there.
+bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
+    seen = vec3(0.0);
+#if LAYER_METHOD == 4
+    hitT = length(c.point - P);
+    if (tracedOpaque(c))
+        seen = opaqueSeen(c, dir);
+    return tracedOpaque(c);
+#else
+    ivec2 hit;
+    bool met = uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, hit);
+    if (met)
+        seen = texelFetch(uSceneColor, hit, 0).rgb;
+    return met;
+#endif
+}
+
 // What a walk's ray sees: the opaque part it ended on (hitT 0), or what lies beyond its last
 // interface (lookup).
 vec3 walkSees(Walk w, float roughness, out float hitT) {
     hitT = 0.0;
-    return w.opaque ? texelFetch(uSceneColor, w.hit, 0).rgb
-                    : lookup(w.point, w.dir, roughness, hitT);
+    return w.opaque ? w.seen : lookup(w.point, w.dir, roughness, !kTrace, hitT);
 }
 
 Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
@@ -429,7 +446,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
     // Nothing crossed yet but the entry (from air into the top medium), reflected or hit.
     Walk w = Walk(P1, dir, vec3(1.0), vec3(0.0), vec3(0.0), 0.0, V, N1, 0u, topMedium(media), P1,
-                  false, false, false, false, false, false, ivec2(0), 1, 0);
+                  false, false, false, false, false, false, vec3(0.0), 1, 0);
     vec3 P = P1;
     int parity = 1;
     int bounces = 0;
@@ -463,7 +480,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             // An opaque part before the next interface (inside the glass, or between two pieces)
             // ends the walk: the ray sees it, as the lookup after the walk sees the nearby scene.
             float hitT;
-            if (uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, w.hit)) {
+            if (opaqueBefore(c, P, dir, hitT, w.seen)) {
                 if (inside != 0u)
                     w.weight *= exp(-sigma * hitT);
                 P += dir * hitT;

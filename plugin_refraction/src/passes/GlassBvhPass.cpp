@@ -1,13 +1,42 @@
-// `refraction.glass_bvh` (ISR, trace): every glass part's deformed cage gathered into the world
-// cage, the glass BVH refitted (or rebuilt) and its triangles' glass ids; for ISR d_N cast from
-// every vertex (GlassBvh).
+// `refraction.glass_bvh` (ISR, trace, hybrid): every glass part's deformed cage (for the
+// tracing methods every opaque part's too) gathered into the world cage, the glass BVH refitted
+// (or rebuilt) and its triangles' tags; for ISR d_N cast from every vertex (GlassBvh).
 #include "Passes.h"
 
 #include "engine/deform/GpuDeformer.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace refraction {
+
+namespace {
+
+/** An opaque part's tag (GlassBvh::kOpaqueTag): its material's factors, for a traced ray that
+ *  meets it (trace.glsl's opaqueSeen). */
+std::uint32_t opaqueTag(const render::DrawItem& item) {
+    glm::vec3 base(1.0f);
+    float metallic = 1.0f, roughness = 1.0f; // glTF's default material
+    bool textured = false;
+    if (item.material >= 0) {
+        const scene::Material& m = item.model->materials[std::size_t(item.material)];
+        base = glm::vec3(m.baseColorFactor);
+        metallic = m.metallicFactor;
+        roughness = m.roughnessFactor;
+        textured = m.baseColorTexture.present();
+    }
+    const glm::uvec3 colour(glm::round(glm::sqrt(glm::clamp(base, 0.0f, 1.0f)) * 127.0f));
+    const auto bits = [](float v, float levels) {
+        return std::uint32_t(std::round(std::clamp(v, 0.0f, 1.0f) * levels));
+    };
+    return GlassBvh::kOpaqueTag | (textured ? GlassBvh::kOpaqueTextured : 0u) | colour.r |
+           colour.g << 7 | colour.b << 14 | bits(roughness, 31.0f) << 21 |
+           bits(metallic, 15.0f) << 26;
+}
+
+} // namespace
 
 void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     struct Data {
@@ -22,17 +51,22 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
         [c](const fg::Resources&, const Data&, gl::Context&) {
             GpuState& gpu = *c.gpu;
             GpuState::Glass& glass = gpu.glass;
-            // This frame's glass items, parts and glass ids, in storage kept across frames.
-            auto& [items, parts, glassIds] = glass.frame;
+            // This frame's parts: its glass items and, for the trace, its opaque ones (an exit
+            // ray meets them exactly), with their tags, in storage kept across frames.
+            auto& [items, parts, tags] = glass.frame;
             items.clear();
             parts.clear();
-            glassIds.clear();
-            for (std::size_t index = 0; index < c.frame->items.size(); ++index)
-                if (const render::DrawItem& item = c.frame->items[index]; c.isGlass(item)) {
-                    items.push_back(&item);
-                    parts.emplace_back(item.key, item.instance, item.primitiveIndex);
-                    glassIds.push_back(gpu.glassIds[index]);
-                }
+            tags.clear();
+            const bool opaque = c.settings.traces();
+            for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
+                const render::DrawItem& item = c.frame->items[index];
+                if (!c.isGlass(item) && !opaque)
+                    continue;
+                items.push_back(&item);
+                parts.emplace_back(item.key, item.instance, item.primitiveIndex);
+                tags.push_back(c.isGlass(item) ? std::uint32_t(std::max(gpu.glassIds[index], 0))
+                                               : opaqueTag(item));
+            }
             if (!glass.bvh || parts != glass.parts) { // new, or other glass parts
                 std::vector<const scene::Primitive*> primitives;
                 for (const render::DrawItem* item : items)
@@ -48,7 +82,7 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
                                   gpu.bvh);
             }
             glass.bvh->update(gpu.bvh);
-            glass.bvh->setGlassIds(glassIds);
+            glass.bvh->setTags(tags);
             if (!c.settings.usesNormalDistance())
                 return;
             glass.bvh->castNormalDistances(gpu.bvh);
