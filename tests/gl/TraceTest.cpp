@@ -25,7 +25,7 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
         const char* scene;
         double floor;
     };
-    for (const Case& c : {Case{"glass_spheres.json", 52.0}, Case{"sphere_in_front.json", 45.0}}) {
+    for (const Case& c : {Case{"glass_spheres.json", 58.0}, Case{"sphere_in_front.json", 58.0}}) {
         WorldRig rig(test::projectScene(c.scene), context());
         rig.set("outline-aa", "off");
         const WorldRig::Reference reference = rig.reference(0.0, true);
@@ -40,6 +40,29 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
         EXPECT_GE(traced, c.floor) << c.scene;
         EXPECT_GT(traced, searched + 4.0) << c.scene;
     }
+}
+
+TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentresThroughACharacter) {
+    // The default figure mid-stride, each channel traced (its glass disperses): the trace and
+    // the reference part where a ray through a pixel's centre grazes a surface, whose deformed
+    // vertices they hold in float and in double (30-33 dB here, and about 28 on the two glass
+    // figures at 192x192); DIR's search through the layers lies 7 dB below.
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 192);
+    rig.set("outline-aa", "off");
+    rig.set("dispersion-search", "per-channel");
+    rig.set("interfaces", "32");
+    rig.set("search-steps", "8");
+    const WorldRig::Reference reference = rig.reference(0.3, true);
+    auto psnr = [&](const char* method) {
+        rig.set("method", method);
+        return capture::score(rig.render(0.3), reference.image, &reference.mask).psnr;
+    };
+    const double traced = psnr("trace"), searched = psnr("dir");
+    std::printf("default figure at pixel centres, against the reference: trace %.2f dB, DIR 8 "
+                "%.2f dB\n",
+                traced, searched);
+    EXPECT_GE(traced, 29.0);
+    EXPECT_GT(traced, searched + 4.0);
 }
 
 TEST_F(Trace, GlassBehindGlassPastTheCapturesLayersStaysClean) {
