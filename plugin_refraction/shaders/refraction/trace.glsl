@@ -3,7 +3,7 @@
 // entry of a camera ray. Included by walk.glsl after its Crossing, layers and materials.
 #ifndef REFRACTION_TRACE_GLSL
 #define REFRACTION_TRACE_GLSL
-#include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkProgram
+#include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkPrograms
 
 #include "common/normal_map.glsl"
 int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited

@@ -25,7 +25,7 @@ void main() {
     int stored = storedCount(p);
     uint handedOver = 0u; // the hybrid's reasons to trace this pixel (uHybridCriteria's bits)
 #if LAYER_METHOD == 4 // METHOD_TRACE
-    vec3 color = tracedSample(p, walk);
+    vec3 color = tracedSample(p, e, walk);
 #else
     vec3 color = shadeLayers(e.P1, e.V, N1, e.attr, walk);
 #if LAYER_METHOD == 5 // METHOD_HYBRID

@@ -57,7 +57,7 @@ const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radi
 const int kMaxPasses = 3; // crossings without an interface a walk follows
 const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
-// The method and the dispersion search are compiled in (a variant each, walkProgram): on a CPU
+// The method and the dispersion search are compiled in (a variant each, walkPrograms): on a CPU
 // rasteriser a shader pays for the code it carries.
 #ifndef LAYER_DISPERSION
 #define LAYER_DISPERSION 0 // DISPERSION_NONE
@@ -702,20 +702,22 @@ bool pixelEntry(ivec2 p, out Entry e) {
 }
 
 #if LAYER_METHOD == 4 // METHOD_TRACE
-// The traced path of trace sample uTraceSample through pixel p, weighted: the first through its
-// centre, the others through jittered points of it (a fixed R2 sequence), each entered where
-// the camera ray meets the BVH first (the capture's nearest layer reads its normal map
-// mip-filtered, the BVH's hits at the base level, as the reference does: 0.1 dB better on the
-// two glass figures); what lies behind the glass at p where a ray meets none first. With the
-// ray's counts.
-vec3 tracedSample(ivec2 p, out Walk walk) {
-    vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
-    vec4 ray = uInverseProjection *
-               vec4((vec2(p) + 0.5 + (uTraceSample > 0 ? jitter : vec2(0.0))) / uViewportSize *
-                        2.0 - 1.0, 1.0, 1.0);
-    vec3 V = normalize(ray.xyz / ray.w), P1, color;
-    uvec2 attr;
-    if (!traceEntry(V, p, P1, attr)) {
+// The traced path of trace sample uTraceSample through pixel p (its entry e), weighted: the
+// first from the capture's nearest layer at the pixel's centre (its normal map), traced from
+// the camera instead where the pixel overflowed (the fallback's normal is coarse); the others
+// from jittered points of the pixel (a fixed R2 sequence), their entry traced from the camera;
+// what lies behind the glass at p where a ray meets none first. With the ray's counts.
+vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
+    vec3 V = e.V, P1 = e.P1;
+    uvec2 attr = e.attr;
+    if (uTraceSample > 0) {
+        vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
+        vec4 sub = uInverseProjection *
+                   vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+        V = normalize(sub.xyz / sub.w);
+    }
+    vec3 color;
+    if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) && !traceEntry(V, p, P1, attr)) {
         walk.fallback = walk.tir = walk.bounced = walk.outline = walk.overflowed = false;
         color = texelFetch(uSceneColor, p, 0).rgb;
     } else {

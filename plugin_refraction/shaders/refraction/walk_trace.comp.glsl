@@ -13,8 +13,10 @@ void main() {
         return;
     uint pixel = handedOverPixels[gl_GlobalInvocationID.x];
     ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
+    Entry e;
+    pixelEntry(p, e); // the walk found it
     Walk walk;
-    vec3 color = tracedSample(p, walk);
+    vec3 color = tracedSample(p, e, walk);
     if (uTraceSample > 0)
         color += imageLoad(uShaded, p).rgb;
     imageStore(uShaded, p, vec4(color, 1.0));
