@@ -179,7 +179,7 @@ TEST_F(Trace, TheHybridTracesThePixelsTheLayersCannotHold) {
     EXPECT_GT(sampled, overflow);
     EXPECT_GT(stats.overflowPixels, 100u);
     EXPECT_GE(stats.hybridBy[0], stats.overflowPixels); // every overflowing pixel traced
-    EXPECT_EQ(stats.hybridTraced, stats.hybridBy[0]);    // for that reason alone
+    EXPECT_EQ(stats.hybridTraced, stats.hybridBy[0]);   // for that reason alone
     EXPECT_GT(overflow, searched + 5.0);
     EXPECT_GT(overflow, offLayers + 5.0);
     EXPECT_GE(overflow, traced - 1.0);

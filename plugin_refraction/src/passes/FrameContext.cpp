@@ -228,7 +228,8 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
                                          std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
                                          "LAYER_DISPERSION " + std::to_string(mode),
                                          std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
-                                         "BVH_BINDINGS " + std::to_string(kWalkBvhBinding), ""};
+                                         "BVH_BINDINGS " + std::to_string(kWalkBvhBinding),
+                                         ""};
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
               Settings::Method::Trace, Settings::Method::Hybrid}) {
@@ -241,8 +242,8 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
         }
         // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels.
         defines.back() = "LAYER_METHOD " + std::to_string(int(Settings::Method::Trace));
-        auto trace = gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl",
-                                          defines);
+        auto trace =
+            gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl", defines);
         if (!trace)
             return trace.error();
         gpu.handedOverTrace.insert_or_assign(key(Settings::Method::Hybrid), std::move(*trace));

@@ -42,7 +42,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 d.surface =
                     b.write(b.create("refraction.layers.surface", {size, gl::Format::R32UI, 1}));
         },
-        [c, outlines, size](const fg::Resources& r, const WalkData& d, gl::Context&) -> core::Status {
+        [c, outlines, size](const fg::Resources& r, const WalkData& d,
+                            gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
             std::vector<const gl::Texture*> targets{&r.texture(d.out)};
