@@ -41,8 +41,11 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     vec3 n = normalize(w.x * vertices[v.x].normal.xyz + w.y * vertices[v.y].normal.xyz +
                        w.z * vertices[v.z].normal.xyz);
     uint tag = triangleTags[triangle];
-    GlassMaterial m = glassMaterials[(tag & kOpaqueTag) != 0u ? 0u : tag];
-    if ((tag & kOpaqueTag) == 0u && m.normalMap.x >= 0.0) { // as the capture and the reference
+    bool opaque = (tag & kOpaqueTag) != 0u;
+    GlassMaterial m;
+    if (!opaque)
+        m = glassMaterials[tag];
+    if (!opaque && m.normalMap.x >= 0.0) { // as the capture and the reference read it
         vec4 uvs = w.x * cageUvs[v.x] + w.y * cageUvs[v.y] + w.z * cageUvs[v.z];
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
                        w.z * vertices[v.z].tangent;
@@ -59,7 +62,7 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     c.point = P + dir * max(t - epsilon, 0.0);
     c.beyond = P + dir * (t + epsilon);
     c.attr = uvec2(packOctNormal(transpose(uViewToWorld) * n),
-                   (tag & kOpaqueTag) != 0u ? tag : tag | (entering ? kLayerFront : 0u));
+                   opaque ? tag : tag | (entering ? kLayerFront : 0u));
     return c;
 }
 

@@ -49,8 +49,7 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 #ifndef LAYER_METHOD
 #define LAYER_METHOD 3 // METHOD_DIR
 #endif
-const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE,
-           kHybrid = LAYER_METHOD == METHOD_HYBRID;
+const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE;
 // The papers' model judges TIR at its limit, by its mip-filtered normals; the traced normals are
 // the surface's own (no band).
 const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
@@ -436,6 +435,15 @@ vec3 walkSees(Walk w, float roughness, out float hitT) {
     return w.opaque ? w.seen : lookup(w.point, w.dir, roughness, !kTrace, hitT);
 }
 
+// A reflection the trace follows once the path it left ends: where it starts, its direction,
+// the medium's absorption, its weight, the media, the medium's index, the interfaces crossed.
+struct Branch {
+    vec3 P, dir, sigma, weight;
+    uvec2 media;
+    float ior;
+    int interfaces;
+};
+
 Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
     // The medium's index and absorption (kept with it: a crossing reads one material).
@@ -463,10 +471,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     // own once this one ends (the reference follows both branches there): where it left, in
     // what, and its weight; the walk's, and the trace's others, see the environment.
     bool split = false;
-    vec3 splitP, splitDir, splitSigma, splitWeight, splitSeen = vec3(0.0);
-    uvec2 splitMedia;
-    float splitIor;
-    int splitInterfaces;
+    Branch reflection;
+    vec3 reflectionSeen = vec3(0.0);
     Walk primary;
     for (int path = 0;; ++path) {
         while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
@@ -540,13 +546,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
                     float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
                     if (kTrace && path == 0 && !split) {
                         split = true;
-                        splitP = c.point;
-                        splitDir = reflect(dir, facing);
-                        splitMedia = before;
-                        splitIor = n1;
-                        splitSigma = sigma;
-                        splitWeight = w.weight * F;
-                        splitInterfaces = w.interfaces;
+                        reflection = Branch(c.point, reflect(dir, facing), sigma, w.weight * F,
+                                            before, n1, w.interfaces);
                     } else {
                         w.reflected += w.weight * F;
                         w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
@@ -588,7 +589,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         w.dir = dir;
         if (path == 1) { // the reflection's path ended: what it sees, then the first path's end
             float unused;
-            splitSeen = walkSees(w, entered.sigma.w, unused) * w.weight;
+            reflectionSeen = walkSees(w, entered.sigma.w, unused) * w.weight;
             primary.reflected = w.reflected;
             primary.reflectedDir = w.reflectedDir;
             primary.reflectedRoughness = w.reflectedRoughness;
@@ -601,20 +602,20 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
         if (!split)
             break;
         primary = w;
-        P = splitP;
-        dir = splitDir;
-        media = splitMedia;
-        ior = splitIor;
-        sigma = splitSigma;
-        w.weight = splitWeight;
-        w.interfaces = splitInterfaces;
+        P = reflection.P;
+        dir = reflection.dir;
+        media = reflection.media;
+        ior = reflection.ior;
+        sigma = reflection.sigma;
+        w.weight = reflection.weight;
+        w.interfaces = reflection.interfaces;
         w.opaque = false;
         passes = 0;
     }
     if (dot(w.reflectedDir, w.reflectedDir) > 0.0)
         w.reflected *= environmentRadiance(uViewToWorld * normalize(w.reflectedDir),
                                            w.reflectedRoughness);
-    w.reflected += splitSeen;
+    w.reflected += reflectionSeen;
     return w;
 }
 
@@ -660,7 +661,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
 // the pixel has no glass in front of the opaque scene.
 struct Entry {
     float z, far;      // the nearest and the farthest layer's depth
-    int layer, farthest;
+    int farthest;      // the farthest's index
     uvec2 attr;        // the nearest's attributes
     vec3 P1, V;        // the entry point and the primary ray's direction (view space)
 };
@@ -669,8 +670,8 @@ bool pixelEntry(ivec2 p, out Entry e) {
     // The nearest and farthest layers from the depth map, then the nearest's attributes alone.
     e.z = 3.0e38;
     e.far = 0.0;
-    e.layer = -1;
     e.farthest = 0;
+    int nearest = -1;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(p, g);
         for (int k = 0; k < 4; ++k) {
@@ -678,7 +679,7 @@ bool pixelEntry(ivec2 p, out Entry e) {
                 continue;
             if (d[k] < e.z) {
                 e.z = d[k];
-                e.layer = 4 * g + k;
+                nearest = 4 * g + k;
             }
             if (d[k] > e.far) {
                 e.far = d[k];
@@ -688,12 +689,12 @@ bool pixelEntry(ivec2 p, out Entry e) {
     }
 #if CAPTURE_PAIR
     // The papers' model enters at the nearest front (a back face nearer than it is not entered).
-    e.layer = e.z < 3.0e38 && layerDepths(p, 0).x < 1.0e38 ? 0 : -1;
+    nearest = e.z < 3.0e38 && layerDepths(p, 0).x < 1.0e38 ? 0 : -1;
     e.z = layerDepths(p, 0).x;
 #endif
-    if (e.layer < 0 || e.z >= sceneDepthAt(p))
+    if (nearest < 0 || e.z >= sceneDepthAt(p))
         return false;
-    e.attr = layerAttrAt(p, e.layer);
+    e.attr = layerAttrAt(p, nearest);
     vec4 ray = uInverseProjection * vec4((vec2(p) + 0.5) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     vec3 direction = ray.xyz / ray.w;
     e.P1 = direction * (e.z / -direction.z);

@@ -6,10 +6,19 @@
 #include "Passes.h"
 
 #include <algorithm>
-#include <string>
+#include <array>
+#include <cstddef>
+#include <iterator>
 #include <vector>
 
 namespace refraction {
+
+namespace {
+/** trace.glsl's uTracedNormalMaps, element by element. */
+constexpr const char* kTracedNormalMapNames[] = {"uTracedNormalMaps[0]", "uTracedNormalMaps[1]",
+                                                 "uTracedNormalMaps[2]", "uTracedNormalMaps[3]"};
+static_assert(std::size(kTracedNormalMapNames) == kTracedNormalMaps);
+} // namespace
 
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture) {
@@ -58,8 +67,10 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             // The walk's inputs; the hybrid's trace pass reads the same (its uniforms by
             // `prepare`). The layer depth maps as uLayerDepths0/1 (layers.glsl), the pair's
             // normals as uPairNormals; an absent map: the first depth map stands in (unread).
-            std::vector<std::pair<std::string, int>> samplers{{"uSceneColor", kSceneColorUnit},
-                                                              {"uSceneDepth", kSceneDepthUnit}};
+            std::array<std::pair<const char*, int>, 6 + kTracedNormalMaps> samplers{};
+            std::size_t count = 0;
+            samplers[count++] = {"uSceneColor", kSceneColorUnit};
+            samplers[count++] = {"uSceneDepth", kSceneDepthUnit};
             gl::bindTexture(kSceneColorUnit, r.texture(d.sceneColor));
             gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
             const std::pair<const char*, fg::TextureHandle> maps[] = {
@@ -71,7 +82,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             for (const auto& [uniform, handle] : maps) {
                 gl::bindTexture(std::uint32_t(unit),
                                 r.texture(handle.valid() ? handle : d.capture.depths0));
-                samplers.emplace_back(uniform, unit++);
+                samplers[count++] = {uniform, unit++};
             }
             if (c.settings.traces()) {
                 if (!gpu.glass.bvh)
@@ -84,8 +95,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                     if (!normalMaps.empty())
                         gl::bindTexture(kMaterialUnit + std::uint32_t(i),
                                         *normalMaps[std::min(i, normalMaps.size() - 1)]);
-                    samplers.emplace_back("uTracedNormalMaps[" + std::to_string(i) + "]",
-                                          int(kMaterialUnit + i));
+                    samplers[count++] = {kTracedNormalMapNames[i], int(kMaterialUnit + i)};
                 }
             }
             const int samples = c.settings.traceSamples;
@@ -94,8 +104,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             auto prepare = [&](const gl::Program& program, int weights) {
                 c.setWalkUniforms(program);
                 c.setLayerUniforms(program);
-                for (const auto& [uniform, samplerUnit] : samplers)
-                    program.set(uniform.c_str(), samplerUnit);
+                for (std::size_t i = 0; i < count; ++i)
+                    program.set(samplers[i].first, samplers[i].second);
                 program.set("uTraceWeight", 1.0f / float(weights));
             };
             prepare(*c.walk, trace ? samples : 1);
