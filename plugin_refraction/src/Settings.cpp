@@ -65,8 +65,9 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
                  "the papers' back-face pass then front-face pass; layers always draw once"},
         {.name = "trace-samples", .label = "Trace samples", .type = Type::Int, .min = 1,
          .max = 16, .defaultValue = 1,
-         .help = "trace: rays per glass pixel (hybrid: per pixel handed to the trace), the "
-                 "first at its centre, the others jittered"},
+         .help = "trace and hybrid: rays per glass pixel, the first at its centre, the others "
+                 "jittered (the hybrid's walk enters them on the plane of the pixel's nearest "
+                 "layer)"},
         {.name = "hybrid-criteria", .label = "Hybrid criteria", .type = Type::Int, .min = 1,
          .max = 15, .defaultValue = 15,
          .help = "hybrid: what hands a pixel to the trace, a sum of 1 more than K layers, 2 the "

@@ -40,7 +40,7 @@ struct Settings {
     int layerCapacity = 4; ///< K: fragments kept per pixel by the layered capture
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
-    int traceSamples = 1;  ///< trace: rays per glass pixel
+    int traceSamples = 1;  ///< trace and hybrid: rays per glass pixel
     int hybridCriteria = 15; ///< hybrid: what hands a pixel to the trace (walk.frag.glsl's bits)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)

@@ -1,5 +1,5 @@
 // The walk's shading pass (walk.glsl): over the glass rectangle, against the capture's mask, a
-// draw each trace sample for the trace, added up.
+// draw each trace sample for the trace and the hybrid, added up.
 #include "refraction/walk.glsl"
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
@@ -27,22 +27,30 @@ void main() {
 #if LAYER_METHOD == 4 // METHOD_TRACE
     vec3 color = tracedSample(p, e, walk);
 #else
-    vec3 color = shadeLayers(e.P1, e.V, N1, e.attr, walk);
+    vec3 color = vec3(0.0);
+    walk.overflowed = walk.fallback = walk.bounced = walk.outline = false;
+#if LAYER_METHOD == 5 // METHOD_HYBRID
+    uvec2 bit = handedOverBit(p);
+    if (uTraceSample > 0 && (handedOverWords[bit.x] & bit.y) != 0u)
+        discard; // the first sample handed the pixel over: the trace pass shades it
+#endif
+    // The hybrid's later samples enter where their jittered rays meet the plane of the pixel's
+    // nearest layer (square to the line of sight where the layer grazes it).
+    vec3 V = sampleView(p, e.V), P1 = e.P1;
+    float facing = dot(V, N1);
+    if (uTraceSample > 0)
+        P1 = facing < -0.05 ? V * (dot(e.P1, N1) / facing) : V * (e.z / -V.z);
+    // A pixel the hybrid hands over for its own layers is not walked at all.
+    if (!stopsToHandOver(walk, stored > kLayerCapacity))
+        color = shadeLayers(P1, V, N1, e.attr, walk) * uTraceWeight;
 #if LAYER_METHOD == 5 // METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
-    // from what the walk knows (each a bit of uHybridCriteria): the pixel, or one where the
-    // walk crossed a surface, held more than K layers (1); the walk left the layers where it
-    // found no surface and took Wyman's silhouette normal (2); it reflected totally and
-    // followed the reflection (4: a chain of reflections, each searched with normals good to
-    // a few degrees, bounded by tir-bounces; not a grazing exit, which the trace would not
-    // improve: on a sphere, where light never reflects totally, such pixels lost 0.04 dB to
-    // DIR when handed over); it crossed a surface whose normal was filtered near an outline (8).
-    handedOver = uint(uHybridCriteria) & ((stored > kLayerCapacity || walk.overflowed ? 1u : 0u) |
-                                          (walk.fallback ? 2u : 0u) | (walk.bounced ? 4u : 0u) |
-                                          (walk.outline ? 8u : 0u));
+    // by the first sample from what the walk knows (handedOverBy).
+    handedOver = uTraceSample == 0 ? handedOverBy(walk, stored > kLayerCapacity) : 0u;
     if (handedOver != 0u) { // for the trace pass, which shades it over this
         uint slot = atomicAdd(handedOverCount, 1u);
-        handedOverPixels[slot] = uint(p.x) | uint(p.y) << 16;
+        handedOverWords[handedOverListStart() + slot] = uint(p.x) | uint(p.y) << 16;
+        atomicOr(handedOverWords[bit.x], bit.y);
         if (slot % 64u == 0u)
             atomicAdd(handedOverGroups[0], 1u);
         atomicAdd(glassHybridTraced, 1u);
@@ -52,9 +60,9 @@ void main() {
     }
 #endif
 #endif
-    if (!kTrace || uTraceSample == 0)
+    if (uTraceSample == 0)
         atomicAdd(glassWalkedPixels, 1u);
-    if (stored > kLayerCapacity && (!kTrace || uTraceSample == 0))
+    if (stored > kLayerCapacity && uTraceSample == 0)
         atomicAdd(glassOverflowPixels, 1u);
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
     glassBox(lo, hi);

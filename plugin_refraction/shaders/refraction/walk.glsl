@@ -73,11 +73,33 @@ uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (walk_trace.comp.glsl's indirect dispatch) and each pixel (x | y << 16).
+// work groups of 64 (walk_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
+// row, handedOverListStart words) and the list of the pixels (x | y << 16).
 layout(std430, binding = 10) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
-    uint handedOverPixels[];
+    uint handedOverWords[];
 };
+
+uint handedOverListStart() {
+    return (uint(uViewportSize.x) * uint(uViewportSize.y) + 31u) / 32u;
+}
+
+// Pixel p's bit of the hybrid's handed-over pixels.
+uvec2 handedOverBit(ivec2 p) {
+    uint i = uint(p.y) * uint(uViewportSize.x) + uint(p.x);
+    return uvec2(i / 32u, 1u << (i % 32u));
+}
+
+// The view direction of trace sample uTraceSample through pixel p: the pixel's centre first,
+// then jittered points of it (a fixed R2 sequence).
+vec3 sampleView(ivec2 p, vec3 centre) {
+    if (uTraceSample == 0)
+        return centre;
+    vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
+    vec4 sub =
+        uInverseProjection * vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+    return normalize(sub.xyz / sub.w);
+}
 
 float orderedToFloat(int i) {
     return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
@@ -379,6 +401,26 @@ struct Walk {
     int interfaces, steps;
 };
 
+// The hybrid's reasons to trace a pixel so far, each a bit of uHybridCriteria: the pixel, or
+// one where the walk crossed a surface, held more than K layers (1); the walk left the layers
+// where it found no surface and took Wyman's silhouette normal (2); it reflected totally and
+// followed the reflection (4: a chain of reflections, each searched with normals good to a few
+// degrees, bounded by tir-bounces; not a grazing exit, which the trace would not improve: on a
+// sphere, where light never reflects totally, such pixels lost 0.04 dB to DIR when handed
+// over); it crossed a surface whose normal was filtered near an outline (8).
+uint handedOverBy(Walk w, bool pixelOverflows) {
+    return uint(uHybridCriteria) & ((pixelOverflows || w.overflowed ? 1u : 0u) |
+                                    (w.fallback ? 2u : 0u) | (w.bounced ? 4u : 0u) |
+                                    (w.outline ? 8u : 0u));
+}
+
+// The hybrid's first sample hands pixels over, which the trace pass shades afresh: its walk
+// stops at the first reason (a debug view's goes on, to show the whole walk).
+bool stopsToHandOver(Walk w, bool pixelOverflows) {
+    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == 0 &&
+           handedOverBy(w, pixelOverflows) != 0u;
+}
+
 float mediumIor(uint medium, int channel) {
     return medium == 0u ? 1.0 : glassMaterials[medium - 1u].ior[channel];
 }
@@ -476,6 +518,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     Walk primary;
     for (int path = 0;; ++path) {
         while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
+            if (stopsToHandOver(w, false))
+                break;
             uint inside = topMedium(media);
             Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
                 ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
@@ -622,6 +666,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
 vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
     green = walkLayers(P1, V, N1, entryAttr, 1);
+    if (stopsToHandOver(green, false))
+        return vec3(0.0);
     float hitT;
     vec3 seen = walkSees(green, m.sigma.w, hitT);
     vec3 transmitted = seen * green.weight + green.reflected;
@@ -706,17 +752,11 @@ bool pixelEntry(ivec2 p, out Entry e) {
 // The traced path of trace sample uTraceSample through pixel p (its entry e), weighted: the
 // first from the capture's nearest layer at the pixel's centre (its normal map), traced from
 // the camera instead where the pixel overflowed (the fallback's normal is coarse); the others
-// from jittered points of the pixel (a fixed R2 sequence), their entry traced from the camera;
+// from jittered points of the pixel (sampleView), their entry traced from the camera;
 // what lies behind the glass at p where a ray meets none first. With the ray's counts.
 vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
-    vec3 V = e.V, P1 = e.P1;
+    vec3 V = sampleView(p, e.V), P1 = e.P1;
     uvec2 attr = e.attr;
-    if (uTraceSample > 0) {
-        vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
-        vec4 sub = uInverseProjection *
-                   vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
-        V = normalize(sub.xyz / sub.w);
-    }
     vec3 color;
     if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) && !traceEntry(V, p, P1, attr)) {
         walk.fallback = walk.tir = walk.bounced = walk.outline = walk.overflowed = false;

@@ -11,7 +11,7 @@ layout(rgba16f, binding = 0) uniform image2D uShaded; // the walk's colour targe
 void main() {
     if (gl_GlobalInvocationID.x >= handedOverCount)
         return;
-    uint pixel = handedOverPixels[gl_GlobalInvocationID.x];
+    uint pixel = handedOverWords[handedOverListStart() + gl_GlobalInvocationID.x];
     ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
     Entry e;
     pixelEntry(p, e); // the walk found it

@@ -98,9 +98,10 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                     samplers[count++] = {kTracedNormalMapNames[i], int(kMaterialUnit + i)};
                 }
             }
+            // The trace's and the hybrid's samples (a debug view shows the first alone).
             const int samples = c.settings.traceSamples;
-            const bool trace = c.settings.method == Settings::Method::Trace;
             const bool hybrid = c.settings.method == Settings::Method::Hybrid;
+            const int draws = c.settings.traces() && c.settings.debug == 0 ? samples : 1;
             auto prepare = [&](const gl::Program& program, int weights) {
                 c.setWalkUniforms(program);
                 c.setLayerUniforms(program);
@@ -108,18 +109,22 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                     program.set(samplers[i].first, samplers[i].second);
                 program.set("uTraceWeight", 1.0f / float(weights));
             };
-            prepare(*c.walk, trace ? samples : 1);
-            if (hybrid) { // an empty list of handed-over pixels: no work group
-                const std::size_t bytes =
-                    (4 + std::size_t(size.x) * std::size_t(size.y)) * sizeof(std::uint32_t);
+            prepare(*c.walk, draws);
+            if (hybrid) { // an empty list of handed-over pixels (no work group), no pixel's bit
+                const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+                const std::size_t bits = (pixels + 31) / 32;
+                const std::size_t bytes = (4 + bits + pixels) * sizeof(std::uint32_t);
                 if (gpu.handedOver.size() < bytes)
                     gpu.handedOver = gl::Buffer(bytes);
                 gpu.handedOver.fill(0, 2, 0u);
                 gpu.handedOver.fill(2 * sizeof(std::uint32_t), 2, 1u);
+                gpu.handedOver.fill(4 * sizeof(std::uint32_t), bits, 0u);
                 gl::bindStorage(kHandedOverBinding, gpu.handedOver);
             }
-            // The trace's samples one draw each, added up (their weights sum to 1).
-            for (int s = 0; s < (trace ? samples : 1); ++s) {
+            // The samples one draw each, added up (their weights sum to 1).
+            for (int s = 0; s < draws; ++s) {
+                if (hybrid && s == 1) // the pixels the first handed over
+                    gl::memoryBarrier(gl::BarrierStorage);
                 c.walk->set("uTraceSample", s);
                 c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
             }
