@@ -1,4 +1,4 @@
-// The frame's glass BVH: the world cage, its GPU build (Morton codes, bitonic sort, Karras'
+// The frame's glass BVH: the world mesh, its GPU build (Morton codes, bitonic sort, Karras'
 // hierarchy), the bottom-up refit and the cost that decides a rebuild, the d_N cast.
 #include "GlassBvh.h"
 
@@ -14,6 +14,7 @@ namespace {
 
 constexpr std::size_t kVertexFloats = 12; // common/vertex.glsl: position, normal, tangent
 constexpr std::uint32_t kCostOffset = 6 * sizeof(std::uint32_t); // bvh_build.comp.glsl's cost
+constexpr std::uint32_t kCostNodes = 8; // nodes a thread of the cost stage sums
 
 std::uint32_t groups(std::uint32_t threads) {
     return (threads + 63) / 64;
@@ -61,7 +62,7 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
     mUvs = gl::Buffer(uvs.size() * sizeof(glm::vec4), uvs.data());
 }
 
-void GlassBvh::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count,
+void GlassBvh::gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t count,
                       const glm::mat4& world, const BvhPrograms& programs) const {
     const gl::Program& gather = programs.gather;
     gather.use();
@@ -69,7 +70,7 @@ void GlassBvh::gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count
     gather.set("uNormalMatrix", glm::mat3(glm::transpose(glm::inverse(world))));
     gather.set("uBase", int(mBases[i]));
     gather.set("uVertexCount", int(count));
-    gl::bindStorage(0, cage);
+    gl::bindStorage(0, vertices);
     gl::bindStorage(1, mVertices);
     gl::dispatch(groups(count));
 }
@@ -139,7 +140,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
         mNext = (mNext + 1) % mMeasures.size();
         m.cost.fill(kCostOffset, 1, 0u);
         gl::bindStorage(7, m.cost);
-        run(programs.stages[5], 2 * n - 1, n);
+        run(programs.stages[5], (2 * n - 1 + kCostNodes - 1) / kCostNodes, n);
         m.fence.insert();
         m.pending = true;
         m.fresh = fresh;

@@ -1,5 +1,5 @@
-// The one structure over the frame's deformed glass: every glass part's deformed cage gathered
-// into one world-space cage, and a BVH over its static triangles built on the GPU (a linear BVH
+// The one structure over the frame's deformed glass: every glass part's deformed surface as
+// drawn (refined under subdivision) gathered into one world-space mesh, and a BVH over its static triangles built on the GPU (a linear BVH
 // from Morton codes, bvh_build.comp.glsl) and refitted to the deformed vertices every frame,
 // rebuilt when refitting has worn its surface-area cost past kRebuildRatio of the fresh tree's
 // (a moving character, an exploding pose); no CPU-GPU sync in a frame (the cost is read back
@@ -37,7 +37,7 @@ struct Bvh {
 /** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */
 struct BvhPrograms {
     std::array<gl::Program, 6> stages; ///< BVH_STAGE 1-6
-    gl::Program gather, cast;          ///< cage_gather.comp.glsl, normal_distance.comp.glsl
+    gl::Program gather, cast;          ///< mesh_gather.comp.glsl, normal_distance.comp.glsl
 };
 
 class GlassBvh {
@@ -53,13 +53,13 @@ public:
      *  v). */
     explicit GlassBvh(std::span<const scene::Primitive* const> parts);
 
-    /** Where part i's vertices start in the world cage and in distances(). */
+    /** Where part i's vertices start in the world mesh and in distances(). */
     std::uint32_t base(std::size_t i) const { return mBases[i]; }
-    /** Copies part i's deformed cage (`count` vertices in its mesh node's space, placed by
-     *  `world`) into the world cage at base(i). No sync. */
-    void gather(std::size_t i, const gl::Buffer& cage, std::uint32_t count, const glm::mat4& world,
-                const BvhPrograms& programs) const;
-    /** Builds the tree from the gathered cage when it has none or its cost has worn past
+    /** Copies part i's deformed vertices (`count` in its mesh node's space, placed by `world`)
+     *  into the world mesh at base(i). No sync. */
+    void gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t count,
+                const glm::mat4& world, const BvhPrograms& programs) const;
+    /** Builds the tree from the gathered mesh when it has none or its cost has worn past
      *  kRebuildRatio, else refits it; then measures its cost (read back frames later). */
     void update(const BvhPrograms& programs);
     /** A part's tag: its glass id (glass_materials.glsl), or kOpaqueTag with an opaque part's
@@ -71,15 +71,15 @@ public:
     void setTags(std::span<const std::uint32_t> partTags);
     /** Binds what a traversal reads (bvh.glsl) from binding `base`. */
     void bind(std::uint32_t base) const;
-    /** d_N (world units) per world-cage vertex into distances(). */
+    /** d_N (world units) per world-mesh vertex into distances(). */
     void castNormalDistances(const BvhPrograms& programs);
 
     const gl::Buffer& distances() const { return mDistances; }
-    /** The world cage (common/vertex.glsl's layout) and its triangles' indices into it. */
-    const gl::Buffer& cage() const { return mVertices; }
+    /** The world mesh (common/vertex.glsl's layout) and its triangles' indices into it. */
+    const gl::Buffer& mesh() const { return mVertices; }
     std::span<const std::uint32_t> triangles() const { return mTriangleIndices; }
     std::uint32_t triangleCount() const { return std::uint32_t(mTriangleIndices.size() / 3); }
-    /** The world cage's texture coordinates (TEXCOORD_0 in xy, _1 in zw; static), for the
+    /** The world mesh's texture coordinates (TEXCOORD_0 in xy, _1 in zw; static), for the
      *  normal maps at traced hits. */
     const gl::Buffer& uvs() const { return mUvs; }
     /** Builds so far (the first included). */
@@ -95,7 +95,7 @@ private:
     void readCosts();
 
     std::vector<std::uint32_t> mBases;
-    std::vector<std::uint32_t> mTriangleIndices; ///< into the world cage
+    std::vector<std::uint32_t> mTriangleIndices; ///< into the world mesh
     std::vector<std::uint32_t> mPartTriangles;   ///< each part's triangle count
     std::vector<std::uint32_t> mPartTags;
     std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two

@@ -85,15 +85,13 @@ struct GpuState {
     gl::Framebuffer framebuffer;
     gl::VertexArray emptyVao;
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
-    /** The BVH over the frame's glass, and for the tracing methods its opaque parts too
-     *  (parts: its draw items' (character, instance, primitive), in frame order), rebuilt from
-     *  scratch when the parts change; with subdivision d_N carried to each part's drawn
-     *  vertices by the refinement stencils. */
+    /** The BVH over the frame's glass as drawn, and for the tracing methods its opaque parts
+     *  too (parts: its draw items' (character, instance, primitive), in frame order), rebuilt
+     *  from scratch when the parts change. */
     struct Glass {
         using Part = std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>;
         std::vector<Part> parts;
         std::unique_ptr<GlassBvh> bvh;
-        std::map<Part, gl::Buffer> drawn; // with subdivision: one float per drawn vertex
         /** The frame's items in the BVH, their parts and tags (GlassBvh::setTags; refilled in
          *  place). */
         std::tuple<std::vector<const render::DrawItem*>, std::vector<Part>,

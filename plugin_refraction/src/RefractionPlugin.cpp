@@ -87,7 +87,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
         {&mGpu->rectangleGrow, nullptr, "refraction/rectangle.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
-        {&mGpu->bvh.gather, nullptr, "refraction/cage_gather.comp.glsl", {}},
+        {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
         {&mGpu->bvh.stages[0], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 1"}},
         {&mGpu->bvh.stages[1], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 2"}},
         {&mGpu->bvh.stages[2], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 3"}},

@@ -118,6 +118,10 @@ public:
         const Reference r = reference(time);
         return capture::score(render(time), r.image, &r.mask).psnr;
     }
+    /** Refines every character to `level` (Renderer::setSubdivisionLevel). */
+    void setSubdivisionLevel(int level) {
+        ASSERT_TRUE(mRenderer->setSubdivisionLevel(level).ok());
+    }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
     const render::Camera& camera() const { return mCamera; }
     void setCamera(const render::Camera& camera) { mCamera = camera; }

@@ -29,7 +29,6 @@ struct GpuDeformer::Refined {
     gl::Buffer refined;                    // 3 floats per refined vertex
     gl::Buffer limit, du, dv;              // 3 floats per refined vertex
     gl::Buffer tangents;                   // 4 floats per refined face-varying value
-    gl::Buffer scalarRefined, scalarLimit; // refineScalar(): 1 float per refined vertex
 };
 
 struct GpuDeformer::Evaluators {
@@ -38,8 +37,8 @@ struct GpuDeformer::Evaluators {
     static constexpr int kStride = int(sizeof(VertexGpu) / sizeof(float));
     // cage positions -> refined positions; refined -> limit + du + dv; cage tangents -> refined
     const Desc cagePosition{0, 3, kStride}, cageTangent{8, 4, kStride}, packed3{0, 3, 3},
-        packed4{0, 4, 4}, packed1{0, 1, 1};
-    std::unique_ptr<Evaluator> refine, limit, faceVarying, scalar;
+        packed4{0, 4, 4};
+    std::unique_ptr<Evaluator> refine, limit, faceVarying;
 };
 
 GpuDeformer::~GpuDeformer() = default;
@@ -74,18 +73,13 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
         if (!packProgram)
             return core::Error{"deform::GpuDeformer::create(): " + packProgram.error().message};
         d->mPack = std::move(*packProgram);
-        auto gatherProgram = gl::Program::compute(shaders, "deform/corner_gather.comp.glsl");
-        if (!gatherProgram)
-            return core::Error{"deform::GpuDeformer::create(): " + gatherProgram.error().message};
-        d->mGather = std::move(*gatherProgram);
         auto e = std::make_unique<Evaluators>();
         const OpenSubdiv::Osd::BufferDescriptor none;
         e->refine.reset(Evaluators::Evaluator::Create(e->cagePosition, e->packed3, none, none));
         e->limit.reset(
             Evaluators::Evaluator::Create(e->packed3, e->packed3, e->packed3, e->packed3));
         e->faceVarying.reset(Evaluators::Evaluator::Create(e->cageTangent, e->packed4, none, none));
-        e->scalar.reset(Evaluators::Evaluator::Create(e->packed1, e->packed1, none, none));
-        if (!e->refine || !e->limit || !e->faceVarying || !e->scalar)
+        if (!e->refine || !e->limit || !e->faceVarying)
             return core::Error{"deform::GpuDeformer::create(): OpenSubdiv's GL compute "
                                "evaluator did not compile"};
         d->mEvaluators = std::move(e);
@@ -123,8 +117,6 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
                 r.du = gl::Buffer(vertices * 3 * sizeof(float));
                 r.dv = gl::Buffer(vertices * 3 * sizeof(float));
                 r.tangents = gl::Buffer(values * 4 * sizeof(float));
-                r.scalarRefined = gl::Buffer(vertices * sizeof(float));
-                r.scalarLimit = gl::Buffer(vertices * sizeof(float));
                 refined.push_back(std::move(r));
             }
         }
@@ -301,34 +293,6 @@ GpuDeformer::Cage GpuDeformer::cage(std::size_t i, std::size_t p) const {
         return {*gp.deformed, *gp.indices};
     return {mRefined.at(mInstances.at(i).deformation).at(p).cage,
             mUpload->primitive(mInstances.at(i).mesh, p).cageIndices};
-}
-
-void GpuDeformer::refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
-                               const gl::Buffer& drawnValues, std::uint32_t cageOffset) const {
-    ENGINE_CHECK(subdivisionLevel() > 0, "GpuDeformer::refineScalar() needs a subdivision level");
-    const GpuPrimitive& gp = mInstances.at(i).primitives.at(p);
-    const GpuModel::Primitive& s = mUpload->primitive(mInstances[i].mesh, p);
-    const Refined& r = mRefined.at(mInstances[i].deformation).at(p);
-    const Evaluators& e = *mEvaluators;
-    const OpenSubdiv::Osd::BufferDescriptor none;
-    const GpuStencils& t = *s.refine;
-    const OpenSubdiv::Osd::BufferDescriptor cage{int(cageOffset), 1, 1};
-    e.scalar->EvalStencils(cageValues.id(), cage, r.scalarRefined.id(), e.packed1, 0, none, 0, none,
-                           t.sizes.id(), t.offsets.id(), t.indices.id(), t.weights.id(), 0, 0, 0,
-                           t.count);
-    gl::memoryBarrier(gl::BarrierStorage);
-    const GpuStencils& l = *s.limit;
-    e.scalar->EvalStencils(r.scalarRefined.id(), e.packed1, r.scalarLimit.id(), e.packed1, 0, none,
-                           0, none, l.sizes.id(), l.offsets.id(), l.indices.id(), l.weights.id(), 0,
-                           0, 0, l.count);
-    gl::memoryBarrier(gl::BarrierStorage);
-    mGather.use();
-    gl::bindStorage(0, s.corners);
-    gl::bindStorage(1, r.scalarLimit);
-    gl::bindStorage(2, drawnValues);
-    mGather.set("uCornerCount", int(gp.vertexCount));
-    gl::dispatch(groups(gp.vertexCount));
-    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
 }
 
 const Subdivision* GpuDeformer::subdivision(std::size_t i, std::size_t p) const {

@@ -9,7 +9,7 @@
 //   5 refit: from every leaf up, each node's box once both children have theirs (the second to
 //     arrive computes it), the leaves' corners copied in leaf order
 //   6 cost: the surface-area cost of the tree, sum of each node's area over the root's (fixed
-//     point, 1/256), which tells when a refitted tree has degraded enough to rebuild
+//     point, 1/256 a node), which tells when a refitted tree has degraded enough to rebuild
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
@@ -21,7 +21,7 @@ layout(std430, binding = 8) coherent buffer Keys { uint keys[]; }; // sorted wit
 layout(std430, binding = 9) coherent buffer Parents { int parents[]; };
 layout(std430, binding = 10) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
 
-uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), nodes (6)
+uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), nodes / 8 (6)
 uniform int uTriangles; // n
 uniform int uSortSize, uSortStride; // stage 3
 
@@ -66,8 +66,31 @@ float area(vec3 lo, vec3 hi) {
     return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
+#if BVH_STAGE == 6
+shared uint groupCost;
+const int kCostNodes = 8; // GlassBvh.cpp's kCostNodes
+#endif
+
 void main() {
     int i = int(gl_GlobalInvocationID.x);
+#if BVH_STAGE == 6
+    // kCostNodes nodes a thread, a work group's summed in shared memory, then added at once: an
+    // atomic a node on the one counter cost more than the refit itself on a CPU rasteriser.
+    if (gl_LocalInvocationIndex == 0u)
+        groupCost = 0u;
+    barrier();
+    float root = max(area(bounds[0].xyz, bounds[1].xyz), 1e-30);
+    uint sum = 0u;
+    for (int node = i * kCostNodes; node < min(i * kCostNodes + kCostNodes, 2 * uTriangles - 1);
+         ++node)
+        sum += uint(round(clamp(area(bounds[2 * node].xyz, bounds[2 * node + 1].xyz) / root, 0.0,
+                                1.0) * 256.0));
+    atomicAdd(groupCost, sum);
+    barrier();
+    if (gl_LocalInvocationIndex == 0u)
+        atomicAdd(cost, groupCost);
+    return;
+#endif
     if (i >= uCount)
         return;
 #if BVH_STAGE == 1
@@ -157,9 +180,5 @@ void main() {
         memoryBarrierBuffer();
         p = parents[p];
     }
-#elif BVH_STAGE == 6
-    float root = max(area(bounds[0].xyz, bounds[1].xyz), 1e-30);
-    float share = area(bounds[2 * i].xyz, bounds[2 * i + 1].xyz) / root;
-    atomicAdd(cost, uint(round(clamp(share, 0.0, 1.0) * 256.0)));
 #endif
 }

@@ -1,4 +1,4 @@
-// d_N (ISR §3): for every vertex of the world cage, the exact distance along -N to the nearest
+// d_N (ISR §3): for every vertex of the world mesh, the exact distance along -N to the nearest
 // other glass surface, by traversing the refitted BVH (bvh.glsl). Misses (open meshes) give -1.
 #include "refraction/bvh.glsl"
 

@@ -7,9 +7,9 @@
 
 #include "common/normal_map.glsl"
 int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
-// The world cage's texture coordinates (GlassBvh::uvs) and the glass normal maps
+// The world mesh's texture coordinates (GlassBvh::uvs) and the glass normal maps
 // (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
-layout(std430, binding = BVH_BINDINGS + 7) readonly buffer CageUv { vec4 cageUvs[]; };
+layout(std430, binding = BVH_BINDINGS + 7) readonly buffer MeshUv { vec4 meshUvs[]; };
 uniform sampler2D uTracedNormalMaps[4];
 
 // Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index
@@ -46,7 +46,7 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     if (!opaque)
         m = glassMaterials[tag];
     if (!opaque && m.normalMap.x >= 0.0) { // as the capture and the reference read it
-        vec4 uvs = w.x * cageUvs[v.x] + w.y * cageUvs[v.y] + w.z * cageUvs[v.z];
+        vec4 uvs = w.x * meshUvs[v.x] + w.y * meshUvs[v.y] + w.z * meshUvs[v.z];
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
                        w.z * vertices[v.z].tangent;
         vec3 st = vec3(m.normalMap.z != 0.0 ? uvs.zw : uvs.xy, 1.0);

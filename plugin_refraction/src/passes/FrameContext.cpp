@@ -109,23 +109,16 @@ void FrameContext::drawGlass(
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
         gl::bindStorage(kVerticesBinding, *item.gpu->deformed);
         gl::bindStorage(kUvsBinding, *item.gpu->uvs);
-        // d_N: the world cage's values from this part's base, or (subdivision) the part's own
-        // drawn values.
+        // d_N: the BVH's values from this part's base.
         const GpuState::Glass& glass = gpu->glass;
-        const GpuState::Glass::Part key{item.key, item.instance, item.primitiveIndex};
-        const int part = settings.usesNormalDistance() && glass.bvh ? glass.find(key) : -1;
-        const bool hasDistance = part >= 0;
-        const gl::Buffer* values = nullptr;
-        int base = 0;
-        if (hasDistance) {
-            const auto drawn = glass.drawn.find(key);
-            values = drawn != glass.drawn.end() ? &drawn->second : &glass.bvh->distances();
-            base = drawn != glass.drawn.end() ? 0 : int(glass.bvh->base(std::size_t(part)));
-        }
-        program.set("uHasNormalDistance", hasDistance ? 1 : 0);
-        program.set("uDistanceBase", base);
+        const int part = settings.usesNormalDistance() && glass.bvh
+                             ? glass.find({item.key, item.instance, item.primitiveIndex})
+                             : -1;
+        program.set("uHasNormalDistance", part >= 0 ? 1 : 0);
+        program.set("uDistanceBase", part >= 0 ? int(glass.bvh->base(std::size_t(part))) : 0);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
-        gl::bindStorage(kDistancesBinding, values ? *values : *item.gpu->deformed);
+        gl::bindStorage(kDistancesBinding,
+                        part >= 0 ? glass.bvh->distances() : *item.gpu->deformed);
         if (perItem)
             perItem(item, index);
         gl::apply(state);

@@ -1,6 +1,7 @@
-// `refraction.glass_bvh` (ISR, trace, hybrid): every glass part's deformed cage (for the
-// tracing methods every opaque part's too) gathered into the world cage, the glass BVH refitted
-// (or rebuilt) and its triangles' tags; for ISR d_N cast from every vertex (GlassBvh).
+// `refraction.glass_bvh` (ISR, trace, hybrid): every glass part's deformed surface as drawn
+// (refined under subdivision; for the tracing methods every opaque part's too) gathered into
+// the world mesh, the glass BVH refitted (or rebuilt) and its triangles' tags; for ISR d_N cast
+// from every vertex (GlassBvh).
 #include "Passes.h"
 
 #include "engine/deform/GpuDeformer.h"
@@ -70,32 +71,17 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
             if (!glass.bvh || parts != glass.parts) { // new, or other glass parts
                 std::vector<const scene::Primitive*> primitives;
                 for (const render::DrawItem* item : items)
-                    primitives.push_back(item->primitive);
+                    primitives.push_back(item->gpu->topology);
                 glass.parts = parts;
                 glass.bvh = std::make_unique<GlassBvh>(primitives);
-                glass.drawn.clear();
             }
-            for (std::size_t i = 0; i < items.size(); ++i) {
-                const render::DrawItem& item = *items[i];
-                glass.bvh->gather(i, item.geometry->cage(item.instance, item.primitiveIndex).vertices,
-                                  std::uint32_t(item.primitive->vertexCount()), item.world,
-                                  gpu.bvh);
-            }
+            for (std::size_t i = 0; i < items.size(); ++i)
+                glass.bvh->gather(i, *items[i]->gpu->deformed, items[i]->gpu->vertexCount,
+                                  items[i]->world, gpu.bvh);
             glass.bvh->update(gpu.bvh);
             glass.bvh->setTags(tags);
-            if (!c.settings.usesNormalDistance())
-                return;
-            glass.bvh->castNormalDistances(gpu.bvh);
-            for (std::size_t i = 0; i < items.size(); ++i) {
-                const render::DrawItem& item = *items[i];
-                if (item.geometry->subdivisionLevel() == 0)
-                    continue;
-                gl::Buffer& drawn = glass.drawn[parts[i]];
-                if (!drawn)
-                    drawn = gl::Buffer(std::size_t(item.gpu->vertexCount) * sizeof(float));
-                item.geometry->refineScalar(item.instance, item.primitiveIndex,
-                                            glass.bvh->distances(), drawn, glass.bvh->base(i));
-            }
+            if (c.settings.usesNormalDistance())
+                glass.bvh->castNormalDistances(gpu.bvh);
         });
     buffers.distances = pass.distances;
 }

@@ -120,13 +120,6 @@ public:
         const gl::Buffer& indices;
     };
     Cage cage(std::size_t i, std::size_t p) const;
-    /** Carries one float per cage vertex (`cageValues`, e.g. a distance measured on the
-     *  deformed cage) to the drawn vertices through the same stencils as the positions
-     *  (refined, then limit): `drawnValues` gets one float per drawn vertex. No sync. Only
-     *  with a subdivision level (at level 0 the cage is what is drawn). The cage's values start
-     *  at float `cageOffset` of `cageValues`. */
-    void refineScalar(std::size_t i, std::size_t p, const gl::Buffer& cageValues,
-                      const gl::Buffer& drawnValues, std::uint32_t cageOffset = 0) const;
     /** The refinement of instance `i`'s primitive `p`; null at level 0. */
     const Subdivision* subdivision(std::size_t i, std::size_t p) const;
 
@@ -146,7 +139,7 @@ private:
     std::vector<Staged> mStaged; // per instance, by the last stage()
     std::vector<glm::mat4> mScratchMatrices;
     std::unique_ptr<PoseUpload> mOwnUpload; // update()'s
-    gl::Program mDeform, mFlatNormals, mPack, mGather;
+    gl::Program mDeform, mFlatNormals, mPack;
 };
 
 } // namespace deform

@@ -1,11 +1,11 @@
-// ISR's d_N per character: copies one glass primitive's deformed cage into the character's
-// combined cage at uBase, in world space (each primitive's mesh node has its own matrix), so
-// that one BVH over all of a character's glass answers every vertex's ray.
+// The glass BVH's world mesh (GlassBvh::gather): copies one part's deformed vertices as drawn
+// into it at uBase, in world space (each part's mesh node has its own matrix), so that one BVH
+// over every part answers every ray.
 #include "common/vertex.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Cage { DeformedVertex cage[]; };
-layout(std430, binding = 1) writeonly buffer Combined { DeformedVertex combined[]; };
+layout(std430, binding = 0) readonly buffer Part { DeformedVertex part[]; };
+layout(std430, binding = 1) writeonly buffer World { DeformedVertex world[]; };
 
 uniform mat4 uWorld;        // mesh node -> world
 uniform mat3 uNormalMatrix; // inverse transpose of uWorld's 3x3
@@ -16,10 +16,10 @@ void main() {
     uint v = gl_GlobalInvocationID.x;
     if (v >= uint(uVertexCount))
         return;
-    DeformedVertex d = cage[v];
+    DeformedVertex d = part[v];
     d.position = vec4((uWorld * vec4(d.position.xyz, 1.0)).xyz, 1.0);
     d.normal = vec4(normalize(uNormalMatrix * d.normal.xyz), 0.0);
     vec3 tangent = mat3(uWorld) * d.tangent.xyz; // none (zero) where no normal map needs one
     d.tangent.xyz = dot(tangent, tangent) > 0.0 ? normalize(tangent) : tangent;
-    combined[uint(uBase) + v] = d;
+    world[uint(uBase) + v] = d;
 }
