@@ -32,7 +32,7 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
         auto psnr = [&](const char* method) {
             rig.set("method", method);
             rig.set("search-steps", "8");
-            return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+            return rig.psnrAgainst(reference);
         };
         const double traced = psnr("trace"), searched = psnr("dir");
         std::printf("%s at pixel centres, against the reference: trace %.2f dB, DIR 8 %.2f dB\n",
@@ -55,7 +55,7 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentresThroughACharacter) {
     const WorldRig::Reference reference = rig.reference(0.3, true);
     auto psnr = [&](const char* method) {
         rig.set("method", method);
-        return capture::score(rig.render(0.3), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference, 0.3);
     };
     const double traced = psnr("trace"), searched = psnr("dir");
     std::printf("default figure at pixel centres, against the reference: trace %.2f dB, DIR 8 "
@@ -75,7 +75,7 @@ TEST_F(Trace, GlassBehindGlassPastTheCapturesLayersStaysClean) {
         rig.set("method", method);
         rig.set("search-steps", "8");
         rig.set("layer-capacity", capacity);
-        return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference);
     };
     const double roomy = psnr("trace", "4"), tight = psnr("trace", "2"),
                  searched = psnr("dir", "2");
@@ -96,7 +96,7 @@ TEST_F(Trace, ARayMeetsAnOpaquePartInTheBvh) {
     auto psnr = [&](const char* method) {
         rig.set("method", method);
         rig.set("search-steps", "8");
-        return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference);
     };
     const double traced = psnr("trace"), searched = psnr("dir");
     std::printf("opaque core in a glass sphere, against the reference: trace %.2f dB, DIR 8 %.2f\n",
@@ -117,7 +117,7 @@ TEST_F(Trace, ACrowdOfOverlappingCharactersPastKStaysClean) {
     auto psnr = [&](const char* method, const char* samples) {
         rig.set("method", method);
         rig.set("trace-samples", samples);
-        return capture::score(rig.render(0.5), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference, 0.5);
     };
     const double searched = psnr("dir", "1"), traced = psnr("trace", "4");
     std::printf("crowd of five glass figures, 192x192, against the reference: DIR 8 %.2f dB, "
@@ -135,7 +135,7 @@ TEST_F(Trace, SubPixelSamplesComeCloserToTheReference) {
     const WorldRig::Reference reference = rig.reference();
     auto psnr = [&](const char* samples) {
         rig.set("trace-samples", samples);
-        return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference);
     };
     const double one = psnr("1"), four = psnr("4");
     std::printf("two overlapping spheres, trace against the 16-ray reference: 1 sample %.2f dB, "
@@ -157,7 +157,7 @@ TEST_F(Trace, TheHybridTracesThePixelsTheLayersCannotHold) {
     auto psnr = [&](const char* method, const char* criteria) {
         rig.set("method", method);
         rig.set("hybrid-criteria", criteria);
-        return capture::score(rig.render(), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference);
     };
     const double searched = psnr("dir", "15"), traced = psnr("trace", "15");
     const double overflow = psnr("hybrid", "1");
@@ -196,7 +196,7 @@ TEST_F(Trace, TheHybridSamplesTheShareItWalks) {
     const WorldRig::Reference reference = rig.reference(0.3);
     auto psnr = [&](const char* samples) {
         rig.set("trace-samples", samples);
-        return capture::score(rig.render(0.3), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference, 0.3);
     };
     const double one = psnr("1"), eight = psnr("8");
     const refraction::LayerStats stats = rig.plugin().layerStats();
@@ -244,7 +244,7 @@ TEST_F(Trace, EveryHitReadsItsNormalMap) {
     rig.set("method", "trace");
     rig.set("trace-samples", "16");
     const WorldRig::Reference reference = rig.reference(0.9);
-    const double psnr = capture::score(rig.render(0.9), reference.image, &reference.mask).psnr;
+    const double psnr = rig.psnrAgainst(reference, 0.9);
     std::printf("parts figure, trace (16 samples) against the reference: %.2f dB\n", psnr);
     EXPECT_GE(psnr, 28.0);
 }
@@ -261,7 +261,7 @@ TEST_F(Trace, EachSampleIsADrawOfItsOwnAndCounted) {
     const WorldRig::Reference reference = rig.reference(0.3);
     auto psnr = [&](const char* samples) {
         rig.set("trace-samples", samples);
-        return capture::score(rig.render(0.3), reference.image, &reference.mask).psnr;
+        return rig.psnrAgainst(reference, 0.3);
     };
     const double four = psnr("4"), sixteen = psnr("16");
     const refraction::LayerStats stats = rig.plugin().layerStats();

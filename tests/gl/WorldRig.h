@@ -113,11 +113,12 @@ public:
         r.traced = std::move(*traced);
         return r;
     }
-    /** Masked PSNR of the frame at `time` against the reference at the same time. */
-    double psnrAgainstReference(double time = 0.0) {
-        const Reference r = reference(time);
+    /** Masked PSNR of the frame at `time` against `r`. */
+    double psnrAgainst(const Reference& r, double time = 0.0) {
         return capture::score(render(time), r.image, &r.mask).psnr;
     }
+    /** Masked PSNR of the frame at `time` against the reference at the same time. */
+    double psnrAgainstReference(double time = 0.0) { return psnrAgainst(reference(time), time); }
     /** Refines every character to `level` (Renderer::setSubdivisionLevel). */
     void setSubdivisionLevel(int level) {
         ASSERT_TRUE(mRenderer->setSubdivisionLevel(level).ok());
