@@ -35,19 +35,21 @@ struct LayerStats {
     std::uint32_t walkedPixels = 0;   ///< glass pixels the walk shaded
     std::uint32_t hybridTraced = 0;   ///< method hybrid: those it traced
     /** Those it traced for each reason: more than K layers, the walk left the layers, a total
-     *  internal reflection, a crossing near an outline (a pixel may have several). */
+     *  internal reflection, a crossing near an outline (the reasons met where its walk stopped:
+     *  a pixel may have several). */
     std::array<std::uint32_t, 4> hybridBy{};
 };
 
-/** Parameters (ParameterSet names, also glass-capture flags): method opaque|sir|isr|dir,
- *  glass auto|all, ior (0: the material's), dispersion (-1: the material's), tint (multiplies
- *  the attenuation colour), absorption-distance (0: the material's), fresnel exact|schlick|off,
- *  search-steps 1..16, surfaces layers|two-surface, layer-capacity 1..8, interfaces 1..32,
- *  march-steps 1..64, tir reflect|clamp, tir-bounces, back-surface farthest|first,
- *  geometry-passes one|two, dispersion-search shared|per-channel, nearby on|off, outline-aa
- *  on|off, debug
+/** Parameters (ParameterSet names, also glass-capture flags; Settings.cpp's table has each
+ *  one's help): method opaque|sir|isr|dir|trace|hybrid, glass auto|all, ior (0: the
+ *  material's), dispersion (-1: the material's), tint (multiplies the attenuation colour),
+ *  absorption-distance (0: the material's), fresnel exact|schlick|off, search-steps 1..16,
+ *  surfaces layers|two-surface, layer-capacity 1..8, interfaces 1..32, march-steps 1..64, tir
+ *  reflect|clamp, tir-bounces, back-surface farthest|first, geometry-passes one|two,
+ *  dispersion-search shared|per-channel, trace-samples 1..16, hybrid-criteria 1..15, nearby
+ *  on|off, outline-aa on|off, debug
  *  none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction|layer-count|
- *  overflow. */
+ *  overflow|hybrid. */
 class RefractionPlugin final : public plugin::Plugin {
 public:
     RefractionPlugin();
