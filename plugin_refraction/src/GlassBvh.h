@@ -1,10 +1,10 @@
-// The one structure over the frame's deformed glass: every glass part's deformed surface as
-// drawn (refined under subdivision) gathered into one world-space mesh, and a BVH over its static triangles built on the GPU (a linear BVH
-// from Morton codes, bvh_build.comp.glsl) and refitted to the deformed vertices every frame,
-// rebuilt when refitting has worn its surface-area cost past kRebuildRatio of the fresh tree's
-// (a moving character, an exploding pose); no CPU-GPU sync in a frame (the cost is read back
-// frames later, once a fence says it is there). ISR's d_N is cast against it (one ray per vertex
-// along -N, exact nearest hit). Private to the plugin.
+// The one structure over the frame's deformed glass: every glass part's deformed surface as drawn
+// (refined under subdivision) gathered into one world-space mesh, and a BVH over its static
+// triangles built on the GPU (a linear BVH from Morton codes, bvh_build.comp.glsl) and refitted to
+// the deformed vertices every frame, rebuilt when refitting has worn its surface-area cost past
+// kRebuildRatio of the fresh tree's (a moving character, an exploding pose); no CPU-GPU sync in a
+// frame (the cost is read back frames later, once a fence says it is there). ISR's d_N is cast
+// against it (one ray per vertex along -N, exact nearest hit). Private to the plugin.
 #pragma once
 
 #include "engine/gl/Buffer.h"
