@@ -64,7 +64,7 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
                  "glass material without a normal map and back-surface=farthest, else two), or "
                  "the papers' back-face pass then front-face pass; layers always draw once"},
         {.name = "trace-samples", .label = "Trace samples", .type = Type::Int, .min = 1,
-         .max = 16, .defaultValue = 1,
+         .max = 64, .defaultValue = 1,
          .help = "trace and hybrid: rays per glass pixel, the first at its centre, the others "
                  "jittered (the hybrid's walk enters them on the plane of the pixel's nearest "
                  "layer)"},

@@ -76,7 +76,7 @@ characters; T is the scene time); several MODELs are placed side by side.
                       the papers' nearest front and one back surface
   --outline-aa on|off layers: the outlines of smooth glass anti-aliased (default on)
   --trace-samples S   trace and hybrid: rays per glass pixel, the first at its centre, the
-                      others jittered within it (1..16, default 1)
+                      others jittered within it (1..64, default 1)
   --hybrid-criteria C hybrid: what hands a pixel to the trace, a sum of 1 (more than K layers),
                       2 (the walk left the layers), 4 (a total internal reflection it
                       followed), 8 (a crossing near an outline); default 15, all

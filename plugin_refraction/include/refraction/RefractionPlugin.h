@@ -46,7 +46,7 @@ struct LayerStats {
  *  absorption-distance (0: the material's), fresnel exact|schlick|off, search-steps 1..16,
  *  surfaces layers|two-surface, layer-capacity 1..8, interfaces 1..32, march-steps 1..64, tir
  *  reflect|clamp, tir-bounces, back-surface farthest|first, geometry-passes one|two,
- *  dispersion-search shared|per-channel, trace-samples 1..16, hybrid-criteria 1..15, nearby
+ *  dispersion-search shared|per-channel, trace-samples 1..64, hybrid-criteria 1..15, nearby
  *  on|off, outline-aa on|off, debug
  *  none|back-depth|back-normal|dv|dn|exit-uv|steps|tir|exit-point|exit-direction|layer-count|
  *  overflow|hybrid. */
