@@ -17,6 +17,13 @@ using test::WorldRig;
 
 class Trace : public test::GlTest {};
 
+/** Masked PSNR of `rig`'s frame at `time` with `samples` rays a pixel, against `reference`. */
+double psnrWithSamples(WorldRig& rig, const WorldRig::Reference& reference, const char* samples,
+                       double time = 0.0) {
+    rig.set("trace-samples", samples);
+    return rig.psnrAgainst(reference, time);
+}
+
 TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
     // One ray through each pixel's centre on both sides (no outline blending on the GPU): the
     // same interfaces, media, Fresnel, refraction and lookups, so the images agree but for
@@ -133,11 +140,8 @@ TEST_F(Trace, SubPixelSamplesComeCloserToTheReference) {
     rig.set("method", "trace");
     rig.set("outline-aa", "off");
     const WorldRig::Reference reference = rig.reference();
-    auto psnr = [&](const char* samples) {
-        rig.set("trace-samples", samples);
-        return rig.psnrAgainst(reference);
-    };
-    const double one = psnr("1"), four = psnr("4");
+    const double one = psnrWithSamples(rig, reference, "1"),
+                 four = psnrWithSamples(rig, reference, "4");
     std::printf("two overlapping spheres, trace against the 16-ray reference: 1 sample %.2f dB, "
                 "4 samples %.2f dB\n",
                 one, four);
@@ -194,11 +198,8 @@ TEST_F(Trace, TheHybridSamplesTheShareItWalks) {
     rig.set("method", "hybrid");
     rig.set("hybrid-criteria", "1");
     const WorldRig::Reference reference = rig.reference(0.3);
-    auto psnr = [&](const char* samples) {
-        rig.set("trace-samples", samples);
-        return rig.psnrAgainst(reference, 0.3);
-    };
-    const double one = psnr("1"), eight = psnr("8");
+    const double one = psnrWithSamples(rig, reference, "1", 0.3),
+                 eight = psnrWithSamples(rig, reference, "8", 0.3);
     const refraction::LayerStats stats = rig.plugin().layerStats();
     std::printf("default figure, hybrid handing over the overflow, against the reference: 1 "
                 "sample %.2f dB, 8 samples %.2f dB (%u of %u glass pixels traced)\n",
@@ -259,11 +260,8 @@ TEST_F(Trace, EachSampleIsADrawOfItsOwnAndCounted) {
     rig.set("dispersion-search", "per-channel");
     rig.set("interfaces", "32");
     const WorldRig::Reference reference = rig.reference(0.3);
-    auto psnr = [&](const char* samples) {
-        rig.set("trace-samples", samples);
-        return rig.psnrAgainst(reference, 0.3);
-    };
-    const double four = psnr("4"), sixteen = psnr("16");
+    const double four = psnrWithSamples(rig, reference, "4", 0.3),
+                 sixteen = psnrWithSamples(rig, reference, "16", 0.3);
     const refraction::LayerStats stats = rig.plugin().layerStats();
     std::printf("default figure, per channel, 32 interfaces, trace against the reference: 4 "
                 "samples %.2f dB, 16 samples %.2f dB; %llu rays, %.1f nodes a ray, at most %u "

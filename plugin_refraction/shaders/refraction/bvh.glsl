@@ -1,8 +1,9 @@
-// The BVH over the frame's deformed glass (GlassBvh.h): the world mesh of every glass part as
-// drawn (and for the tracing methods every opaque one), its static triangles, and a linear BVH
-// over them built on the GPU (bvh_build.comp.glsl: Morton codes of the triangles' centroids,
-// sorted; Karras 2012's hierarchy) and refitted to the deformed vertices every frame. Internal nodes 0..n-2 (the root is node 0), leaf k (one
-// triangle, the k-th in Morton order) is node n-1+k; with one triangle the root is that leaf.
+// The BVH over the frame's deformed glass (GlassBvh.h): the world mesh of every glass part as drawn
+// (and for the tracing methods every opaque one), its static triangles, and a linear BVH over them
+// built on the GPU (bvh_build.comp.glsl: Morton codes of the triangles' centroids, sorted; Karras
+// 2012's hierarchy) and refitted to the deformed vertices every frame. Internal nodes 0..n-2 (the
+// root is node 0), leaf k (one triangle, the k-th in Morton order) is node n-1+k; with one triangle
+// the root is that leaf.
 #ifndef REFRACTION_BVH_GLSL
 #define REFRACTION_BVH_GLSL
 #include "common/vertex.glsl"

@@ -21,7 +21,7 @@ layout(std430, binding = 8) coherent buffer Keys { uint keys[]; }; // sorted wit
 layout(std430, binding = 9) coherent buffer Parents { int parents[]; };
 layout(std430, binding = 10) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
 
-uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), nodes / 8 (6)
+uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), GlassBvh's (6)
 uniform int uTriangles; // n
 uniform int uSortSize, uSortStride; // stage 3
 
@@ -68,21 +68,21 @@ float area(vec3 lo, vec3 hi) {
 
 #if BVH_STAGE == 6
 shared uint groupCost;
-const int kCostNodes = 8; // GlassBvh.cpp's kCostNodes
 #endif
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
 #if BVH_STAGE == 6
-    // kCostNodes nodes a thread, a work group's summed in shared memory, then added at once: an
-    // atomic a node on the one counter cost more than the refit itself on a CPU rasteriser.
+    // The 2n - 1 nodes shared among uCount threads, a work group's sums added in shared memory,
+    // then to the counter at once: an atomic a node on the one counter cost more than the refit
+    // itself on a CPU rasteriser.
     if (gl_LocalInvocationIndex == 0u)
         groupCost = 0u;
     barrier();
     float root = max(area(bounds[0].xyz, bounds[1].xyz), 1e-30);
+    int nodes = 2 * uTriangles - 1, each = (nodes + uCount - 1) / uCount;
     uint sum = 0u;
-    for (int node = i * kCostNodes; node < min(i * kCostNodes + kCostNodes, 2 * uTriangles - 1);
-         ++node)
+    for (int node = i * each; node < min(i * each + each, nodes); ++node)
         sum += uint(round(clamp(area(bounds[2 * node].xyz, bounds[2 * node + 1].xyz) / root, 0.0,
                                 1.0) * 256.0));
     atomicAdd(groupCost, sum);
