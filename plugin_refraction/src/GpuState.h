@@ -61,7 +61,8 @@ struct GpuState {
      *  punctual lights). */
     using WalkKey = std::tuple<int, int, int, bool>;
     std::map<WalkKey, gl::Program> walkPrograms;
-    std::map<WalkKey, gl::Program> handedOverTrace; // the hybrid's trace pass, by the same key
+    /** The hybrid's trace pass, by the same key and whether its target adds samples up. */
+    std::map<std::pair<WalkKey, bool>, gl::Program> handedOverTrace;
     /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
      *  word a pixel; reallocated when the viewport grows. */
     gl::Buffer handedOver;

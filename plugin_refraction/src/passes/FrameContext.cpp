@@ -27,6 +27,9 @@ constexpr std::size_t kMaxGlassIds = 255;
 gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
 }
+gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings) {
+    return {size, addsSamples(settings) ? gl::Format::RGBA32F : gl::Format::RGBA16F, 1};
+}
 gl::TextureDesc normalDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, kNormalLod + 1};
 }
@@ -214,35 +217,44 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     auto key = [&](Settings::Method method) {
         return GpuState::WalkKey{captureKey, int(method), mode, lit};
     };
+    auto walkDefines = [&](Settings::Method method) {
+        return std::vector<std::string>{"LAYER_CAPACITY " + std::to_string(capacity),
+                                        std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
+                                        "LAYER_DISPERSION " + std::to_string(mode),
+                                        std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
+                                        "BVH_BINDINGS " + std::to_string(kWalkBvhBinding),
+                                        "LAYER_METHOD " + std::to_string(int(method))};
+    };
     if (!gpu.walkPrograms.count(key(c.settings.method))) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
         // nothing, and the live programs do not depend on which methods ran.
-        std::vector<std::string> defines{"LAYER_CAPACITY " + std::to_string(capacity),
-                                         std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
-                                         "LAYER_DISPERSION " + std::to_string(mode),
-                                         std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
-                                         "BVH_BINDINGS " + std::to_string(kWalkBvhBinding),
-                                         ""};
         for (const Settings::Method method :
              {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
               Settings::Method::Trace, Settings::Method::Hybrid}) {
-            defines.back() = "LAYER_METHOD " + std::to_string(int(method));
             auto walk = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                              "refraction/walk.frag.glsl", defines);
+                                              "refraction/walk.frag.glsl", walkDefines(method));
             if (!walk)
                 return walk.error();
             gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
         }
-        // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels.
-        defines.back() = "LAYER_METHOD " + std::to_string(int(Settings::Method::Trace));
+    }
+    c.walk = &gpu.walkPrograms.at(key(c.settings.method));
+    if (c.settings.method != Settings::Method::Hybrid)
+        return {};
+    // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels,
+    // storing the format of the walk's target.
+    const bool addsUp = addsSamples(c.settings);
+    const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
+    if (!gpu.handedOverTrace.count(traceKey)) {
+        std::vector<std::string> defines = walkDefines(Settings::Method::Trace);
+        defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
         auto trace =
             gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl", defines);
         if (!trace)
             return trace.error();
-        gpu.handedOverTrace.insert_or_assign(key(Settings::Method::Hybrid), std::move(*trace));
+        gpu.handedOverTrace.insert_or_assign(traceKey, std::move(*trace));
     }
-    c.walk = &gpu.walkPrograms.at(key(c.settings.method));
-    c.handedOverTrace = &gpu.handedOverTrace.at(key(Settings::Method::Hybrid));
+    c.handedOverTrace = &gpu.handedOverTrace.at(traceKey);
     return {};
 }
 

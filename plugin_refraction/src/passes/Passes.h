@@ -120,8 +120,8 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard);
 void assignGlassIds(FrameContext& c);
 /** The capture's programs for this frame (the layers' for capacity K, the pair resolve's), and
  *  into `c` the walk's variant for the capture, the method, the dispersion search and the lights
- *  (compiled in: walk.frag.glsl) and the hybrid's trace pass for them (walk_trace.comp.glsl),
- *  built when first needed (every method's at once) and kept. */
+ *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass for them
+ *  and the walk's target (walk_trace.comp.glsl), built when first needed and kept. */
 core::Status walkPrograms(GpuState& gpu, FrameContext& c);
 /** The layer arrays for `size` and capacity K, reallocated only when either changes. */
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity);
@@ -132,6 +132,13 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines);
 std::size_t layerDepthSlots(int capacity);
 
 gl::TextureDesc colorDesc(glm::ivec2 size);
+/** Whether the walk adds several samples a pixel up: the trace's and the hybrid's. */
+inline bool addsSamples(const Settings& settings) {
+    return settings.traces() && settings.traceSamples > 1;
+}
+/** The walk's colour target: single precision where it adds samples up (in half floats each
+ *  sum rounds: 64 samples came out darker by up to 0.7/255), else colorDesc's. */
+gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings);
 gl::TextureDesc normalDesc(glm::ivec2 size);
 gl::TextureDesc zDesc(glm::ivec2 size);
 

@@ -46,7 +46,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             d.rectangle = b.write(buffers.rectangle); // counts the overflowing pixels
             d.sceneColor = b.read(scene.color);
             d.sceneDepth = b.read(scene.depth);
-            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+            d.out = b.write(b.create("refraction.scene_color", walkDesc(size, c.settings)));
             if (outlines) // the nearest layer per pixel, for the outline pass
                 d.surface =
                     b.write(b.create("refraction.layers.surface", {size, gl::Format::R32UI, 1}));
