@@ -77,6 +77,7 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
     t = tMax;
     leaf = -1;
     uv = vec2(0.0);
+    int firstLeaf = (nodes.length() - 1) / 2; // n - 1 of 2n - 1 nodes
     int stack[64];
     float entered[64];
     int top = 0;
@@ -90,9 +91,8 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         if (entered[top] > t)
             continue; // a nearer hit was found since it was pushed
         ++steps;
-        BvhNode node = nodes[stack[top]];
-        if (node.left < 0) {
-            int k = node.first;
+        int k = stack[top] - firstLeaf;
+        if (k >= 0) { // a leaf: its triangle, without reading the node
             vec2 b;
             float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz,
                                      leafCorners[3 * k + 1].xyz, leafCorners[3 * k + 2].xyz, b);
@@ -103,6 +103,7 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
             }
             continue;
         }
+        BvhNode node = nodes[stack[top]];
         float tLeft = bvhEnterBox(origin, inverseDir, bounds[2 * node.left].xyz,
                                   bounds[2 * node.left + 1].xyz, epsilon, t);
         float tRight = bvhEnterBox(origin, inverseDir, bounds[2 * node.right].xyz,
