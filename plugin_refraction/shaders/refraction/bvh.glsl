@@ -22,8 +22,16 @@ layout(std430, binding = BVH_BINDINGS + 0) readonly buffer Deformed { DeformedVe
 layout(std430, binding = BVH_BINDINGS + 1) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = BVH_BINDINGS + 2) coherent buffer Nodes { BvhNode nodes[]; };
 layout(std430, binding = BVH_BINDINGS + 3) coherent buffer Order { uint triangleOrder[]; };
-// [2 node]: min, [2 node + 1]: max
-layout(std430, binding = BVH_BINDINGS + 4) coherent buffer Bounds { vec4 bounds[]; };
+// Each node's box and, for an inner node, its children as the traversal reads them with the box
+// (bvhChildren): Karras's children of an inner node are gamma and gamma + 1, each an inner node
+// or a leaf, so `children` is gamma << 2 | the left one's a leaf << 1 | the right one's a leaf.
+struct BvhBox {
+    vec3 lo;
+    int children;
+    vec3 hi;
+    int spare;
+};
+layout(std430, binding = BVH_BINDINGS + 4) coherent buffer Bounds { BvhBox boxes[]; };
 // The deformed corners of each triangle in leaf order (3 per triangle, written by the refit), so
 // that a ray test reads them directly instead of through the order and the index buffer.
 layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorners[]; };
@@ -65,6 +73,17 @@ float bvhHitTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, out vec2 uv)
     return dot(e2, q) * inv;
 }
 
+// The first leaf's node, n - 1 of 2n - 1 nodes (node 0, the root, when it is the only one).
+int bvhFirstLeaf() {
+    return (boxes.length() - 1) / 2;
+}
+
+// A node as the traversal's stack holds it: an inner node by its children (BvhBox.children),
+// leaf k as -(k + 1), so that a visit reads no node record.
+int bvhVisit(int node, int children, int firstLeaf) {
+    return node >= firstLeaf ? firstLeaf - node - 1 : children;
+}
+
 // The nearest triangle along origin + t dir with epsilon < t < tMax: true with t, the hit leaf
 // (its position in Morton order) and the barycentrics; `steps` counts the nodes visited. Nearer
 // child first, so that the first hits shorten the ray; a node waiting on the stack is dropped
@@ -77,12 +96,13 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
     t = tMax;
     leaf = -1;
     uv = vec2(0.0);
-    int firstLeaf = (nodes.length() - 1) / 2; // n - 1 of 2n - 1 nodes
+    int firstLeaf = bvhFirstLeaf();
     int stack[64];
     float entered[64];
     int top = 0;
-    if (bvhEnterBox(origin, inverseDir, bounds[0].xyz, bounds[1].xyz, epsilon, t) >= 0.0) {
-        stack[0] = 0;
+    BvhBox root = boxes[0];
+    if (bvhEnterBox(origin, inverseDir, root.lo, root.hi, epsilon, t) >= 0.0) {
+        stack[0] = bvhVisit(0, root.children, firstLeaf);
         entered[0] = 0.0;
         top = 1;
     }
@@ -91,8 +111,9 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         if (entered[top] > t)
             continue; // a nearer hit was found since it was pushed
         ++steps;
-        int k = stack[top] - firstLeaf;
-        if (k >= 0) { // a leaf: its triangle, without reading the node
+        int visit = stack[top];
+        if (visit < 0) {
+            int k = -visit - 1;
             vec2 b;
             float h = bvhHitTriangle(origin, dir, leafCorners[3 * k].xyz,
                                      leafCorners[3 * k + 1].xyz, leafCorners[3 * k + 2].xyz, b);
@@ -103,13 +124,17 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
             }
             continue;
         }
-        BvhNode node = nodes[stack[top]];
-        float tLeft = bvhEnterBox(origin, inverseDir, bounds[2 * node.left].xyz,
-                                  bounds[2 * node.left + 1].xyz, epsilon, t);
-        float tRight = bvhEnterBox(origin, inverseDir, bounds[2 * node.right].xyz,
-                                   bounds[2 * node.right + 1].xyz, epsilon, t);
+        int gamma = visit >> 2;
+        int left = (visit & 2) != 0 ? firstLeaf + gamma : gamma;
+        int right = (visit & 1) != 0 ? firstLeaf + gamma + 1 : gamma + 1;
+        BvhBox l = boxes[left], r = boxes[right];
+        float tLeft = bvhEnterBox(origin, inverseDir, l.lo, l.hi, epsilon, t);
+        float tRight = bvhEnterBox(origin, inverseDir, r.lo, r.hi, epsilon, t);
         bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
-        int near = leftFirst ? node.left : node.right, far = leftFirst ? node.right : node.left;
+        int near = leftFirst ? bvhVisit(left, l.children, firstLeaf)
+                             : bvhVisit(right, r.children, firstLeaf);
+        int far = leftFirst ? bvhVisit(right, r.children, firstLeaf)
+                            : bvhVisit(left, l.children, firstLeaf);
         float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
         if (tFar >= 0.0 && top < 63) {
             stack[top] = far;

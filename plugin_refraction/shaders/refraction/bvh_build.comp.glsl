@@ -79,12 +79,11 @@ void main() {
     if (gl_LocalInvocationIndex == 0u)
         groupCost = 0u;
     barrier();
-    float root = max(area(bounds[0].xyz, bounds[1].xyz), 1e-30);
+    float root = max(area(boxes[0].lo, boxes[0].hi), 1e-30);
     int nodes = 2 * uTriangles - 1, each = (nodes + uCount - 1) / uCount;
     uint sum = 0u;
     for (int node = i * each; node < min(i * each + each, nodes); ++node)
-        sum += uint(round(clamp(area(bounds[2 * node].xyz, bounds[2 * node + 1].xyz) / root, 0.0,
-                                1.0) * 256.0));
+        sum += uint(round(clamp(area(boxes[node].lo, boxes[node].hi) / root, 0.0, 1.0) * 256.0));
     atomicAdd(groupCost, sum);
     barrier();
     if (gl_LocalInvocationIndex == 0u)
@@ -152,6 +151,8 @@ void main() {
     int left = min(i, j) == gamma ? leaves + gamma : gamma;
     int right = max(i, j) == gamma + 1 ? leaves + gamma + 1 : gamma + 1;
     nodes[i] = BvhNode(left, right, 0, 0);
+    boxes[i].children = gamma << 2 | (left == leaves + gamma ? 2 : 0) |
+                        (right == leaves + gamma + 1 ? 1 : 0);
     parents[left] = i;
     parents[right] = i;
     if (i == 0)
@@ -166,8 +167,8 @@ void main() {
         lo = min(lo, p);
         hi = max(hi, p);
     }
-    bounds[2 * node] = vec4(lo, 0.0);
-    bounds[2 * node + 1] = vec4(hi, 0.0);
+    boxes[node].lo = lo;
+    boxes[node].hi = hi;
     memoryBarrierBuffer();
     int p = uCount > 1 ? parents[node] : -1;
     while (p >= 0) {
@@ -175,8 +176,8 @@ void main() {
             return; // the sibling's subtree is not done: its last thread goes on
         memoryBarrierBuffer();
         BvhNode n = nodes[p];
-        bounds[2 * p] = min(bounds[2 * n.left], bounds[2 * n.right]);
-        bounds[2 * p + 1] = max(bounds[2 * n.left + 1], bounds[2 * n.right + 1]);
+        boxes[p].lo = min(boxes[n.left].lo, boxes[n.right].lo);
+        boxes[p].hi = max(boxes[n.left].hi, boxes[n.right].hi);
         memoryBarrierBuffer();
         p = parents[p];
     }

@@ -11,7 +11,7 @@ void main() {
     if (vid >= uint(uVertexCount))
         return;
     // The self-intersection offset: 1e-4 of the glass's extent (the root's box).
-    float epsilon = 1e-4 * length(bounds[1].xyz - bounds[0].xyz);
+    float epsilon = 1e-4 * length(boxes[0].hi - boxes[0].lo);
     float t;
     int leaf;
     vec2 uv;

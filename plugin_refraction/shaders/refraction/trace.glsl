@@ -29,7 +29,7 @@ vec3 tracedNormalTexel(int map, vec2 uv) {
 Crossing traceCrossing(vec3 P, vec3 dir) {
     Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
     vec3 origin = uViewToWorld * P + uViewOriginWorld, along = uViewToWorld * dir;
-    float epsilon = 1e-5 * length(bounds[1].xyz - bounds[0].xyz), t;
+    float epsilon = 1e-5 * length(boxes[0].hi - boxes[0].lo), t;
     int leaf;
     vec2 uv;
     ++gTraceRays;
