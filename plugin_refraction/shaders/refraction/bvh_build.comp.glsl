@@ -1,7 +1,7 @@
 // The BVH's build and refit on the GPU (bvh.glsl), one stage a dispatch (BVH_STAGE):
 //   1 centroid bounds: the box of the triangles' centroids (ordered-int atomics)
-//   2 Morton codes: 30 bits of each centroid within that box, the key of a (key, triangle) pair
-//     (pairs padded to a power of two sort last); the leaves
+//   2 Morton codes: 30 bits of each centroid within that box (cubic cells), the key of a
+//     (key, triangle) pair (pairs padded to a power of two sort last); the leaves
 //   3 sort: one step (uSortSize, uSortStride) of a bitonic sort of the pairs
 //   4 hierarchy (Karras 2012, "Maximizing parallelism in the construction of BVHs"): each
 //     internal node's range of leaves from the sorted keys' common prefixes, its split, its
@@ -106,8 +106,10 @@ void main() {
                        orderedToFloat(centroidMin[2]));
         vec3 hi = vec3(orderedToFloat(centroidMax[0]), orderedToFloat(centroidMax[1]),
                        orderedToFloat(centroidMax[2]));
-        uvec3 q = uvec3(clamp((centreOf(uint(i)) - lo) / max(hi - lo, vec3(1e-30)), 0.0, 1.0) *
-                        1023.0);
+        // Cubic cells (each axis over the longest's extent): per-axis cells made a tall
+        // character's boxes tall and thin, and its rays visit more of them.
+        float extent = max(max(hi.x - lo.x, hi.y - lo.y), max(hi.z - lo.z, 1e-30));
+        uvec3 q = uvec3(clamp((centreOf(uint(i)) - lo) / extent, 0.0, 1.0) * 1023.0);
         key = (spreadBits(q.x) << 2) | (spreadBits(q.y) << 1) | spreadBits(q.z);
         nodes[uTriangles - 1 + i] = BvhNode(-1, -1, i, 1);
     }
