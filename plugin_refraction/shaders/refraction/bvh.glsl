@@ -23,7 +23,7 @@ layout(std430, binding = BVH_BINDINGS + 1) readonly buffer Indices { uint indice
 layout(std430, binding = BVH_BINDINGS + 2) coherent buffer Nodes { BvhNode nodes[]; };
 layout(std430, binding = BVH_BINDINGS + 3) coherent buffer Order { uint triangleOrder[]; };
 // Each node's box and, for an inner node, its children as the traversal reads them with the box
-// (bvhChildren): Karras's children of an inner node are gamma and gamma + 1, each an inner node
+// (bvhVisit): Karras's children of an inner node are gamma and gamma + 1, each an inner node
 // or a leaf, so `children` is gamma << 2 | the left one's a leaf << 1 | the right one's a leaf.
 struct BvhBox {
     vec3 lo;
