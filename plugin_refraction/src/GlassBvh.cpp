@@ -193,6 +193,9 @@ Bvh GlassBvh::download() const {
         std::memcpy(box, bounds.data() + i * sizeof box, sizeof box);
         tree.lo.emplace_back(box[0]);
         tree.hi.emplace_back(box[1]);
+        std::int32_t children;
+        std::memcpy(&children, &box[0].w, sizeof children);
+        tree.children.push_back(children);
     }
     if (n == 1)
         tree.parents[0] = -1;

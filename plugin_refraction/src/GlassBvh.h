@@ -31,7 +31,10 @@ struct Bvh {
     std::vector<Node> nodes;
     std::vector<std::uint32_t> order;        ///< triangle indices, leaves' ranges
     std::vector<glm::vec3> lo, hi;           ///< each node's box
-    std::vector<std::int32_t> parents;       ///< -1 for the root
+    /** Each inner node's children as its box holds them for the traversal (bvh.glsl's
+     *  BvhBox): gamma << 2 | left is a leaf << 1 | right is a leaf. */
+    std::vector<std::int32_t> children;
+    std::vector<std::int32_t> parents; ///< -1 for the root
 };
 
 /** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */

@@ -197,7 +197,8 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
         return p;
     };
     std::vector<int> seen(n, 0);
-    std::size_t wrongParents = 0, wrongBoxes = 0;
+    std::size_t wrongParents = 0, wrongBoxes = 0, wrongChildren = 0;
+    const int firstLeaf = int(n) - 1;
     for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
         const refraction::Bvh::Node& node = tree.nodes[i];
         glm::vec3 lo(3e38f), hi(-3e38f);
@@ -211,6 +212,11 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
                 }
             }
         } else {
+            // What the traversal reads instead of the node: Karras's gamma and gamma + 1.
+            const int gamma = tree.children[i] >> 2;
+            wrongChildren += node.left != ((tree.children[i] & 2) ? firstLeaf + gamma : gamma) ||
+                             node.right != ((tree.children[i] & 1) ? firstLeaf + gamma + 1
+                                                                   : gamma + 1);
             for (const int child : {node.left, node.right}) {
                 wrongParents += tree.parents[std::size_t(child)] != int(i);
                 lo = glm::min(lo, tree.lo[std::size_t(child)]);
@@ -224,6 +230,7 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
     EXPECT_EQ(tree.parents[0], -1);
     EXPECT_EQ(wrongParents, 0u);
     EXPECT_EQ(wrongBoxes, 0u) << "boxes that do not bound what is under them";
+    EXPECT_EQ(wrongChildren, 0u) << "boxes that name other children than their nodes";
 }
 
 TEST_F(Refraction, GlassBvhKeepsEveryTriangleThroughRefitsAndRebuildsWhenWorn) {
