@@ -214,9 +214,9 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
         } else {
             // What the traversal reads instead of the node: Karras's gamma and gamma + 1.
             const int gamma = tree.children[i] >> 2;
-            wrongChildren += node.left != ((tree.children[i] & 2) ? firstLeaf + gamma : gamma) ||
-                             node.right != ((tree.children[i] & 1) ? firstLeaf + gamma + 1
-                                                                   : gamma + 1);
+            wrongChildren +=
+                node.left != ((tree.children[i] & 2) ? firstLeaf + gamma : gamma) ||
+                node.right != ((tree.children[i] & 1) ? firstLeaf + gamma + 1 : gamma + 1);
             for (const int child : {node.left, node.right}) {
                 wrongParents += tree.parents[std::size_t(child)] != int(i);
                 lo = glm::min(lo, tree.lo[std::size_t(child)]);
