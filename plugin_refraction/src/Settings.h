@@ -59,6 +59,8 @@ struct Settings {
     bool usesNormalDistance() const { return method == Method::Isr; }
     /** Trace and Hybrid trace rays through the glass BVH. */
     bool traces() const { return method == Method::Trace || method == Method::Hybrid; }
+    /** The walk adds several samples a pixel up: the trace's and the hybrid's. */
+    bool addsSamples() const { return traces() && traceSamples > 1; }
     /** The layers' outline pass runs: on, and the glass one sample a pixel (the trace's
      *  samples anti-alias its outlines themselves; the pass over them cost 0.5 dB). */
     bool outlinePass() const {

@@ -131,10 +131,9 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         float tLeft = bvhEnterBox(origin, inverseDir, l.lo, l.hi, epsilon, t);
         float tRight = bvhEnterBox(origin, inverseDir, r.lo, r.hi, epsilon, t);
         bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
-        int near = leftFirst ? bvhVisit(left, l.children, firstLeaf)
-                             : bvhVisit(right, r.children, firstLeaf);
-        int far = leftFirst ? bvhVisit(right, r.children, firstLeaf)
-                            : bvhVisit(left, l.children, firstLeaf);
+        int leftVisit = bvhVisit(left, l.children, firstLeaf);
+        int rightVisit = bvhVisit(right, r.children, firstLeaf);
+        int near = leftFirst ? leftVisit : rightVisit, far = leftFirst ? rightVisit : leftVisit;
         float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
         if (tFar >= 0.0 && top < 63) {
             stack[top] = far;

@@ -28,7 +28,7 @@ gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
 }
 gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings) {
-    return {size, addsSamples(settings) ? gl::Format::RGBA32F : gl::Format::RGBA16F, 1};
+    return {size, settings.addsSamples() ? gl::Format::RGBA32F : gl::Format::RGBA16F, 1};
 }
 gl::TextureDesc normalDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, kNormalLod + 1};
@@ -243,7 +243,7 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
         return {};
     // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels,
     // storing the format of the walk's target.
-    const bool addsUp = addsSamples(c.settings);
+    const bool addsUp = c.settings.addsSamples();
     const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
     if (!gpu.handedOverTrace.count(traceKey)) {
         std::vector<std::string> defines = walkDefines(Settings::Method::Trace);

@@ -132,10 +132,6 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines);
 std::size_t layerDepthSlots(int capacity);
 
 gl::TextureDesc colorDesc(glm::ivec2 size);
-/** Whether the walk adds several samples a pixel up: the trace's and the hybrid's. */
-inline bool addsSamples(const Settings& settings) {
-    return settings.traces() && settings.traceSamples > 1;
-}
 /** The walk's colour target: single precision where it adds samples up (in half floats each
  *  sum rounds: 64 samples came out darker by up to 0.7/255), else colorDesc's. */
 gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings);
