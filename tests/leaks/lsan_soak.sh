@@ -9,7 +9,7 @@ soak=$1
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 LSAN_OPTIONS=exitcode=0 \
-    "$soak" --frames 300 --switch-every 12 --resize-every 24 --report-every 6 >"$log" 2>&1
+    "$soak" --frames 300 --switch-every 12 --resize-every 21 --report-every 6 >"$log" 2>&1
 status=$?
 cat "$log"
 [ "$status" = 0 ] || { echo "lsan_soak: the soak failed ($status)"; exit 1; }
