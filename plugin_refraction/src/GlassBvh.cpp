@@ -54,6 +54,7 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
     mParents = gl::Buffer(nodes * sizeof(std::int32_t));
     mVisits = gl::Buffer(n * sizeof(std::uint32_t));
     mBounds = gl::Buffer(nodes * 2 * sizeof(glm::vec4));
+    mPackedBounds = gl::Buffer(nodes * sizeof(glm::uvec4));
     mLeafCorners = gl::Buffer(n * 3 * sizeof(glm::vec4));
     mBuild = gl::Buffer(8 * sizeof(std::uint32_t));
     mTriangleTags = gl::Buffer(n * sizeof(std::uint32_t));
@@ -124,22 +125,23 @@ void GlassBvh::update(const BvhPrograms& programs) {
     readCosts();
     const bool fresh = mBuilds == 0 || mRebuild;
     bind(0);
-    gl::bindStorage(7, mBuild);
-    gl::bindStorage(8, mKeys);
-    gl::bindStorage(9, mParents);
-    gl::bindStorage(10, mVisits);
+    gl::bindStorage(8, mBuild); // bvh_build.comp.glsl's own
+    gl::bindStorage(9, mKeys);
+    gl::bindStorage(10, mParents);
+    gl::bindStorage(11, mVisits);
     if (fresh) {
         build(programs);
         mFreshCost = 0.0;
     }
     mVisits.fill(0, n, 0u);
     run(programs.stages[4], n, n);
+    run(programs.stages[6], 2 * n - 1, n);
     // The cost, into the next measure not waiting on a read.
     Measure& m = mMeasures[mNext];
     if (!m.pending) {
         mNext = (mNext + 1) % mMeasures.size();
         m.cost.fill(kCostOffset, 1, 0u);
-        gl::bindStorage(7, m.cost);
+        gl::bindStorage(8, m.cost);
         run(programs.stages[5], (2 * n - 1 + kCostNodes - 1) / kCostNodes, n);
         m.fence.insert();
         m.pending = true;
@@ -152,16 +154,18 @@ void GlassBvh::castNormalDistances(const BvhPrograms& programs) {
     const gl::Program& cast = programs.cast;
     cast.use();
     bind(0);
-    gl::bindStorage(11, mDistances);
+    gl::bindStorage(12, mDistances);
     cast.set("uVertexCount", int(mVertexCount));
     gl::dispatch(groups(mVertexCount));
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
 }
 
 void GlassBvh::bind(std::uint32_t base) const {
-    // bvh.glsl's order: vertices, indices, nodes, order, bounds, leaf corners, glass ids.
+    // bvh.glsl's order: vertices, indices, nodes, order, bounds, leaf corners, glass ids,
+    // packed bounds.
     const gl::Buffer* buffers[] = {&mVertices, &mIndices,     &mNodes,        &mOrder,
-                                   &mBounds,   &mLeafCorners, &mTriangleTags};
+                                   &mBounds,   &mLeafCorners, &mTriangleTags, &mPackedBounds};
+    static_assert(std::size(buffers) == kBindings);
     for (std::uint32_t i = 0; i < std::size(buffers); ++i)
         gl::bindStorage(base + i, *buffers[i]);
 }
@@ -196,6 +200,17 @@ Bvh GlassBvh::download() const {
         std::int32_t children;
         std::memcpy(&children, &box[0].w, sizeof children);
         tree.children.push_back(children);
+    }
+    // The packed boxes, in cells (bvh.glsl's bvhCell).
+    const glm::vec3 extent = tree.hi[0] - tree.lo[0];
+    const float longest = std::max({extent.x, extent.y, extent.z});
+    tree.cell = glm::max(extent, glm::vec3(1e-6f * longest + 1e-30f)) / 65535.0f;
+    const std::vector<std::uint8_t> packed = mPackedBounds.download();
+    for (std::size_t i = 0; i < nodes; ++i) {
+        glm::uvec4 q;
+        std::memcpy(&q, packed.data() + i * sizeof q, sizeof q);
+        tree.packedLo.emplace_back(q.x & 0xFFFFu, q.x >> 16, q.y & 0xFFFFu);
+        tree.packedHi.emplace_back(q.y >> 16, q.z & 0xFFFFu, q.z >> 16);
     }
     if (n == 1)
         tree.parents[0] = -1;

@@ -34,12 +34,15 @@ struct Bvh {
     /** Each inner node's children as its box holds them for the traversal (bvh.glsl's
      *  BvhBox): gamma << 2 | left is a leaf << 1 | right is a leaf. */
     std::vector<std::int32_t> children;
+    /** Each node's box as the traversal reads it (bvh.glsl's packedBoxes), in its cells. */
+    std::vector<glm::vec3> packedLo, packedHi;
+    glm::vec3 cell{0.0f}; ///< bvh.glsl's bvhCell: a cell of the packed boxes
     std::vector<std::int32_t> parents; ///< -1 for the root
 };
 
 /** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */
 struct BvhPrograms {
-    std::array<gl::Program, 6> stages; ///< BVH_STAGE 1-6
+    std::array<gl::Program, 7> stages; ///< BVH_STAGE 1-7
     gl::Program gather, cast;          ///< mesh_gather.comp.glsl, normal_distance.comp.glsl
 };
 
@@ -70,9 +73,11 @@ public:
      *  lowest; 21-25 roughness, 26-29 metallic) and kOpaqueTextured where it has a base
      *  colour texture. */
     static constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+    /** The buffers bind() binds, bvh.glsl's BVH_BINDINGS + 0 to + 7. */
+    static constexpr std::uint32_t kBindings = 8;
     /** Each part's tag, uploaded per triangle when they change. */
     void setTags(std::span<const std::uint32_t> partTags);
-    /** Binds what a traversal reads (bvh.glsl) from binding `base`. */
+    /** Binds what a traversal reads (bvh.glsl) from binding `base` (kBindings of them). */
     void bind(std::uint32_t base) const;
     /** d_N (world units) per world-mesh vertex into distances(). */
     void castNormalDistances(const BvhPrograms& programs);
@@ -103,7 +108,7 @@ private:
     std::vector<std::uint32_t> mPartTags;
     std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
-        mLeafCorners, mBuild, mTriangleTags, mDistances, mUvs;
+        mPackedBounds, mLeafCorners, mBuild, mTriangleTags, mDistances, mUvs;
     /** The cost measured after each update, read back once its fence has passed. */
     struct Measure {
         gl::Buffer cost{sizeof(std::uint32_t) * 8};

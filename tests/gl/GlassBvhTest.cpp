@@ -72,7 +72,7 @@ struct DistanceRig {
         model = std::move(*loaded);
         library = engineShaders;
         library.add(refractionShaderFiles());
-        for (int stage = 0; stage < 6; ++stage) {
+        for (int stage = 0; stage < int(programs.stages.size()); ++stage) {
             auto built = gl::Program::compute(library, "refraction/bvh_build.comp.glsl",
                                               {"BVH_STAGE " + std::to_string(stage + 1)});
             ASSERT_TRUE(built.ok()) << built.error().message;
@@ -183,8 +183,9 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
 }
 
 /** Checks `bvh` as the GPU holds it: every triangle in exactly one leaf, every node its
- *  parent's child, every leaf's box its triangle's corners' (as gathered: exact) and every
- *  inner box the union of its children's. */
+ *  parent's child, every leaf's box its triangle's corners' (as gathered: exact), every inner
+ *  box the union of its children's, and every box as the traversal reads it (packed) holding
+ *  the box, within a cell of it. */
 void expectSoundTree(const refraction::GlassBvh& bvh) {
     const refraction::Bvh tree = bvh.download();
     const std::uint32_t n = bvh.triangleCount();
@@ -197,7 +198,7 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
         return p;
     };
     std::vector<int> seen(n, 0);
-    std::size_t wrongParents = 0, wrongBoxes = 0, wrongChildren = 0;
+    std::size_t wrongParents = 0, wrongBoxes = 0, wrongChildren = 0, wrongPacked = 0;
     const int firstLeaf = int(n) - 1;
     for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
         const refraction::Bvh::Node& node = tree.nodes[i];
@@ -224,6 +225,13 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
             }
         }
         wrongBoxes += lo != tree.lo[i] || hi != tree.hi[i];
+        // In cells of the root's box, with a hundredth of one for the division's rounding.
+        const glm::vec3 loCells = (tree.lo[i] - tree.lo[0]) / tree.cell;
+        const glm::vec3 hiCells = (tree.hi[i] - tree.lo[0]) / tree.cell;
+        wrongPacked += glm::any(glm::greaterThan(tree.packedLo[i], loCells + 0.01f)) ||
+                       glm::any(glm::lessThan(tree.packedHi[i], hiCells - 0.01f)) ||
+                       glm::any(glm::lessThan(tree.packedLo[i], loCells - 1.01f)) ||
+                       glm::any(glm::greaterThan(tree.packedHi[i], hiCells + 1.01f));
     }
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(n))
         << "triangles missing from the leaves, or in several";
@@ -231,6 +239,7 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
     EXPECT_EQ(wrongParents, 0u);
     EXPECT_EQ(wrongBoxes, 0u) << "boxes that do not bound what is under them";
     EXPECT_EQ(wrongChildren, 0u) << "boxes that name other children than their nodes";
+    EXPECT_EQ(wrongPacked, 0u) << "packed boxes that miss their node's box or overreach it";
 }
 
 TEST_F(Refraction, GlassBvhKeepsEveryTriangleThroughRefitsAndRebuildsWhenWorn) {

@@ -39,11 +39,25 @@ layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorne
 // (glass_materials.glsl), or kOpaqueTag with an opaque part's material factors.
 layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleTags { uint triangleTags[]; };
 const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+// The traversal's copy of each node's box, packed after every refit (bvh_build.comp.glsl's
+// stage 7): its corners in cells of the root's box (bvhCell), 16 bits an axis, rounded outward,
+// and the children word: lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16, children. A
+// visit reads one vector of four words a child instead of two (seven words): on a CPU
+// rasteriser the loads were most of a visit's cost.
+layout(std430, binding = BVH_BINDINGS + 7) buffer PackedBounds { uvec4 packedBoxes[]; };
+
+// The cell of the packed boxes: the root's box in 65535 steps an axis (an axis along which it is
+// flat takes a millionth of its longest's steps, so that no cell is empty).
+vec3 bvhCell(vec3 rootLo, vec3 rootHi) {
+    vec3 extent = rootHi - rootLo;
+    float longest = max(max(extent.x, extent.y), extent.z);
+    return max(extent, vec3(1e-6 * longest + 1e-30)) / 65535.0;
+}
 
 // Where the ray enters the box [lo, hi] padded by `pad` before tMax, or -1 when it misses (a ray
 // along one of its faces, a sphere's -N from a pole through the opposite pole, is inside it,
 // whichever side of the face it lies on).
-float bvhEnterBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, float pad, float tMax) {
+float bvhEnterBox(vec3 origin, vec3 inverseDir, vec3 lo, vec3 hi, vec3 pad, float tMax) {
     vec3 t0 = (lo - pad - origin) * inverseDir, t1 = (hi + pad - origin) * inverseDir;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
@@ -84,11 +98,20 @@ int bvhVisit(int node, int children, int firstLeaf) {
     return node >= firstLeaf ? firstLeaf - node - 1 : children;
 }
 
+// Node i's packed box (packedBoxes) in cells, and its children word.
+void bvhPackedBox(int i, out vec3 lo, out vec3 hi, out int children) {
+    uvec4 q = packedBoxes[i];
+    lo = vec3(uvec3(q.x, q.x >> 16, q.y) & 0xFFFFu);
+    hi = vec3(uvec3(q.y >> 16, q.z, q.z >> 16) & 0xFFFFu);
+    children = int(q.w);
+}
+
 // The nearest triangle along origin + t dir with epsilon < t < tMax: true with t, the hit leaf
 // (its position in Morton order) and the barycentrics; `steps` counts the nodes visited. Nearer
 // child first, so that the first hits shorten the ray; a node waiting on the stack is dropped
-// once a hit is nearer than where the ray enters it. One loop iteration a node (a leaf holds
-// one triangle): Mesa's llvmpipe ends every loop of a shader invocation after 65535 iterations
+// once a hit is nearer than where the ray enters it. The boxes are tested in the packed boxes'
+// cells, where the ray is taken once (t is the same along it). One loop iteration a node (a
+// leaf holds one triangle): Mesa's llvmpipe ends every loop of a shader invocation after 65535 iterations
 // in all, so the traversal spends none on inner loops.
 bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, out int leaf,
                 out vec2 uv, inout int steps) {
@@ -101,7 +124,10 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
     float entered[64];
     int top = 0;
     BvhBox root = boxes[0];
-    if (bvhEnterBox(origin, inverseDir, root.lo, root.hi, epsilon, t) >= 0.0) {
+    vec3 cell = bvhCell(root.lo, root.hi);
+    vec3 originCells = (origin - root.lo) / cell, inverseCells = inverseDir * cell;
+    vec3 padCells = epsilon / cell;
+    if (bvhEnterBox(origin, inverseDir, root.lo, root.hi, vec3(epsilon), t) >= 0.0) {
         stack[0] = bvhVisit(0, root.children, firstLeaf);
         entered[0] = 0.0;
         top = 1;
@@ -127,12 +153,15 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
         int gamma = visit >> 2;
         int left = (visit & 2) != 0 ? firstLeaf + gamma : gamma;
         int right = (visit & 1) != 0 ? firstLeaf + gamma + 1 : gamma + 1;
-        BvhBox l = boxes[left], r = boxes[right];
-        float tLeft = bvhEnterBox(origin, inverseDir, l.lo, l.hi, epsilon, t);
-        float tRight = bvhEnterBox(origin, inverseDir, r.lo, r.hi, epsilon, t);
+        vec3 lLo, lHi, rLo, rHi;
+        int lChildren, rChildren;
+        bvhPackedBox(left, lLo, lHi, lChildren);
+        bvhPackedBox(right, rLo, rHi, rChildren);
+        float tLeft = bvhEnterBox(originCells, inverseCells, lLo, lHi, padCells, t);
+        float tRight = bvhEnterBox(originCells, inverseCells, rLo, rHi, padCells, t);
         bool leftFirst = tLeft >= 0.0 && (tRight < 0.0 || tLeft <= tRight);
-        int leftVisit = bvhVisit(left, l.children, firstLeaf);
-        int rightVisit = bvhVisit(right, r.children, firstLeaf);
+        int leftVisit = bvhVisit(left, lChildren, firstLeaf);
+        int rightVisit = bvhVisit(right, rChildren, firstLeaf);
         int near = leftFirst ? leftVisit : rightVisit, far = leftFirst ? rightVisit : leftVisit;
         float tNear = leftFirst ? tLeft : tRight, tFar = leftFirst ? tRight : tLeft;
         if (tFar >= 0.0 && top < 63) {

@@ -10,18 +10,19 @@
 //     arrive computes it), the leaves' corners copied in leaf order
 //   6 cost: the surface-area cost of the tree, sum of each node's area over the root's (fixed
 //     point, 1/256 a node), which tells when a refitted tree has degraded enough to rebuild
+//   7 pack: each node's box as the traversal reads it (packedBoxes), after every refit
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 7) coherent buffer Build {
+layout(std430, binding = 8) coherent buffer Build {
     int centroidMin[3], centroidMax[3]; // floats as ordered ints
     uint cost;                          // stage 6, 1/256 of the root's area
 };
-layout(std430, binding = 8) coherent buffer Keys { uint keys[]; }; // sorted with triangleOrder
-layout(std430, binding = 9) coherent buffer Parents { int parents[]; };
-layout(std430, binding = 10) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
+layout(std430, binding = 9) coherent buffer Keys { uint keys[]; }; // sorted with triangleOrder
+layout(std430, binding = 10) coherent buffer Parents { int parents[]; };
+layout(std430, binding = 11) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
 
-uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), GlassBvh's (6)
+uniform int uCount;     // threads: triangles n (1, 4, 5), pairs (2, 3), GlassBvh's (6), nodes (7)
 uniform int uTriangles; // n
 uniform int uSortSize, uSortStride; // stage 3
 
@@ -92,7 +93,15 @@ void main() {
 #endif
     if (i >= uCount)
         return;
-#if BVH_STAGE == 1
+#if BVH_STAGE == 7
+    // Outward: lo down, hi up (the traversal's pad, 1e-5 of the root's diagonal, is over half a
+    // cell and covers the rounding of the division, which it repeats for the ray).
+    vec3 rootLo = boxes[0].lo, cell = bvhCell(rootLo, boxes[0].hi);
+    uvec3 lo = uvec3(clamp(floor((boxes[i].lo - rootLo) / cell), 0.0, 65535.0));
+    uvec3 hi = uvec3(clamp(ceil((boxes[i].hi - rootLo) / cell), 0.0, 65535.0));
+    packedBoxes[i] = uvec4(lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16,
+                           uint(boxes[i].children));
+#elif BVH_STAGE == 1
     vec3 c = centreOf(uint(i));
     for (int a = 0; a < 3; ++a) {
         atomicMin(centroidMin[a], orderedInt(c[a]));

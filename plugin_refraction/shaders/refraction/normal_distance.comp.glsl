@@ -3,7 +3,7 @@
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 11) writeonly buffer Distance { float distances[]; };
+layout(std430, binding = 12) writeonly buffer Distance { float distances[]; };
 uniform int uVertexCount;
 
 void main() {

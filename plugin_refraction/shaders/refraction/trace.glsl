@@ -9,7 +9,7 @@
 int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
 // The world mesh's texture coordinates (GlassBvh::uvs) and the glass normal maps
 // (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
-layout(std430, binding = BVH_BINDINGS + 7) readonly buffer MeshUv { vec4 meshUvs[]; };
+layout(std430, binding = BVH_BINDINGS + 8) readonly buffer MeshUv { vec4 meshUvs[]; };
 uniform sampler2D uTracedNormalMaps[4];
 
 // Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index

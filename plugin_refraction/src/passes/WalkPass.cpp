@@ -88,7 +88,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
                 gpu.glass.bvh->bind(kWalkBvhBinding);
-                gl::bindStorage(kWalkBvhBinding + 7, gpu.glass.bvh->uvs()); // trace.glsl
+                gl::bindStorage(kWalkBvhBinding + GlassBvh::kBindings, // trace.glsl
+                                gpu.glass.bvh->uvs());
                 // The glass normal maps, the first standing in for absent ones (unread).
                 const auto& normalMaps = gpu.tracedNormalMaps;
                 for (std::size_t i = 0; i < kTracedNormalMaps; ++i) {
