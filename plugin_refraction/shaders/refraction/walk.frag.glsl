@@ -28,7 +28,8 @@ void main() {
     vec3 color = tracedSample(p, e, walk);
 #else
     vec3 color = vec3(0.0);
-    walk.overflowed = walk.fallback = walk.bounced = walk.outline = false;
+    walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
+    walk.sightLayers = stored;
 #if LAYER_METHOD == 5 // METHOD_HYBRID
     uvec2 bit = handedOverBit(p);
     if (uTraceSample > 0 && (handedOverWords[bit.x] & bit.y) != 0u)
@@ -41,12 +42,12 @@ void main() {
     if (uTraceSample > 0)
         P1 = facing < -0.05 ? V * (dot(e.P1, N1) / facing) : V * (e.z / -V.z);
     // A pixel the hybrid hands over for its own layers is not walked at all.
-    if (!stopsToHandOver(walk, stored > kLayerCapacity))
+    if (!stopsToHandOver(walk))
         color = shadeLayers(P1, V, N1, e.attr, walk) * uTraceWeight;
 #if LAYER_METHOD == 5 // METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
     // by the first sample from what the walk knows (handedOverBy).
-    handedOver = uTraceSample == 0 ? handedOverBy(walk, stored > kLayerCapacity) : 0u;
+    handedOver = uTraceSample == 0 ? handedOverBy(walk) : 0u;
     if (handedOver != 0u) { // for the trace pass, which shades it over this
         uint slot = atomicAdd(handedOverCount, 1u);
         handedOverWords[handedOverListStart() + slot] = uint(p.x) | uint(p.y) << 16;

@@ -393,32 +393,37 @@ struct Walk {
     uint lastFrom, lastTo; // glass ids + 1, 0: air
     vec3 firstExit;
     bool tir, fallback;
-    bool bounced;       // it reflected totally at least once (tir also counts grazing exits)
+    // It followed a total internal reflection the layers may not represent (tir also counts
+    // grazing exits): the second of a chain, one with more glass on the line of sight than one
+    // piece's two layers, or one that turned the ray back toward the camera.
+    bool hardReflection;
     bool outline;       // a crossing's normal was filtered near an outline
     bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
     bool opaque;        // the walk ended on the opaque scene, which it sees as `seen`
     vec3 seen;
     int interfaces, steps;
+    int sightLayers;    // the layers on its pixel's line of sight (the hybrid's judge)
 };
 
 // The hybrid's reasons to trace a pixel so far, each a bit of uHybridCriteria: the pixel, or
 // one where the walk crossed a surface, held more than K layers (1); the walk left the layers
-// where it found no surface and took Wyman's silhouette normal (2); it reflected totally and
-// followed the reflection (4: a chain of reflections, each searched with normals good to a few
-// degrees, bounded by tir-bounces; not a grazing exit, which the trace would not improve: on a
-// sphere, where light never reflects totally, such pixels lost 0.04 dB to DIR when handed
-// over); it crossed a surface whose normal was filtered near an outline (8).
-uint handedOverBy(Walk w, bool pixelOverflows) {
-    return uint(uHybridCriteria) & ((pixelOverflows || w.overflowed ? 1u : 0u) |
-                                    (w.fallback ? 2u : 0u) | (w.bounced ? 4u : 0u) |
-                                    (w.outline ? 8u : 0u));
+// where it found no surface and took Wyman's silhouette normal (2); it followed a total
+// internal reflection the layers may not represent (4, hardReflection: each reflection is
+// searched with normals good to a few degrees, bounded by tir-bounces; one reflection inside a
+// lone piece that sends the ray on deeper the walk follows about as well as the trace, and
+// those were two thirds of CesiumMan's reflecting pixels; not a grazing exit, which the trace
+// would not improve: on a sphere, where light never reflects totally, such pixels lost 0.04 dB
+// to DIR when handed over); it crossed a surface whose normal was filtered near an outline (8).
+uint handedOverBy(Walk w) {
+    return uint(uHybridCriteria) &
+           ((w.sightLayers > kLayerCapacity || w.overflowed ? 1u : 0u) | (w.fallback ? 2u : 0u) |
+            (w.hardReflection ? 4u : 0u) | (w.outline ? 8u : 0u));
 }
 
 // The hybrid's first sample hands pixels over, which the trace pass shades afresh: its walk
 // stops at the first reason (a debug view's goes on, to show the whole walk).
-bool stopsToHandOver(Walk w, bool pixelOverflows) {
-    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == 0 &&
-           handedOverBy(w, pixelOverflows) != 0u;
+bool stopsToHandOver(Walk w) {
+    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == 0 && handedOverBy(w) != 0u;
 }
 
 float mediumIor(uint medium, int channel) {
@@ -496,7 +501,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
     // Nothing crossed yet but the entry (from air into the top medium), reflected or hit.
     Walk w = Walk(P1, dir, vec3(1.0), vec3(0.0), vec3(0.0), 0.0, V, N1, 0u, topMedium(media), P1,
-                  false, false, false, false, false, false, vec3(0.0), 1, 0);
+                  false, false, false, false, false, false, vec3(0.0), 1, 0,
+                  kMethod == METHOD_HYBRID ? storedCount(pixelOf(P1)) : 0);
     vec3 P = P1;
     int parity = 1;
     int bounces = 0;
@@ -518,7 +524,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
     Walk primary;
     for (int path = 0;; ++path) {
         while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
-            if (stopsToHandOver(w, false))
+            if (stopsToHandOver(w))
                 break;
             uint inside = topMedium(media);
             Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
@@ -610,8 +616,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
                 // image-space searches, whose error grows with every bounce).
                 if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
                     ++bounces;
-                    w.bounced = true;
                     dir = reflect(dir, facing);
+                    w.hardReflection = w.hardReflection || bounces > 1 || w.sightLayers > 2 ||
+                                       dir.z > 0.0;
                     media = before; // still in the same medium
                     parity = parityBefore;
                     segmentFromEntry = false;
@@ -638,7 +645,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             primary.reflectedDir = w.reflectedDir;
             primary.reflectedRoughness = w.reflectedRoughness;
             primary.tir = primary.tir || w.tir;
-            primary.bounced = primary.bounced || w.bounced;
+            primary.hardReflection = primary.hardReflection || w.hardReflection;
             primary.steps = w.steps;
             w = primary;
             break;
@@ -666,7 +673,7 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
 vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
     green = walkLayers(P1, V, N1, entryAttr, 1);
-    if (stopsToHandOver(green, false))
+    if (stopsToHandOver(green))
         return vec3(0.0);
     float hitT;
     vec3 seen = walkSees(green, m.sigma.w, hitT);
@@ -759,7 +766,7 @@ vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
     uvec2 attr = e.attr;
     vec3 color;
     if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) && !traceEntry(V, p, P1, attr)) {
-        walk.fallback = walk.tir = walk.bounced = walk.outline = walk.overflowed = false;
+        walk.fallback = walk.tir = walk.hardReflection = walk.outline = walk.overflowed = false;
         color = texelFetch(uSceneColor, p, 0).rgb;
     } else {
         vec3 N = layerNormal(attr);
