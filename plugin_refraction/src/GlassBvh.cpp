@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <limits>
 
 namespace refraction {
 
@@ -54,7 +55,8 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
     mParents = gl::Buffer(nodes * sizeof(std::int32_t));
     mVisits = gl::Buffer(n * sizeof(std::uint32_t));
     mBounds = gl::Buffer(nodes * 2 * sizeof(glm::vec4));
-    mPackedBounds = gl::Buffer(nodes * sizeof(glm::uvec4));
+    mPackedBounds = gl::Buffer((nodes + 4) * sizeof(glm::uvec4)); // and two frames
+    mPackedBounds.fill(nodes * sizeof(glm::uvec4), 16, 0u);
     mLeafCorners = gl::Buffer(n * 3 * sizeof(glm::vec4));
     mBuild = gl::Buffer(8 * sizeof(std::uint32_t));
     mTriangleTags = gl::Buffer(n * sizeof(std::uint32_t));
@@ -95,6 +97,15 @@ void GlassBvh::build(const BvhPrograms& programs) {
     ++mBuilds;
 }
 
+void GlassBvh::refit(const BvhPrograms& programs) {
+    // The frame the last refit left (bvh.glsl's packedBoxes), then the refit.
+    const std::size_t frame = (2 * std::size_t(triangleCount()) - 1) * sizeof(glm::uvec4);
+    gl::memoryBarrier(gl::BarrierBufferUpdate);
+    mPackedBounds.copy(frame + 2 * sizeof(glm::uvec4), frame, 2 * sizeof(glm::uvec4));
+    mVisits.fill(0, triangleCount(), 0u);
+    run(programs.stages[4], triangleCount(), triangleCount());
+}
+
 void GlassBvh::readCosts() {
     // Fences pass in order: a tree's fresh measure is read no later than its later ones. Measures
     // of a tree since rebuilt are dropped.
@@ -132,13 +143,12 @@ void GlassBvh::update(const BvhPrograms& programs) {
     if (fresh) {
         build(programs);
         mFreshCost = 0.0;
+        refit(programs); // for the root's box: the frame of the packed boxes
     }
-    mVisits.fill(0, n, 0u);
-    run(programs.stages[4], n, n);
-    run(programs.stages[6], 2 * n - 1, n);
-    // The cost, into the next measure not waiting on a read.
+    refit(programs);
+    // The cost, into the next measure not waiting on a read, every kMeasureEvery updates.
     Measure& m = mMeasures[mNext];
-    if (!m.pending) {
+    if (!m.pending && (fresh || ++mUpdates % kMeasureEvery == 0)) {
         mNext = (mNext + 1) % mMeasures.size();
         m.cost.fill(kCostOffset, 1, 0u);
         gl::bindStorage(8, m.cost);
@@ -201,16 +211,24 @@ Bvh GlassBvh::download() const {
         std::memcpy(&children, &box[0].w, sizeof children);
         tree.children.push_back(children);
     }
-    // The packed boxes, in cells (bvh.glsl's bvhCell).
-    const glm::vec3 extent = tree.hi[0] - tree.lo[0];
+    // The packed boxes in cells of their frame (bvh.glsl's bvhFrame, bvhPackedBox).
+    const std::vector<std::uint8_t> packed = mPackedBounds.download();
+    glm::vec4 frame[2];
+    std::memcpy(frame, packed.data() + nodes * sizeof(glm::uvec4), sizeof frame);
+    tree.frameLo = glm::vec3(frame[0]);
+    const glm::vec3 extent = glm::vec3(frame[1]) - tree.frameLo;
     const float longest = std::max({extent.x, extent.y, extent.z});
     tree.cell = glm::max(extent, glm::vec3(1e-6f * longest + 1e-30f)) / 65535.0f;
-    const std::vector<std::uint8_t> packed = mPackedBounds.download();
+    constexpr float kUnbounded = std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < nodes; ++i) {
         glm::uvec4 q;
         std::memcpy(&q, packed.data() + i * sizeof q, sizeof q);
-        tree.packedLo.emplace_back(q.x & 0xFFFFu, q.x >> 16, q.y & 0xFFFFu);
-        tree.packedHi.emplace_back(q.y >> 16, q.z & 0xFFFFu, q.z >> 16);
+        const glm::uvec3 lo(q.x & 0xFFFFu, q.x >> 16, q.y & 0xFFFFu);
+        const glm::uvec3 hi(q.y >> 16, q.z & 0xFFFFu, q.z >> 16);
+        tree.packedLo.push_back(glm::mix(glm::vec3(lo), glm::vec3(-kUnbounded),
+                                         glm::equal(lo, glm::uvec3(0u))));
+        tree.packedHi.push_back(glm::mix(glm::vec3(hi), glm::vec3(kUnbounded),
+                                         glm::equal(hi, glm::uvec3(0xFFFFu))));
     }
     if (n == 1)
         tree.parents[0] = -1;

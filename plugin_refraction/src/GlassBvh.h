@@ -34,15 +34,16 @@ struct Bvh {
     /** Each inner node's children as its box holds them for the traversal (bvh.glsl's
      *  BvhBox): gamma << 2 | left is a leaf << 1 | right is a leaf. */
     std::vector<std::int32_t> children;
-    /** Each node's box as the traversal reads it (bvh.glsl's packedBoxes), in its cells. */
+    /** Each node's box as the traversal reads it (bvh.glsl's packedBoxes), in cells of the
+     *  frame; infinite where it leaves the frame. */
     std::vector<glm::vec3> packedLo, packedHi;
-    glm::vec3 cell{0.0f}; ///< bvh.glsl's bvhCell: a cell of the packed boxes
+    glm::vec3 frameLo{0.0f}, cell{0.0f}; ///< bvh.glsl's bvhFrame
     std::vector<std::int32_t> parents; ///< -1 for the root
 };
 
 /** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */
 struct BvhPrograms {
-    std::array<gl::Program, 7> stages; ///< BVH_STAGE 1-7
+    std::array<gl::Program, 6> stages; ///< BVH_STAGE 1-6
     gl::Program gather, cast;          ///< mesh_gather.comp.glsl, normal_distance.comp.glsl
 };
 
@@ -54,6 +55,9 @@ public:
      *  every ray through a tree worn to 1.5 pays up to half as much again; two characters that
      *  crossed and parted reach 2.6, a scrambled pose 108. */
     static constexpr double kRebuildRatio = 1.5;
+    /** The cost is measured every this many updates (and right after a build): at level 2 on
+     *  CesiumMan a measure cost 1.2-2 ms, a fifth of the update, every frame. */
+    static constexpr int kMeasureEvery = 4;
 
     /** The parts' static topology, one after another (vertex `base(i) + v` is part i's vertex
      *  v). */
@@ -100,6 +104,7 @@ public:
 
 private:
     void build(const BvhPrograms& programs);
+    void refit(const BvhPrograms& programs);
     void readCosts();
 
     std::vector<std::uint32_t> mBases;
@@ -119,7 +124,7 @@ private:
     std::array<Measure, 3> mMeasures;
     std::size_t mNext = 0;
     bool mRebuild = false;
-    int mBuilds = 0;
+    int mBuilds = 0, mUpdates = 0;
     double mFreshCost = 0.0, mCostRatio = 0.0;
 };
 

@@ -93,8 +93,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         {&mGpu->bvh.stages[2], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 3"}},
         {&mGpu->bvh.stages[3], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 4"}},
         {&mGpu->bvh.stages[4], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 5"}},
-        {&mGpu->bvh.stages[5], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 6"}},
-        {&mGpu->bvh.stages[6], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 7"}}};
+        {&mGpu->bvh.stages[5], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 6"}}};
     for (const Spec& spec : specs) {
         auto program = spec.vertex
                            ? gl::Program::graphics(shaders, spec.vertex, spec.shader, spec.defines)

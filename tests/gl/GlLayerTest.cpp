@@ -6,7 +6,9 @@
 #include "engine/gl/Framebuffer.h"
 #include "engine/gl/Texture.h"
 
+#include <algorithm>
 #include <cstring>
+#include <span>
 
 namespace {
 
@@ -37,6 +39,17 @@ TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
     float value = 0.0f;
     std::memcpy(&value, bytes.data(), sizeof value);
     EXPECT_EQ(value, 2.0f);
+}
+
+TEST_F(GlLayer, BufferFillsAndCopiesWithinItself) {
+    const std::uint32_t words[] = {1, 2, 3, 4, 5, 6, 7, 8};
+    gl::Buffer buffer{std::span<const std::uint32_t>(words)};
+    buffer.fill(4, 2, 9u);        // words 1-2
+    buffer.copy(0, 5 * 4, 3 * 4); // words 0-2 over 5-7
+    std::uint32_t got[8];
+    std::memcpy(got, buffer.download().data(), sizeof got);
+    const std::uint32_t expected[] = {1, 9, 9, 4, 5, 1, 9, 9};
+    EXPECT_TRUE(std::equal(std::begin(got), std::end(got), std::begin(expected)));
 }
 
 TEST_F(GlLayer, ShaderErrorsNameTheFile) {

@@ -185,8 +185,9 @@ TEST_F(Refraction, NormalDistanceTreeFollowsWherePrimitivesArePlaced) {
 /** Checks `bvh` as the GPU holds it: every triangle in exactly one leaf, every node its
  *  parent's child, every leaf's box its triangle's corners' (as gathered: exact), every inner
  *  box the union of its children's, and every box as the traversal reads it (packed) holding
- *  the box, within a cell of it. */
-void expectSoundTree(const refraction::GlassBvh& bvh) {
+ *  the box, within a cell of it on every side (`unbounded`: or no bound at all on the sides
+ *  that left the frame, which the tree must then have). */
+void expectSoundTree(const refraction::GlassBvh& bvh, bool unbounded = false) {
     const refraction::Bvh tree = bvh.download();
     const std::uint32_t n = bvh.triangleCount();
     ASSERT_EQ(tree.nodes.size(), 2 * std::size_t(n) - 1);
@@ -198,7 +199,7 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
         return p;
     };
     std::vector<int> seen(n, 0);
-    std::size_t wrongParents = 0, wrongBoxes = 0, wrongChildren = 0, wrongPacked = 0;
+    std::size_t wrongParents = 0, wrongBoxes = 0, wrongChildren = 0, wrongPacked = 0, open = 0;
     const int firstLeaf = int(n) - 1;
     for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
         const refraction::Bvh::Node& node = tree.nodes[i];
@@ -225,13 +226,21 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
             }
         }
         wrongBoxes += lo != tree.lo[i] || hi != tree.hi[i];
-        // In cells of the root's box, with a hundredth of one for the division's rounding.
-        const glm::vec3 loCells = (tree.lo[i] - tree.lo[0]) / tree.cell;
-        const glm::vec3 hiCells = (tree.hi[i] - tree.lo[0]) / tree.cell;
+        // In cells of the frame, with a hundredth of one for the division's rounding (an
+        // unbounded side is infinite).
+        const glm::vec3 loCells = (tree.lo[i] - tree.frameLo) / tree.cell;
+        const glm::vec3 hiCells = (tree.hi[i] - tree.frameLo) / tree.cell;
+        // A side within the frame (a cell clear of its edges) packs within a cell; one past it
+        // packs open (0 or 65535: no bound that way).
+        const glm::bvec3 innerLo = glm::greaterThanEqual(loCells, glm::vec3(1.0f)) &&
+                                   glm::lessThan(loCells, glm::vec3(65534.0f));
+        const glm::bvec3 innerHi = glm::greaterThanEqual(hiCells, glm::vec3(1.0f)) &&
+                                   glm::lessThan(hiCells, glm::vec3(65534.0f));
+        open += !glm::all(innerLo) || !glm::all(innerHi);
         wrongPacked += glm::any(glm::greaterThan(tree.packedLo[i], loCells + 0.01f)) ||
                        glm::any(glm::lessThan(tree.packedHi[i], hiCells - 0.01f)) ||
-                       glm::any(glm::lessThan(tree.packedLo[i], loCells - 1.01f)) ||
-                       glm::any(glm::greaterThan(tree.packedHi[i], hiCells + 1.01f));
+                       glm::any(glm::lessThan(tree.packedLo[i], loCells - 1.01f) && innerLo) ||
+                       glm::any(glm::greaterThan(tree.packedHi[i], hiCells + 1.01f) && innerHi);
     }
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(n))
         << "triangles missing from the leaves, or in several";
@@ -240,6 +249,10 @@ void expectSoundTree(const refraction::GlassBvh& bvh) {
     EXPECT_EQ(wrongBoxes, 0u) << "boxes that do not bound what is under them";
     EXPECT_EQ(wrongChildren, 0u) << "boxes that name other children than their nodes";
     EXPECT_EQ(wrongPacked, 0u) << "packed boxes that miss their node's box or overreach it";
+    if (unbounded)
+        EXPECT_GT(open, 0u) << "no box left the frame";
+    else
+        EXPECT_EQ(open, 0u) << "boxes past the frame's edges where nothing moved";
 }
 
 TEST_F(Refraction, GlassBvhKeepsEveryTriangleThroughRefitsAndRebuildsWhenWorn) {
@@ -276,18 +289,31 @@ TEST_F(Refraction, GlassBvhKeepsEveryTriangleThroughRefitsAndRebuildsWhenWorn) {
     pose(1.0f, *primitive.deformed);
     EXPECT_EQ(bvh.builds(), 1);
     expectSoundTree(bvh);
-    for (const float apart : {1.1f, 1.2f, 1.3f})
-        pose(apart, *primitive.deformed);
+    // As many small moves as make sure a cost was measured and read back.
+    for (int k = 1; k <= refraction::GlassBvh::kMeasureEvery + 1; ++k)
+        pose(1.0f + 0.3f * float(k) / float(refraction::GlassBvh::kMeasureEvery + 1),
+             *primitive.deformed);
     const double moved = bvh.costRatio();
     EXPECT_EQ(bvh.builds(), 1) << "a small move rebuilt the tree";
     expectSoundTree(bvh);
     pose(50.0f, *primitive.deformed); // refitted: boxes reach across both
-    pose(50.0f, *primitive.deformed); // that cost read back, over the ratio: rebuilt
+    // Packed in the last pose's frame, which the moved sphere left: its boxes unbounded that
+    // way, and rays still find it (d_N, the diameter, from every vertex of both).
+    expectSoundTree(bvh, true);
+    bvh.castNormalDistances(rig.programs);
+    double worst = 0.0;
+    for (float v : downloadFloats(bvh.distances(), 2 * std::size_t(count)))
+        worst = std::max(worst, std::abs(double(v) - 2.0));
+    EXPECT_LE(worst, 1e-4) << "d_N through boxes unbounded past the frame";
+    // Its cost measured and read back within kMeasureEvery more updates, over the ratio:
+    // rebuilt.
+    for (int k = 0; k < refraction::GlassBvh::kMeasureEvery + 1 && bvh.builds() == 1; ++k)
+        pose(50.0f, *primitive.deformed);
     const double apart = bvh.costRatio();
     EXPECT_EQ(bvh.builds(), 2);
     expectSoundTree(bvh);
-    pose(50.0f, exploded);
-    pose(50.0f, exploded);
+    for (int k = 0; k < refraction::GlassBvh::kMeasureEvery + 2 && bvh.builds() == 2; ++k)
+        pose(50.0f, exploded);
     const double scattered = bvh.costRatio();
     std::printf("glass BVH refitted, over its fresh cost: two spheres moved 0.3 %.2f; 49 %.2f; "
                 "one exploded %.2f; %d builds\n",

@@ -100,6 +100,16 @@ void Buffer::fill(std::size_t offset, std::size_t count, std::uint32_t value) {
                                   GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
 }
 
+void Buffer::copy(std::size_t sourceOffset, std::size_t offset, std::size_t bytes) {
+    ENGINE_CHECK(sourceOffset <= mSize && bytes <= mSize - sourceOffset && offset <= mSize &&
+                     bytes <= mSize - offset &&
+                     (sourceOffset + bytes <= offset || offset + bytes <= sourceOffset),
+                 "Buffer::copy() past the end or onto itself");
+    if (bytes)
+        glCopyNamedBufferSubData(mId, mId, GLintptr(sourceOffset), GLintptr(offset),
+                                 GLsizeiptr(bytes));
+}
+
 std::vector<std::uint8_t> Buffer::download(std::size_t offset, std::size_t bytes) const {
     ENGINE_CHECK(offset <= mSize, "Buffer::download() past the end");
     bytes = std::min(bytes, mSize - offset);

@@ -39,19 +39,29 @@ layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorne
 // (glass_materials.glsl), or kOpaqueTag with an opaque part's material factors.
 layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleTags { uint triangleTags[]; };
 const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
-// The traversal's copy of each node's box, packed after every refit (bvh_build.comp.glsl's
-// stage 7): its corners in cells of the root's box (bvhCell), 16 bits an axis, rounded outward,
-// and the children word: lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16, children. A
-// visit reads one vector of four words a child instead of two (seven words): on a CPU
-// rasteriser the loads were most of a visit's cost.
+// The traversal's copy of each node's box, packed by the refit as it computes the box
+// (bvh_build.comp.glsl's stage 5): its corners in cells of the frame (bvhFrame), 16 bits an
+// axis, rounded outward, and the children word: lo.x | lo.y << 16, lo.z | hi.x << 16,
+// hi.y | hi.z << 16, children. A visit reads one vector of four words a child instead of two
+// (seven words): on a CPU rasteriser the loads were most of a visit's cost. After the 2n - 1
+// boxes, the frame they are packed in (its lo, then hi, as float bits), then the next update's
+// (the root's box this update, grown by an eighth of its longest side each way: GlassBvh::update
+// copies it over the frame before the next refit). A corner outside the frame packs as 0 or
+// 65535, which stand for no bound that way: a box is never smaller than its node's.
 layout(std430, binding = BVH_BINDINGS + 7) buffer PackedBounds { uvec4 packedBoxes[]; };
 
-// The cell of the packed boxes: the root's box in 65535 steps an axis (an axis along which it is
-// flat takes a millionth of its longest's steps, so that no cell is empty).
-vec3 bvhCell(vec3 rootLo, vec3 rootHi) {
-    vec3 extent = rootHi - rootLo;
+// The frame the boxes are packed in, and its cell: the frame in 65535 steps an axis (an axis
+// along which it is flat takes a millionth of its longest's steps, so that no cell is empty).
+// A frame that is not finite (an exploded pose's) is taken as cells of 1 from the origin.
+void bvhFrame(out vec3 lo, out vec3 cell) {
+    lo = uintBitsToFloat(packedBoxes[boxes.length()].xyz);
+    vec3 extent = uintBitsToFloat(packedBoxes[boxes.length() + 1].xyz) - lo;
     float longest = max(max(extent.x, extent.y), extent.z);
-    return max(extent, vec3(1e-6 * longest + 1e-30)) / 65535.0;
+    cell = max(extent, vec3(1e-6 * longest + 1e-30)) / 65535.0;
+    if (any(isnan(lo)) || any(isinf(lo)) || any(isnan(cell)) || any(isinf(cell))) {
+        lo = vec3(0.0);
+        cell = vec3(1.0);
+    }
 }
 
 // Where the ray enters the box [lo, hi] padded by `pad` before tMax, or -1 when it misses (a ray
@@ -98,11 +108,13 @@ int bvhVisit(int node, int children, int firstLeaf) {
     return node >= firstLeaf ? firstLeaf - node - 1 : children;
 }
 
-// Node i's packed box (packedBoxes) in cells, and its children word.
+// Node i's packed box (packedBoxes) in cells, unbounded where it lies outside the frame, and its
+// children word.
 void bvhPackedBox(int i, out vec3 lo, out vec3 hi, out int children) {
     uvec4 q = packedBoxes[i];
-    lo = vec3(uvec3(q.x, q.x >> 16, q.y) & 0xFFFFu);
-    hi = vec3(uvec3(q.y >> 16, q.z, q.z >> 16) & 0xFFFFu);
+    uvec3 l = uvec3(q.x, q.x >> 16, q.y) & 0xFFFFu, h = uvec3(q.y >> 16, q.z, q.z >> 16) & 0xFFFFu;
+    lo = mix(vec3(l), vec3(-3.0e38), equal(l, uvec3(0u)));
+    hi = mix(vec3(h), vec3(3.0e38), equal(h, uvec3(0xFFFFu)));
     children = int(q.w);
 }
 
@@ -111,8 +123,8 @@ void bvhPackedBox(int i, out vec3 lo, out vec3 hi, out int children) {
 // child first, so that the first hits shorten the ray; a node waiting on the stack is dropped
 // once a hit is nearer than where the ray enters it. The boxes are tested in the packed boxes'
 // cells, where the ray is taken once (t is the same along it). One loop iteration a node (a
-// leaf holds one triangle): Mesa's llvmpipe ends every loop of a shader invocation after 65535 iterations
-// in all, so the traversal spends none on inner loops.
+// leaf holds one triangle): Mesa's llvmpipe ends every loop of a shader invocation after 65535
+// iterations in all, so the traversal spends none on inner loops.
 bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, out int leaf,
                 out vec2 uv, inout int steps) {
     vec3 inverseDir = 1.0 / (dir + vec3(equal(dir, vec3(0.0))) * 1e-30);
@@ -124,8 +136,9 @@ bool bvhNearest(vec3 origin, vec3 dir, float epsilon, float tMax, out float t, o
     float entered[64];
     int top = 0;
     BvhBox root = boxes[0];
-    vec3 cell = bvhCell(root.lo, root.hi);
-    vec3 originCells = (origin - root.lo) / cell, inverseCells = inverseDir * cell;
+    vec3 frameLo, cell;
+    bvhFrame(frameLo, cell);
+    vec3 originCells = (origin - frameLo) / cell, inverseCells = inverseDir * cell;
     vec3 padCells = epsilon / cell;
     if (bvhEnterBox(origin, inverseDir, root.lo, root.hi, vec3(epsilon), t) >= 0.0) {
         stack[0] = bvhVisit(0, root.children, firstLeaf);

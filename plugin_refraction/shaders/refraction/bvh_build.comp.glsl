@@ -7,10 +7,10 @@
 //     internal node's range of leaves from the sorted keys' common prefixes, its split, its
 //     children and their parent
 //   5 refit: from every leaf up, each node's box once both children have theirs (the second to
-//     arrive computes it), the leaves' corners copied in leaf order
+//     arrive computes it), packed for the traversal (packedBoxes) in the frame the last refit
+//     left; the leaves' corners copied in leaf order; the next frame from the root's box
 //   6 cost: the surface-area cost of the tree, sum of each node's area over the root's (fixed
 //     point, 1/256 a node), which tells when a refitted tree has degraded enough to rebuild
-//   7 pack: each node's box as the traversal reads it (packedBoxes), after every refit
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
@@ -22,7 +22,7 @@ layout(std430, binding = 9) coherent buffer Keys { uint keys[]; }; // sorted wit
 layout(std430, binding = 10) coherent buffer Parents { int parents[]; };
 layout(std430, binding = 11) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
 
-uniform int uCount;     // threads: triangles n (1, 4, 5), pairs (2, 3), GlassBvh's (6), nodes (7)
+uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), GlassBvh's (6)
 uniform int uTriangles; // n
 uniform int uSortSize, uSortStride; // stage 3
 
@@ -62,6 +62,16 @@ int delta(int i, int j) {
     return a != b ? 31 - findMSB(a ^ b) : 32 + 31 - findMSB(uint(i ^ j));
 }
 
+// A box as the traversal reads it (packedBoxes) in the frame at frameLo, cells `cell`: outward,
+// and 0 or 65535 (no bound) where it leaves the frame.
+uvec4 packBox(vec3 lo, vec3 hi, int children, vec3 frameLo, vec3 cell) {
+    vec3 l = floor((lo - frameLo) / cell), h = ceil((hi - frameLo) / cell);
+    l = mix(clamp(l, 0.0, 65535.0), vec3(0.0), isnan(l));
+    h = mix(clamp(h, 0.0, 65535.0), vec3(65535.0), isnan(h));
+    uvec3 a = uvec3(l), b = uvec3(h);
+    return uvec4(a.x | a.y << 16, a.z | b.x << 16, b.y | b.z << 16, uint(children));
+}
+
 float area(vec3 lo, vec3 hi) {
     vec3 d = max(hi - lo, vec3(0.0));
     return d.x * d.y + d.y * d.z + d.z * d.x;
@@ -93,15 +103,7 @@ void main() {
 #endif
     if (i >= uCount)
         return;
-#if BVH_STAGE == 7
-    // Outward: lo down, hi up (the traversal's pad, 1e-5 of the root's diagonal, is over half a
-    // cell and covers the rounding of the division, which it repeats for the ray).
-    vec3 rootLo = boxes[0].lo, cell = bvhCell(rootLo, boxes[0].hi);
-    uvec3 lo = uvec3(clamp(floor((boxes[i].lo - rootLo) / cell), 0.0, 65535.0));
-    uvec3 hi = uvec3(clamp(ceil((boxes[i].hi - rootLo) / cell), 0.0, 65535.0));
-    packedBoxes[i] = uvec4(lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16,
-                           uint(boxes[i].children));
-#elif BVH_STAGE == 1
+#if BVH_STAGE == 1
     vec3 c = centreOf(uint(i));
     for (int a = 0; a < 3; ++a) {
         atomicMin(centroidMin[a], orderedInt(c[a]));
@@ -178,19 +180,37 @@ void main() {
         lo = min(lo, p);
         hi = max(hi, p);
     }
+    // The frame the boxes are packed in (the division rounds by a few thousandths of a cell,
+    // which the traversal's pad, 1e-5 of the root's diagonal, covers many times over).
+    vec3 frameLo, cell;
+    bvhFrame(frameLo, cell);
     boxes[node].lo = lo;
     boxes[node].hi = hi;
+    packedBoxes[node] = packBox(lo, hi, 0, frameLo, cell);
     memoryBarrierBuffer();
     int p = uCount > 1 ? parents[node] : -1;
     while (p >= 0) {
         if (atomicAdd(visits[p], 1u) == 0u)
             return; // the sibling's subtree is not done: its last thread goes on
         memoryBarrierBuffer();
-        BvhNode n = nodes[p];
-        boxes[p].lo = min(boxes[n.left].lo, boxes[n.right].lo);
-        boxes[p].hi = max(boxes[n.left].hi, boxes[n.right].hi);
+        // The sibling from the parent's children word (stage 4's, as the traversal reads it).
+        int children = boxes[p].children, gamma = children >> 2;
+        int left = (children & 2) != 0 ? uCount - 1 + gamma : gamma;
+        int right = (children & 1) != 0 ? uCount + gamma : gamma + 1;
+        int sibling = left == node ? right : left;
+        lo = min(lo, boxes[sibling].lo);
+        hi = max(hi, boxes[sibling].hi);
+        boxes[p].lo = lo;
+        boxes[p].hi = hi;
+        packedBoxes[p] = packBox(lo, hi, children, frameLo, cell);
         memoryBarrierBuffer();
+        node = p;
         p = parents[p];
     }
+    // This thread made the root's box: the next refit's frame.
+    float grow = max(max(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z) / 8.0;
+    int frame = boxes.length();
+    packedBoxes[frame + 2] = uvec4(floatBitsToUint(lo - grow), 0u);
+    packedBoxes[frame + 3] = uvec4(floatBitsToUint(hi + grow), 0u);
 #endif
 }

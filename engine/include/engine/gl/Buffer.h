@@ -31,6 +31,9 @@ public:
     /** Sets `count` 32-bit words from byte `offset` to `value` on the GPU (a clear: unlike
      *  update(), never waits for earlier draws that read the buffer). */
     void fill(std::size_t offset, std::size_t count, std::uint32_t value);
+    /** Copies `bytes` from `sourceOffset` to `offset` on the GPU, within this buffer (the two
+     *  ranges apart; shader writes to the source need BarrierBufferUpdate first). */
+    void copy(std::size_t sourceOffset, std::size_t offset, std::size_t bytes);
     /** Reads the buffer back (synchronises with the GPU: tests, tools and one-time set-up). */
     std::vector<std::uint8_t> download(std::size_t offset = 0, std::size_t bytes = SIZE_MAX) const;
 
