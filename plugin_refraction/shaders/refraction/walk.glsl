@@ -71,6 +71,7 @@ uniform mat4 uInverseProjection;
 uniform int uTraceSample;
 uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
+uniform int uTraceSamples;   // trace-samples
 
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
 // work groups of 64 (walk_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
@@ -394,8 +395,7 @@ struct Walk {
     vec3 firstExit;
     bool tir, fallback;
     // It followed a total internal reflection the layers may not represent (tir also counts
-    // grazing exits): the second of a chain, one with more glass on the line of sight than one
-    // piece's two layers, or one that turned the ray back toward the camera.
+    // grazing exits; handedOverBy).
     bool hardReflection;
     bool outline;       // a crossing's normal was filtered near an outline
     bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
@@ -408,12 +408,19 @@ struct Walk {
 // The hybrid's reasons to trace a pixel so far, each a bit of uHybridCriteria: the pixel, or
 // one where the walk crossed a surface, held more than K layers (1); the walk left the layers
 // where it found no surface and took Wyman's silhouette normal (2); it followed a total
-// internal reflection the layers may not represent (4, hardReflection: each reflection is
-// searched with normals good to a few degrees, bounded by tir-bounces; one reflection inside a
-// lone piece that sends the ray on deeper the walk follows about as well as the trace, and
-// those were two thirds of CesiumMan's reflecting pixels; not a grazing exit, which the trace
-// would not improve: on a sphere, where light never reflects totally, such pixels lost 0.04 dB
-// to DIR when handed over); it crossed a surface whose normal was filtered near an outline (8).
+// internal reflection the layers may not represent (4, hardReflection); it crossed a surface
+// whose normal was filtered near an outline (8).
+//
+// Each reflection is searched with normals good to a few degrees, and the searches stop after
+// tir-bounces. At one sample a pixel, one reflection inside a lone piece (two layers on the
+// line of sight) that sends the ray on deeper stays with the walk, which follows it about as
+// well as one traced ray does (two thirds of CesiumMan's reflecting pixels); the second of a
+// chain, one with more glass on the line of sight, or one that turns the ray back toward the
+// camera goes to the trace. With more samples every reflection does: the traced paths
+// converge as samples add up, and the walk's keep their normals' error. So does every one
+// over the papers' two surfaces. A grazing exit is never handed over: the trace does not
+// improve it (on a sphere, where light never reflects totally, such pixels lost 0.04 dB to
+// DIR when handed over).
 uint handedOverBy(Walk w) {
     return uint(uHybridCriteria) &
            ((w.sightLayers > kLayerCapacity || w.overflowed ? 1u : 0u) | (w.fallback ? 2u : 0u) |
@@ -617,8 +624,8 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
                 if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
                     ++bounces;
                     dir = reflect(dir, facing);
-                    w.hardReflection = w.hardReflection || bounces > 1 || w.sightLayers > 2 ||
-                                       dir.z > 0.0;
+                    w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
+                                       bounces > 1 || w.sightLayers > 2 || dir.z > 0.0;
                     media = before; // still in the same medium
                     parity = parityBefore;
                     segmentFromEntry = false;

@@ -64,6 +64,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uMarchSteps", s.marchSteps);
     f.set("uInterfaces", s.interfaces);
     f.set("uHybridCriteria", s.hybridCriteria);
+    f.set("uTraceSamples", s.traceSamples);
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
