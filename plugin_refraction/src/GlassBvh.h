@@ -50,10 +50,10 @@ struct BvhPrograms {
 class GlassBvh {
 public:
     /** A tree whose cost has grown past this ratio of the fresh tree's is rebuilt. Measured
-     *  (gl_glass_bvh, llvmpipe): CesiumMan walking reaches it about once in
-     *  two seconds, and a build costs what about 24 refits do (20.7 against 0.85 ms), while
-     *  every ray through a tree worn to 1.5 pays up to half as much again; two characters that
-     *  crossed and parted reach 2.6, a scrambled pose 108. */
+     *  (gl_glass_bvh, llvmpipe): CesiumMan walking reaches it about once in two seconds, and a
+     *  build with its two refits costs what about 30 refits do (12.0-12.8 against 0.38-0.40
+     *  ms), while every ray through a tree worn to 1.5 pays up to half as much again; two
+     *  characters that crossed and parted reach 2.5, a scrambled pose 171. */
     static constexpr double kRebuildRatio = 1.5;
     /** The cost is measured every this many updates (and right after a build): at level 2 on
      *  CesiumMan a measure cost 1.2-2 ms, a fifth of the update, every frame. */
@@ -70,7 +70,8 @@ public:
     void gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t count,
                 const glm::mat4& world, const BvhPrograms& programs) const;
     /** Builds the tree from the gathered mesh when it has none or its cost has worn past
-     *  kRebuildRatio, else refits it; then measures its cost (read back frames later). */
+     *  kRebuildRatio, else refits it; then, every kMeasureEvery updates and after a build,
+     *  measures its cost (read back frames later). */
     void update(const BvhPrograms& programs);
     /** A part's tag: its glass id (glass_materials.glsl), or kOpaqueTag with an opaque part's
      *  material factors (bits 0-20 the square root of its base colour, 7 a channel, red
@@ -114,7 +115,7 @@ private:
     std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
         mPackedBounds, mLeafCorners, mBuild, mTriangleTags, mDistances, mUvs;
-    /** The cost measured after each update, read back once its fence has passed. */
+    /** A cost measured after an update (kMeasureEvery), read back once its fence has passed. */
     struct Measure {
         gl::Buffer cost{sizeof(std::uint32_t) * 8};
         gl::Fence fence;
