@@ -45,7 +45,7 @@ const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
 // hi.y | hi.z << 16, children. A visit reads one vector of four words a child instead of two
 // (seven words): on a CPU rasteriser the loads were most of a visit's cost. After the 2n - 1
 // boxes, the frame they are packed in (its lo, then hi, as float bits), then the next update's
-// (the root's box this update, grown by an eighth of its longest side each way: GlassBvh::update
+// (the root's box this update, grown by an eighth of its longest side each way: GlassBvh::refit
 // copies it over the frame before the next refit). A corner outside the frame packs as 0 or
 // 65535, which stand for no bound that way: a box is never smaller than its node's.
 layout(std430, binding = BVH_BINDINGS + 7) buffer PackedBounds { uvec4 packedBoxes[]; };
