@@ -84,6 +84,8 @@ struct GpuState {
     std::vector<const gl::Texture*> tracedNormalMaps;
     bool warnedNormalMaps = false; // more than kTracedNormalMaps was reported
     gl::Framebuffer framebuffer;
+    /** The scene's colour, read to convert it into the walk's single-precision target. */
+    gl::Framebuffer sceneColorRead;
     gl::VertexArray emptyVao;
     gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
     /** The BVH over the frame's glass as drawn, and for the tracing methods its opaque parts

@@ -52,6 +52,21 @@ TEST_F(GlLayer, BufferFillsAndCopiesWithinItself) {
     EXPECT_TRUE(std::equal(std::begin(got), std::end(got), std::begin(expected)));
 }
 
+TEST_F(GlLayer, FramebufferBlitConvertsColourFormats) {
+    gl::Texture half({{8, 4}, gl::Format::RGBA16F, 1}), single({{8, 4}, gl::Format::RGBA32F, 1});
+    gl::Framebuffer from, to;
+    ASSERT_TRUE(from.bindTargets("half", {&half}, nullptr).ok());
+    gl::clearColor(0, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f));
+    ASSERT_TRUE(to.attach("single", {&single}, nullptr).ok());
+    to.blitColorFrom(from, {8, 4});
+    const std::vector<float> texels = single.downloadFloat();
+    ASSERT_EQ(texels.size(), 8u * 4u * 4u);
+    for (std::size_t i = 0; i < texels.size(); i += 4)
+        ASSERT_EQ(glm::vec4(texels[i], texels[i + 1], texels[i + 2], texels[i + 3]),
+                  glm::vec4(0.25f, 0.5f, 0.75f, 1.0f))
+            << "texel " << i / 4;
+}
+
 TEST_F(GlLayer, ShaderErrorsNameTheFile) {
     gl::ShaderLibrary library;
     library.add(kFiles);

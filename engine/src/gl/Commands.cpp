@@ -79,25 +79,11 @@ void bindTexture(std::uint32_t unit, const Texture& texture) {
 }
 
 void copyTexture(const Texture& source, const Texture& destination) {
-    const glm::ivec2 size = source.desc().size;
-    ENGINE_CHECK(size == destination.desc().size, "gl::copyTexture(): the textures differ in size");
-    if (source.desc().format == destination.desc().format) {
-        glCopyImageSubData(source.id(), GL_TEXTURE_2D, 0, 0, 0, 0, destination.id(), GL_TEXTURE_2D,
-                           0, 0, 0, 0, size.x, size.y, 1);
-        return;
-    }
-    ENGINE_CHECK(!isDepth(source.desc().format) && !isDepth(destination.desc().format),
-                 "gl::copyTexture(): a depth texture converts to no other format");
-    // Colour formats convert in a blit, between two framebuffers made for it.
-    GLuint framebuffers[2];
-    glCreateFramebuffers(2, framebuffers);
-    glNamedFramebufferTexture(framebuffers[0], GL_COLOR_ATTACHMENT0, source.id(), 0);
-    glNamedFramebufferTexture(framebuffers[1], GL_COLOR_ATTACHMENT0, destination.id(), 0);
-    glNamedFramebufferReadBuffer(framebuffers[0], GL_COLOR_ATTACHMENT0);
-    glNamedFramebufferDrawBuffer(framebuffers[1], GL_COLOR_ATTACHMENT0);
-    glBlitNamedFramebuffer(framebuffers[0], framebuffers[1], 0, 0, size.x, size.y, 0, 0, size.x,
-                           size.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glDeleteFramebuffers(2, framebuffers);
+    ENGINE_CHECK(source.desc().size == destination.desc().size &&
+                     source.desc().format == destination.desc().format,
+                 "gl::copyTexture(): the textures differ in size or format");
+    glCopyImageSubData(source.id(), GL_TEXTURE_2D, 0, 0, 0, 0, destination.id(), GL_TEXTURE_2D, 0,
+                       0, 0, 0, source.desc().size.x, source.desc().size.y, 1);
 }
 
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write) {

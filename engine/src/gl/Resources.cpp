@@ -278,6 +278,11 @@ void Framebuffer::blitToDefault(glm::ivec4 source, glm::ivec4 destination) const
                            scaled ? GL_LINEAR : GL_NEAREST);
 }
 
+void Framebuffer::blitColorFrom(const Framebuffer& source, glm::ivec2 size) const {
+    glBlitNamedFramebuffer(source.mId, mId, 0, 0, size.x, size.y, 0, 0, size.x, size.y,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
 std::vector<std::uint8_t> Framebuffer::readDefault(glm::ivec2 size) {
     std::vector<std::uint8_t> pixels(std::size_t(size.x) * std::size_t(size.y) * 4u);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);

@@ -18,7 +18,8 @@ fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext&
             d.rectangle = b.read(buffers.rectangle);
             d.shaded = b.read(shaded.color);
             d.surface = b.read(shaded.surface);
-            d.out = b.write(b.create("refraction.scene_color", colorDesc(size)));
+            // The walk's format (a copy of its colour, then the outlines over it).
+            d.out = b.write(b.create("refraction.scene_color", walkDesc(size, c.settings)));
         },
         [c](const fg::Resources& r, const OutlineData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;

@@ -132,8 +132,9 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines);
 std::size_t layerDepthSlots(int capacity);
 
 gl::TextureDesc colorDesc(glm::ivec2 size);
-/** The walk's colour target: single precision where it adds samples up (in half floats each
- *  sum rounds: 64 samples came out darker by up to 0.7/255), else colorDesc's. */
+/** The walk's colour target, and the outline pass's over it: single precision where it adds
+ *  samples up (in half floats each sum rounds: 64 samples came out darker by up to 0.7/255),
+ *  else colorDesc's. */
 gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings);
 gl::TextureDesc normalDesc(glm::ivec2 size);
 gl::TextureDesc zDesc(glm::ivec2 size);

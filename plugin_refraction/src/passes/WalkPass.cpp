@@ -54,8 +54,21 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         [c, outlines, size](const fg::Resources& r, const WalkData& d,
                             gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
-            gl::copyTexture(r.texture(d.sceneColor), r.texture(d.out));
-            std::vector<const gl::Texture*> targets{&r.texture(d.out)};
+            // The scene's colour under the glass: a copy, or a conversion where the walk adds
+            // samples up in single precision (in framebuffers kept across frames).
+            const gl::Texture &sceneColor = r.texture(d.sceneColor), &out = r.texture(d.out);
+            if (sceneColor.desc().format == out.desc().format) {
+                gl::copyTexture(sceneColor, out);
+            } else {
+                if (auto read =
+                        gpu.sceneColorRead.attach("refraction.walk", {&sceneColor}, nullptr);
+                    !read)
+                    return read;
+                if (auto draw = gpu.framebuffer.attach("refraction.walk", {&out}, nullptr); !draw)
+                    return draw;
+                gpu.framebuffer.blitColorFrom(gpu.sceneColorRead, size);
+            }
+            std::vector<const gl::Texture*> targets{&out};
             if (outlines)
                 targets.push_back(&r.texture(d.surface));
             if (auto bound = gpu.framebuffer.bindTargets("refraction.walk", targets,
@@ -135,7 +148,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 return {};
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
             prepare(*c.handedOverTrace, samples);
-            gl::bindImage(0, r.texture(d.out), 0, true);
+            gl::bindImage(0, out, 0, true);
             for (int s = 0; s < samples; ++s) {
                 c.handedOverTrace->set("uTraceSample", s);
                 gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));

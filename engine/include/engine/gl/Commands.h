@@ -61,8 +61,8 @@ void dispatchIndirect(const Buffer& groups, std::size_t offset);
 void bindStorage(std::uint32_t binding, const Buffer& buffer);
 void bindTexture(std::uint32_t unit, const Texture& texture);
 void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
-/** Copies level 0 of `source` into `destination` (same size): a copy where the formats are
- *  equal, else a blit converting one colour format into the other (no depth). */
+/** Copies level 0 of `source` into `destination` (same size and format): a copy, no draw
+ *  (between formats: Framebuffer::blitColorFrom). */
 void copyTexture(const Texture& source, const Texture& destination);
 
 enum Barrier : std::uint32_t {

@@ -34,6 +34,9 @@ public:
      *  attachment 0 to rectangle `destination` of the window: unfiltered when the sizes match,
      *  bilinear when scaling. */
     void blitToDefault(glm::ivec4 source, glm::ivec4 destination) const;
+    /** Copies the first `size` pixels of `source`'s colour attachment 0 into this framebuffer's
+     *  colour attachments, unfiltered, converting between colour formats (no depth). */
+    void blitColorFrom(const Framebuffer& source, glm::ivec2 size) const;
     /** The window's back buffer as RGBA8, rows top to bottom (synchronises). */
     static std::vector<std::uint8_t> readDefault(glm::ivec2 size);
 
