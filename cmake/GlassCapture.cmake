@@ -26,5 +26,7 @@ function(glass_add_capture_case name case_file)
     add_test(NAME capture.${name}
              COMMAND ${executable} --case ${case_file} --out ${CMAKE_CURRENT_BINARY_DIR}/capture
                      ${arg_ARGS})
-    set_tests_properties(capture.${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 LABELS "capture;gl")
+    # GLASS_GL_CHECKS: every draw checks its bindings against the registry (gl/Registry.h).
+    set_tests_properties(capture.${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 LABELS "capture;gl"
+                         ENVIRONMENT GLASS_GL_CHECKS=1)
 endfunction()

@@ -17,7 +17,7 @@ namespace {
 const gl::ShaderFile kShaders[] = {{"tint/tint.frag.glsl", R"(
 in vec2 vUv;
 out vec4 outColor;
-uniform sampler2D uScene;
+layout(binding = SOURCE_UNIT) uniform sampler2D uScene; // the engine's registry (gl/Registry.h)
 uniform vec3 uTint;
 void main() { outColor = vec4(texelFetch(uScene, ivec2(gl_FragCoord.xy), 0).rgb * uTint, 1.0); }
 )"}};
@@ -72,8 +72,7 @@ public:
                     return bound; // ends the frame with this error, naming the pass
                 gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
                 mProgram.use();
-                gl::bindTexture(0, r.texture(d.in));
-                mProgram.set("uScene", 0);
+                gl::bindTexture(gl::slot::kSource, r.texture(d.in));
                 mProgram.set("uTint", glm::vec3(red, 1.0f, 1.0f));
                 mVao->bind();
                 gl::drawArrays(3);

@@ -2,6 +2,8 @@
 // hierarchy), the bottom-up refit and the cost that decides a rebuild, the d_N cast.
 #include "GlassBvh.h"
 
+#include "Shared.h"
+
 #include "engine/gl/Commands.h"
 
 #include <algorithm>
@@ -73,8 +75,8 @@ void GlassBvh::gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t c
     gather.set("uNormalMatrix", glm::mat3(glm::transpose(glm::inverse(world))));
     gather.set("uBase", int(mBases[i]));
     gather.set("uVertexCount", int(count));
-    gl::bindStorage(0, vertices);
-    gl::bindStorage(1, mVertices);
+    gl::bindStorage(gl::slot::kVertices, vertices);
+    gl::bindStorage(slot::kWorldMesh, mVertices);
     gl::dispatch(groups(count));
 }
 
@@ -135,11 +137,11 @@ void GlassBvh::update(const BvhPrograms& programs) {
         return;
     readCosts();
     const bool fresh = mBuilds == 0 || mRebuild;
-    bind(0);
-    gl::bindStorage(8, mBuild); // bvh_build.comp.glsl's own
-    gl::bindStorage(9, mKeys);
-    gl::bindStorage(10, mParents);
-    gl::bindStorage(11, mVisits);
+    bindForTraversal();
+    gl::bindStorage(slot::kBvhBuild, mBuild); // bvh_build.comp.glsl's own
+    gl::bindStorage(slot::kBvhKeys, mKeys);
+    gl::bindStorage(slot::kBvhParents, mParents);
+    gl::bindStorage(slot::kBvhVisits, mVisits);
     if (fresh) {
         build(programs);
         mFreshCost = 0.0;
@@ -151,7 +153,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
     if (!m.pending && (fresh || ++mUpdates % kMeasureEvery == 0)) {
         mNext = (mNext + 1) % mMeasures.size();
         m.cost.fill(kCostOffset, 1, 0u);
-        gl::bindStorage(8, m.cost);
+        gl::bindStorage(slot::kBvhBuild, m.cost); // the cost stage writes Build.cost
         run(programs.stages[5], (2 * n - 1 + kCostNodes - 1) / kCostNodes, n);
         m.fence.insert();
         m.pending = true;
@@ -163,21 +165,23 @@ void GlassBvh::update(const BvhPrograms& programs) {
 void GlassBvh::castNormalDistances(const BvhPrograms& programs) {
     const gl::Program& cast = programs.cast;
     cast.use();
-    bind(0);
-    gl::bindStorage(12, mDistances);
+    bindForTraversal();
+    gl::bindStorage(slot::kNormalDistances, mDistances);
     cast.set("uVertexCount", int(mVertexCount));
     gl::dispatch(groups(mVertexCount));
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierVertex);
 }
 
-void GlassBvh::bind(std::uint32_t base) const {
-    // bvh.glsl's order: vertices, indices, nodes, order, bounds, leaf corners, glass ids,
-    // packed bounds.
-    const gl::Buffer* buffers[] = {&mVertices, &mIndices,     &mNodes,        &mOrder,
-                                   &mBounds,   &mLeafCorners, &mTriangleTags, &mPackedBounds};
-    static_assert(std::size(buffers) == kBindings);
-    for (std::uint32_t i = 0; i < std::size(buffers); ++i)
-        gl::bindStorage(base + i, *buffers[i]);
+void GlassBvh::bindForTraversal() const {
+    gl::bindStorage(slot::kWorldMesh, mVertices);
+    gl::bindStorage(slot::kWorldIndices, mIndices);
+    gl::bindStorage(slot::kBvhNodes, mNodes);
+    gl::bindStorage(slot::kBvhOrder, mOrder);
+    gl::bindStorage(slot::kBvhBoxes, mBounds);
+    gl::bindStorage(slot::kBvhLeafCorners, mLeafCorners);
+    gl::bindStorage(slot::kBvhTags, mTriangleTags);
+    gl::bindStorage(slot::kBvhPackedBoxes, mPackedBounds);
+    gl::bindStorage(slot::kWorldUvs, mUvs);
 }
 
 void GlassBvh::setTags(std::span<const std::uint32_t> partTags) {

@@ -73,17 +73,13 @@ public:
      *  kRebuildRatio, else refits it; then, every kMeasureEvery updates and after a build,
      *  measures its cost (read back frames later). */
     void update(const BvhPrograms& programs);
-    /** A part's tag: its glass id (glass_materials.glsl), or kOpaqueTag with an opaque part's
-     *  material factors (bits 0-20 the square root of its base colour, 7 a channel, red
-     *  lowest; 21-25 roughness, 26-29 metallic) and kOpaqueTextured where it has a base
-     *  colour texture. */
-    static constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
-    /** The buffers bind() binds, bvh.glsl's BVH_BINDINGS + 0 to + 7. */
-    static constexpr std::uint32_t kBindings = 8;
-    /** Each part's tag, uploaded per triangle when they change. */
+    /** Each part's tag, uploaded per triangle when they change: its glass id
+     *  (glass_materials.glsl), or kOpaqueTag (Shared.h) with an opaque part's material factors
+     *  (bits 0-20 the square root of its base colour, 7 a channel, red lowest; 21-25
+     *  roughness, 26-29 metallic) and kOpaqueTextured where it has a base colour texture. */
     void setTags(std::span<const std::uint32_t> partTags);
-    /** Binds what a traversal reads (bvh.glsl) from binding `base` (kBindings of them). */
-    void bind(std::uint32_t base) const;
+    /** Binds what a traversal reads (bvh.glsl, trace.glsl) at their slots (Shared.h). */
+    void bindForTraversal() const;
     /** d_N (world units) per world-mesh vertex into distances(). */
     void castNormalDistances(const BvhPrograms& programs);
 

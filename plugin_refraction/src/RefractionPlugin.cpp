@@ -3,6 +3,7 @@
 #include "refraction/RefractionPlugin.h"
 
 #include "GpuState.h"
+#include "Shared.h"
 #include "passes/Passes.h"
 
 #include "engine/core/Check.h"
@@ -66,6 +67,13 @@ RefractionPlugin::~RefractionPlugin() = default;
 
 core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     shaders.add(refractionShaderFiles());
+    if (auto shared = shaders.share("refraction", sharedTable()); !shared)
+        return shared;
+    if (const std::uint32_t highest = shaders.registry().highestStorage();
+        highest >= gl::maxStorageBindings())
+        return core::Error{"refraction: its storage bindings reach " + std::to_string(highest) +
+                           ", past this GL's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
+                           std::to_string(gl::maxStorageBindings()) + ")"};
     mGpu = std::make_unique<GpuState>();
     // The programs every frame may use; the capture's for K and the walk's variants are built
     // when a frame first needs them (walkPrograms).

@@ -69,7 +69,7 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
                  "jittered (the hybrid's walk enters them on the plane of the pixel's nearest "
                  "layer)"},
         {.name = "hybrid-criteria", .label = "Hybrid criteria", .type = Type::Int, .min = 1,
-         .max = 15, .defaultValue = 15,
+         .max = kHandAll, .defaultValue = kHandAll,
          .help = "hybrid: what hands a pixel to the trace, a sum of 1 more than K layers, 2 the "
                  "walk left the layers, 4 a total internal reflection it followed, 8 a crossing "
                  "near an outline"},

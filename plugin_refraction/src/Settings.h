@@ -22,6 +22,20 @@ struct Settings {
     enum class GeometryPasses { One, Two };
     enum class DispersionSearch { Shared, PerChannel };
     enum class Surfaces { Layers, TwoSurface };
+    /** What hands a hybrid's pixel to the trace (hybrid-criteria: a sum of these; the shaders'
+     *  HYBRID_*): a pixel, or one the walk crossed, holds more than K layers; the walk left the
+     *  layers; it followed a total internal reflection the layers may not represent; it crossed
+     *  a surface whose normal was filtered near an outline. */
+    enum HybridCriterion : int {
+        kHandOverflow = 1,
+        kHandOffLayers = 2,
+        kHandReflection = 4,
+        kHandOutline = 8,
+        kHandAll = 15
+    };
+    /** The walk's dispersion variant where the frame's glass has none (DISPERSION_NONE); else
+     *  the dispersion search's (DISPERSION_SEARCH_*). */
+    static constexpr int kNoDispersion = -1;
 
     Method method = Method::Dir;
     Glass glass = Glass::Auto;
@@ -41,10 +55,10 @@ struct Settings {
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     int traceSamples = 1;  ///< trace and hybrid: rays per glass pixel
-    int hybridCriteria = 15; ///< hybrid: what hands a pixel to the trace (walk.frag.glsl's bits)
+    int hybridCriteria = kHandAll; ///< hybrid: what hands a pixel to the trace (HybridCriterion)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
-    int debug = 0; ///< index into the "debug" parameter's choices (walk.frag.glsl)
+    int debug = 0; ///< index into the "debug" parameter's choices (the shaders' DEBUG_*)
 
     /** The plugin's parameters as data: name, label, type, range, default, choices, help. */
     static const std::vector<plugin::Parameter>& parameterTable();

@@ -3,8 +3,12 @@
 
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Commands.h"
+#include "engine/gl/Debug.h"
 #include "engine/gl/Framebuffer.h"
+#include "engine/gl/Registry.h"
 #include "engine/gl/Texture.h"
+
+#include <epoxy/gl.h>
 
 #include <algorithm>
 #include <cstring>
@@ -14,31 +18,96 @@ namespace {
 
 class GlLayer : public test::GlTest {};
 
+/** A test's own storage slots, registered past the engine's and the plugin's. */
+constexpr gl::StorageSlot kOut{70, "OUT_BINDING", "Out"};
+constexpr gl::StorageSlot kOther{71, "OTHER_BINDING", "Other"};
+constexpr gl::Shared kTestTable[] = {kOut, kOther};
+
 const gl::ShaderFile kFiles[] = {
     {"a.glsl", "#include \"b.glsl\"\nfloat a() { return b(); }\n"},
     {"b.glsl", "float b() { return 2.0; }\n"},
     {"loop1.glsl", "#include \"loop2.glsl\"\n"},
     {"loop2.glsl", "#include \"loop1.glsl\"\n"},
     {"main.comp.glsl", "#include \"a.glsl\"\nlayout(local_size_x = 1) in;\n"
-                       "layout(std430, binding = 0) buffer Out { float v[]; };\n"
+                       "layout(std430, binding = OUT_BINDING) buffer Out { float v[]; };\n"
                        "void main() { v[0] = a(); }\n"},
+    // Block Out declared at the binding registered for block Other.
+    {"misplaced.comp.glsl", "layout(local_size_x = 1) in;\n"
+                            "layout(std430, binding = OTHER_BINDING) buffer Out { float v[]; };\n"
+                            "void main() { v[0] = 1.0; }\n"},
     {"broken.comp.glsl", "layout(local_size_x = 1) in;\nvoid main() { undefined_call(); }\n"},
 };
 
 TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
     gl::ShaderLibrary library;
     library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
     gl::Buffer out(sizeof(float));
     program->use();
-    gl::bindStorage(0, out);
+    gl::bindStorage(kOut, out);
     gl::dispatch(1);
     gl::memoryBarrier(gl::BarrierAll);
     const auto bytes = out.download();
     float value = 0.0f;
     std::memcpy(&value, bytes.data(), sizeof value);
     EXPECT_EQ(value, 2.0f);
+}
+
+TEST_F(GlLayer, TheRegistryRefusesABindingOrANameTwice) {
+    gl::Registry registry; // the engine's table first
+    constexpr gl::StorageSlot kOnLights{gl::slot::kLighting.index, "MINE_BINDING", "Mine"};
+    constexpr gl::Shared clash[] = {kOnLights};
+    const core::Status refused = registry.add("plugin", clash);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("plugin's MINE_BINDING (storage binding 16) overlaps "
+                                           "engine's LIGHTING_BINDING"),
+              std::string::npos)
+        << refused.error().message;
+    constexpr gl::Shared renamed[] = {gl::Shared::integer("VERTICES_BINDING", 3)};
+    EXPECT_FALSE(registry.add("plugin", renamed).ok());
+    // A run of texture units overlapping another's.
+    constexpr gl::Shared units[] = {gl::TextureSlot{4, "MINE_UNIT", 2}};
+    EXPECT_FALSE(registry.add("plugin", units).ok()); // the engine's materials from 3
+    EXPECT_TRUE(registry.add("test", kTestTable).ok());
+    EXPECT_TRUE(registry.add("test", kTestTable).ok()); // the same table again: nothing new
+    constexpr gl::Shared twice[] = {kOut, gl::StorageSlot{72, "OUT_BINDING", "Out2"}};
+    static_assert(!gl::distinct(twice));
+    EXPECT_FALSE(gl::Registry().add("twice", twice).ok());
+}
+
+TEST_F(GlLayer, ADispatchReadsOnlyBlocksBoundForThemThroughTheRegistry) {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    const bool checks = gl::bindingChecks();
+    gl::setBindingChecks(true);
+    gl::Buffer out(sizeof(float)), other(sizeof(float));
+    // Block Out where the registry has block Other: refused, though a buffer is bound there.
+    auto misplaced = gl::Program::compute(library, "misplaced.comp.glsl");
+    ASSERT_TRUE(misplaced.ok()) << misplaced.error().message;
+    misplaced->use();
+    gl::bindStorage(kOther, other);
+    std::uint64_t before = gl::errorCount();
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before + 1);
+    // Its block in place, then bound over by code outside the registry: refused; rebound: fine.
+    auto program = gl::Program::compute(library, "main.comp.glsl");
+    ASSERT_TRUE(program.ok());
+    program->use();
+    gl::bindStorage(kOut, out);
+    before = gl::errorCount();
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOut.index, other.id());
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before + 1);
+    gl::bindStorage(kOut, out);
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before + 1);
+    gl::setBindingChecks(checks);
+    acceptErrors(); // the two refused above, on purpose
 }
 
 TEST_F(GlLayer, BufferFillsAndCopiesWithinItself) {
@@ -96,8 +165,12 @@ TEST_F(GlLayer, IncompleteFramebufferIsAnError) {
 TEST_F(GlLayer, DebugOutputCountsErrors) {
     gl::ShaderLibrary library;
     library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok());
+    program->use();
+    gl::Buffer out(sizeof(float));
+    gl::bindStorage(kOut, out);
     const auto before = gl::errorCount();
     gl::dispatch(100000000); // over GL_MAX_COMPUTE_WORK_GROUP_COUNT: GL_INVALID_VALUE
     gl::checkErrors("deliberate error");

@@ -5,6 +5,7 @@
 #include "support/TestSupport.h"
 
 #include "GlassBvh.h"
+#include "Shared.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/deform/GpuDeformer.h"
@@ -72,6 +73,7 @@ struct DistanceRig {
         model = std::move(*loaded);
         library = engineShaders;
         library.add(refractionShaderFiles());
+        ASSERT_TRUE(library.share("refraction", refraction::sharedTable()).ok());
         for (int stage = 0; stage < int(programs.stages.size()); ++stage) {
             auto built = gl::Program::compute(library, "refraction/bvh_build.comp.glsl",
                                               {"BVH_STAGE " + std::to_string(stage + 1)});

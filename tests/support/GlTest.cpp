@@ -1,7 +1,9 @@
 // GL test fixture.
 #include "support/GlTest.h"
 
+#include "engine/core/Check.h"
 #include "engine/gl/Shaders.h"
+#include "engine/render/Shared.h"
 
 namespace test {
 
@@ -16,6 +18,7 @@ void GlTest::SetUpTestSuite() {
         sContext = std::move(*context);
     else
         sSkipReason = context.error().message;
+    gl::setBindingChecks(true); // every draw and dispatch of a test checks its bindings
 }
 
 void GlTest::TearDownTestSuite() {
@@ -26,6 +29,7 @@ const gl::ShaderLibrary& GlTest::shaders() {
     static gl::ShaderLibrary library = [] {
         gl::ShaderLibrary l;
         l.add(engineShaderFiles());
+        ENGINE_CHECK(l.share("render", render::sharedTable()), "the render table registers");
         return l;
     }();
     return library;

@@ -8,10 +8,10 @@
 #include "common/lighting.glsl"
 
 // The layers compiled in (a program per set its materials use: a layer's code costs a CPU
-// rasteriser even where it is switched off): clear coat, sheen, iridescence, anisotropy.
-const int LAYER_CLEARCOAT = 1, LAYER_SHEEN = 2, LAYER_IRIDESCENCE = 4, LAYER_ANISOTROPY = 8;
+// rasteriser even where it is switched off): clear coat, sheen, iridescence, anisotropy (the
+// LAYER_* bits of scene::Material, render/Shared.h).
 #ifndef SURFACE_LAYERS
-#define SURFACE_LAYERS 15
+#define SURFACE_LAYERS (LAYER_CLEARCOAT | LAYER_SHEEN | LAYER_IRIDESCENCE | LAYER_ANISOTROPY)
 #endif
 
 // Karis' analytic fit of the split-sum environment BRDF scale and bias.
@@ -126,7 +126,7 @@ float sheenLobe(float NoL, float NoV, float NoH, float roughness) {
 // the sheen passes on all but its albedo and adds its lobe, the clear coat all but its Fresnel
 // at the view and adds its reflection. Without layers, `under` itself.
 vec3 layersOver(vec3 under, SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
-#if (SURFACE_LAYERS & 3) == 0
+#if (SURFACE_LAYERS & (LAYER_CLEARCOAT | LAYER_SHEEN)) == 0
     return under;
 #endif
     bool sheenLayer = maxOf(m.sheenColor) > 0.0, coatLayer = m.clearcoat > 0.0;
@@ -170,7 +170,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
     float alpha = max(m.roughness * m.roughness, 1e-3);
     // Reflectance at normal incidence of the dielectric and of the metal, seen through the film.
     vec3 f0Dielectric = min(m.dielectricF0, vec3(1.0)), f0Metal = m.baseColor;
-#if (SURFACE_LAYERS & 4) != 0
+#if (SURFACE_LAYERS & LAYER_IRIDESCENCE) != 0
     if (m.iridescence > 0.0) {
         f0Dielectric = mix(f0Dielectric,
                            thinFilmReflectance(NoV, m.iridescenceIor, m.iridescenceThickness,
@@ -187,7 +187,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
     vec3 T = m.anisotropyDirection, B = cross(N, T);
     float along = mix(alpha, 1.0, m.anisotropy * m.anisotropy);
     vec3 R = reflect(-V, N);
-#if (SURFACE_LAYERS & 8) != 0
+#if (SURFACE_LAYERS & LAYER_ANISOTROPY) != 0
     if (m.anisotropy > 0.0) {
         vec3 stretchedNormal = cross(cross(B, V), B);
         float bend = 1.0 - m.anisotropy * (1.0 - m.roughness);
@@ -211,7 +211,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
         float NoL = dot(N, L), VoH = max(dot(V, H), 0.0), NoH = max(dot(N, H), 0.0);
         if (NoL <= 0.0)
             continue;
-#if (SURFACE_LAYERS & 8) != 0
+#if (SURFACE_LAYERS & LAYER_ANISOTROPY) != 0
         float lobe = m.anisotropy > 0.0 ? ggxLobe(N, T, B, L, V, H, along, alpha)
                                         : ggxLobe(NoL, NoV, NoH, alpha);
 #else

@@ -3,8 +3,9 @@
 #define COMMON_ENVIRONMENT_GLSL
 #include "common/math.glsl"
 
-uniform sampler2D uEnvPrefiltered;  // mip chain: level k holds GGX roughness k / (levels - 1)
-uniform sampler2D uEnvIrradiance;   // cosine-convolved, small
+// mip chain: level k holds GGX roughness k / (levels - 1)
+layout(binding = ENVIRONMENT_UNIT) uniform sampler2D uEnvPrefiltered;
+layout(binding = ENVIRONMENT_UNIT + 1) uniform sampler2D uEnvIrradiance; // cosine-convolved, small
 uniform float uEnvLevels;
 uniform float uEnvRotation;         // radians about +y
 uniform float uEnvIntensity;

@@ -4,13 +4,12 @@
 #ifndef COMMON_LIGHTING_GLSL
 #define COMMON_LIGHTING_GLSL
 
-const int LIGHT_DIRECTIONAL = 0, LIGHT_POINT = 1, LIGHT_SPOT = 2;
+// LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT and SHEEN_TABLE_SIZE: render/Shared.h.
 // Whether the program evaluates the punctual lights: compiled out for frames without any (a CPU
 // rasteriser pays for an empty loop on every shaded pixel).
 #ifndef PUNCTUAL_LIGHTS
 #define PUNCTUAL_LIGHTS 1
 #endif
-const int SHEEN_TABLE_SIZE = 16;
 
 struct PunctualLight {
     vec4 position;  // world; w: LIGHT_*
@@ -18,7 +17,7 @@ struct PunctualLight {
     vec4 radiance;  // colour * intensity; w: cosine of the outer cone angle
     vec4 cone;      // x: cosine of the inner cone angle
 };
-layout(std430, binding = 9) readonly buffer Lighting {
+layout(std430, binding = LIGHTING_BINDING) readonly buffer Lighting {
     // E(NoV, roughness) of the sheen lobe, row r: roughness r / (size - 1), column c: NoV
     // c / (size - 1)
     float sheenAlbedoTable[SHEEN_TABLE_SIZE * SHEEN_TABLE_SIZE];

@@ -4,15 +4,10 @@
 #ifndef COMMON_MATERIAL_UV_GLSL
 #define COMMON_MATERIAL_UV_GLSL
 
-// The slots in MaterialTextures::bind's order (its units from the first it is given).
-const int SLOT_BASE_COLOR = 0, SLOT_METALLIC_ROUGHNESS = 1, SLOT_NORMAL = 2, SLOT_OCCLUSION = 3,
-          SLOT_EMISSIVE = 4, SLOT_SPECULAR = 5, SLOT_SPECULAR_COLOR = 6, SLOT_CLEARCOAT = 7,
-          SLOT_CLEARCOAT_ROUGHNESS = 8, SLOT_CLEARCOAT_NORMAL = 9, SLOT_SHEEN_COLOR = 10,
-          SLOT_SHEEN_ROUGHNESS = 11, SLOT_IRIDESCENCE = 12, SLOT_IRIDESCENCE_THICKNESS = 13,
-          SLOT_ANISOTROPY = 14;
-const int SLOTS = 15;
+// The slots (SLOT_*, SLOTS: MaterialTextures::Slot through render/Shared.h), their textures at
+// the units of MATERIAL_UNIT.
 uniform int uHasTexture[SLOTS];
-uniform sampler2D uTexture[SLOTS];
+layout(binding = MATERIAL_UNIT) uniform sampler2D uTexture[SLOTS];
 uniform mat3 uTextureUv[SLOTS]; // KHR_texture_transform (identity without it)
 uniform int uTexCoords;         // bit `slot` set: that slot reads TEXCOORD_1
 

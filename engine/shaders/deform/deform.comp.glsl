@@ -12,12 +12,13 @@ struct Influence {
     vec4 weights1;
 };
 
-layout(std430, binding = 0) readonly buffer Rest { DeformedVertex rest[]; };
-layout(std430, binding = 1) readonly buffer Influences { Influence influences[]; };
-layout(std430, binding = 2) readonly buffer MorphDeltas { vec4 deltas[]; }; // [target][vertex][3]
-layout(std430, binding = 3) readonly buffer MorphWeights { float weights[]; };
-layout(std430, binding = 4) readonly buffer SkinMatrices { mat4 skin[]; };
-layout(std430, binding = 5) writeonly buffer Deformed { DeformedVertex deformed[]; };
+layout(std430, binding = REST_BINDING) readonly buffer Rest { DeformedVertex rest[]; };
+layout(std430, binding = INFLUENCES_BINDING) readonly buffer Influences { Influence influences[]; };
+// [target][vertex][3]
+layout(std430, binding = MORPH_DELTAS_BINDING) readonly buffer MorphDeltas { vec4 deltas[]; };
+layout(std430, binding = MORPH_WEIGHTS_BINDING) readonly buffer MorphWeights { float weights[]; };
+layout(std430, binding = SKIN_MATRICES_BINDING) readonly buffer SkinMatrices { mat4 skin[]; };
+layout(std430, binding = VERTICES_BINDING) writeonly buffer Vertices { DeformedVertex deformed[]; };
 
 uniform int uVertexCount;
 uniform int uTargetCount;

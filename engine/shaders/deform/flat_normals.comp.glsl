@@ -4,8 +4,8 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 5) buffer Deformed { DeformedVertex deformed[]; };
-layout(std430, binding = 6) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = VERTICES_BINDING) buffer Vertices { DeformedVertex deformed[]; };
+layout(std430, binding = INDICES_BINDING) readonly buffer Indices { uint indices[]; };
 
 uniform int uTriangleCount;
 

@@ -6,12 +6,12 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 0) readonly buffer Corners { uvec2 corners[]; }; // vertex, value
-layout(std430, binding = 1) readonly buffer Limit { float limitPosition[]; };
-layout(std430, binding = 2) readonly buffer Du { float du[]; };
-layout(std430, binding = 3) readonly buffer Dv { float dv[]; };
-layout(std430, binding = 4) readonly buffer Tangents { vec4 tangents[]; };
-layout(std430, binding = 5) writeonly buffer Deformed { DeformedVertex deformed[]; };
+layout(std430, binding = CORNERS_BINDING) readonly buffer Corners { uvec2 corners[]; }; // vertex, value
+layout(std430, binding = LIMIT_BINDING) readonly buffer Limit { float limitPosition[]; };
+layout(std430, binding = LIMIT_DU_BINDING) readonly buffer LimitDu { float du[]; };
+layout(std430, binding = LIMIT_DV_BINDING) readonly buffer LimitDv { float dv[]; };
+layout(std430, binding = REFINED_TANGENTS_BINDING) readonly buffer RefinedTangents { vec4 tangents[]; };
+layout(std430, binding = VERTICES_BINDING) writeonly buffer Vertices { DeformedVertex deformed[]; };
 
 uniform int uCornerCount;
 uniform int uFlipNormals; // 1: du x dv points inside

@@ -1,8 +1,8 @@
 // Draws a deformed primitive by pulling its vertices from the deform pass's buffer.
 #include "common/vertex.glsl"
 
-layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = 1) readonly buffer Uv { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
+layout(std430, binding = VERTICES_BINDING) readonly buffer Vertices { DeformedVertex vertices[]; };
+layout(std430, binding = UVS_BINDING) readonly buffer Uvs { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
 
 uniform mat4 uModel;          // mesh node space -> world
 uniform mat3 uNormalMatrix;   // inverse transpose of uModel's 3x3

@@ -73,7 +73,7 @@ void main() {
     m.dielectricF0 = uDielectricF0 * uSpecularColorFactor;
     if (has(SLOT_SPECULAR_COLOR))
         m.dielectricF0 *= read(SLOT_SPECULAR_COLOR).rgb;
-#if (SURFACE_LAYERS & 1) != 0
+#if (SURFACE_LAYERS & LAYER_CLEARCOAT) != 0
     if (uClearcoatFactor > 0.0) {
         m.clearcoat = uClearcoatFactor;
         if (has(SLOT_CLEARCOAT))
@@ -87,7 +87,7 @@ void main() {
                                               slotUv(vUv, SLOT_CLEARCOAT_NORMAL), uClearcoatNormalScale);
     }
 #endif
-#if (SURFACE_LAYERS & 2) != 0
+#if (SURFACE_LAYERS & LAYER_SHEEN) != 0
     if (max(uSheenColorFactor.r, max(uSheenColorFactor.g, uSheenColorFactor.b)) > 0.0) {
         m.sheenColor = uSheenColorFactor;
         if (has(SLOT_SHEEN_COLOR))
@@ -97,7 +97,7 @@ void main() {
             m.sheenRoughness *= read(SLOT_SHEEN_ROUGHNESS).a;
     }
 #endif
-#if (SURFACE_LAYERS & 4) != 0
+#if (SURFACE_LAYERS & LAYER_IRIDESCENCE) != 0
     if (uIridescenceFactor > 0.0) {
         m.iridescence = uIridescenceFactor;
         if (has(SLOT_IRIDESCENCE))
@@ -109,7 +109,7 @@ void main() {
                                          read(SLOT_IRIDESCENCE_THICKNESS).g);
     }
 #endif
-#if (SURFACE_LAYERS & 8) != 0
+#if (SURFACE_LAYERS & LAYER_ANISOTROPY) != 0
     if (uAnisotropyStrength > 0.0) {
         // The texture's direction (rg in [-1, 1], tangent space) turned by the rotation, its
         // strength (b) times the factor.

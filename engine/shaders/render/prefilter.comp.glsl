@@ -3,8 +3,8 @@
 #include "common/math.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba16f, binding = 0) uniform writeonly image2D uTarget;
-uniform sampler2D uSource;
+layout(rgba16f, binding = OUTPUT_IMAGE_UNIT) uniform writeonly image2D uTarget;
+layout(binding = SOURCE_UNIT) uniform sampler2D uSource;
 uniform float uRoughness;
 uniform int uSampleCount;
 

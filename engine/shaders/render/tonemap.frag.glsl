@@ -1,7 +1,7 @@
 // HDR scene colour -> display: exposure, ACES filmic fit (Narkowicz), sRGB encoding.
 in vec2 vUv;
 out vec4 outColor;
-uniform sampler2D uScene;
+layout(binding = SOURCE_UNIT) uniform sampler2D uScene;
 uniform float uExposure;
 uniform int uRaw; // 1: pass the HDR colour through (hdrOutput frames)
 

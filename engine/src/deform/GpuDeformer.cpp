@@ -194,8 +194,8 @@ void GpuDeformer::update(const anim::Pose& pose, const glm::dmat4& placement) {
 void GpuDeformer::dispatch(const PoseUpload& upload) {
     const scene::Model& model = mUpload->model();
     mDeform.use();
-    gl::bindStorage(3, upload.weights());
-    gl::bindStorage(4, upload.matrices());
+    gl::bindStorage(gl::slot::kMorphWeights, upload.weights());
+    gl::bindStorage(gl::slot::kSkinMatrices, upload.matrices());
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
         if (instance.deformation != i)
@@ -207,10 +207,10 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
         for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
             GpuPrimitive& gp = instance.primitives[p];
             const GpuModel::Primitive& s = mUpload->primitive(instance.mesh, p);
-            gl::bindStorage(0, s.rest);
-            gl::bindStorage(1, s.influences);
-            gl::bindStorage(2, s.deltas);
-            gl::bindStorage(5, subdivisionLevel() > 0 ? mRefined[i][p].cage : *gp.deformed);
+            gl::bindStorage(gl::slot::kRest, s.rest);
+            gl::bindStorage(gl::slot::kInfluences, s.influences);
+            gl::bindStorage(gl::slot::kMorphDeltas, s.deltas);
+            gl::bindStorage(gl::slot::kVertices, subdivisionLevel() > 0 ? mRefined[i][p].cage : *gp.deformed);
             mDeform.set("uVertexCount", int(gp.source->vertexCount()));
             mDeform.set("uTargetCount", int(std::min(s.targetCount, staged.weightCount)));
             mDeform.set("uSkinned", skinned && gp.source->isSkinned() ? 1 : 0);
@@ -232,8 +232,8 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
             for (GpuPrimitive& gp : mInstances[i].primitives) {
                 if (!gp.source->flatNormals || mInstances[i].deformation != i)
                     continue;
-                gl::bindStorage(5, *gp.deformed);
-                gl::bindStorage(6, *gp.indices);
+                gl::bindStorage(gl::slot::kVertices, *gp.deformed);
+                gl::bindStorage(gl::slot::kIndices, *gp.indices);
                 mFlatNormals.set("uTriangleCount", int(gp.indexCount / 3));
                 gl::dispatch(groups(gp.indexCount / 3));
             }
@@ -274,12 +274,12 @@ void GpuDeformer::refine() {
     gl::memoryBarrier(gl::BarrierStorage);
     mPack.use();
     each([&](const GpuModel::Primitive& s, Refined& r, GpuPrimitive& gp) {
-        gl::bindStorage(0, s.corners);
-        gl::bindStorage(1, r.limit);
-        gl::bindStorage(2, r.du);
-        gl::bindStorage(3, r.dv);
-        gl::bindStorage(4, r.tangents);
-        gl::bindStorage(5, *gp.deformed);
+        gl::bindStorage(gl::slot::kCorners, s.corners);
+        gl::bindStorage(gl::slot::kLimit, r.limit);
+        gl::bindStorage(gl::slot::kLimitDu, r.du);
+        gl::bindStorage(gl::slot::kLimitDv, r.dv);
+        gl::bindStorage(gl::slot::kRefinedTangents, r.tangents);
+        gl::bindStorage(gl::slot::kVertices, *gp.deformed);
         mPack.set("uCornerCount", int(gp.vertexCount));
         mPack.set("uFlipNormals", s.subdivision->flipNormals ? 1 : 0);
         gl::dispatch(groups(gp.vertexCount));

@@ -1,6 +1,8 @@
 // Pipeline state, draws, dispatches, bindings and barriers.
 #include "engine/gl/Commands.h"
 
+#include "BindingCheck.h"
+
 #include "engine/core/Check.h"
 
 #include <epoxy/gl.h>
@@ -53,29 +55,41 @@ void clearDepth(float depth) {
 }
 
 void drawIndexed(std::uint32_t indexCount) {
+    detail::checkBindings("gl::drawIndexed");
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount), GL_UNSIGNED_INT, nullptr);
 }
 
 void drawArrays(std::uint32_t vertexCount) {
+    detail::checkBindings("gl::drawArrays");
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertexCount));
 }
 
 void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    detail::checkBindings("gl::dispatch");
     glDispatchCompute(x, y, z);
 }
 
 void dispatchIndirect(const Buffer& groups, std::size_t offset) {
+    detail::checkBindings("gl::dispatchIndirect");
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, groups.id());
     glDispatchComputeIndirect(GLintptr(offset));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
-void bindStorage(std::uint32_t binding, const Buffer& buffer) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
+std::uint32_t maxStorageBindings() {
+    GLint count = 0;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &count);
+    return std::uint32_t(count);
 }
 
-void bindTexture(std::uint32_t unit, const Texture& texture) {
-    glBindTextureUnit(unit, texture.id());
+void bindStorage(const StorageSlot& slot, const Buffer& buffer) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, slot.index, buffer.id());
+    detail::recordStorage(slot, buffer.id());
+}
+
+void bindTexture(const TextureSlot& slot, const Texture& texture, std::uint32_t element) {
+    ENGINE_CHECK(element < slot.count, "gl::bindTexture(): unit past the registered run");
+    glBindTextureUnit(slot.index + element, texture.id());
 }
 
 void copyTexture(const Texture& source, const Texture& destination) {
@@ -86,7 +100,7 @@ void copyTexture(const Texture& source, const Texture& destination) {
                        0, 0, 0, source.desc().size.x, source.desc().size.y, 1);
 }
 
-void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write) {
+void bindImage(const ImageSlot& slot, const Texture& texture, int level, bool write) {
     GLenum format = GL_RGBA32F;
     switch (texture.desc().format) {
     case Format::RGBA16F:
@@ -107,7 +121,7 @@ void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write
     default:
         break;
     }
-    glBindImageTexture(unit, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY,
+    glBindImageTexture(slot.index, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY,
                        format);
 }
 

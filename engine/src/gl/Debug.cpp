@@ -55,6 +55,11 @@ LiveObjects liveObjects(std::uint32_t maxName) {
     return live;
 }
 
+void reportError(const std::string& message) {
+    gErrors.fetch_add(1);
+    core::logError(message);
+}
+
 std::uint64_t errorCount() {
     return gErrors.load();
 }

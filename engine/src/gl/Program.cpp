@@ -1,6 +1,8 @@
 // Shader assembly (#include, defines) and program compilation/linking.
 #include "engine/gl/Program.h"
 
+#include "BindingCheck.h"
+
 #include <epoxy/gl.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -97,9 +99,15 @@ void ShaderLibrary::add(std::span<const ShaderFile> files) {
         mFiles[f.name] = f.source;
 }
 
+core::Status ShaderLibrary::share(const std::string& owner, std::span<const Shared> table) {
+    return mRegistry.add(owner, table);
+}
+
 core::Result<std::string> ShaderLibrary::assemble(const std::string& name,
                                                   const std::vector<std::string>& defines) const {
     std::string out = "#version 450 core\n";
+    for (const std::string& d : mRegistry.defines())
+        out += "#define " + d + "\n";
     for (const std::string& d : defines)
         out += "#define " + d + "\n";
     out += "#line 1\n";
@@ -111,8 +119,10 @@ core::Result<std::string> ShaderLibrary::assemble(const std::string& name,
 }
 
 Program::~Program() {
-    if (mId)
+    if (mId) {
+        detail::forgetProgram(mId);
         glDeleteProgram(mId);
+    }
 }
 
 Program::Program(Program&& o) noexcept
@@ -120,8 +130,10 @@ Program::Program(Program&& o) noexcept
 
 Program& Program::operator=(Program&& o) noexcept {
     if (this != &o) {
-        if (mId)
+        if (mId) {
+            detail::forgetProgram(mId);
             glDeleteProgram(mId);
+        }
         mId = std::exchange(o.mId, 0);
         mLocations = std::move(o.mLocations);
     }
@@ -140,6 +152,7 @@ core::Result<Program> Program::compute(const ShaderLibrary& library, const std::
     auto linked = link(name, {*shader}, id);
     if (!linked)
         return linked.error();
+    detail::recordProgram(id, name);
     Program program;
     program.mId = id;
     return program;
@@ -166,6 +179,7 @@ core::Result<Program> Program::graphics(const ShaderLibrary& library, const std:
     auto linked = link(vertex + " + " + fragment, {*v, *f}, id);
     if (!linked)
         return linked.error();
+    detail::recordProgram(id, vertex + " + " + fragment);
     Program program;
     program.mId = id;
     return program;

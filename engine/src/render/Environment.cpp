@@ -78,11 +78,10 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     // Level 0 is the source itself (mirror-sharp); every other level is GGX-convolved.
     env->mPrefiltered.upload(0, rgba.data());
     prefilter->use();
-    gl::bindTexture(0, env->mSource);
-    prefilter->set("uSource", 0);
+    gl::bindTexture(gl::slot::kSource, env->mSource);
     for (int level = 1; level < levels; ++level) {
         const glm::ivec2 s = env->mPrefiltered.size(level);
-        gl::bindImage(0, env->mPrefiltered, level, true);
+        gl::bindImage(gl::slot::kOutputImage, env->mPrefiltered, level, true);
         prefilter->set("uRoughness", float(level) / float(levels - 1));
         prefilter->set("uSampleCount", 128);
         gl::dispatch(std::uint32_t((s.x + 7) / 8), std::uint32_t((s.y + 7) / 8));
@@ -90,8 +89,7 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     env->mIrradiance = gl::Texture({{32, 16}, gl::Format::RGBA16F, 1});
     env->mIrradiance.setSampling(gl::Filter::Linear, gl::Wrap::Repeat);
     irradiance->use();
-    gl::bindImage(0, env->mIrradiance, 0, true);
-    irradiance->set("uSource", 0);
+    gl::bindImage(gl::slot::kOutputImage, env->mIrradiance, 0, true);
     int sourceLevel = 0;
     while (env->mSource.size(sourceLevel).x > 64 && sourceLevel + 1 < env->mSource.levels())
         ++sourceLevel;
@@ -101,12 +99,9 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     return env;
 }
 
-void Environment::bind(const gl::Program& program, int first, float rotation,
-                       float intensity) const {
-    gl::bindTexture(std::uint32_t(first), mPrefiltered);
-    gl::bindTexture(std::uint32_t(first + 1), mIrradiance);
-    program.set("uEnvPrefiltered", first);
-    program.set("uEnvIrradiance", first + 1);
+void Environment::bind(const gl::Program& program, float rotation, float intensity) const {
+    gl::bindTexture(gl::slot::kEnvironment, mPrefiltered, 0);
+    gl::bindTexture(gl::slot::kEnvironment, mIrradiance, 1);
     program.set("uEnvLevels", levels());
     program.set("uEnvRotation", rotation);
     program.set("uEnvIntensity", intensity);

@@ -120,17 +120,15 @@ void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights) {
     std::memcpy(mStaging.data(), count, sizeof(count));
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const scene::PlacedLight& l = lights[i];
-        const int type = l.light.type == scene::Light::Type::Directional ? 0
-                         : l.light.type == scene::Light::Type::Point     ? 1
-                                                                         : 2;
         const PunctualLightGpu packed{
-            glm::vec4(l.position, float(type)), glm::vec4(l.direction, l.light.range),
+            glm::vec4(l.position, float(int(l.light.type))), // w: LIGHT_* (render/Shared.h)
+            glm::vec4(l.direction, l.light.range),
             glm::vec4(l.light.color * l.light.intensity, std::cos(l.light.outerConeAngle)),
             glm::vec4(std::cos(l.light.innerConeAngle), 0.0f, 0.0f, 0.0f)};
         std::memcpy(mStaging.data() + 16 + i * sizeof(PunctualLightGpu), &packed, sizeof(packed));
     }
     mBuffer.update(kTableBytes, mStaging.size(), mStaging.data());
-    gl::bindStorage(kLightingBinding, mBuffer);
+    gl::bindStorage(gl::slot::kLighting, mBuffer);
 }
 
 } // namespace render

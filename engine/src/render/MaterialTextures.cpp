@@ -80,8 +80,8 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
     return result;
 }
 
-void MaterialTextures::bind(const gl::Program& program, const scene::Model& model, int material,
-                            int firstUnit) const {
+void MaterialTextures::bind(const gl::Program& program, const scene::Model& model,
+                            int material) const {
     static const scene::Material kDefault = [] {
         scene::Material m;
         m.metallicFactor = 1.0f;
@@ -129,9 +129,11 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
         {&m.sheenRoughnessTexture, false},
         {&m.iridescenceTexture, false},
         {&m.iridescenceThicknessTexture, false},
-        {&m.anisotropyTexture, false}};
+        {&m.anisotropyTexture, false},
+        {&m.transmissionTexture, false},
+        {&m.thicknessTexture, false}};
     struct SlotNames {
-        std::string has, transform, sampler;
+        std::string has, transform;
     };
     static const auto names = [] {
         std::array<SlotNames, kSlotCount> n;
@@ -145,8 +147,7 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
             return name;
         };
         for (int slot = 0; slot < kSlotCount; ++slot)
-            n[std::size_t(slot)] = {element("uHasTexture", slot), element("uTextureUv", slot),
-                                    element("uTexture", slot)};
+            n[std::size_t(slot)] = {element("uHasTexture", slot), element("uTextureUv", slot)};
         return n;
     }();
     int texCoords = 0;
@@ -160,9 +161,9 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
         const SlotNames& name = names[std::size_t(slot)];
         program.set(name.has.c_str(), has ? 1 : 0);
         program.set(name.transform.c_str(), ref->transform);
-        program.set(name.sampler.c_str(), firstUnit + slot);
         if (has)
-            gl::bindTexture(std::uint32_t(firstUnit + slot), textures[std::size_t(ref->texture)]);
+            gl::bindTexture(gl::slot::kMaterial, textures[std::size_t(ref->texture)],
+                            std::uint32_t(slot));
     }
     program.set("uTexCoords", texCoords);
 }

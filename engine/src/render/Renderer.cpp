@@ -12,6 +12,7 @@
 #include "engine/gl/Debug.h"
 #include "engine/gl/Query.h"
 #include "engine/gl/Shaders.h"
+#include "engine/render/Shared.h"
 
 #include <algorithm>
 #include <array>
@@ -114,6 +115,8 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     r->mGpu = std::make_unique<RenderGpu>();
     RenderGpu& gpu = *r->mGpu;
     r->mShaders.add(engineShaderFiles());
+    if (auto shared = r->mShaders.share("render", sharedTable()); !shared)
+        return shared.error();
     auto env = Environment::create(environment, r->mShaders);
     if (!env)
         return env.error();

@@ -13,15 +13,10 @@ struct BvhNode {
     int first, count;     // leaf: range in the triangle order
 };
 
-// The bindings from BVH_BINDINGS (0 unless the includer sets it: the walk binds the tree beside
-// its own buffers).
-#ifndef BVH_BINDINGS
-#define BVH_BINDINGS 0
-#endif
-layout(std430, binding = BVH_BINDINGS + 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = BVH_BINDINGS + 1) readonly buffer Indices { uint indices[]; };
-layout(std430, binding = BVH_BINDINGS + 2) coherent buffer Nodes { BvhNode nodes[]; };
-layout(std430, binding = BVH_BINDINGS + 3) coherent buffer Order { uint triangleOrder[]; };
+layout(std430, binding = WORLD_MESH_BINDING) readonly buffer WorldMesh { DeformedVertex vertices[]; };
+layout(std430, binding = WORLD_INDICES_BINDING) readonly buffer WorldIndices { uint indices[]; };
+layout(std430, binding = BVH_NODES_BINDING) coherent buffer BvhNodes { BvhNode nodes[]; };
+layout(std430, binding = BVH_ORDER_BINDING) coherent buffer BvhOrder { uint triangleOrder[]; };
 // Each node's box and, for an inner node, its children as the traversal reads them with the box
 // (bvhVisit): Karras's children of an inner node are gamma and gamma + 1, each an inner node
 // or a leaf, so `children` is gamma << 2 | the left one's a leaf << 1 | the right one's a leaf.
@@ -31,14 +26,14 @@ struct BvhBox {
     vec3 hi;
     int spare;
 };
-layout(std430, binding = BVH_BINDINGS + 4) coherent buffer Bounds { BvhBox boxes[]; };
+layout(std430, binding = BVH_BOXES_BINDING) coherent buffer BvhBoxes { BvhBox boxes[]; };
 // The deformed corners of each triangle in leaf order (3 per triangle, written by the refit), so
 // that a ray test reads them directly instead of through the order and the index buffer.
-layout(std430, binding = BVH_BINDINGS + 5) buffer LeafTriangles { vec4 leafCorners[]; };
+layout(std430, binding = BVH_LEAF_CORNERS_BINDING) buffer BvhLeafCorners { vec4 leafCorners[]; };
 // Each triangle's tag (GlassBvh::setTags), in the original order: its glass id
 // (glass_materials.glsl), or kOpaqueTag with an opaque part's material factors.
-layout(std430, binding = BVH_BINDINGS + 6) readonly buffer TriangleTags { uint triangleTags[]; };
-const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+layout(std430, binding = BVH_TAGS_BINDING) readonly buffer BvhTags { uint triangleTags[]; };
+const uint kOpaqueTag = OPAQUE_TAG, kOpaqueTextured = OPAQUE_TEXTURED_TAG;
 // The traversal's copy of each node's box, packed by the refit as it computes the box
 // (bvh_build.comp.glsl's stage 5): its corners in cells of the frame (bvhFrame), 16 bits an
 // axis, rounded outward, and the children word: lo.x | lo.y << 16, lo.z | hi.x << 16,
@@ -48,7 +43,7 @@ const uint kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
 // (the root's box this update, grown by an eighth of its longest side each way: GlassBvh::refit
 // copies it over the frame before the next refit). A corner outside the frame packs as 0 or
 // 65535, which stand for no bound that way: a box is never smaller than its node's.
-layout(std430, binding = BVH_BINDINGS + 7) buffer PackedBounds { uvec4 packedBoxes[]; };
+layout(std430, binding = BVH_PACKED_BOXES_BINDING) buffer BvhPackedBoxes { uvec4 packedBoxes[]; };
 
 // The frame the boxes are packed in, and its cell: the frame in 65535 steps an axis (an axis
 // along which it is flat takes a millionth of its longest's steps, so that no cell is empty).

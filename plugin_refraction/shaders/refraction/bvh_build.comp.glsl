@@ -14,13 +14,15 @@
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 8) coherent buffer Build {
+layout(std430, binding = BVH_BUILD_BINDING) coherent buffer BvhBuild {
     int centroidMin[3], centroidMax[3]; // floats as ordered ints
     uint cost;                          // stage 6, 1/256 of the root's area
 };
-layout(std430, binding = 9) coherent buffer Keys { uint keys[]; }; // sorted with triangleOrder
-layout(std430, binding = 10) coherent buffer Parents { int parents[]; };
-layout(std430, binding = 11) coherent buffer Visits { uint visits[]; }; // stage 5, zeroed before
+// sorted with triangleOrder
+layout(std430, binding = BVH_KEYS_BINDING) coherent buffer BvhKeys { uint keys[]; };
+layout(std430, binding = BVH_PARENTS_BINDING) coherent buffer BvhParents { int parents[]; };
+// stage 5, zeroed before
+layout(std430, binding = BVH_VISITS_BINDING) coherent buffer BvhVisits { uint visits[]; };
 
 uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), GlassBvh's (6)
 uniform int uTriangles; // n

@@ -2,9 +2,12 @@
 // view-space position, normal and tangent on.
 #include "common/vertex.glsl"
 
-layout(std430, binding = 0) readonly buffer Deformed { DeformedVertex vertices[]; };
-layout(std430, binding = 1) readonly buffer Uv { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
-layout(std430, binding = 2) readonly buffer NormalDistance { float normalDistance[]; };
+layout(std430, binding = VERTICES_BINDING) readonly buffer Vertices { DeformedVertex vertices[]; };
+// TEXCOORD_0 in xy, _1 in zw
+layout(std430, binding = UVS_BINDING) readonly buffer Uvs { vec4 uvs[]; };
+layout(std430, binding = NORMAL_DISTANCES_BINDING) readonly buffer NormalDistances {
+    float normalDistance[];
+};
 
 uniform mat4 uModelView;       // mesh node space -> view
 uniform mat3 uNormalMatrix;    // inverse transpose of uModelView's 3x3

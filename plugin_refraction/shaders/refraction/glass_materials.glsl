@@ -18,6 +18,6 @@ struct GlassMaterial {
     vec4 normalMap;
     vec4 normalUv[2];
 };
-layout(std430, binding = 8) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
+layout(std430, binding = GLASS_MATERIALS_BINDING) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
 
 #endif

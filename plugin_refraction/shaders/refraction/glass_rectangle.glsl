@@ -8,7 +8,7 @@
 #ifndef REFRACTION_GLASS_RECTANGLE_GLSL
 #define REFRACTION_GLASS_RECTANGLE_GLSL
 
-layout(std430, binding = 4) buffer GlassRectangle {
+layout(std430, binding = GLASS_RECTANGLE_BINDING) buffer GlassRectangle {
     int glassPixelMin[2], glassPixelMax[2];
     int glassBoxMin[3], glassBoxMax[3];
     uint glassOverflowPixels;

@@ -28,12 +28,11 @@ const int kDepthGroups = (LAYER_CAPACITY + 3) / 4;
 uniform int uPixelCount;    // P: width x height
 uniform int uViewportWidth;
 
-layout(std430, binding = 5) coherent buffer LayerHeads { uint layerHeads[]; };
-layout(std430, binding = 6) coherent buffer LayerDepths { vec4 layerDepth4[]; };
-layout(std430, binding = 7) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
+layout(std430, binding = LAYER_HEADS_BINDING) coherent buffer LayerHeads { uint layerHeads[]; };
+layout(std430, binding = LAYER_DEPTHS_BINDING) coherent buffer LayerDepths { vec4 layerDepth4[]; };
+layout(std430, binding = LAYER_ATTRS_BINDING) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 
-
-const uint kLayerFront = 256u;
+const uint kLayerFront = LAYER_FRONT_BIT;
 
 uint packOctNormal(vec3 n) {
     return packUnorm2x16(octEncode(n));
@@ -89,7 +88,9 @@ vec4 storedDepths(ivec2 p, int g) {
 }
 
 #ifdef LAYER_DEPTH_MAPS
-uniform sampler2D uLayerDepths0, uLayerDepths1; // layers 0-3, 4-7 (layers_resolve.frag.glsl)
+// layers 0-3, 4-7 (layers_resolve.frag.glsl)
+layout(binding = LAYER_DEPTH_MAPS_UNIT) uniform sampler2D uLayerDepths0;
+layout(binding = LAYER_DEPTH_MAPS_UNIT + 1) uniform sampler2D uLayerDepths1;
 
 // The maps as stored: an overflowing pixel's pair negated (layerOverflow).
 vec4 storedMap(ivec2 p, int g) {

@@ -7,8 +7,9 @@
 // it crosses follows (a straight edge through a pixel box). The rest of the pixel takes the
 // colour of the neighbour across the outline. Creases (a pane's edge) are left as they are.
 // What it reads of each pixel's nearest layer the shading pass wrote (outSurface).
-uniform sampler2D uColor;    // the shaded frame
-uniform usampler2D uSurface; // per pixel, packed: the nearest layer's depth, glass, part across
+layout(binding = SCENE_COLOR_UNIT) uniform sampler2D uColor; // the shaded frame
+// per pixel, packed: the nearest layer's depth, glass, part across
+layout(binding = OUTLINE_SURFACE_UNIT) uniform usampler2D uSurface;
 uniform vec2 uViewportSize;
 out vec4 outColor;
 

@@ -15,7 +15,7 @@
 #include "refraction/layers.glsl"
 #include "refraction/view.glsl"
 
-uniform sampler2D uSceneDepth;
+layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
 uniform float uNear, uFar;
 
 const int MARCH_LAYERS = 0, MARCH_FRONT = 1, MARCH_BACK = 2, MARCH_SCENE = 3;

@@ -4,8 +4,8 @@
 #include "common/vertex.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Part { DeformedVertex part[]; };
-layout(std430, binding = 1) writeonly buffer World { DeformedVertex world[]; };
+layout(std430, binding = VERTICES_BINDING) readonly buffer Vertices { DeformedVertex part[]; };
+layout(std430, binding = WORLD_MESH_BINDING) writeonly buffer WorldMesh { DeformedVertex world[]; };
 
 uniform mat4 uWorld;        // mesh node -> world
 uniform mat3 uNormalMatrix; // inverse transpose of uWorld's 3x3

@@ -3,7 +3,9 @@
 #include "refraction/bvh.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 12) writeonly buffer Distance { float distances[]; };
+layout(std430, binding = NORMAL_DISTANCES_BINDING) writeonly buffer NormalDistances {
+    float distances[];
+};
 uniform int uVertexCount;
 
 void main() {

@@ -3,7 +3,7 @@
 #ifndef REFRACTION_OPTICS_GLSL
 #define REFRACTION_OPTICS_GLSL
 
-const int FRESNEL_EXACT = 0, FRESNEL_SCHLICK = 1, FRESNEL_OFF = 2;
+// FRESNEL_EXACT, _SCHLICK, _OFF: the fresnel parameter's choices (Shared.h).
 
 // Unpolarised reflectance of a dielectric interface; cosI > 0, eta = n_incident / n_transmitted.
 float fresnelExact(float cosI, float eta) {

@@ -7,7 +7,8 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 0) readonly buffer Cage { DeformedVertex vertices[]; };
+// the primitive's deformed cage
+layout(std430, binding = VERTICES_BINDING) readonly buffer Vertices { DeformedVertex vertices[]; };
 
 uniform mat4 uModelViewProjection;
 uniform mat4 uModelView;

@@ -9,7 +9,7 @@
 //     are those maps already.
 #include "refraction/layers.glsl"
 
-uniform sampler2D uSceneDepth;
+layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
 uniform float uNear, uFar;
 
 layout(location = 0) out vec4 outDepths0;
@@ -22,7 +22,8 @@ struct Surface {
 };
 
 #if PAIR_GATHERED
-uniform sampler2D uGatherNear, uGatherFar;
+layout(binding = PAIR_MAPS_UNIT) uniform sampler2D uGatherNear;
+layout(binding = PAIR_MAPS_UNIT + 1) uniform sampler2D uGatherFar;
 uniform int uGlassId; // one pass serves one glass
 layout(location = 1) out vec4 outFrontNormal;
 layout(location = 2) out vec4 outBackNormal;
@@ -43,7 +44,10 @@ void readPair(ivec2 p, out Surface front, out Surface back) {
     outBackNormal = back.present ? vec4(back.normal, 1.0) : vec4(0.0);
 }
 #else
-uniform sampler2D uFrontDepth, uFrontNormal, uBackDepth, uBackNormal;
+layout(binding = PAIR_MAPS_UNIT) uniform sampler2D uFrontDepth;
+layout(binding = PAIR_MAPS_UNIT + 1) uniform sampler2D uFrontNormal;
+layout(binding = PAIR_MAPS_UNIT + 2) uniform sampler2D uBackDepth;
+layout(binding = PAIR_MAPS_UNIT + 3) uniform sampler2D uBackNormal;
 
 Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
     vec2 d = texelFetch(depth, p, 0).xy;

@@ -10,7 +10,7 @@
 uniform int uNearby;
 uniform int uGround;       // the ground square is drawn (render::GroundPlane):
 uniform vec4 uGroundPlane; // its height, centre x and z, half size
-uniform sampler2D uSceneColor;
+layout(binding = SCENE_COLOR_UNIT) uniform sampler2D uSceneColor;
 uniform float uNearbyDistance;
 uniform mat3 uViewToWorld; // rotation part of the inverse view matrix
 uniform vec3 uViewOriginWorld; // the camera in world space

@@ -3,14 +3,14 @@
 // entry of a camera ray. Included by walk.glsl after its Crossing, layers and materials.
 #ifndef REFRACTION_TRACE_GLSL
 #define REFRACTION_TRACE_GLSL
-#include "refraction/bvh.glsl" // from BVH_BINDINGS: kWalkBvhBinding, set by walkPrograms
+#include "refraction/bvh.glsl"
 
 #include "common/normal_map.glsl"
 int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
 // The world mesh's texture coordinates (GlassBvh::uvs) and the glass normal maps
 // (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
-layout(std430, binding = BVH_BINDINGS + 8) readonly buffer MeshUv { vec4 meshUvs[]; };
-uniform sampler2D uTracedNormalMaps[4];
+layout(std430, binding = WORLD_UVS_BINDING) readonly buffer WorldUvs { vec4 meshUvs[]; };
+layout(binding = TRACED_TEXTURES_UNIT) uniform sampler2D uTracedNormalMaps[4];
 
 // Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index
 // in each branch, as an array of samplers requires.

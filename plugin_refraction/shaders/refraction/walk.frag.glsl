@@ -24,13 +24,13 @@ void main() {
     Walk walk;
     int stored = storedCount(p);
     uint handedOver = 0u; // the hybrid's reasons to trace this pixel (uHybridCriteria's bits)
-#if LAYER_METHOD == 4 // METHOD_TRACE
+#if LAYER_METHOD == METHOD_TRACE
     vec3 color = tracedSample(p, e, walk);
 #else
     vec3 color = vec3(0.0);
     walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
     walk.sightLayers = stored;
-#if LAYER_METHOD == 5 // METHOD_HYBRID
+#if LAYER_METHOD == METHOD_HYBRID
     uvec2 bit = handedOverBit(p);
     if (uTraceSample > 0 && (handedOverWords[bit.x] & bit.y) != 0u)
         discard; // the first sample handed the pixel over: the trace pass shades it
@@ -44,7 +44,7 @@ void main() {
     // A pixel the hybrid hands over for its own layers is not walked at all.
     if (!stopsToHandOver(walk))
         color = shadeLayers(P1, V, N1, e.attr, walk) * uTraceWeight;
-#if LAYER_METHOD == 5 // METHOD_HYBRID
+#if LAYER_METHOD == METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
     // by the first sample from what the walk knows (handedOverBy).
     handedOver = uTraceSample == 0 ? handedOverBy(walk) : 0u;
@@ -56,7 +56,7 @@ void main() {
             atomicAdd(handedOverGroups[0], 1u);
         atomicAdd(glassHybridTraced, 1u);
         for (int k = 0; k < 4; ++k)
-            if ((handedOver & (1u << k)) != 0u)
+            if ((handedOver & (1u << k)) != 0u) // HYBRID_*: bit k counts in glassHybridBy[k]
                 atomicAdd(glassHybridBy[k], 1u);
     }
 #endif
@@ -68,27 +68,27 @@ void main() {
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
     glassBox(lo, hi);
     switch (uDebug) {
-    case 1: color = vec3(e.far / max(-lo.z, 1e-6)); break; // back-depth: the farthest layer
-    case 2: color = layerNormal(layerAttrAt(p, e.farthest)) * 0.5 + 0.5; break; // back-normal
-    case 3: color = vec3((e.far - e.z) / max(-lo.z, 1e-6)); break; // dv: nearest to farthest
-    case 4: color = vec3(max(layerNormalDistance(e.attr, e.z), 0.0) / e.z); break;
-    case 5: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
-    case 6: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
+    case DEBUG_BACK_DEPTH: color = vec3(e.far / max(-lo.z, 1e-6)); break; // back-depth: the farthest layer
+    case DEBUG_BACK_NORMAL: color = layerNormal(layerAttrAt(p, e.farthest)) * 0.5 + 0.5; break; // back-normal
+    case DEBUG_DV: color = vec3((e.far - e.z) / max(-lo.z, 1e-6)); break; // dv: nearest to farthest
+    case DEBUG_DN: color = vec3(max(layerNormalDistance(e.attr, e.z), 0.0) / e.z); break;
+    case DEBUG_EXIT_UV: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
+    case DEBUG_STEPS: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
                          walk.fallback ? 1.0 : 0.0, float(walk.interfaces) / float(uInterfaces)); break;
-    case 7: color = walk.tir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
-    case 8: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
-    case 9: color = uViewToWorld * walk.dir; break;
-    case 10: // layer-count: K layers white, fewer grey, overflow red
+    case DEBUG_TIR: color = walk.tir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case DEBUG_EXIT_POINT: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
+    case DEBUG_EXIT_DIRECTION: color = uViewToWorld * walk.dir; break;
+    case DEBUG_LAYER_COUNT: // layer-count: K layers white, fewer grey, overflow red
         color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0)
                                         : vec3(float(stored) / float(kLayerCapacity));
         break;
-    case 11: color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
-    case 12: // hybrid: traced for overflow red, off the layers yellow, TIR blue, an outline green
-        color = (handedOver & 1u) != 0u   ? vec3(1.0, 0.0, 0.0)
-                : (handedOver & 2u) != 0u ? vec3(1.0, 1.0, 0.0)
-                : (handedOver & 4u) != 0u ? vec3(0.0, 0.3, 1.0)
-                : (handedOver & 8u) != 0u ? vec3(0.0, 1.0, 0.0)
-                                          : vec3(0.1);
+    case DEBUG_OVERFLOW: color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
+    case DEBUG_HYBRID: // hybrid: traced for overflow red, off the layers yellow, TIR blue, an outline green
+        color = (handedOver & uint(HYBRID_OVERFLOW)) != 0u      ? vec3(1.0, 0.0, 0.0)
+                : (handedOver & uint(HYBRID_LEFT_LAYERS)) != 0u ? vec3(1.0, 1.0, 0.0)
+                : (handedOver & uint(HYBRID_REFLECTION)) != 0u  ? vec3(0.0, 0.3, 1.0)
+                : (handedOver & uint(HYBRID_OUTLINE)) != 0u     ? vec3(0.0, 1.0, 0.0)
+                                                                : vec3(0.1);
         break;
     default: break;
     }

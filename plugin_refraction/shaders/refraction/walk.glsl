@@ -35,8 +35,7 @@
 #include "refraction/glass_surface.glsl"
 #include "refraction/layers.glsl"
 
-const int METHOD_SIR = 1, METHOD_ISR = 2, METHOD_DIR = 3, METHOD_TRACE = 4, METHOD_HYBRID = 5;
-const int TIR_CLAMP = 0, TIR_REFLECT = 1;
+// METHOD_*, TIR_*, DISPERSION_SEARCH_*: the parameters' choices (Shared.h).
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
 // totally (TIR reflect): the normals read back from the layers are good to a few degrees, not
 // enough to tell the two apart, and a grazing exit is the limit refraction tends to there (at
@@ -47,19 +46,21 @@ const int TIR_CLAMP = 0, TIR_REFLECT = 1;
 #define CAPTURE_PAIR 0
 #endif
 #ifndef LAYER_METHOD
-#define LAYER_METHOD 3 // METHOD_DIR
+#define LAYER_METHOD METHOD_DIR
+#endif
+#ifndef HYBRID_LIST
+#define HYBRID_LIST 0
 #endif
 const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRACE;
 // The papers' model judges TIR at its limit, by its mip-filtered normals; the traced normals are
 // the surface's own (no band).
 const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
 const int kMaxPasses = 3; // crossings without an interface a walk follows
-const int DISPERSION_NONE = 0, DISPERSION_SHARED = 1, DISPERSION_PER_CHANNEL = 2;
 
 // The method and the dispersion search are compiled in (a variant each, walkPrograms): on a CPU
 // rasteriser a shader pays for the code it carries.
 #ifndef LAYER_DISPERSION
-#define LAYER_DISPERSION 0 // DISPERSION_NONE
+#define LAYER_DISPERSION DISPERSION_NONE // else DISPERSION_SEARCH_*
 #endif
 const int kMethod = LAYER_METHOD;
 
@@ -73,10 +74,11 @@ uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 uniform int uTraceSamples;   // trace-samples
 
+#if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
 // work groups of 64 (walk_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
 // row, handedOverListStart words) and the list of the pixels (x | y << 16).
-layout(std430, binding = 10) buffer HandedOver {
+layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
     uint handedOverWords[];
 };
@@ -90,6 +92,7 @@ uvec2 handedOverBit(ivec2 p) {
     uint i = uint(p.y) * uint(uViewportSize.x) + uint(p.x);
     return uvec2(i / 32u, 1u << (i % 32u));
 }
+#endif
 
 // The view direction of trace sample uTraceSample through pixel p: the pixel's centre first,
 // then jittered points of it (a fixed R2 sequence).
@@ -282,7 +285,8 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
 }
 
 #if CAPTURE_PAIR
-uniform sampler2D uPairNormals[2]; // the front's and the back's outward normals, with mips
+// the front's and the back's outward normals, with mips
+layout(binding = PAIR_NORMALS_UNIT) uniform sampler2D uPairNormals[2];
 uniform float uNormalLod;
 
 // The papers' search (DIR §3.2-3.3): the one march between the depths zFrom and zTo, refined
@@ -323,14 +327,14 @@ vec3 pairNormal(Crossing c, vec3 dir, out bool outline) {
 }
 #endif
 
-#if LAYER_METHOD == 4 // METHOD_TRACE
+#if LAYER_METHOD == METHOD_TRACE
 #include "refraction/trace.glsl"
 #endif
 
 // The next interface along P + t dir (the walk's exit finder, but ISR's first): traced, searched
 // in the pair or searched in the layers; and its normal.
 Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
-#if LAYER_METHOD == 4
+#if LAYER_METHOD == METHOD_TRACE
     return traceCrossing(P, dir);
 #elif CAPTURE_PAIR
     return searchPair(P, dir, inGlass, first);
@@ -341,7 +345,7 @@ Crossing searchExit(vec3 P, vec3 dir, int parity, bool inGlass, bool first) {
 
 vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
     outline = false;
-#if LAYER_METHOD == 4
+#if LAYER_METHOD == METHOD_TRACE
     return layerNormal(c.attr);
 #elif CAPTURE_PAIR
     return pairNormal(c, dir, outline);
@@ -423,14 +427,16 @@ struct Walk {
 // DIR when handed over).
 uint handedOverBy(Walk w) {
     return uint(uHybridCriteria) &
-           ((w.sightLayers > kLayerCapacity || w.overflowed ? 1u : 0u) | (w.fallback ? 2u : 0u) |
-            (w.hardReflection ? 4u : 0u) | (w.outline ? 8u : 0u));
+           ((w.sightLayers > kLayerCapacity || w.overflowed ? uint(HYBRID_OVERFLOW) : 0u) |
+            (w.fallback ? uint(HYBRID_LEFT_LAYERS) : 0u) |
+            (w.hardReflection ? uint(HYBRID_REFLECTION) : 0u) |
+            (w.outline ? uint(HYBRID_OUTLINE) : 0u));
 }
 
 // The hybrid's first sample hands pixels over, which the trace pass shades afresh: its walk
 // stops at the first reason (a debug view's goes on, to show the whole walk).
 bool stopsToHandOver(Walk w) {
-    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == 0 && handedOverBy(w) != 0u;
+    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == DEBUG_NONE && handedOverBy(w) != 0u;
 }
 
 float mediumIor(uint medium, int channel) {
@@ -468,7 +474,7 @@ uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
 // the others' on screen; where along the ray, and what the ray sees there.
 bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
     seen = vec3(0.0);
-#if LAYER_METHOD == 4
+#if LAYER_METHOD == METHOD_TRACE
     hitT = length(c.point - P);
     if (tracedOpaque(c))
         seen = opaqueSeen(c, dir);
@@ -686,7 +692,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
     vec3 seen = walkSees(green, m.sigma.w, hitT);
     vec3 transmitted = seen * green.weight + green.reflected;
     bool dispersion = m.ior.r != m.ior.b;
-#if LAYER_DISPERSION == 1 // DISPERSION_SHARED
+#if LAYER_DISPERSION == DISPERSION_SEARCH_SHARED
     if (dispersion) {
         // One walk: red and blue leave from green's last interface, bent there by their own
         // indices with the deviation their entry gave them, and see what green's ray met.
@@ -703,7 +709,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
                              green.reflected[c];
         }
     }
-#elif LAYER_DISPERSION == 2 // DISPERSION_PER_CHANNEL
+#elif LAYER_DISPERSION == DISPERSION_SEARCH_PER_CHANNEL
     if (dispersion) {
         for (int c = 0; c < 3; c += 2) {
             Walk w = walkLayers(P1, V, N1, entryAttr, c);
@@ -762,7 +768,7 @@ bool pixelEntry(ivec2 p, out Entry e) {
     return true;
 }
 
-#if LAYER_METHOD == 4 // METHOD_TRACE
+#if LAYER_METHOD == METHOD_TRACE
 // The traced path of trace sample uTraceSample through pixel p (its entry e), weighted: the
 // first from the capture's nearest layer at the pixel's centre (its normal map), traced from
 // the camera instead where the pixel overflowed (the fallback's normal is coarse); the others

@@ -6,7 +6,7 @@
 #include "refraction/walk.glsl"
 
 layout(local_size_x = 64) in;
-layout(SHADED_FORMAT, binding = 0) uniform image2D uShaded; // the walk's colour target
+layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded; // the walk's colour target
 
 void main() {
     if (gl_GlobalInvocationID.x >= handedOverCount)

@@ -17,12 +17,6 @@
 #include <string>
 
 namespace refraction {
-namespace {
-
-/** Glass ids a layer can name (8 bits, layers.glsl, less the walk's 0 for air). */
-constexpr std::size_t kMaxGlassIds = 255;
-
-} // namespace
 
 gl::TextureDesc colorDesc(glm::ivec2 size) {
     return {size, gl::Format::RGBA16F, 1};
@@ -86,16 +80,16 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
     f.set("uViewToWorld", glm::mat3(viewToWorld));
     f.set("uViewOriginWorld", glm::vec3(viewToWorld[3]));
-    frame->environment->bind(f, 0, frame->settings.environmentRotation,
+    frame->environment->bind(f, frame->settings.environmentRotation,
                              frame->settings.environmentIntensity);
 }
 
 void FrameContext::drawGlassMaterials(const gl::Program& program,
                                       const gl::PipelineState& state) const {
-    gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
+    gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
     drawGlass(program, state, [this, &program](const render::DrawItem& item, std::size_t index) {
         program.set("uGlassId", gpu->glassIds[index]);
-        item.materials->bind(program, *item.model, item.material, kMaterialUnit);
+        item.materials->bind(program, *item.model, item.material);
     });
 }
 
@@ -111,8 +105,8 @@ void FrameContext::drawGlass(
         const glm::mat4 modelView = frame->camera.view * item.world;
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
-        gl::bindStorage(kVerticesBinding, *item.gpu->deformed);
-        gl::bindStorage(kUvsBinding, *item.gpu->uvs);
+        gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
+        gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
         // d_N: the BVH's values from this part's base.
         const GpuState::Glass& glass = gpu->glass;
         const int part = settings.usesNormalDistance() && glass.bvh
@@ -121,7 +115,7 @@ void FrameContext::drawGlass(
         program.set("uHasNormalDistance", part >= 0 ? 1 : 0);
         program.set("uDistanceBase", part >= 0 ? int(glass.bvh->base(std::size_t(part))) : 0);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
-        gl::bindStorage(kDistancesBinding,
+        gl::bindStorage(slot::kNormalDistances,
                         part >= 0 ? glass.bvh->distances() : *item.gpu->deformed);
         if (perItem)
             perItem(item, index);
@@ -145,7 +139,7 @@ void FrameContext::growGlassRectangle() const {
     gpu->rectangle.fill(offsetof(R, traceRays), 10, 0u); // the trace's and the hybrid's counts
     gpu->rectangleGrow.use();
     gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
-    gl::bindStorage(kRectangleBinding, gpu->rectangle);
+    gl::bindStorage(slot::kGlassRectangle, gpu->rectangle);
     for (const render::DrawItem& item : frame->items) {
         if (!isGlass(item))
             continue;
@@ -153,8 +147,8 @@ void FrameContext::growGlassRectangle() const {
         gpu->rectangleGrow.set("uModelView", frame->camera.view * item.world);
         const int count = int(item.primitive->vertexCount());
         gpu->rectangleGrow.set("uVertexCount", count);
-        gl::bindStorage(0, item.geometry->cage(item.instance, item.primitiveIndex)
-                               .vertices); // rectangle.comp.glsl
+        gl::bindStorage(gl::slot::kVertices,
+                        item.geometry->cage(item.instance, item.primitiveIndex).vertices);
         gl::dispatch(std::uint32_t((count + 63) / 64));
     }
     gl::memoryBarrier(gl::BarrierStorage);
@@ -170,7 +164,7 @@ void FrameContext::drawMaskedRectangle(gl::Blend blend) const {
 }
 
 void FrameContext::drawRectangle() const {
-    gl::bindStorage(kRectangleBinding, gpu->rectangle);
+    gl::bindStorage(slot::kGlassRectangle, gpu->rectangle);
     gpu->emptyVao.bind();
     gl::drawArrays(6);
 }
@@ -183,10 +177,10 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     program.set("uKeyNear", frame->camera.znear);
     program.set("uKeyLogRange", std::log2(frame->camera.zfar / frame->camera.znear));
     const GpuState::LayerStorage& layers = gpu->layers;
-    gl::bindStorage(kLayerHeadsBinding, layers.heads);
-    gl::bindStorage(kLayerDepthsBinding, layers.depths);
-    gl::bindStorage(kLayerAttrsBinding, layers.attrs);
-    gl::bindStorage(kGlassMaterialsBinding, gpu->glassMaterials);
+    gl::bindStorage(slot::kLayerHeads, layers.heads);
+    gl::bindStorage(slot::kLayerDepths, layers.depths);
+    gl::bindStorage(slot::kLayerAttrs, layers.attrs);
+    gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
 }
 
 core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
@@ -206,13 +200,11 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
         gpu.layersResolve = std::move(*resolve);
         gpu.layerProgramsCapacity = capacity;
     }
-    // Dispersion: 0 none in this frame, 1 shared search, 2 per channel.
+    // Dispersion: none in this frame, or the dispersion search's.
     const bool dispersion =
         std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
                     [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    const int mode = !dispersion                                                         ? 0
-                     : c.settings.dispersionSearch == Settings::DispersionSearch::Shared ? 1
-                                                                                         : 2;
+    const int mode = dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion;
     const bool lit = c.lit();
     const int captureKey = pair ? 0 : capacity; // the pair, or K layers
     auto key = [&](Settings::Method method) {
@@ -223,8 +215,9 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
                                         std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
                                         "LAYER_DISPERSION " + std::to_string(mode),
                                         std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
-                                        "BVH_BINDINGS " + std::to_string(kWalkBvhBinding),
-                                        "LAYER_METHOD " + std::to_string(int(method))};
+                                        "LAYER_METHOD " + std::to_string(int(method)),
+                                        std::string("HYBRID_LIST ") +
+                                            (method == Settings::Method::Hybrid ? "1" : "0")};
     };
     if (!gpu.walkPrograms.count(key(c.settings.method))) {
         // Every method's variant at once: switching methods (the viewer's panel) then compiles
@@ -248,6 +241,7 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
     if (!gpu.handedOverTrace.count(traceKey)) {
         std::vector<std::string> defines = walkDefines(Settings::Method::Trace);
+        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list
         defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
         auto trace =
             gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl", defines);

@@ -15,7 +15,7 @@ namespace refraction {
 
 namespace {
 
-/** An opaque part's tag (GlassBvh::kOpaqueTag): its material's factors, for a traced ray that
+/** An opaque part's tag (kOpaqueTag): its material's factors, for a traced ray that
  *  meets it (trace.glsl's opaqueSeen). */
 std::uint32_t opaqueTag(const render::DrawItem& item) {
     glm::vec3 base(1.0f);
@@ -32,7 +32,7 @@ std::uint32_t opaqueTag(const render::DrawItem& item) {
     const auto bits = [](float v, float levels) {
         return std::uint32_t(std::round(std::clamp(v, 0.0f, 1.0f) * levels));
     };
-    return GlassBvh::kOpaqueTag | (textured ? GlassBvh::kOpaqueTextured : 0u) | colour.r |
+    return kOpaqueTag | (textured ? kOpaqueTextured : 0u) | colour.r |
            colour.g << 7 | colour.b << 14 | bits(roughness, 31.0f) << 21 |
            bits(metallic, 15.0f) << 26;
 }

@@ -32,10 +32,8 @@ fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext&
             program.use();
             program.set("uViewportSize", glm::vec2(c.frame->settings.size));
             program.set("uRectangleMargin", 1.0f);
-            gl::bindTexture(kSceneColorUnit, r.texture(d.shaded));
-            program.set("uColor", kSceneColorUnit);
-            gl::bindTexture(kSurfaceUnit, r.texture(d.surface));
-            program.set("uSurface", kSurfaceUnit);
+            gl::bindTexture(slot::kSceneColor, r.texture(d.shaded));
+            gl::bindTexture(slot::kOutlineSurface, r.texture(d.surface));
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             c.drawRectangle();
             return {};

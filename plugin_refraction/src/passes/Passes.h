@@ -15,6 +15,7 @@
 
 #include "../GpuState.h"
 #include "../Settings.h"
+#include "../Shared.h"
 
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
@@ -27,28 +28,14 @@
 
 namespace refraction {
 
-// Storage bindings, as the shaders declare them.
-constexpr std::uint32_t kVerticesBinding = 0;  ///< common/vertex.glsl: a draw item's vertices
-constexpr std::uint32_t kUvsBinding = 1;       ///< glass.vert.glsl: its texture coordinates
-constexpr std::uint32_t kDistancesBinding = 2; ///< glass.vert.glsl: its d_N values
-constexpr std::uint32_t kRectangleBinding = 4; ///< glass_rectangle.glsl
-constexpr std::uint32_t kLayerHeadsBinding = 5, kLayerDepthsBinding = 6,
-                        kLayerAttrsBinding = 7;     ///< layers.glsl
-constexpr std::uint32_t kGlassMaterialsBinding = 8; ///< glass_materials.glsl
-constexpr std::uint32_t kHandedOverBinding = 10;    ///< walk.glsl: the hybrid's traced pixels
-constexpr std::uint32_t kWalkBvhBinding = 12; ///< trace.glsl: the glass BVH (bvh.glsl) from here
+// Bindings and units: the registry's (Shared.h, refraction::slot; the engine's gl::slot).
 
 // The mip level the papers' search over the pair reads the surface normals at (DIR §3.1:
 // mip-filtered normals); the normal maps need no level above it.
 constexpr int kNormalLod = 1;
 
-// Texture units: 0-1 the environment; then the pass's maps; the material's slots from
-// kMaterialUnit.
-constexpr std::uint32_t kMaterialUnit = 8;
-/** The trace's glass normal maps (trace.glsl): this many, from kMaterialUnit (the walk binds
- *  no material). */
+/** The trace's glass normal maps (trace.glsl): this many, the first of slot::kTracedTextures. */
 constexpr std::size_t kTracedNormalMaps = 4;
-constexpr int kSceneColorUnit = 2, kSceneDepthUnit = 3, kLayerDepthUnit = 4, kSurfaceUnit = 6;
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */

@@ -61,17 +61,15 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
             const gl::Program& program = gpu.resolve[gathered ? 1 : 0];
             program.use();
             c.setLayerUniforms(program);
-            const std::pair<const char*, fg::TextureHandle> inputs[] = {
-                {"uGatherNear", d.pair.nearTargets},  {"uGatherFar", d.pair.farTargets},
-                {"uFrontDepth", d.pair.frontDepth},   {"uFrontNormal", d.pair.frontNormal},
-                {"uBackDepth", d.pair.backDepth},     {"uBackNormal", d.pair.backNormal},
-                {"uSceneDepth", d.sceneDepth}};
-            int unit = 0;
-            for (const auto& [uniform, handle] : inputs)
-                if (handle.valid()) {
-                    gl::bindTexture(std::uint32_t(unit), r.texture(handle));
-                    program.set(uniform, unit++);
-                }
+            // The pair's maps in resolve.frag.glsl's order (one pass's two, or two passes' four).
+            const fg::TextureHandle maps[] = {d.pair.nearTargets, d.pair.farTargets,
+                                              d.pair.frontDepth,  d.pair.frontNormal,
+                                              d.pair.backDepth,   d.pair.backNormal};
+            std::uint32_t element = 0;
+            for (const fg::TextureHandle handle : maps)
+                if (handle.valid())
+                    gl::bindTexture(slot::kPairMaps, r.texture(handle), element++);
+            gl::bindTexture(slot::kSceneDepth, r.texture(d.sceneDepth));
             program.set("uGlassId", c.firstGlassId);
             program.set("uNear", c.frame->camera.znear);
             program.set("uFar", c.frame->camera.zfar);

@@ -13,13 +13,6 @@
 
 namespace refraction {
 
-namespace {
-/** trace.glsl's uTracedNormalMaps, element by element. */
-constexpr const char* kTracedNormalMapNames[] = {"uTracedNormalMaps[0]", "uTracedNormalMaps[1]",
-                                                 "uTracedNormalMaps[2]", "uTracedNormalMaps[3]"};
-static_assert(std::size(kTracedNormalMapNames) == kTracedNormalMaps);
-} // namespace
-
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture) {
     const glm::ivec2 size = c.frame->settings.size;
@@ -78,39 +71,27 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             if (outlines)
                 gl::clearColorUint(1, 0u); // no glass
             // The walk's inputs; the hybrid's trace pass reads the same (its uniforms by
-            // `prepare`). The layer depth maps as uLayerDepths0/1 (layers.glsl), the pair's
-            // normals as uPairNormals; an absent map: the first depth map stands in (unread).
-            std::array<std::pair<const char*, int>, 6 + kTracedNormalMaps> samplers{};
-            std::size_t count = 0;
-            samplers[count++] = {"uSceneColor", kSceneColorUnit};
-            samplers[count++] = {"uSceneDepth", kSceneDepthUnit};
-            gl::bindTexture(kSceneColorUnit, r.texture(d.sceneColor));
-            gl::bindTexture(kSceneDepthUnit, r.texture(d.sceneDepth));
-            const std::pair<const char*, fg::TextureHandle> maps[] = {
-                {"uLayerDepths0", d.capture.depths0},
-                {"uLayerDepths1", d.capture.depths1},
-                {"uPairNormals[0]", d.capture.normals[0]},
-                {"uPairNormals[1]", d.capture.normals[1]}};
-            int unit = kLayerDepthUnit;
-            for (const auto& [uniform, handle] : maps) {
-                gl::bindTexture(std::uint32_t(unit),
-                                r.texture(handle.valid() ? handle : d.capture.depths0));
-                samplers[count++] = {uniform, unit++};
-            }
+            // `prepare`): the layer depth maps (layers.glsl), the pair's normals; an absent
+            // map: the first depth map stands in (unread).
+            gl::bindTexture(slot::kSceneColor, r.texture(d.sceneColor));
+            gl::bindTexture(slot::kSceneDepth, r.texture(d.sceneDepth));
+            const auto present = [&](fg::TextureHandle h) -> const gl::Texture& {
+                return r.texture(h.valid() ? h : d.capture.depths0);
+            };
+            gl::bindTexture(slot::kLayerDepthMaps, present(d.capture.depths0), 0);
+            gl::bindTexture(slot::kLayerDepthMaps, present(d.capture.depths1), 1);
+            gl::bindTexture(slot::kPairNormals, present(d.capture.normals[0]), 0);
+            gl::bindTexture(slot::kPairNormals, present(d.capture.normals[1]), 1);
             if (c.settings.traces()) {
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
-                gpu.glass.bvh->bind(kWalkBvhBinding);
-                gl::bindStorage(kWalkBvhBinding + GlassBvh::kBindings, // trace.glsl
-                                gpu.glass.bvh->uvs());
+                gpu.glass.bvh->bindForTraversal();
                 // The glass normal maps, the first standing in for absent ones (unread).
                 const auto& normalMaps = gpu.tracedNormalMaps;
-                for (std::size_t i = 0; i < kTracedNormalMaps; ++i) {
-                    if (!normalMaps.empty())
-                        gl::bindTexture(kMaterialUnit + std::uint32_t(i),
-                                        *normalMaps[std::min(i, normalMaps.size() - 1)]);
-                    samplers[count++] = {kTracedNormalMapNames[i], int(kMaterialUnit + i)};
-                }
+                for (std::size_t i = 0; i < kTracedNormalMaps && !normalMaps.empty(); ++i)
+                    gl::bindTexture(slot::kTracedTextures,
+                                    *normalMaps[std::min(i, normalMaps.size() - 1)],
+                                    std::uint32_t(i));
             }
             // The trace's and the hybrid's samples (a debug view shows the first alone).
             const int samples = c.settings.traceSamples;
@@ -119,8 +100,6 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             auto prepare = [&](const gl::Program& program, int weights) {
                 c.setWalkUniforms(program);
                 c.setLayerUniforms(program);
-                for (std::size_t i = 0; i < count; ++i)
-                    program.set(samplers[i].first, samplers[i].second);
                 program.set("uTraceWeight", 1.0f / float(weights));
             };
             prepare(*c.walk, draws);
@@ -133,7 +112,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 gpu.handedOver.fill(0, 2, 0u);
                 gpu.handedOver.fill(2 * sizeof(std::uint32_t), 2, 1u);
                 gpu.handedOver.fill(4 * sizeof(std::uint32_t), bits, 0u);
-                gl::bindStorage(kHandedOverBinding, gpu.handedOver);
+                gl::bindStorage(slot::kHandedOver, gpu.handedOver);
             }
             // The samples one draw each, added up (their weights sum to 1).
             for (int s = 0; s < draws; ++s) {
@@ -148,7 +127,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 return {};
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
             prepare(*c.handedOverTrace, samples);
-            gl::bindImage(0, out, 0, true);
+            gl::bindImage(gl::slot::kOutputImage, out, 0, true);
             for (int s = 0; s < samples; ++s) {
                 c.handedOverTrace->set("uTraceSample", s);
                 gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));

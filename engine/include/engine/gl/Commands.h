@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/gl/Buffer.h"
+#include "engine/gl/Registry.h"
 #include "engine/gl/Texture.h"
 
 #include <glm/glm.hpp>
@@ -58,9 +59,13 @@ void dispatch(std::uint32_t x, std::uint32_t y = 1, std::uint32_t z = 1);
  *  the GPU left them (no read back). */
 void dispatchIndirect(const Buffer& groups, std::size_t offset);
 
-void bindStorage(std::uint32_t binding, const Buffer& buffer);
-void bindTexture(std::uint32_t unit, const Texture& texture);
-void bindImage(std::uint32_t unit, const Texture& texture, int level, bool write);
+/** GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS of the current context. */
+std::uint32_t maxStorageBindings();
+/** Binds `buffer` at its registered storage binding (gl/Registry.h: the only way to bind one). */
+void bindStorage(const StorageSlot& slot, const Buffer& buffer);
+/** Binds `texture` to unit `element` of the run `slot`. */
+void bindTexture(const TextureSlot& slot, const Texture& texture, std::uint32_t element = 0);
+void bindImage(const ImageSlot& slot, const Texture& texture, int level, bool write);
 /** Copies level 0 of `source` into `destination` (same size and format): a copy, no draw
  *  (between formats: Framebuffer::blitColorFrom). */
 void copyTexture(const Texture& source, const Texture& destination);

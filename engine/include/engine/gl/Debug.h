@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace gl {
 
@@ -10,6 +11,15 @@ void installDebugOutput();
 
 /** GL errors reported through KHR_debug (and glGetError, checked by checkErrors) since start. */
 std::uint64_t errorCount();
+
+/** Logs `message` as an error and counts it with the GL errors (checks of the gl layer's own). */
+void reportError(const std::string& message);
+
+/** Whether draws and dispatches check the current program's storage blocks against the buffers
+ *  bound for them through the registry (gl/Registry.h): on in debug builds and wherever the
+ *  environment sets GLASS_GL_CHECKS=1 (the test suite does), off with GLASS_GL_CHECKS=0. */
+bool bindingChecks();
+void setBindingChecks(bool enabled);
 
 /** Polls glGetError until clear; each error is logged and counted. Returns how many it found. */
 int checkErrors(const char* where);

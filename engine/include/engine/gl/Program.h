@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/core/Result.h"
+#include "engine/gl/Registry.h"
 
 #include <glm/glm.hpp>
 
@@ -19,17 +20,24 @@ struct ShaderFile {
     const char* source;
 };
 
-/** Named GLSL sources (embedded at build time); resolves `#include "name"` recursively. */
+/** Named GLSL sources (embedded at build time); resolves `#include "name"` recursively. Every
+ *  shader it assembles gets the registry's numbers as defines (gl/Registry.h). */
 class ShaderLibrary {
 public:
     void add(std::span<const ShaderFile> files);
-    /** `name` with includes expanded, `#version 450 core` and `defines` prepended. Fails on
-     *  a missing file or an include cycle, naming the chain. */
+    /** Registers `owner`'s table of shared numbers (Registry::add: fails on a clash). */
+    core::Status share(const std::string& owner, std::span<const Shared> table);
+    const Registry& registry() const { return mRegistry; }
+    /** Every file's name and text (checks over the sources). */
+    const std::map<std::string, std::string>& files() const { return mFiles; }
+    /** `name` with includes expanded, `#version 450 core`, the registry's defines and then
+     *  `defines` prepended. Fails on a missing file or an include cycle, naming the chain. */
     core::Result<std::string> assemble(const std::string& name,
                                        const std::vector<std::string>& defines) const;
 
 private:
     std::map<std::string, std::string> mFiles;
+    Registry mRegistry;
 };
 
 class Program {

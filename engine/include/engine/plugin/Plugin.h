@@ -68,8 +68,12 @@ namespace plugin {
  *  FrameInfo::geometry, FrameInfo::materials and Plugin::drawsPrimitive; 4 materials' layers and
  *  lights: FrameInfo::lights, MaterialTextures::bind's fifteen slots as uniform arrays
  *  (uHasTexture[], uTexture[], uTextureUv[]: common/material_uv.glsl), the lighting buffer at
- *  storage binding 9 (render::kLightingBinding), instances sharing deformed buffers. */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/4";
+ *  storage binding 9 (render::kLightingBinding), instances sharing deformed buffers; 5 the
+ *  registry of shared numbers (gl/Registry.h): bindings and units as registered slots
+ *  (gl::bindStorage(gl::slot::kLighting, ...), plugins' own from gl::slot::kFirstPluginBinding,
+ *  registered with ShaderLibrary::share), MaterialTextures::bind at gl::slot::kMaterial with
+ *  seventeen slots (transmission and thickness added). */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/5";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {

@@ -25,9 +25,9 @@ public:
     const gl::Texture& irradiance() const { return mIrradiance; }
     float levels() const { return float(mPrefiltered.levels()); }
 
-    /** Binds the textures to units `first` and `first + 1` and sets the environment uniforms
+    /** Binds the textures to gl::slot::kEnvironment's units and sets the environment uniforms
      *  of common/environment.glsl on `program`. */
-    void bind(const gl::Program& program, int first, float rotation, float intensity) const;
+    void bind(const gl::Program& program, float rotation, float intensity) const;
 
 private:
     gl::Texture mSource, mPrefiltered, mIrradiance;

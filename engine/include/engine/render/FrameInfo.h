@@ -94,7 +94,7 @@ struct FrameInfo {
     std::span<const DrawItem> items;
     const Environment* environment = nullptr;
     /** The frame's punctual lights in world space (a file's on its nodes, a scene file's),
-     *  also in the storage buffer at render::kLightingBinding. */
+     *  also in the storage buffer at gl::slot::kLighting. */
     std::span<const scene::PlacedLight> lights;
     const gl::ShaderLibrary* shaders = nullptr;
     Camera camera;

@@ -1,5 +1,6 @@
 // The frame's lighting beyond the environment: the punctual lights placed in the world, and the
-// sheen layer's albedo table, in the storage buffer common/lighting.glsl reads (binding 9).
+// sheen layer's albedo table, in the storage buffer common/lighting.glsl reads (bound for the
+// whole frame at gl::slot::kLighting).
 #pragma once
 
 #include "engine/gl/Buffer.h"
@@ -22,8 +23,6 @@ struct World;
 
 namespace render {
 
-/** The storage binding of the lighting buffer, bound for the whole frame. */
-constexpr std::uint32_t kLightingBinding = 9;
 constexpr int kSheenTableSize = 16;
 
 /** E(NoV, roughness), the directional albedo of KHR_materials_sheen's lobe (Charlie

@@ -4,6 +4,7 @@
 
 #include "engine/core/Result.h"
 #include "engine/gl/Program.h"
+#include "engine/gl/Registry.h"
 #include "engine/gl/Texture.h"
 #include "engine/scene/Model.h"
 
@@ -17,14 +18,34 @@ public:
      *  when one is over GL_MAX_TEXTURE_SIZE or was not decoded. */
     static core::Result<MaterialTextures> create(const scene::Model& model);
 
-    /** Texture slots a material binds (common/material_uv.glsl's SLOT_*). */
-    static constexpr int kSlotCount = 15;
+    /** The texture slots a material binds, in the order of common/material_uv.glsl's uTexture
+     *  (its SLOT_* defines come from here: sharedTable()). */
+    enum Slot : int {
+        BaseColor,
+        MetallicRoughness,
+        Normal,
+        Occlusion,
+        Emissive,
+        Specular,
+        SpecularColor,
+        Clearcoat,
+        ClearcoatRoughness,
+        ClearcoatNormal,
+        SheenColor,
+        SheenRoughness,
+        Iridescence,
+        IridescenceThickness,
+        Anisotropy,
+        Transmission, ///< KHR_materials_transmission (R)
+        Thickness,    ///< KHR_materials_volume (G)
+        kSlotCount
+    };
+    static_assert(kSlotCount == int(gl::slot::kMaterial.count));
 
     /** Sets the material uniforms (factors, unlit, and per slot its texture flag, texture
-     *  coordinate set and KHR_texture_transform matrix) and binds its textures to units
-     *  `firstUnit`..`firstUnit + kSlotCount - 1`. Material -1 is the glTF default material. */
-    void bind(const gl::Program& program, const scene::Model& model, int material,
-              int firstUnit) const;
+     *  coordinate set and KHR_texture_transform matrix) and binds its textures to the units of
+     *  gl::slot::kMaterial. Material -1 is the glTF default material. */
+    void bind(const gl::Program& program, const scene::Model& model, int material) const;
 
     /** Texture `index` as the slots that read linear data (normals, metallic-roughness) have
      *  it; null where the model's materials never read it so. */

@@ -119,16 +119,19 @@ struct Material {
             f(*t, false);
     }
 
-    /** The layers it puts on its base, as common/brdf.glsl's SURFACE_LAYERS bits (1 clear
-     *  coat, 2 sheen, 4 iridescence, 8 anisotropy): the shader variant that shades it. */
+    /** The layers a material can put on its base: common/brdf.glsl's SURFACE_LAYERS bits (the
+     *  shaders' LAYER_* defines, render/Shared.h). */
+    static constexpr int kClearcoatLayer = 1, kSheenLayer = 2, kIridescenceLayer = 4,
+                         kAnisotropyLayer = 8;
+    /** The layers it puts on its base: the shader variant that shades it. */
     int surfaceLayers() const {
-        return (hasClearcoat && clearcoatFactor > 0.0f ? 1 : 0) |
+        return (hasClearcoat && clearcoatFactor > 0.0f ? kClearcoatLayer : 0) |
                (hasSheen && glm::max(sheenColorFactor.r,
                                      glm::max(sheenColorFactor.g, sheenColorFactor.b)) > 0.0f
-                    ? 2
+                    ? kSheenLayer
                     : 0) |
-               (hasIridescence && iridescenceFactor > 0.0f ? 4 : 0) |
-               (hasAnisotropy && anisotropyStrength > 0.0f ? 8 : 0);
+               (hasIridescence && iridescenceFactor > 0.0f ? kIridescenceLayer : 0) |
+               (hasAnisotropy && anisotropyStrength > 0.0f ? kAnisotropyLayer : 0);
     }
 
     /** Glass as the plugin sees it: any transmission. */

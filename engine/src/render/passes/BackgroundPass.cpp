@@ -23,7 +23,7 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
             gl::clearDepth(1.0f);
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gpu.background.use();
-            gpu.environment->bind(gpu.background, 0, frame.settings.environmentRotation,
+            gpu.environment->bind(gpu.background, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);
             gpu.background.set("uInverseViewProjection",
                                glm::inverse(frame.camera.viewProjection()));

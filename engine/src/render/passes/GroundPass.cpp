@@ -22,7 +22,7 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
             gl::apply({.cull = gl::Cull::None});
             gl::Program& p = gpu.ground[frame.lights.empty() ? 0 : 1];
             p.use();
-            gpu.environment->bind(p, 0, frame.settings.environmentRotation,
+            gpu.environment->bind(p, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);
             p.set("uViewProjection", frame.camera.viewProjection());
             p.set("uCameraPosition", frame.camera.position);

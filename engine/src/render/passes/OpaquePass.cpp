@@ -32,7 +32,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 !bound)
                 return bound;
             for (auto& [key, program] : gpu.opaque) {
-                gpu.environment->bind(program, 0, frame.settings.environmentRotation,
+                gpu.environment->bind(program, frame.settings.environmentRotation,
                                       frame.settings.environmentIntensity);
                 program.set("uViewProjection", frame.camera.viewProjection());
                 program.set("uCameraPosition", frame.camera.position);
@@ -51,9 +51,9 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
                 gl::apply({.cull = cullFor(*item.model, item.material)});
-                item.materials->bind(p, *item.model, item.material, 2);
-                gl::bindStorage(0, *item.gpu->deformed);
-                gl::bindStorage(1, *item.gpu->uvs);
+                item.materials->bind(p, *item.model, item.material);
+                gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
+                gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
                 item.vertexArray->bind();
                 gl::drawIndexed(item.gpu->indexCount);
             }

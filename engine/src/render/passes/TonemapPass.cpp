@@ -23,8 +23,7 @@ void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gpu.tonemap.use();
-            gl::bindTexture(0, r.texture(d.scene));
-            gpu.tonemap.set("uScene", 0);
+            gl::bindTexture(gl::slot::kSource, r.texture(d.scene));
             gpu.tonemap.set("uExposure", frame.settings.exposure);
             gpu.tonemap.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
             gpu.emptyVao.bind();

@@ -1,0 +1,70 @@
+// Private to the plugin: its entries in the registry of numbers C++ and GLSL share
+// (engine/gl/Registry.h), which RefractionPlugin::initialize registers as "refraction". The
+// shaders read each as a define; C++ binds through the slots below. Storage bindings from
+// gl::slot::kFirstPluginBinding; texture units from 20 (the engine's end below).
+#pragma once
+
+#include "engine/gl/Registry.h"
+
+#include <cstdint>
+#include <span>
+
+namespace refraction::slot {
+
+using gl::StorageSlot;
+using gl::TextureSlot;
+
+// Storage: what the passes read through the frame (each binds it before its draws).
+inline constexpr StorageSlot kNormalDistances{20, "NORMAL_DISTANCES_BINDING", "NormalDistances"};
+inline constexpr StorageSlot kGlassRectangle{21, "GLASS_RECTANGLE_BINDING", "GlassRectangle"};
+inline constexpr StorageSlot kLayerHeads{22, "LAYER_HEADS_BINDING", "LayerHeads"};
+inline constexpr StorageSlot kLayerDepths{23, "LAYER_DEPTHS_BINDING", "LayerDepths"};
+inline constexpr StorageSlot kLayerAttrs{24, "LAYER_ATTRS_BINDING", "LayerAttrs"};
+inline constexpr StorageSlot kGlassMaterials{25, "GLASS_MATERIALS_BINDING", "GlassMaterials"};
+inline constexpr StorageSlot kHandedOver{26, "HANDED_OVER_BINDING", "HandedOver"};
+// The glass BVH (bvh.glsl, GlassBvh): what a traversal reads, then the build's own.
+inline constexpr StorageSlot kWorldMesh{27, "WORLD_MESH_BINDING", "WorldMesh"};
+inline constexpr StorageSlot kWorldIndices{28, "WORLD_INDICES_BINDING", "WorldIndices"};
+inline constexpr StorageSlot kBvhNodes{29, "BVH_NODES_BINDING", "BvhNodes"};
+inline constexpr StorageSlot kBvhOrder{30, "BVH_ORDER_BINDING", "BvhOrder"};
+inline constexpr StorageSlot kBvhBoxes{31, "BVH_BOXES_BINDING", "BvhBoxes"};
+inline constexpr StorageSlot kBvhLeafCorners{32, "BVH_LEAF_CORNERS_BINDING", "BvhLeafCorners"};
+inline constexpr StorageSlot kBvhTags{33, "BVH_TAGS_BINDING", "BvhTags"};
+inline constexpr StorageSlot kBvhPackedBoxes{34, "BVH_PACKED_BOXES_BINDING", "BvhPackedBoxes"};
+inline constexpr StorageSlot kWorldUvs{35, "WORLD_UVS_BINDING", "WorldUvs"};
+inline constexpr StorageSlot kBvhBuild{36, "BVH_BUILD_BINDING", "BvhBuild"};
+inline constexpr StorageSlot kBvhKeys{37, "BVH_KEYS_BINDING", "BvhKeys"};
+inline constexpr StorageSlot kBvhParents{38, "BVH_PARENTS_BINDING", "BvhParents"};
+inline constexpr StorageSlot kBvhVisits{39, "BVH_VISITS_BINDING", "BvhVisits"};
+
+// Texture units.
+inline constexpr TextureSlot kSceneColor{20, "SCENE_COLOR_UNIT"};
+inline constexpr TextureSlot kSceneDepth{21, "SCENE_DEPTH_UNIT"};
+inline constexpr TextureSlot kLayerDepthMaps{22, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
+inline constexpr TextureSlot kPairNormals{24, "PAIR_NORMALS_UNIT", 2};        ///< front, back
+/** The pair capture's maps the resolve reads (resolve.frag.glsl): the one pass's nearest and
+ *  farthest targets, or the two passes' front depth, front normal, back depth, back normal. */
+inline constexpr TextureSlot kPairMaps{26, "PAIR_MAPS_UNIT", 4};
+inline constexpr TextureSlot kOutlineSurface{30, "OUTLINE_SURFACE_UNIT"}; ///< the walk's nearest layers
+/** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
+ *  transmission and roughness (GpuState::tracedTextures). */
+inline constexpr TextureSlot kTracedTextures{31, "TRACED_TEXTURES_UNIT", 8};
+
+} // namespace refraction::slot
+
+namespace refraction {
+
+/** Bits of a traced triangle's tag (GlassBvh::setTags): an opaque part's, and one with a base
+ *  colour texture (the rest: its glass id, or the opaque material's factors). */
+inline constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+/** A layer's attributes (layers.glsl): bits 0-7 its glass id, this bit front-facing. */
+inline constexpr std::uint32_t kLayerFront = 256u;
+/** Glass ids a layer can name (8 bits, less the walk's 0 for air). */
+inline constexpr std::size_t kMaxGlassIds = 255;
+
+/** The plugin's table: the slots above, the tags and bits, and every enum parameter's choices
+ *  as <PARAMETER>_<CHOICE> (METHOD_DIR, DEBUG_BACK_DEPTH: their indices, Settings' enums), the
+ *  hybrid's criteria (Settings::HybridCriterion). */
+std::span<const gl::Shared> sharedTable();
+
+} // namespace refraction
