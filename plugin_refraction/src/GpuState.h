@@ -21,21 +21,39 @@
 
 namespace refraction {
 
-/** One glass id's optics as layers.glsl's GlassMaterial reads them (std430). */
-struct GlassMaterialGpu {
-    glm::vec4 ior;       ///< per channel; w: transmission
-    glm::vec4 sigma;     ///< absorption per world unit; w: roughness
-    glm::vec4 baseColor; ///< w: metallic
-    glm::vec4 emissive;  ///< w: the solid (the character's index among the glass ones)
-    glm::vec4 specular;  ///< KHR_materials_specular: colour, w: weight
-    glm::vec4 layers;    ///< clearcoat, its roughness, iridescence, the film's index
-    glm::vec4 sheen;     ///< colour, w: roughness
-    glm::vec4 film;      ///< x: the film's thickness (nm)
-    /** The normal map traced hits read: x its index in GpuState::tracedNormalMaps (-1: none), y
-     *  its scale, z its texture coordinate set; its texture transform's rows. */
-    glm::vec4 normalMap{-1.0f, 1.0f, 0.0f, 0.0f};
-    glm::vec4 normalUv[2]{{1.0f, 0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f, 0.0f}};
+/** A texture the trace reads at its hits, as glass_materials.glsl's TracedTexture. */
+struct TracedTextureGpu {
+    glm::vec3 row0{1.0f, 0.0f, 0.0f}; ///< the texture transform's first row
+    std::int32_t unit = -1;           ///< among slot::kTracedTextures' units; -1: none
+    glm::vec3 row1{0.0f, 1.0f, 0.0f};
+    std::int32_t uvSet = 0;
 };
+
+/** One glass id's optics as glass_materials.glsl's GlassMaterial reads them (std430: each vec3
+ *  followed by a scalar, the same fields in the same order; GlLayer checks the offsets). */
+struct GlassMaterialGpu {
+    glm::vec3 ior; ///< per channel
+    float transmission;
+    glm::vec3 sigma; ///< absorption per world unit
+    float roughness;
+    glm::vec3 baseColor;
+    float metallic;
+    glm::vec3 emissive;
+    std::uint32_t solid; ///< the character's index among the glass ones
+    glm::vec3 specularColor;
+    float specularWeight;
+    glm::vec3 sheenColor;
+    float sheenRoughness;
+    float clearcoat, clearcoatRoughness;
+    float iridescence, iridescenceIor;
+    float filmThickness;
+    float normalScale = 1.0f;
+    std::uint32_t authored; ///< glass by its own transmission
+    std::uint32_t spare = 0;
+    TracedTextureGpu normalTexture, baseColorTexture, metallicRoughnessTexture,
+        transmissionTexture;
+};
+static_assert(sizeof(GlassMaterialGpu) == 16 * 16);
 
 /** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them
  *  (std430). */
@@ -53,13 +71,14 @@ struct GpuState {
     gl::Program rectangleGrow; // the glass rectangle
     // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1).
     gl::Program surface, surfaces, resolve[2];
-    // The layers (layers.glsl): the capture and its depth maps for K = layerProgramsCapacity
-    // (compiled in); the outline pass.
+    // The layers (layers.glsl): the capture and its depth maps for K, whether it keeps the
+    // layers' surfaces and whether it reads textures at their base level (the trace's)
+    // (layerPrograms, compiled in); the outline pass.
     gl::Program layersCapture, layersResolve, layersOutline;
-    int layerProgramsCapacity = 0;
+    std::tuple<int, bool, bool> layerPrograms{0, false, false};
     /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
-     *  punctual lights). */
-    using WalkKey = std::tuple<int, int, int, bool>;
+     *  punctual lights; textured glass). */
+    using WalkKey = std::tuple<int, int, int, bool, bool>;
     std::map<WalkKey, gl::Program> walkPrograms;
     /** The hybrid's trace pass, by the same key and whether its target adds samples up. */
     std::map<std::pair<WalkKey, bool>, gl::Program> handedOverTrace;
@@ -71,6 +90,7 @@ struct GpuState {
         gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
         gl::Buffer depths; // K floats per pixel
         gl::Buffer attrs;  // K uvec2 per pixel
+        gl::Buffer surfaces; // K uvec2 per pixel where the glass is textured
         glm::ivec2 size{0};
         int capacity = 0;
     } layers;
@@ -80,9 +100,14 @@ struct GpuState {
     std::vector<int> glassIds;
     std::vector<GlassMaterialGpu> glassOptics;
     bool warnedGlassIds = false; // the 256-id limit was reported
-    /** The glass normal maps the trace reads (trace.glsl's uTracedNormalMaps), this frame. */
-    std::vector<const gl::Texture*> tracedNormalMaps;
-    bool warnedNormalMaps = false; // more than kTracedNormalMaps was reported
+    /** Each model's sides at rest (restSides, for glassExtent), kept while the model lives. */
+    std::map<const scene::Model*, std::pair<std::weak_ptr<const scene::Model>, glm::vec3>> sides;
+    /** A character's glass extent (Optics.h's glassExtent), its model's sides measured once. */
+    double glassExtent(const scene::Character& character);
+    /** The glass textures the trace reads at its hits (trace.glsl's uTracedTextures), this
+     *  frame: normal maps, base colours, metallic-roughness and transmission. */
+    std::vector<const gl::Texture*> tracedTextures;
+    bool warnedTracedTextures = false; // more than slot::kTracedTextures.count was reported
     gl::Framebuffer framebuffer;
     /** The scene's colour, read to convert it into the walk's single-precision target. */
     gl::Framebuffer sceneColorRead;

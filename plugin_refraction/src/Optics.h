@@ -5,6 +5,7 @@
 #include "Settings.h"
 
 #include "engine/scene/Model.h"
+#include "engine/scene/World.h"
 
 #include <glm/glm.hpp>
 
@@ -12,7 +13,8 @@ namespace refraction {
 
 /** Per-primitive optics: a character's own overrides (scene files: ior, tint, dispersion)
  *  first, then the plugin's parameters (ior, dispersion, tint, absorption distance) where set,
- *  then the material. */
+ *  then the material. The factors: the textures multiply them where a path meets the surface
+ *  (GlassModel.h's GlassSurface). */
 struct Optics {
     glm::vec3 ior; ///< per channel (R, G, B): the KHR_materials_dispersion spread
     bool dispersion = false;
@@ -33,7 +35,15 @@ struct Optics {
     float iridescence = 0.0f, iridescenceIor = 1.3f, iridescenceThickness = 0.0f;
 };
 
+/** `extent`: the glass's size in world units (glassExtent), the distance over which a tint acts
+ *  on glass whose material sets none (KHR_materials_volume's attenuation distance). */
 Optics opticsFor(const Settings& settings, const scene::Material* material,
-                 const scene::GlassOverrides& overrides = {});
+                 const scene::GlassOverrides& overrides = {}, double extent = 1.0);
+
+/** The sides of a model's box at rest (render's animatedBounds, the rest pose). */
+glm::vec3 restSides(const scene::Model& model);
+/** A character's glass size: the smallest side of its model's box at rest (`sides`, restSides)
+ *  that a ray can cross, scaled by the character's scale. */
+double glassExtent(glm::vec3 sides, const scene::Character& character);
 
 } // namespace refraction

@@ -1,10 +1,12 @@
-// Embree reference tracer: glass with real TIR, the opaque scene and the ground shaded like the
-// GPU's opaque pass, the environment sampled like the GPU's.
+// Embree reference tracer: the glass by the optical model's C++ twin (GlassModel.h), the opaque
+// scene and the ground shaded like the GPU's opaque pass, the environment sampled like the GPU's.
 #include "refraction/ReferenceTracer.h"
 
+#include "GlassModel.h"
 #include "Optics.h"
 
 #include "engine/deform/CpuDeformer.h"
+#include "engine/deform/Subdivision.h"
 #include "engine/render/CpuShading.h"
 #include "engine/render/Lighting.h"
 
@@ -35,6 +37,7 @@ struct Surface {
     const scene::Image* normalImage = nullptr; // the material's normal texture, if it has one
     std::vector<std::uint32_t> indices;
     bool glass = true;
+    bool authored = false;                     // glass by its material (its textures all count)
     int solid = 0;                             // the character: one closed solid (media rule)
     const scene::Model* model = nullptr;       // whose material and textures
     const scene::Material* material = nullptr; // opaque surfaces
@@ -52,76 +55,22 @@ struct Hit {
     const Surface* surface = nullptr;
 };
 
-double fresnelEntry(Settings::Fresnel mode, double cosI, double eta) {
-    if (mode == Settings::Fresnel::Off)
-        return 0.0;
-    if (mode == Settings::Fresnel::Schlick) {
-        const double f0 = ((1 - eta) / (1 + eta)) * ((1 - eta) / (1 + eta));
-        return f0 + (1 - f0) * std::pow(1 - std::clamp(cosI, 0.0, 1.0), 5.0);
-    }
-    const double sin2T = eta * eta * (1 - cosI * cosI);
-    if (sin2T >= 1)
-        return 1.0;
-    const double cosT = std::sqrt(1 - sin2T);
-    const double rs = (eta * cosI - cosT) / (eta * cosI + cosT),
-                 rp = (cosI - eta * cosT) / (cosI + eta * cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-bool refractRay(const dvec3& i, const dvec3& n, double eta, dvec3& t) {
-    const double cosI = -glm::dot(i, n), k = 1 - eta * eta * (1 - cosI * cosI);
-    if (k < 0)
-        return false;
-    t = glm::normalize(eta * i + (eta * cosI - std::sqrt(k)) * n);
-    return true;
-}
-
-/** Small deterministic random numbers (PCG hash) per pixel and sample. */
-double random01(std::uint32_t& state) {
-    state = state * 747796405u + 2891336453u;
-    std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return double((word >> 22u) ^ word) / 4294967296.0;
-}
-
-/** The media a path is in (ARCHITECTURE.md, "How a ray walks the layers"): a stack of the
- *  glass surfaces it entered through. Crossing a surface against its outward (winding) normal
- *  enters it; crossing one along it leaves the most recent entry of that surface's solid (its
- *  character), so the pieces of one character (a mesh split by material, interpenetrating
- *  parts) are one solid, and other characters' glass nests inside. The medium is the top
- *  entry's glass, air when empty. */
-class Media {
-public:
-    const Surface* top() const { return mCount ? mEntries[mCount - 1] : nullptr; }
-    void enter(const Surface* surface) {
-        if (mCount < mEntries.size())
-            mEntries[mCount++] = surface;
-    }
-    void leave(int solid) {
-        for (std::size_t i = mCount; i-- > 0;)
-            if (mEntries[i]->solid == solid) {
-                std::copy(mEntries.begin() + std::ptrdiff_t(i) + 1,
-                          mEntries.begin() + std::ptrdiff_t(mCount),
-                          mEntries.begin() + std::ptrdiff_t(i));
-                --mCount;
-                return;
-            }
-    }
-
-private:
-    std::array<const Surface*, 16> mEntries{};
-    std::size_t mCount = 0;
+/** How a reference path is evaluated: sampled (jittered rays, rough surfaces by microfacets,
+ *  one branch by chance past the splits: the ground truth) or deterministic (docs/methods.md:
+ *  the model the GPU trace runs at one sample a pixel). */
+struct Evaluation {
+    bool deterministic = false;
+    int interfaces = 0, crossings = 0; ///< deterministic: where a path ends (the trace's bounds)
 };
-
-/** Interfaces into glass where a path follows both the reflection and the refraction. */
-constexpr int kSplits = 3;
 
 class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
-           Settings::Fresnel fresnelMode, double epsilon, std::vector<scene::PlacedLight> lights)
+           Settings::Fresnel fresnelMode, double epsilon, std::vector<scene::PlacedLight> lights,
+           Evaluation evaluation)
         : mSurfaces(surfaces), mEnv(env), mLights(std::move(lights)), mGround(ground),
-          mOptions(options), mFresnel(fresnelMode), mEpsilon(epsilon),
+          mOptions(options), mFresnel(fresnelMode), mEpsilon(epsilon), mEvaluation(evaluation),
           mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)) {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -148,7 +97,8 @@ public:
     Tracer(const Tracer&) = delete;
     Tracer& operator=(const Tracer&) = delete;
 
-    /** Nearest surface along the ray: a triangle of the scene or the ground square. */
+    /** Nearest surface along the ray: a triangle of the scene or the ground square (with
+     *  `glass` false, the nearest that is not glass). */
     Hit intersect(const dvec3& origin, const dvec3& dir) const {
         Hit h;
         RTCIntersectContext context;
@@ -186,19 +136,26 @@ public:
                 h.shadingNormal = perturbNormal(s.material->normalTexture, *s.normalImage,
                                                 h.shadingNormal, h.tangent, h.uv);
         }
-        if (mGround && std::abs(dir.y) > 1e-12) {
-            const double t = (double(mGround->height) - origin.y) / dir.y;
-            const dvec3 p = origin + t * dir;
-            if (t > mEpsilon && t < h.t && std::abs(p.x - mGround->center.x) <= mGround->halfSize &&
-                std::abs(p.z - mGround->center.z) <= mGround->halfSize) {
-                h = Hit{};
-                h.hit = h.ground = true;
-                h.t = t;
-                h.point = p;
-                h.shadingNormal = dvec3(0, 1, 0);
-            }
+        if (const double t = groundHit(origin, dir); t > mEpsilon && t < h.t) {
+            h = Hit{};
+            h.hit = h.ground = true;
+            h.t = t;
+            h.point = origin + t * dir;
+            h.shadingNormal = dvec3(0, 1, 0);
         }
         return h;
+    }
+
+    /** Where the ray meets the ground square (t), or -1. */
+    double groundHit(const dvec3& origin, const dvec3& dir) const {
+        if (!mGround || std::abs(dir.y) <= 1e-12)
+            return -1.0;
+        const double t = (double(mGround->height) - origin.y) / dir.y;
+        const dvec3 p = origin + t * dir;
+        return t > 0.0 && std::abs(p.x - mGround->center.x) <= mGround->halfSize &&
+                       std::abs(p.z - mGround->center.z) <= mGround->halfSize
+                   ? t
+                   : -1.0;
     }
 
     /** An opaque surface or the ground, lit like render/pbr.frag.glsl or ground.frag.glsl. */
@@ -227,92 +184,136 @@ public:
         return render::cpu::shadeSurface(surface, lighting, h.point, point.normal, V) + emissive;
     }
 
-    /** The reflectance of glass `o` from air at cosI in channel `c`, as glass_surface.glsl's
-     *  glassReflectance: the Fresnel mode's, coloured and weighted by KHR_materials_specular,
-     *  through the iridescent film. */
-    double glassReflectance(const Optics& o, double cosI, int c) const {
-        const double eta = 1.0 / o.ior.g;
-        double F = fresnelEntry(mFresnel, cosI, eta);
-        if (o.specularColor != glm::vec3(1.0f) || o.specularWeight != 1.0f) {
-            const double f0 = fresnelEntry(mFresnel, 1.0, eta);
-            const double coloured = std::min(f0 * o.specularColor[c], 1.0);
-            F = o.specularWeight *
-                (coloured + (1.0 - coloured) * (f0 < 1.0 ? (F - f0) / (1.0 - f0) : 1.0));
+    /** The glass surface at a hit: its optics' factors times its textures at the hit's uv
+     *  (level 0): base colour always, transmission, roughness and metallic where the material
+     *  is glass by its own transmission (forced glass is clear). */
+    model::GlassSurface glassSurface(const Hit& h) const {
+        const Surface& s = *h.surface;
+        model::GlassSurface g;
+        g.baseColor = dvec3(s.optics.baseColor);
+        g.transmission = s.optics.transmission;
+        g.roughness = s.optics.roughness;
+        g.metallic = s.optics.metallic;
+        if (!s.material || !s.model)
+            return g;
+        auto read = [&](const scene::TextureRef& t, bool srgb) {
+            const scene::Image* image = textureImage(*s.model, t);
+            return image ? render::cpu::sampleImage(*image, render::cpu::textureUv(t, h.uv), srgb)
+                         : dvec4(1.0);
+        };
+        g.baseColor *= dvec3(read(s.material->baseColorTexture, true));
+        if (s.authored) {
+            g.transmission *= read(s.material->transmissionTexture, false).r;
+            const dvec4 mr = read(s.material->metallicRoughnessTexture, false);
+            g.roughness *= mr.g;
+            g.metallic *= mr.b;
         }
-        if (o.iridescence > 0.0f && mFresnel != Settings::Fresnel::Off)
-            F = glm::mix(F,
-                         render::cpu::thinFilmReflectance(
-                             cosI, o.iridescenceIor, o.iridescenceThickness, dvec3(o.ior.g))[c],
-                         double(o.iridescence));
-        return F;
+        return g;
     }
 
-    /** Radiance of channel `c` arriving along a ray from `origin` inside `media`, through
-     *  every interface it meets (Media: the rule the GPU's walk follows too): where the ray goes
-     *  into glass (from air or from other glass) Fresnel splits it into both branches
-     *  (`splits` more times), then chooses one by chance,
-     *  a ray leaving glass for air refracts unless totally reflected, Beer-Lambert absorption
-     *  in every glass segment. A path ends at an opaque surface, the ground or the environment,
-     *  when its throughput is negligible, or after maxBounces interfaces (counted in `trapped`
-     *  when still in glass, and black). */
-    double follow(dvec3 origin, dvec3 dir, int c, Media media, double weight, int splits,
-                  std::uint32_t& rng, std::size_t& trapped) const {
-        for (int event = 0;; ++event) {
-            const Hit h = intersect(origin, dir);
-            const Surface* inside = media.top();
+    /** The environment or the ground straight along a ray (a path at the deterministic
+     *  evaluation's end, as the GPU trace's lookup). */
+    double beyond(const dvec3& origin, const dvec3& dir, double roughness, int c) const {
+        const double t = groundHit(origin, dir);
+        if (t > mEpsilon) {
+            Hit h;
+            h.hit = h.ground = true;
+            h.point = origin + t * dir;
+            return shadeOpaque(h, dir)[c];
+        }
+        return mEnv.radiance(dir, roughness)[c];
+    }
+
+    /** The roughness a path's lookup blurs by: its roughest interface where rough surfaces
+     *  are not sampled. */
+    double lookupRoughness(const model::Path& path) const {
+        return mEvaluation.deterministic ? path.roughness : 0.0;
+    }
+
+    /** A facet normal for a crossing of surface `s` about the (facing) shading normal `n`: a
+     *  sampled microfacet's where the surface is rough and paths are sampled, else n. */
+    dvec3 facet(const model::GlassSurface& s, const dvec3& n, const dvec3& dir,
+                std::uint32_t& rng) const {
+        if (mEvaluation.deterministic || s.roughness <= model::kSmooth)
+            return n;
+        const double u1 = model::random01(rng), u2 = model::random01(rng);
+        return model::sampleMicrofacet(n, s.roughness, -dir, u1, u2);
+    }
+
+    /** Radiance of channel `c` arriving along `path` from its origin, through every surface it
+     *  meets (model::crossInterface): Beer-Lambert in each glass segment, the reflections of
+     *  interfaces into glass followed as branches of their own (model::kSplitDepth), then
+     *  looked up along their direction (deterministic) or chosen by Fresnel (sampled). A path
+     *  ends at an opaque surface, the ground or the environment, when its throughput is
+     *  negligible, or: deterministic, after the trace's interfaces (seeing what lies along it);
+     *  sampled, after maxBounces (black, counted in `trapped` when still in glass). */
+    double follow(model::Path path, int c, std::uint32_t& rng, std::size_t& trapped) const {
+        double light = 0.0;
+        for (;;) {
+            if (mEvaluation.deterministic && (path.interfaces >= mEvaluation.interfaces ||
+                                              path.crossings >= mEvaluation.crossings))
+                return light + path.weight * beyond(path.origin, path.dir, path.roughness, c);
+            const Hit h = intersect(path.origin, path.dir);
+            const bool inGlass = path.media.top() != nullptr;
             if (!h.hit) // the environment (or an open mesh's hole)
-                return weight * mEnv.radiance(dir, 0.0)[c];
-            if (inside)
-                weight *= std::exp(-inside->optics.sigma[c] * h.t);
+                return light + path.weight * mEnv.radiance(path.dir, lookupRoughness(path))[c];
+            if (inGlass)
+                path.weight *= std::exp(-path.sigma * h.t);
             if (h.ground || !h.surface->glass)
-                return weight * shadeOpaque(h, dir)[c];
-            if (weight < 1e-4) // negligible: no longer worth following
-                return 0.0;
-            if (event >= mOptions.maxBounces) {
-                if (inside)
+                return light + path.weight * shadeOpaque(h, path.dir)[c];
+            if (path.weight < 1e-4) // negligible: no longer worth following
+                return light;
+            if (path.crossings >= mOptions.maxBounces) {
+                if (inGlass)
                     ++trapped;
-                return 0.0;
+                return light;
             }
-            Media after = media;
-            if (glm::dot(dir, h.geometricNormal) < 0.0)
-                after.enter(h.surface);
-            else
-                after.leave(h.surface->solid);
-            const Surface* to = after.top();
-            const double n1 = inside ? inside->optics.ior[c] : 1.0;
-            const double n2 = to ? to->optics.ior[c] : 1.0;
-            origin = h.point;
-            if (n1 == n2) { // overlapping glass of one index, or one solid's parts: no interface
-                media = after;
+            const model::SurfaceMet met{&h.surface->optics, h.surface->solid, glassSurface(h),
+                                        glm::dot(path.dir, h.geometricNormal) < 0.0};
+            path.origin = h.point;
+            const dvec3 n = glm::dot(h.shadingNormal, path.dir) > 0 ? -h.shadingNormal
+                                                                     : h.shadingNormal;
+            const dvec3 m = facet(met.surface, n, path.dir, rng), incoming = path.dir;
+            const model::Path before = path;
+            double reflected = 0.0;
+            const model::Crossed crossed =
+                model::crossInterface(path, met, m, c, mFresnel, reflected);
+            if (crossed == model::Crossed::Passed)
                 continue;
-            }
-            dvec3 n = h.shadingNormal;
-            if (glm::dot(n, dir) > 0)
-                n = -n;
-            dvec3 t;
-            const bool refracts = refractRay(dir, n, n1 / n2, t);
-            const double f = !refracts || !to ? 0.0
-                             : inside         ? fresnelEntry(mFresnel, -glm::dot(dir, n), n1 / n2)
-                                              : glassReflectance(to->optics, -glm::dot(dir, n), c);
-            if (refracts && f > 0.0 && splits > 0) {
-                // Both branches, weighted (the first few times: far less noise than choosing).
-                Media entered = after;
-                const double reflected = follow(origin, glm::reflect(dir, n), c, media, weight * f,
-                                                splits - 1, rng, trapped);
-                return reflected + follow(origin, t, c, entered,
-                                          weight * (1.0 - f) * to->optics.baseColor[c], splits - 1,
-                                          rng, trapped);
-            }
-            if (!refracts || (f > 0.0 && random01(rng) < f)) {
-                dir = glm::reflect(dir, n);
+            const bool rough = m != n;
+            if (rough) // the facet's share of the light, the way it went
+                path.weight *= model::microfacetWeight(path.dir, m, n, met.surface.roughness,
+                                                       crossed == model::Crossed::Refracted);
+            if (crossed == model::Crossed::Reflected)
                 continue;
+            if (!path.media.top() && mOptions.twoInterfaces)
+                return light + path.weight * mEnv.radiance(path.dir, 0.0)[c]; // one exit
+            if (reflected <= 0.0)
+                continue;
+            model::Path mirror = before;
+            mirror.dir = glm::reflect(incoming, glm::dot(m, incoming) > 0 ? -m : m);
+            mirror.weight = reflected * (rough ? model::microfacetWeight(mirror.dir, m, n,
+                                                                         met.surface.roughness,
+                                                                         false)
+                                               : 1.0);
+            mirror.interfaces = path.interfaces;
+            mirror.crossings = path.crossings;
+            mirror.roughness = std::max(before.roughness, met.surface.roughness);
+            if (path.splits < model::kSplitDepth && mirror.weight >= model::kSplitWeight) {
+                ++path.splits;
+                mirror.splits = path.splits;
+                light += follow(mirror, c, rng, trapped);
+            } else if (mEvaluation.deterministic) {
+                light += mirror.weight * mEnv.radiance(mirror.dir, mirror.roughness)[c];
+            } else { // one branch by chance, as likely as the share it carries
+                const double p = reflected / before.weight;
+                if (model::random01(rng) < p) {
+                    mirror.weight /= p;
+                    path = mirror;
+                } else {
+                    path.weight /= 1.0 - p;
+                }
             }
-            if (!to && mOptions.twoInterfaces)
-                return weight * mEnv.radiance(t, 0.0)[c]; // the closed-form model: one exit
-            dir = t;
-            media = after;
-            if (to)
-                weight *= to->optics.baseColor[c];
         }
     }
 
@@ -326,51 +327,68 @@ public:
         if (!glass)
             return shadeOpaque(h, dir);
         const Optics& o = h.surface->optics;
+        const model::GlassSurface s = glassSurface(h);
         dvec3 n = h.shadingNormal;
         if (glm::dot(n, dir) > 0)
             n = -n;
         const double cosI = -glm::dot(dir, n);
-        const dvec3 F(glassReflectance(o, cosI, 0), glassReflectance(o, cosI, 1),
-                      glassReflectance(o, cosI, 2));
-        const dvec3 reflected = mEnv.radiance(glm::reflect(dir, n), o.roughness);
-        Media media;
-        media.enter(h.surface);
+        dvec3 F;
+        for (int c = 0; c < 3; ++c)
+            F[c] = model::reflectance(mFresnel, o, s, cosI, 1.0 / o.ior.g, c);
+        const dvec3 reflected = mEnv.radiance(glm::reflect(dir, n), s.roughness);
         dvec3 transmitted;
         for (int c = 0; c < 3; ++c) {
-            dvec3 d;
-            refractRay(dir, n, 1.0 / o.ior[c], d); // air into glass never reflects totally
-            transmitted[c] = follow(h.point, d, c, media, 1.0, kSplits, rng, trapped);
+            model::Path path;
+            path.origin = h.point;
+            path.media.enter(&o, h.surface->solid);
+            path.ior = o.ior[c];
+            path.sigma = o.sigma[c];
+            path.roughness = s.roughness;
+            const dvec3 m = facet(s, n, dir, rng);
+            refractOrReflect(dir, m, 1.0 / o.ior[c], path.dir);
+            if (m != n)
+                path.weight = model::microfacetWeight(path.dir, m, n, s.roughness, true);
+            transmitted[c] = follow(path, c, rng, trapped);
         }
-        return glassColor(h, o, n, -dir,
-                          F * reflected + (1.0 - F) * dvec3(o.baseColor) * transmitted);
+        const dvec3 tint = s.baseColor * (1.0 - s.metallic);
+        return glassColor(h, o, s, n, -dir, F * reflected + (1.0 - F) * tint * transmitted);
+    }
+
+    /** Refracts about m; reflects where it cannot (air into glass reflects totally only about a
+     *  microfacet tilted far from the ray). */
+    static void refractOrReflect(const dvec3& dir, const dvec3& m, double eta, dvec3& out) {
+        if (!model::refract(dir, m, eta, out))
+            out = glm::reflect(dir, m);
     }
 
     /** What glass_surface.glsl's glassColor adds at the entry (normal n and view V facing each
      *  other) to `glass`, its reflection and transmission: the lights' highlights, the opaque
      *  term where transmission is partial, the clear coat and sheen, emission. */
-    dvec3 glassColor(const Hit& h, const Optics& o, dvec3 n, dvec3 V, dvec3 glass) const {
+    dvec3 glassColor(const Hit& h, const Optics& o, const model::GlassSurface& s, dvec3 n,
+                     dvec3 V, dvec3 glass) const {
         const render::cpu::Lighting lighting{mEnv, mLights};
         const double NoV = std::clamp(glm::dot(n, V), 1e-4, 1.0);
-        const double alpha = std::pow(std::max(double(o.roughness), 0.03), 2.0);
+        const double alpha = std::pow(std::max(s.roughness, 0.03), 2.0);
         for (const scene::PlacedLight& light : mLights) {
             dvec3 L;
             const dvec3 arriving = render::cpu::lightArriving(light, h.point, L);
             const dvec3 H = glm::normalize(L + V);
             const double NoL = glm::dot(n, L), VoH = std::max(glm::dot(V, H), 0.0);
             if (NoL > 0.0)
-                glass += arriving * NoL *
-                         dvec3(glassReflectance(o, VoH, 0), glassReflectance(o, VoH, 1),
-                               glassReflectance(o, VoH, 2)) *
-                         render::cpu::ggxLobe(NoL, NoV, std::max(glm::dot(n, H), 0.0), alpha);
+                for (int c = 0; c < 3; ++c)
+                    glass[c] += arriving[c] * NoL *
+                                model::reflectance(mFresnel, o, s, VoH, 1.0 / o.ior.g, c) *
+                                render::cpu::ggxLobe(NoL, NoV, std::max(glm::dot(n, H), 0.0),
+                                                     alpha);
         }
         render::cpu::Surface surface;
-        surface.baseColor = dvec3(o.baseColor);
-        surface.metallic = o.metallic;
-        surface.roughness = std::max(double(o.roughness), 0.03);
+        surface.baseColor = s.baseColor;
+        surface.metallic = s.metallic;
+        surface.roughness = std::max(s.roughness, 0.03);
         dvec3 color = glass;
-        if (o.transmission < 1.0f)
+        if (s.transmission < 1.0)
             color = glm::mix(render::cpu::shadeSurface(surface, lighting, h.point, n, V), glass,
-                             double(o.transmission));
+                             s.transmission);
         surface.clearcoat = o.clearcoat;
         surface.clearcoatRoughness = o.clearcoatRoughness;
         surface.clearcoatNormal = n;
@@ -403,36 +421,49 @@ private:
     const ReferenceOptions& mOptions;
     Settings::Fresnel mFresnel;
     double mEpsilon;
+    Evaluation mEvaluation;
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
 };
 
-} // namespace
-
-core::Result<ReferenceImage>
-traceReference(const scene::World& world, double time, const render::Camera& camera,
-               const EnvironmentSampler& environment, const render::RenderSettings& settings,
-               const render::GroundPlane& ground, const plugin::ParameterSet& glass,
-               const ReferenceOptions& options) {
-    const Settings decoded = Settings::decode(glass);
+/** Every character's surfaces at scene time `time`, deformed by the CPU reference, refined to
+ *  `subdivision` as the GPU refines them, in world space. */
+core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, double time,
+                                                 const Settings& decoded, int subdivision) {
     std::vector<Surface> surfaces;
-    glm::dvec3 lo(1e300), hi(-1e300);
     for (std::size_t solid = 0; solid < world.characters.size(); ++solid) {
         const scene::Character& character = world.characters[solid];
         const scene::Model& model = *character.model;
+        const double extent = glassExtent(restSides(model), character);
         for (const auto& instance : deform::deformCharacter(character, time)) {
             const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
             for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-                const scene::Primitive& primitive = mesh.primitives[p];
-                const auto placed = deform::toWorld(instance.primitives[p], instance.meshToWorld);
+                const scene::Primitive& source = mesh.primitives[p];
+                deform::DeformedPrimitive deformed = instance.primitives[p];
+                const scene::Primitive* primitive = &source;
+                deform::Subdivision refined;
+                if (subdivision > 0) {
+                    auto built = deform::buildSubdivision(
+                        source, subdivision,
+                        "mesh " + std::to_string(instance.mesh) + " primitive " +
+                            std::to_string(p));
+                    if (!built)
+                        return built.error();
+                    refined = std::move(*built);
+                    const deform::RefinedSurface surface =
+                        deform::refineCage(refined, deformed.positions, deformed.tangents);
+                    deformed = {surface.positions, surface.normals, surface.tangents};
+                    primitive = &refined.rest;
+                }
+                const auto placed = deform::toWorld(deformed, instance.meshToWorld);
                 Surface s;
                 s.positions = placed.positions;
                 s.normals = placed.normals;
-                s.indices = primitive.indices;
-                if (!primitive.uv0.empty() || !primitive.uv1.empty())
-                    for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
-                        s.uv.emplace_back(primitive.uvs(v));
-                const int material = primitive.materialFor(character.variant);
+                s.indices = primitive->indices;
+                if (!primitive->uv0.empty() || !primitive->uv1.empty())
+                    for (std::size_t v = 0; v < primitive->vertexCount(); ++v)
+                        s.uv.emplace_back(primitive->uvs(v));
+                const int material = source.materialFor(character.variant);
                 s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
                     s.normalImage = textureImage(model, s.material->normalTexture);
@@ -442,28 +473,49 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 }
                 s.model = &model;
                 s.glass = decoded.isGlass(model, material, character.glass);
+                s.authored = s.material && s.material->isTransmissive();
                 s.solid = int(solid);
-                s.optics = opticsFor(decoded, s.material, character.overrides);
+                s.optics = opticsFor(decoded, s.material, character.overrides, extent);
                 if (!s.optics.dispersion)
                     s.optics.ior = glm::vec3(s.optics.ior.g);
-                for (const auto& v : s.positions) {
-                    lo = glm::min(lo, v);
-                    hi = glm::max(hi, v);
-                }
                 surfaces.push_back(std::move(s));
             }
         }
     }
+    return surfaces;
+}
+
+} // namespace
+
+core::Result<ReferenceImage>
+traceReference(const scene::World& world, double time, const render::Camera& camera,
+               const EnvironmentSampler& environment, const render::RenderSettings& settings,
+               const render::GroundPlane& ground, const plugin::ParameterSet& glass,
+               const ReferenceOptions& options) {
+    const Settings decoded = Settings::decode(glass);
+    auto built = worldSurfaces(world, time, decoded, options.subdivision);
+    if (!built)
+        return built.error();
+    const std::vector<Surface>& surfaces = *built;
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const Surface& s : surfaces)
+        for (const auto& v : s.positions) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
     const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
+    const Evaluation evaluation{options.deterministic, decoded.interfaces - 1,
+                                2 * decoded.interfaces};
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
-                  decoded.fresnel, epsilon, render::worldLights(world, time));
+                  decoded.fresnel, epsilon, render::worldLights(world, time), evaluation);
 
     ReferenceImage image;
     image.size = settings.size;
     const int w = settings.size.x, h = settings.size.y;
     image.rgba.assign(std::size_t(w) * std::size_t(h) * 4, 0.0f);
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
-    const int spp = options.pixelCentres ? 1 : std::max(1, options.samplesPerPixel);
+    const bool centres = options.pixelCentres || options.deterministic;
+    const int spp = centres ? 1 : std::max(1, options.samplesPerPixel);
     const int grid = int(std::lround(std::sqrt(double(spp))));
     const bool stratified = grid * grid == spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
@@ -483,8 +535,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 for (int s = 0; s < spp; ++s) {
                     std::uint32_t rng = std::uint32_t(row) * 73856093u ^
                                         std::uint32_t(x) * 19349663u ^ std::uint32_t(s) * 83492791u;
-                    double jx = random01(rng), jy = random01(rng);
-                    if (options.pixelCentres) {
+                    double jx = model::random01(rng), jy = model::random01(rng);
+                    if (centres) {
                         jx = jy = 0.5;
                     } else if (stratified) {
                         jx = (double(s % grid) + jx) / grid;

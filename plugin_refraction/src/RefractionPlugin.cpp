@@ -194,7 +194,8 @@ LayerStats RefractionPlugin::layerStats() const {
         return stats;
     const GpuState::LayerStorage& layers = mGpu->layers;
     stats.capacity = layers.capacity;
-    stats.bytesPerPixel = layerBytesPerPixel(layers.capacity, settings().outlinePass());
+    stats.bytesPerPixel =
+        layerBytesPerPixel(layers.capacity, settings().outlinePass(), bool(layers.surfaces));
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
     GlassRectangleGpu counts{};
     const auto bytes = mGpu->rectangle.download(0, sizeof counts);

@@ -2,6 +2,7 @@
 // parameters named from the parameter table itself (one list of names for C++ and GLSL).
 #include "Shared.h"
 
+#include "GlassModel.h"
 #include "Settings.h"
 
 #include <cctype>
@@ -36,6 +37,7 @@ constexpr Shared kFixed[] = {
     slot::kBvhKeys,
     slot::kBvhParents,
     slot::kBvhVisits,
+    slot::kLayerSurfaces,
     slot::kSceneColor,
     slot::kSceneDepth,
     slot::kLayerDepthMaps,
@@ -51,6 +53,11 @@ constexpr Shared kFixed[] = {
     Shared::integer("HYBRID_REFLECTION", Settings::kHandReflection),
     Shared::integer("HYBRID_OUTLINE", Settings::kHandOutline),
     Shared::integer("DISPERSION_NONE", Settings::kNoDispersion),
+    Shared::integer("MAX_MEDIA", model::kMaxMedia),
+    Shared::integer("TRACED_TEXTURES", slot::kTracedTextures.count),
+    Shared::integer("SPLIT_DEPTH", model::kSplitDepth),
+    Shared::real("SPLIT_WEIGHT", model::kSplitWeight),
+    Shared::real("SMOOTH_ROUGHNESS", model::kSmooth),
 };
 static_assert(gl::distinct(kFixed));
 

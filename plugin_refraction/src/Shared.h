@@ -36,6 +36,7 @@ inline constexpr StorageSlot kBvhBuild{36, "BVH_BUILD_BINDING", "BvhBuild"};
 inline constexpr StorageSlot kBvhKeys{37, "BVH_KEYS_BINDING", "BvhKeys"};
 inline constexpr StorageSlot kBvhParents{38, "BVH_PARENTS_BINDING", "BvhParents"};
 inline constexpr StorageSlot kBvhVisits{39, "BVH_VISITS_BINDING", "BvhVisits"};
+inline constexpr StorageSlot kLayerSurfaces{40, "LAYER_SURFACES_BINDING", "LayerSurfaces"};
 
 // Texture units.
 inline constexpr TextureSlot kSceneColor{20, "SCENE_COLOR_UNIT"};

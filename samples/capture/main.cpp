@@ -49,7 +49,8 @@ characters; T is the scene time); several MODELs are placed side by side.
   --ground            draw a ground plane under the character
   --exposure E        exposure multiplier before tonemapping (default 1)
   --subdiv N          OpenSubdiv refinement level 0..4 of every mesh, refined each frame from
-                      the deformed mesh on the GPU (default 0: the file's triangles)
+                      the deformed mesh on the GPU, and as the reference traces it (default 0:
+                      the file's triangles)
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
   Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
   --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
@@ -94,6 +95,10 @@ characters; T is the scene time); several MODELs are placed side by side.
   --spp K             reference samples per pixel, jittered (default 16)
   --pixel-centres     the reference traces one ray through each pixel centre, where the GPU
                       samples (instead of --spp jittered rays)
+  --deterministic     the reference's deterministic evaluation (docs/methods.md): pixel
+                      centres, every reflection into glass followed to a stated depth and then
+                      looked up, rough glass by its normals, paths ending after --interfaces as
+                      the trace's do; what the trace at one sample a pixel computes
   --max-bounces N     interfaces (refractions and reflections) a reference path follows after
                       its entry before it counts as trapped (default 1024)
   --json              print files written, times and per-pass CPU/GPU timings as JSON, with
@@ -200,6 +205,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
             o.session.subdivision = int(n);
         } else if (arg == "--pixel-centres") {
             o.referenceOptions.pixelCentres = true;
+        } else if (arg == "--deterministic") {
+            o.referenceOptions.deterministic = true;
         } else if (arg == "--spp" || arg == "--max-bounces") {
             const auto v = next();
             double n = 0;
@@ -300,9 +307,7 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
     }
     if (o.reference && o.compare)
         return usageError("--method reference and --compare-reference are exclusive");
-    if ((o.reference || o.compare) && o.session.subdivision > 0)
-        return usageError("the reference traces the file's triangles: --subdiv goes without "
-                          "--method reference and --compare-reference");
+    o.referenceOptions.subdivision = o.session.subdivision; // the reference traces it too
     if (haveTime && haveFrames)
         return usageError("--time and --frames are exclusive");
     if (o.caseFile.empty() && o.session.models.empty())

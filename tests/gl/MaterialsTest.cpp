@@ -63,7 +63,7 @@ protected:
                                                bool changed = false, bool opaqueOnly = false) {
         WorldRig rig(std::move(on), context(), size), without(std::move(off), context(), size);
         without.setCamera(rig.camera());
-        const auto reference = rig.reference(0.0, true); // where the GPU samples
+        const auto reference = rig.reference(0.0, WorldRig::Evaluation::Deterministic);
         const capture::Image a = rig.render(), b = without.render();
         std::vector<bool> mask(a.rgba.size() / 4, true);
         for (std::size_t px = 0; px < mask.size(); ++px) {

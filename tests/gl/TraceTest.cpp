@@ -36,7 +36,8 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentres) {
     for (const Case& c : {Case{"glass_spheres.json", 58.0}, Case{"sphere_in_front.json", 58.0}}) {
         WorldRig rig(test::projectScene(c.scene), context());
         rig.set("outline-aa", "off");
-        const WorldRig::Reference reference = rig.reference(0.0, true);
+        const WorldRig::Reference reference =
+            rig.reference(0.0, WorldRig::Evaluation::Deterministic);
         auto psnr = [&](const char* method) {
             rig.set("method", method);
             rig.set("search-steps", "8");
@@ -60,7 +61,7 @@ TEST_F(Trace, TheGpuTraceIsTheReferencesPathAtPixelCentresThroughACharacter) {
     rig.set("dispersion-search", "per-channel");
     rig.set("interfaces", "32");
     rig.set("search-steps", "8");
-    const WorldRig::Reference reference = rig.reference(0.3, true);
+    const WorldRig::Reference reference = rig.reference(0.3, WorldRig::Evaluation::Deterministic);
     auto psnr = [&](const char* method) {
         rig.set("method", method);
         return rig.psnrAgainst(reference, 0.3);

@@ -89,15 +89,20 @@ public:
         std::vector<bool> mask;
         refraction::ReferenceImage traced;
     };
-    /** The reference's frame at `time`: 16 rays a pixel, or one through each pixel's centre
-     *  (`pixelCentres`), as the GPU samples. */
-    Reference reference(double time = 0.0, bool pixelCentres = false) const {
+    /** How the reference evaluates its paths: 16 jittered rays a pixel (the ground truth), or
+     *  the deterministic evaluation through each pixel's centre (what the GPU computes at one
+     *  sample a pixel: ReferenceOptions::deterministic). */
+    enum class Evaluation { Sampled, Deterministic };
+    /** The reference's frame at `time`, with `spp` rays a pixel where sampled. */
+    Reference reference(double time = 0.0, Evaluation evaluation = Evaluation::Sampled,
+                        int spp = 16) const {
         render::RenderSettings settings;
         settings.size = {mSize, mSize};
         settings.ground = mWorld.ground;
         refraction::ReferenceOptions options;
-        options.samplesPerPixel = 16;
-        options.pixelCentres = pixelCentres;
+        options.samplesPerPixel = spp;
+        options.deterministic = evaluation == Evaluation::Deterministic;
+        options.subdivision = mSubdivision;
         const auto environment =
             refraction::EnvironmentSampler::fromGpu(mRenderer->environment(), 0.0f, 1.0f);
         auto traced =
@@ -119,9 +124,11 @@ public:
     }
     /** Masked PSNR of the frame at `time` against the reference at the same time. */
     double psnrAgainstReference(double time = 0.0) { return psnrAgainst(reference(time), time); }
-    /** Refines every character to `level` (Renderer::setSubdivisionLevel). */
+    /** Refines every character to `level` (Renderer::setSubdivisionLevel), on the GPU and in
+     *  the reference. */
     void setSubdivisionLevel(int level) {
         ASSERT_TRUE(mRenderer->setSubdivisionLevel(level).ok());
+        mSubdivision = level;
     }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
     const render::Camera& camera() const { return mCamera; }
@@ -138,6 +145,7 @@ private:
     std::unique_ptr<refraction::RefractionPlugin> mPlugin;
     render::Camera mCamera;
     int mSize;
+    int mSubdivision = 0;
 };
 
 } // namespace test

@@ -290,6 +290,45 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     return sub;
 }
 
+RefinedSurface refineCage(const Subdivision& sub, std::span<const glm::dvec3> positions,
+                          std::span<const glm::dvec4> tangents) {
+    std::vector<float> cage(positions.size() * 3);
+    for (std::size_t v = 0; v < positions.size(); ++v)
+        for (int k = 0; k < 3; ++k)
+            cage[3 * v + std::size_t(k)] = float(positions[v][k]);
+    const Evaluated refined = evaluateOnCpu(sub.refine, cage.data(), 0, 3, 3);
+    const Evaluated limit = evaluateOnCpu(sub.limit, refined.values.data(), 0, 3, 3);
+    Evaluated tangentValues;
+    if (!tangents.empty()) {
+        std::vector<float> t(tangents.size() * 4);
+        for (std::size_t v = 0; v < tangents.size(); ++v)
+            for (int k = 0; k < 4; ++k)
+                t[4 * v + std::size_t(k)] = float(tangents[v][k]);
+        tangentValues = evaluateOnCpu(sub.faceVarying, t.data(), 0, 4, 4);
+    }
+    auto at3 = [](const std::vector<float>& a, std::size_t i) {
+        return glm::dvec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+    };
+    RefinedSurface out;
+    for (const RefinedCorner& c : sub.corners) {
+        const glm::dvec3 du = at3(limit.du, c.vertex), dv = at3(limit.dv, c.vertex);
+        glm::dvec3 n = sub.flipNormals ? glm::cross(dv, du) : glm::cross(du, dv);
+        n = glm::dot(n, n) > 1e-30 ? glm::normalize(n) : glm::dvec3(0.0, 0.0, 1.0);
+        out.positions.push_back(at3(limit.values, c.vertex));
+        out.normals.push_back(n);
+        if (tangents.empty())
+            continue;
+        const float* t = &tangentValues.values[4 * std::size_t(c.faceVarying)];
+        glm::dvec3 tangent = glm::dvec3(t[0], t[1], t[2]);
+        tangent -= n * glm::dot(n, tangent);
+        if (glm::dot(tangent, tangent) < 1e-20)
+            tangent = std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0))
+                                          : glm::cross(n, glm::dvec3(0, 1, 0));
+        out.tangents.emplace_back(glm::normalize(tangent), t[3] < 0.0f ? -1.0 : 1.0);
+    }
+    return out;
+}
+
 Evaluated evaluateOnCpu(const Stencils& stencils, const float* source, int offset, int width,
                         int stride) {
     Evaluated out;

@@ -26,6 +26,17 @@ struct ReferenceOptions {
     /** One ray through each pixel's centre, as the GPU rasterises (samplesPerPixel unused):
      *  the two then see the same point of every surface, outlines included. */
     bool pixelCentres = false;
+    /** The deterministic evaluation (docs/methods.md, "The optical model"), for checks of
+     *  exactness: one ray through each pixel's centre; every reflection into glass followed
+     *  as a branch while the path has splits left and it carries enough light, else looked up
+     *  in its direction (no choice by chance); rough surfaces by their normals, the lookups
+     *  blurred by the roughest interface crossed; a path ends as the GPU trace's does, after
+     *  the `interfaces` parameter's interfaces, seeing the ground or the environment along it.
+     *  The trace at one sample a pixel runs the same model. */
+    bool deterministic = false;
+    /** OpenSubdiv level the characters are refined to, as Renderer::setSubdivisionLevel
+     *  refines them (0: the files' triangles). */
+    int subdivision = 0;
     /** Interfaces a path crosses or reflects at after the entry before it is given up (black,
      *  counted as trapped when in glass); paths whose throughput falls under 1e-4 end first. */
     int maxBounces = 1024;

@@ -8,14 +8,8 @@
 #define REFRACTION_BVH_GLSL
 #include "common/vertex.glsl"
 
-struct BvhNode {
-    int left, right;      // child nodes; -1 for a leaf
-    int first, count;     // leaf: range in the triangle order
-};
-
 layout(std430, binding = WORLD_MESH_BINDING) readonly buffer WorldMesh { DeformedVertex vertices[]; };
 layout(std430, binding = WORLD_INDICES_BINDING) readonly buffer WorldIndices { uint indices[]; };
-layout(std430, binding = BVH_NODES_BINDING) coherent buffer BvhNodes { BvhNode nodes[]; };
 layout(std430, binding = BVH_ORDER_BINDING) coherent buffer BvhOrder { uint triangleOrder[]; };
 // Each node's box and, for an inner node, its children as the traversal reads them with the box
 // (bvhVisit): Karras's children of an inner node are gamma and gamma + 1, each an inner node

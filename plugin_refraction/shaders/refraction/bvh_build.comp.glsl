@@ -13,6 +13,14 @@
 //     point, 1/256 a node), which tells when a refitted tree has degraded enough to rebuild
 #include "refraction/bvh.glsl"
 
+// The node records (Bvh::Node), for the tests' reading of the tree: the traversal reads the
+// children from the boxes (bvh.glsl's BvhBox).
+struct BvhNode {
+    int left, right;      // child nodes; -1 for a leaf
+    int first, count;     // leaf: range in the triangle order
+};
+layout(std430, binding = BVH_NODES_BINDING) coherent buffer BvhNodes { BvhNode nodes[]; };
+
 layout(local_size_x = 64) in;
 layout(std430, binding = BVH_BUILD_BINDING) coherent buffer BvhBuild {
     int centroidMin[3], centroidMax[3]; // floats as ordered ints

@@ -1,23 +1,54 @@
 // The optics of the frame's glass, one entry per glass id (a character's material with its
-// overrides: GlassMaterialGpu in GpuState.h, filled by assignGlassIds), read by every shading
-// pass through the id its glass carries.
+// overrides: GlassMaterialGpu in GpuState.h, the same fields in the same order, filled by
+// assignGlassIds), read by every shading pass through the id its glass carries. Textures
+// multiply the factors where a path meets the surface (optics.glsl's GlassSurface): the
+// capture reads the material's own, the trace the frame's traced textures (trace.glsl).
 #ifndef REFRACTION_GLASS_MATERIALS_GLSL
 #define REFRACTION_GLASS_MATERIALS_GLSL
 
-struct GlassMaterial {
-    vec4 ior;        // per channel (dispersion), w: transmission
-    vec4 sigma;      // Beer-Lambert absorption per world unit, w: roughness
-    vec4 baseColor;  // w: metallic
-    vec4 emissive;   // w: the solid (character) it belongs to
-    vec4 specular;   // KHR_materials_specular: rgb its colour, w its weight (all 1 without it)
-    vec4 layers;     // x: clearcoat, y: its roughness, z: iridescence, w: the film's index
-    vec4 sheen;      // rgb: sheen colour, w: its roughness
-    vec4 film;       // x: the iridescent film's thickness (nm)
-    // The normal map the trace reads at its hits: x its index among uTracedNormalMaps (-1:
-    // none), y its scale, z its texture coordinate set; its KHR_texture_transform's rows.
-    vec4 normalMap;
-    vec4 normalUv[2];
+// A texture the trace reads at its hits: its KHR_texture_transform's rows, its unit among
+// TRACED_TEXTURES_UNIT's (-1: none) and its texture coordinate set.
+struct TracedTexture {
+    vec3 row0;
+    int unit;
+    vec3 row1;
+    int uvSet;
 };
-layout(std430, binding = GLASS_MATERIALS_BINDING) readonly buffer GlassMaterials { GlassMaterial glassMaterials[]; };
+
+struct GlassMaterial {
+    vec3 ior; // per channel (dispersion)
+    float transmission;
+    vec3 sigma; // Beer-Lambert absorption per world unit
+    float roughness;
+    vec3 baseColor;
+    float metallic;
+    vec3 emissive;
+    uint solid; // the character it belongs to (the media rule)
+    vec3 specularColor; // KHR_materials_specular (white and 1 without it)
+    float specularWeight;
+    vec3 sheenColor;
+    float sheenRoughness;
+    float clearcoat, clearcoatRoughness;
+    float iridescence, iridescenceIor;
+    float filmThickness; // the iridescent film's (nm)
+    float normalScale;
+    uint authored; // glass by its own transmission: its transmission and roughness textures count
+    uint spare;
+    TracedTexture normalTexture, baseColorTexture, metallicRoughnessTexture, transmissionTexture;
+};
+layout(std430, binding = GLASS_MATERIALS_BINDING) readonly buffer GlassMaterials {
+    GlassMaterial glassMaterials[];
+};
+
+// A glass surface at one point: its material's factors times its textures there (forced glass:
+// the base colour only, clear and not metallic).
+struct GlassSurface {
+    vec3 baseColor;
+    float transmission, roughness, metallic;
+};
+
+GlassSurface materialSurface(GlassMaterial m) {
+    return GlassSurface(m.baseColor, m.transmission, m.roughness, m.metallic);
+}
 
 #endif

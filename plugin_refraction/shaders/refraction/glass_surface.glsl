@@ -1,14 +1,10 @@
 // The walk's optics around its search (walk.glsl): Wyman's estimate of the exit distance,
-// the shared dispersion search's red and blue rays, and the light at the entry (Fresnel with
-// the reflected environment, base colour, transmission, emission).
+// the shared dispersion search's red and blue rays, and the light at the entry (its
+// reflectance with the reflected environment, tint, transmission, emission).
 #ifndef REFRACTION_GLASS_SURFACE_GLSL
 #define REFRACTION_GLASS_SURFACE_GLSL
-#include "common/brdf.glsl"
-#include "refraction/glass_materials.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/scene_lookup.glsl"
-
-uniform int uFresnelMode; // FRESNEL_EXACT, _SCHLICK, _OFF (optics.glsl)
 
 // ISR (Wyman 2005): the distance along T1 from the entry to the estimated exit, d_V and d_N
 // interpolated by theta_t / theta_i (d_V alone where no d_N was measured: dN < 0).
@@ -41,32 +37,18 @@ vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
     return t > 0.0 ? groundSeen(point, dir, t) : environmentRadiance(uViewToWorld * dir, roughness);
 }
 
-// The glass's reflectance from air at cosI, per channel: the Fresnel mode's, its F0 coloured and
-// weighted by KHR_materials_specular (the rise toward grazing kept), seen through the
-// iridescent film where it has one.
-vec3 glassReflectance(GlassMaterial m, float cosI) {
-    float eta = 1.0 / m.ior.g;
-    vec3 F = vec3(fresnel(uFresnelMode, cosI, eta));
-    if (m.specular != vec4(1.0)) {
-        float f0 = fresnel(uFresnelMode, 1.0, eta);
-        vec3 coloured = min(f0 * m.specular.rgb, vec3(1.0));
-        F = m.specular.w * (coloured + (1.0 - coloured) * (f0 < 1.0 ? (F - f0) / (1.0 - f0) : vec3(1.0)));
-    }
-    if (m.layers.z > 0.0 && uFresnelMode != FRESNEL_OFF)
-        F = mix(F, thinFilmReflectance(cosI, m.layers.w, m.film.x, vec3(m.ior.g)), m.layers.z);
-    return F;
-}
-
-// The glass's colour at the entry P (view space; view direction V, normal N1 facing it) of light
-// `transmitted` through it: its reflectance between the reflected environment and the lights'
-// highlights and the transmitted light in the base colour, the opaque term where transmission
-// is partial, the clear coat and sheen over it, and emission.
-vec3 glassColor(GlassMaterial m, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
+// The glass's colour at the entry P (view space; view direction V, normal N1 facing it, its
+// surface s there) of light `transmitted` through it: its reflectance (optics.glsl, from air)
+// between the reflected environment and the lights' highlights and the transmitted light in
+// its tint, the opaque term where transmission is partial, the clear coat and sheen over it,
+// and emission.
+vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
     vec3 Pw = uViewToWorld * P + uViewOriginWorld, Nw = uViewToWorld * N1, Vw = uViewToWorld * -V;
-    vec3 F = glassReflectance(m, dot(-V, N1));
-    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), m.sigma.w);
-    vec3 glass = F * reflected + (1.0 - F) * m.baseColor.rgb * transmitted;
-    float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0), alpha = max(m.sigma.w, 0.03) * max(m.sigma.w, 0.03);
+    float eta = 1.0 / m.ior.g;
+    vec3 F = reflectance(m, s, dot(-V, N1), eta);
+    vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), s.roughness);
+    vec3 glass = F * reflected + (1.0 - F) * s.baseColor * (1.0 - s.metallic) * transmitted;
+    float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0), alpha = max(s.roughness, 0.03) * max(s.roughness, 0.03);
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
@@ -74,21 +56,21 @@ vec3 glassColor(GlassMaterial m, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
         vec3 H = normalize(L + Vw);
         float NoL = dot(Nw, L);
         if (NoL > 0.0)
-            glass += arriving * NoL * glassReflectance(m, max(dot(Vw, H), 0.0)) *
+            glass += arriving * NoL * reflectance(m, s, max(dot(Vw, H), 0.0), eta) *
                      ggxLobe(NoL, NoV, max(dot(Nw, H), 0.0), alpha);
     }
 #endif
     vec3 color = glass;
-    if (m.ior.w < 1.0) // the same for every pixel of a glass: clear glass skips the opaque term
-        color = mix(shadeMetallicRoughness(m.baseColor.rgb, m.baseColor.w, max(m.sigma.w, 0.03), 1.0,
+    if (s.transmission < 1.0) // clear glass skips the opaque term
+        color = mix(shadeMetallicRoughness(s.baseColor, s.metallic, max(s.roughness, 0.03), 1.0,
                                            Pw, Nw, Vw),
-                    glass, m.ior.w);
-    SurfaceMaterial layers = coreSurface(m.baseColor.rgb, m.baseColor.w, m.sigma.w, 1.0, Nw);
-    layers.clearcoat = m.layers.x;
-    layers.clearcoatRoughness = m.layers.y;
-    layers.sheenColor = m.sheen.rgb;
-    layers.sheenRoughness = m.sheen.w;
-    return layersOver(color, layers, Pw, Nw, Vw) + m.emissive.rgb;
+                    glass, s.transmission);
+    SurfaceMaterial layers = coreSurface(s.baseColor, s.metallic, s.roughness, 1.0, Nw);
+    layers.clearcoat = m.clearcoat;
+    layers.clearcoatRoughness = m.clearcoatRoughness;
+    layers.sheenColor = m.sheenColor;
+    layers.sheenRoughness = m.sheenRoughness;
+    return layersOver(color, layers, Pw, Nw, Vw) + m.emissive;
 }
 
 #endif

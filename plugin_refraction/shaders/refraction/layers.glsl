@@ -9,6 +9,10 @@
 //   LayerAttrs  per pixel and slot: x the outward view normal (octahedral, 16 + 16 bits);
 //               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
 //               d_N relative to the depth (bits 16-31, 0: none)
+//   LayerSurfaces (frames with textured glass, GLASS_TEXTURES) per pixel and slot: the glass
+//               surface there (GlassSurface: its material's factors times its textures),
+//               x the square roots of its base colour and its transmission, y its roughness
+//               and metallic, 8 bits each
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
 // (the two-surface model, never a partial list): see storedDepths. The pair capture
 // (resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
@@ -33,6 +37,25 @@ layout(std430, binding = LAYER_DEPTHS_BINDING) coherent buffer LayerDepths { vec
 layout(std430, binding = LAYER_ATTRS_BINDING) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 
 const uint kLayerFront = LAYER_FRONT_BIT;
+
+#ifndef GLASS_TEXTURES
+#define GLASS_TEXTURES 0
+#endif
+#if GLASS_TEXTURES
+layout(std430, binding = LAYER_SURFACES_BINDING) coherent buffer LayerSurfaces {
+    uvec2 layerSurface[];
+};
+
+uvec2 packSurface(GlassSurface s) {
+    return uvec2(packUnorm4x8(vec4(sqrt(clamp(s.baseColor, 0.0, 1.0)), s.transmission)),
+                 packUnorm4x8(vec4(s.roughness, s.metallic, 0.0, 0.0)));
+}
+
+GlassSurface unpackSurface(uvec2 bits) {
+    vec4 a = unpackUnorm4x8(bits.x), b = unpackUnorm4x8(bits.y);
+    return GlassSurface(a.rgb * a.rgb, a.a, b.x, b.y);
+}
+#endif
 
 uint packOctNormal(vec3 n) {
     return packUnorm2x16(octEncode(n));
@@ -144,6 +167,16 @@ bool layerOverflow(ivec2 p) {
 
 uvec2 layerAttrAt(ivec2 p, int i) {
     return layerAttrOf(p, i, layerOverflow(p));
+}
+
+// The glass surface of layer i of pixel p (its attributes `attr`): as the capture stored it
+// where the frame's glass is textured and the pixel kept its layers, else its material's.
+GlassSurface layerSurfaceOf(ivec2 p, int i, uvec2 attr, bool overflow) {
+#if GLASS_TEXTURES
+    if (!overflow && i >= 0)
+        return unpackSurface(layerSurface[pixelIndex(p) * uint(kLayerCapacity) + uint(i)]);
+#endif
+    return materialSurface(glassMaterials[attr.y & 255u]);
 }
 
 uint layerGlass(uvec2 attr) {

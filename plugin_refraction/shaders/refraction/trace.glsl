@@ -7,27 +7,52 @@
 
 #include "common/normal_map.glsl"
 int gTraceRays = 0, gTraceSteps = 0; // this invocation's rays and BVH nodes visited
-// The world mesh's texture coordinates (GlassBvh::uvs) and the glass normal maps
-// (GlassMaterial.normalMap.x indexes them; kTracedNormalMaps).
+// The world mesh's texture coordinates (GlassBvh::uvs) and the frame's glass textures
+// (GpuState::tracedTextures: a material's TracedTextures name their units).
 layout(std430, binding = WORLD_UVS_BINDING) readonly buffer WorldUvs { vec4 meshUvs[]; };
-layout(binding = TRACED_TEXTURES_UNIT) uniform sampler2D uTracedNormalMaps[4];
+layout(binding = TRACED_TEXTURES_UNIT) uniform sampler2D uTracedTextures[TRACED_TEXTURES];
 
-// Normal map `map` at uv, its base level (no derivatives in the walk's loops); a constant index
-// in each branch, as an array of samplers requires.
-vec3 tracedNormalTexel(int map, vec2 uv) {
-    switch (map) {
-    case 0: return textureLod(uTracedNormalMaps[0], uv, 0.0).xyz;
-    case 1: return textureLod(uTracedNormalMaps[1], uv, 0.0).xyz;
-    case 2: return textureLod(uTracedNormalMaps[2], uv, 0.0).xyz;
-    default: return textureLod(uTracedNormalMaps[3], uv, 0.0).xyz;
+// Texture `t` at the hit's texture coordinates `uvs` (TEXCOORD_0 in xy, _1 in zw), its base level
+// (no derivatives in the walk's loops; the reference reads level 0 too); a constant index in each
+// branch, as an array of samplers requires.
+vec4 tracedTexel(TracedTexture t, vec4 uvs) {
+    vec3 st = vec3(t.uvSet != 0 ? uvs.zw : uvs.xy, 1.0);
+    vec2 uv = vec2(dot(t.row0, st), dot(t.row1, st));
+    switch (t.unit) {
+    case 0: return textureLod(uTracedTextures[0], uv, 0.0);
+    case 1: return textureLod(uTracedTextures[1], uv, 0.0);
+    case 2: return textureLod(uTracedTextures[2], uv, 0.0);
+    case 3: return textureLod(uTracedTextures[3], uv, 0.0);
+    case 4: return textureLod(uTracedTextures[4], uv, 0.0);
+    case 5: return textureLod(uTracedTextures[5], uv, 0.0);
+    case 6: return textureLod(uTracedTextures[6], uv, 0.0);
+    default: return textureLod(uTracedTextures[7], uv, 0.0);
     }
 }
 
+// Glass m's surface at a hit (its texture coordinates uvs), as the capture reads it.
+GlassSurface tracedSurface(GlassMaterial m, vec4 uvs) {
+    GlassSurface s = materialSurface(m);
+    if (m.baseColorTexture.unit >= 0)
+        s.baseColor *= tracedTexel(m.baseColorTexture, uvs).rgb;
+    if (m.authored == 0u)
+        return s;
+    if (m.transmissionTexture.unit >= 0)
+        s.transmission *= tracedTexel(m.transmissionTexture, uvs).r;
+    if (m.metallicRoughnessTexture.unit >= 0) {
+        vec4 mr = tracedTexel(m.metallicRoughnessTexture, uvs);
+        s.roughness *= mr.g;
+        s.metallic *= mr.b;
+    }
+    return s;
+}
+
 // The exact next interface: the ray traced through the glass BVH (world space), the triangle's
-// interpolated normal, its glass and which way the ray crosses it (by the winding, the
-// reference's rule: against the outward face enters); or the opaque part it meets first.
+// interpolated normal, its glass, its surface there and which way the ray crosses it (by the
+// winding, the reference's rule: against the outward face enters); or the opaque part it
+// meets first.
 Crossing traceCrossing(vec3 P, vec3 dir) {
-    Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
+    Crossing c = noCrossing(P, false);
     vec3 origin = uViewToWorld * P + uViewOriginWorld, along = uViewToWorld * dir;
     float epsilon = 1e-5 * length(boxes[0].hi - boxes[0].lo), t;
     int leaf;
@@ -42,18 +67,14 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
                        w.z * vertices[v.z].normal.xyz);
     uint tag = triangleTags[triangle];
     bool opaque = (tag & kOpaqueTag) != 0u;
-    GlassMaterial m;
-    if (!opaque)
-        m = glassMaterials[tag];
-    if (!opaque && m.normalMap.x >= 0.0) { // as the capture and the reference read it
+    if (!opaque) { // its textures as the capture and the reference read them
+        GlassMaterial m = glassMaterials[tag];
         vec4 uvs = w.x * meshUvs[v.x] + w.y * meshUvs[v.y] + w.z * meshUvs[v.z];
+        c.surface = tracedSurface(m, uvs);
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
                        w.z * vertices[v.z].tangent;
-        vec3 st = vec3(m.normalMap.z != 0.0 ? uvs.zw : uvs.xy, 1.0);
-        st.xy = vec2(dot(m.normalUv[0].xyz, st), dot(m.normalUv[1].xyz, st));
-        if (dot(tangent.xyz, tangent.xyz) > 0.0)
-            n = perturbNormal(n, tangent, tracedNormalTexel(int(m.normalMap.x), st.xy),
-                              m.normalMap.y);
+        if (m.normalTexture.unit >= 0 && dot(tangent.xyz, tangent.xyz) > 0.0)
+            n = perturbNormal(n, tangent, tracedTexel(m.normalTexture, uvs).xyz, m.normalScale);
     }
     vec3 a = leafCorners[3 * leaf].xyz;
     vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
@@ -94,10 +115,11 @@ vec3 opaqueSeen(Crossing c, vec3 dir) {
 
 // The entry of a camera ray along view direction V, traced: false where it meets no glass before
 // the opaque scene at pixel p (the sample sees what lies behind the glass there).
-bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr) {
+bool traceEntry(vec3 V, ivec2 p, out vec3 P1, out uvec2 attr, out GlassSurface surface) {
     Crossing c = traceCrossing(vec3(0.0), V);
     P1 = 0.5 * (c.point + c.beyond); // on the surface: the refracted ray does not meet it again
     attr = c.attr;
+    surface = c.surface;
     return c.found && !tracedOpaque(c) && -c.point.z < sceneDepthAt(p);
 }
 #endif

@@ -30,6 +30,7 @@ void main() {
     vec3 color = vec3(0.0);
     walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
     walk.sightLayers = stored;
+    uint rng = sampleSeed(p);
 #if LAYER_METHOD == METHOD_HYBRID
     uvec2 bit = handedOverBit(p);
     if (uTraceSample > 0 && (handedOverWords[bit.x] & bit.y) != 0u)
@@ -43,7 +44,7 @@ void main() {
         P1 = facing < -0.05 ? V * (dot(e.P1, N1) / facing) : V * (e.z / -V.z);
     // A pixel the hybrid hands over for its own layers is not walked at all.
     if (!stopsToHandOver(walk))
-        color = shadeLayers(P1, V, N1, e.attr, walk) * uTraceWeight;
+        color = shadeLayers(P1, V, N1, e.attr, e.surface, rng, walk) * uTraceWeight;
 #if LAYER_METHOD == METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
     // by the first sample from what the walk knows (handedOverBy).
@@ -74,10 +75,10 @@ void main() {
     case DEBUG_DN: color = vec3(max(layerNormalDistance(e.attr, e.z), 0.0) / e.z); break;
     case DEBUG_EXIT_UV: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
     case DEBUG_STEPS: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
-                         walk.fallback ? 1.0 : 0.0, float(walk.interfaces) / float(uInterfaces)); break;
+                         walk.fallback ? 1.0 : 0.0, float(walk.path.interfaces) / float(uInterfaces)); break;
     case DEBUG_TIR: color = walk.tir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
     case DEBUG_EXIT_POINT: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
-    case DEBUG_EXIT_DIRECTION: color = uViewToWorld * walk.dir; break;
+    case DEBUG_EXIT_DIRECTION: color = uViewToWorld * walk.path.dir; break;
     case DEBUG_LAYER_COUNT: // layer-count: K layers white, fewer grey, overflow red
         color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0)
                                         : vec3(float(stored) / float(kLayerCapacity));

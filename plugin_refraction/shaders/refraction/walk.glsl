@@ -10,12 +10,16 @@
 // exact hit in the glass BVH, the hybrid DIR's search, handing the pixels it cannot represent
 // to the trace pass), the dispersion search and the punctual lights.
 //
-// Media (the Embree reference's rule too): crossing a glass surface against its outward normal
-// enters its glass (a stack of up to four, the newest on top); crossing one along its normal
-// leaves the most recent entry of the same solid (a character: the pieces of one character are
-// one solid), if the ray is in it at all. The medium is the top of the stack, air when empty;
-// where it does not change (overlapping glass, a surface crossed twice in the samples) the ray
-// goes straight on.
+// Every crossing is the optical model's (optics.glsl, crossInterface, the reference's too;
+// docs/methods.md, "The optical model"): the media on both sides (a stack of entered glasses,
+// each character one solid), refraction or total internal reflection where the index changes
+// (straight on where it does not: overlapping parts of one solid), the reflectance of an
+// interface into glass and the tint of a solid entered. The walk differs from the trace only in
+// how it finds a crossing and in two approximations of its own: reflections at later
+// interfaces into glass are looked up once, in their mean direction, and reflections at the
+// edge of total internal reflection, where its normals are a few degrees off, leave grazing.
+// The trace follows each reflection as a path of its own (to SPLIT_DEPTH), and with more
+// than one sample a pixel samples rough glass's microfacets.
 //
 // DIR over the layers generalises the papers' search: the ray from the last crossing is
 // sampled in texture space (perspective-correct, coarse samples up to where it leaves the
@@ -55,7 +59,6 @@ const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRA
 // The papers' model judges TIR at its limit, by its mip-filtered normals; the traced normals are
 // the surface's own (no band).
 const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
-const int kMaxPasses = 3; // crossings without an interface a walk follows
 
 // The method and the dispersion search are compiled in (a variant each, walkPrograms): on a CPU
 // rasteriser a shader pays for the code it carries.
@@ -73,6 +76,12 @@ uniform int uTraceSample;
 uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 uniform int uTraceSamples;   // trace-samples
+// The trace with several samples a pixel samples its paths (rough glass's microfacets, one
+// branch by chance past the splits) and converges to the reference; with one it runs the
+// deterministic model (the reference's deterministic evaluation).
+bool sampledPaths() {
+    return kTrace && uTraceSamples > 1;
+}
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
@@ -133,8 +142,15 @@ struct Crossing {
     vec3 point;      // the last point before the interface
     vec3 beyond;     // the first point found past it
     uvec2 attr;      // the layer crossed
+    GlassSurface surface; // its glass's surface there
     int steps;
 };
+
+// No crossing (yet) from P.
+Crossing noCrossing(vec3 P, bool silhouette) {
+    return Crossing(false, silhouette, P, P, uvec2(0u),
+                    GlassSurface(vec3(1.0), 1.0, 0.0, 0.0), 0);
+}
 
 // Where P + t dir leaves the box [lo, hi] (t > 0), at most `limit`.
 float boxExit(vec3 P, vec3 dir, vec3 lo, vec3 hi, float limit) {
@@ -147,9 +163,11 @@ float boxExit(vec3 P, vec3 dir, vec3 lo, vec3 hi, float limit) {
 // The layer of pixel p the ray passed on its way to depth z: the deepest one in front of z when
 // it goes deeper, the nearest one behind z when it comes toward the camera (the layer whose
 // passing changed the pixel's count). `nearest` (an estimated point, ISR), or no such layer:
-// the layer nearest z.
-bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
+// the layer nearest z. With its glass's surface there.
+bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr,
+               out GlassSurface surface) {
     attr = uvec2(0u);
+    surface = GlassSurface(vec3(1.0), 1.0, 0.0, 0.0);
     int passed = -1, closest = -1;
     float passedDepth = deeper ? -1.0 : 3.0e38, closestGap = 3.0e38;
     bool overflow = false;
@@ -173,7 +191,9 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr) {
     }
     if (closest < 0)
         return false;
-    attr = layerAttrOf(p, passed >= 0 && !nearest ? passed : closest, overflow);
+    int picked = passed >= 0 && !nearest ? passed : closest;
+    attr = layerAttrOf(p, picked, overflow);
+    surface = layerSurfaceOf(p, picked, attr, overflow);
     return true;
 }
 
@@ -234,7 +254,7 @@ vec3 filteredNormal(vec3 X, uvec2 attr, out bool outline) {
 // The next interface along P + t dir after a crossing, the ray in a segment of layer parity
 // `parity`.
 Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
-    Crossing c = Crossing(false, false, P, P, uvec2(0u), 0);
+    Crossing c = noCrossing(P, false);
     vec3 lo, hi;
     glassBox(lo, hi);
     float margin = 1e-3 * length(hi - lo);
@@ -280,7 +300,7 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     c.found = true;
     c.point = X0;
     c.beyond = X1;
-    c.silhouette = !pickLayer(pixelOf(X1), -X1.z, dir.z < 0.0, false, c.attr);
+    c.silhouette = !pickLayer(pixelOf(X1), -X1.z, dir.z < 0.0, false, c.attr, c.surface);
     return c;
 }
 
@@ -292,7 +312,7 @@ uniform float uNormalLod;
 // The papers' search (DIR §3.2-3.3): the one march between the depths zFrom and zTo, refined
 // from end to end (no coarse samples: the pair holds one surface a pixel to meet).
 Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
-    Crossing c = Crossing(false, true, P, P, uvec2(0u), 0);
+    Crossing c = noCrossing(P, true);
     if (!inGlass)
         return c; // past the pair: nothing more
     bool back = dir.z < 0.0;
@@ -315,6 +335,7 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
     c.found = first || !c.silhouette;
     c.point = c.beyond = mix(r.S, r.E, inside);
     c.attr = layerAttrAt(p, back ? 1 : 0);
+    c.surface = materialSurface(glassMaterials[layerGlass(c.attr)]);
     return c;
 }
 
@@ -357,7 +378,8 @@ vec3 crossingNormal(Crossing c, vec3 dir, out bool outline) {
 // ISR (Wyman 2005) on the layers: the exit estimated from the entry, d interpolated between
 // d_V (to the next layer of the entry's pixel) and the entry layer's d_N by theta_t / theta_i.
 Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryAttr) {
-    Crossing c = Crossing(true, false, P1, P1, uvec2(0u), 0);
+    Crossing c = noCrossing(P1, false);
+    c.found = true;
     float z1 = -P1.z, next = 0.0;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(pixelOf(P1), g);
@@ -375,22 +397,28 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
 #if CAPTURE_PAIR
     // The back there, or Wyman's silhouette normal (crossingNormal).
     c.attr = layerAttrAt(pixelOf(c.point), 1);
+    c.surface = materialSurface(glassMaterials[layerGlass(c.attr)]);
     c.silhouette = layerDepths(pixelOf(c.point), 0).y >= 1.0e38;
 #else
     // No layer there, or one facing the ray (the estimate fell short of the far side, or past
     // the outline): Wyman's silhouette normal.
-    c.silhouette = !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, true, c.attr) ||
-                   dot(layerNormal(c.attr), T1) <= 0.0;
+    c.silhouette =
+        !pickLayer(pixelOf(c.point), -c.point.z, T1.z < 0.0, true, c.attr, c.surface) ||
+        dot(layerNormal(c.attr), T1) <= 0.0;
 #endif
     return c;
 }
 
-// One path through the layers, for the indices of channel `channel`.
+// A pixel's walk in one channel (for its indices): its primary path as it ended, with what
+// the walk found on the way.
 struct Walk {
-    vec3 point, dir;    // where the ray leaves for the lookup, and its direction
-    vec3 weight;        // transmittance: absorption, Fresnel and base colour of what it crossed
-    vec3 reflected;     // the share reflected toward the ray at the later interfaces into
-                        // glass (times the environment once the walk ends)
+    Path path;          // the primary path: where it leaves for the lookup, its direction, weight
+    bool opaque;        // it ended on the opaque scene, which it sees as `seen`
+    vec3 seen;
+    vec3 light;         // what the rest gathered, weighted: the trace's branches and the
+                        // reflections looked up along their own direction
+    vec3 reflected;     // the walk's: the share reflected toward the ray at the later
+                        // interfaces into glass (times the environment once the walk ends)
     vec3 reflectedDir;  // their directions, weighted by the light they reflect
     float reflectedRoughness;
     vec3 lastIncoming;  // the last refraction: incoming direction, normal against it, media
@@ -403,9 +431,7 @@ struct Walk {
     bool hardReflection;
     bool outline;       // a crossing's normal was filtered near an outline
     bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
-    bool opaque;        // the walk ended on the opaque scene, which it sees as `seen`
-    vec3 seen;
-    int interfaces, steps;
+    int steps;
     int sightLayers;    // the layers on its pixel's line of sight (the hybrid's judge)
 };
 
@@ -439,37 +465,6 @@ bool stopsToHandOver(Walk w) {
     return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == DEBUG_NONE && handedOverBy(w) != 0u;
 }
 
-float mediumIor(uint medium, int channel) {
-    return medium == 0u ? 1.0 : glassMaterials[medium - 1u].ior[channel];
-}
-
-// The media around the ray: x up to four glass ids + 1, a byte each, the newest in the low
-// byte (0: air); y the solid of each, byte for byte (so that leaving one reads no material). A
-// fifth nested glass is not entered (its crossings pass straight).
-uint topMedium(uvec2 media) {
-    return media.x & 255u;
-}
-
-uint solidOf(uint medium) {
-    return uint(glassMaterials[medium - 1u].emissive.w);
-}
-
-// Crossing a surface of `medium` (glass id + 1) against its outward normal enters it; along it
-// leaves the most recent entry of the same solid (character), if any.
-uvec2 crossMedium(uvec2 media, uint medium, bool entering) {
-    uint solid = solidOf(medium);
-    if (entering)
-        return (media.x >> 24) != 0u ? media : (media << 8) | uvec2(medium, solid);
-    for (int k = 0; k < 4; ++k) {
-        if (((media.x >> (8 * k)) & 255u) != 0u && ((media.y >> (8 * k)) & 255u) == solid) {
-            uvec2 below = k == 0 ? uvec2(0u) : media & uvec2((1u << (8 * k)) - 1u);
-            uvec2 above = k == 3 ? uvec2(0u) : (media >> (8 * k + 8)) << (8 * k);
-            return below | above;
-        }
-    }
-    return media;
-}
-
 // An opaque part along P + t dir before c, the next crossing: the trace's in its BVH (c itself),
 // the others' on screen; where along the ray, and what the ray sees there.
 bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
@@ -488,86 +483,121 @@ bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
 #endif
 }
 
-// What a walk's ray sees: the opaque part it ended on (hitT 0), or what lies beyond its last
-// interface (lookup).
-vec3 walkSees(Walk w, float roughness, out float hitT) {
-    hitT = 0.0;
-    return w.opaque ? w.seen : lookup(w.point, w.dir, roughness, !kTrace, hitT);
+// The roughness a path's lookup blurs by: its roughest interface, where rough glass's
+// microfacets are not sampled.
+float lookupRoughness(Path path) {
+    return sampledPaths() ? 0.0 : path.roughness;
 }
 
-// A reflection the trace follows once the path it left ends: where it starts, its direction,
-// the medium's absorption, its weight, the media, the medium's index, the interfaces crossed.
-struct Branch {
-    vec3 P, dir, sigma, weight;
-    uvec2 media;
-    float ior;
-    int interfaces;
+// What a path sees where it ends: the opaque part it ended on (hitT 0), or what lies beyond its
+// last interface (lookup).
+vec3 pathSees(Path path, bool opaque, vec3 seen, out float hitT) {
+    hitT = 0.0;
+    return opaque ? seen : lookup(path.P, path.dir, lookupRoughness(path), !kTrace, hitT);
+}
+
+vec3 walkSees(Walk w, out float hitT) {
+    return pathSees(w.path, w.opaque, w.seen, hitT);
+}
+
+// The state of the search along a path: the layer parity of the segment it is in, the layer
+// it entered that segment by, whether the segment began where the ray entered glass (ISR
+// estimates it) or at a normal filtered near an outline, the reflections followed.
+struct Segment {
+    int parity;
+    uvec2 entry;
+    bool fromEntry, fromOutline;
+    int bounces;
 };
 
-Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
-    uvec2 media = crossMedium(uvec2(0u), layerGlass(entryAttr) + 1u, true);
-    // The medium's index and absorption (kept with it: a crossing reads one material).
-    GlassMaterial entered = glassMaterials[layerGlass(entryAttr)];
-    float ior = entered.ior[channel];
-    vec3 sigma = entered.sigma.rgb;
-    vec3 dir;
-    refractRay(V, N1, 1.0 / ior, dir); // air into glass never reflects totally
-    // Nothing crossed yet but the entry (from air into the top medium), reflected or hit.
-    Walk w = Walk(P1, dir, vec3(1.0), vec3(0.0), vec3(0.0), 0.0, V, N1, 0u, topMedium(media), P1,
-                  false, false, false, false, false, false, vec3(0.0), 1, 0,
-                  kMethod == METHOD_HYBRID ? storedCount(pixelOf(P1)) : 0);
-    vec3 P = P1;
-    int parity = 1;
-    int bounces = 0;
-    uvec2 segmentEntry = entryAttr;
-    bool segmentFromEntry = true; // the segment began where the ray entered glass (ISR)
-    // Crossings that change no medium (overlapping glass, a surface met again in the samples)
-    // are not interfaces: they pass straight on, a few times at most.
+// The facet a crossing refracts or reflects about: a sampled microfacet of rough glass where
+// the trace samples its paths, else the (facing) normal.
+vec3 crossingFacet(vec3 N, vec3 dir, GlassSurface s, inout uint rng) {
+    if (!sampledPaths() || s.roughness <= SMOOTH_ROUGHNESS)
+        return N;
+    vec2 u = vec2(random01(rng), random01(rng));
+    return sampleMicrofacet(N, s.roughness, -dir, u);
+}
+
+// The entry's path in channel `channel`: into the glass at P1 (view direction V, normal N1
+// facing it), refracted (about a sampled microfacet of rough glass, the trace sampling).
+Path entryPath(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int channel,
+               inout uint rng) {
+    uint medium = layerGlass(entryAttr) + 1u;
+    GlassMaterial entered = glassMaterials[medium - 1u];
+    Path path = Path(P1, V, vec3(1.0), crossMedium(uvec2(0u), medium, true),
+                     entered.ior[channel], entered.sigma, s.roughness, 1, 0, 0);
+    vec3 m = crossingFacet(N1, V, s, rng);
+    if (!refractRay(V, m, 1.0 / path.ior, path.dir)) // only about a facet tilted far
+        path.dir = reflect(V, m);
+    if (m != N1)
+        path.weight *= microfacetWeight(path.dir, m, N1, s.roughness, true);
+    return path;
+}
+
+// The walk of a pixel's refracted paths in channel `channel`, from the entry P1 (view direction
+// V, normal N1 facing it, layer entryAttr, its surface s): the primary path crossing interface
+// after interface (crossInterface) up to N, each crossing found by the method (searched in the
+// layers, estimated, or traced), an opaque part met on the way ending it; the reflections of
+// interfaces into glass the trace's branches (SPLIT_DEPTH, as the reference), the walk's looked
+// up once.
+Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int channel,
+                inout uint rng) {
+    Walk w;
+    w.path = entryPath(P1, V, N1, entryAttr, s, channel, rng);
+    w.opaque = false;
+    w.seen = w.light = w.reflected = w.reflectedDir = vec3(0.0);
+    w.reflectedRoughness = 0.0;
+    w.lastIncoming = V;
+    w.lastNormal = N1;
+    w.lastFrom = 0u;
+    w.lastTo = topMedium(w.path.media);
+    w.firstExit = P1;
+    w.tir = w.fallback = w.hardReflection = w.outline = w.overflowed = false;
+    w.steps = 0;
+    w.sightLayers = kMethod == METHOD_HYBRID ? storedCount(pixelOf(P1)) : 0;
+    Path path = w.path;
+    Segment seg = Segment(1, entryAttr, true, false, 0);
+    // The trace's branches waiting to be walked (each split adds one, SPLIT_DEPTH at most).
+    Path pending[SPLIT_DEPTH];
+    int waiting = 0;
     // On a CPU rasteriser every lane of a SIMD group runs the loop's whole body as long as one
-    // lane walks on: the environment's reflection in the interfaces into glass is looked up
-    // once after it, in their mean direction (exact for one such interface).
-    int passes = 0;
-    bool segmentFromOutline = false; // the segment began at a normal filtered near an outline
-    // The trace follows the first reflection at a later interface into glass as a path of its
-    // own once this one ends (the reference follows both branches there): where it left, in
-    // what, and its weight; the walk's, and the trace's others, see the environment.
-    bool split = false;
-    Branch reflection;
-    vec3 reflectionSeen = vec3(0.0);
-    Walk primary;
-    for (int path = 0;; ++path) {
-        while (kMethod != METHOD_SIR && w.interfaces < uInterfaces && passes <= kMaxPasses) {
-            if (stopsToHandOver(w))
+    // lane walks on.
+    for (int branch = 0;; ++branch) {
+        bool opaque = false;
+        vec3 seen = vec3(0.0);
+        while (kMethod != METHOD_SIR && path.interfaces < uInterfaces &&
+               path.crossings < 2 * uInterfaces) {
+            if (branch == 0 && stopsToHandOver(w))
                 break;
-            uint inside = topMedium(media);
-            Crossing c = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry
-                ? estimateExit(P, w.lastIncoming, w.lastNormal, dir, 1.0 / ior, segmentEntry)
-                : searchExit(P, dir, parity, inside != 0u, segmentFromEntry);
+            uint inside = topMedium(path.media);
+            bool estimated = kMethod == METHOD_ISR && inside != 0u && seg.fromEntry;
+            Crossing c = estimated ? estimateExit(path.P, w.lastIncoming, w.lastNormal, path.dir,
+                                                  1.0 / path.ior, seg.entry)
+                                   : searchExit(path.P, path.dir, seg.parity, inside != 0u,
+                                                seg.fromEntry);
             w.steps += c.steps;
             if (!c.found)
                 break;
-            // An opaque part before the next interface (inside the glass, or between two pieces)
-            // ends the walk: the ray sees it, as the lookup after the walk sees the nearby scene.
+            // An opaque part before the next interface (inside the glass, or between two
+            // pieces) ends the path: it sees it, as the lookup after the walk sees the nearby
+            // scene.
             float hitT;
-            if (opaqueBefore(c, P, dir, hitT, w.seen)) {
-                if (inside != 0u)
-                    w.weight *= exp(-sigma * hitT);
-                P += dir * hitT;
-                w.opaque = true;
+            if (opaqueBefore(c, path.P, path.dir, hitT, seen)) {
+                path.weight *= exp(-path.sigma * hitT);
+                path.P += path.dir * hitT;
+                opaque = true;
                 break;
             }
-            if (inside != 0u)
-                w.weight *= exp(-sigma * length(c.point - P));
-            P = c.point;
-            if (w.interfaces == 1)
-                w.firstExit = P;
-            ++w.interfaces;
+            path.weight *= exp(-path.sigma * length(c.point - path.P));
+            path.P = c.point;
+            if (branch == 0 && path.interfaces == 1)
+                w.firstExit = path.P;
             // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on,
             // the far side: there the count is read afresh.
-            bool estimated = kMethod == METHOD_ISR && inside != 0u && segmentFromEntry;
-            int parityBefore = parity;
-            parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
-                               : parity ^ 1;
+            int parityBefore = seg.parity;
+            seg.parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
+                                   : seg.parity ^ 1;
             // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
             // glass the ray is in, with Wyman's silhouette normal.
             if (c.silhouette && inside == 0u)
@@ -575,122 +605,126 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, int channel) {
             // Every crossing of the pair from its glass leaves it.
             bool leaves = c.silhouette || kPairCapture;
             uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
-            vec3 N = c.silhouette ? silhouetteNormal(dir) : layerNormal(c.attr);
+            vec3 N = c.silhouette ? silhouetteNormal(path.dir) : layerNormal(c.attr);
             w.fallback = w.fallback || c.silhouette;
             w.overflowed =
                 w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
-            uvec2 before = media;
             // A traced crossing knows its side from the winding; a layer's from its normal.
-            bool enters = kTrace ? layerFront(c.attr) : dot(dir, N) < 0.0;
-            media = crossMedium(media, glass, !leaves && enters);
-            uint to = topMedium(media);
-            segmentFromEntry = inside == 0u && to != 0u;
-            segmentEntry = c.attr;
-            if (inside == to) { // inside a glass that overlaps the one crossed: no interface
-                P = c.beyond;
-                --w.interfaces;
-                ++passes;
-                continue;
-            }
-            GlassMaterial g = glassMaterials[max(to, 1u) - 1u]; // to == 0: air
-            float n1 = ior, n2 = to == 0u ? 1.0 : g.ior[channel];
+            bool enters = !leaves && (kTrace ? layerFront(c.attr) : dot(path.dir, N) < 0.0);
             bool outline = false;
             if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
-                N = crossingNormal(c, dir, outline);
+                N = crossingNormal(c, path.dir, outline);
             w.outline = w.outline || outline;
-            vec3 facing = dot(N, dir) < 0.0 ? N : -N;
-            vec3 T;
-            if (refractRay(dir, facing, n1 / n2, T)) {
-                segmentFromOutline = outline;
-                if (to != 0u) {
-                    // Into glass: Fresnel splits the light; the reflected part sees the
-                    // environment (the trace's first: its path), the transmitted part goes on in
-                    // the glass's colour.
-                    float F = fresnel(uFresnelMode, dot(-dir, facing), n1 / n2);
-                    if (kTrace && path == 0 && !split) {
-                        split = true;
-                        reflection = Branch(c.point, reflect(dir, facing), sigma, w.weight * F,
-                                            before, n1, w.interfaces);
-                    } else {
-                        w.reflected += w.weight * F;
-                        w.reflectedDir += dot(w.weight, vec3(1.0)) * F * reflect(dir, facing);
-                        w.reflectedRoughness = g.sigma.w;
-                    }
-                    w.weight *= (1.0 - F) * g.baseColor.rgb;
-                }
-            } else {
-                w.tir = true;
-                float incidence = acos(clamp(dot(-dir, facing), 0.0, 1.0));
-                float band = kTrace      ? 0.0
-                             : estimated ? kEstimatedTirBand
-                             : outline || segmentFromOutline ? kOutlineTirBand : kTirBand;
-                bool grazing = incidence < asin(n2 / n1) + band;
-                // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
-                // image-space searches, whose error grows with every bounce).
-                if (uTirPolicy == TIR_REFLECT && (kTrace || bounces < uBounces) && !grazing) {
-                    ++bounces;
-                    dir = reflect(dir, facing);
-                    w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
-                                       bounces > 1 || w.sightLayers > 2 || dir.z > 0.0;
-                    media = before; // still in the same medium
-                    parity = parityBefore;
-                    segmentFromEntry = false;
-                    continue;
-                }
-                T = tangentExit(dir, -facing); // the papers' clamp: leave tangent to the surface
+            GlassSurface surface =
+                leaves ? materialSurface(glassMaterials[glass - 1u]) : c.surface;
+            vec3 facing = dot(N, path.dir) < 0.0 ? N : -N;
+            vec3 m = crossingFacet(facing, path.dir, surface, rng);
+            float band = kTrace      ? 0.0
+                         : estimated ? kEstimatedTirBand
+                         : outline || seg.fromOutline ? kOutlineTirBand : kTirBand;
+            // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
+            // image-space searches, whose error grows with every bounce).
+            bool mayReflect = uTirPolicy == TIR_REFLECT && (kTrace || seg.bounces < uBounces);
+            Path before = path;
+            vec3 reflected;
+            int crossed = crossInterface(path, SurfaceMet(glass, surface, enters), m, channel,
+                                         band, mayReflect, reflected);
+            if (crossed == CROSSED_PASSED) { // overlapping glass of one index: straight on
+                path.P = c.beyond;
+                continue;
+            }
+            bool rough = m != facing;
+            if (rough) // the facet's share of the light, the way it went
+                path.weight *= microfacetWeight(path.dir, m, facing, surface.roughness,
+                                                crossed != CROSSED_REFLECTED);
+            w.tir = w.tir || crossed == CROSSED_REFLECTED || crossed == CROSSED_GRAZING;
+            if (crossed == CROSSED_REFLECTED) {
+                ++seg.bounces;
+                w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
+                                   seg.bounces > 1 || w.sightLayers > 2 || path.dir.z > 0.0;
+                seg.parity = parityBefore;
+                seg.fromEntry = false;
+                continue;
             }
             // Across the interface: the refracted ray starts on its far side, in the new medium.
-            w.lastIncoming = dir;
-            w.lastNormal = facing;
-            w.lastFrom = inside;
-            w.lastTo = to;
-            dir = T;
-            ior = n2;
-            sigma = to == 0u ? vec3(0.0) : g.sigma.rgb;
-            P = c.beyond;
+            seg.fromOutline = outline;
+            seg.fromEntry = inside == 0u && topMedium(path.media) != 0u;
+            seg.entry = c.attr;
+            if (branch == 0) {
+                w.lastIncoming = before.dir;
+                w.lastNormal = facing;
+                w.lastFrom = inside;
+                w.lastTo = topMedium(path.media);
+            }
+            path.P = c.beyond;
+            if (reflected == vec3(0.0))
+                continue;
+            // The reflection of an interface into glass.
+            Path mirror = before;
+            mirror.dir = reflect(before.dir, m);
+            mirror.weight = reflected * (rough ? microfacetWeight(mirror.dir, m, facing,
+                                                                  surface.roughness, false)
+                                               : 1.0);
+            mirror.interfaces = path.interfaces;
+            mirror.crossings = path.crossings;
+            mirror.roughness = max(before.roughness, surface.roughness);
+#if LAYER_METHOD == METHOD_TRACE
+            if (path.splits < SPLIT_DEPTH && waiting < SPLIT_DEPTH &&
+                max(max(mirror.weight.r, mirror.weight.g), mirror.weight.b) >= SPLIT_WEIGHT) {
+                mirror.splits = ++path.splits;
+                pending[waiting++] = mirror; // a path of its own, once this one ends
+            } else if (!sampledPaths()) {
+                w.light += mirror.weight *
+                           environmentRadiance(uViewToWorld * mirror.dir, mirror.roughness);
+            } else { // one branch by chance, as likely as the share it carries
+                float p = dot(reflected / max(before.weight, vec3(1e-20)), vec3(1.0 / 3.0));
+                if (random01(rng) < p) {
+                    mirror.weight /= p;
+                    path = mirror;
+                    seg.parity = parityBefore;
+                } else {
+                    path.weight /= 1.0 - p;
+                }
+            }
+#else
+            w.reflected += mirror.weight;
+            w.reflectedDir += dot(mirror.weight, vec3(1.0)) * mirror.dir;
+            w.reflectedRoughness = mirror.roughness;
+#endif
         }
-        w.point = P;
-        w.dir = dir;
-        if (path == 1) { // the reflection's path ended: what it sees, then the first path's end
+        if (branch == 0) {
+            w.path = path;
+            w.opaque = opaque;
+            w.seen = seen;
+        } else {
             float unused;
-            reflectionSeen = walkSees(w, entered.sigma.w, unused) * w.weight;
-            primary.reflected = w.reflected;
-            primary.reflectedDir = w.reflectedDir;
-            primary.reflectedRoughness = w.reflectedRoughness;
-            primary.tir = primary.tir || w.tir;
-            primary.hardReflection = primary.hardReflection || w.hardReflection;
-            primary.steps = w.steps;
-            w = primary;
-            break;
+            w.light += pathSees(path, opaque, seen, unused) * path.weight;
         }
-        if (!split)
+        if (waiting == 0)
             break;
-        primary = w;
-        P = reflection.P;
-        dir = reflection.dir;
-        media = reflection.media;
-        ior = reflection.ior;
-        sigma = reflection.sigma;
-        w.weight = reflection.weight;
-        w.interfaces = reflection.interfaces;
-        w.opaque = false;
-        passes = 0;
+        path = pending[--waiting];
+        seg = Segment(1, uvec2(0u), false, false, 0);
     }
+    // The walk's reflections at later interfaces into glass, looked up once after its loop, in
+    // their mean direction (exact for one such interface).
     if (dot(w.reflectedDir, w.reflectedDir) > 0.0)
-        w.reflected *= environmentRadiance(uViewToWorld * normalize(w.reflectedDir),
-                                           w.reflectedRoughness);
-    w.reflected += reflectionSeen;
+        w.light += w.reflected * environmentRadiance(uViewToWorld * normalize(w.reflectedDir),
+                                                     w.reflectedRoughness);
     return w;
 }
 
-vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
+// The colour of a glass pixel's entry (P1, view direction V, normal N1 facing it, layer
+// entryAttr, its surface s): its walks (green's, and red's and blue's by the dispersion
+// search), then the light at the entry (glassColor).
+vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, inout uint rng,
+                 out Walk green) {
     GlassMaterial m = glassMaterials[layerGlass(entryAttr)];
-    green = walkLayers(P1, V, N1, entryAttr, 1);
+    green = walkLayers(P1, V, N1, entryAttr, s, 1, rng);
     if (stopsToHandOver(green))
         return vec3(0.0);
     float hitT;
-    vec3 seen = walkSees(green, m.sigma.w, hitT);
-    vec3 transmitted = seen * green.weight + green.reflected;
+    vec3 seen = walkSees(green, hitT);
+    vec3 transmitted = seen * green.path.weight + green.light;
     bool dispersion = m.ior.r != m.ior.b;
 #if LAYER_DISPERSION == DISPERSION_SEARCH_SHARED
     if (dispersion) {
@@ -702,24 +736,27 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, out Walk green) {
             vec3 T1c;
             refractRay(V, N1, 1.0 / m.ior[c], T1c);
             float eta = mediumIor(green.lastFrom, c) / mediumIor(green.lastTo, c);
-            vec3 Tc = green.interfaces < 2
+            vec3 Tc = green.path.interfaces < 2
                           ? T1c
-                          : channelExit(green.lastIncoming, green.lastNormal, eta, T1c - T1g, green.dir);
-            transmitted[c] = channelSees(green.point, Tc, hitT, m.sigma.w)[c] * green.weight[c] +
-                             green.reflected[c];
+                          : channelExit(green.lastIncoming, green.lastNormal, eta, T1c - T1g,
+                                        green.path.dir);
+            transmitted[c] =
+                channelSees(green.path.P, Tc, hitT, lookupRoughness(green.path))[c] *
+                    green.path.weight[c] +
+                green.light[c];
         }
     }
 #elif LAYER_DISPERSION == DISPERSION_SEARCH_PER_CHANNEL
     if (dispersion) {
         for (int c = 0; c < 3; c += 2) {
-            Walk w = walkLayers(P1, V, N1, entryAttr, c);
+            Walk w = walkLayers(P1, V, N1, entryAttr, s, c, rng);
             float unused;
-            transmitted[c] = walkSees(w, m.sigma.w, unused)[c] * w.weight[c] + w.reflected[c];
+            transmitted[c] = walkSees(w, unused)[c] * w.path.weight[c] + w.light[c];
             green.tir = green.tir || w.tir;
         }
     }
 #endif
-    return glassColor(m, P1, V, N1, transmitted);
+    return glassColor(m, s, P1, V, N1, transmitted);
 }
 
 // A glass pixel's entry: its nearest captured layer (the pair's: its nearest front) and its
@@ -729,6 +766,7 @@ struct Entry {
     float z, far;      // the nearest and the farthest layer's depth
     int farthest;      // the farthest's index
     uvec2 attr;        // the nearest's attributes
+    GlassSurface surface; // its glass's surface there
     vec3 P1, V;        // the entry point and the primary ray's direction (view space)
 };
 
@@ -760,12 +798,19 @@ bool pixelEntry(ivec2 p, out Entry e) {
 #endif
     if (nearest < 0 || e.z >= sceneDepthAt(p))
         return false;
-    e.attr = layerAttrAt(p, nearest);
+    bool overflow = layerOverflow(p);
+    e.attr = layerAttrOf(p, nearest, overflow);
+    e.surface = layerSurfaceOf(p, nearest, e.attr, overflow);
     vec4 ray = uInverseProjection * vec4((vec2(p) + 0.5) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     vec3 direction = ray.xyz / ray.w;
     e.P1 = direction * (e.z / -direction.z);
     e.V = normalize(e.P1);
     return true;
+}
+
+// The random numbers of pixel p's sample uTraceSample (the trace's sampled paths).
+uint sampleSeed(ivec2 p) {
+    return uint(p.x) * 73856093u ^ uint(p.y) * 19349663u ^ uint(uTraceSample + 1) * 83492791u;
 }
 
 #if LAYER_METHOD == METHOD_TRACE
@@ -777,13 +822,16 @@ bool pixelEntry(ivec2 p, out Entry e) {
 vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
     vec3 V = sampleView(p, e.V), P1 = e.P1;
     uvec2 attr = e.attr;
+    GlassSurface surface = e.surface;
     vec3 color;
-    if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) && !traceEntry(V, p, P1, attr)) {
+    uint rng = sampleSeed(p);
+    if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) &&
+        !traceEntry(V, p, P1, attr, surface)) {
         walk.fallback = walk.tir = walk.hardReflection = walk.outline = walk.overflowed = false;
         color = texelFetch(uSceneColor, p, 0).rgb;
     } else {
         vec3 N = layerNormal(attr);
-        color = shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, walk);
+        color = shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, surface, rng, walk);
     }
     if (gTraceRays > 0) {
         atomicAdd(glassTraceRays, uint(gTraceRays));

@@ -41,6 +41,15 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     return buffers;
 }
 
+double GpuState::glassExtent(const scene::Character& character) {
+    auto& [model, rest] = sides[character.model.get()];
+    if (model.lock() != character.model) { // new, or another model at a freed one's address
+        model = character.model;
+        rest = restSides(*character.model);
+    }
+    return refraction::glassExtent(rest, character);
+}
+
 int GpuState::Glass::find(const Part& part) const {
     const auto at = std::find(parts.begin(), parts.end(), part);
     return at == parts.end() ? -1 : int(at - parts.begin());
@@ -180,14 +189,24 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     gl::bindStorage(slot::kLayerHeads, layers.heads);
     gl::bindStorage(slot::kLayerDepths, layers.depths);
     gl::bindStorage(slot::kLayerAttrs, layers.attrs);
+    if (texturedGlass)
+        gl::bindStorage(slot::kLayerSurfaces, layers.surfaces);
     gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
 }
 
 core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const bool pair = !c.settings.layered();
     const int capacity = pair ? 2 : c.settings.layerCapacity;
-    if (!pair && gpu.layerProgramsCapacity != capacity) {
-        const std::vector<std::string> defines{"LAYER_CAPACITY " + std::to_string(capacity)};
+    const bool textures = !pair && c.texturedGlass;
+    const std::string texturesDefine = std::string("GLASS_TEXTURES ") + (textures ? "1" : "0");
+    // The trace with several samples reads the textures at their entries as at every hit, at
+    // their base level (converging to the reference); with one, filtered like the walk (a
+    // pixel's texels averaged, its frame closer to the reference's many rays than one texel).
+    const bool baseLevel = c.settings.method == Settings::Method::Trace && c.settings.addsSamples();
+    if (!pair && gpu.layerPrograms != std::tuple{capacity, textures, baseLevel}) {
+        const std::vector<std::string> defines{
+            "LAYER_CAPACITY " + std::to_string(capacity), texturesDefine,
+            std::string("TEXTURES_BASE_LEVEL ") + (baseLevel ? "1" : "0")};
         auto capture = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
                                              "refraction/layers_capture.frag.glsl", defines);
         if (!capture)
@@ -198,7 +217,7 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
             return resolve.error();
         gpu.layersCapture = std::move(*capture);
         gpu.layersResolve = std::move(*resolve);
-        gpu.layerProgramsCapacity = capacity;
+        gpu.layerPrograms = {capacity, textures, baseLevel};
     }
     // Dispersion: none in this frame, or the dispersion search's.
     const bool dispersion =
@@ -208,13 +227,14 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const bool lit = c.lit();
     const int captureKey = pair ? 0 : capacity; // the pair, or K layers
     auto key = [&](Settings::Method method) {
-        return GpuState::WalkKey{captureKey, int(method), mode, lit};
+        return GpuState::WalkKey{captureKey, int(method), mode, lit, textures};
     };
     auto walkDefines = [&](Settings::Method method) {
         return std::vector<std::string>{"LAYER_CAPACITY " + std::to_string(capacity),
                                         std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
                                         "LAYER_DISPERSION " + std::to_string(mode),
                                         std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
+                                        texturesDefine,
                                         "LAYER_METHOD " + std::to_string(int(method)),
                                         std::string("HYBRID_LIST ") +
                                             (method == Settings::Method::Hybrid ? "1" : "0")};
@@ -253,13 +273,19 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     return {};
 }
 
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity) {
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
+                        bool surfaces) {
+    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    const std::size_t layerBytes = pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t);
+    if (surfaces && layers.surfaces.size() != layerBytes)
+        layers.surfaces = gl::Buffer(layerBytes);
+    if (!surfaces && layers.surfaces)
+        layers.surfaces = gl::Buffer();
     if (layers.size == size && layers.capacity == capacity)
         return;
-    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
     layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
     layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
-    layers.attrs = gl::Buffer(pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t));
+    layers.attrs = gl::Buffer(layerBytes);
     layers.size = size;
     layers.capacity = capacity;
 }
@@ -268,39 +294,90 @@ std::size_t layerDepthSlots(int capacity) {
     return (std::size_t(capacity) + 3) / 4 * 4;
 }
 
-std::size_t layerBytesPerPixel(int capacity, bool outlines) {
-    // The arrays (head, depth slots, attributes), the depth maps the resolve pass writes, and
-    // the nearest layers' map the outline pass reads.
+std::size_t layerBytesPerPixel(int capacity, bool outlines, bool surfaces) {
+    // The arrays (head, depth slots, attributes, surfaces), the depth maps the resolve pass
+    // writes, and the nearest layers' map the outline pass reads.
     return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
-           std::size_t(capacity) * 2 * sizeof(std::uint32_t) +
+           std::size_t(capacity) * 2 * sizeof(std::uint32_t) * (surfaces ? 2 : 1) +
            layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
 }
 
 namespace {
 
-/** Gives glass `glass` the normal map `map` of `item`'s model for the trace, among the first
- *  kTracedNormalMaps distinct ones (past them: a warning, traced hits keep the vertex normal). */
-void traceNormalMap(FrameContext& c, const render::DrawItem& item, const scene::TextureRef& map,
-                    GlassMaterialGpu& glass) {
-    const gl::Texture* texture = item.materials->linear(map.texture);
+/** `map` of `item`'s model as a texture the trace reads (among the first
+ *  slot::kTracedTextures.count distinct ones of the frame; past them: a warning, and traced
+ *  hits go without it). */
+TracedTextureGpu tracedTexture(FrameContext& c, const render::DrawItem& item,
+                               const scene::TextureRef& map, bool colour) {
+    TracedTextureGpu traced;
+    const gl::Texture* texture =
+        map.present() ? (colour ? item.materials->srgb(map.texture) : item.materials->linear(map.texture))
+                      : nullptr;
     if (!texture)
-        return;
-    auto& maps = c.gpu->tracedNormalMaps;
-    auto at = std::find(maps.begin(), maps.end(), texture);
-    if (at == maps.end() && maps.size() < kTracedNormalMaps)
-        at = maps.insert(maps.end(), texture);
-    if (at == maps.end()) {
-        if (!c.gpu->warnedNormalMaps)
-            core::logWarning("refraction: more than " + std::to_string(kTracedNormalMaps) +
-                             " glass normal maps in one frame; the trace meets the others' "
-                             "surfaces with their vertex normals");
-        c.gpu->warnedNormalMaps = true;
-        return;
+        return traced;
+    auto& textures = c.gpu->tracedTextures;
+    auto at = std::find(textures.begin(), textures.end(), texture);
+    if (at == textures.end() && textures.size() < slot::kTracedTextures.count)
+        at = textures.insert(textures.end(), texture);
+    if (at == textures.end()) {
+        if (!c.gpu->warnedTracedTextures)
+            core::logWarning("refraction: more than " +
+                             std::to_string(slot::kTracedTextures.count) +
+                             " glass textures in one frame; the trace meets the others' "
+                             "surfaces without them");
+        c.gpu->warnedTracedTextures = true;
+        return traced;
     }
-    glass.normalMap = {float(at - maps.begin()), map.scale, float(map.texCoord), 0.0f};
-    for (int row = 0; row < 2; ++row)
-        glass.normalUv[row] = {map.transform[0][row], map.transform[1][row],
-                               map.transform[2][row], 0.0f};
+    traced.unit = std::int32_t(at - textures.begin());
+    traced.uvSet = map.texCoord;
+    traced.row0 = {map.transform[0][0], map.transform[1][0], map.transform[2][0]};
+    traced.row1 = {map.transform[0][1], map.transform[1][1], map.transform[2][1]};
+    return traced;
+}
+
+/** The optics of glass id `item` (its character's glass extent `extent`, solid `solid`). */
+GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, double extent,
+                               int solid) {
+    const scene::Material* m =
+        item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+    const Optics o = opticsFor(c.settings, m, item.source->overrides, extent);
+    GlassMaterialGpu g{};
+    g.ior = o.ior;
+    g.transmission = o.transmission;
+    g.sigma = o.sigma;
+    g.roughness = o.roughness;
+    g.baseColor = glm::vec3(o.baseColor);
+    g.metallic = o.metallic;
+    g.emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
+    g.solid = std::uint32_t(solid);
+    g.specularColor = o.specularColor;
+    g.specularWeight = o.specularWeight;
+    g.sheenColor = o.sheenColor;
+    g.sheenRoughness = o.sheenRoughness;
+    g.clearcoat = o.clearcoat;
+    g.clearcoatRoughness = o.clearcoatRoughness;
+    g.iridescence = o.iridescence;
+    g.iridescenceIor = o.iridescenceIor;
+    g.filmThickness = o.iridescenceThickness;
+    g.authored = m && m->isTransmissive() ? 1u : 0u;
+    if (!m)
+        return g;
+    g.normalScale = m->normalTexture.scale;
+    g.normalTexture = tracedTexture(c, item, m->normalTexture, false);
+    g.baseColorTexture = tracedTexture(c, item, m->baseColorTexture, true);
+    if (g.authored) {
+        g.metallicRoughnessTexture = tracedTexture(c, item, m->metallicRoughnessTexture, false);
+        g.transmissionTexture = tracedTexture(c, item, m->transmissionTexture, false);
+    }
+    return g;
+}
+
+/** Whether the surface of glass `g` varies over it: a texture that the capture reads for the
+ *  walk (the normal map aside, which it reads anyway). */
+bool textured(const scene::Material* m) {
+    return m && (m->baseColorTexture.present() ||
+                 (m->isTransmissive() && (m->transmissionTexture.present() ||
+                                          m->metallicRoughnessTexture.present())));
 }
 
 } // namespace
@@ -309,7 +386,8 @@ void assignGlassIds(FrameContext& c) {
     const auto& items = c.frame->items;
     c.gpu->glassIds.assign(items.size(), -1);
     c.gpu->glassOptics.clear();
-    c.gpu->tracedNormalMaps.clear();
+    c.gpu->tracedTextures.clear();
+    c.texturedGlass = false;
     std::map<std::pair<std::uint64_t, int>, int> ids;
     std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
     bool full = false;
@@ -327,20 +405,13 @@ void assignGlassIds(FrameContext& c) {
             c.gpu->glassIds[i] = int(kMaxGlassIds) - 1;
             continue;
         }
-        const scene::Material* m =
-            item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
-        const Optics o = opticsFor(c.settings, m, item.source->overrides);
-        const glm::vec3 emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
         c.gpu->glassOptics.push_back(
-            {glm::vec4(o.ior, o.transmission), glm::vec4(o.sigma, o.roughness),
-             glm::vec4(glm::vec3(o.baseColor), o.metallic), glm::vec4(emissive, float(solid)),
-             glm::vec4(o.specularColor, o.specularWeight),
-             glm::vec4(o.clearcoat, o.clearcoatRoughness, o.iridescence, o.iridescenceIor),
-             glm::vec4(o.sheenColor, o.sheenRoughness),
-             glm::vec4(o.iridescenceThickness, 0.0f, 0.0f, 0.0f)});
-        if (m && m->normalTexture.present())
-            traceNormalMap(c, item, m->normalTexture, c.gpu->glassOptics.back());
+            glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
+        c.texturedGlass = c.texturedGlass ||
+                          textured(item.material >= 0
+                                       ? &item.model->materials[std::size_t(item.material)]
+                                       : nullptr);
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }

@@ -34,8 +34,6 @@ namespace refraction {
 // mip-filtered normals); the normal maps need no level above it.
 constexpr int kNormalLod = 1;
 
-/** The trace's glass normal maps (trace.glsl): this many, the first of slot::kTracedTextures. */
-constexpr std::size_t kTracedNormalMaps = 4;
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
@@ -48,6 +46,9 @@ struct FrameContext {
     bool onePass = false; ///< the pair drawn in one MAX-blended geometry pass
     /** The first glass item's glass id: with the pair in one pass, every one's. */
     int firstGlassId = 0;
+    /** Some glass of the frame has textures the walk reads (its base colour, transmission or
+     *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
+    bool texturedGlass = false;
     const gl::Program* walk = nullptr; ///< the walk's variant (walkPrograms)
     const gl::Program* handedOverTrace = nullptr; ///< the hybrid's trace pass (walkPrograms)
 
@@ -110,11 +111,14 @@ void assignGlassIds(FrameContext& c);
  *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass for them
  *  and the walk's target (walk_trace.comp.glsl), built when first needed and kept. */
 core::Status walkPrograms(GpuState& gpu, FrameContext& c);
-/** The layer arrays for `size` and capacity K, reallocated only when either changes. */
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity);
-/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers, the
- *  depth maps the walk reads and, with `outlines`, the outline pass's map. */
-std::size_t layerBytesPerPixel(int capacity, bool outlines);
+/** The layer arrays for `size` and capacity K (with `surfaces`, each layer's surface too),
+ *  reallocated only when one changes. */
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
+                        bool surfaces = false);
+/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers (with
+ *  `surfaces`, their surfaces), the depth maps the walk reads and, with `outlines`, the outline
+ *  pass's map. */
+std::size_t layerBytesPerPixel(int capacity, bool outlines, bool surfaces = false);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t layerDepthSlots(int capacity);
 

@@ -86,12 +86,12 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 if (!gpu.glass.bvh)
                     return core::Error{"refraction.walk: the trace has no glass BVH"};
                 gpu.glass.bvh->bindForTraversal();
-                // The glass normal maps, the first standing in for absent ones (unread).
-                const auto& normalMaps = gpu.tracedNormalMaps;
-                for (std::size_t i = 0; i < kTracedNormalMaps && !normalMaps.empty(); ++i)
+                // The glass textures, the first standing in for absent ones (unread).
+                const auto& textures = gpu.tracedTextures;
+                for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty();
+                     ++i)
                     gl::bindTexture(slot::kTracedTextures,
-                                    *normalMaps[std::min(i, normalMaps.size() - 1)],
-                                    std::uint32_t(i));
+                                    *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
             }
             // The trace's and the hybrid's samples (a debug view shows the first alone).
             const int samples = c.settings.traceSamples;

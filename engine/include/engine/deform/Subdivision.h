@@ -7,7 +7,10 @@
 #include "engine/core/Result.h"
 #include "engine/scene/Mesh.h"
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +58,18 @@ struct Subdivision {
  *  primitive 0". Fails on a topology OpenSubdiv rejects or a result over the limits. */
 core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, int level,
                                            const std::string& what);
+
+/** The refined surface of a deformed cage, as the GPU deformer refines it (subdivision_pack):
+ *  limit positions and normals (du x dv, flipped as `sub` says), the cage's tangents refined as
+ *  face-varying values and made orthogonal to the normal; one vertex per `sub.corners`, in the
+ *  order sub.rest's indices and texture coordinates name them. The cage in the primitive's
+ *  vertex order (mesh space). */
+struct RefinedSurface {
+    std::vector<glm::dvec3> positions, normals;
+    std::vector<glm::dvec4> tangents; ///< empty where the cage has none
+};
+RefinedSurface refineCage(const Subdivision& sub, std::span<const glm::dvec3> positions,
+                          std::span<const glm::dvec4> tangents);
 
 /** `stencils` evaluated by OpenSubdiv's CPU evaluator (Osd::CpuEvaluator) over `source`:
  *  `width` floats per element, `stride` floats apart, from float `offset`. Results are packed

@@ -49,6 +49,12 @@ public:
 
     /** Texture `index` as the slots that read linear data (normals, metallic-roughness) have
      *  it; null where the model's materials never read it so. */
+    /** Texture `index` as the colour slots read it (sRGB); null where none does. */
+    const gl::Texture* srgb(int index) const {
+        return index >= 0 && std::size_t(index) < mSrgb.size() && mSrgb[std::size_t(index)]
+                   ? &mSrgb[std::size_t(index)]
+                   : nullptr;
+    }
     const gl::Texture* linear(int index) const {
         return index >= 0 && std::size_t(index) < mLinear.size() && mLinear[std::size_t(index)]
                    ? &mLinear[std::size_t(index)]
