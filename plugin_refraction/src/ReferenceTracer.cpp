@@ -38,6 +38,7 @@ struct Surface {
     std::vector<std::uint32_t> indices;
     bool glass = true;
     bool authored = false;                     // glass by its material (its textures all count)
+    bool mirrored = false;                     // placed mirrored: its winding reversed (glTF)
     int solid = 0;                             // the character: one closed solid (media rule)
     const scene::Model* model = nullptr;       // whose material and textures
     const scene::Material* material = nullptr; // opaque surfaces
@@ -126,7 +127,8 @@ public:
             h.shadingNormal = h.interpolatedNormal = glm::normalize(
                 w * s.normals[tri[0]] + u * s.normals[tri[1]] + v * s.normals[tri[2]]);
             h.geometricNormal = glm::cross(s.positions[tri[1]] - s.positions[tri[0]],
-                                           s.positions[tri[2]] - s.positions[tri[0]]);
+                                           s.positions[tri[2]] - s.positions[tri[0]]) *
+                                (s.mirrored ? -1.0 : 1.0);
             if (!s.uv.empty())
                 h.uv = w * s.uv[tri[0]] + u * s.uv[tri[1]] + v * s.uv[tri[2]];
             if (!s.tangents.empty())
@@ -474,6 +476,7 @@ core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, doub
                 s.model = &model;
                 s.glass = decoded.isGlass(model, material, character.glass);
                 s.authored = s.material && s.material->isTransmissive();
+                s.mirrored = glm::determinant(glm::dmat3(instance.meshToWorld)) < 0.0;
                 s.solid = int(solid);
                 s.optics = opticsFor(decoded, s.material, character.overrides, extent);
                 if (!s.optics.dispersion)

@@ -47,6 +47,7 @@ constexpr Shared kFixed[] = {
     slot::kTracedTextures,
     Shared::bits("OPAQUE_TAG", kOpaqueTag),
     Shared::bits("OPAQUE_TEXTURED_TAG", kOpaqueTextured),
+    Shared::bits("MIRRORED_TAG", kMirroredTag),
     Shared::bits("LAYER_FRONT_BIT", kLayerFront),
     Shared::integer("HYBRID_OVERFLOW", Settings::kHandOverflow),
     Shared::integer("HYBRID_LEFT_LAYERS", Settings::kHandOffLayers),

@@ -56,8 +56,10 @@ inline constexpr TextureSlot kTracedTextures{31, "TRACED_TEXTURES_UNIT", 8};
 namespace refraction {
 
 /** Bits of a traced triangle's tag (GlassBvh::setTags): an opaque part's, and one with a base
- *  colour texture (the rest: its glass id, or the opaque material's factors). */
-inline constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u;
+ *  colour texture (the rest: the opaque material's factors); a glass part's its glass id, and
+ *  this bit where its placement mirrors it (its winding reversed: DrawItem::mirrored). */
+inline constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x40000000u,
+                               kMirroredTag = 0x20000000u;
 /** A layer's attributes (layers.glsl): bits 0-7 its glass id, this bit front-facing. */
 inline constexpr std::uint32_t kLayerFront = 256u;
 /** Glass ids a layer can name (8 bits, less the walk's 0 for air). */

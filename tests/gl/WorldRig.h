@@ -53,9 +53,12 @@ inline scene::World generatedWorld(const std::string& file, bool normalMaps = tr
  *  reference with the same parameters; with its ground plane under it if it has one. */
 class WorldRig {
 public:
-    WorldRig(scene::World world, gl::Context& context, int size = kWorldRigSize)
+    /** With `environment` its light (else the procedural sky). */
+    WorldRig(scene::World world, gl::Context& context, int size = kWorldRigSize,
+             const asset::HdrImage* environment = nullptr)
         : mWorld(std::move(world)), mSize(size) {
-        auto renderer = render::Renderer::create(render::Environment::proceduralSky(128), context);
+        auto renderer = render::Renderer::create(
+            environment ? *environment : render::Environment::proceduralSky(128), context);
         EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
         mRenderer = std::move(*renderer);
         mPlugin = std::make_unique<refraction::RefractionPlugin>();
@@ -131,6 +134,7 @@ public:
         mSubdivision = level;
     }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
+    const scene::World& world() const { return mWorld; }
     const render::Camera& camera() const { return mCamera; }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
     /** Views the world from its scene file's camera instead of framing its bounds. */

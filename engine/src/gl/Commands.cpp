@@ -34,6 +34,7 @@ void apply(const PipelineState& s) {
         else
             glBlendFunc(GL_ONE, GL_ONE);
     }
+    glFrontFace(s.clockwise ? GL_CW : GL_CCW);
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }

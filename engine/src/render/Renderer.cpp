@@ -281,6 +281,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
                 item.vertexArray = &cg.model->vertexArrays[std::size_t(instances[i].mesh)][p];
                 item.materials = cg.model->materials.get();
                 item.world = instances[i].meshToWorld;
+                item.mirrored = glm::determinant(glm::mat3(item.world)) < 0.0f;
                 item.key = cg.deformer->serial();
                 for (const plugin::Plugin* plugin : mPlugins)
                     if (plugin->claims(item)) {

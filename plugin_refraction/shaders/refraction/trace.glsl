@@ -68,7 +68,7 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     uint tag = triangleTags[triangle];
     bool opaque = (tag & kOpaqueTag) != 0u;
     if (!opaque) { // its textures as the capture and the reference read them
-        GlassMaterial m = glassMaterials[tag];
+        GlassMaterial m = glassMaterials[tag & 255u];
         vec4 uvs = w.x * meshUvs[v.x] + w.y * meshUvs[v.y] + w.z * meshUvs[v.z];
         c.surface = tracedSurface(m, uvs);
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
@@ -78,12 +78,14 @@ Crossing traceCrossing(vec3 P, vec3 dir) {
     }
     vec3 a = leafCorners[3 * leaf].xyz;
     vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);
-    bool entering = dot(face, along) < 0.0;
+    // Against the outward face enters; a mirrored part's winding is reversed (glTF).
+    bool mirrored = !opaque && (tag & MIRRORED_TAG) != 0u;
+    bool entering = (dot(face, along) < 0.0) != mirrored;
     c.found = true;
     c.point = P + dir * max(t - epsilon, 0.0);
     c.beyond = P + dir * (t + epsilon);
     c.attr = uvec2(packOctNormal(transpose(uViewToWorld) * n),
-                   opaque ? tag : tag | (entering ? kLayerFront : 0u));
+                   opaque ? tag : (tag & 255u) | (entering ? kLayerFront : 0u));
     return c;
 }
 

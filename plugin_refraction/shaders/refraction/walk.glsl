@@ -18,8 +18,9 @@
 // how it finds a crossing and in two approximations of its own: reflections at later
 // interfaces into glass are looked up once, in their mean direction, and reflections at the
 // edge of total internal reflection, where its normals are a few degrees off, leave grazing.
-// The trace follows each reflection as a path of its own (to SPLIT_DEPTH), and with more
-// than one sample a pixel samples rough glass's microfacets.
+// The trace follows each reflection as a path of its own (to SPLIT_DEPTH; the rest see the
+// environment along them), and with more than one sample a pixel samples rough glass's
+// microfacets.
 //
 // DIR over the layers generalises the papers' search: the ray from the last crossing is
 // sampled in texture space (perspective-correct, coarse samples up to where it leaves the
@@ -76,9 +77,9 @@ uniform int uTraceSample;
 uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 uniform int uTraceSamples;   // trace-samples
-// The trace with several samples a pixel samples its paths (rough glass's microfacets, one
-// branch by chance past the splits) and converges to the reference; with one it runs the
-// deterministic model (the reference's deterministic evaluation).
+// The trace with several samples a pixel samples rough glass's microfacets and converges to the
+// reference (but for the reflections past the splits, which see the environment); with one it
+// runs the deterministic model (the reference's deterministic evaluation).
 bool sampledPaths() {
     return kTrace && uTraceSamples > 1;
 }
@@ -673,18 +674,9 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int c
                 max(max(mirror.weight.r, mirror.weight.g), mirror.weight.b) >= SPLIT_WEIGHT) {
                 mirror.splits = ++path.splits;
                 pending[waiting++] = mirror; // a path of its own, once this one ends
-            } else if (!sampledPaths()) {
-                w.light += mirror.weight *
-                           environmentRadiance(uViewToWorld * mirror.dir, mirror.roughness);
-            } else { // one branch by chance, as likely as the share it carries
-                float p = dot(reflected / max(before.weight, vec3(1e-20)), vec3(1.0 / 3.0));
-                if (random01(rng) < p) {
-                    mirror.weight /= p;
-                    path = mirror;
-                    seg.parity = parityBefore;
-                } else {
-                    path.weight /= 1.0 - p;
-                }
+            } else { // the rest sees the environment along it (the reference picks a branch)
+                w.light += mirror.weight * environmentRadiance(uViewToWorld * mirror.dir,
+                                                               lookupRoughness(mirror));
             }
 #else
             w.reflected += mirror.weight;

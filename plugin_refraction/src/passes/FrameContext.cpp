@@ -128,7 +128,9 @@ void FrameContext::drawGlass(
                         part >= 0 ? glass.bvh->distances() : *item.gpu->deformed);
         if (perItem)
             perItem(item, index);
-        gl::apply(state);
+        gl::PipelineState itemState = state;
+        itemState.clockwise = item.mirrored; // its front faces are its outward ones
+        gl::apply(itemState);
         item.vertexArray->bind();
         gl::drawIndexed(item.gpu->indexCount);
     }

@@ -65,7 +65,8 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
                     continue;
                 items.push_back(&item);
                 parts.emplace_back(item.key, item.instance, item.primitiveIndex);
-                tags.push_back(c.isGlass(item) ? std::uint32_t(std::max(gpu.glassIds[index], 0))
+                tags.push_back(c.isGlass(item) ? std::uint32_t(std::max(gpu.glassIds[index], 0)) |
+                                                     (item.mirrored ? kMirroredTag : 0u)
                                                : opaqueTag(item));
             }
             if (!glass.bvh || parts != glass.parts) { // new, or other glass parts

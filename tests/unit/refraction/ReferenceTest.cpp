@@ -95,27 +95,54 @@ TEST(Reference, TwoInterfaceSphereMatchesTheClosedForm) {
 }
 
 TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
+    // The unit sphere as an opaque mesh on the ground square: every pixel whose ray meets the
+    // sphere or the ground (found in closed form) is lit, neither black nor the environment;
+    // the rest see the environment exactly; no pixel is glass.
     const auto model = std::make_shared<const scene::Model>(asset::makeSphere(32));
     const scene::Model& sphere = *model;
     const scene::World world = scene::singleCharacterWorld(model);
     const refraction::EnvironmentSampler env(render::Environment::proceduralSky(64), 0.0f, 1.0f);
     const render::Camera camera =
         render::frameBounds(render::animatedBounds(sphere, -1), 1.0f, 0.7f, 0.0f, 0.5f);
+    constexpr int size = 16;
     render::RenderSettings settings;
-    settings.size = {16, 16};
+    settings.size = {size, size};
     settings.ground = true;
     const render::GroundPlane ground{-1.0f, glm::vec3(0.0f), 4.0f};
     auto glass = refraction::createPlugin()->parameters();
     ASSERT_TRUE(glass.set("method", "opaque").ok()); // the sphere is an opaque mesh now
-    auto traced = refraction::traceReference(world, 0.0, camera, env, settings, ground, glass, {});
+    refraction::ReferenceOptions options;
+    options.pixelCentres = true;
+    auto traced =
+        refraction::traceReference(world, 0.0, camera, env, settings, ground, glass, options);
     ASSERT_TRUE(traced.ok()) << traced.error().message;
-    float coverage = 0.0f;
-    for (std::size_t i = 0; i < traced->rgba.size(); i += 4) {
-        coverage += traced->rgba[i + 3];
-        for (int c = 0; c < 3; ++c)
-            EXPECT_TRUE(std::isfinite(traced->rgba[i + std::size_t(c)]));
-    }
-    EXPECT_EQ(coverage, 0.0f) << "no glass: the mask must be empty";
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    int lit = 0, sky = 0;
+    for (int row = 0; row < size; ++row)
+        for (int x = 0; x < size; ++x) {
+            const double ndcX = (x + 0.5) / size * 2 - 1, ndcY = (size - 1 - row + 0.5) / size * 2 - 1;
+            const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1),
+                             f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
+            const glm::dvec3 o = glm::dvec3(n) / n.w, d = glm::normalize(glm::dvec3(f) / f.w - o);
+            const double b = glm::dot(o, d), c = glm::dot(o, o) - 1;
+            const double t = (-1.0 - o.y) / d.y;
+            const glm::dvec3 onGround = o + t * d;
+            const bool meets = b * b - c > 1e-3 ||
+                               (t > 0 && std::abs(onGround.x) <= 4 && std::abs(onGround.z) <= 4);
+            const float* px = &traced->rgba[(std::size_t(row) * size + std::size_t(x)) * 4];
+            const glm::dvec3 colour(px[0], px[1], px[2]), behind = env.radiance(d, 0.0);
+            EXPECT_EQ(px[3], 0.0f) << "no glass";
+            if (meets) {
+                EXPECT_GT(colour.r + colour.g + colour.b, 0.005) << "black at " << x << "," << row;
+                EXPECT_GT(glm::length(colour - behind), 0.01) << "the sky at " << x << "," << row;
+                ++lit;
+            } else if (std::abs(b * b - c) > 1e-3) { // clear of the sphere's outline
+                EXPECT_LT(glm::length(colour - behind), 1e-3) << x << "," << row;
+                ++sky;
+            }
+        }
+    EXPECT_GT(lit, size * size / 4);
+    EXPECT_GT(sky, 0);
 }
 
 /** A world of spheres (centre, radius), each its own character. */

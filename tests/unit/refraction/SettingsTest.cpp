@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <map>
+#include <string>
 
 namespace {
 
@@ -27,49 +30,86 @@ TEST(MaterialPresets, SetIorAndDispersionFromTheAbbeNumber) {
 }
 
 TEST(Settings, DecodesEveryChoice) {
+    // Every parameter set to a value other than its default, decoded into its field: a table
+    // that must name every parameter of the plugin (a new one fails until it is added here).
+    using S = refraction::Settings;
+    struct Case {
+        const char* value;
+        std::function<bool(const S&)> decoded;
+    };
+    const std::map<std::string, Case> cases = {
+        {"method", {"isr", [](const S& s) { return s.method == S::Method::Isr; }}},
+        {"glass", {"all", [](const S& s) { return s.glass == S::Glass::All; }}},
+        {"ior", {"1.33", [](const S& s) { return s.ior == 1.33; }}},
+        {"dispersion", {"0.5", [](const S& s) { return s.dispersion == 0.5; }}},
+        {"dispersion-search",
+         {"per-channel",
+          [](const S& s) { return s.dispersionSearch == S::DispersionSearch::PerChannel; }}},
+        {"tint", {"0.5,0.25,1", [](const S& s) { return s.tint == glm::dvec3(0.5, 0.25, 1.0); }}},
+        {"absorption-distance", {"2", [](const S& s) { return s.absorptionDistance == 2.0; }}},
+        {"fresnel", {"schlick", [](const S& s) { return s.fresnel == S::Fresnel::Schlick; }}},
+        {"search-steps", {"9", [](const S& s) { return s.searchSteps == 9; }}},
+        {"tir", {"clamp", [](const S& s) { return s.tir == S::Tir::Clamp; }}},
+        {"tir-bounces", {"3", [](const S& s) { return s.tirBounces == 3; }}},
+        {"back-surface",
+         {"first", [](const S& s) { return s.backSurface == S::BackSurface::First; }}},
+        {"surfaces",
+         {"two-surface", [](const S& s) { return s.surfaces == S::Surfaces::TwoSurface; }}},
+        {"layer-capacity", {"6", [](const S& s) { return s.layerCapacity == 6; }}},
+        {"interfaces", {"12", [](const S& s) { return s.interfaces == 12; }}},
+        {"march-steps", {"20", [](const S& s) { return s.marchSteps == 20; }}},
+        {"geometry-passes",
+         {"two", [](const S& s) { return s.geometryPasses == S::GeometryPasses::Two; }}},
+        {"trace-samples", {"16", [](const S& s) { return s.traceSamples == 16; }}},
+        {"hybrid-criteria", {"5", [](const S& s) { return s.hybridCriteria == 5; }}},
+        {"nearby", {"off", [](const S& s) { return !s.nearby; }}},
+        {"outline-aa", {"off", [](const S& s) { return !s.outlineAntialiasing; }}},
+        {"debug", {"steps", [](const S& s) { return s.debug == 6; }}}, // the seventh entry
+    };
+    for (const plugin::Parameter& parameter : S::parameterTable()) {
+        ASSERT_TRUE(cases.count(parameter.name)) << parameter.name << " is not decoded here";
+        auto glass = refraction::createPlugin();
+        plugin::ParameterSet& p = glass->parameters();
+        const Case& c = cases.at(parameter.name);
+        EXPECT_FALSE(c.decoded(S::decode(p))) << parameter.name << ": the default already";
+        ASSERT_TRUE(p.set(parameter.name, c.value).ok()) << parameter.name;
+        EXPECT_TRUE(c.decoded(S::decode(p))) << parameter.name << "=" << c.value;
+    }
+    EXPECT_EQ(cases.size(), S::parameterTable().size());
+}
+
+TEST(Settings, EveryMethodDecodesWithWhatItNeeds) {
+    // What each method runs: SIR one interface; ISR, DIR, the trace and the hybrid two and more;
+    // ISR's d_N and the tracing methods' BVH; the capture's layers for all but opaque.
+    using S = refraction::Settings;
+    struct Expected {
+        const char* method;
+        S::Method decoded;
+        bool twoInterfaces, traces, bvh, normalDistance, layered;
+    };
+    const Expected all[] = {{"opaque", S::Method::Opaque, false, false, false, false, false},
+                            {"sir", S::Method::Sir, false, false, false, false, true},
+                            {"isr", S::Method::Isr, true, false, true, true, true},
+                            {"dir", S::Method::Dir, true, false, false, false, true},
+                            {"trace", S::Method::Trace, true, true, true, false, true},
+                            {"hybrid", S::Method::Hybrid, true, true, true, false, true}};
     auto glass = refraction::createPlugin();
     plugin::ParameterSet& p = glass->parameters();
-    using S = refraction::Settings;
-    const S defaults = S::decode(p);
-    EXPECT_EQ(defaults.method, S::Method::Dir);
-    EXPECT_EQ(defaults.geometryPasses, S::GeometryPasses::One);
-    EXPECT_TRUE(defaults.nearby);
-    EXPECT_EQ(defaults.tir, S::Tir::Reflect); // as light does (and the reference)
-    for (const auto& [key, value] : {std::pair{"method", "isr"},
-                                     {"glass", "all"},
-                                     {"ior", "1.33"},
-                                     {"dispersion", "0.5"},
-                                     {"tint", "0.5,0.25,1"},
-                                     {"absorption-distance", "2"},
-                                     {"fresnel", "schlick"},
-                                     {"search-steps", "9"},
-                                     {"tir", "clamp"},
-                                     {"tir-bounces", "3"},
-                                     {"back-surface", "first"},
-                                     {"geometry-passes", "two"},
-                                     {"dispersion-search", "per-channel"},
-                                     {"nearby", "off"},
-                                     {"debug", "steps"}})
-        ASSERT_TRUE(p.set(key, value).ok()) << key;
-    const S s = S::decode(p);
-    EXPECT_EQ(s.method, S::Method::Isr);
-    EXPECT_TRUE(s.twoInterfaces());
-    EXPECT_EQ(s.glass, S::Glass::All);
-    EXPECT_DOUBLE_EQ(s.ior, 1.33);
-    EXPECT_DOUBLE_EQ(s.dispersion, 0.5);
-    EXPECT_EQ(s.tint, glm::dvec3(0.5, 0.25, 1.0));
-    EXPECT_DOUBLE_EQ(s.absorptionDistance, 2.0);
-    EXPECT_EQ(s.fresnel, S::Fresnel::Schlick);
-    EXPECT_EQ(s.searchSteps, 9);
-    EXPECT_EQ(s.tir, S::Tir::Clamp);
-    EXPECT_EQ(s.tirBounces, 3);
-    EXPECT_EQ(s.backSurface, S::BackSurface::First);
-    EXPECT_EQ(s.geometryPasses, S::GeometryPasses::Two);
-    EXPECT_EQ(s.dispersionSearch, S::DispersionSearch::PerChannel);
-    EXPECT_FALSE(s.nearby);
-    EXPECT_EQ(s.debug, 6); // "steps" is the debug list's seventh entry
-    ASSERT_TRUE(p.set("method", "sir").ok());
-    EXPECT_FALSE(S::decode(p).twoInterfaces());
+    std::size_t choices = 0;
+    for (const plugin::Parameter& parameter : S::parameterTable())
+        if (parameter.name == "method")
+            choices = parameter.choices.size();
+    EXPECT_EQ(choices, std::size(all));
+    for (const Expected& e : all) {
+        ASSERT_TRUE(p.set("method", e.method).ok()) << e.method;
+        const S s = S::decode(p);
+        EXPECT_EQ(s.method, e.decoded) << e.method;
+        EXPECT_EQ(s.twoInterfaces(), e.twoInterfaces) << e.method;
+        EXPECT_EQ(s.traces(), e.traces) << e.method;
+        EXPECT_EQ(s.usesGlassBvh(), e.bvh) << e.method;
+        EXPECT_EQ(s.usesNormalDistance(), e.normalDistance) << e.method;
+        EXPECT_EQ(s.layered(), e.layered) << e.method;
+    }
 }
 
 TEST(Settings, GlassFollowsMethodAndSelection) {

@@ -24,6 +24,8 @@ struct PipelineState {
     bool depthWrite = true;
     DepthFunc depthFunc = DepthFunc::Less;
     Blend blend = Blend::None;
+    /** Front faces wind clockwise on screen (a mirrored mesh: glTF reverses its winding). */
+    bool clockwise = false;
 };
 
 void apply(const PipelineState& state);

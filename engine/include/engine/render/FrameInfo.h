@@ -79,6 +79,9 @@ struct DrawItem {
     const gl::VertexArray* vertexArray = nullptr;   ///< binds the primitive's index buffer
     const MaterialTextures* materials = nullptr;    ///< the model's textures
     glm::mat4 world{1.0f}; ///< mesh node to world space (the character's placement included)
+    /** `world` mirrors (a negative determinant): glTF's winding is reversed, its front faces
+     *  clockwise (PipelineState::clockwise; a traced or referenced winding flips too). */
+    bool mirrored = false;
     /** Identifies the character's GPU placement across frames (GpuDeformer::serial()): what a
      *  plugin keys per-character caches on. A new value means new vertex buffers. */
     std::uint64_t key = 0;
