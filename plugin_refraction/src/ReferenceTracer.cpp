@@ -244,7 +244,8 @@ public:
 
     /** Radiance of channel `c` arriving along `path` from its origin, through every surface it
      *  meets (model::crossInterface): Beer-Lambert in each glass segment, the reflections of
-     *  interfaces into glass followed as branches of their own (model::kSplitDepth), then
+     *  interfaces into glass followed as branches of their own (the model's split rule where
+     *  deterministic, model::kSampledSplitDepth where sampled), then
      *  looked up along their direction (deterministic) or chosen by Fresnel (sampled). A path
      *  ends at an opaque surface, the ground or the environment, when its throughput is
      *  negligible, or: deterministic, after the trace's interfaces (seeing what lies along it);
@@ -301,7 +302,11 @@ public:
             mirror.interfaces = path.interfaces;
             mirror.crossings = path.crossings;
             mirror.roughness = std::max(before.roughness, met.surface.roughness);
-            if (path.splits < model::kSplitDepth && mirror.weight >= model::kSplitWeight) {
+            const bool split = mEvaluation.deterministic
+                                   ? path.splits < model::kSplitDepth &&
+                                         mirror.weight >= model::kSplitWeight
+                                   : path.splits < model::kSampledSplitDepth;
+            if (split) {
                 ++path.splits;
                 mirror.splits = path.splits;
                 light += follow(mirror, c, rng, trapped);

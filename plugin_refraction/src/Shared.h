@@ -62,6 +62,10 @@ inline constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x400
                                kMirroredTag = 0x20000000u;
 /** A layer's attributes (layers.glsl): bits 0-7 its glass id, this bit front-facing. */
 inline constexpr std::uint32_t kLayerFront = 256u;
+/** A depth slot with no layer, a pixel without the opaque scene (the depth maps' clear value);
+ *  a depth from kUnusedDepth up marks one. The pair's MAX-blended targets clear to
+ *  kNoSurface (below any fragment). */
+inline constexpr float kNoDepth = 3.0e38f, kUnusedDepth = 1.0e38f, kNoSurface = -3.0e38f;
 /** Glass ids a layer can name (8 bits, less the walk's 0 for air). */
 inline constexpr std::size_t kMaxGlassIds = 255;
 

@@ -102,12 +102,12 @@ vec4 storedDepths(ivec2 p, int g) {
     vec4 slots = vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0);
     if (n > kLayerCapacity) {
         uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
-        vec4 d = vec4(front != 0xFFFFFFFFu ? fallbackDepth(front) : 3.0e38,
-                      back != 0u ? fallbackDepth(back) : 3.0e38, 3.0e38, 3.0e38);
-        return g == 0 ? d : vec4(3.0e38);
+        vec4 d = vec4(front != 0xFFFFFFFFu ? fallbackDepth(front) : NO_DEPTH,
+                      back != 0u ? fallbackDepth(back) : NO_DEPTH, NO_DEPTH, NO_DEPTH);
+        return g == 0 ? d : vec4(NO_DEPTH);
     }
     vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
-    return mix(vec4(3.0e38), d, vec4(lessThan(slots, vec4(float(n)))));
+    return mix(vec4(NO_DEPTH), d, vec4(lessThan(slots, vec4(float(n)))));
 }
 
 #ifdef LAYER_DEPTH_MAPS
@@ -118,7 +118,7 @@ layout(binding = LAYER_DEPTH_MAPS_UNIT + 1) uniform sampler2D uLayerDepths1;
 // The maps as stored: an overflowing pixel's pair negated (layerOverflow).
 vec4 storedMap(ivec2 p, int g) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
-        return vec4(3.0e38);
+        return vec4(NO_DEPTH);
     return g == 0 ? texelFetch(uLayerDepths0, p, 0) : texelFetch(uLayerDepths1, p, 0);
 }
 

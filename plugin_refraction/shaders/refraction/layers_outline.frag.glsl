@@ -14,7 +14,7 @@ uniform vec2 uViewportSize;
 out vec4 outColor;
 
 const float kSameSurface = 0.05; // neighbours on one surface: depths within 5%
-const float kNone = 3.0e38;
+const float kNone = NO_DEPTH;
 
 // Pixel p's nearest layer (walk.frag.glsl): x its depth (kNone: none), y its glass id,
 // z the part across.

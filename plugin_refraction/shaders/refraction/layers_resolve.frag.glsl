@@ -13,5 +13,5 @@ void main() {
     outDepths0 = storedDepths(p, 0);
     if (overflow)
         outDepths0.xy = -outDepths0.xy;
-    outDepths1 = kDepthGroups > 1 ? storedDepths(p, 1) : vec4(3.0e38);
+    outDepths1 = kDepthGroups > 1 ? storedDepths(p, 1) : vec4(NO_DEPTH);
 }

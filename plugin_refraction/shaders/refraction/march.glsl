@@ -29,9 +29,9 @@ float linearDepth(float d) {
 // screen).
 float sceneDepthAt(ivec2 p) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
-        return 3.0e38;
+        return NO_DEPTH;
     float d = texelFetch(uSceneDepth, p, 0).r;
-    return d < 1.0 ? linearDepth(d) : 3.0e38;
+    return d < 1.0 ? linearDepth(d) : NO_DEPTH;
 }
 
 struct ScreenRay {
@@ -74,7 +74,7 @@ bool marchHolds(ScreenRay r, float from, float a, int test, int parity) {
     if (test == MARCH_SCENE)
         return z <= sceneDepthAt(p);
     float d = storedMap(p, 0)[test == MARCH_BACK ? 1 : 0];
-    return d < 1.0e38 && (test == MARCH_BACK ? z < d : z > d);
+    return d < UNUSED_DEPTH && (test == MARCH_BACK ? z < d : z > d);
 }
 
 // `halvings` halvings between inside (the test holds) and outside (it does not), the last

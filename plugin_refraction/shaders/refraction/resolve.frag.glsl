@@ -71,7 +71,7 @@ void main() {
     layerHeads[pixel] = uint(front.present) + uint(back.present);
     layerAttr[pixel * 2u] = uvec2(packOctNormal(front.normal), front.glass | kLayerFront | (d << 16));
     layerAttr[pixel * 2u + 1u] = uvec2(packOctNormal(back.normal), back.glass);
-    outDepths0 = vec4(front.present ? front.z : 3.0e38, back.present ? back.z : 3.0e38, 3.0e38, 3.0e38);
+    outDepths0 = vec4(front.present ? front.z : NO_DEPTH, back.present ? back.z : NO_DEPTH, NO_DEPTH, NO_DEPTH);
     if (back.present) {
         atomicMin(glassBackRange[0], floatBitsToUint(back.z));
         atomicMax(glassBackRange[1], floatBitsToUint(back.z));

@@ -23,7 +23,7 @@ uniform vec3 uViewOriginWorld; // the camera in world space
 bool crossesScene(float last, ivec2 lastPixel, float reached, ivec2 hitPixel) {
     float surface = sceneDepthAt(hitPixel), front = sceneDepthAt(lastPixel);
     float slack = abs(reached - last) + 0.01 * reached +
-                  (front < 1.0e38 ? abs(front - surface) : 0.0);
+                  (front < UNUSED_DEPTH ? abs(front - surface) : 0.0);
     return last <= surface + slack;
 }
 

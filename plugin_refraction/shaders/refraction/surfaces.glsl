@@ -11,7 +11,7 @@
 #ifndef REFRACTION_SURFACES_GLSL
 #define REFRACTION_SURFACES_GLSL
 
-const float kNoSurface = -3.0e38; // the clear value: MAX keeps any fragment over it
+const float kNoSurface = NO_SURFACE; // the clear value: MAX keeps any fragment over it
 
 uniform float uKeyNear;     // log depth range of the keys: near plane ...
 uniform float uKeyLogRange; // ... and log2(far / near)

@@ -170,14 +170,14 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr,
     attr = uvec2(0u);
     surface = GlassSurface(vec3(1.0), 1.0, 0.0, 0.0);
     int passed = -1, closest = -1;
-    float passedDepth = deeper ? -1.0 : 3.0e38, closestGap = 3.0e38;
+    float passedDepth = deeper ? -1.0 : NO_DEPTH, closestGap = NO_DEPTH;
     bool overflow = false;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 stored = storedMap(p, g);
         overflow = overflow || (g == 0 && stored.x < 0.0);
         vec4 d = abs(stored);
         for (int k = 0; k < 4; ++k) {
-            if (d[k] >= 1.0e38)
+            if (d[k] >= UNUSED_DEPTH)
                 continue;
             int i = 4 * g + k;
             if (deeper ? d[k] <= z && d[k] > passedDepth : d[k] >= z && d[k] < passedDepth) {
@@ -323,7 +323,7 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
     // The first exit is searched for only going deeper, the way to the back; where it cannot be,
     // the ray leaves where it is, by the silhouette's normal (as where the search left the map).
     if (back ? zBackMax <= 0.0 || (first && dir.z > -1e-6)
-             : first || zFrontMin <= 0.0 || zFrontMin >= 3.0e38) {
+             : first || zFrontMin <= 0.0 || zFrontMin >= NO_DEPTH) {
         c.found = first;
         return c;
     }
@@ -332,7 +332,7 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
     float inside = 0.0, outside = 1.0;
     c.steps = refine(r, test, 0, inside, outside, uSteps, true);
     ivec2 p = pixelAt(r, fractionAt(r, inside));
-    c.silhouette = storedMap(p, 0)[back ? 1 : 0] >= 1.0e38;
+    c.silhouette = storedMap(p, 0)[back ? 1 : 0] >= UNUSED_DEPTH;
     c.found = first || !c.silhouette;
     c.point = c.beyond = mix(r.S, r.E, inside);
     c.attr = layerAttrAt(p, back ? 1 : 0);
@@ -385,7 +385,7 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(pixelOf(P1), g);
         for (int k = 0; k < 4; ++k)
-            if (d[k] < 1.0e38 && d[k] > z1 + 1e-5 * z1 && (next == 0.0 || d[k] < next))
+            if (d[k] < UNUSED_DEPTH && d[k] > z1 + 1e-5 * z1 && (next == 0.0 || d[k] < next))
                 next = d[k];
     }
     float dV = next > 0.0 ? (next - z1) / max(abs(V.z), 1e-4) : 0.0;
@@ -399,7 +399,7 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     // The back there, or Wyman's silhouette normal (crossingNormal).
     c.attr = layerAttrAt(pixelOf(c.point), 1);
     c.surface = materialSurface(glassMaterials[layerGlass(c.attr)]);
-    c.silhouette = layerDepths(pixelOf(c.point), 0).y >= 1.0e38;
+    c.silhouette = layerDepths(pixelOf(c.point), 0).y >= UNUSED_DEPTH;
 #else
     // No layer there, or one facing the ray (the estimate fell short of the far side, or past
     // the outline): Wyman's silhouette normal.
@@ -764,14 +764,14 @@ struct Entry {
 
 bool pixelEntry(ivec2 p, out Entry e) {
     // The nearest and farthest layers from the depth map, then the nearest's attributes alone.
-    e.z = 3.0e38;
+    e.z = NO_DEPTH;
     e.far = 0.0;
     e.farthest = 0;
     int nearest = -1;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(p, g);
         for (int k = 0; k < 4; ++k) {
-            if (d[k] >= 1.0e38)
+            if (d[k] >= UNUSED_DEPTH)
                 continue;
             if (d[k] < e.z) {
                 e.z = d[k];
@@ -785,7 +785,7 @@ bool pixelEntry(ivec2 p, out Entry e) {
     }
 #if CAPTURE_PAIR
     // The papers' model enters at the nearest front (a back face nearer than it is not entered).
-    nearest = e.z < 3.0e38 && layerDepths(p, 0).x < 1.0e38 ? 0 : -1;
+    nearest = e.z < NO_DEPTH && layerDepths(p, 0).x < UNUSED_DEPTH ? 0 : -1;
     e.z = layerDepths(p, 0).x;
 #endif
     if (nearest < 0 || e.z >= sceneDepthAt(p))

@@ -6,11 +6,6 @@
 #include <cmath>
 
 namespace refraction {
-namespace {
-
-constexpr float kNoSurface = -3.0e38f; // surfaces.glsl: the MAX-blended targets' clear value
-
-} // namespace
 
 PairTargets addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;

@@ -6,11 +6,6 @@
 #include <vector>
 
 namespace refraction {
-namespace {
-
-constexpr float kNoLayer = 3.0e38f; // layers.glsl: an unused depth
-
-} // namespace
 
 Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
                            const FrameBuffers& buffers, fg::TextureHandle mask) {
@@ -42,7 +37,7 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
                 !bound)
                 return bound;
             for (int i = 0; i < int(targets.size()); ++i)
-                gl::clearColor(i, glm::vec4(kNoLayer));
+                gl::clearColor(i, glm::vec4(kNoDepth));
             gpu.layersResolve.use();
             c.setLayerUniforms(gpu.layersResolve);
             c.drawMaskedRectangle();

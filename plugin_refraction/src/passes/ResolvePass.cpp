@@ -53,7 +53,7 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
                 !bound)
                 return bound;
             // Outside the glass rectangle: no surface, and the mask rejects.
-            gl::clearColor(0, glm::vec4(3.0e38f));
+            gl::clearColor(0, glm::vec4(kNoDepth));
             for (int i = 1; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(0.0f));
             gl::clearDepth(1.0f);
