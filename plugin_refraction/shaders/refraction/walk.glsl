@@ -536,161 +536,186 @@ Path entryPath(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int ch
     return path;
 }
 
-// The walk of a pixel's refracted paths in channel `channel`, from the entry P1 (view direction
-// V, normal N1 facing it, layer entryAttr, its surface s): the primary path crossing interface
-// after interface (crossInterface) up to N, each crossing found by the method (searched in the
-// layers, estimated, or traced), an opaque part met on the way ending it; the reflections of
-// interfaces into glass the trace's branches (SPLIT_DEPTH, as the reference), the walk's looked
-// up once.
-Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int channel,
-                inout uint rng) {
+// A walk starting at the entry P1 (view direction V, normal N1 facing it) on `path`.
+Walk startWalk(vec3 P1, vec3 V, vec3 N1, Path path) {
     Walk w;
-    w.path = entryPath(P1, V, N1, entryAttr, s, channel, rng);
+    w.path = path;
     w.opaque = false;
     w.seen = w.light = w.reflected = w.reflectedDir = vec3(0.0);
     w.reflectedRoughness = 0.0;
     w.lastIncoming = V;
     w.lastNormal = N1;
     w.lastFrom = 0u;
-    w.lastTo = topMedium(w.path.media);
+    w.lastTo = topMedium(path.media);
     w.firstExit = P1;
     w.tir = w.fallback = w.hardReflection = w.outline = w.overflowed = false;
     w.steps = 0;
     w.sightLayers = kMethod == METHOD_HYBRID ? storedCount(pixelOf(P1)) : 0;
+    return w;
+}
+
+// Where a path ends: on the opaque scene (seen as `seen`), else past its last interface.
+struct PathEnd {
+    bool opaque;
+    vec3 seen;
+};
+
+// The surface a crossing c meets (the path in `inside`): a recorded layer's glass, or where the
+// ray left the glass's outline, or over the pair capture, the glass it is in, which it leaves;
+// its normal (`N`, filtered where the layers give it: `outline` near an outline).
+SurfaceMet crossingSurface(Crossing c, Path path, uint inside, out vec3 N, out bool outline) {
+    bool leaves = c.silhouette || kPairCapture; // every crossing of the pair leaves its glass
+    uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
+    N = c.silhouette ? silhouetteNormal(path.dir) : layerNormal(c.attr);
+    // A traced crossing knows its side from the winding; a layer's from its normal.
+    bool enters = !leaves && (kTrace ? layerFront(c.attr) : dot(path.dir, N) < 0.0);
+    outline = false;
+    if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
+        N = crossingNormal(c, path.dir, outline);
+    return SurfaceMet(glass, leaves ? materialSurface(glassMaterials[glass - 1u]) : c.surface,
+                      enters);
+}
+
+// One step of a path: the next interface found (searched, estimated or traced), the segment
+// up to it absorbed, the surface crossed (crossInterface); false where the path ends (on an
+// opaque part: `end`). An interface into glass leaves its reflection in `mirror` (reflects).
+// The walk's record (w) follows the primary path.
+bool walkStep(inout Walk w, inout Path path, inout Segment seg, inout PathEnd end, int channel,
+              bool primary, inout uint rng, out Path mirror, out bool reflects) {
+    reflects = false;
+    uint inside = topMedium(path.media);
+    bool estimated = kMethod == METHOD_ISR && inside != 0u && seg.fromEntry;
+    Crossing c = estimated ? estimateExit(path.P, w.lastIncoming, w.lastNormal, path.dir,
+                                          1.0 / path.ior, seg.entry)
+                           : searchExit(path.P, path.dir, seg.parity, inside != 0u, seg.fromEntry);
+    w.steps += c.steps;
+    if (!c.found)
+        return false;
+    // An opaque part before the next interface (inside the glass, or between two pieces) ends
+    // the path: it sees it, as the lookup after the walk sees the nearby scene.
+    float hitT;
+    if (opaqueBefore(c, path.P, path.dir, hitT, end.seen)) {
+        path.weight *= exp(-path.sigma * hitT);
+        path.P += path.dir * hitT;
+        end.opaque = true;
+        return false;
+    }
+    path.weight *= exp(-path.sigma * length(c.point - path.P));
+    path.P = c.point;
+    if (primary && path.interfaces == 1)
+        w.firstExit = path.P;
+    // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on, the far
+    // side: there the count is read afresh.
+    int parityBefore = seg.parity;
+    seg.parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
+                           : seg.parity ^ 1;
+    if (c.silhouette && inside == 0u)
+        return false; // in air and off every layer: nothing more to cross
+    vec3 N;
+    bool outline;
+    SurfaceMet met = crossingSurface(c, path, inside, N, outline);
+    w.fallback = w.fallback || c.silhouette;
+    w.overflowed = w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
+    w.outline = w.outline || outline;
+    vec3 facing = dot(N, path.dir) < 0.0 ? N : -N;
+    vec3 m = crossingFacet(facing, path.dir, met.surface, rng);
+    float band = kTrace ? 0.0 : estimated ? kEstimatedTirBand
+                                          : outline || seg.fromOutline ? kOutlineTirBand : kTirBand;
+    // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
+    // image-space searches, whose error grows with every bounce).
+    bool mayReflect = uTirPolicy == TIR_REFLECT && (kTrace || seg.bounces < uBounces);
+    Path before = path;
+    vec3 reflected;
+    int crossed = crossInterface(path, met, m, channel, band, mayReflect, reflected);
+    if (crossed == CROSSED_PASSED) { // overlapping glass of one index: straight on
+        path.P = c.beyond;
+        return true;
+    }
+    if (m != facing) // a sampled microfacet's share of the light, the way it went
+        path.weight *= microfacetWeight(path.dir, m, facing, met.surface.roughness,
+                                        crossed != CROSSED_REFLECTED);
+    w.tir = w.tir || crossed == CROSSED_REFLECTED || crossed == CROSSED_GRAZING;
+    if (crossed == CROSSED_REFLECTED) {
+        ++seg.bounces;
+        w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
+                           seg.bounces > 1 || w.sightLayers > 2 || path.dir.z > 0.0;
+        seg.parity = parityBefore;
+        seg.fromEntry = false;
+        return true;
+    }
+    // Across the interface: the refracted ray starts on its far side, in the new medium.
+    seg = Segment(seg.parity, c.attr, inside == 0u && topMedium(path.media) != 0u, outline,
+                  seg.bounces);
+    if (primary) {
+        w.lastIncoming = before.dir;
+        w.lastNormal = facing;
+        w.lastFrom = inside;
+        w.lastTo = topMedium(path.media);
+    }
+    path.P = c.beyond;
+    reflects = reflected != vec3(0.0);
+    mirror = before; // the interface's reflection, from where the path met it
+    mirror.dir = reflect(before.dir, m);
+    mirror.weight = reflected * (m != facing ? microfacetWeight(mirror.dir, m, facing,
+                                                                met.surface.roughness, false)
+                                             : 1.0);
+    mirror.interfaces = path.interfaces;
+    mirror.crossings = path.crossings;
+    mirror.roughness = max(before.roughness, met.surface.roughness);
+    return true;
+}
+
+// What becomes of the reflection of an interface into glass (`mirror`, left by `path`): the
+// trace follows it as a path of its own once this one ends (`pending`) while it may split,
+// else it sees the environment along it; the walk's are looked up once, after the walk.
+void keepReflection(inout Walk w, inout Path path, Path mirror, inout Path pending[SPLIT_DEPTH],
+                    inout int waiting) {
+#if LAYER_METHOD == METHOD_TRACE
+    if (path.splits < SPLIT_DEPTH && waiting < SPLIT_DEPTH &&
+        max(max(mirror.weight.r, mirror.weight.g), mirror.weight.b) >= SPLIT_WEIGHT) {
+        mirror.splits = ++path.splits;
+        pending[waiting++] = mirror;
+    } else { // the rest sees the environment along it (the reference picks a branch)
+        w.light += mirror.weight *
+                   environmentRadiance(uViewToWorld * mirror.dir, lookupRoughness(mirror));
+    }
+#else
+    w.reflected += mirror.weight;
+    w.reflectedDir += dot(mirror.weight, vec3(1.0)) * mirror.dir;
+    w.reflectedRoughness = mirror.roughness;
+#endif
+}
+
+// The walk of a pixel's refracted paths in channel `channel`, from the entry P1 (view direction
+// V, normal N1 facing it, layer entryAttr, its surface s): the primary path step by step up to
+// N interfaces (walkStep), then the trace's branches (keepReflection), each to its end.
+Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int channel,
+                inout uint rng) {
+    Walk w = startWalk(P1, V, N1, entryPath(P1, V, N1, entryAttr, s, channel, rng));
     Path path = w.path;
     Segment seg = Segment(1, entryAttr, true, false, 0);
-    // The trace's branches waiting to be walked (each split adds one, SPLIT_DEPTH at most).
-    Path pending[SPLIT_DEPTH];
+    Path pending[SPLIT_DEPTH]; // the trace's branches waiting to be walked
+    for (int i = 0; i < SPLIT_DEPTH; ++i)
+        pending[i] = path;
     int waiting = 0;
     // On a CPU rasteriser every lane of a SIMD group runs the loop's whole body as long as one
     // lane walks on.
     for (int branch = 0;; ++branch) {
-        bool opaque = false;
-        vec3 seen = vec3(0.0);
+        PathEnd end = PathEnd(false, vec3(0.0));
+        Path mirror;
+        bool reflects;
         while (kMethod != METHOD_SIR && path.interfaces < uInterfaces &&
-               path.crossings < 2 * uInterfaces) {
-            if (branch == 0 && stopsToHandOver(w))
-                break;
-            uint inside = topMedium(path.media);
-            bool estimated = kMethod == METHOD_ISR && inside != 0u && seg.fromEntry;
-            Crossing c = estimated ? estimateExit(path.P, w.lastIncoming, w.lastNormal, path.dir,
-                                                  1.0 / path.ior, seg.entry)
-                                   : searchExit(path.P, path.dir, seg.parity, inside != 0u,
-                                                seg.fromEntry);
-            w.steps += c.steps;
-            if (!c.found)
-                break;
-            // An opaque part before the next interface (inside the glass, or between two
-            // pieces) ends the path: it sees it, as the lookup after the walk sees the nearby
-            // scene.
-            float hitT;
-            if (opaqueBefore(c, path.P, path.dir, hitT, seen)) {
-                path.weight *= exp(-path.sigma * hitT);
-                path.P += path.dir * hitT;
-                opaque = true;
-                break;
-            }
-            path.weight *= exp(-path.sigma * length(c.point - path.P));
-            path.P = c.point;
-            if (branch == 0 && path.interfaces == 1)
-                w.firstExit = path.P;
-            // The count's parity flips at a crossing; an estimated exit (ISR) lies near, not on,
-            // the far side: there the count is read afresh.
-            int parityBefore = seg.parity;
-            seg.parity = estimated ? (inSegment(pixelOf(c.beyond), -c.beyond.z, -c.beyond.z, 0) ? 0 : 1)
-                                   : seg.parity ^ 1;
-            // The surface crossed: a recorded layer, or (the ray left the glass's outline) the
-            // glass the ray is in, with Wyman's silhouette normal.
-            if (c.silhouette && inside == 0u)
-                break; // in air and off every layer: nothing more to cross
-            // Every crossing of the pair from its glass leaves it.
-            bool leaves = c.silhouette || kPairCapture;
-            uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
-            vec3 N = c.silhouette ? silhouetteNormal(path.dir) : layerNormal(c.attr);
-            w.fallback = w.fallback || c.silhouette;
-            w.overflowed =
-                w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
-            // A traced crossing knows its side from the winding; a layer's from its normal.
-            bool enters = !leaves && (kTrace ? layerFront(c.attr) : dot(path.dir, N) < 0.0);
-            bool outline = false;
-            if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
-                N = crossingNormal(c, path.dir, outline);
-            w.outline = w.outline || outline;
-            GlassSurface surface =
-                leaves ? materialSurface(glassMaterials[glass - 1u]) : c.surface;
-            vec3 facing = dot(N, path.dir) < 0.0 ? N : -N;
-            vec3 m = crossingFacet(facing, path.dir, surface, rng);
-            float band = kTrace      ? 0.0
-                         : estimated ? kEstimatedTirBand
-                         : outline || seg.fromOutline ? kOutlineTirBand : kTirBand;
-            // A traced path reflects as often as its interfaces allow (tir-bounces bounds the
-            // image-space searches, whose error grows with every bounce).
-            bool mayReflect = uTirPolicy == TIR_REFLECT && (kTrace || seg.bounces < uBounces);
-            Path before = path;
-            vec3 reflected;
-            int crossed = crossInterface(path, SurfaceMet(glass, surface, enters), m, channel,
-                                         band, mayReflect, reflected);
-            if (crossed == CROSSED_PASSED) { // overlapping glass of one index: straight on
-                path.P = c.beyond;
-                continue;
-            }
-            bool rough = m != facing;
-            if (rough) // the facet's share of the light, the way it went
-                path.weight *= microfacetWeight(path.dir, m, facing, surface.roughness,
-                                                crossed != CROSSED_REFLECTED);
-            w.tir = w.tir || crossed == CROSSED_REFLECTED || crossed == CROSSED_GRAZING;
-            if (crossed == CROSSED_REFLECTED) {
-                ++seg.bounces;
-                w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
-                                   seg.bounces > 1 || w.sightLayers > 2 || path.dir.z > 0.0;
-                seg.parity = parityBefore;
-                seg.fromEntry = false;
-                continue;
-            }
-            // Across the interface: the refracted ray starts on its far side, in the new medium.
-            seg.fromOutline = outline;
-            seg.fromEntry = inside == 0u && topMedium(path.media) != 0u;
-            seg.entry = c.attr;
-            if (branch == 0) {
-                w.lastIncoming = before.dir;
-                w.lastNormal = facing;
-                w.lastFrom = inside;
-                w.lastTo = topMedium(path.media);
-            }
-            path.P = c.beyond;
-            if (reflected == vec3(0.0))
-                continue;
-            // The reflection of an interface into glass.
-            Path mirror = before;
-            mirror.dir = reflect(before.dir, m);
-            mirror.weight = reflected * (rough ? microfacetWeight(mirror.dir, m, facing,
-                                                                  surface.roughness, false)
-                                               : 1.0);
-            mirror.interfaces = path.interfaces;
-            mirror.crossings = path.crossings;
-            mirror.roughness = max(before.roughness, surface.roughness);
-#if LAYER_METHOD == METHOD_TRACE
-            if (path.splits < SPLIT_DEPTH && waiting < SPLIT_DEPTH &&
-                max(max(mirror.weight.r, mirror.weight.g), mirror.weight.b) >= SPLIT_WEIGHT) {
-                mirror.splits = ++path.splits;
-                pending[waiting++] = mirror; // a path of its own, once this one ends
-            } else { // the rest sees the environment along it (the reference picks a branch)
-                w.light += mirror.weight * environmentRadiance(uViewToWorld * mirror.dir,
-                                                               lookupRoughness(mirror));
-            }
-#else
-            w.reflected += mirror.weight;
-            w.reflectedDir += dot(mirror.weight, vec3(1.0)) * mirror.dir;
-            w.reflectedRoughness = mirror.roughness;
-#endif
-        }
+               path.crossings < 2 * uInterfaces && !(branch == 0 && stopsToHandOver(w)) &&
+               walkStep(w, path, seg, end, channel, branch == 0, rng, mirror, reflects))
+            if (reflects)
+                keepReflection(w, path, mirror, pending, waiting);
+        float unused;
         if (branch == 0) {
             w.path = path;
-            w.opaque = opaque;
-            w.seen = seen;
+            w.opaque = end.opaque;
+            w.seen = end.seen;
         } else {
-            float unused;
-            w.light += pathSees(path, opaque, seen, unused) * path.weight;
+            w.light += pathSees(path, end.opaque, end.seen, unused) * path.weight;
         }
         if (waiting == 0)
             break;
