@@ -146,8 +146,7 @@ dvec3 sampleMicrofacet(const dvec3& n, double roughness, const dvec3& i, double 
     const double r = std::sqrt(u1), phi = 2.0 * M_PI * u2;
     const double p1 = r * std::cos(phi), s = 0.5 * (1.0 + vh.z);
     const double p2 = (1.0 - s) * std::sqrt(std::max(1.0 - p1 * p1, 0.0)) + s * r * std::sin(phi);
-    const dvec3 nh =
-        p1 * t1 + p2 * t2 + std::sqrt(std::max(1.0 - p1 * p1 - p2 * p2, 0.0)) * vh;
+    const dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(1.0 - p1 * p1 - p2 * p2, 0.0)) * vh;
     const dvec3 m = glm::normalize(dvec3(a * nh.x, a * nh.y, std::max(nh.z, 0.0)));
     return glm::normalize(m.x * tx + m.y * ty + m.z * n);
 }

@@ -50,8 +50,7 @@ struct GlassMaterialGpu {
     float normalScale = 1.0f;
     std::uint32_t authored; ///< glass by its own transmission
     std::uint32_t spare = 0;
-    TracedTextureGpu normalTexture, baseColorTexture, metallicRoughnessTexture,
-        transmissionTexture;
+    TracedTextureGpu normalTexture, baseColorTexture, metallicRoughnessTexture, transmissionTexture;
 };
 static_assert(sizeof(GlassMaterialGpu) == 16 * 16);
 

@@ -28,8 +28,9 @@ Optics opticsFor(const Settings& s, const scene::Material* m,
     const glm::vec3 attenuation = (m ? m->attenuationColor : glm::vec3(1.0f)) * tint;
     // The tint acts on all glass: where the material sets no attenuation distance, over the
     // glass's own extent (the colour white light takes through its thinnest side).
-    const float materialDistance = m ? m->attenuationDistance : std::numeric_limits<float>::infinity();
-    const float distance = s.absorptionDistance > 0.0       ? float(s.absorptionDistance)
+    const float materialDistance =
+        m ? m->attenuationDistance : std::numeric_limits<float>::infinity();
+    const float distance = s.absorptionDistance > 0.0        ? float(s.absorptionDistance)
                            : std::isfinite(materialDistance) ? materialDistance
                            : tint != glm::vec3(1.0f)         ? float(extent)
                                                              : materialDistance;

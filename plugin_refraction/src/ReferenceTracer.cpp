@@ -274,8 +274,8 @@ public:
             const model::SurfaceMet met{&h.surface->optics, h.surface->solid, glassSurface(h),
                                         glm::dot(path.dir, h.geometricNormal) < 0.0};
             path.origin = h.point;
-            const dvec3 n = glm::dot(h.shadingNormal, path.dir) > 0 ? -h.shadingNormal
-                                                                     : h.shadingNormal;
+            const dvec3 n =
+                glm::dot(h.shadingNormal, path.dir) > 0 ? -h.shadingNormal : h.shadingNormal;
             const dvec3 m = facet(met.surface, n, path.dir, rng), incoming = path.dir;
             const model::Path before = path;
             double reflected = 0.0;
@@ -295,17 +295,16 @@ public:
                 continue;
             model::Path mirror = before;
             mirror.dir = glm::reflect(incoming, glm::dot(m, incoming) > 0 ? -m : m);
-            mirror.weight = reflected * (rough ? model::microfacetWeight(mirror.dir, m, n,
-                                                                         met.surface.roughness,
-                                                                         false)
-                                               : 1.0);
+            mirror.weight =
+                reflected *
+                (rough ? model::microfacetWeight(mirror.dir, m, n, met.surface.roughness, false)
+                       : 1.0);
             mirror.interfaces = path.interfaces;
             mirror.crossings = path.crossings;
             mirror.roughness = std::max(before.roughness, met.surface.roughness);
-            const bool split = mEvaluation.deterministic
-                                   ? path.splits < model::kSplitDepth &&
-                                         mirror.weight >= model::kSplitWeight
-                                   : path.splits < model::kSampledSplitDepth;
+            const bool split = mEvaluation.deterministic ? path.splits < model::kSplitDepth &&
+                                                               mirror.weight >= model::kSplitWeight
+                                                         : path.splits < model::kSampledSplitDepth;
             if (split) {
                 ++path.splits;
                 mirror.splits = path.splits;
@@ -371,8 +370,8 @@ public:
     /** What glass_surface.glsl's glassColor adds at the entry (normal n and view V facing each
      *  other) to `glass`, its reflection and transmission: the lights' highlights, the opaque
      *  term where transmission is partial, the clear coat and sheen, emission. */
-    dvec3 glassColor(const Hit& h, const Optics& o, const model::GlassSurface& s, dvec3 n,
-                     dvec3 V, dvec3 glass) const {
+    dvec3 glassColor(const Hit& h, const Optics& o, const model::GlassSurface& s, dvec3 n, dvec3 V,
+                     dvec3 glass) const {
         const render::cpu::Lighting lighting{mEnv, mLights};
         const double NoV = std::clamp(glm::dot(n, V), 1e-4, 1.0);
         const double alpha = std::pow(std::max(s.roughness, 0.03), 2.0);
@@ -383,10 +382,10 @@ public:
             const double NoL = glm::dot(n, L), VoH = std::max(glm::dot(V, H), 0.0);
             if (NoL > 0.0)
                 for (int c = 0; c < 3; ++c)
-                    glass[c] += arriving[c] * NoL *
-                                model::reflectance(mFresnel, o, s, VoH, 1.0 / o.ior.g, c) *
-                                render::cpu::ggxLobe(NoL, NoV, std::max(glm::dot(n, H), 0.0),
-                                                     alpha);
+                    glass[c] +=
+                        arriving[c] * NoL *
+                        model::reflectance(mFresnel, o, s, VoH, 1.0 / o.ior.g, c) *
+                        render::cpu::ggxLobe(NoL, NoV, std::max(glm::dot(n, H), 0.0), alpha);
         }
         render::cpu::Surface surface;
         surface.baseColor = s.baseColor;
@@ -450,10 +449,9 @@ core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, doub
                 const scene::Primitive* primitive = &source;
                 deform::Subdivision refined;
                 if (subdivision > 0) {
-                    auto built = deform::buildSubdivision(
-                        source, subdivision,
-                        "mesh " + std::to_string(instance.mesh) + " primitive " +
-                            std::to_string(p));
+                    auto built = deform::buildSubdivision(source, subdivision,
+                                                          "mesh " + std::to_string(instance.mesh) +
+                                                              " primitive " + std::to_string(p));
                     if (!built)
                         return built.error();
                     refined = std::move(*built);

@@ -46,7 +46,8 @@ inline constexpr TextureSlot kPairNormals{24, "PAIR_NORMALS_UNIT", 2};        //
 /** The pair capture's maps the resolve reads (resolve.frag.glsl): the one pass's nearest and
  *  farthest targets, or the two passes' front depth, front normal, back depth, back normal. */
 inline constexpr TextureSlot kPairMaps{26, "PAIR_MAPS_UNIT", 4};
-inline constexpr TextureSlot kOutlineSurface{30, "OUTLINE_SURFACE_UNIT"}; ///< the walk's nearest layers
+inline constexpr TextureSlot kOutlineSurface{30,
+                                             "OUTLINE_SURFACE_UNIT"}; ///< the walk's nearest layers
 /** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
  *  transmission and roughness (GpuState::tracedTextures). */
 inline constexpr TextureSlot kTracedTextures{31, "TRACED_TEXTURES_UNIT", 8};

@@ -54,6 +54,8 @@ std::vector<Row> rows() {
     const glm::vec3 warm(1.0f, 0.85f, 0.7f), cool(0.6f, 0.75f, 1.0f);
     const char* filtered = "at one sample the trace reads its entry's textures filtered over the "
                            "pixel, as the walk does; the deterministic reference at one point";
+    // One row a feature, kept as a table.
+    // clang-format off
     std::vector<Row> r = {
         {"no lights", sphere, {17.5, 31, 41, 40.5, 41, 60}},
         {"a directional light",
@@ -119,6 +121,7 @@ std::vector<Row> rows() {
          "the parts figure's hammered head reflects totally inside, where float and double part "
          "ways over a few bounces"},
     };
+    // clang-format on
     return r;
 }
 
@@ -162,9 +165,8 @@ TEST_P(Matrix, EveryMethodAgreesWithTheReference) {
     const char* out = std::getenv("GLASS_MATRIX_OUT");
     auto keep = [&](const std::string& what, const capture::Image& image) {
         if (out) {
-            EXPECT_TRUE(capture::writePng(std::string(out) + "/" + rowName(row) + "." + what +
-                                              ".png",
-                                          image)
+            EXPECT_TRUE(capture::writePng(
+                            std::string(out) + "/" + rowName(row) + "." + what + ".png", image)
                             .ok());
         }
     };

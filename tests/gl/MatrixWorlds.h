@@ -20,7 +20,8 @@
 namespace test::matrix {
 
 /** A glass material of its own (KHR_materials_transmission), clear and smooth. */
-inline scene::Material glassMaterial(glm::vec3 baseColor = glm::vec3(1.0f), float roughness = 0.0f) {
+inline scene::Material glassMaterial(glm::vec3 baseColor = glm::vec3(1.0f),
+                                     float roughness = 0.0f) {
     scene::Material m;
     m.name = "glass";
     m.baseColorFactor = glm::vec4(baseColor, 1.0f);
@@ -127,8 +128,8 @@ inline scene::World robot(bool blackAndMetal) {
     const int tinted = c.material(opaqueMaterial({0.9f, 0.5f, 0.2f}, 0.0f, 0.6f));
     const int arm = blackAndMetal ? c.material(opaqueMaterial({0.02f, 0.02f, 0.02f}, 0.0f, 0.4f))
                                   : c.material(opaqueMaterial({0.3f, 0.55f, 0.9f}, 0.0f, 0.4f));
-    const int other = blackAndMetal ? c.material(opaqueMaterial({0.7f, 0.7f, 0.75f}, 1.0f, 0.3f))
-                                    : grey;
+    const int other =
+        blackAndMetal ? c.material(opaqueMaterial({0.7f, 0.7f, 0.75f}, 1.0f, 0.3f)) : grey;
     c.part(false, grey, {0.0, 1.0, 0.0}, {0.3, 0.35, 0.18});
     c.part(false, light, {0.0, 1.45, 0.0}, {0.18, 0.16, 0.16});
     c.part(true, tinted, {0.0, 1.3, 0.0}, glm::dvec3(0.16));
@@ -155,12 +156,12 @@ inline scene::World texturedGlass() {
     m.roughnessFactor = 1.0f;
     m.metallicFactor = 1.0f;
     m.baseColorTexture.texture = c.texture(64, [](int x, int y) {
-        return ((x / 8 + y / 8) % 2) ? glm::u8vec4(255, 200, 120, 255) : glm::u8vec4(120, 190, 255, 255);
+        return ((x / 8 + y / 8) % 2) ? glm::u8vec4(255, 200, 120, 255)
+                                     : glm::u8vec4(120, 190, 255, 255);
     });
     m.baseColorTexture.transform = glm::mat3(2.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.1f, 0.0f, 1.0f);
-    m.transmissionTexture.texture = c.texture(64, [](int x, int) {
-        return glm::u8vec4((x / 6) % 4 == 0 ? 60 : 255, 0, 0, 255);
-    });
+    m.transmissionTexture.texture = c.texture(
+        64, [](int x, int) { return glm::u8vec4((x / 6) % 4 == 0 ? 60 : 255, 0, 0, 255); });
     m.metallicRoughnessTexture.texture = c.texture(64, [](int, int y) {
         const std::uint8_t rough = (y / 8) % 2 ? 0 : 90, metal = (y / 16) % 3 == 0 ? 200 : 0;
         return glm::u8vec4(0, rough, metal, 255);
@@ -228,8 +229,7 @@ inline scene::World instanced() {
     const int node = c.part(true, c.material(glassMaterial()), glm::dvec3(0.0), glm::dvec3(0.45));
     for (const glm::dvec3 at : {glm::dvec3(-1.2, 0.0, 0.0), glm::dvec3(-0.4, 0.4, -0.8),
                                 glm::dvec3(0.4, -0.3, 0.6), glm::dvec3(1.2, 0.2, -0.3)})
-        c.model.nodes[std::size_t(node)].instances.push_back(
-            glm::translate(glm::dmat4(1.0), at));
+        c.model.nodes[std::size_t(node)].instances.push_back(glm::translate(glm::dmat4(1.0), at));
     return c.world();
 }
 

@@ -332,8 +332,7 @@ TEST_F(Refraction, SixtyDeformingFramesOfCesiumManStayClean) {
                     const double psnr =
                         capture::score(
                             {size, size, render::cpu::tonemap(glass, 1.0f)},
-                            {size, size, render::cpu::tonemap(reference->second.rgba, 1.0f)},
-                            &mask)
+                            {size, size, render::cpu::tonemap(reference->second.rgba, 1.0f)}, &mask)
                             .psnr;
                     std::printf("%s against the reference: %.2f dB\n", what.c_str(), psnr);
                     EXPECT_GE(psnr, floors.at(method)) << what;

@@ -280,7 +280,7 @@ TEST_F(Trace, UnderSubdivisionTheTraceMeetsTheRefinedSurface) {
     std::printf("glass box at level 2 against the reference's deterministic path: the trace "
                 "%.2f dB, DIR 8 %.2f dB\n",
                 traced, searched);
-    EXPECT_GE(traced, 55.0); // 63.5 here; far off with the box's own triangles in the BVH
+    EXPECT_GE(traced, 55.0);   // 63.5 here; far off with the box's own triangles in the BVH
     EXPECT_GE(searched, 50.0); // 59.1 here
 }
 

@@ -210,7 +210,8 @@ void GpuDeformer::dispatch(const PoseUpload& upload) {
             gl::bindStorage(gl::slot::kRest, s.rest);
             gl::bindStorage(gl::slot::kInfluences, s.influences);
             gl::bindStorage(gl::slot::kMorphDeltas, s.deltas);
-            gl::bindStorage(gl::slot::kVertices, subdivisionLevel() > 0 ? mRefined[i][p].cage : *gp.deformed);
+            gl::bindStorage(gl::slot::kVertices,
+                            subdivisionLevel() > 0 ? mRefined[i][p].cage : *gp.deformed);
             mDeform.set("uVertexCount", int(gp.source->vertexCount()));
             mDeform.set("uTargetCount", int(std::min(s.targetCount, staged.weightCount)));
             mDeform.set("uSkinned", skinned && gp.source->isSkinned() ? 1 : 0);

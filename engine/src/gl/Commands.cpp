@@ -122,8 +122,8 @@ void bindImage(const ImageSlot& slot, const Texture& texture, int level, bool wr
     default:
         break;
     }
-    glBindImageTexture(slot.index, texture.id(), level, GL_FALSE, 0, write ? GL_READ_WRITE : GL_READ_ONLY,
-                       format);
+    glBindImageTexture(slot.index, texture.id(), level, GL_FALSE, 0,
+                       write ? GL_READ_WRITE : GL_READ_ONLY, format);
 }
 
 void memoryBarrier(std::uint32_t b) {

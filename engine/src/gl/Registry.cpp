@@ -13,10 +13,14 @@ namespace {
 
 const char* kindName(Shared::Kind kind) {
     switch (kind) {
-    case Shared::Kind::Storage: return "storage binding";
-    case Shared::Kind::Image: return "image unit";
-    case Shared::Kind::Texture: return "texture unit";
-    default: return "constant";
+    case Shared::Kind::Storage:
+        return "storage binding";
+    case Shared::Kind::Image:
+        return "image unit";
+    case Shared::Kind::Texture:
+        return "texture unit";
+    default:
+        return "constant";
     }
 }
 

@@ -44,7 +44,7 @@ struct RenderGpu {
     deform::PoseUpload poses;                           // every character's, this frame
     std::vector<DrawItem> items;                        // this frame's (storage reused)
     std::vector<scene::PlacedLight> lights;             // this frame's, in world space
-    LightingBuffer lighting;                            // the lights on the GPU (gl::slot::kLighting)
+    LightingBuffer lighting;                            // the lights (gl::slot::kLighting)
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
     gl::Program ground[2]; ///< without and with the punctual lights (PUNCTUAL_LIGHTS)

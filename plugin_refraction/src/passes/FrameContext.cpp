@@ -312,9 +312,9 @@ namespace {
 TracedTextureGpu tracedTexture(FrameContext& c, const render::DrawItem& item,
                                const scene::TextureRef& map, bool colour) {
     TracedTextureGpu traced;
-    const gl::Texture* texture =
-        map.present() ? (colour ? item.materials->srgb(map.texture) : item.materials->linear(map.texture))
-                      : nullptr;
+    const gl::Texture* texture = map.present() ? (colour ? item.materials->srgb(map.texture)
+                                                         : item.materials->linear(map.texture))
+                                               : nullptr;
     if (!texture)
         return traced;
     auto& textures = c.gpu->tracedTextures;
@@ -378,8 +378,8 @@ GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, do
  *  walk (the normal map aside, which it reads anyway). */
 bool textured(const scene::Material* m) {
     return m && (m->baseColorTexture.present() ||
-                 (m->isTransmissive() && (m->transmissionTexture.present() ||
-                                          m->metallicRoughnessTexture.present())));
+                 (m->isTransmissive() &&
+                  (m->transmissionTexture.present() || m->metallicRoughnessTexture.present())));
 }
 
 } // namespace
@@ -410,10 +410,10 @@ void assignGlassIds(FrameContext& c) {
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
         c.gpu->glassOptics.push_back(
             glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
-        c.texturedGlass = c.texturedGlass ||
-                          textured(item.material >= 0
-                                       ? &item.model->materials[std::size_t(item.material)]
-                                       : nullptr);
+        c.texturedGlass =
+            c.texturedGlass ||
+            textured(item.material >= 0 ? &item.model->materials[std::size_t(item.material)]
+                                        : nullptr);
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }

@@ -32,9 +32,8 @@ std::uint32_t opaqueTag(const render::DrawItem& item) {
     const auto bits = [](float v, float levels) {
         return std::uint32_t(std::round(std::clamp(v, 0.0f, 1.0f) * levels));
     };
-    return kOpaqueTag | (textured ? kOpaqueTextured : 0u) | colour.r |
-           colour.g << 7 | colour.b << 14 | bits(roughness, 31.0f) << 21 |
-           bits(metallic, 15.0f) << 26;
+    return kOpaqueTag | (textured ? kOpaqueTextured : 0u) | colour.r | colour.g << 7 |
+           colour.b << 14 | bits(roughness, 31.0f) << 21 | bits(metallic, 15.0f) << 26;
 }
 
 } // namespace

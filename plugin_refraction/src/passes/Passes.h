@@ -34,7 +34,6 @@ namespace refraction {
 // mip-filtered normals); the normal maps need no level above it.
 constexpr int kNormalLod = 1;
 
-
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
 struct FrameContext {

@@ -88,8 +88,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 gpu.glass.bvh->bindForTraversal();
                 // The glass textures, the first standing in for absent ones (unread).
                 const auto& textures = gpu.tracedTextures;
-                for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty();
-                     ++i)
+                for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty(); ++i)
                     gl::bindTexture(slot::kTracedTextures,
                                     *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
             }

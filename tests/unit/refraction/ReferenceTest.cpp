@@ -120,7 +120,8 @@ TEST(Reference, GroundAndOpaqueMeshesAreShadedNotRefused) {
     int lit = 0, sky = 0;
     for (int row = 0; row < size; ++row)
         for (int x = 0; x < size; ++x) {
-            const double ndcX = (x + 0.5) / size * 2 - 1, ndcY = (size - 1 - row + 0.5) / size * 2 - 1;
+            const double ndcX = (x + 0.5) / size * 2 - 1,
+                         ndcY = (size - 1 - row + 0.5) / size * 2 - 1;
             const glm::dvec4 n = inverse * glm::dvec4(ndcX, ndcY, -1, 1),
                              f = inverse * glm::dvec4(ndcX, ndcY, 1, 1);
             const glm::dvec3 o = glm::dvec3(n) / n.w, d = glm::normalize(glm::dvec3(f) / f.w - o);

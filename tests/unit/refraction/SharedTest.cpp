@@ -1,8 +1,8 @@
 // The registry of shared numbers as the engine, the renderer and the refraction plugin fill it:
 // every table registers beside the others, the shaders spell no binding or unit as a number, and
 // the enum defines are the Settings enums' values. No GL context.
-#include "Settings.h"
 #include "Shared.h"
+#include "Settings.h"
 
 #include "engine/gl/Program.h"
 #include "engine/gl/Shaders.h"

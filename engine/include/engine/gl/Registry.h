@@ -48,9 +48,9 @@ struct Shared {
     enum class Kind : std::uint8_t { Storage, Image, Texture, Int, Uint, Float };
     Kind kind;
     const char* define;
-    double value;             ///< the index for slots
-    const char* block = "";   ///< Storage: the GLSL block
-    std::uint32_t count = 1;  ///< Texture: units in the run
+    double value;            ///< the index for slots
+    const char* block = "";  ///< Storage: the GLSL block
+    std::uint32_t count = 1; ///< Texture: units in the run
 
     constexpr Shared(const StorageSlot& s)
         : kind(Kind::Storage), define(s.define), value(s.index), block(s.block) {}
@@ -85,9 +85,9 @@ constexpr bool distinct(std::span<const Shared> table) {
             const Shared &a = table[i], &b = table[j];
             if (same(a.define, b.define))
                 return false;
-            const bool slots = a.kind == b.kind && (a.kind == Shared::Kind::Storage ||
-                                                    a.kind == Shared::Kind::Image ||
-                                                    a.kind == Shared::Kind::Texture);
+            const bool slots = a.kind == b.kind &&
+                               (a.kind == Shared::Kind::Storage || a.kind == Shared::Kind::Image ||
+                                a.kind == Shared::Kind::Texture);
             if (slots && a.value < b.value + b.count && b.value < a.value + a.count)
                 return false;
         }
@@ -122,8 +122,9 @@ private:
 /** The engine's slots and constants (the first table of every Registry). */
 namespace slot {
 // Pass-local storage (0-15).
-inline constexpr StorageSlot kVertices{0, "VERTICES_BINDING", "Vertices"}; ///< a draw item's deformed vertices (common/vertex.glsl)
-inline constexpr StorageSlot kUvs{1, "UVS_BINDING", "Uvs"};    ///< its TEXCOORD_0 in xy, _1 in zw
+/// a draw item's deformed vertices (common/vertex.glsl)
+inline constexpr StorageSlot kVertices{0, "VERTICES_BINDING", "Vertices"};
+inline constexpr StorageSlot kUvs{1, "UVS_BINDING", "Uvs"}; ///< its TEXCOORD_0 in xy, _1 in zw
 inline constexpr StorageSlot kIndices{2, "INDICES_BINDING", "Indices"}; ///< its triangles
 inline constexpr StorageSlot kRest{3, "REST_BINDING", "Rest"}; ///< deform: the rest vertices
 inline constexpr StorageSlot kInfluences{4, "INFLUENCES_BINDING", "Influences"};
@@ -145,14 +146,15 @@ inline constexpr ImageSlot kOutputImage{0, "OUTPUT_IMAGE_UNIT"};
 
 // Texture units, bound by each pass that samples them.
 inline constexpr TextureSlot kEnvironment{0, "ENVIRONMENT_UNIT", 2}; ///< prefiltered, irradiance
-inline constexpr TextureSlot kSource{2, "SOURCE_UNIT"}; ///< a pass's input image (tonemap, prefilter)
+/// a pass's input image (tonemap, prefilter)
+inline constexpr TextureSlot kSource{2, "SOURCE_UNIT"};
 inline constexpr TextureSlot kMaterial{3, "MATERIAL_UNIT", 17}; ///< a material's texture slots
 
 /** The engine's table: every slot above. */
 inline constexpr Shared kEngineTable[] = {
-    kVertices, kUvs,      kIndices,  kRest,           kInfluences, kMorphDeltas,
-    kMorphWeights, kSkinMatrices, kCorners, kLimit, kLimitDu, kLimitDv,
-    kRefinedTangents, kLighting, kOutputImage, kEnvironment, kSource, kMaterial};
+    kVertices,        kUvs,          kIndices,     kRest,        kInfluences, kMorphDeltas,
+    kMorphWeights,    kSkinMatrices, kCorners,     kLimit,       kLimitDu,    kLimitDv,
+    kRefinedTangents, kLighting,     kOutputImage, kEnvironment, kSource,     kMaterial};
 static_assert(distinct(kEngineTable));
 } // namespace slot
 

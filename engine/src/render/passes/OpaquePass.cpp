@@ -50,8 +50,8 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
-                gl::apply({.cull = cullFor(*item.model, item.material),
-                           .clockwise = item.mirrored});
+                gl::apply(
+                    {.cull = cullFor(*item.model, item.material), .clockwise = item.mirrored});
                 item.materials->bind(p, *item.model, item.material);
                 gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
                 gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
