@@ -68,8 +68,11 @@ struct GlassRectangleGpu {
 struct GpuState {
     BvhPrograms bvh;          // the glass BVH's build and refit, the d_N cast
     gl::Program rectangleGrow; // the glass rectangle
-    // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1).
+    // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1);
+    // the two passes' and their resolve whether they keep the surfaces (pairPrograms: -1 none
+    // yet, else GLASS_TEXTURES, compiled in).
     gl::Program surface, surfaces, resolve[2];
+    int pairPrograms = -1;
     // The layers (layers.glsl): the capture and its depth maps for K, whether it keeps the
     // layers' surfaces and whether it reads textures at their base level (the trace's)
     // (layerPrograms, compiled in); the outline pass.

@@ -75,8 +75,8 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
                            ", past this GL's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
                            std::to_string(gl::maxStorageBindings()) + ")"};
     mGpu = std::make_unique<GpuState>();
-    // The programs every frame may use; the capture's for K and the walk's variants are built
-    // when a frame first needs them (walkPrograms).
+    // The programs every frame may use; the captures' that depend on K or on textured glass,
+    // and the walk's variants, are built when a frame first needs them (walkPrograms).
     struct Spec {
         gl::Program* target;
         const char* vertex; // null: a compute program
@@ -86,10 +86,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     const char* glass = "refraction/glass.vert.glsl";
     const char* rectangle = "refraction/rectangle.vert.glsl";
     const Spec specs[] = {
-        {&mGpu->surface, glass, "refraction/surface.frag.glsl", {}},
         {&mGpu->surfaces, glass, "refraction/surfaces.frag.glsl", {}},
-        {&mGpu->resolve[0], rectangle, "refraction/resolve.frag.glsl",
-         {"LAYER_CAPACITY 2", "PAIR_GATHERED 0"}},
         {&mGpu->resolve[1], rectangle, "refraction/resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
@@ -152,8 +149,9 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         addGlassBvhPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),
     // or the pair. The pair's single geometry pass serves what one resolve can: one glass
-    // material with the same overrides on every glass item, no normal map (no UV or tangent is
-    // gathered), the farthest back surface (MAX blending); else the papers' two passes.
+    // material with the same overrides on every glass item, no normal map and no texture the
+    // walk reads (no UV or tangent is gathered), the farthest back surface (MAX blending); else
+    // the papers' two passes.
     Capture capture;
     if (c.settings.layered()) {
         capture = addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers));
@@ -177,7 +175,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
             first->model->materials[std::size_t(first->material)].normalTexture.present();
         const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
         c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
-                    !normalMap && !firstBack;
+                    !normalMap && !firstBack && !c.texturedGlass;
         const PairTargets pair = c.onePass ? addGatherPass(graph, c, buffers)
                                            : addSurfacePasses(graph, c, buffers, firstBack);
         capture = addResolvePass(graph, c, buffers, scene, pair);

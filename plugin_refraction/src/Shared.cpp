@@ -45,6 +45,7 @@ constexpr Shared kFixed[] = {
     slot::kPairMaps,
     slot::kOutlineSurface,
     slot::kTracedTextures,
+    slot::kPairSurfaces,
     Shared::bits("OPAQUE_TAG", kOpaqueTag),
     Shared::bits("OPAQUE_TEXTURED_TAG", kOpaqueTextured),
     Shared::bits("MIRRORED_TAG", kMirroredTag),

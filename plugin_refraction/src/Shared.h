@@ -51,6 +51,9 @@ inline constexpr TextureSlot kOutlineSurface{30,
 /** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
  *  transmission and roughness (GpuState::tracedTextures). */
 inline constexpr TextureSlot kTracedTextures{31, "TRACED_TEXTURES_UNIT", 8};
+/** The two passes' surfaces where the frame's glass is textured (resolve.frag.glsl): the
+ *  front's, the back's. */
+inline constexpr TextureSlot kPairSurfaces{39, "PAIR_SURFACES_UNIT", 2};
 
 } // namespace refraction::slot
 

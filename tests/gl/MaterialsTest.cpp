@@ -1,6 +1,7 @@
 // glTF's material extensions and lights against the Embree reference: each extension's
 // Khronos test model (or a sphere of one layer) on the GPU and in the reference, and the same
 // frame with the extension switched off, which must score well below.
+#include "MatrixWorlds.h"
 #include "WorldRig.h"
 #include "support/GlTest.h"
 #include "support/TestSupport.h"
@@ -420,21 +421,8 @@ TEST_F(Materials, GlassReflectsThroughItsSpecularColourAndFilmOnTheGpuAndInTheRe
         m.hasTransmission = true;
         m.transmissionFactor = 1.0f;
         m.roughnessFactor = 0.15f;
-        if (layers) {
-            m.hasSpecular = true;
-            m.specularFactor = 0.8f;
-            m.specularColorFactor = {1.0f, 3.0f, 6.0f};
-            m.hasIridescence = true;
-            m.iridescenceFactor = 0.7f;
-            m.iridescenceIor = 1.4f;
-            m.iridescenceThicknessMaximum = 450.0f;
-            m.hasClearcoat = true;
-            m.clearcoatFactor = 0.6f;
-            m.clearcoatRoughnessFactor = 0.1f;
-            m.hasSheen = true;
-            m.sheenColorFactor = {0.3f, 0.1f, 0.2f};
-            m.sheenRoughnessFactor = 0.5f;
-        }
+        if (layers)
+            test::matrix::addMaterialLayers(m);
         return withTestLights(
             scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(model))));
     };

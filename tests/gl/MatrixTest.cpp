@@ -59,7 +59,9 @@ std::vector<Row> rows() {
     std::vector<Row> r = {
         {"no lights", sphere, {17.5, 31, 41, 40.5, 41, 60}},
         {"a directional light",
-         [=] { return lit(sphere(), {light(Type::Directional, {}, {0.3f, -1.0f, -0.5f}, warm, 3)}); },
+         [=] {
+             return lit(sphere(), {light(Type::Directional, {}, {0.3f, -1.0f, -0.5f}, warm, 3)});
+         },
          {17.5, 31, 39, 39, 39, 60}},
         {"a point light",
          [=] { return lit(sphere(), {light(Type::Point, {1.5f, 1.5f, 2.0f}, {}, warm, 30)}); },
@@ -75,8 +77,9 @@ std::vector<Row> rows() {
              std::vector<scene::PlacedLight> many;
              for (int i = 0; i < 16; ++i) {
                  const float a = float(i) * 0.3927f;
-                 many.push_back(light(i % 3 == 0 ? Type::Spot : Type::Point,
-                                      {2.5f * std::cos(a), 1.0f + 0.1f * float(i % 4), 2.5f * std::sin(a)},
+                 const glm::vec3 at(2.5f * std::cos(a), 1.0f + 0.1f * float(i % 4),
+                                    2.5f * std::sin(a));
+                 many.push_back(light(i % 3 == 0 ? Type::Spot : Type::Point, at,
                                       {-std::cos(a), -0.4f, -std::sin(a)}, i % 2 ? warm : cool, 6));
              }
              return lit(sphere(), many);
@@ -94,6 +97,9 @@ std::vector<Row> rows() {
          {18.5, 19, 19, 31.5, 19, 56}},
         {"an opaque character behind", besideOpaque, {24, 22, 27.5, 35, 27.5, 45}},
         {"glass textures", texturedGlass, {20.5, 24.5, 25.5, 25.5, 25.5, 36}, 0.0, {}, 0, false,
+         filtered},
+        {"glass textures, the two surfaces' capture", texturedGlass,
+         {20.5, 24.5, 25.5, 25.5, 25.5, 36}, 0.0, {{"surfaces", "two-surface"}}, 0, false,
          filtered},
         {"a normal map", normalMapped, {16.5, 21.5, 22, 21, 21.5, 21}, 0.0, {}, 0, false,
          filtered},

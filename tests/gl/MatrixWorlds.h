@@ -183,10 +183,9 @@ inline scene::World normalMapped() {
     return c.world();
 }
 
-/** A glass sphere with KHR_materials_specular's colour and weight, an iridescent film, a clear
- *  coat and a sheen. */
-inline scene::World layeredGlass() {
-    scene::Material m = glassMaterial();
+/** KHR_materials_specular (a blue-tinted weight), an iridescent film, a clear coat and a sheen
+ *  on `m`. */
+inline void addMaterialLayers(scene::Material& m) {
     m.hasSpecular = true;
     m.specularFactor = 0.8f;
     m.specularColorFactor = {1.0f, 3.0f, 6.0f};
@@ -200,6 +199,13 @@ inline scene::World layeredGlass() {
     m.hasSheen = true;
     m.sheenColorFactor = {0.3f, 0.1f, 0.2f};
     m.sheenRoughnessFactor = 0.5f;
+}
+
+/** A glass sphere with KHR_materials_specular's colour and weight, an iridescent film, a clear
+ *  coat and a sheen. */
+inline scene::World layeredGlass() {
+    scene::Material m = glassMaterial();
+    addMaterialLayers(m);
     return glassSphere(std::move(m));
 }
 

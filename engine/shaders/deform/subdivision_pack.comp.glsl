@@ -6,11 +6,14 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = CORNERS_BINDING) readonly buffer Corners { uvec2 corners[]; }; // vertex, value
+// vertex, value
+layout(std430, binding = CORNERS_BINDING) readonly buffer Corners { uvec2 corners[]; };
 layout(std430, binding = LIMIT_BINDING) readonly buffer Limit { float limitPosition[]; };
 layout(std430, binding = LIMIT_DU_BINDING) readonly buffer LimitDu { float du[]; };
 layout(std430, binding = LIMIT_DV_BINDING) readonly buffer LimitDv { float dv[]; };
-layout(std430, binding = REFINED_TANGENTS_BINDING) readonly buffer RefinedTangents { vec4 tangents[]; };
+layout(std430, binding = REFINED_TANGENTS_BINDING) readonly buffer RefinedTangents {
+    vec4 tangents[];
+};
 layout(std430, binding = VERTICES_BINDING) writeonly buffer Vertices { DeformedVertex deformed[]; };
 
 uniform int uCornerCount;

@@ -2,7 +2,8 @@
 #include "common/vertex.glsl"
 
 layout(std430, binding = VERTICES_BINDING) readonly buffer Vertices { DeformedVertex vertices[]; };
-layout(std430, binding = UVS_BINDING) readonly buffer Uvs { vec4 uvs[]; }; // TEXCOORD_0 in xy, _1 in zw
+// TEXCOORD_0 in xy, _1 in zw
+layout(std430, binding = UVS_BINDING) readonly buffer Uvs { vec4 uvs[]; };
 
 uniform mat4 uModel;          // mesh node space -> world
 uniform mat3 uNormalMatrix;   // inverse transpose of uModel's 3x3

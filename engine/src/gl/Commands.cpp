@@ -116,6 +116,9 @@ void bindImage(const ImageSlot& slot, const Texture& texture, int level, bool wr
     case Format::R32UI:
         format = GL_R32UI;
         break;
+    case Format::RG32UI:
+        format = GL_RG32UI;
+        break;
     case Format::RGBA8:
         format = GL_RGBA8;
         break;

@@ -35,6 +35,8 @@ FormatInfo info(Format f) {
         return {GL_RG32F, GL_RG, GL_FLOAT};
     case Format::R32UI:
         return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Format::RG32UI:
+        return {GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT};
     case Format::Depth32F:
         return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
     }
@@ -52,6 +54,10 @@ int fullChain(glm::ivec2 size) {
 
 bool isDepth(Format f) {
     return f == Format::Depth32F;
+}
+
+bool isInteger(Format f) {
+    return f == Format::R32UI || f == Format::RG32UI;
 }
 
 // ---- Buffer
@@ -129,7 +135,11 @@ Texture::Texture(const TextureDesc& desc) : mDesc(desc) {
         mDesc.levels = fullChain(desc.size);
     glCreateTextures(GL_TEXTURE_2D, 1, &mId);
     glTextureStorage2D(mId, mDesc.levels, info(desc.format).internal, desc.size.x, desc.size.y);
-    setSampling(mDesc.levels > 1 ? Filter::LinearMipmap : Filter::Linear, Wrap::Clamp);
+    // An integer texture filtered is incomplete, and texelFetch then reads (0, 0, 0, 1).
+    setSampling(isInteger(desc.format) ? Filter::Nearest
+                : mDesc.levels > 1     ? Filter::LinearMipmap
+                                       : Filter::Linear,
+                Wrap::Clamp);
 }
 
 Texture::~Texture() {

@@ -8,7 +8,9 @@
 #define REFRACTION_BVH_GLSL
 #include "common/vertex.glsl"
 
-layout(std430, binding = WORLD_MESH_BINDING) readonly buffer WorldMesh { DeformedVertex vertices[]; };
+layout(std430, binding = WORLD_MESH_BINDING) readonly buffer WorldMesh {
+    DeformedVertex vertices[];
+};
 layout(std430, binding = WORLD_INDICES_BINDING) readonly buffer WorldIndices { uint indices[]; };
 layout(std430, binding = BVH_ORDER_BINDING) coherent buffer BvhOrder { uint triangleOrder[]; };
 // Each node's box and, for an inner node, its children as the traversal reads them with the box

@@ -51,4 +51,17 @@ GlassSurface materialSurface(GlassMaterial m) {
     return GlassSurface(m.baseColor, m.transmission, m.roughness, m.metallic);
 }
 
+// A surface in 64 bits, as the captures keep it (layers.glsl's LayerSurfaces, the pair's surface
+// maps): the square roots of its base colour and its transmission, its roughness and metallic,
+// 8 bits each.
+uvec2 packSurface(GlassSurface s) {
+    return uvec2(packUnorm4x8(vec4(sqrt(clamp(s.baseColor, 0.0, 1.0)), s.transmission)),
+                 packUnorm4x8(vec4(s.roughness, s.metallic, 0.0, 0.0)));
+}
+
+GlassSurface unpackSurface(uvec2 bits) {
+    vec4 a = unpackUnorm4x8(bits.x), b = unpackUnorm4x8(bits.y);
+    return GlassSurface(a.rgb * a.rgb, a.a, b.x, b.y);
+}
+
 #endif

@@ -48,7 +48,8 @@ vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 t
     vec3 F = reflectance(m, s, dot(-V, N1), eta);
     vec3 reflected = environmentRadiance(uViewToWorld * reflect(V, N1), s.roughness);
     vec3 glass = F * reflected + (1.0 - F) * s.baseColor * (1.0 - s.metallic) * transmitted;
-    float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0), alpha = max(s.roughness, 0.03) * max(s.roughness, 0.03);
+    float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0);
+    float alpha = max(s.roughness, 0.03) * max(s.roughness, 0.03);
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;

@@ -10,9 +10,8 @@
 //               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
 //               d_N relative to the depth (bits 16-31, 0: none)
 //   LayerSurfaces (frames with textured glass, GLASS_TEXTURES) per pixel and slot: the glass
-//               surface there (GlassSurface: its material's factors times its textures),
-//               x the square roots of its base colour and its transmission, y its roughness
-//               and metallic, 8 bits each
+//               surface there (GlassSurface: its material's factors times its textures,
+//               packSurface's 64 bits)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
 // (the two-surface model, never a partial list): see storedDepths. The pair capture
 // (resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
@@ -45,16 +44,6 @@ const uint kLayerFront = LAYER_FRONT_BIT;
 layout(std430, binding = LAYER_SURFACES_BINDING) coherent buffer LayerSurfaces {
     uvec2 layerSurface[];
 };
-
-uvec2 packSurface(GlassSurface s) {
-    return uvec2(packUnorm4x8(vec4(sqrt(clamp(s.baseColor, 0.0, 1.0)), s.transmission)),
-                 packUnorm4x8(vec4(s.roughness, s.metallic, 0.0, 0.0)));
-}
-
-GlassSurface unpackSurface(uvec2 bits) {
-    vec4 a = unpackUnorm4x8(bits.x), b = unpackUnorm4x8(bits.y);
-    return GlassSurface(a.rgb * a.rgb, a.a, b.x, b.y);
-}
 #endif
 
 uint packOctNormal(vec3 n) {

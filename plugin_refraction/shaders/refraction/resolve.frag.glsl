@@ -6,7 +6,8 @@
 //   PAIR_GATHERED 1: from the one MAX-blended geometry pass (surfaces.glsl), also writing the
 //     normals as the maps the papers' search reads mip-filtered (DIR §3.1);
 //   PAIR_GATHERED 0: from the two depth-tested passes (surface.frag.glsl), whose normal maps
-//     are those maps already.
+//     are those maps already; with textured glass in the frame (GLASS_TEXTURES) also their
+//     surfaces, into the layers' (never gathered: the one pass reads no texture).
 #include "refraction/layers.glsl"
 
 layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
@@ -48,6 +49,10 @@ layout(binding = PAIR_MAPS_UNIT) uniform sampler2D uFrontDepth;
 layout(binding = PAIR_MAPS_UNIT + 1) uniform sampler2D uFrontNormal;
 layout(binding = PAIR_MAPS_UNIT + 2) uniform sampler2D uBackDepth;
 layout(binding = PAIR_MAPS_UNIT + 3) uniform sampler2D uBackNormal;
+#if GLASS_TEXTURES
+layout(binding = PAIR_SURFACES_UNIT) uniform usampler2D uFrontSurface;
+layout(binding = PAIR_SURFACES_UNIT + 1) uniform usampler2D uBackSurface;
+#endif
 
 Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
     vec2 d = texelFetch(depth, p, 0).xy;
@@ -58,6 +63,11 @@ Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
 void readPair(ivec2 p, out Surface front, out Surface back) {
     front = readSurface(uFrontDepth, uFrontNormal, p);
     back = readSurface(uBackDepth, uBackNormal, p);
+#if GLASS_TEXTURES
+    uint pixel = pixelIndex(p);
+    layerSurface[pixel * 2u] = texelFetch(uFrontSurface, p, 0).xy;
+    layerSurface[pixel * 2u + 1u] = texelFetch(uBackSurface, p, 0).xy;
+#endif
 }
 #endif
 
@@ -71,7 +81,8 @@ void main() {
     layerHeads[pixel] = uint(front.present) + uint(back.present);
     layerAttr[pixel * 2u] = uvec2(packOctNormal(front.normal), front.glass | kLayerFront | (d << 16));
     layerAttr[pixel * 2u + 1u] = uvec2(packOctNormal(back.normal), back.glass);
-    outDepths0 = vec4(front.present ? front.z : NO_DEPTH, back.present ? back.z : NO_DEPTH, NO_DEPTH, NO_DEPTH);
+    outDepths0 = vec4(front.present ? front.z : NO_DEPTH, back.present ? back.z : NO_DEPTH,
+                      NO_DEPTH, NO_DEPTH);
     if (back.present) {
         atomicMin(glassBackRange[0], floatBitsToUint(back.z));
         atomicMax(glassBackRange[1], floatBitsToUint(back.z));

@@ -2,22 +2,27 @@
 // one MAX-blended pass cannot serve): the back faces (the farthest, or the nearest with
 // back-surface=first) and the nearest front faces, each under its own depth test. Per texel:
 // linear view depth and d_N (-1: none), and the outward view normal after the normal map with
-// the glass id + 1 in w (0: no surface, the clear value). resolve.frag.glsl reads them.
-#include "common/material_uv.glsl"
+// the glass id + 1 in w (0: no surface, the clear value); with textured glass in the frame
+// (GLASS_TEXTURES), the glass surface there (packSurface). resolve.frag.glsl reads them.
 #include "common/normal_map.glsl"
-#include "refraction/glass_inputs.glsl"
+#include "refraction/fragment_surface.glsl"
 
 uniform int uGlassId;
 uniform float uNormalScale;
 
 layout(location = 0) out vec2 outDepth;
 layout(location = 1) out vec4 outNormal;
+#if GLASS_TEXTURES
+layout(location = 2) out uvec2 outSurface;
+#endif
 
 void main() {
     vec3 n = normalize(vViewNormal); // outward: a back face's points away from the camera
     if (hasTexture(SLOT_NORMAL))
-        n = perturbNormal(n, vViewTangent, uTexture[SLOT_NORMAL], slotUv(vUv, SLOT_NORMAL),
-                          uNormalScale);
+        n = perturbNormal(n, vViewTangent, captureTexel(SLOT_NORMAL).xyz, uNormalScale);
     outDepth = vec2(-vViewPosition.z, vNormalDistance);
     outNormal = vec4(n, float(uGlassId + 1));
+#if GLASS_TEXTURES
+    outSurface = packSurface(fragmentSurface(uint(uGlassId)));
+#endif
 }

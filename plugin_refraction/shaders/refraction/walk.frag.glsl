@@ -69,22 +69,24 @@ void main() {
     vec3 lo, hi; // back-depth and dv over the farthest glass depth of the frame
     glassBox(lo, hi);
     switch (uDebug) {
-    case DEBUG_BACK_DEPTH: color = vec3(e.far / max(-lo.z, 1e-6)); break; // back-depth: the farthest layer
-    case DEBUG_BACK_NORMAL: color = layerNormal(layerAttrAt(p, e.farthest)) * 0.5 + 0.5; break; // back-normal
-    case DEBUG_DV: color = vec3((e.far - e.z) / max(-lo.z, 1e-6)); break; // dv: nearest to farthest
+    case DEBUG_BACK_DEPTH: color = vec3(e.far / max(-lo.z, 1e-6)); break; // the farthest layer
+    case DEBUG_BACK_NORMAL: color = layerNormal(layerAttrAt(p, e.farthest)) * 0.5 + 0.5; break;
+    case DEBUG_DV: color = vec3((e.far - e.z) / max(-lo.z, 1e-6)); break; // nearest to farthest
     case DEBUG_DN: color = vec3(max(layerNormalDistance(e.attr, e.z), 0.0) / e.z); break;
     case DEBUG_EXIT_UV: color = vec3(projectToUv(walk.firstExit), walk.fallback ? 1.0 : 0.0); break;
-    case DEBUG_STEPS: color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
-                         walk.fallback ? 1.0 : 0.0, float(walk.path.interfaces) / float(uInterfaces)); break;
+    case DEBUG_STEPS:
+        color = vec3(float(walk.steps) / float(max(uSteps * (uInterfaces - 1), 1)),
+                     walk.fallback ? 1.0 : 0.0, float(walk.path.interfaces) / float(uInterfaces));
+        break;
     case DEBUG_TIR: color = walk.tir ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
     case DEBUG_EXIT_POINT: color = uViewToWorld * walk.firstExit + uViewOriginWorld; break;
     case DEBUG_EXIT_DIRECTION: color = uViewToWorld * walk.path.dir; break;
-    case DEBUG_LAYER_COUNT: // layer-count: K layers white, fewer grey, overflow red
+    case DEBUG_LAYER_COUNT: // K layers white, fewer grey, overflow red
         color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0)
                                         : vec3(float(stored) / float(kLayerCapacity));
         break;
     case DEBUG_OVERFLOW: color = stored > kLayerCapacity ? vec3(1.0, 0.0, 0.0) : vec3(0.1); break;
-    case DEBUG_HYBRID: // hybrid: traced for overflow red, off the layers yellow, TIR blue, an outline green
+    case DEBUG_HYBRID: // traced for overflow red, off the layers yellow, TIR blue, an outline green
         color = (handedOver & uint(HYBRID_OVERFLOW)) != 0u      ? vec3(1.0, 0.0, 0.0)
                 : (handedOver & uint(HYBRID_LEFT_LAYERS)) != 0u ? vec3(1.0, 1.0, 0.0)
                 : (handedOver & uint(HYBRID_REFLECTION)) != 0u  ? vec3(0.0, 0.3, 1.0)

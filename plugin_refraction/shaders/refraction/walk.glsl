@@ -336,7 +336,7 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
     c.found = first || !c.silhouette;
     c.point = c.beyond = mix(r.S, r.E, inside);
     c.attr = layerAttrAt(p, back ? 1 : 0);
-    c.surface = materialSurface(glassMaterials[layerGlass(c.attr)]);
+    c.surface = layerSurfaceOf(p, back ? 1 : 0, c.attr, false);
     return c;
 }
 
@@ -398,7 +398,7 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
 #if CAPTURE_PAIR
     // The back there, or Wyman's silhouette normal (crossingNormal).
     c.attr = layerAttrAt(pixelOf(c.point), 1);
-    c.surface = materialSurface(glassMaterials[layerGlass(c.attr)]);
+    c.surface = layerSurfaceOf(pixelOf(c.point), 1, c.attr, false);
     c.silhouette = layerDepths(pixelOf(c.point), 0).y >= UNUSED_DEPTH;
 #else
     // No layer there, or one facing the ray (the estimate fell short of the far side, or past
@@ -463,7 +463,8 @@ uint handedOverBy(Walk w) {
 // The hybrid's first sample hands pixels over, which the trace pass shades afresh: its walk
 // stops at the first reason (a debug view's goes on, to show the whole walk).
 bool stopsToHandOver(Walk w) {
-    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == DEBUG_NONE && handedOverBy(w) != 0u;
+    return kMethod == METHOD_HYBRID && uTraceSample == 0 && uDebug == DEBUG_NONE &&
+           handedOverBy(w) != 0u;
 }
 
 // An opaque part along P + t dir before c, the next crossing: the trace's in its BVH (c itself),
@@ -572,7 +573,8 @@ SurfaceMet crossingSurface(Crossing c, Path path, uint inside, out vec3 N, out b
     outline = false;
     if (!c.silhouette) // a pixel's own normal is too coarse where rays graze a surface
         N = crossingNormal(c, path.dir, outline);
-    return SurfaceMet(glass, leaves ? materialSurface(glassMaterials[glass - 1u]) : c.surface,
+    // Past the outline no layer holds the surface there: the material's.
+    return SurfaceMet(glass, c.silhouette ? materialSurface(glassMaterials[glass - 1u]) : c.surface,
                       enters);
 }
 

@@ -6,7 +6,8 @@
 #include "refraction/walk.glsl"
 
 layout(local_size_x = 64) in;
-layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded; // the walk's colour target
+// the walk's colour target
+layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
 
 void main() {
     if (gl_GlobalInvocationID.x >= handedOverCount)

@@ -199,7 +199,7 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
 core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const bool pair = !c.settings.layered();
     const int capacity = pair ? 2 : c.settings.layerCapacity;
-    const bool textures = !pair && c.texturedGlass;
+    const bool textures = c.texturedGlass;
     const std::string texturesDefine = std::string("GLASS_TEXTURES ") + (textures ? "1" : "0");
     // The trace with several samples reads the textures at their entries as at every hit, at
     // their base level (converging to the reference); with one, filtered like the walk (a
@@ -220,6 +220,20 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
         gpu.layersCapture = std::move(*capture);
         gpu.layersResolve = std::move(*resolve);
         gpu.layerPrograms = {capacity, textures, baseLevel};
+    }
+    if (pair && gpu.pairPrograms != int(textures)) {
+        auto surface = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
+                                             "refraction/surface.frag.glsl", {texturesDefine});
+        if (!surface)
+            return surface.error();
+        auto resolve = gl::Program::graphics(
+            *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl",
+            {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", texturesDefine});
+        if (!resolve)
+            return resolve.error();
+        gpu.surface = std::move(*surface);
+        gpu.resolve[0] = std::move(*resolve);
+        gpu.pairPrograms = int(textures);
     }
     // Dispersion: none in this frame, or the dispersion search's.
     const bool dispersion =

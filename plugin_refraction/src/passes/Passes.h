@@ -154,6 +154,7 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
 struct PairTargets {
     fg::TextureHandle nearTargets, farTargets;
     fg::TextureHandle frontDepth, frontNormal, backDepth, backNormal;
+    fg::TextureHandle frontSurface, backSurface; ///< the two passes' with textured glass
 };
 /** One geometry pass, MAX blending, over the glass (writes rectangle). */
 PairTargets addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);

@@ -1,7 +1,7 @@
 // `refraction.resolve`: the pair capture resolved over the glass rectangle into layers 0 and 1
-// of the layer arrays (K = 2) and the first depth map, the depth ranges of its back and front,
-// and the walk's mask; from one gathered pass also the mip-filtered normal maps the papers'
-// search reads (resolve.frag.glsl).
+// of the layer arrays (K = 2; with textured glass their surfaces too) and the first depth map,
+// the depth ranges of its back and front, and the walk's mask; from one gathered pass also the
+// mip-filtered normal maps the papers' search reads (resolve.frag.glsl).
 #include "Passes.h"
 
 #include <vector>
@@ -28,7 +28,9 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
                   std::pair{pair.frontDepth, &d.pair.frontDepth},
                   std::pair{pair.frontNormal, &d.pair.frontNormal},
                   std::pair{pair.backDepth, &d.pair.backDepth},
-                  std::pair{pair.backNormal, &d.pair.backNormal}})
+                  std::pair{pair.backNormal, &d.pair.backNormal},
+                  std::pair{pair.frontSurface, &d.pair.frontSurface},
+                  std::pair{pair.backSurface, &d.pair.backSurface}})
                 if (from.valid())
                     *to = b.read(from);
             d.sceneDepth = b.read(scene.depth);
@@ -43,7 +45,8 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
         },
         [c, gathered](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
-            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2);
+            const bool surfaces = d.pair.frontSurface.valid();
+            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces);
             std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
             if (gathered)
                 targets.insert(targets.end(),
@@ -69,6 +72,10 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
             for (const fg::TextureHandle handle : maps)
                 if (handle.valid())
                     gl::bindTexture(slot::kPairMaps, r.texture(handle), element++);
+            if (surfaces) {
+                gl::bindTexture(slot::kPairSurfaces, r.texture(d.pair.frontSurface), 0);
+                gl::bindTexture(slot::kPairSurfaces, r.texture(d.pair.backSurface), 1);
+            }
             gl::bindTexture(slot::kSceneDepth, r.texture(d.sceneDepth));
             program.set("uGlassId", c.firstGlassId);
             program.set("uNear", c.frame->camera.znear);

@@ -1,17 +1,19 @@
 // `refraction.back_faces` and `refraction.front_faces`: the pair capture drawn as the papers'
 // two geometry passes, the back faces (farthest, or first) and the nearest front faces, each
-// into a depth map (with d_N) and a mip-filtered normal map (with the glass id) under its own
-// depth test (surface.frag.glsl), growing the glass rectangle first.
+// into a depth map (with d_N) and a mip-filtered normal map (with the glass id), and where the
+// frame's glass is textured a map of its surfaces, under its own depth test (surface.frag.glsl),
+// growing the glass rectangle first.
 #include "Passes.h"
 
 #include <string>
+#include <vector>
 
 namespace refraction {
 
 PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                              bool firstBack) {
     struct SurfaceData {
-        fg::TextureHandle depth, normal, zbuffer;
+        fg::TextureHandle depth, normal, surface, zbuffer; // surface: with textured glass
         fg::BufferHandle rectangle;
     };
     const glm::ivec2 size = c.frame->settings.size;
@@ -28,18 +30,26 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
                 d.depth = b.write(
                     b.create(std::string(name) + ".depth", {size, gl::Format::RG32F, 1}));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
+                if (c.texturedGlass)
+                    d.surface = b.write(
+                        b.create(std::string(name) + ".surface", {size, gl::Format::RG32UI, 1}));
                 d.zbuffer = b.write(b.create(std::string(name) + ".zbuffer", zDesc(size)));
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
                                           gl::Context&) -> core::Status {
                 if (backFaces)
                     c.growGlassRectangle();
-                if (auto bound = c.gpu->framebuffer.bindTargets(
-                        name, {&r.texture(d.depth), &r.texture(d.normal)}, &r.texture(d.zbuffer));
+                std::vector<const gl::Texture*> targets{&r.texture(d.depth), &r.texture(d.normal)};
+                if (d.surface.valid())
+                    targets.push_back(&r.texture(d.surface));
+                if (auto bound =
+                        c.gpu->framebuffer.bindTargets(name, targets, &r.texture(d.zbuffer));
                     !bound)
                     return bound;
                 gl::clearColor(0, glm::vec4(0.0f));
                 gl::clearColor(1, glm::vec4(0.0f));
+                if (d.surface.valid())
+                    gl::clearColorUint(2, 0u);
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
                 c.drawGlassMaterials(
                     c.gpu->surface,
@@ -60,6 +70,8 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
     pair.frontNormal = front.normal;
     pair.backDepth = back.depth;
     pair.backNormal = back.normal;
+    pair.frontSurface = front.surface;
+    pair.backSurface = back.surface;
     return pair;
 }
 

@@ -16,10 +16,13 @@ enum class Format : std::uint8_t {
     R32F,
     RG32F,
     R32UI,
+    RG32UI,
     Depth32F,
 };
 
 bool isDepth(Format format);
+/** An unsigned-integer format: read with texelFetch or as an image, never filtered. */
+bool isInteger(Format format);
 
 constexpr std::size_t bytesPerTexel(Format format) {
     switch (format) {
@@ -31,6 +34,7 @@ constexpr std::size_t bytesPerTexel(Format format) {
         return 4;
     case Format::RGBA16F:
     case Format::RG32F:
+    case Format::RG32UI:
         return 8;
     case Format::RGBA32F:
         return 16;

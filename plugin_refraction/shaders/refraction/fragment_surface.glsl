@@ -1,0 +1,50 @@
+// A glass fragment's material as the captures read it (layers_capture.frag.glsl, and the pair's
+// surface.frag.glsl): its texels, and with textured glass in the frame (GLASS_TEXTURES) its
+// surface, the material's factors times its textures.
+#ifndef REFRACTION_FRAGMENT_SURFACE_GLSL
+#define REFRACTION_FRAGMENT_SURFACE_GLSL
+#include "common/material_uv.glsl"
+#include "refraction/glass_inputs.glsl"
+#include "refraction/glass_materials.glsl"
+
+#ifndef GLASS_TEXTURES
+#define GLASS_TEXTURES 0
+#endif
+
+// The trace reads glass textures at their base level wherever it meets them, as the reference
+// does; the capture does so for the trace with several samples (TEXTURES_BASE_LEVEL: their
+// entries), where the walk's and the one-sample trace's read them filtered (a pixel's texels
+// averaged, closer to the reference's many rays than one texel).
+#ifndef TEXTURES_BASE_LEVEL
+#define TEXTURES_BASE_LEVEL 0
+#endif
+vec4 captureTexel(int slot) {
+#if TEXTURES_BASE_LEVEL
+    return textureLod(uTexture[slot], slotUv(vUv, slot), 0.0);
+#else
+    return readTexture(slot, vUv);
+#endif
+}
+
+#if GLASS_TEXTURES
+// The glass's surface at the fragment (optics.glsl's GlassSurface): its optics' factors times the
+// material's textures, as the trace and the reference read them at a hit.
+GlassSurface fragmentSurface(uint id) {
+    GlassMaterial m = glassMaterials[id];
+    GlassSurface s = materialSurface(m);
+    if (hasTexture(SLOT_BASE_COLOR))
+        s.baseColor *= captureTexel(SLOT_BASE_COLOR).rgb; // sRGB: decoded to linear
+    if (m.authored == 0u)
+        return s;
+    if (hasTexture(SLOT_TRANSMISSION))
+        s.transmission *= captureTexel(SLOT_TRANSMISSION).r;
+    if (hasTexture(SLOT_METALLIC_ROUGHNESS)) {
+        vec4 mr = captureTexel(SLOT_METALLIC_ROUGHNESS);
+        s.roughness *= mr.g;
+        s.metallic *= mr.b;
+    }
+    return s;
+}
+#endif
+
+#endif
