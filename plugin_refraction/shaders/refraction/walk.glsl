@@ -562,8 +562,8 @@ struct PathEnd {
 };
 
 // The surface a crossing c meets (the path in `inside`): a recorded layer's glass, or where the
-// ray left the glass's outline, or over the pair capture, the glass it is in, which it leaves;
-// its normal (`N`, filtered where the layers give it: `outline` near an outline).
+// ray left the glass's outline, or over the pair capture, the glass it is in, which it leaves
+// (at the surface its layer holds); its normal (`N`, filtered where the layers give it: `outline` near an outline).
 SurfaceMet crossingSurface(Crossing c, Path path, uint inside, out vec3 N, out bool outline) {
     bool leaves = c.silhouette || kPairCapture; // every crossing of the pair leaves its glass
     uint glass = leaves ? inside : layerGlass(c.attr) + 1u;
