@@ -92,9 +92,9 @@ struct GpuState {
         gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
         gl::Buffer depths; // K floats per pixel
         gl::Buffer attrs;  // K uvec2 per pixel
-        gl::Buffer surfaces; // K uvec2 per pixel where the glass is textured
+        gl::Buffer surfaces; // surfaceSlots uvec2 per pixel where the glass is textured
         glm::ivec2 size{0};
-        int capacity = 0;
+        int capacity = 0, surfaceSlots = 0;
     } layers;
     gl::Buffer glassMaterials; // GlassMaterial (layers.glsl) per glass id, grown as needed
     /** This frame's glass ids per frame item (-1: not glass) and optics per id (one per

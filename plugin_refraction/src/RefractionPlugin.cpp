@@ -193,7 +193,7 @@ LayerStats RefractionPlugin::layerStats() const {
     const GpuState::LayerStorage& layers = mGpu->layers;
     stats.capacity = layers.capacity;
     stats.bytesPerPixel =
-        layerBytesPerPixel(layers.capacity, settings().outlinePass(), bool(layers.surfaces));
+        layerBytesPerPixel(layers.capacity, settings().outlinePass(), layers.surfaceSlots);
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
     GlassRectangleGpu counts{};
     const auto bytes = mGpu->rectangle.download(0, sizeof counts);

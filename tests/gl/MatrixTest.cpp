@@ -101,6 +101,8 @@ std::vector<Row> rows() {
         {"glass textures, the two surfaces' capture", texturedGlass,
          {20.5, 24.5, 25.5, 25.5, 25.5, 36}, 0.0, {{"surfaces", "two-surface"}}, 0, false,
          filtered},
+        {"glass textures past K layers", texturedGlass, {19.5, 22.5, 22.5, 25, 25, 55}, 0.0,
+         {{"layer-capacity", "1"}}},
         {"a normal map", normalMapped, {16.5, 21.5, 22, 21, 21.5, 21}, 0.0, {}, 0, false,
          filtered},
         {"material layers on glass", layeredGlass, {18, 31, 42.5, 42.5, 42.5, 60}},

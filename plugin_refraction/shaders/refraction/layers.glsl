@@ -11,7 +11,8 @@
 //               d_N relative to the depth (bits 16-31, 0: none)
 //   LayerSurfaces (frames with textured glass, GLASS_TEXTURES) per pixel and slot: the glass
 //               surface there (GlassSurface: its material's factors times its textures,
-//               packSurface's 64 bits)
+//               packSurface's 64 bits); after them, per pixel, the surfaces of the overflow
+//               fallback's nearest front and farthest back (fallbackSurfaceIndex)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
 // (the two-surface model, never a partial list): see storedDepths. The pair capture
 // (resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
@@ -44,6 +45,14 @@ const uint kLayerFront = LAYER_FRONT_BIT;
 layout(std430, binding = LAYER_SURFACES_BINDING) coherent buffer LayerSurfaces {
     uvec2 layerSurface[];
 };
+
+// Where the surface of the overflow fallback's layer i (0 the nearest front, 1 the farthest
+// back) of a pixel is kept: written by the fragment whose bid won when it made it (where two
+// fragments of one pixel race, a GPU may keep the earlier's; llvmpipe shades a pixel's
+// fragments in order).
+uint fallbackSurfaceIndex(uint pixel, int i) {
+    return uint(uPixelCount) * uint(kLayerCapacity) + pixel * 2u + uint(i);
+}
 #endif
 
 uint packOctNormal(vec3 n) {
@@ -159,9 +168,12 @@ uvec2 layerAttrAt(ivec2 p, int i) {
 }
 
 // The glass surface of layer i of pixel p (its attributes `attr`): as the capture stored it
-// where the frame's glass is textured and the pixel kept its layers, else its material's.
+// where the frame's glass is textured (for an overflowing pixel, its fallback's), else its
+// material's.
 GlassSurface layerSurfaceOf(ivec2 p, int i, uvec2 attr, bool overflow) {
 #if GLASS_TEXTURES
+    if (overflow && (i == 0 || i == 1))
+        return unpackSurface(layerSurface[fallbackSurfaceIndex(pixelIndex(p), i)]);
     if (!overflow && i >= 0)
         return unpackSurface(layerSurface[pixelIndex(p) * uint(kLayerCapacity) + uint(i)]);
 #endif

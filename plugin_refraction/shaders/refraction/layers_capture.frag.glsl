@@ -5,7 +5,7 @@
 // whose nearest glass is hidden. Fragments past K only count; every fragment also bids for the
 // pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
 // ALWAYS) is the shading pass's mask: below 1 where any glass was kept. With textured glass in
-// the frame (GLASS_TEXTURES), each kept fragment's surface too.
+// the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's.
 #include "common/normal_map.glsl"
 #include "refraction/fragment_surface.glsl"
 #include "refraction/view.glsl"
@@ -24,15 +24,24 @@ void main() {
     uint id = uint(uGlassId);
     uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;
     uint slot = atomicAdd(layerHeads[pixel], 1u);
+#if GLASS_TEXTURES
+    uvec2 surface = packSurface(fragmentSurface(id));
+#endif
     if (slot < uint(kLayerCapacity)) {
         layerDepth4[pixel * uint(kDepthGroups) + slot / 4u][slot % 4u] = z;
-        layerAttr[pixel * uint(kLayerCapacity) + slot] = uvec2(packOctNormal(n), id | (gl_FrontFacing ? kLayerFront : 0u) | (d << 16));
+        layerAttr[pixel * uint(kLayerCapacity) + slot] =
+            uvec2(packOctNormal(n), id | (gl_FrontFacing ? kLayerFront : 0u) | (d << 16));
 #if GLASS_TEXTURES
-        layerSurface[pixel * uint(kLayerCapacity) + slot] = packSurface(fragmentSurface(id));
+        layerSurface[pixel * uint(kLayerCapacity) + slot] = surface;
 #endif
     }
-    if (gl_FrontFacing)
-        atomicMin(layerHeads[uint(uPixelCount) + pixel], fallbackKey(z, n, id));
-    else
-        atomicMax(layerHeads[2u * uint(uPixelCount) + pixel], fallbackKey(z, n, id));
+    // The fallback's bids; a fragment that wins its bid when it makes it keeps its surface there
+    // too (fallbackSurfaceIndex).
+    uint key = fallbackKey(z, n, id);
+    uint beaten = gl_FrontFacing ? atomicMin(layerHeads[uint(uPixelCount) + pixel], key)
+                                 : atomicMax(layerHeads[2u * uint(uPixelCount) + pixel], key);
+#if GLASS_TEXTURES
+    if (gl_FrontFacing ? key < beaten : key > beaten)
+        layerSurface[fallbackSurfaceIndex(pixel, gl_FrontFacing ? 0 : 1)] = surface;
+#endif
 }

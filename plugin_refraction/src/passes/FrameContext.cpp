@@ -290,18 +290,18 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
 }
 
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        bool surfaces) {
+                        int surfaceSlots) {
     const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
-    const std::size_t layerBytes = pixels * std::size_t(capacity) * 2 * sizeof(std::uint32_t);
-    if (surfaces && layers.surfaces.size() != layerBytes)
-        layers.surfaces = gl::Buffer(layerBytes);
-    if (!surfaces && layers.surfaces)
-        layers.surfaces = gl::Buffer();
+    const std::size_t layerBytes = 2 * sizeof(std::uint32_t) * pixels;
+    const std::size_t surfaceBytes = layerBytes * std::size_t(surfaceSlots);
+    if (layers.surfaces.size() != surfaceBytes)
+        layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
+    layers.surfaceSlots = surfaceSlots;
     if (layers.size == size && layers.capacity == capacity)
         return;
     layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
     layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
-    layers.attrs = gl::Buffer(layerBytes);
+    layers.attrs = gl::Buffer(layerBytes * std::size_t(capacity));
     layers.size = size;
     layers.capacity = capacity;
 }
@@ -310,11 +310,12 @@ std::size_t layerDepthSlots(int capacity) {
     return (std::size_t(capacity) + 3) / 4 * 4;
 }
 
-std::size_t layerBytesPerPixel(int capacity, bool outlines, bool surfaces) {
+std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots) {
     // The arrays (head, depth slots, attributes, surfaces), the depth maps the resolve pass
     // writes, and the nearest layers' map the outline pass reads.
+    const std::size_t layer = 2 * sizeof(std::uint32_t);
     return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
-           std::size_t(capacity) * 2 * sizeof(std::uint32_t) * (surfaces ? 2 : 1) +
+           std::size_t(capacity + surfaceSlots) * layer +
            layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
 }
 

@@ -26,7 +26,9 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
         [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const glm::ivec2 viewport = c.frame->settings.size;
-            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity, c.texturedGlass);
+            // With textured glass: each layer's surface, and the overflow fallback's two.
+            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity,
+                               c.texturedGlass ? c.settings.layerCapacity + 2 : 0);
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
             gpu.layers.heads.fill(0, pixels, 0u);                   // counts
             gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys

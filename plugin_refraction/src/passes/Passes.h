@@ -110,14 +110,15 @@ void assignGlassIds(FrameContext& c);
  *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass for them
  *  and the walk's target (walk_trace.comp.glsl), built when first needed and kept. */
 core::Status walkPrograms(GpuState& gpu, FrameContext& c);
-/** The layer arrays for `size` and capacity K (with `surfaces`, each layer's surface too),
+/** The layer arrays for `size` and capacity K, and `surfaceSlots` surfaces a pixel (0: none;
+ *  with textured glass K, and the overflow fallback's two where the capture can overflow),
  *  reallocated only when one changes. */
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        bool surfaces = false);
-/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers (with
- *  `surfaces`, their surfaces), the depth maps the walk reads and, with `outlines`, the outline
+                        int surfaceSlots = 0);
+/** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers,
+ *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */
-std::size_t layerBytesPerPixel(int capacity, bool outlines, bool surfaces = false);
+std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t layerDepthSlots(int capacity);
 

@@ -46,7 +46,7 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
         [c, gathered](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const bool surfaces = d.pair.frontSurface.valid();
-            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces);
+            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0);
             std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
             if (gathered)
                 targets.insert(targets.end(),
