@@ -25,6 +25,8 @@ void main() {
     uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;
     uint slot = atomicAdd(layerHeads[pixel], 1u);
 #if GLASS_TEXTURES
+    // Read by every fragment, kept or not: its textures' filtering needs the derivatives of
+    // uniform control flow.
     uvec2 surface = packSurface(fragmentSurface(id));
 #endif
     if (slot < uint(kLayerCapacity)) {
