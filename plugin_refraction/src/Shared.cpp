@@ -38,6 +38,7 @@ constexpr Shared kFixed[] = {
     slot::kBvhParents,
     slot::kBvhVisits,
     slot::kLayerSurfaces,
+    slot::kLayerMotions,
     slot::kSceneColor,
     slot::kSceneDepth,
     slot::kLayerDepthMaps,

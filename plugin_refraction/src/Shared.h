@@ -1,7 +1,7 @@
 // Private to the plugin: its entries in the registry of numbers C++ and GLSL share
 // (engine/gl/Registry.h), which RefractionPlugin::initialize registers as "refraction". The
 // shaders read each as a define; C++ binds through the slots below. Storage bindings from
-// gl::slot::kFirstPluginBinding; texture units from 20 (the engine's end below).
+// gl::slot::kFirstPluginBinding; texture units from 24 (the engine's end below).
 #pragma once
 
 #include "engine/gl/Registry.h"
@@ -37,23 +37,24 @@ inline constexpr StorageSlot kBvhKeys{37, "BVH_KEYS_BINDING", "BvhKeys"};
 inline constexpr StorageSlot kBvhParents{38, "BVH_PARENTS_BINDING", "BvhParents"};
 inline constexpr StorageSlot kBvhVisits{39, "BVH_VISITS_BINDING", "BvhVisits"};
 inline constexpr StorageSlot kLayerSurfaces{40, "LAYER_SURFACES_BINDING", "LayerSurfaces"};
+inline constexpr StorageSlot kLayerMotions{41, "LAYER_MOTIONS_BINDING", "LayerMotions"};
 
 // Texture units.
-inline constexpr TextureSlot kSceneColor{20, "SCENE_COLOR_UNIT"};
-inline constexpr TextureSlot kSceneDepth{21, "SCENE_DEPTH_UNIT"};
-inline constexpr TextureSlot kLayerDepthMaps{22, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
-inline constexpr TextureSlot kPairNormals{24, "PAIR_NORMALS_UNIT", 2};        ///< front, back
+inline constexpr TextureSlot kSceneColor{24, "SCENE_COLOR_UNIT"};
+inline constexpr TextureSlot kSceneDepth{25, "SCENE_DEPTH_UNIT"};
+inline constexpr TextureSlot kLayerDepthMaps{26, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
+inline constexpr TextureSlot kPairNormals{28, "PAIR_NORMALS_UNIT", 2};        ///< front, back
 /** The pair capture's maps the resolve reads (resolve.frag.glsl): the one pass's nearest and
  *  farthest targets, or the two passes' front depth, front normal, back depth, back normal. */
-inline constexpr TextureSlot kPairMaps{26, "PAIR_MAPS_UNIT", 4};
-inline constexpr TextureSlot kOutlineSurface{30,
+inline constexpr TextureSlot kPairMaps{30, "PAIR_MAPS_UNIT", 4};
+inline constexpr TextureSlot kOutlineSurface{34,
                                              "OUTLINE_SURFACE_UNIT"}; ///< the walk's nearest layers
 /** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
  *  transmission and roughness (GpuState::tracedTextures). */
-inline constexpr TextureSlot kTracedTextures{31, "TRACED_TEXTURES_UNIT", 8};
+inline constexpr TextureSlot kTracedTextures{35, "TRACED_TEXTURES_UNIT", 8};
 /** The two passes' surfaces where the frame's glass is textured (resolve.frag.glsl): the
  *  front's, the back's. */
-inline constexpr TextureSlot kPairSurfaces{39, "PAIR_SURFACES_UNIT", 2};
+inline constexpr TextureSlot kPairSurfaces{43, "PAIR_SURFACES_UNIT", 2};
 
 } // namespace refraction::slot
 

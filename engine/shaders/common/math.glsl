@@ -17,6 +17,21 @@ vec3 equirectDirection(vec2 uv) {
     return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
+// Octahedral map of a unit vector to [0,1]^2 and back.
+vec2 octEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return e * 0.5 + 0.5;
+}
+
+vec3 octDecode(vec2 e) {
+    e = e * 2.0 - 1.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0)
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
 // Low-discrepancy 2D point i of n (Hammersley).
 vec2 hammersley(uint i, uint n) {
     uint bits = bitfieldReverse(i);

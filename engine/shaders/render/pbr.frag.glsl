@@ -1,14 +1,19 @@
 // Opaque surfaces: glTF's material model with its extensions' layers (common/brdf.glsl), lit by
-// the environment and the punctual lights; compiled per set of layers (SURFACE_LAYERS).
+// the environment and the punctual lights; compiled per set of layers (SURFACE_LAYERS). Where the
+// frame accumulates (uWriteMotion), each fragment's motion too (common/motion.glsl).
 #include "common/brdf.glsl"
 #include "common/material_uv.glsl"
+#include "common/motion.glsl"
 #include "common/normal_map.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 in vec4 vWorldTangent;
 in vec4 vUv; // TEXCOORD_0 in xy, TEXCOORD_1 in zw
-out vec4 outColor;
+in vec4 vClip, vPreviousClip;
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out uvec4 outMotion;
+uniform int uMotionObject; // the draw item's index + 1
 
 uniform vec3 uCameraPosition;
 uniform vec4 uBaseColorFactor;
@@ -39,6 +44,10 @@ vec4 read(int slot) {
 }
 
 void main() {
+    if (uWriteMotion != 0)
+        outMotion = packMotion(motionIdentity(MOTION_OPAQUE, uint(uMotionObject)),
+                               clipToPixel(vClip) - clipToPixel(vPreviousClip), vClip.w,
+                               vPreviousClip.w, 0u);
     vec4 baseColor = uBaseColorFactor;
     if (has(SLOT_BASE_COLOR))
         baseColor *= read(SLOT_BASE_COLOR); // sRGB: decoded to linear

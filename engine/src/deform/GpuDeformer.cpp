@@ -25,10 +25,10 @@ std::uint32_t groups(std::size_t n) {
 
 /** Per instance primitive with subdivision: the deformed cage and the evaluators' outputs. */
 struct GpuDeformer::Refined {
-    gl::Buffer cage;                       // DeformedVertex per file vertex
-    gl::Buffer refined;                    // 3 floats per refined vertex
-    gl::Buffer limit, du, dv;              // 3 floats per refined vertex
-    gl::Buffer tangents;                   // 4 floats per refined face-varying value
+    gl::Buffer cage;          // DeformedVertex per file vertex
+    gl::Buffer refined;       // 3 floats per refined vertex
+    gl::Buffer limit, du, dv; // 3 floats per refined vertex
+    gl::Buffer tangents;      // 4 floats per refined face-varying value
 };
 
 struct GpuDeformer::Evaluators {
@@ -168,7 +168,9 @@ void GpuDeformer::stage(const anim::Pose& pose, const glm::dmat4& placement, Pos
     for (std::size_t i = 0; i < mInstances.size(); ++i) {
         GpuInstance& instance = mInstances[i];
         const auto node = std::size_t(instance.node);
-        instance.meshToWorld = glm::mat4(placement * pose.world[node] * instance.instance);
+        const glm::mat4 meshToWorld(placement * pose.world[node] * instance.instance);
+        instance.previousMeshToWorld = mStagedBefore ? instance.meshToWorld : meshToWorld;
+        instance.meshToWorld = meshToWorld;
         if (instance.deformation != i)
             continue; // draws another's deformation
         Staged& staged = mStaged[i];
@@ -180,6 +182,35 @@ void GpuDeformer::stage(const anim::Pose& pose, const glm::dmat4& placement, Pos
         staged.weights = upload.addWeights(weights);
         staged.weightCount = std::uint32_t(weights.size());
     }
+    mStagedBefore = true;
+}
+
+void GpuDeformer::keepPrevious(bool keep) {
+    if (keep == mKeepPrevious)
+        return;
+    mKeepPrevious = keep;
+    mPreviousValid = false;
+    for (std::size_t i = 0; i < mInstances.size(); ++i)
+        for (GpuPrimitive& gp : mInstances[i].primitives)
+            gp.previous = !keep ? nullptr
+                          : mInstances[i].deformation == i
+                              ? std::make_shared<gl::Buffer>(gp.deformed->size())
+                              : nullptr;
+    for (GpuInstance& instance : mInstances) // later instances draw the first one's
+        for (std::size_t p = 0; p < instance.primitives.size(); ++p)
+            instance.primitives[p].previous =
+                mInstances[instance.deformation].primitives[p].previous;
+}
+
+void GpuDeformer::keepResult(bool before) {
+    if (!mKeepPrevious || before != mPreviousValid)
+        return;
+    gl::memoryBarrier(gl::BarrierBufferUpdate); // the deform's writes before the copy reads
+    for (std::size_t i = 0; i < mInstances.size(); ++i)
+        for (GpuPrimitive& gp : mInstances[i].primitives)
+            if (mInstances[i].deformation == i)
+                gp.previous->copyFrom(*gp.deformed);
+    mPreviousValid = true;
 }
 
 void GpuDeformer::update(const anim::Pose& pose, const glm::dmat4& placement) {
@@ -192,6 +223,12 @@ void GpuDeformer::update(const anim::Pose& pose, const glm::dmat4& placement) {
 }
 
 void GpuDeformer::dispatch(const PoseUpload& upload) {
+    keepResult(true); // the last dispatch's result, before this one rewrites it
+    dispatchDeform(upload);
+    keepResult(false);
+}
+
+void GpuDeformer::dispatchDeform(const PoseUpload& upload) {
     const scene::Model& model = mUpload->model();
     mDeform.use();
     gl::bindStorage(gl::slot::kMorphWeights, upload.weights());

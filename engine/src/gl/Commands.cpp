@@ -119,6 +119,9 @@ void bindImage(const ImageSlot& slot, const Texture& texture, int level, bool wr
     case Format::RG32UI:
         format = GL_RG32UI;
         break;
+    case Format::RGBA32UI:
+        format = GL_RGBA32UI;
+        break;
     case Format::RGBA8:
         format = GL_RGBA8;
         break;

@@ -37,6 +37,8 @@ FormatInfo info(Format f) {
         return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
     case Format::RG32UI:
         return {GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT};
+    case Format::RGBA32UI:
+        return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
     case Format::Depth32F:
         return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
     }
@@ -57,7 +59,7 @@ bool isDepth(Format f) {
 }
 
 bool isInteger(Format f) {
-    return f == Format::R32UI || f == Format::RG32UI;
+    return f == Format::R32UI || f == Format::RG32UI || f == Format::RGBA32UI;
 }
 
 // ---- Buffer
@@ -104,6 +106,12 @@ void Buffer::fill(std::size_t offset, std::size_t count, std::uint32_t value) {
     if (count)
         glClearNamedBufferSubData(mId, GL_R32UI, GLintptr(offset), GLsizeiptr(count * 4),
                                   GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+}
+
+void Buffer::copyFrom(const Buffer& source) {
+    ENGINE_CHECK(source.mSize <= mSize && source.mId != mId, "Buffer::copyFrom() past the end");
+    if (source.mSize)
+        glCopyNamedBufferSubData(source.mId, mId, 0, 0, GLsizeiptr(source.mSize));
 }
 
 void Buffer::copy(std::size_t sourceOffset, std::size_t offset, std::size_t bytes) {
@@ -201,6 +209,15 @@ std::vector<float> Texture::downloadFloat(int level) const {
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(mId, level, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
                       GLsizei(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+std::vector<std::uint32_t> Texture::downloadUint(int level) const {
+    const glm::ivec2 s = size(level);
+    std::vector<std::uint32_t> out(std::size_t(s.x) * std::size_t(s.y) * 4u);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(mId, level, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(out.size() * sizeof(std::uint32_t)), out.data());
     return out;
 }
 

@@ -13,6 +13,8 @@
 #include "engine/render/Lighting.h"
 #include "engine/render/MaterialTextures.h"
 
+#include "TemporalHistory.h"
+
 #include <map>
 #include <memory>
 #include <vector>
@@ -47,6 +49,8 @@ struct RenderGpu {
     LightingBuffer lighting;                            // the lights (gl::slot::kLighting)
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
+    gl::Program temporal; ///< the temporal resolve (render/temporal.frag.glsl)
+    TemporalHistory history;
     gl::Program ground[2]; ///< without and with the punctual lights (PUNCTUAL_LIGHTS)
     /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()) and with or
      *  without the punctual lights (opaqueKey), compiled when a frame first needs it. */

@@ -129,7 +129,8 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     for (const ProgramSpec& spec :
          {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
-          ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"}}) {
+          ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"},
+          ProgramSpec{&gpu.temporal, "render/fullscreen.vert.glsl", "render/temporal.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
         if (!program)
             return core::Error{"render::Renderer::create(): " + program.error().message};
@@ -212,6 +213,7 @@ core::Status Renderer::setSubdivisionLevel(int level) {
     }
     mGpu->models = std::move(refined);
     mGpu->characters.clear(); // placed again over the new uploads by the next prepare()
+    mGpu->history.requestReset();
     mLevel = level;
     return {};
 }
@@ -262,6 +264,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         const scene::Model& model = *character.model;
         anim::applyClip(model, character.playingClip(), character.clipTime(time), cg.pose);
         anim::updateWorld(model, cg.pose);
+        cg.deformer->keepPrevious(settings.temporal.enabled); // motion vectors
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
         placeLights(model, cg.model->lightNodes, cg.pose, character.transform(), gpu.lights);
         const auto& instances = cg.deformer->instances();
@@ -281,6 +284,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
                 item.vertexArray = &cg.model->vertexArrays[std::size_t(instances[i].mesh)][p];
                 item.materials = cg.model->materials.get();
                 item.world = instances[i].meshToWorld;
+                item.previousWorld = instances[i].previousMeshToWorld;
                 item.mirrored = glm::determinant(glm::mat3(item.world)) < 0.0f;
                 item.key = cg.deformer->serial();
                 for (const plugin::Plugin* plugin : mPlugins)
@@ -311,13 +315,19 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
             return core::Error{"render::Renderer::render(): " + program.error().message};
         gpu.opaque.emplace(key, std::move(*program));
     }
+    std::uint64_t pluginRevision = 0;
+    for (plugin::Plugin* p : mPlugins)
+        pluginRevision += p->parameters().revision();
     FrameInfo frame;
+    frame.temporal = gpu.history.begin(world, camera, settings, time, gpu.items, pluginRevision);
     frame.world = &world;
     frame.items = gpu.items;
     frame.lights = gpu.lights;
     frame.environment = gpu.environment.get();
     frame.shaders = &mShaders;
-    frame.camera = camera;
+    frame.camera = frame.temporal.enabled
+                       ? TemporalHistory::jittered(camera, frame.temporal.jitter, settings.size)
+                       : camera;
     frame.settings = settings;
     frame.time = time;
     frame.ground = mGroundPlane;
@@ -341,13 +351,18 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
 
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
+    if (scene.motion.valid())
+        blackboard.put(plugin::kSceneMotion, scene.motion);
     blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(stage, graph, blackboard);
-    passes::addTonemap(graph, gpu, frame, blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
-                       output);
+    fg::TextureHandle color = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    if (frame.temporal.enabled)
+        color = passes::addTemporal(graph, gpu, frame, gpu.history, color,
+                                    blackboard.get<fg::TextureHandle>(plugin::kSceneMotion));
+    passes::addTonemap(graph, gpu, frame, color, output);
 
     auto compiled = graph.compile();
     if (!compiled)
@@ -372,6 +387,9 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         p.gpuMs = mTimer->milliseconds(p.name);
         stats.gpuMs += p.gpuMs;
     }
+    if (frame.temporal.enabled)
+        gpu.history.end();
+    stats.historyBytes = frame.temporal.enabled ? gpu.history.bytes() : 0;
     stats.graph = graph.dump();
     stats.transientBytes = mPool->allocatedBytes();
     mPool->endFrame();
@@ -384,11 +402,20 @@ void Renderer::presentOutput(glm::ivec4 source, glm::ivec4 destination) const {
     mPresent.blitToDefault(source, destination);
 }
 
+const gl::Texture& Renderer::lastMotion() const {
+    return mGpu->history.previousMotion();
+}
+
+void Renderer::resetHistory() {
+    mGpu->history.requestReset();
+}
+
 core::Status Renderer::setEnvironment(const asset::HdrImage& environment) {
     auto env = Environment::create(environment, mShaders);
     if (!env)
         return env.error();
     mGpu->environment = std::move(*env);
+    mGpu->history.requestReset();
     return {};
 }
 

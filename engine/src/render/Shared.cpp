@@ -1,6 +1,7 @@
 // The render module's table of shared numbers, from the enums that define them.
 #include "engine/render/Shared.h"
 
+#include "engine/render/FrameInfo.h"
 #include "engine/render/Lighting.h"
 #include "engine/render/MaterialTextures.h"
 #include "engine/scene/Light.h"
@@ -41,6 +42,15 @@ constexpr Shared kTable[] = {
     Shared::integer("LAYER_SHEEN", scene::Material::kSheenLayer),
     Shared::integer("LAYER_IRIDESCENCE", scene::Material::kIridescenceLayer),
     Shared::integer("LAYER_ANISOTROPY", scene::Material::kAnisotropyLayer),
+    Shared::bits("MOTION_ENVIRONMENT", std::uint32_t(MotionKind::Environment)),
+    Shared::bits("MOTION_GROUND", std::uint32_t(MotionKind::Ground)),
+    Shared::bits("MOTION_OPAQUE", std::uint32_t(MotionKind::Opaque)),
+    Shared::bits("MOTION_GLASS", std::uint32_t(MotionKind::Glass)),
+    Shared::bits("MOTION_THROUGH_GLASS", std::uint32_t(MotionKind::ThroughGlass)),
+    Shared::bits("MOTION_KIND_SHIFT", kMotionKindShift),
+    Shared::bits("MOTION_OBJECT_MASK", kMotionObjectMask),
+    Shared::integer("TEMPORAL_VIEW_REJECTED", int(TemporalSettings::View::Rejected)),
+    Shared::integer("TEMPORAL_VIEW_MOTION", int(TemporalSettings::View::Motion)),
 };
 static_assert(gl::distinct(kTable));
 

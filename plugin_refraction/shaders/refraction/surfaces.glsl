@@ -10,6 +10,7 @@
 // (glass_rectangle.glsl), so the full-screen passes after it rasterise only that rectangle.
 #ifndef REFRACTION_SURFACES_GLSL
 #define REFRACTION_SURFACES_GLSL
+#include "common/math.glsl" // octEncode, octDecode
 
 const float kNoSurface = NO_SURFACE; // the clear value: MAX keeps any fragment over it
 
@@ -28,21 +29,6 @@ uint keyPayload(float key) {
 
 uint quantise10(float x) {
     return uint(round(clamp(x, 0.0, 1.0) * 1023.0));
-}
-
-// Octahedral map of a unit vector to [0,1]^2 and back.
-vec2 octEncode(vec3 n) {
-    n /= abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return e * 0.5 + 0.5;
-}
-
-vec3 octDecode(vec2 e) {
-    e = e * 2.0 - 1.0;
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0)
-        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
 }
 
 #include "refraction/glass_rectangle.glsl"

@@ -36,6 +36,9 @@ struct GpuPrimitive {
     /** Shared by the draws of one mesh node: EXT_mesh_gpu_instancing's instances draw one
      *  deformation. */
     std::shared_ptr<gl::Buffer> deformed;
+    /** `deformed` as the previous dispatch left it (the same layout), where the deformer keeps
+     *  it (GpuDeformer::keepPrevious: motion vectors); else null. */
+    std::shared_ptr<gl::Buffer> previous;
     const gl::Buffer* uvs = nullptr;     ///< vec4 per vertex: TEXCOORD_0, TEXCOORD_1 (or zeros)
     const gl::Buffer* indices = nullptr; ///< uint32 triangle list
 };
@@ -52,6 +55,8 @@ struct GpuInstance {
     /** placement * world(node) * instance: mesh space to world space, refreshed by stage() and
      *  update(). */
     glm::mat4 meshToWorld{1.0f};
+    /** meshToWorld as the stage() before the last set it (the last's on the first). */
+    glm::mat4 previousMeshToWorld{1.0f};
     std::vector<GpuPrimitive> primitives;
 };
 
@@ -102,6 +107,13 @@ public:
      *  used alone (tests, tools); a renderer stages every character into one upload. */
     void update(const anim::Pose& pose, const glm::dmat4& placement = glm::dmat4(1.0));
 
+    /** Keeps each deformed buffer as the previous dispatch left it (GpuPrimitive::previous), a
+     *  copy on the GPU before each dispatch rewrites it: the motion of every vertex without a
+     *  second deformation. The first dispatch after this call (or after any dispatch with it
+     *  off) keeps its own result: no motion. Off frees the copies. */
+    void keepPrevious(bool keep);
+    bool keepsPrevious() const { return mKeepPrevious; }
+
     const std::vector<GpuInstance>& instances() const { return mInstances; }
     int subdivisionLevel() const { return mUpload->subdivisionLevel(); }
     /** The uploaded model this placement deforms. */
@@ -125,6 +137,10 @@ public:
 
 private:
     GpuDeformer() = default;
+    void dispatchDeform(const PoseUpload& upload); // dispatch()'s passes
+    /** With keepPrevious: before a dispatch, the last one's result into the previous buffers;
+     *  after the first, its own (`before` says which call this is). */
+    void keepResult(bool before);
     void refine();     // the subdivision passes of update()
     struct Refined;    // per instance primitive: the cage and the evaluators' outputs
     struct Evaluators; // OpenSubdiv's GL compute evaluators, one per buffer layout
@@ -139,6 +155,9 @@ private:
     std::vector<Staged> mStaged; // per instance, by the last stage()
     std::vector<glm::mat4> mScratchMatrices;
     std::unique_ptr<PoseUpload> mOwnUpload; // update()'s
+    bool mKeepPrevious = false;
+    bool mPreviousValid = false; // the previous buffers hold an earlier dispatch's result
+    bool mStagedBefore = false;  // stage() ran before: previousMeshToWorld has a value
     gl::Program mDeform, mFlatNormals, mPack;
 };
 

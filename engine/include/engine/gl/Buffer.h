@@ -34,6 +34,9 @@ public:
     /** Copies `bytes` from `sourceOffset` to `offset` on the GPU, within this buffer (the two
      *  ranges apart; shader writes to the source need BarrierBufferUpdate first). */
     void copy(std::size_t sourceOffset, std::size_t offset, std::size_t bytes);
+    /** Copies all of `source` (no larger than this buffer) to the start of this one, on the GPU
+     *  (shader writes to the source need BarrierBufferUpdate first). */
+    void copyFrom(const Buffer& source);
     /** Reads the buffer back (synchronises with the GPU: tests, tools and one-time set-up). */
     std::vector<std::uint8_t> download(std::size_t offset = 0, std::size_t bytes = SIZE_MAX) const;
 

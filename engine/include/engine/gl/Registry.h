@@ -11,6 +11,7 @@
 //          evaluator binds 0-15 itself, so nothing bound there outlives its pass);
 //   16-19  the engine's frame-wide bindings (the lights, bound once a frame);
 //   20-    plugins (kFirstPluginBinding), each binding what it reads before its passes use it.
+// Texture units: 0-23 the engine's, 24- the plugins'. Image units: the engine's 0-1.
 #pragma once
 
 #include "engine/core/Result.h"
@@ -136,6 +137,8 @@ inline constexpr StorageSlot kLimit{9, "LIMIT_BINDING", "Limit"};
 inline constexpr StorageSlot kLimitDu{10, "LIMIT_DU_BINDING", "LimitDu"};
 inline constexpr StorageSlot kLimitDv{11, "LIMIT_DV_BINDING", "LimitDv"};
 inline constexpr StorageSlot kRefinedTangents{12, "REFINED_TANGENTS_BINDING", "RefinedTangents"};
+/// a draw item's deformed vertices as the previous frame left them (motion vectors)
+inline constexpr StorageSlot kPreviousVertices{13, "PREVIOUS_VERTICES_BINDING", "PreviousVertices"};
 // Frame-wide storage (16-19).
 inline constexpr StorageSlot kLighting{16, "LIGHTING_BINDING", "Lighting"}; ///< render::Lighting
 /** The first storage binding a plugin may register. */
@@ -143,18 +146,31 @@ inline constexpr std::uint32_t kFirstPluginBinding = 20;
 
 /** The image a compute pass writes (prefiltering, a plugin's shading dispatch). */
 inline constexpr ImageSlot kOutputImage{0, "OUTPUT_IMAGE_UNIT"};
+/** The frame's motion (common/motion.glsl) where a plugin writes its own pixels'. */
+inline constexpr ImageSlot kMotionImage{1, "MOTION_IMAGE_UNIT"};
 
 // Texture units, bound by each pass that samples them.
 inline constexpr TextureSlot kEnvironment{0, "ENVIRONMENT_UNIT", 2}; ///< prefiltered, irradiance
 /// a pass's input image (tonemap, prefilter)
 inline constexpr TextureSlot kSource{2, "SOURCE_UNIT"};
 inline constexpr TextureSlot kMaterial{3, "MATERIAL_UNIT", 17}; ///< a material's texture slots
+/// the frame's motion (common/motion.glsl): the temporal resolve's, and a plugin's to read
+inline constexpr TextureSlot kMotion{20, "MOTION_UNIT"};
+/// the temporal history: the last resolved colour and the motion texels it was resolved with
+inline constexpr TextureSlot kHistory{21, "HISTORY_UNIT", 2};
 
 /** The engine's table: every slot above. */
-inline constexpr Shared kEngineTable[] = {
-    kVertices,        kUvs,          kIndices,     kRest,        kInfluences, kMorphDeltas,
-    kMorphWeights,    kSkinMatrices, kCorners,     kLimit,       kLimitDu,    kLimitDv,
-    kRefinedTangents, kLighting,     kOutputImage, kEnvironment, kSource,     kMaterial};
+inline constexpr Shared kEngineTable[] = {kVertices,        kUvs,
+                                          kIndices,         kRest,
+                                          kInfluences,      kMorphDeltas,
+                                          kMorphWeights,    kSkinMatrices,
+                                          kCorners,         kLimit,
+                                          kLimitDu,         kLimitDv,
+                                          kRefinedTangents, kPreviousVertices,
+                                          kLighting,        kOutputImage,
+                                          kMotionImage,     kEnvironment,
+                                          kSource,          kMaterial,
+                                          kMotion,          kHistory};
 static_assert(distinct(kEngineTable));
 } // namespace slot
 

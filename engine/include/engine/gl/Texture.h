@@ -30,6 +30,8 @@ public:
     void setSampling(Filter filter, Wrap wrap);
     /** Reads a level back as RGBA float (colour formats) or depth float (synchronises). */
     std::vector<float> downloadFloat(int level = 0) const;
+    /** An unsigned-integer texture's texels as four words each (synchronises). */
+    std::vector<std::uint32_t> downloadUint(int level = 0) const;
     /** Reads an 8-bit colour level back as RGBA bytes (synchronises). */
     std::vector<std::uint8_t> downloadRgba8(int level = 0) const;
 

@@ -17,6 +17,7 @@ enum class Format : std::uint8_t {
     RG32F,
     R32UI,
     RG32UI,
+    RGBA32UI,
     Depth32F,
 };
 
@@ -37,6 +38,7 @@ constexpr std::size_t bytesPerTexel(Format format) {
     case Format::RG32UI:
         return 8;
     case Format::RGBA32F:
+    case Format::RGBA32UI:
         return 16;
     }
     return 0;

@@ -90,6 +90,10 @@ enum class Stage {
  *  A plugin that changes the scene colour puts its new version back under "scene.color". */
 inline constexpr const char* kSceneColor = "scene.color";
 inline constexpr const char* kSceneDepth = "scene.depth";
+/** Where the frame accumulates (FrameInfo::temporal.enabled): every pixel's motion
+ *  (common/motion.glsl, RGBA32UI). A plugin that draws pixels of its own writes their motion
+ *  into a new version (or a copy) and puts it back, as it does the colour. */
+inline constexpr const char* kSceneMotion = "scene.motion";
 inline constexpr const char* kSceneVertices = "scene.vertices";
 inline constexpr const char* kFrame = "frame";
 

@@ -21,6 +21,7 @@ class GpuDeformer;
 struct GpuPrimitive;
 } // namespace deform
 namespace gl {
+class Program;
 class ShaderLibrary;
 class VertexArray;
 } // namespace gl
@@ -47,6 +48,29 @@ struct GroundPlane {
     }
 };
 
+/** Temporal accumulation: every frame's projection jittered under the pixel, and a resolve
+ *  pass that blends the frame into the history the renderer keeps across frames, each pixel
+ *  reprojected by its motion (docs/methods.md, "Temporal accumulation"). */
+struct TemporalSettings {
+    bool enabled = false;
+    /** The history's weight while anything moves (the new frame's is 1 - weight, or 1 / n
+     *  over the first n frames of a history): higher converges further and lags more. */
+    float historyWeight = 0.8f;
+    /** While nothing moves (a paused viewer, a capture at one time), every frame since the
+     *  last change weighs the same: N still frames are N samples of one frame. */
+    bool convergeStill = true;
+    /** Reject history on disocclusion (depth), a changed surface or path end, and clip it to
+     *  the new frame's neighbourhood. Off only to show what they are for. */
+    bool rejectHistory = true;
+    enum class View {
+        Off,      ///< the resolved frame
+        Rejected, ///< red where the history was rejected, green where clipped, grey kept
+        Motion,   ///< each pixel's motion (hue: direction, brightness: length over 8 px)
+    };
+    View view = View::Off;
+    bool operator==(const TemporalSettings&) const = default;
+};
+
 /** Display and scene settings of a frame. */
 struct RenderSettings {
     glm::ivec2 size{256, 256};
@@ -62,6 +86,22 @@ struct RenderSettings {
     /** Output the HDR scene colour unchanged (RGBA32F, no exposure, tonemap or sRGB) instead of
      *  the display image: for measurements and debug views. */
     bool hdrOutput = false;
+    TemporalSettings temporal;
+    bool operator==(const RenderSettings&) const = default;
+};
+
+/** This frame's place in the temporal history (FrameInfo::temporal). */
+struct TemporalFrame {
+    bool enabled = false;
+    /** The frame's index in the history since it was last reset (0: the history's first):
+     *  the jitter's index in its sequence, and the seed of sampled paths. */
+    std::uint32_t index = 0;
+    /** Nothing moved since the previous frame: camera, time, placements and world the same. */
+    bool still = false;
+    glm::vec2 jitter{0.0f}; ///< pixels (each in -0.5..0.5) FrameInfo::camera is offset by
+    /** World -> clip without the jitter, this frame's and the previous frame's (this frame's
+     *  on the history's first): what motion vectors measure with. */
+    glm::mat4 viewProjection{1.0f}, previousViewProjection{1.0f};
 };
 
 /** One primitive of one mesh node of one character, as a frame draws it: the unit plugins
@@ -79,6 +119,9 @@ struct DrawItem {
     const gl::VertexArray* vertexArray = nullptr;   ///< binds the primitive's index buffer
     const MaterialTextures* materials = nullptr;    ///< the model's textures
     glm::mat4 world{1.0f}; ///< mesh node to world space (the character's placement included)
+    /** `world` on the previous frame (GpuInstance::previousMeshToWorld): with the previous
+     *  deformation (gpu->previous), what motion vectors measure from. */
+    glm::mat4 previousWorld{1.0f};
     /** `world` mirrors (a negative determinant): glTF's winding is reversed, its front faces
      *  clockwise (PipelineState::clockwise; a traced or referenced winding flips too). */
     bool mirrored = false;
@@ -100,8 +143,11 @@ struct FrameInfo {
      *  also in the storage buffer at gl::slot::kLighting. */
     std::span<const scene::PlacedLight> lights;
     const gl::ShaderLibrary* shaders = nullptr;
+    /** The frame's camera: its projection offset by the temporal jitter where accumulating
+     *  (temporal.viewProjection is the unjittered one). */
     Camera camera;
     RenderSettings settings;
+    TemporalFrame temporal;
     double time = 0.0;  ///< scene time, seconds
     GroundPlane ground; ///< drawn when settings.ground
     /** Whether the opaque pass draws anything besides the background: the ground, or an
@@ -109,5 +155,10 @@ struct FrameInfo {
      *  their search when it is false (the background alone is the environment). */
     bool opaqueGeometry = false;
 };
+
+/** Sets common/motion.glsl's uniforms on `program` (this frame's and the previous frame's
+ *  unjittered world -> clip, the frame's size) and uWriteMotion: whether the frame accumulates,
+ *  so that a pass writes its pixels' motion. */
+void setMotionUniforms(const gl::Program& program, const FrameInfo& frame);
 
 } // namespace render

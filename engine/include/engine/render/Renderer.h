@@ -47,6 +47,7 @@ struct FrameStats {
     double recordMs = 0.0;
     double gpuMs = 0.0;             ///< sum of the passes' GPU times
     std::size_t transientBytes = 0; ///< GPU memory of the frame graph's pooled textures
+    std::size_t historyBytes = 0;   ///< GPU memory of the temporal history (0 while off)
     std::string graph;              ///< the compiled frame graph as text
 };
 
@@ -71,7 +72,9 @@ public:
     /** Renders `world` at scene time `time` seen by `camera` into output() (RGBA8,
      *  sRGB-encoded, size settings.size): each character posed by its clip at
      *  Character::clipTime(time) and placed by its transform, every character's skin matrices
-     *  and morph weights uploaded at once, deformed, then the frame graph. Fails (no crash) on a
+     *  and morph weights uploaded at once, deformed, then the frame graph. With
+     *  settings.temporal on, the frame is jittered and blended into the history kept across
+     *  calls (TemporalHistory). Fails (no crash) on a
      *  preparation or frame graph error, naming the character or the pass. */
     core::Result<FrameStats> render(const scene::World& world, const Camera& camera,
                                     const RenderSettings& settings, double time = 0.0);
@@ -86,6 +89,14 @@ public:
      *  bottom-up rows) of it to rectangle `destination` of the default framebuffer (scaled
      *  bilinearly when the sizes differ). */
     void presentOutput(glm::ivec4 source, glm::ivec4 destination) const;
+
+    /** The motion texels (common/motion.glsl) the last frame that accumulated resolved with:
+     *  RGBA32UI, GL's bottom-up rows; empty while off (tests and debug tools). */
+    const gl::Texture& lastMotion() const;
+
+    /** Starts the temporal history over on the next frame: a camera cut the caller knows of (the
+     *  renderer finds the others itself: TemporalHistory::begin). */
+    void resetHistory();
 
     /** Replaces the environment (prefiltered again); on failure the previous one stays. */
     core::Status setEnvironment(const asset::HdrImage& environment);

@@ -1,4 +1,5 @@
-// `background`: the scene targets are created here, with the environment drawn behind all.
+// `background`: the scene targets are created here, with the environment drawn behind all (and
+// where the frame accumulates, its motion).
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -13,10 +14,13 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
         [&](fg::Builder& b, SceneTargets& d) {
             d.color = b.write(b.create("scene.color", colorDesc));
             d.depth = b.write(b.create("scene.depth", depthDesc));
+            if (frame.temporal.enabled)
+                d.motion = b.write(
+                    b.create("scene.motion", {frame.settings.size, gl::Format::RGBA32UI, 1}));
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound = gpu.framebuffer.bindTargets("background", {&r.texture(d.color)},
+            if (auto bound = gpu.framebuffer.bindTargets("background", sceneTargets(r, d),
                                                          &r.texture(d.depth));
                 !bound)
                 return bound;
@@ -28,6 +32,7 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
             gpu.background.set("uInverseViewProjection",
                                glm::inverse(frame.camera.viewProjection()));
             gpu.background.set("uBackgroundBlur", frame.settings.backgroundBlur);
+            setMotionUniforms(gpu.background, frame);
             gpu.emptyVao.bind();
             gl::drawArrays(3);
             return {};

@@ -12,11 +12,13 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         [&](fg::Builder& b, SceneTargets& d) {
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
+            if (scene.motion.valid())
+                d.motion = b.write(scene.motion);
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound = gpu.framebuffer.bindTargets("ground", {&r.texture(d.color)},
-                                                         &r.texture(d.depth));
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("ground", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None});
@@ -30,6 +32,7 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
             p.set("uHalfSize", frame.ground.halfSize);
             p.set("uHeight", frame.ground.height);
             p.set("uTileSize", frame.ground.halfSize / 8.0f);
+            setMotionUniforms(p, frame);
             gpu.emptyVao.bind();
             gl::drawArrays(6);
             return {};

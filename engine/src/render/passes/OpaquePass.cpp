@@ -1,5 +1,6 @@
 // `opaque`: the primitives no plugin claims, glTF's material model (render/pbr.frag.glsl, one
-// program per set of material layers) lit by the environment and the punctual lights.
+// program per set of material layers) lit by the environment and the punctual lights; where the
+// frame accumulates, their motion from the previous frame's deformation and placement.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -24,11 +25,13 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
             b.read(vertices);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
+            if (scene.motion.valid())
+                d.motion = b.write(scene.motion);
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
-            if (auto bound = gpu.framebuffer.bindTargets("opaque", {&r.texture(d.color)},
-                                                         &r.texture(d.depth));
+            if (auto bound =
+                    gpu.framebuffer.bindTargets("opaque", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
             for (auto& [key, program] : gpu.opaque) {
@@ -36,8 +39,10 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                                       frame.settings.environmentIntensity);
                 program.set("uViewProjection", frame.camera.viewProjection());
                 program.set("uCameraPosition", frame.camera.position);
+                setMotionUniforms(program, frame);
             }
-            for (const DrawItem& item : frame.items) {
+            for (std::size_t index = 0; index < frame.items.size(); ++index) {
+                const DrawItem& item = frame.items[index];
                 if (item.owner)
                     continue;
                 // The program of the layers its material puts on the base.
@@ -50,10 +55,14 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
+                p.set("uPreviousModel", item.previousWorld);
+                p.set("uMotionObject", int(index + 1));
                 gl::apply(
                     {.cull = cullFor(*item.model, item.material), .clockwise = item.mirrored});
                 item.materials->bind(p, *item.model, item.material);
                 gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
+                gl::bindStorage(gl::slot::kPreviousVertices,
+                                item.gpu->previous ? *item.gpu->previous : *item.gpu->deformed);
                 gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
                 item.vertexArray->bind();
                 gl::drawIndexed(item.gpu->indexCount);

@@ -3,23 +3,37 @@
 #pragma once
 
 #include "../RenderGpu.h"
+#include "../TemporalHistory.h"
 
 #include "engine/fg/FrameGraph.h"
 #include "engine/render/FrameInfo.h"
 
+#include <vector>
+
 namespace render::passes {
 
-/** The HDR scene colour and depth as the passes hand them on. */
+/** The HDR scene colour and depth as the passes hand them on; where the frame accumulates, the
+ *  motion of every pixel (common/motion.glsl, RGBA32UI), each pass writing its own pixels'. */
 struct SceneTargets {
-    fg::TextureHandle color, depth;
+    fg::TextureHandle color, depth, motion;
 };
+
+/** The colour target and, where the frame accumulates, the motion target of `scene`. */
+inline std::vector<const gl::Texture*> sceneTargets(const fg::Resources& r,
+                                                    const SceneTargets& scene) {
+    std::vector<const gl::Texture*> targets{&r.texture(scene.color)};
+    if (scene.motion.valid())
+        targets.push_back(&r.texture(scene.motion));
+    return targets;
+}
 
 /** `deform`: deforms each character (GpuDeformer::dispatch) from what they staged into
  *  RenderGpu::poses (uploaded before the frame graph runs); writes `vertices` (the imported
  *  resource standing for every character's deformed buffers), returns the new version. */
 fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
- *  environment behind everything. */
+ *  environment behind everything; where the frame accumulates, creates scene.motion with the
+ *  environment's motion. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
 /** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
@@ -28,6 +42,13 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
  *  from the deformed vertices. */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices);
+/** `temporal`: the frame (`color`, jittered) blended into the history (TemporalHistory, its
+ *  textures imported) by each pixel's motion (`motion`), rejected where what the pixel tracks
+ *  changed, clipped to the frame's neighbourhood while anything moves; returns the resolved
+ *  colour (the history's next), or with a debug view that view. */
+fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                              TemporalHistory& history, fg::TextureHandle color,
+                              fg::TextureHandle motion);
 /** `tonemap`: exposure, ACES fit and sRGB (or the raw HDR colour) into `output`. */
 void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                 fg::TextureHandle scene, fg::TextureHandle output);

@@ -1,0 +1,157 @@
+// `temporal`: this frame's colour (its projection jittered under the pixel) blended into the
+// history the renderer keeps, each pixel reprojected by its motion (common/motion.glsl). The
+// history is reused where it shows what the pixel tracks now: the same kind and object, no
+// depth jump (disocclusion), no jump in the direction a path through glass left it. While
+// anything moves it is read with a Catmull-Rom filter, clipped to the frame's 3x3 neighbourhood
+// (variance clipping in YCoCg) and weighted uHistoryWeight (1 - 1/n over its first n frames);
+// while nothing moves (uStill) it is read where it lies, unclipped, and every frame weighs the
+// same: N still frames average to N samples of one frame.
+#include "common/motion.glsl"
+
+layout(binding = SOURCE_UNIT) uniform sampler2D uColor;
+layout(binding = MOTION_UNIT) uniform usampler2D uMotion;
+layout(binding = HISTORY_UNIT) uniform sampler2D uHistoryColor; // rgb; a: the frames it holds
+layout(binding = HISTORY_UNIT + 1) uniform usampler2D uHistoryMotion;
+
+uniform int uIndex; // the frame's index in the history: 0, none to reuse
+uniform int uStill;
+uniform float uHistoryWeight;
+uniform int uReject;
+uniform int uView;
+
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out uvec4 outMotion;
+layout(location = 2) out vec4 outView;
+
+// Relative depth change that counts as a disocclusion, and the turn of a path's exit that
+// counts as a jump (15 degrees).
+const float kDepthTolerance = 0.05;
+const float kExitTurn = 0.966;
+
+vec3 toYCoCg(vec3 c) {
+    return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b,
+                -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+}
+
+vec3 fromYCoCg(vec3 c) {
+    return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
+}
+
+// The history's colour at `pos` (pixels) under a Catmull-Rom filter, as five bilinear reads.
+vec3 historyCatmullRom(vec2 pos) {
+    vec2 size = vec2(textureSize(uHistoryColor, 0));
+    vec2 t = floor(pos - 0.5) + 0.5, f = pos - t;
+    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    vec2 w3 = f * f * (-0.5 + 0.5 * f);
+    vec2 w12 = w1 + w2;
+    vec2 p0 = (t - 1.0) / size, p3 = (t + 2.0) / size, p12 = (t + w2 / w12) / size;
+    float a = w12.x * w0.y, b = w0.x * w12.y, c = w12.x * w12.y, d = w3.x * w12.y, e = w12.x * w3.y;
+    vec3 sum = textureLod(uHistoryColor, vec2(p12.x, p0.y), 0.0).rgb * a +
+               textureLod(uHistoryColor, vec2(p0.x, p12.y), 0.0).rgb * b +
+               textureLod(uHistoryColor, p12, 0.0).rgb * c +
+               textureLod(uHistoryColor, vec2(p3.x, p12.y), 0.0).rgb * d +
+               textureLod(uHistoryColor, vec2(p12.x, p3.y), 0.0).rgb * e;
+    return max(sum / (a + b + c + d + e), vec3(0.0));
+}
+
+// Whether the history texel `h` shows what a pixel tracking `m` tracks.
+bool sameSurface(uvec4 m, uvec4 h) {
+    if (m.x != h.x)
+        return false;
+    vec2 d = motionDepths(m), hd = motionDepths(h);
+    if (d.y > 0.0 && hd.x > 0.0 && abs(d.y - hd.x) > kDepthTolerance * max(d.y, hd.x))
+        return false;
+    if (m.w != 0u && h.w != 0u &&
+        dot(octDecode(unpackUnorm2x16(m.w)), octDecode(unpackUnorm2x16(h.w))) < kExitTurn)
+        return false;
+    return true;
+}
+
+// Whether the history texel `h` shows what pixel p, or a neighbour, tracks now (the pixel's
+// footprint spans them: one jittered sample a frame may see its neighbour's surface, or leave
+// curved glass in another direction, without the history being stale).
+bool seenAround(ivec2 p, uvec4 m, uvec4 h) {
+    if (sameSurface(m, h))
+        return true;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) {
+            ivec2 q = p + ivec2(x, y);
+            if ((x != 0 || y != 0) && all(greaterThanEqual(q, ivec2(0))) &&
+                all(lessThan(q, ivec2(uMotionSize))) && sameSurface(texelFetch(uMotion, q, 0), h))
+                return true;
+        }
+    return false;
+}
+
+vec3 motionColor(vec2 motion) {
+    float len = length(motion);
+    float hue = atan(motion.y, motion.x) / (2.0 * PI) + 0.5;
+    vec3 rgb = clamp(abs(fract(hue + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+    return rgb * min(len / 8.0, 1.0);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec3 color = texelFetch(uColor, p, 0).rgb;
+    if (any(isnan(color)) || any(isinf(color)))
+        color = vec3(0.0);
+    uvec4 m = texelFetch(uMotion, p, 0);
+    outMotion = m;
+    vec2 candidates[2];
+    int count = motionCandidates(m, candidates);
+    // Nothing moved: the history is this frame's own, whatever one sample a pixel showed.
+    bool kept = false;
+    vec2 previous = vec2(p) + 0.5, motion = candidates[0];
+    ivec2 hp = p;
+    for (int i = 0; i < count && !kept && uIndex > 0; ++i) {
+        motion = candidates[i];
+        previous = vec2(p) + 0.5 - motion;
+        hp = ivec2(floor(previous));
+        kept = all(greaterThanEqual(hp, ivec2(0))) && all(lessThan(hp, ivec2(uMotionSize))) &&
+               (uStill != 0 || uReject == 0 ||
+                seenAround(p, m, texelFetch(uHistoryMotion, hp, 0)));
+    }
+    bool clipped = false;
+    vec4 result = vec4(color, 1.0);
+    if (kept) {
+        float n = texelFetch(uHistoryColor, hp, 0).a;
+        if (uStill != 0) { // every frame the same weight: the history is the mean of n
+            vec3 history = texelFetch(uHistoryColor, hp, 0).rgb;
+            result = vec4(history + (color - history) / (n + 1.0), n + 1.0);
+        } else {
+            vec3 history = historyCatmullRom(previous);
+            if (uReject != 0) { // variance clipping toward the neighbourhood's mean
+                vec3 mean = vec3(0.0), square = vec3(0.0);
+                for (int y = -1; y <= 1; ++y)
+                    for (int x = -1; x <= 1; ++x) {
+                        ivec2 q = clamp(p + ivec2(x, y), ivec2(0), ivec2(uMotionSize) - 1);
+                        vec3 c = toYCoCg(texelFetch(uColor, q, 0).rgb);
+                        mean += c;
+                        square += c * c;
+                    }
+                mean /= 9.0;
+                vec3 sigma = sqrt(max(square / 9.0 - mean * mean, vec3(0.0)));
+                vec3 h = toYCoCg(history), offset = h - mean;
+                vec3 extent = 0.75 * sigma + 1e-4;
+                vec3 units = abs(offset / extent);
+                float outside = max(units.x, max(units.y, units.z));
+                if (outside > 1.0) {
+                    history = max(fromYCoCg(mean + offset / outside), vec3(0.0));
+                    clipped = outside > 1.5;
+                }
+            }
+            float cap = 1.0 / max(1.0 - uHistoryWeight, 1e-3);
+            float alpha = max(1.0 - uHistoryWeight, 1.0 / (n + 1.0));
+            result = vec4(mix(history, color, alpha), min(n + 1.0, cap));
+        }
+    }
+    outColor = result;
+    if (uView == TEMPORAL_VIEW_REJECTED)
+        outView = vec4(!kept ? vec3(1.0, 0.1, 0.1) : clipped ? vec3(0.1, 1.0, 0.1) : vec3(0.3), 1.0);
+    else if (uView == TEMPORAL_VIEW_MOTION)
+        outView = vec4(motionColor(motion), 1.0);
+    else
+        outView = result;
+}

@@ -1,0 +1,65 @@
+// `temporal`: the frame blended into the history the renderer keeps across frames
+// (render/temporal.frag.glsl), which the tonemap then reads.
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+namespace render::passes {
+
+fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                              TemporalHistory& history, fg::TextureHandle color,
+                              fg::TextureHandle motion) {
+    struct Data {
+        fg::TextureHandle color, motion, previousColor, previousMotion, nextColor, nextMotion, view;
+    };
+    const fg::TextureHandle previousColor = graph.importTexture(
+        "history.color", history.previousColor().desc(), &history.previousColor());
+    const fg::TextureHandle previousMotion = graph.importTexture(
+        "history.motion", history.previousMotion().desc(), &history.previousMotion());
+    const fg::TextureHandle nextColor =
+        graph.importTexture("history.color.next", history.nextColor().desc(), &history.nextColor());
+    const fg::TextureHandle nextMotion = graph.importTexture(
+        "history.motion.next", history.nextMotion().desc(), &history.nextMotion());
+    const bool view = frame.settings.temporal.view != TemporalSettings::View::Off;
+    const Data& resolved = graph.addPass<Data>(
+        "temporal",
+        [&](fg::Builder& b, Data& d) {
+            d.color = b.read(color);
+            d.motion = b.read(motion);
+            d.previousColor = b.read(previousColor);
+            d.previousMotion = b.read(previousMotion);
+            d.nextColor = b.write(nextColor);
+            d.nextMotion = b.write(nextMotion);
+            if (view)
+                d.view = b.write(
+                    b.create("temporal.view", {frame.settings.size, gl::Format::RGBA16F, 1}));
+        },
+        [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            std::vector<const gl::Texture*> targets{&r.texture(d.nextColor),
+                                                    &r.texture(d.nextMotion)};
+            if (d.view.valid())
+                targets.push_back(&r.texture(d.view));
+            if (auto bound = gpu.framebuffer.bindTargets("temporal", targets, nullptr); !bound)
+                return bound;
+            gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
+            const gl::Program& p = gpu.temporal;
+            p.use();
+            gl::bindTexture(gl::slot::kSource, r.texture(d.color));
+            gl::bindTexture(gl::slot::kMotion, r.texture(d.motion));
+            gl::bindTexture(gl::slot::kHistory, r.texture(d.previousColor), 0);
+            gl::bindTexture(gl::slot::kHistory, r.texture(d.previousMotion), 1);
+            const TemporalSettings& s = frame.settings.temporal;
+            setMotionUniforms(p, frame);
+            p.set("uIndex", int(frame.temporal.index));
+            p.set("uStill", frame.temporal.still && s.convergeStill ? 1 : 0);
+            p.set("uHistoryWeight", s.historyWeight);
+            p.set("uReject", s.rejectHistory ? 1 : 0);
+            p.set("uView", int(s.view));
+            gpu.emptyVao.bind();
+            gl::drawArrays(3);
+            return {};
+        });
+    return view ? resolved.view : resolved.nextColor;
+}
+
+} // namespace render::passes
