@@ -57,16 +57,16 @@ static_assert(sizeof(GlassMaterialGpu) == 16 * 16);
 /** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them
  *  (std430). */
 struct GlassRectangleGpu {
-    std::int32_t pixelMin[2], pixelMax[2]; ///< inclusive; empty while min > max
-    std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
-    std::uint32_t overflowPixels;          ///< pixels over K in the walk
-    std::uint32_t backRange[2], frontMin;  ///< the pair's depth ranges (float bits)
+    std::int32_t pixelMin[2], pixelMax[2];                 ///< inclusive; empty while min > max
+    std::int32_t boxMin[3], boxMax[3];                     ///< view space, floats as ordered ints
+    std::uint32_t overflowPixels;                          ///< pixels over K in the walk
+    std::uint32_t backRange[2], frontMin;                  ///< the pair's depth ranges (float bits)
     std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's counts (LayerStats)
-    std::uint32_t walkedPixels, hybridTraced, hybridBy[4];  ///< the hybrid's (LayerStats)
+    std::uint32_t walkedPixels, hybridTraced, hybridBy[4]; ///< the hybrid's (LayerStats)
 };
 
 struct GpuState {
-    BvhPrograms bvh;          // the glass BVH's build and refit, the d_N cast
+    BvhPrograms bvh;           // the glass BVH's build and refit, the d_N cast
     gl::Program rectangleGrow; // the glass rectangle
     // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1);
     // the two passes' and their resolve whether they keep the surfaces (pairPrograms: -1 none
@@ -89,10 +89,11 @@ struct GpuState {
     gl::Buffer handedOver;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {
-        gl::Buffer heads;  // count, nearest front key, farthest back key: 3 words per pixel
-        gl::Buffer depths; // K floats per pixel
-        gl::Buffer attrs;  // K uvec2 per pixel
+        gl::Buffer heads;    // count, nearest front key, farthest back key: 3 words per pixel
+        gl::Buffer depths;   // K floats per pixel
+        gl::Buffer attrs;    // K uvec2 per pixel
         gl::Buffer surfaces; // surfaceSlots uvec2 per pixel where the glass is textured
+        gl::Buffer motions;  // K words per pixel where the frame accumulates (else one word)
         glm::ivec2 size{0};
         int capacity = 0, surfaceSlots = 0;
     } layers;

@@ -87,7 +87,9 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     const char* rectangle = "refraction/rectangle.vert.glsl";
     const Spec specs[] = {
         {&mGpu->surfaces, glass, "refraction/surfaces.frag.glsl", {}},
-        {&mGpu->resolve[1], rectangle, "refraction/resolve.frag.glsl",
+        {&mGpu->resolve[1],
+         rectangle,
+         "refraction/resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
         {&mGpu->rectangleGrow, nullptr, "refraction/rectangle.comp.glsl", {}},
@@ -134,6 +136,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.plugin = this;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
 
+    // Still frames that accumulate anti-alias every outline by their jitter: the outline pass
+    // would blur them twice (while anything moves the history keeps little of an outline).
+    if (c.frame->temporal.enabled && c.frame->temporal.still)
+        c.settings.outlineAntialiasing = false;
     c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
@@ -151,7 +157,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     // or the pair. The pair's single geometry pass serves what one resolve can: one glass
     // material with the same overrides on every glass item, no normal map and no texture the
     // walk reads (no UV or tangent is gathered), the farthest back surface (MAX blending); else
-    // the papers' two passes.
+    // the papers' two passes (and wherever the frame accumulates: the one pass keeps no
+    // motion).
     Capture capture;
     if (c.settings.layered()) {
         capture = addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers));
@@ -174,13 +181,16 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
             first->material >= 0 &&
             first->model->materials[std::size_t(first->material)].normalTexture.present();
         const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
+        // MAX blending keeps no motion: a frame that accumulates draws the two passes.
         c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
-                    !normalMap && !firstBack && !c.texturedGlass;
+                    !normalMap && !firstBack && !c.texturedGlass && !c.frame->temporal.enabled;
         const PairTargets pair = c.onePass ? addGatherPass(graph, c, buffers)
                                            : addSurfacePasses(graph, c, buffers, firstBack);
         capture = addResolvePass(graph, c, buffers, scene, pair);
     }
     const Walked walked = addWalkPass(graph, c, buffers, scene, capture);
+    if (walked.motion.valid())
+        blackboard.put(plugin::kSceneMotion, walked.motion);
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
                                             ? addLayerOutlinePass(graph, c, buffers, walked)
                                             : walked.color);

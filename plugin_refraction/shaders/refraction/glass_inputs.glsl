@@ -6,4 +6,5 @@ in vec3 vViewNormal;
 in vec4 vViewTangent;
 in vec4 vUv; // TEXCOORD_0 in xy, TEXCOORD_1 in zw
 in float vNormalDistance; // ISR: d_N in view units (-1: no far side)
+in vec4 vClip, vPreviousClip; // where the frame accumulates: the motion's (common/motion.glsl)
 #endif

@@ -9,6 +9,8 @@
 //   LayerAttrs  per pixel and slot: x the outward view normal (octahedral, 16 + 16 bits);
 //               y glass id (bits 0-7, an entry of GlassMaterials), front-facing (bit 8),
 //               d_N relative to the depth (bits 16-31, 0: none)
+//   LayerMotions (frames that accumulate, else unused) per pixel and slot: the motion of the
+//               glass surface there in pixels (common/motion.glsl; two halves)
 //   LayerSurfaces (frames with textured glass, GLASS_TEXTURES) per pixel and slot: the glass
 //               surface there (GlassSurface: its material's factors times its textures,
 //               packSurface's 64 bits); after them, per pixel, the surfaces of the overflow
@@ -37,6 +39,10 @@ layout(std430, binding = LAYER_DEPTHS_BINDING) coherent buffer LayerDepths { vec
 layout(std430, binding = LAYER_ATTRS_BINDING) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 
 const uint kLayerFront = LAYER_FRONT_BIT;
+
+#ifndef GLASS_MOTION_READ // (the hybrid's trace pass reads no layer's motion: walk_motion.glsl)
+layout(std430, binding = LAYER_MOTIONS_BINDING) coherent buffer LayerMotions { uint layerMotion[]; };
+#endif
 
 #ifndef GLASS_TEXTURES
 #define GLASS_TEXTURES 0

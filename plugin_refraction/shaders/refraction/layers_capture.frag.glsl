@@ -5,7 +5,9 @@
 // whose nearest glass is hidden. Fragments past K only count; every fragment also bids for the
 // pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
 // ALWAYS) is the shading pass's mask: below 1 where any glass was kept. With textured glass in
-// the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's.
+// the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's; where the
+// frame accumulates, each kept fragment's motion.
+#include "common/motion.glsl"
 #include "common/normal_map.glsl"
 #include "refraction/fragment_surface.glsl"
 #include "refraction/view.glsl"
@@ -36,6 +38,9 @@ void main() {
 #if GLASS_TEXTURES
         layerSurface[pixel * uint(kLayerCapacity) + slot] = surface;
 #endif
+        if (uWriteMotion != 0)
+            layerMotion[pixel * uint(kLayerCapacity) + slot] =
+                packHalf2x16(clipToPixel(vClip) - clipToPixel(vPreviousClip));
     }
     // The fallback's bids; a fragment that wins its bid when it makes it keeps its surface there
     // too (fallbackSurfaceIndex).

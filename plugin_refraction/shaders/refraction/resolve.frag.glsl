@@ -8,6 +8,7 @@
 //   PAIR_GATHERED 0: from the two depth-tested passes (surface.frag.glsl), whose normal maps
 //     are those maps already; with textured glass in the frame (GLASS_TEXTURES) also their
 //     surfaces, into the layers' (never gathered: the one pass reads no texture).
+#include "common/motion.glsl"
 #include "refraction/layers.glsl"
 
 layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
@@ -63,6 +64,8 @@ Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
 void readPair(ivec2 p, out Surface front, out Surface back) {
     front = readSurface(uFrontDepth, uFrontNormal, p);
     back = readSurface(uBackDepth, uBackNormal, p);
+    if (uWriteMotion != 0) // the front's motion (the front pass's depth target, z and w)
+        layerMotion[pixelIndex(p) * 2u] = packHalf2x16(texelFetch(uFrontDepth, p, 0).zw);
 #if GLASS_TEXTURES
     uint pixel = pixelIndex(p);
     layerSurface[pixel * 2u] = texelFetch(uFrontSurface, p, 0).xy;

@@ -1,6 +1,8 @@
 // The walk's shading pass (walk.glsl): over the glass rectangle, against the capture's mask, a
-// draw each trace sample for the trace and the hybrid, added up.
+// draw each trace sample for the trace and the hybrid, added up; where the frame accumulates,
+// one sample, and each pixel's motion by what it shows (walk_motion.glsl).
 #include "refraction/walk.glsl"
+#include "refraction/walk_motion.glsl"
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
 // otherwise move the test after it, for every pixel of the rectangle).
@@ -96,4 +98,8 @@ void main() {
     default: break;
     }
     outColor = vec4(color, 1.0);
+    // What the pixel shows, for the temporal resolve (the trace pass records its own pixels').
+    if (uWriteMotion != 0 && uTraceSample == 0)
+        imageStore(uGlassMotion, p, handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT)
+                                                     : handedOverMotion(p, e));
 }

@@ -65,11 +65,20 @@ uniform int uTraceSample;
 uniform float uTraceWeight;
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 uniform int uTraceSamples;   // trace-samples
-// The trace with several samples a pixel samples rough glass's microfacets and converges to the
-// reference (but for the reflections past the splits, which see the environment); with one it
-// runs the deterministic model (the reference's deterministic evaluation).
+// The trace's paths are sampled: several samples a pixel, or one a frame of a frame that
+// accumulates (uFrameSeed seeds each frame's).
+uniform int uSampled;
+uniform int uFrameSeed;
+// Every sample's entry traced from the camera, as the trace's later samples are: a frame that
+// accumulates (the capture's entry, a rasterised fragment, is off near outlines by the
+// triangles' interpolation, a bias no number of frames averages away).
+uniform int uTracedEntry;
+// The trace with several samples a pixel (or over frames) samples rough glass's microfacets and
+// converges to the reference (but for the reflections past the splits, which see the
+// environment); with one it runs the deterministic model (the reference's deterministic
+// evaluation).
 bool sampledPaths() {
-    return kTrace && uTraceSamples > 1;
+    return kTrace && uSampled != 0;
 }
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
@@ -356,7 +365,7 @@ bool walkStep(inout Walk w, inout Path path, inout Segment seg, inout PathEnd en
     w.tir = w.tir || crossed == CROSSED_REFLECTED || crossed == CROSSED_GRAZING;
     if (crossed == CROSSED_REFLECTED) {
         ++seg.bounces;
-        w.hardReflection = w.hardReflection || kPairCapture || uTraceSamples > 1 ||
+        w.hardReflection = w.hardReflection || kPairCapture || uSampled != 0 ||
                            seg.bounces > 1 || w.sightLayers > 2 || path.dir.z > 0.0;
         seg.parity = parityBefore;
         seg.fromEntry = false;
@@ -449,6 +458,10 @@ Walk walkLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int c
     return w;
 }
 
+// Where green's path ended past its last point (walkSees' hitT), for its motion
+// (walk_motion.glsl).
+float gEndT = -1.0;
+
 // The colour of a glass pixel's entry (P1, view direction V, normal N1 facing it, layer
 // entryAttr, its surface s): its walks (green's, and red's and blue's by the dispersion
 // search), then the light at the entry (glassColor).
@@ -460,6 +473,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, inou
         return vec3(0.0);
     float hitT;
     vec3 seen = walkSees(green, hitT);
+    gEndT = hitT;
     vec3 transmitted = seen * green.path.weight + green.light;
     bool dispersion = m.ior.r != m.ior.b;
 #if LAYER_DISPERSION == DISPERSION_SEARCH_SHARED
@@ -500,7 +514,7 @@ vec3 shadeLayers(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, inou
 // the pixel has no glass in front of the opaque scene.
 struct Entry {
     float z, far;      // the nearest and the farthest layer's depth
-    int farthest;      // the farthest's index
+    int nearest, farthest; // their indices
     uvec2 attr;        // the nearest's attributes
     GlassSurface surface; // its glass's surface there
     vec3 P1, V;        // the entry point and the primary ray's direction (view space)
@@ -512,6 +526,7 @@ bool pixelEntry(ivec2 p, out Entry e) {
     e.far = 0.0;
     e.farthest = 0;
     int nearest = -1;
+    e.nearest = 0;
     for (int g = 0; g < kDepthGroups; ++g) {
         vec4 d = layerDepths(p, g);
         for (int k = 0; k < 4; ++k) {
@@ -535,6 +550,7 @@ bool pixelEntry(ivec2 p, out Entry e) {
     if (nearest < 0 || e.z >= sceneDepthAt(p))
         return false;
     bool overflow = layerOverflow(p);
+    e.nearest = nearest;
     e.attr = layerAttrOf(p, nearest, overflow);
     e.surface = layerSurfaceOf(p, nearest, e.attr, overflow);
     vec4 ray = uInverseProjection * vec4((vec2(p) + 0.5) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
@@ -546,13 +562,15 @@ bool pixelEntry(ivec2 p, out Entry e) {
 
 // The random numbers of pixel p's sample uTraceSample (the trace's sampled paths).
 uint sampleSeed(ivec2 p) {
-    return uint(p.x) * 73856093u ^ uint(p.y) * 19349663u ^ uint(uTraceSample + 1) * 83492791u;
+    return uint(p.x) * 73856093u ^ uint(p.y) * 19349663u ^ uint(uTraceSample + 1) * 83492791u ^
+           uint(uFrameSeed) * 2654435761u;
 }
 
 #if LAYER_METHOD == METHOD_TRACE
 // The traced path of trace sample uTraceSample through pixel p (its entry e), weighted: the
 // first from the capture's nearest layer at the pixel's centre (its normal map), traced from
-// the camera instead where the pixel overflowed (the fallback's normal is coarse); the others
+// the camera instead where the pixel overflowed (the fallback's normal is coarse) or the frame
+// accumulates (uTracedEntry); the others
 // from jittered points of the pixel (sampleView), their entry traced from the camera;
 // what lies behind the glass at p where a ray meets none first. With the ray's counts.
 vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
@@ -561,7 +579,7 @@ vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
     GlassSurface surface = e.surface;
     vec3 color;
     uint rng = sampleSeed(p);
-    if ((uTraceSample > 0 || storedCount(p) > kLayerCapacity) &&
+    if ((uTraceSample > 0 || uTracedEntry != 0 || storedCount(p) > kLayerCapacity) &&
         !traceEntry(V, p, P1, attr, surface)) {
         walk.fallback = walk.tir = walk.hardReflection = walk.outline = walk.overflowed = false;
         color = texelFetch(uSceneColor, p, 0).rgb;

@@ -56,8 +56,10 @@ int GpuState::Glass::find(const Part& part) const {
 }
 
 SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
+    const auto* motion = blackboard.find<fg::TextureHandle>(plugin::kSceneMotion);
     return {blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
-            blackboard.get<fg::TextureHandle>(plugin::kSceneDepth)};
+            blackboard.get<fg::TextureHandle>(plugin::kSceneDepth),
+            motion ? *motion : fg::TextureHandle{}};
 }
 
 void FrameContext::setWalkUniforms(const gl::Program& f) const {
@@ -68,6 +70,10 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uInterfaces", s.interfaces);
     f.set("uHybridCriteria", s.hybridCriteria);
     f.set("uTraceSamples", s.traceSamples);
+    // A frame that accumulates takes one sample of the trace's paths, seeded by its index.
+    f.set("uSampled", s.traceSamples > 1 || frame->temporal.still ? 1 : 0);
+    f.set("uFrameSeed", int(frame->temporal.index));
+    f.set("uTracedEntry", frame->temporal.enabled ? 1 : 0);
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -107,6 +113,7 @@ void FrameContext::drawGlass(
     const std::function<void(const render::DrawItem&, std::size_t)>& perItem) const {
     program.use();
     program.set("uProjection", frame->camera.projection);
+    render::setMotionUniforms(program, *frame);
     for (std::size_t index = 0; index < frame->items.size(); ++index) {
         const render::DrawItem& item = frame->items[index];
         if (!isGlass(item))
@@ -114,7 +121,11 @@ void FrameContext::drawGlass(
         const glm::mat4 modelView = frame->camera.view * item.world;
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
+        program.set("uModel", item.world);
+        program.set("uPreviousModel", item.previousWorld);
         gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
+        gl::bindStorage(gl::slot::kPreviousVertices,
+                        item.gpu->previous ? *item.gpu->previous : *item.gpu->deformed);
         gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
         // d_N: the BVH's values from this part's base.
         const GpuState::Glass& glass = gpu->glass;
@@ -193,7 +204,9 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     gl::bindStorage(slot::kLayerAttrs, layers.attrs);
     if (texturedGlass)
         gl::bindStorage(slot::kLayerSurfaces, layers.surfaces);
+    gl::bindStorage(slot::kLayerMotions, layers.motions);
     gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
+    render::setMotionUniforms(program, *frame);
 }
 
 core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
@@ -201,10 +214,12 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
     const int capacity = pair ? 2 : c.settings.layerCapacity;
     const bool textures = c.texturedGlass;
     const std::string texturesDefine = std::string("GLASS_TEXTURES ") + (textures ? "1" : "0");
-    // The trace with several samples reads the textures at their entries as at every hit, at
-    // their base level (converging to the reference); with one, filtered like the walk (a
-    // pixel's texels averaged, its frame closer to the reference's many rays than one texel).
-    const bool baseLevel = c.settings.method == Settings::Method::Trace && c.settings.addsSamples();
+    // The trace with several samples (or one a frame of a frame that accumulates) reads the
+    // textures at their entries as at every hit, at their base level (converging to the
+    // reference); with one, filtered like the walk (a pixel's texels averaged, its frame closer
+    // to the reference's many rays than one texel).
+    const bool baseLevel = c.settings.method == Settings::Method::Trace &&
+                           (c.settings.addsSamples() || c.frame->temporal.enabled);
     if (!pair && gpu.layerPrograms != std::tuple{capacity, textures, baseLevel}) {
         const std::vector<std::string> defines{
             "LAYER_CAPACITY " + std::to_string(capacity), texturesDefine,
@@ -290,8 +305,12 @@ core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
 }
 
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        int surfaceSlots) {
+                        int surfaceSlots, bool motions) {
     const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    const std::size_t motionBytes =
+        motions ? pixels * std::size_t(capacity) * sizeof(std::uint32_t) : sizeof(std::uint32_t);
+    if (layers.motions.size() != motionBytes)
+        layers.motions = gl::Buffer(motionBytes);
     const std::size_t layerBytes = 2 * sizeof(std::uint32_t) * pixels;
     const std::size_t surfaceBytes = layerBytes * std::size_t(surfaceSlots);
     if (layers.surfaces.size() != surfaceBytes)

@@ -28,7 +28,8 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             const glm::ivec2 viewport = c.frame->settings.size;
             // With textured glass: each layer's surface, and the overflow fallback's two.
             ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity,
-                               c.texturedGlass ? c.settings.layerCapacity + 2 : 0);
+                               c.texturedGlass ? c.settings.layerCapacity + 2 : 0,
+                               c.frame->temporal.enabled);
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
             gpu.layers.heads.fill(0, pixels, 0u);                   // counts
             gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys

@@ -48,7 +48,7 @@ struct FrameContext {
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
-    const gl::Program* walk = nullptr; ///< the walk's variant (walkPrograms)
+    const gl::Program* walk = nullptr;            ///< the walk's variant (walkPrograms)
     const gl::Program* handedOverTrace = nullptr; ///< the hybrid's trace pass (walkPrograms)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
@@ -85,9 +85,10 @@ struct FrameBuffers {
     fg::BufferHandle layers;    ///< GpuState::layers (what the capture holds)
 };
 
-/** The scene the glass is drawn over, from the blackboard. */
+/** The scene the glass is drawn over, from the blackboard; where the frame accumulates, the
+ *  motion of its pixels. */
 struct SceneInputs {
-    fg::TextureHandle color, depth;
+    fg::TextureHandle color, depth, motion;
 };
 
 /** What a capture leaves the walk: the glass pixels' mask and the depth maps (layers.glsl);
@@ -110,11 +111,12 @@ void assignGlassIds(FrameContext& c);
  *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass for them
  *  and the walk's target (walk_trace.comp.glsl), built when first needed and kept. */
 core::Status walkPrograms(GpuState& gpu, FrameContext& c);
-/** The layer arrays for `size` and capacity K, and `surfaceSlots` surfaces a pixel (0: none;
- *  with textured glass K, and the overflow fallback's two where the capture can overflow),
- *  reallocated only when one changes. */
+/** The layer arrays for `size` and capacity K, `surfaceSlots` surfaces a pixel (0: none;
+ *  with textured glass K, and the overflow fallback's two where the capture can overflow) and
+ *  with `motions` (the frame accumulates) each layer's motion, reallocated only when one
+ *  changes. */
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        int surfaceSlots = 0);
+                        int surfaceSlots = 0, bool motions = false);
 /** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers,
  *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */
@@ -170,10 +172,11 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
 
 // ---- The walk
 
-/** The walk over the glass pixels: the new scene colour and, for the outline pass, each
- *  pixel's nearest layer (writes rectangle: the overflow count). */
+/** The walk over the glass pixels: the new scene colour, for the outline pass each pixel's
+ *  nearest layer, and where the frame accumulates, the scene's motion with the glass pixels'
+ *  (walk_motion.glsl) (writes rectangle: the overflow count). */
 struct Walked {
-    fg::TextureHandle color, surface;
+    fg::TextureHandle color, surface, motion;
 };
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture);

@@ -22,15 +22,14 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
         [&](fg::Builder& b, ResolveData& d) {
             d.rectangle = b.write(buffers.rectangle); // the depth ranges
             d.layers = b.write(buffers.layers);
-            for (auto [from, to] :
-                 {std::pair{pair.nearTargets, &d.pair.nearTargets},
-                  std::pair{pair.farTargets, &d.pair.farTargets},
-                  std::pair{pair.frontDepth, &d.pair.frontDepth},
-                  std::pair{pair.frontNormal, &d.pair.frontNormal},
-                  std::pair{pair.backDepth, &d.pair.backDepth},
-                  std::pair{pair.backNormal, &d.pair.backNormal},
-                  std::pair{pair.frontSurface, &d.pair.frontSurface},
-                  std::pair{pair.backSurface, &d.pair.backSurface}})
+            for (auto [from, to] : {std::pair{pair.nearTargets, &d.pair.nearTargets},
+                                    std::pair{pair.farTargets, &d.pair.farTargets},
+                                    std::pair{pair.frontDepth, &d.pair.frontDepth},
+                                    std::pair{pair.frontNormal, &d.pair.frontNormal},
+                                    std::pair{pair.backDepth, &d.pair.backDepth},
+                                    std::pair{pair.backNormal, &d.pair.backNormal},
+                                    std::pair{pair.frontSurface, &d.pair.frontSurface},
+                                    std::pair{pair.backSurface, &d.pair.backSurface}})
                 if (from.valid())
                     *to = b.read(from);
             d.sceneDepth = b.read(scene.depth);
@@ -38,19 +37,19 @@ Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffer
                 b.write(b.create("refraction.layers.depths0", {size, gl::Format::RGBA32F, 1}));
             if (gathered)
                 for (int i = 0; i < 2; ++i)
-                    d.normals[i] = b.write(b.create(
-                        i == 0 ? "refraction.front.normal" : "refraction.back.normal",
-                        normalDesc(size)));
+                    d.normals[i] = b.write(
+                        b.create(i == 0 ? "refraction.front.normal" : "refraction.back.normal",
+                                 normalDesc(size)));
             d.mask = b.write(b.create("refraction.glass_mask", zDesc(size)));
         },
         [c, gathered](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const bool surfaces = d.pair.frontSurface.valid();
-            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0);
+            ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0,
+                               c.frame->temporal.enabled);
             std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
             if (gathered)
-                targets.insert(targets.end(),
-                               {&r.texture(d.normals[0]), &r.texture(d.normals[1])});
+                targets.insert(targets.end(), {&r.texture(d.normals[0]), &r.texture(d.normals[1])});
             if (auto bound =
                     gpu.framebuffer.bindTargets("refraction.resolve", targets, &r.texture(d.mask));
                 !bound)

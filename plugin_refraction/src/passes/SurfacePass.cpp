@@ -27,8 +27,11 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
                 if (c.settings.usesNormalDistance())
                     b.read(buffers.distances);
                 d.rectangle = b.write(buffers.rectangle);
-                d.depth = b.write(
-                    b.create(std::string(name) + ".depth", {size, gl::Format::RG32F, 1}));
+                // The front's motion rides in z and w where the frame accumulates.
+                const bool motion = !backFaces && c.frame->temporal.enabled;
+                d.depth =
+                    b.write(b.create(std::string(name) + ".depth",
+                                     {size, motion ? gl::Format::RGBA32F : gl::Format::RG32F, 1}));
                 d.normal = b.write(b.create(std::string(name) + ".normal", normalDesc(size)));
                 if (c.texturedGlass)
                     d.surface = b.write(

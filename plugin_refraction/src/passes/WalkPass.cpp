@@ -2,7 +2,8 @@
 // walked through what the capture holds, SIR, ISR, DIR or the trace finding each exit (compiled
 // in: walk.frag.glsl), and shaded over the copied scene colour; the hybrid's walk then hands the
 // pixels the layers cannot represent to its trace pass (walk_trace.comp.glsl), which shades
-// them over that. With outlines on, each pixel's nearest layer for the outline pass.
+// them over that. With outlines on, each pixel's nearest layer for the outline pass; where the
+// frame accumulates, a copy of the scene's motion with each glass pixel's written over it.
 #include "Passes.h"
 
 #include <algorithm>
@@ -18,7 +19,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
     const glm::ivec2 size = c.frame->settings.size;
     struct WalkData {
         Capture capture;
-        fg::TextureHandle sceneColor, sceneDepth, out, surface;
+        fg::TextureHandle sceneColor, sceneDepth, sceneMotion, out, surface, motion;
         fg::BufferHandle rectangle;
     };
     const bool outlines = c.settings.outlinePass();
@@ -40,6 +41,10 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             d.sceneColor = b.read(scene.color);
             d.sceneDepth = b.read(scene.depth);
             d.out = b.write(b.create("refraction.scene_color", walkDesc(size, c.settings)));
+            if (scene.motion.valid()) { // the scene's motion, the glass pixels' written over
+                d.sceneMotion = b.read(scene.motion);
+                d.motion = b.write(b.create("refraction.motion", {size, gl::Format::RGBA32UI, 1}));
+            }
             if (outlines) // the nearest layer per pixel, for the outline pass
                 d.surface =
                     b.write(b.create("refraction.layers.surface", {size, gl::Format::R32UI, 1}));
@@ -70,6 +75,11 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 return bound;
             if (outlines)
                 gl::clearColorUint(1, 0u); // no glass
+            if (d.motion.valid()) {
+                gl::copyTexture(r.texture(d.sceneMotion), r.texture(d.motion));
+                gl::bindTexture(gl::slot::kMotion, r.texture(d.sceneMotion));
+                gl::bindImage(gl::slot::kMotionImage, r.texture(d.motion), 0, true);
+            }
             // The walk's inputs; the hybrid's trace pass reads the same (its uniforms by
             // `prepare`): the layer depth maps (layers.glsl), the pair's normals; an absent
             // map: the first depth map stands in (unread).
@@ -92,8 +102,9 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                     gl::bindTexture(slot::kTracedTextures,
                                     *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
             }
-            // The trace's and the hybrid's samples (a debug view shows the first alone).
-            const int samples = c.settings.traceSamples;
+            // The trace's and the hybrid's samples (a debug view shows the first alone); one a
+            // frame where the frame accumulates.
+            const int samples = c.frame->temporal.enabled ? 1 : c.settings.traceSamples;
             const bool hybrid = c.settings.method == Settings::Method::Hybrid;
             const int draws = c.settings.traces() && c.settings.debug == 0 ? samples : 1;
             auto prepare = [&](const gl::Program& program, int weights) {
@@ -122,11 +133,15 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             }
             // The hybrid's handed-over pixels traced over the walk's colour (a debug view shows
             // the walk's own), a dispatch each sample of as many work groups as the walk counted.
-            if (!hybrid || c.settings.debug != 0)
+            if (!hybrid || c.settings.debug != 0) {
+                gl::memoryBarrier(gl::BarrierTexture); // the motion written, for the resolve
                 return {};
-            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            }
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand | gl::BarrierImage);
             prepare(*c.handedOverTrace, samples);
             gl::bindImage(gl::slot::kOutputImage, out, 0, true);
+            if (d.motion.valid())
+                gl::bindImage(gl::slot::kMotionImage, r.texture(d.motion), 0, true);
             for (int s = 0; s < samples; ++s) {
                 c.handedOverTrace->set("uTraceSample", s);
                 gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));
@@ -136,7 +151,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             return {};
         });
     buffers.rectangle = walked.rectangle;
-    return {walked.out, walked.surface};
+    return {walked.out, walked.surface, walked.motion};
 }
 
 } // namespace refraction

@@ -1,0 +1,106 @@
+// What a glass pixel shows, as the temporal resolve reprojects it (common/motion.glsl;
+// docs/methods.md, "Temporal accumulation"): the walk's and the hybrid trace pass's record of
+// each glass pixel into the plugin's copy of the frame's motion. A pixel goes by what its light
+// comes from:
+//   - mostly reflected (the entry's reflectance over a half), or its path still in glass when
+//     the walk ended: by the glass surface it enters (the capture's motion of that layer);
+//   - else by the end of its refracted path, seen from the camera as a virtual point on the
+//     primary ray at the path's length (primary surface replacement):
+//       the environment: infinitely far, the camera's turn alone;
+//       an opaque surface or the ground: the virtual point held still in the world, plus the
+//       end's own motion where the opaque scene shows it (its motion there less the camera's),
+//       none where it is hidden.
+// Its identity is the kind of its end, the end's own identity and the glass entered, and the
+// direction the path left the glass goes with it: the resolve rejects the history where either
+// changed. A path's texel also carries the motion of the glass it entered, where the resolve
+// looks second (a body moving over a still background carries its refraction with it).
+#ifndef REFRACTION_WALK_MOTION_GLSL
+#define REFRACTION_WALK_MOTION_GLSL
+#include "common/motion.glsl"
+
+layout(binding = MOTION_UNIT) uniform usampler2D uSceneMotion; // the opaque scene's
+
+vec3 viewToWorld(vec3 X) {
+    return uViewToWorld * X + uViewOriginWorld;
+}
+
+#ifdef GLASS_MOTION_READ
+// The hybrid's trace pass (a compute shader, one storage block short of the walk's): the walk
+// left each pixel it handed over the motion of the glass it enters, in its texel's z.
+layout(rgba32ui, binding = MOTION_IMAGE_UNIT) uniform uimage2D uGlassMotion;
+
+vec2 enteredSurfaceMotion(ivec2 p, Entry e) {
+    return uWriteMotion == 0 ? vec2(0.0) : unpackHalf2x16(imageLoad(uGlassMotion, p).z);
+}
+#else
+layout(rgba32ui, binding = MOTION_IMAGE_UNIT) uniform writeonly uimage2D uGlassMotion;
+
+// The motion of the glass surface pixel p enters (entry e): its capture layer's; an
+// overflowing pixel's fallback keeps none, its entry point is taken as still.
+vec2 enteredSurfaceMotion(ivec2 p, Entry e) {
+    if (uWriteMotion == 0)
+        return vec2(0.0);
+    if (layerOverflow(p)) {
+        vec3 X = viewToWorld(e.P1);
+        return pointMotion(X, X);
+    }
+    return unpackHalf2x16(layerMotion[pixelIndex(p) * uint(kLayerCapacity) + uint(e.nearest)]);
+}
+#endif
+
+uint throughGlassObject(uint endKind, uint endObject, uint glass) {
+    return (endKind << 20) | ((endObject & 0xFFFu) << 8) | (glass & 255u);
+}
+
+// What a pixel the hybrid's walk hands over leaves its trace pass: the motion of the glass it
+// enters (glassPixelMotion's there).
+uvec4 handedOverMotion(ivec2 p, Entry e) {
+    uvec4 m = packMotion(motionIdentity(MOTION_GLASS, layerGlass(e.attr)), vec2(0.0), 0.0, 0.0, 0u);
+    m.z = packHalf2x16(enteredSurfaceMotion(p, e));
+    return m;
+}
+
+uvec4 throughGlassMotion(uint object, vec2 motion, vec2 surface, uint exitDirection) {
+    uvec4 m = packMotion(motionIdentity(MOTION_THROUGH_GLASS, object), motion, 0.0, 0.0,
+                         exitDirection);
+    m.z = packHalf2x16(clamp(surface, vec2(-8192.0), vec2(8192.0)));
+    return m;
+}
+
+// The motion texel of glass pixel p: entered at e, its green path `green` ending `endT` past
+// its last point (0: on it, or at infinity where it met nothing: see walkSees).
+uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
+    uint glass = layerGlass(e.attr);
+    GlassMaterial m = glassMaterials[glass];
+    vec3 N1 = layerNormal(e.attr);
+    if (dot(N1, e.V) > 0.0)
+        N1 = -N1;
+    float reflected = fresnel(uFresnelMode, dot(-e.V, N1), 1.0 / m.ior.g);
+    bool inGlass = !green.opaque && endT <= 0.0 && topMedium(green.path.media) != 0u;
+    if (reflected > 0.5 || inGlass)
+        return packMotion(motionIdentity(MOTION_GLASS, glass), enteredSurfaceMotion(p, e), 0.0,
+                          0.0, 0u);
+    uint exitDirection = motionDirection(uViewToWorld * green.path.dir);
+    vec2 surface = enteredSurfaceMotion(p, e);
+    vec3 Vw = uViewToWorld * e.V;
+    if (!green.opaque && endT <= 0.0) // the environment
+        return throughGlassMotion(throughGlassObject(MOTION_ENVIRONMENT, 0u, glass),
+                                  directionMotion(Vw), surface, exitDirection);
+    vec3 E = green.path.P + green.path.dir * endT;
+    vec3 virtualPoint = viewToWorld(e.V * (length(e.P1) + length(E - e.P1)));
+    vec2 motion = pointMotion(virtualPoint, virtualPoint);
+    uint endKind = MOTION_OPAQUE, endObject = 0xFFFu; // hidden: taken as still
+    ivec2 h = ivec2(floor(projectToUv(E) * uViewportSize));
+    float seen = sceneDepthAt(h);
+    if (seen < NO_DEPTH && abs(seen + E.z) < 0.02 * -E.z) {
+        uvec4 end = texelFetch(uSceneMotion, h, 0);
+        vec3 Ew = viewToWorld(E);
+        motion += motionPixels(end) - pointMotion(Ew, Ew);
+        endKind = motionKind(end);
+        endObject = end.x & MOTION_OBJECT_MASK;
+    }
+    return throughGlassMotion(throughGlassObject(endKind, endObject, glass), motion, surface,
+                              exitDirection);
+}
+
+#endif
