@@ -20,10 +20,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -35,8 +35,8 @@ namespace {
 const char* const kUsage =
     R"(usage: glass-bench MODEL|SCENE [MODEL...] [--methods opaque,sir,isr,dir] [--subdiv 0,1,2]
                    [--instances 1,4,16,64] [--size WxH] [--frames N] [--warmup W]
-                   [--glass all|auto] [--ground] [--set KEY=VALUE]... [--json FILE] [--plot PNG]
-                   [--force]
+                   [--glass all|auto] [--ground] [--set KEY=VALUE]... [--temporal off,on]
+                   [--json FILE] [--plot PNG] [--force]
 
 Renders MODEL (a scene file, or several models side by side) headless (EGL) at each
 OpenSubdiv level of --subdiv (default 0: the file's triangles; 0..4, refined every frame on the
@@ -56,6 +56,11 @@ with it, frames pipeline as in an application and pass times come from the timer
 (default) plays every mesh as glass; --ground draws the ground plane (opaque geometry the glass
 sees through its nearby-scene walk; without opaque geometry the walk is skipped); --set sets any
 other refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
+--temporal off,on also runs each method with temporal accumulation ("dir+temporal": the jitter,
+the motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's and
+the hybrid's samples one a frame), with its frame time as a ratio to the same method without it
+("x off") and the history's GPU memory (interleaved with the other runs, each frame starts the
+history over: the cost is the same).
 
 Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON,
 --plot PNG a chart of each method's median frame time against the triangles drawn (both
@@ -135,11 +140,17 @@ std::size_t coveredPixels(const scene::World& world, double time, const render::
 
 struct MethodRun {
     std::string method;
+    bool temporal = false;
+    /** A temporal run's own plugin and renderer, whose history carries across its frames as in
+     *  an application (the other runs share the scene's, switching the method each frame). */
+    std::unique_ptr<plugin::Plugin> glass;
+    std::unique_ptr<render::Renderer> renderer;
     std::vector<double> frameMs, cpuMs, engineMs;
     std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> passes;
     std::vector<std::string> passOrder;
-    std::size_t transientBytes = 0;
+    std::size_t transientBytes = 0, historyBytes = 0;
     refraction::LayerStats layers; ///< after the last round (layered methods)
+    std::string label() const { return temporal ? method + "+temporal" : method; }
 };
 
 /** N characters from `base`: its characters in turn, on a square grid in the x-z plane (cells
@@ -172,9 +183,13 @@ scene::World gridWorld(const scene::World& base, int count) {
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
                                       std::size_t characters, std::size_t triangles) {
     double opaqueMedian = 0.0;
-    for (const MethodRun& r : runs)
-        if (r.method == "opaque")
+    std::map<std::string, double> withoutTemporal;
+    for (const MethodRun& r : runs) {
+        if (r.method == "opaque" && !r.temporal)
             opaqueMedian = percentile(r.frameMs, 0.5);
+        if (!r.temporal)
+            withoutTemporal[r.method] = percentile(r.frameMs, 0.5);
+    }
     std::vector<nlohmann::json> rows;
     for (const MethodRun& r : runs) {
         const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
@@ -196,6 +211,14 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
             top += item;
         }
         const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
+        const auto off = withoutTemporal.find(r.method);
+        const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
+                                         ? median / off->second
+                                         : 0.0;
+        char temporal[48] = "-";
+        if (r.temporal)
+            std::snprintf(temporal, sizeof temporal, "%.3f, %.1f MiB", temporalRatio,
+                          double(r.historyBytes) / 1048576.0);
         const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
         char layers[48] = "-";
         if (r.layers.capacity > 0)
@@ -219,34 +242,39 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                           "%.1f, outline %.1f)",
                           share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
                           share(by[3]));
-        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s "
-                    "| %s |\n",
-                    r.method.c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
-                    double(r.transientBytes) / 1048576.0, layers, trace, top.c_str());
+        std::printf(
+            "| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s | %s "
+            "| %s |\n",
+            r.label().c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
+            double(r.transientBytes) / 1048576.0, temporal, layers, trace, top.c_str());
         std::fflush(stdout);
-        rows.push_back({{"method", r.method},
-                        {"level", level},
-                        {"characters", characters},
-                        {"triangles", triangles},
-                        {"median_ms", median},
-                        {"p95_ms", p95},
-                        {"cpu_ms", cpu},
-                        {"animate_record_ms", engine},
-                        {"ratio_to_opaque", ratio},
-                        {"transient_bytes", r.transientBytes},
-                        {"layer_capacity", r.layers.capacity},
-                        {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
-                        {"layer_bytes", r.layers.bytes},
-                        {"layer_overflow_pixels", r.layers.overflowPixels},
-                        {"trace_rays", r.layers.traceRays},
-                        {"trace_nodes_per_ray", nodesPerRay},
-                        {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
-                        {"trace_rays_per_second", raysPerSecond},
-                        {"walked_pixels", r.layers.walkedPixels},
-                        {"hybrid_traced_pixels", r.layers.hybridTraced},
-                        {"hybrid_traced_by", {{"overflow", by[0]}, {"off_the_layers", by[1]},
-                                              {"tir", by[2]}, {"outline", by[3]}}},
-                        {"passes", passes}});
+        rows.push_back(
+            {{"method", r.label()},
+             {"temporal", r.temporal},
+             {"ratio_to_without_temporal", temporalRatio},
+             {"history_bytes", r.historyBytes},
+             {"level", level},
+             {"characters", characters},
+             {"triangles", triangles},
+             {"median_ms", median},
+             {"p95_ms", p95},
+             {"cpu_ms", cpu},
+             {"animate_record_ms", engine},
+             {"ratio_to_opaque", ratio},
+             {"transient_bytes", r.transientBytes},
+             {"layer_capacity", r.layers.capacity},
+             {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
+             {"layer_bytes", r.layers.bytes},
+             {"layer_overflow_pixels", r.layers.overflowPixels},
+             {"trace_rays", r.layers.traceRays},
+             {"trace_nodes_per_ray", nodesPerRay},
+             {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
+             {"trace_rays_per_second", raysPerSecond},
+             {"walked_pixels", r.layers.walkedPixels},
+             {"hybrid_traced_pixels", r.layers.hybridTraced},
+             {"hybrid_traced_by",
+              {{"overflow", by[0]}, {"off_the_layers", by[1]}, {"tir", by[2]}, {"outline", by[3]}}},
+             {"passes", passes}});
     }
     return rows;
 }
@@ -259,7 +287,10 @@ capture::Image plot(const nlohmann::json& report) {
         {"isr", {230, 126, 34}},
         {"dir", {46, 139, 87}},
         {"trace", {142, 68, 173}},
-        {"hybrid", {196, 160, 0}}};
+        {"hybrid", {196, 160, 0}},
+        {"dir+temporal", {120, 200, 140}},
+        {"hybrid+temporal", {240, 210, 90}},
+        {"trace+temporal", {190, 140, 220}}};
     bench::Chart chart;
     const std::string name =
         std::filesystem::path(report["model"].get<std::string>()).filename().string();
@@ -294,6 +325,7 @@ int run(int argc, char** argv) {
     int frames = 60, warmup = 10;
     bool force = false, ground = false;
     std::vector<std::pair<std::string, std::string>> assignments;
+    std::vector<bool> temporalModes = {false};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool hasValue = i + 1 < argc;
@@ -338,6 +370,13 @@ int run(int argc, char** argv) {
             (arg == "--frames" ? frames : warmup) = std::atoi(argv[++i]);
             if (frames < 1 || warmup < 0)
                 return usageError(arg + " needs a count");
+        } else if (arg == "--temporal" && hasValue) {
+            temporalModes.clear();
+            for (const std::string& mode : split(argv[++i])) {
+                if (mode != "off" && mode != "on")
+                    return usageError("--temporal needs off, on or off,on");
+                temporalModes.push_back(mode == "on");
+            }
         } else if (arg == "--json" && hasValue) {
             jsonPath = argv[++i];
         } else if (arg == "--plot" && hasValue) {
@@ -394,8 +433,9 @@ int run(int argc, char** argv) {
     std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), size.x, size.y,
                 frames, warmup, gl::rendererString());
     std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
-                "cpu ms | animate+record ms | transients MiB | layers | trace | slowest passes (GPU ms) |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
+                "cpu ms | animate+record ms | transients MiB | temporal: x off, history | layers | "
+                "trace | slowest passes (GPU ms) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|\n");
     nlohmann::json report = {{"model", model},
                              {"paths", paths},
                              {"renderer", gl::rendererString()},
@@ -433,14 +473,46 @@ int run(int argc, char** argv) {
             const double duration = tool::sweepPeriod(world);
             const std::size_t covered = coveredPixels(world, 0.5 * duration, camera, size);
             std::vector<MethodRun> runs;
-            for (const std::string& method : methods)
-                runs.push_back({method, {}, {}, {}, {}, {}, 0, {}});
+            for (bool temporal : temporalModes)
+                for (const std::string& method : methods) {
+                    MethodRun run;
+                    run.method = method;
+                    run.temporal = temporal;
+                    if (temporal) {
+                        auto created =
+                            render::Renderer::create(headless.environment, *headless.context);
+                        if (!created) {
+                            std::fprintf(stderr, "glass-bench: %s\n",
+                                         created.error().message.c_str());
+                            return 1;
+                        }
+                        run.renderer = std::move(*created);
+                        run.glass = refraction::createPlugin();
+                        run.glass->parameters() = parameters;
+                        (void)run.glass->parameters().set("method", method);
+                        core::Status ready = run.renderer->addPlugin(run.glass.get());
+                        if (ready)
+                            ready = run.renderer->setSubdivisionLevel(level);
+                        if (ready)
+                            ready = run.renderer->prepare(world);
+                        if (!ready) {
+                            std::fprintf(stderr, "glass-bench: %s\n",
+                                         ready.error().message.c_str());
+                            return 1;
+                        }
+                        run.renderer->setGround(render::GroundPlane::under(bounds));
+                    }
+                    runs.push_back(std::move(run));
+                }
             for (int round = 0; round < rounds; ++round) {
                 const double time = std::fmod(round / 30.0, duration);
                 for (MethodRun& r : runs) {
-                    (void)plugin->parameters().set("method", r.method);
+                    if (!r.renderer)
+                        (void)plugin->parameters().set("method", r.method);
+                    settings.temporal.enabled = r.temporal;
+                    render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
                     const auto start = std::chrono::steady_clock::now();
-                    auto stats = headless.renderer->render(world, camera, settings, time);
+                    auto stats = renderer.render(world, camera, settings, time);
                     gl::finish();
                     const double ms = std::chrono::duration<double, std::milli>(
                                           std::chrono::steady_clock::now() - start)
@@ -453,12 +525,14 @@ int run(int argc, char** argv) {
                         continue;
                     if (round + 1 == rounds && r.method != "opaque") // read back after timing
                         if (const auto* refractionPlugin =
-                                dynamic_cast<const refraction::RefractionPlugin*>(plugin))
+                                dynamic_cast<const refraction::RefractionPlugin*>(
+                                    r.glass ? r.glass.get() : plugin))
                             r.layers = refractionPlugin->layerStats();
                     r.frameMs.push_back(ms);
                     r.cpuMs.push_back(stats->cpuMs);
                     r.engineMs.push_back(stats->animateMs + stats->recordMs);
                     r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
+                    r.historyBytes = std::max(r.historyBytes, stats->historyBytes);
                     for (const render::PassStats& p : stats->passes) {
                         if (!r.passes.count(p.name))
                             r.passOrder.push_back(p.name);

@@ -58,6 +58,26 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         c.session.ground = j.value("ground", false);
         c.session.exposure = j.value("exposure", 1.0f);
         c.session.subdivision = j.value("subdiv", 0);
+        // Temporal accumulation: "accumulate": N frames at each time from a fresh history, or
+        // "temporal": {"warmup": W, "history_weight": H} to carry the history across the times.
+        c.session.accumulate = j.value("accumulate", 0);
+        if (c.session.accumulate < 0 || c.session.accumulate > 4096)
+            return core::Error{where + "\"accumulate\" must be 0..4096 frames"};
+        if (j.contains("temporal")) {
+            const auto& t = j["temporal"];
+            if (!t.is_object())
+                return core::Error{where + "\"temporal\" must be an object"};
+            c.session.temporal.enabled = true;
+            c.session.warmup = t.value("warmup", 10);
+            c.session.temporal.historyWeight =
+                t.value("history_weight", c.session.temporal.historyWeight);
+            if (c.session.warmup < 0 || c.session.warmup > 4096 ||
+                !(c.session.temporal.historyWeight >= 0.0f &&
+                  c.session.temporal.historyWeight <= 0.99f))
+                return core::Error{where + "\"temporal\": warmup 0..4096, history_weight 0..0.99"};
+            if (c.times.size() > 1)
+                c.session.warmupStep = c.times[1] - c.times[0];
+        }
         if (j.contains("camera") && j["camera"].is_object()) {
             const auto& cam = j["camera"];
             CameraOverride o;

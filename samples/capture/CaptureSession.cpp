@@ -171,10 +171,27 @@ render::RenderSettings CaptureSession::settings() const {
     settings.ground = mOptions.ground;
     settings.exposure = mOptions.exposure;
     settings.exactPassTimes = true; // captures are not real-time: report true per-pass GPU times
+    settings.temporal = mOptions.temporal;
+    settings.temporal.enabled = mOptions.temporal.enabled || mOptions.accumulate > 0;
     return settings;
 }
 
 core::Result<RenderedFrame> CaptureSession::render(double time) {
+    if (mOptions.accumulate > 0) {
+        mRenderer->resetHistory();
+        for (int k = 1; k < mOptions.accumulate; ++k)
+            if (auto frame = renderOnce(time); !frame)
+                return frame.error();
+    } else if (mOptions.temporal.enabled && !mWarmedUp) {
+        for (int k = mOptions.warmup; k > 0; --k)
+            if (auto frame = renderOnce(time - k * mOptions.warmupStep); !frame)
+                return frame.error();
+    }
+    mWarmedUp = true;
+    return renderOnce(time);
+}
+
+core::Result<RenderedFrame> CaptureSession::renderOnce(double time) {
     const std::uint64_t errorsBefore = gl::errorCount();
     auto stats = mRenderer->render(mWorld, cameraAt(time), settings(), time);
     if (!stats)

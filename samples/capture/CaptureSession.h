@@ -49,6 +49,16 @@ struct SessionOptions {
     std::vector<PluginSpec> plugins;
     /** Parameters of the built-in refraction plugin (linked statically, always present). */
     std::vector<std::pair<std::string, std::string>> refraction;
+    /** Temporal accumulation (render::TemporalSettings): the history carries across the frames
+     *  a session renders. */
+    render::TemporalSettings temporal;
+    /** With temporal on: frames rendered before the first one asked for, at the times before it
+     *  (warmupStep apart), as a playing viewer's history would hold them. */
+    int warmup = 0;
+    double warmupStep = 1.0 / 30.0;
+    /** Above 0: every frame asked for is this many frames at its one time from a fresh history
+     *  (temporal on, converging), the accumulated one returned. */
+    int accumulate = 0;
 };
 
 struct RenderedFrame {
@@ -68,6 +78,8 @@ public:
      *  and configures plugins. Fails with the loader's (or GL's) message. */
     static core::Result<std::unique_ptr<CaptureSession>> create(const SessionOptions& options);
 
+    /** The frame at `time`: one frame, or with accumulate N the last of N at that time from a
+     *  fresh history; with temporal on, the first call renders the warm-up frames before it. */
     core::Result<RenderedFrame> render(double time);
     /** The Embree reference of the same frame, tonemapped like the GPU output. */
     core::Result<RenderedFrame> renderReference(double time,
@@ -86,7 +98,9 @@ private:
     /** The glTF camera of one model (not of a scene file), posed at `time`. */
     std::optional<render::Camera> modelCamera(double time, float aspect) const;
     render::RenderSettings settings() const;
+    core::Result<RenderedFrame> renderOnce(double time);
     SessionOptions mOptions;
+    bool mWarmedUp = false;
     scene::World mWorld;
     std::unique_ptr<gl::Context> mContext;
     std::unique_ptr<plugin::Plugin> mRefraction;

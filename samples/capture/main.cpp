@@ -30,6 +30,10 @@ constexpr const char* kUsage =
                      [--surfaces layers|two-surface] [--layer-capacity K] [--interfaces N]
                      [--outline-aa on|off] [--trace-samples S] [--hybrid-criteria C]
                      [--march-steps M]
+                     [--temporal on|off [--warmup N] [--history-weight W]
+                      [--temporal-view rejected|motion] [--history-rejection on|off]
+                      [--converge-still on|off]]
+                     [--accumulate N]
                      [--method reference] [--compare-reference] [--spp K | --pixel-centres] [--max-bounces N]
        glass-capture --case FILE.json [--update] [--out DIR] [--plugin PATH [--set K=V]...]...
 
@@ -52,6 +56,23 @@ characters; T is the scene time); several MODELs are placed side by side.
                       the deformed mesh on the GPU, and as the reference traces it (default 0:
                       the file's triangles)
   --plugin PATH       load a plugin module; --set KEY=VALUE after it sets its parameters
+  Temporal accumulation (docs/methods.md, "Temporal accumulation"):
+  --temporal on|off   on: every frame's projection jittered and blended into a history that
+                      carries across the frames written (--frames), each pixel reprojected by
+                      its motion; the trace's and the hybrid's samples one a frame (default off)
+  --warmup N          with --temporal on: N frames before the first one written, at the
+                      times before it (--frames' STEP apart, else 1/30 s), as a playing
+                      viewer's history holds them (default 10)
+  --history-weight W  the history's weight while anything moves, 0..0.99 (default 0.8)
+  --history-rejection off  keep every reprojected history unclipped (to show what the
+                      rejection and clipping are for; default on)
+  --converge-still off  frames at one time blend as moving ones do (the history weight, the
+                      neighbourhood's clip) instead of averaging every frame (default on)
+  --temporal-view V   rejected: red where the history was rejected, green where it was
+                      clipped; motion: each pixel's motion (hue its direction, brightness its
+                      length up to 8 pixels)
+  --accumulate N      every frame written is N frames at its one time from a fresh history,
+                      accumulated (still frames converge: N frames equal N samples a pixel)
   Glass (the built-in refraction plugin; materials with KHR_materials_transmission are glass):
   --method M          opaque, sir (one interface), isr (Wyman, d_N per frame), dir (default:
                       depth-map search, no preprocessing), trace (the path traced exactly
@@ -137,6 +158,7 @@ struct Options {
     std::string caseFile;
     std::string contactSheet;
     bool force = false;
+    bool warmupGiven = false, weightGiven = false, accumulateGiven = false;
 };
 
 /** The files one run writes: refuses existing ones without --force before anything is written,
@@ -203,6 +225,38 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
                 return usageError("--subdiv needs a level 0.." +
                                   std::to_string(core::limits::kMaxSubdivisionLevel));
             o.session.subdivision = int(n);
+        } else if (arg == "--temporal") {
+            const auto v = next();
+            if (!v || (*v != "on" && *v != "off"))
+                return usageError("--temporal needs on or off");
+            o.session.temporal.enabled = *v == "on";
+        } else if (arg == "--history-rejection" || arg == "--converge-still") {
+            const auto v = next();
+            if (!v || (*v != "on" && *v != "off"))
+                return usageError(arg + " needs on or off");
+            (arg == "--converge-still" ? o.session.temporal.convergeStill
+                                       : o.session.temporal.rejectHistory) = *v == "on";
+            o.weightGiven = true; // goes with --temporal on
+        } else if (arg == "--temporal-view") {
+            const auto v = next();
+            if (!v || (*v != "rejected" && *v != "motion"))
+                return usageError("--temporal-view needs rejected or motion");
+            o.session.temporal.view = *v == "rejected" ? render::TemporalSettings::View::Rejected
+                                                       : render::TemporalSettings::View::Motion;
+            o.weightGiven = true; // goes with --temporal on
+        } else if (arg == "--warmup" || arg == "--accumulate" || arg == "--history-weight") {
+            const auto v = next();
+            double n = 0;
+            const bool weight = arg == "--history-weight";
+            if (!v || !parseDouble(*v, n) || n < (arg == "--accumulate" ? 1 : 0) ||
+                n > (weight ? 0.99 : 4096) || (!weight && n != std::floor(n)))
+                return usageError(
+                    arg + (weight ? " needs a weight in 0..0.99" : " needs an integer up to 4096"));
+            if (weight)
+                o.session.temporal.historyWeight = float(n);
+            else
+                (arg == "--warmup" ? o.session.warmup : o.session.accumulate) = int(n);
+            (weight ? o.weightGiven : arg == "--warmup" ? o.warmupGiven : o.accumulateGiven) = true;
         } else if (arg == "--pixel-centres") {
             o.referenceOptions.pixelCentres = true;
         } else if (arg == "--deterministic") {
@@ -310,6 +364,18 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
     o.referenceOptions.subdivision = o.session.subdivision; // the reference traces it too
     if (haveTime && haveFrames)
         return usageError("--time and --frames are exclusive");
+    if ((o.warmupGiven && !o.session.temporal.enabled) ||
+        (o.weightGiven && !o.session.temporal.enabled && !o.accumulateGiven))
+        return usageError("--warmup goes with --temporal on; --history-weight, "
+                          "--history-rejection, --converge-still and --temporal-view with "
+                          "--temporal on or --accumulate");
+    if (o.accumulateGiven && o.session.temporal.enabled)
+        return usageError("--accumulate and --temporal on are exclusive (accumulate converges "
+                          "each frame from a fresh history)");
+    if (o.session.temporal.enabled && !o.warmupGiven)
+        o.session.warmup = 10;
+    if (haveFrames && o.times.size() > 1)
+        o.session.warmupStep = o.times[1] - o.times[0];
     if (o.caseFile.empty() && o.session.models.empty())
         return usageError("no model given");
     if (!o.caseFile.empty() && !o.session.models.empty())

@@ -19,6 +19,7 @@ struct HeadlessScene {
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<plugin::Plugin> glass; // the refraction plugin, before the renderer dies
     std::unique_ptr<render::Renderer> renderer;
+    asset::HdrImage environment; ///< the renderer's (for more renderers of the same scene)
     /** The longest clip any character plays, in scene seconds (1 when none plays one). */
     double duration = 1.0;
     render::Bounds bounds; ///< of every character over its clip
@@ -72,6 +73,7 @@ inline core::Result<HeadlessScene> openHeadlessScene(std::span<const std::string
     if (!renderer)
         return renderer.error();
     s.renderer = std::move(*renderer);
+    s.environment = std::move(environment);
     s.glass = refraction::createPlugin();
     if (auto added = s.renderer->addPlugin(s.glass.get()); !added)
         return added.error();

@@ -274,8 +274,10 @@ void Panel::camera(Viewer& v) {
     ImGui::SameLine();
     if (ImGui::Button("Frame selection (Shift+F)"))
         v.frameCharacters(true);
-    if (ImGui::Button("Reset (R)"))
+    if (ImGui::Button("Reset (R)")) {
         v.mCamera.reset();
+        v.mRenderer->resetHistory(); // a camera cut
+    }
     ImGui::TextDisabled("drag orbit, right/shift-drag pan, wheel zoom;\n"
                         "click select, ctrl-drag move (ctrl-shift: up/down)");
 }
@@ -285,6 +287,17 @@ void Panel::environment(Viewer& v) {
         return;
     for (const char* name : {"environment", "env-rotation", "exposure", "ground"})
         widget(v.mSettings, name);
+}
+
+void Panel::temporal(Viewer& v) {
+    if (!section("Temporal accumulation", false))
+        return;
+    for (const char* name : {"temporal", "history-weight", "converge-paused", "temporal-view"})
+        widget(v.mSettings, name);
+    if (v.mSettings.flag("temporal") && v.mSettings.flag("split"))
+        ImGui::TextDisabled("off while the A/B split draws two methods a frame");
+    else if (v.mStats.historyBytes > 0)
+        ImGui::TextDisabled("history %.1f MiB", double(v.mStats.historyBytes) / 1048576.0);
 }
 
 void Panel::lights(Viewer& v) {
@@ -476,6 +489,7 @@ void Panel::draw(Viewer& v) {
     animation(v);
     camera(v);
     environment(v);
+    temporal(v);
     lights(v);
     plugins(v);
     split(v);
@@ -483,7 +497,7 @@ void Panel::draw(Viewer& v) {
     presets(v);
     screenshot(v);
     ImGui::TextDisabled("Space play, arrows step, M/1-4 method, B split, G ground,\n"
-                        "F frame, Del remove, Tab panel, F12 screenshot, Esc quit");
+                        "T accumulate, F frame, Del remove, Tab panel, F12 screenshot, Esc quit");
     ImGui::PopItemWidth();
     ImGui::End();
 }

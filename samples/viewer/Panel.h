@@ -1,5 +1,5 @@
-// glass-viewer's Dear ImGui panel: the scene's characters, animation, camera, environment, lights, every
-// plugin's parameters (from its ParameterSet, then its own panel hook), A/B split, timings,
+// glass-viewer's Dear ImGui panel: the scene's characters, animation, camera, environment, lights,
+// every plugin's parameters (from its ParameterSet, then its own panel hook), A/B split, timings,
 // presets and screenshots.
 #pragma once
 
@@ -23,6 +23,7 @@ private:
     static void animation(Viewer& v);
     static void camera(Viewer& v);
     static void environment(Viewer& v);
+    static void temporal(Viewer& v);
     static void lights(Viewer& v);
     static void plugins(Viewer& v);
     static void split(Viewer& v);

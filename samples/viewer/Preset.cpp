@@ -50,6 +50,41 @@ plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
                "GPU (0: the file's triangles; each level has four times the triangles)"});
     p.declare({"exposure", "Exposure", Type::Float, 0.05, 8.0, 1.0, {}, "before tonemapping"});
     p.declare({"ground", "Ground plane", Type::Bool, 0, 1, 1, {}, "a plane under the character"});
+    p.declare({"temporal",
+               "Accumulate",
+               Type::Bool,
+               0,
+               1,
+               0,
+               {},
+               "temporal accumulation: each frame jittered and blended into the history, each "
+               "pixel reprojected by what it shows (T)"});
+    p.declare({"history-weight",
+               "History weight",
+               Type::Float,
+               0.0,
+               0.99,
+               0.8,
+               {},
+               "the history's weight while anything moves: higher is smoother and lags more"});
+    p.declare({"converge-paused",
+               "Converge while paused",
+               Type::Bool,
+               0,
+               1,
+               1,
+               {},
+               "while nothing moves, every frame weighs the same: the view converges to the "
+               "many-sample image"});
+    p.declare({"temporal-view",
+               "Temporal view",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"off", "rejected history", "motion vectors"},
+               "rejected: red where the history was dropped, green where it was clipped; "
+               "motion: hue its direction, brightness its length up to 8 pixels"});
     p.declare({"split", "A/B split", Type::Bool, 0, 1, 0, {}, "compare two methods side by side"});
     p.declare({"split-method", "Right side", Type::Enum, 0, 0, 0,
                methods.empty() ? std::vector<std::string>{"(none)"} : methods,

@@ -319,6 +319,10 @@ void Viewer::handleInput() {
             break;
         case GLFW_KEY_R:
             mCamera.reset();
+            mRenderer->resetHistory(); // a camera cut
+            break;
+        case GLFW_KEY_T:
+            toggle("temporal");
             break;
         case GLFW_KEY_G:
             toggle("ground");
@@ -411,6 +415,11 @@ render::RenderSettings Viewer::settings(glm::ivec2 size) const {
     s.environmentRotation = float(glm::radians(mSettings.number("env-rotation")));
     s.ground = mSettings.flag("ground");
     s.exactPassTimes = mSettings.flag("exact-timings");
+    // The split draws two methods a frame: one history cannot serve both.
+    s.temporal.enabled = mSettings.flag("temporal") && !mSettings.flag("split");
+    s.temporal.historyWeight = float(mSettings.number("history-weight"));
+    s.temporal.convergeStill = mSettings.flag("converge-paused");
+    s.temporal.view = render::TemporalSettings::View(int(mSettings.number("temporal-view")));
     return s;
 }
 

@@ -267,6 +267,7 @@ void Viewer::drawSelection() const {
 }
 
 void Viewer::frameCharacters(bool selectionOnly) {
+    mRenderer->resetHistory(); // a camera cut
     if (!selectionOnly || mSelected < 0) {
         mCamera.frame(mBounds, viewportAspect());
         return;

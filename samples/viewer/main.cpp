@@ -51,7 +51,7 @@ Mouse: drag to orbit, right- or shift-drag to pan, wheel to zoom, drag the A/B d
        down).
 Keys: Space play/pause, Left/Right step one frame, M next method, 1-4 method,
       F frame all (Shift+F the selection), R reset the camera, Del remove the selected
-      character, G ground, B A/B split, Tab panel,
+      character, G ground, B A/B split, T temporal accumulation, Tab panel,
       F12 or P screenshot, Esc or Ctrl+Q quit.
 
 Exit status: 0 success; 1 a load error, a failed screenshot or any GL error; 2 bad arguments.
