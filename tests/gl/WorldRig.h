@@ -76,6 +76,7 @@ public:
         settings.size = {mSize, mSize};
         settings.ground = mWorld.ground;
         settings.hdrOutput = true;
+        settings.temporal = temporal;
         auto stats = mRenderer->render(mWorld, mCamera, settings, time);
         EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
         if (stats && passes)
@@ -134,7 +135,11 @@ public:
         mSubdivision = level;
     }
     const refraction::RefractionPlugin& plugin() const { return *mPlugin; }
+    render::Renderer& renderer() { return *mRenderer; }
     const scene::World& world() const { return mWorld; }
+    scene::Character& character(std::size_t i) { return mWorld.characters.at(i); }
+    /** The frames' temporal accumulation (off unless set). */
+    render::TemporalSettings temporal;
     const render::Camera& camera() const { return mCamera; }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
     /** Views the world from its scene file's camera instead of framing its bounds. */

@@ -1,0 +1,248 @@
+// Temporal accumulation (docs/methods.md, "Temporal accumulation"): the motion vectors of a
+// deforming, moving character seen by a moving camera against finite differences of the CPU
+// deformation; still frames that average exactly to the mean of their jittered samples and
+// converge as many samples in one frame do; no trail behind a character that moves off the
+// background; camera cuts that start the history over.
+#include "WorldRig.h"
+#include "support/GlTest.h"
+#include "support/TestSupport.h"
+
+#include "engine/deform/CpuDeformer.h"
+#include "engine/render/Shared.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace {
+
+using test::WorldRig;
+
+class Temporal : public test::GlTest {};
+
+float halfToFloat(std::uint32_t bits) {
+    const std::uint32_t sign = (bits >> 15) & 1u, exponent = (bits >> 10) & 31u,
+                        mantissa = bits & 1023u;
+    float value = exponent == 0 ? std::ldexp(float(mantissa), -24)
+                                : std::ldexp(float(mantissa | 1024u), int(exponent) - 25);
+    return sign ? -value : value;
+}
+
+/** A world position's pixel position (x right, y up, GL's rows) through `viewProjection`. */
+glm::dvec3 pixelOf(const glm::mat4& viewProjection, const glm::dvec3& p, int size) {
+    const glm::dvec4 clip = glm::dmat4(viewProjection) * glm::dvec4(p, 1.0);
+    return {(clip.x / clip.w * 0.5 + 0.5) * size, (clip.y / clip.w * 0.5 + 0.5) * size, clip.w};
+}
+
+TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
+    // The default figure: skinned, a breathing morph target, walking; placed by a transform
+    // that moves too, seen by a camera that orbits a little between the two frames.
+    constexpr int kSize = 160;
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
+    rig.set("method", "opaque"); // drawn by the engine's opaque pass
+    rig.temporal.enabled = true;
+    const double t0 = 0.4, t1 = t0 + 1.0 / 30.0;
+    const render::Camera first = rig.camera();
+    rig.character(0).placement.translation = {0.0, 0.0, 0.0};
+    rig.renderHdr(t0);
+    const scene::Character before = rig.character(0);
+    rig.character(0).placement.translation = {0.03, 0.01, -0.02};
+    render::Camera second = first;
+    second.view = first.view * glm::rotate(glm::mat4(1.0f), 0.02f, glm::vec3(0.0f, 1.0f, 0.0f));
+    rig.setCamera(second);
+    rig.renderHdr(t1);
+    const std::vector<std::uint32_t> texels = rig.renderer().lastMotion().downloadUint();
+
+    // Every triangle's centroid, deformed on the CPU at both times: where its pixel shows it
+    // (its depth there), the GPU's motion must be the centroid's change of pixel position.
+    const auto now = deform::deformCharacter(rig.character(0), t1);
+    const auto then = deform::deformCharacter(before, t0);
+    const scene::Model& model = *rig.character(0).model;
+    std::size_t compared = 0, close = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < now.size(); ++i)
+        for (std::size_t p = 0; p < now[i].primitives.size(); ++p) {
+            const auto a = deform::toWorld(now[i].primitives[p], now[i].meshToWorld);
+            const auto b = deform::toWorld(then[i].primitives[p], then[i].meshToWorld);
+            const scene::Primitive& primitive =
+                model.meshes[std::size_t(now[i].mesh)].primitives[p];
+            const auto& indices = primitive.indices;
+            for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+                glm::dvec3 ca(0.0), cb(0.0);
+                for (int k = 0; k < 3; ++k) {
+                    ca += a.positions[indices[t + std::size_t(k)]] / 3.0;
+                    cb += b.positions[indices[t + std::size_t(k)]] / 3.0;
+                }
+                const glm::dvec3 q = pixelOf(second.viewProjection(), ca, kSize);
+                const glm::dvec3 r = pixelOf(first.viewProjection(), cb, kSize);
+                const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
+                if (x < 1 || y < 1 || x >= kSize - 1 || y >= kSize - 1)
+                    continue;
+                const std::uint32_t* m = &texels[(std::size_t(y) * kSize + std::size_t(x)) * 4];
+                if ((m[0] >> render::kMotionKindShift) != std::uint32_t(render::MotionKind::Opaque))
+                    continue;
+                const double depth = halfToFloat(m[2] & 0xFFFFu);
+                if (std::abs(depth - q.z) > 0.01 * q.z) // another surface shows there
+                    continue;
+                const glm::dvec2 expected(q.x - r.x, q.y - r.y);
+                const glm::dvec2 gpu(halfToFloat(m[1] & 0xFFFFu), halfToFloat(m[1] >> 16));
+                const double error = glm::length(gpu - expected);
+                ++compared;
+                // The pixel's sample is up to a pixel from the centroid: the motion varies that
+                // little over it.
+                close += error < 0.15 + 0.1 * glm::length(expected) ? 1 : 0;
+                worst = std::max(worst, error);
+            }
+        }
+    ASSERT_GT(compared, 100u);
+    EXPECT_GT(double(close) / double(compared), 0.95) << "worst error " << worst << " px";
+}
+
+TEST_F(Temporal, StillFramesAverageToTheMeanOfTheirJitteredSamples) {
+    // The same still frame sixteen times: raw (no history weight: each frame its own jittered
+    // sample), and converging. The converged frame is the mean of the raw ones.
+    constexpr int kFrames = 16;
+    WorldRig raw(test::generatedWorld("glass_figure.glb"), context(), 96);
+    raw.temporal.enabled = true;
+    raw.temporal.convergeStill = false;
+    raw.temporal.historyWeight = 0.0f;
+    WorldRig converged(test::generatedWorld("glass_figure.glb"), context(), 96);
+    converged.temporal.enabled = true;
+    std::vector<double> mean;
+    std::vector<float> accumulated, first, last;
+    for (int k = 0; k < kFrames; ++k) {
+        const std::vector<float> frame = raw.renderHdr(0.5);
+        accumulated = converged.renderHdr(0.5);
+        mean.resize(frame.size(), 0.0);
+        for (std::size_t i = 0; i < frame.size(); ++i)
+            mean[i] += double(frame[i]) / kFrames;
+        (k == 0 ? first : last) = frame;
+    }
+    double worst = 0.0, moved = 0.0;
+    for (std::size_t i = 0; i < mean.size(); i += 4)
+        for (std::size_t c = 0; c < 3; ++c) {
+            worst = std::max(worst, std::abs(double(accumulated[i + c]) - mean[i + c]) /
+                                        std::max(1.0, mean[i + c]));
+            moved = std::max(moved, double(std::abs(first[i + c] - last[i + c])));
+        }
+    EXPECT_GT(moved, 0.05) << "the jitter moved no edge";
+    EXPECT_LT(worst, 1e-4);
+}
+
+TEST_F(Temporal, StillFramesConvergeAsManySamplesInOneFrameDo) {
+    // The trace: one sample a frame over 16 frames against 16 samples in one frame, both scored
+    // against the reference.
+    WorldRig rig(test::projectScene("glass_spheres.json"), context(), 96);
+    rig.set("method", "trace");
+    const WorldRig::Reference reference = rig.reference(0.3, WorldRig::Evaluation::Sampled, 64);
+    rig.set("trace-samples", "16");
+    const double samples = rig.psnrAgainst(reference, 0.3);
+    rig.set("trace-samples", "1");
+    const double one = rig.psnrAgainst(reference, 0.3);
+    rig.temporal.enabled = true;
+    for (int k = 1; k < 16; ++k)
+        rig.renderHdr(0.3);
+    const double frames = rig.psnrAgainst(reference, 0.3);
+    EXPECT_GT(frames, samples - 0.5) << "one sample " << one;
+    EXPECT_GT(frames, one + 3.0);
+}
+
+/** The pixels (rows top to bottom) whose centre's ray from `camera` meets the unit sphere at
+ *  `centre`, grown by a pixel: what the sphere covers. */
+std::vector<bool> sphereMask(const render::Camera& camera, const glm::dvec3& centre, int size) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    std::vector<bool> mask(std::size_t(size) * std::size_t(size));
+    for (int row = 0; row < size; ++row)
+        for (int x = 0; x < size; ++x) {
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const glm::dvec2 ndc((x + dx + 0.5) / size * 2.0 - 1.0,
+                                         1.0 - (row + dy + 0.5) / size * 2.0);
+                    const glm::dvec4 a = inverse * glm::dvec4(ndc, -1.0, 1.0),
+                                     b = inverse * glm::dvec4(ndc, 1.0, 1.0);
+                    const glm::dvec3 o = glm::dvec3(a) / a.w,
+                                     d = glm::normalize(glm::dvec3(b) / b.w - o);
+                    const glm::dvec3 oc = o - centre;
+                    const double h = glm::dot(oc, d);
+                    if (h * h - glm::dot(oc, oc) + 1.0 >= 0.0)
+                        mask[std::size_t(row) * std::size_t(size) + std::size_t(x)] = true;
+                }
+        }
+    return mask;
+}
+
+TEST_F(Temporal, ACharacterMovingOffTheBackgroundLeavesNoTrail) {
+    // A glass sphere crossing the sky, 0.12 units a frame, the camera still. Where it was three
+    // frames ago and is no more, the frame must show the sky as the reference does; kept
+    // history would leave a trail of glass there.
+    auto sphere = asset::loadModel("builtin:sphere");
+    ASSERT_TRUE(sphere.ok());
+    scene::World world =
+        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*sphere)));
+    world.characters[0].glass = scene::GlassMode::All;
+    auto run = [&](bool reject) {
+        WorldRig rig(world, context(), 96);
+        rig.setCamera(
+            render::frameBounds(render::Bounds{{-2.5f, -1.0f, -1.0f}, {2.5f, 1.0f, 1.0f}}, 1.0f));
+        rig.character(0).placement.translation = {-1.2, 0.0, 0.0};
+        rig.temporal.enabled = true;
+        rig.temporal.rejectHistory = reject;
+        constexpr int kFrames = 12;
+        std::vector<float> last;
+        for (int k = 0; k < kFrames; ++k) {
+            rig.character(0).placement.translation = {-1.2 + 0.12 * k, 0.0, 0.0};
+            last = rig.renderHdr(0.0);
+        }
+        const std::vector<bool> then =
+            sphereMask(rig.camera(), {-1.2 + 0.12 * (kFrames - 4), 0.0, 0.0}, 96);
+        const std::vector<bool> now =
+            sphereMask(rig.camera(), {-1.2 + 0.12 * (kFrames - 1), 0.0, 0.0}, 96);
+        std::vector<bool> uncovered(now.size());
+        std::size_t count = 0;
+        for (std::size_t p = 0; p < now.size(); ++p)
+            count += (uncovered[p] = then[p] && !now[p]) ? 1 : 0;
+        EXPECT_GT(count, 100u);
+        const WorldRig::Reference reference = rig.reference(0.0);
+        const capture::Image frame{96, 96, render::cpu::tonemap(last, 1.0f)};
+        return capture::score(frame, reference.image, &uncovered).psnr;
+    };
+    const double rejecting = run(true), keeping = run(false);
+    std::printf("uncovered region against the reference: %.2f dB, %.2f dB keeping the history\n",
+                rejecting, keeping);
+    EXPECT_GT(rejecting, 40.0);
+    EXPECT_LT(keeping, rejecting - 10.0) << "the history kept without rejection left no trail";
+}
+
+TEST_F(Temporal, ACameraCutStartsTheHistoryOver) {
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 96);
+    WorldRig fresh(test::generatedWorld("glass_figure.glb"), context(), 96);
+    rig.temporal.enabled = fresh.temporal.enabled = true;
+    const render::Camera front = rig.camera();
+    render::Camera side = front;
+    side.view = front.view * glm::rotate(glm::mat4(1.0f), 1.2f, glm::vec3(0.0f, 1.0f, 0.0f));
+    for (int k = 0; k < 6; ++k)
+        rig.renderHdr(0.1 * k);
+    // A turn past 45 degrees is a cut: the frame is the history's first, as a fresh one's.
+    rig.setCamera(side);
+    fresh.setCamera(side);
+    EXPECT_EQ(rig.renderHdr(0.6), fresh.renderHdr(0.6));
+    // A small move is not: the history shows.
+    render::Camera near = side;
+    near.view = side.view * glm::rotate(glm::mat4(1.0f), 0.01f, glm::vec3(0.0f, 1.0f, 0.0f));
+    rig.setCamera(near);
+    WorldRig other(test::generatedWorld("glass_figure.glb"), context(), 96);
+    other.temporal.enabled = true;
+    other.setCamera(near);
+    const std::vector<float> kept = rig.renderHdr(0.7), started = other.renderHdr(0.7);
+    EXPECT_NE(kept, started);
+    // A cut the caller names (Renderer::resetHistory) starts over too, however small the move.
+    WorldRig third(test::generatedWorld("glass_figure.glb"), context(), 96);
+    third.temporal.enabled = true;
+    third.setCamera(near);
+    rig.renderer().resetHistory();
+    EXPECT_EQ(rig.renderHdr(0.8), third.renderHdr(0.8));
+}
+
+} // namespace
