@@ -20,8 +20,7 @@ uniform int uReject;
 uniform int uView;
 
 layout(location = 0) out vec4 outColor;
-layout(location = 1) out uvec4 outMotion;
-layout(location = 2) out vec4 outView;
+layout(location = 1) out vec4 outView; // with a debug view
 
 // Relative depth change that counts as a disocclusion, and the turn of a path's exit that
 // counts as a jump (15 degrees).
@@ -98,7 +97,6 @@ void main() {
     if (any(isnan(color)) || any(isinf(color)))
         color = vec3(0.0);
     uvec4 m = texelFetch(uMotion, p, 0);
-    outMotion = m;
     vec2 candidates[2];
     int count = motionCandidates(m, candidates);
     // Nothing moved: the history is this frame's own, whatever one sample a pixel showed.

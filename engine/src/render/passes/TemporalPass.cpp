@@ -1,5 +1,6 @@
 // `temporal`: the frame blended into the history the renderer keeps across frames
-// (render/temporal.frag.glsl), which the tonemap then reads.
+// (render/temporal.frag.glsl), which the tonemap then reads; the frame's motion copied into the
+// history for the next frame's checks.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -35,8 +36,7 @@ fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
                     b.create("temporal.view", {frame.settings.size, gl::Format::RGBA16F, 1}));
         },
         [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
-            std::vector<const gl::Texture*> targets{&r.texture(d.nextColor),
-                                                    &r.texture(d.nextMotion)};
+            std::vector<const gl::Texture*> targets{&r.texture(d.nextColor)};
             if (d.view.valid())
                 targets.push_back(&r.texture(d.view));
             if (auto bound = gpu.framebuffer.bindTargets("temporal", targets, nullptr); !bound)
@@ -57,6 +57,9 @@ fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
             p.set("uView", int(s.view));
             gpu.emptyVao.bind();
             gl::drawArrays(3);
+            // The motion the next frame checks its history against: this frame's, copied
+            // (a copy costs less than a 16-byte target on a CPU rasteriser).
+            gl::copyTexture(r.texture(d.motion), r.texture(d.nextMotion));
             return {};
         });
     return view ? resolved.view : resolved.nextColor;
