@@ -31,7 +31,7 @@ const char* const kUsage =
 
 Renders MODEL (default: builtin:sphere; a scene file, or several models side by side) headless
 for N frames (default 10000): the clips loop; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
-TIR reflect, trace, hybrid); every R frames (default 175) the viewport takes the next of 4 sizes (around
+TIR reflect and temporal accumulation, trace with it, hybrid); every R frames (default 175) the viewport takes the next of 4 sizes (around
 128x128) and the world gains or loses a character (a copy of the first, beside it: the
 renderer places and releases its deformer, the glass plugin its caches). Every K frames (default 220) it prints the frame, resident memory (RSS, from
 /proc/self/statm) and the live GL objects (counted by asking the driver about every name).
@@ -110,13 +110,15 @@ int run(int argc, char** argv) {
     extra.placement.translation.x += 2.5 * double(headless.bounds.radius());
     extra.timeOffset += 0.37;
     grown.characters.push_back(std::move(extra));
-    const std::vector<std::pair<std::string, std::string>> methods = {{"opaque", "clamp"},
-                                                                      {"sir", "clamp"},
-                                                                      {"isr", "clamp"},
-                                                                      {"dir", "clamp"},
-                                                                      {"dir", "reflect"},
-                                                                      {"trace", "reflect"},
-                                                                      {"hybrid", "reflect"}};
+    // Two of them accumulate over frames (the temporal history allocated, kept while off).
+    struct Method {
+        std::string name, tir;
+        bool temporal;
+    };
+    const std::vector<Method> methods = {{"opaque", "clamp", false},  {"sir", "clamp", false},
+                                         {"isr", "clamp", false},     {"dir", "clamp", false},
+                                         {"dir", "reflect", true},    {"trace", "reflect", true},
+                                         {"hybrid", "reflect", false}};
     const std::vector<glm::ivec2> sizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
     // The frames after which methods, sizes and worlds come round together (the world alternates
     // with every size, an even count of them): every pairing of a method with a size and world.
@@ -125,7 +127,8 @@ int run(int argc, char** argv) {
     std::vector<Report> reports;
     std::vector<gl::Buffer> leaked; // --inject-leak: one more live buffer per report
     for (int frame = 0; frame < frames; ++frame) {
-        const auto& [method, tir] = methods[std::size_t(frame / switchEvery) % methods.size()];
+        const auto& [method, tir, temporal] =
+            methods[std::size_t(frame / switchEvery) % methods.size()];
         const glm::ivec2 size = sizes[std::size_t(frame / resizeEvery) % sizes.size()];
         (void)plugin->parameters().set("method", method);
         (void)plugin->parameters().set("tir", tir);
@@ -133,6 +136,7 @@ int run(int argc, char** argv) {
         render::RenderSettings settings;
         settings.size = size;
         settings.ground = true;
+        settings.temporal.enabled = temporal;
         const scene::World& world = (frame / resizeEvery) % 2 ? grown : headless.world;
         auto stats = headless.renderer->render(world, headless.camera(size), settings, time);
         if (!stats) {
@@ -144,7 +148,8 @@ int run(int argc, char** argv) {
             if (injectLeak)
                 leaked.emplace_back(std::size_t(1) << 16);
             gl::finish();
-            Report r{frame + 1, residentKiB(), gl::liveObjects(), method + "/" + tir, size};
+            Report r{frame + 1, residentKiB(), gl::liveObjects(),
+                     method + "/" + tir + (temporal ? "/temporal" : ""), size};
             reports.push_back(r);
             if (!json)
                 std::printf("frame %6d  rss %7ld KiB  GL objects %4d (buffers %d, textures %d, "
