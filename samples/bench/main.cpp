@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -36,6 +37,7 @@ const char* const kUsage =
     R"(usage: glass-bench MODEL|SCENE [MODEL...] [--methods opaque,sir,isr,dir] [--subdiv 0,1,2]
                    [--instances 1,4,16,64] [--size WxH] [--frames N] [--warmup W]
                    [--glass all|auto] [--ground] [--set KEY=VALUE]... [--temporal off,on]
+                   [--history-weight W]
                    [--json FILE] [--plot PNG] [--force]
 
 Renders MODEL (a scene file, or several models side by side) headless (EGL) at each
@@ -59,8 +61,9 @@ other refraction parameter for every method (e.g. --set nearby=off, --set search
 --temporal off,on also runs each method with temporal accumulation ("dir+temporal": the jitter,
 the motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's and
 the hybrid's samples one a frame), with its frame time as a ratio to the same method without it
-("x off") and the history's GPU memory (interleaved with the other runs, each frame starts the
-history over: the cost is the same).
+("x off") and the history's GPU memory (each such run has a renderer of its own, whose history
+carries across its frames as an application's does); --history-weight W sets the history's
+weight (0..0.99, default 0.8).
 
 Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON,
 --plot PNG a chart of each method's median frame time against the triangles drawn (both
@@ -326,6 +329,7 @@ int run(int argc, char** argv) {
     bool force = false, ground = false;
     std::vector<std::pair<std::string, std::string>> assignments;
     std::vector<bool> temporalModes = {false};
+    float historyWeight = render::TemporalSettings{}.historyWeight;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool hasValue = i + 1 < argc;
@@ -377,6 +381,11 @@ int run(int argc, char** argv) {
                     return usageError("--temporal needs off, on or off,on");
                 temporalModes.push_back(mode == "on");
             }
+        } else if (arg == "--history-weight" && hasValue) {
+            char* end = nullptr;
+            historyWeight = std::strtof(argv[++i], &end);
+            if (*end != '\0' || !(historyWeight >= 0.0f && historyWeight <= 0.99f))
+                return usageError("--history-weight needs a weight in 0..0.99");
         } else if (arg == "--json" && hasValue) {
             jsonPath = argv[++i];
         } else if (arg == "--plot" && hasValue) {
@@ -510,6 +519,7 @@ int run(int argc, char** argv) {
                     if (!r.renderer)
                         (void)plugin->parameters().set("method", r.method);
                     settings.temporal.enabled = r.temporal;
+                    settings.temporal.historyWeight = historyWeight;
                     render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
                     const auto start = std::chrono::steady_clock::now();
                     auto stats = renderer.render(world, camera, settings, time);
