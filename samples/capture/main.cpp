@@ -433,6 +433,15 @@ int run(int argc, char** argv) {
                              {"clip", (*session)->clipLabel()},
                              {"size", {o.session.size.x, o.session.size.y}},
                              {"frames", nlohmann::json::array()}};
+    if (o.session.temporal.enabled)
+        report["temporal"] = {{"warmup_frames", o.session.warmup},
+                              {"warmup_step", o.session.warmupStep},
+                              {"history_weight", o.session.temporal.historyWeight}};
+    if (o.session.accumulate > 0)
+        report["accumulate"] = o.session.accumulate;
+    if (o.session.temporal.enabled && !o.json)
+        std::printf("temporal accumulation: %d warm-up frames %.4f s apart before the first\n",
+                    o.session.warmup, o.session.warmupStep);
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) {
