@@ -1,11 +1,13 @@
 // `temporal`: this frame's colour (its projection jittered under the pixel) blended into the
-// history the renderer keeps, each pixel reprojected by its motion (common/motion.glsl). The
-// history is reused where it shows what the pixel tracks now: the same kind and object, no
-// depth jump (disocclusion), no jump in the direction a path through glass left it. While
-// anything moves it is read with a Catmull-Rom filter, clipped to the frame's 3x3 neighbourhood
-// (variance clipping in YCoCg) and weighted uHistoryWeight (1 - 1/n over its first n frames);
-// while nothing moves (uStill) it is read where it lies, unclipped, and every frame weighs the
-// same: N still frames average to N samples of one frame.
+// history the renderer keeps, each pixel reprojected by its motion (common/motion.glsl; a path
+// through glass first where the glass it entered was, then where its end was). The history is
+// reused where it shows what the pixel, or a neighbour (its footprint), tracks now: the same
+// kind and object, no depth jump (disocclusion), no jump in the direction a path through glass
+// left it. While anything moves it is read with a Catmull-Rom filter, clipped toward the mean
+// of the frame's 3x3 neighbourhood to 0.75 of its deviation (variance clipping in YCoCg) and
+// weighted uHistoryWeight (1 - 1/n over its first n frames); while nothing moves (uStill) it is
+// read where it lies, unclipped, and every frame weighs the same: N still frames average to N
+// samples of one frame.
 #include "common/motion.glsl"
 
 layout(binding = SOURCE_UNIT) uniform sampler2D uColor;
