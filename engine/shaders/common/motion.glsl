@@ -63,8 +63,8 @@ vec2 motionDepths(uvec4 m) {
 
 // Where a pixel's history may lie, in the order the resolve tries them: by its motion; for a
 // path through glass first by the motion of the glass it entered (a moving body carries what
-// it refracts with it: on a glass sphere crossing the sky, 35.6 dB against 31.4 by the path's
-// end first), then by its end's.
+// it refracts with it: a glass sphere crossing the ground accumulates to 36.8 dB, 32.3 by the
+// path's end first; Temporal.AGlassBodyCarriesWhatItRefractsWithIt), then by its end's.
 int motionCandidates(uvec4 m, out vec2 candidates[2]) {
     bool glass = motionKind(m) == MOTION_THROUGH_GLASS;
     candidates[0] = glass ? unpackHalf2x16(m.z) : motionPixels(m);
