@@ -149,6 +149,17 @@ TEST_F(Temporal, StillFramesConvergeAsManySamplesInOneFrameDo) {
     EXPECT_GT(frames, one + 3.0);
 }
 
+/** The built-in unit sphere played as glass, over the ground plane where `ground`. */
+scene::World glassSphere(bool ground) {
+    auto sphere = asset::loadModel("builtin:sphere");
+    EXPECT_TRUE(sphere.ok());
+    scene::World world =
+        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*sphere)));
+    world.characters[0].glass = scene::GlassMode::All;
+    world.ground = ground;
+    return world;
+}
+
 /** The pixels (rows top to bottom) whose centre's ray from `camera` meets the unit sphere at
  *  `centre`, grown by a pixel: what the sphere covers. */
 std::vector<bool> sphereMask(const render::Camera& camera, const glm::dvec3& centre, int size) {
@@ -177,11 +188,7 @@ TEST_F(Temporal, ACharacterMovingOffTheBackgroundLeavesNoTrail) {
     // A glass sphere crossing the sky, 0.12 units a frame, the camera still. Where it was three
     // frames ago and is no more, the frame must show the sky as the reference does; kept
     // history would leave a trail of glass there.
-    auto sphere = asset::loadModel("builtin:sphere");
-    ASSERT_TRUE(sphere.ok());
-    scene::World world =
-        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*sphere)));
-    world.characters[0].glass = scene::GlassMode::All;
+    const scene::World world = glassSphere(false);
     auto run = [&](bool reject) {
         WorldRig rig(world, context(), 96);
         rig.setCamera(
@@ -245,21 +252,12 @@ TEST_F(Temporal, ACameraCutStartsTheHistoryOver) {
     EXPECT_EQ(rig.renderHdr(0.8), third.renderHdr(0.8));
 }
 
-} // namespace
-
-namespace {
-
 TEST_F(Temporal, AGlassBodyCarriesWhatItRefractsWithIt) {
     // The glass sphere translating over the ground, half a pixel a frame, the camera still: a
     // glass pixel's history is where the glass it enters was (docs/methods.md, "Temporal
     // accumulation"). Looked for where its path's end was (the sky, the ground: still), the
     // history smears what the sphere refracts, 5 dB under the frame without it.
-    auto sphere = asset::loadModel("builtin:sphere");
-    ASSERT_TRUE(sphere.ok());
-    scene::World world =
-        scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*sphere)));
-    world.characters[0].glass = scene::GlassMode::All;
-    world.ground = true;
+    const scene::World world = glassSphere(true);
     auto run = [&](bool temporal) {
         WorldRig rig(world, context(), 128);
         rig.setCamera(

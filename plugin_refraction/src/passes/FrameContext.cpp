@@ -70,7 +70,8 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uInterfaces", s.interfaces);
     f.set("uHybridCriteria", s.hybridCriteria);
     f.set("uTraceSamples", s.traceSamples);
-    // A frame that accumulates takes one sample of the trace's paths, seeded by its index.
+    // A frame that accumulates takes one sample a pixel, seeded by its index: the trace's paths
+    // sampled on still frames (which converge to the reference), deterministic while moving.
     f.set("uSampled", s.traceSamples > 1 || frame->temporal.still ? 1 : 0);
     f.set("uFrameSeed", int(frame->temporal.index));
     f.set("uTracedEntry", frame->temporal.enabled ? 1 : 0);
