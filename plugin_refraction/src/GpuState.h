@@ -54,36 +54,50 @@ struct GlassMaterialGpu {
 };
 static_assert(sizeof(GlassMaterialGpu) == 16 * 16);
 
-/** The glass's extent and the overflow count, as refraction/glass_rectangle.glsl reads them
- *  (std430). */
-struct GlassRectangleGpu {
-    std::int32_t pixelMin[2], pixelMax[2];                 ///< inclusive; empty while min > max
-    std::int32_t boxMin[3], boxMax[3];                     ///< view space, floats as ordered ints
+// Three small buffers, one a job, each as its GLSL block reads it (std430; SharedLayout checks
+// the offsets).
+
+/** The glass's extent on screen and in view space (refraction/glass_extent.glsl): written by
+ *  the glass_extent pass, read by every pass over the glass rectangle and by the walk. */
+struct GlassExtentGpu {
+    std::int32_t pixelMin[2], pixelMax[2]; ///< inclusive; empty while min > max
+    std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
+};
+
+/** The depth ranges of the pair's surfaces (refraction/pair_ranges.glsl, positive floats'
+ *  bits): written by the pair's resolve, read by the papers' search. */
+struct PairRangesGpu {
+    std::uint32_t backRange[2], frontMin;
+};
+
+/** What the walk and the hybrid's trace count (refraction/walk_counters.glsl), read back as
+ *  LayerStats. */
+struct WalkCountersGpu {
     std::uint32_t overflowPixels;                          ///< pixels over K in the walk
-    std::uint32_t backRange[2], frontMin;                  ///< the pair's depth ranges (float bits)
-    std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's counts (LayerStats)
-    std::uint32_t walkedPixels, hybridTraced, hybridBy[4]; ///< the hybrid's (LayerStats)
+    std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's
+    std::uint32_t walkedPixels, hybridTraced, hybridBy[4]; ///< the hybrid's
 };
 
 struct GpuState {
-    BvhPrograms bvh;           // the glass BVH's build and refit, the d_N cast
-    gl::Program rectangleGrow; // the glass rectangle
-    // The pair capture: its two geometry passes, or its one, and its resolve (PAIR_GATHERED 0, 1);
-    // the two passes' and their resolve whether they keep the surfaces (pairPrograms: -1 none
-    // yet, else GLASS_TEXTURES, compiled in).
-    gl::Program surface, surfaces, resolve[2];
+    BvhPrograms bvh;        // the glass BVH's build and refit, the d_N cast
+    gl::Program growExtent; // the glass_extent pass (glass_extent.comp.glsl)
+    // The pair capture: its two geometry passes' (pair_surface), or its one's (pair_gather), and
+    // its resolve (PAIR_GATHERED 0, 1); the two passes' and their resolve whether they keep the
+    // surfaces (pairPrograms: -1 none yet, else GLASS_TEXTURES, compiled in).
+    gl::Program pairSurface, pairGather, pairResolve[2];
     int pairPrograms = -1;
     // The layers (layers.glsl): the capture and its depth maps for K, whether it keeps the
     // layers' surfaces and whether it reads textures at their base level (the trace's)
-    // (layerPrograms, compiled in); the outline pass.
-    gl::Program layersCapture, layersResolve, layersOutline;
+    // (layerPrograms, compiled in).
+    gl::Program layerCapture, layerDepths;
+    gl::Program outlines; // the outline pass
     std::tuple<int, bool, bool> layerPrograms{0, false, false};
     /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
      *  punctual lights; textured glass). */
     using WalkKey = std::tuple<int, int, int, bool, bool>;
     std::map<WalkKey, gl::Program> walkPrograms;
     /** The hybrid's trace pass, by the same key and whether its target adds samples up. */
-    std::map<std::pair<WalkKey, bool>, gl::Program> handedOverTrace;
+    std::map<std::pair<WalkKey, bool>, gl::Program> hybridTrace;
     /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
      *  word a pixel; reallocated when the viewport grows. */
     gl::Buffer handedOver;
@@ -115,7 +129,9 @@ struct GpuState {
     /** The scene's colour, read to convert it into the walk's single-precision target. */
     gl::Framebuffer sceneColorRead;
     gl::VertexArray emptyVao;
-    gl::Buffer rectangle{sizeof(GlassRectangleGpu)};
+    gl::Buffer extent{sizeof(GlassExtentGpu)};
+    gl::Buffer pairRanges{sizeof(PairRangesGpu)};
+    gl::Buffer counters{sizeof(WalkCountersGpu)};
     /** The BVH over the frame's glass as drawn, and for the tracing methods its opaque parts
      *  too (parts: its draw items' (character, instance, primitive), in frame order), rebuilt
      *  from scratch when the parts change. */

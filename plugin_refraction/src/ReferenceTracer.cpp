@@ -491,6 +491,53 @@ core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, doub
     return surfaces;
 }
 
+/** The camera's rays through a pixel: `spp` samples, jittered (stratified where `spp` is a
+ *  square) or through its centre. */
+struct PixelRays {
+    glm::dmat4 inverseViewProjection;
+    glm::ivec2 size;
+    int spp = 1, grid = 1;
+    bool centres = false, stratified = false;
+
+    PixelRays(const render::Camera& camera, glm::ivec2 viewport, const ReferenceOptions& options)
+        : inverseViewProjection(glm::inverse(glm::dmat4(camera.viewProjection()))), size(viewport) {
+        centres = options.pixelCentres || options.deterministic;
+        spp = centres ? 1 : std::max(1, options.samplesPerPixel);
+        grid = int(std::lround(std::sqrt(double(spp))));
+        stratified = grid * grid == spp;
+    }
+
+    /** Sample `s` of pixel (x, row), row 0 at the top; `rng` seeded for it. */
+    void ray(int x, int row, int s, std::uint32_t& rng, dvec3& origin, dvec3& dir) const {
+        rng = std::uint32_t(row) * 73856093u ^ std::uint32_t(x) * 19349663u ^
+              std::uint32_t(s) * 83492791u;
+        double jx = model::random01(rng), jy = model::random01(rng);
+        if (centres) {
+            jx = jy = 0.5;
+        } else if (stratified) {
+            jx = (double(s % grid) + jx) / grid;
+            jy = (double(s / grid) + jy) / grid; // the sample's row in the grid
+        }
+        const double ndcX = (x + jx) / size.x * 2.0 - 1.0,
+                     ndcY = (size.y - 1 - row + jy) / size.y * 2.0 - 1.0;
+        const glm::dvec4 nearPoint = inverseViewProjection * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
+        const glm::dvec4 farPoint = inverseViewProjection * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+        origin = dvec3(nearPoint) / nearPoint.w;
+        dir = glm::normalize(dvec3(farPoint) / farPoint.w - origin);
+    }
+};
+
+/** The tracer's epsilon: a hundred-thousandth of the surfaces' extent. */
+double sceneEpsilon(const std::vector<Surface>& surfaces) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const Surface& s : surfaces)
+        for (const auto& v : s.positions) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    return surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
+}
+
 } // namespace
 
 core::Result<ReferenceImage>
@@ -503,13 +550,7 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     if (!built)
         return built.error();
     const std::vector<Surface>& surfaces = *built;
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const Surface& s : surfaces)
-        for (const auto& v : s.positions) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    const double epsilon = surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
+    const double epsilon = sceneEpsilon(surfaces);
     const Evaluation evaluation{options.deterministic, decoded.interfaces - 1,
                                 2 * decoded.interfaces};
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
@@ -519,11 +560,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     image.size = settings.size;
     const int w = settings.size.x, h = settings.size.y;
     image.rgba.assign(std::size_t(w) * std::size_t(h) * 4, 0.0f);
-    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
-    const bool centres = options.pixelCentres || options.deterministic;
-    const int spp = centres ? 1 : std::max(1, options.samplesPerPixel);
-    const int grid = int(std::lround(std::sqrt(double(spp))));
-    const bool stratified = grid * grid == spp;
+    const PixelRays rays(camera, settings.size, options);
+    const int spp = rays.spp;
     std::atomic<int> nextRow{0}, rowsDone{0};
     std::atomic<std::size_t> trapped{0};
     constexpr int kCountCap = 64;
@@ -539,23 +577,9 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                 dvec3 sum(0.0);
                 int glassSamples = 0;
                 for (int s = 0; s < spp; ++s) {
-                    std::uint32_t rng = std::uint32_t(row) * 73856093u ^
-                                        std::uint32_t(x) * 19349663u ^ std::uint32_t(s) * 83492791u;
-                    double jx = model::random01(rng), jy = model::random01(rng);
-                    if (centres) {
-                        jx = jy = 0.5;
-                    } else if (stratified) {
-                        jx = (double(s % grid) + jx) / grid;
-                        const int stratum =
-                            s / grid; // integer division: the sample's row in the grid
-                        jy = (stratum + jy) / grid;
-                    }
-                    const double ndcX = (x + jx) / w * 2.0 - 1.0,
-                                 ndcY = (h - 1 - row + jy) / h * 2.0 - 1.0;
-                    const glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
-                    const glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
-                    const dvec3 origin = dvec3(nearPoint) / nearPoint.w;
-                    const dvec3 dir = glm::normalize(dvec3(farPoint) / farPoint.w - origin);
+                    std::uint32_t rng = 0;
+                    dvec3 origin, dir;
+                    rays.ray(x, row, s, rng, origin, dir);
                     bool glassHit = false;
                     sum += tracer.primary(origin, dir, glassHit, rng, localTrapped);
                     if (s == 0 && glassHit)

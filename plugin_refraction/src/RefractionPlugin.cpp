@@ -76,7 +76,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
                            std::to_string(gl::maxStorageBindings()) + ")"};
     mGpu = std::make_unique<GpuState>();
     // The programs every frame may use; the captures' that depend on K or on textured glass,
-    // and the walk's variants, are built when a frame first needs them (walkPrograms).
+    // and the walk's variants, are built when a frame first needs them (selectVariants).
     struct Spec {
         gl::Program* target;
         const char* vertex; // null: a compute program
@@ -86,13 +86,13 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     const char* glass = "refraction/glass.vert.glsl";
     const char* rectangle = "refraction/rectangle.vert.glsl";
     const Spec specs[] = {
-        {&mGpu->surfaces, glass, "refraction/surfaces.frag.glsl", {}},
-        {&mGpu->resolve[1],
+        {&mGpu->pairGather, glass, "refraction/pair_gather.frag.glsl", {}},
+        {&mGpu->pairResolve[1],
          rectangle,
-         "refraction/resolve.frag.glsl",
+         "refraction/pair_resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
-        {&mGpu->layersOutline, rectangle, "refraction/layers_outline.frag.glsl", {}},
-        {&mGpu->rectangleGrow, nullptr, "refraction/rectangle.comp.glsl", {}},
+        {&mGpu->outlines, rectangle, "refraction/outlines.frag.glsl", {}},
+        {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
         {&mGpu->bvh.stages[0], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 1"}},
@@ -124,6 +124,42 @@ bool RefractionPlugin::claims(const render::DrawItem& item) const {
     return mGpu && settings().isGlass(*item.model, item.material, item.source->glass);
 }
 
+namespace {
+
+/** The pair capture's geometry passes, then its resolve. The pair's single geometry pass serves
+ *  what one resolve can: one glass material with the same overrides on every glass item, no
+ *  normal map and no texture the walk reads (no UV or tangent is gathered), the farthest back
+ *  surface (MAX blending), and a frame that does not accumulate (MAX blending keeps no
+ *  motion); else the papers' two passes. */
+Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buffers,
+                       const SceneInputs& scene) {
+    const render::DrawItem* first = nullptr;
+    bool oneMaterial = true;
+    for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
+        const render::DrawItem& item = c.frame->items[index];
+        if (!c.isGlass(item))
+            continue;
+        if (!first) {
+            first = &item;
+            c.firstGlassId = c.gpu->glassIds[index];
+        }
+        oneMaterial = oneMaterial && item.model == first->model &&
+                      item.material == first->material &&
+                      item.source->overrides == first->source->overrides;
+    }
+    const bool normalMap =
+        first->material >= 0 &&
+        first->model->materials[std::size_t(first->material)].normalTexture.present();
+    const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
+    c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
+                !normalMap && !firstBack && !c.texturedGlass && !c.frame->temporal.enabled;
+    const PairTargets pair = c.onePass ? addPairGatherPass(graph, c, buffers)
+                                       : addPairSurfacesPasses(graph, c, buffers, firstBack);
+    return addPairResolvePass(graph, c, buffers, scene, pair);
+}
+
+} // namespace
+
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                                  fg::Blackboard& blackboard) {
     if (stage != plugin::Stage::AfterOpaque || !mGpu)
@@ -144,55 +180,29 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
         return;
-    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
-    const SceneInputs scene = sceneInputs(blackboard);
-    addGlassMaterialsPass(graph, c, buffers);
-    if (auto built = walkPrograms(*mGpu, c); !built) {
+    if (auto built = selectVariants(*mGpu, c); !built) {
         core::logError("refraction: " + built.error().message);
         return;
     }
+    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
+    const SceneInputs scene = sceneInputs(blackboard);
+    addGlassMaterialsPass(graph, c, buffers);
     if (c.settings.usesGlassBvh())
         addGlassBvhPass(graph, c, buffers);
+    addGlassExtentPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),
-    // or the pair. The pair's single geometry pass serves what one resolve can: one glass
-    // material with the same overrides on every glass item, no normal map and no texture the
-    // walk reads (no UV or tangent is gathered), the farthest back surface (MAX blending); else
-    // the papers' two passes (and wherever the frame accumulates: the one pass keeps no
-    // motion).
-    Capture capture;
-    if (c.settings.layered()) {
-        capture = addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers));
-    } else {
-        const render::DrawItem* first = nullptr;
-        bool oneMaterial = true;
-        for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
-            const render::DrawItem& item = c.frame->items[index];
-            if (item.owner != this)
-                continue;
-            if (!first) {
-                first = &item;
-                c.firstGlassId = mGpu->glassIds[index];
-            }
-            oneMaterial = oneMaterial && item.model == first->model &&
-                          item.material == first->material &&
-                          item.source->overrides == first->source->overrides;
-        }
-        const bool normalMap =
-            first->material >= 0 &&
-            first->model->materials[std::size_t(first->material)].normalTexture.present();
-        const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
-        // MAX blending keeps no motion: a frame that accumulates draws the two passes.
-        c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
-                    !normalMap && !firstBack && !c.texturedGlass && !c.frame->temporal.enabled;
-        const PairTargets pair = c.onePass ? addGatherPass(graph, c, buffers)
-                                           : addSurfacePasses(graph, c, buffers, firstBack);
-        capture = addResolvePass(graph, c, buffers, scene, pair);
-    }
-    const Walked walked = addWalkPass(graph, c, buffers, scene, capture);
+    // or the pair.
+    const Capture capture =
+        c.settings.layered()
+            ? addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers))
+            : addPairCapture(graph, c, buffers, scene);
+    Walked walked = addWalkPass(graph, c, buffers, scene, capture);
+    if (c.settings.method == Settings::Method::Hybrid && c.settings.debug == 0)
+        walked = addHybridTracePass(graph, c, buffers, scene, capture, walked);
     if (walked.motion.valid())
         blackboard.put(plugin::kSceneMotion, walked.motion);
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
-                                            ? addLayerOutlinePass(graph, c, buffers, walked)
+                                            ? addOutlinePass(graph, c, buffers, scene, walked)
                                             : walked.color);
 }
 
@@ -205,8 +215,8 @@ LayerStats RefractionPlugin::layerStats() const {
     stats.bytesPerPixel =
         layerBytesPerPixel(layers.capacity, settings().outlinePass(), layers.surfaceSlots);
     stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
-    GlassRectangleGpu counts{};
-    const auto bytes = mGpu->rectangle.download(0, sizeof counts);
+    WalkCountersGpu counts{};
+    const auto bytes = mGpu->counters.download(0, sizeof counts);
     std::memcpy(&counts, bytes.data(), sizeof counts);
     stats.overflowPixels = counts.overflowPixels;
     stats.traceRays = counts.traceRays;

@@ -18,7 +18,7 @@ using gl::Shared;
 
 constexpr Shared kFixed[] = {
     slot::kNormalDistances,
-    slot::kGlassRectangle,
+    slot::kGlassExtent,
     slot::kLayerHeads,
     slot::kLayerDepths,
     slot::kLayerAttrs,
@@ -39,6 +39,8 @@ constexpr Shared kFixed[] = {
     slot::kBvhVisits,
     slot::kLayerSurfaces,
     slot::kLayerMotions,
+    slot::kPairRanges,
+    slot::kWalkCounters,
     slot::kSceneColor,
     slot::kSceneDepth,
     slot::kLayerDepthMaps,

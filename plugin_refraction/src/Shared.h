@@ -16,7 +16,7 @@ using gl::TextureSlot;
 
 // Storage: what the passes read through the frame (each binds it before its draws).
 inline constexpr StorageSlot kNormalDistances{20, "NORMAL_DISTANCES_BINDING", "NormalDistances"};
-inline constexpr StorageSlot kGlassRectangle{21, "GLASS_RECTANGLE_BINDING", "GlassRectangle"};
+inline constexpr StorageSlot kGlassExtent{21, "GLASS_EXTENT_BINDING", "GlassExtent"};
 inline constexpr StorageSlot kLayerHeads{22, "LAYER_HEADS_BINDING", "LayerHeads"};
 inline constexpr StorageSlot kLayerDepths{23, "LAYER_DEPTHS_BINDING", "LayerDepths"};
 inline constexpr StorageSlot kLayerAttrs{24, "LAYER_ATTRS_BINDING", "LayerAttrs"};
@@ -38,13 +38,15 @@ inline constexpr StorageSlot kBvhParents{38, "BVH_PARENTS_BINDING", "BvhParents"
 inline constexpr StorageSlot kBvhVisits{39, "BVH_VISITS_BINDING", "BvhVisits"};
 inline constexpr StorageSlot kLayerSurfaces{40, "LAYER_SURFACES_BINDING", "LayerSurfaces"};
 inline constexpr StorageSlot kLayerMotions{41, "LAYER_MOTIONS_BINDING", "LayerMotions"};
+inline constexpr StorageSlot kPairRanges{42, "PAIR_RANGES_BINDING", "PairRanges"};
+inline constexpr StorageSlot kWalkCounters{43, "WALK_COUNTERS_BINDING", "WalkCounters"};
 
 // Texture units.
 inline constexpr TextureSlot kSceneColor{24, "SCENE_COLOR_UNIT"};
 inline constexpr TextureSlot kSceneDepth{25, "SCENE_DEPTH_UNIT"};
 inline constexpr TextureSlot kLayerDepthMaps{26, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
 inline constexpr TextureSlot kPairNormals{28, "PAIR_NORMALS_UNIT", 2};        ///< front, back
-/** The pair capture's maps the resolve reads (resolve.frag.glsl): the one pass's nearest and
+/** The pair capture's maps the resolve reads (pair_resolve.frag.glsl): the one pass's nearest and
  *  farthest targets, or the two passes' front depth, front normal, back depth, back normal. */
 inline constexpr TextureSlot kPairMaps{30, "PAIR_MAPS_UNIT", 4};
 inline constexpr TextureSlot kOutlineSurface{34,
@@ -52,7 +54,7 @@ inline constexpr TextureSlot kOutlineSurface{34,
 /** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
  *  transmission and roughness (GpuState::tracedTextures). */
 inline constexpr TextureSlot kTracedTextures{35, "TRACED_TEXTURES_UNIT", 8};
-/** The two passes' surfaces where the frame's glass is textured (resolve.frag.glsl): the
+/** The two passes' surfaces where the frame's glass is textured (pair_resolve.frag.glsl): the
  *  front's, the back's. */
 inline constexpr TextureSlot kPairSurfaces{43, "PAIR_SURFACES_UNIT", 2};
 

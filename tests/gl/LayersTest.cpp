@@ -107,7 +107,6 @@ TEST_F(Layers, OutlinesOfSmoothGlassAreAntialiased) {
     EXPECT_GT(antialiased, aliased + 0.8);
 }
 
-
 TEST_F(Layers, RaysLeavingGlassBehindAnOpaquePartDoNotSeeIt) {
     // The figure's eyes are opaque spheres at the front of its glass head. Rays through the
     // lower face leave the head and pass behind them. The nearby-scene lookup meets a surface
@@ -230,11 +229,11 @@ TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
     auto has = [](const std::vector<std::string>& passes, const char* name) {
         return std::find(passes.begin(), passes.end(), name) != passes.end();
     };
-    EXPECT_TRUE(has(layered, "refraction.layers"));
-    EXPECT_FALSE(has(layered, "refraction.back_faces"));
-    EXPECT_FALSE(has(layered, "refraction.front_faces"));
-    EXPECT_TRUE(has(twoSurface, "refraction.back_faces"));
-    EXPECT_TRUE(has(twoSurface, "refraction.front_faces"));
+    EXPECT_TRUE(has(layered, "refraction.layer_capture"));
+    EXPECT_FALSE(has(layered, "refraction.pair_back"));
+    EXPECT_FALSE(has(layered, "refraction.pair_front"));
+    EXPECT_TRUE(has(twoSurface, "refraction.pair_back"));
+    EXPECT_TRUE(has(twoSurface, "refraction.pair_front"));
 }
 
 TEST_F(Layers, TheCaptureAppliesNormalMaps) {

@@ -1,5 +1,6 @@
 // The layouts C++ and GLSL share field by field: the offset of every member of a storage block
-// as the GL compiled it against the C++ struct's (GlassMaterialGpu, GlassRectangleGpu).
+// as the GL compiled it against the C++ struct's (GlassMaterialGpu and the small buffers:
+// GlassExtentGpu, PairRangesGpu, WalkCountersGpu).
 #include "support/GlTest.h"
 
 #include "GpuState.h"
@@ -22,11 +23,16 @@ namespace {
 
 class SharedLayout : public test::GlTest {};
 
-const gl::ShaderFile kProbe[] = {
-    {"probe.comp.glsl", "#include \"refraction/glass_materials.glsl\"\n"
-                        "#include \"refraction/glass_rectangle.glsl\"\n"
-                        "layout(local_size_x = 1) in;\n"
-                        "void main() { glassWalkedPixels = glassMaterials[0].solid; }\n"}};
+const gl::ShaderFile kProbe[] = {{"probe.comp.glsl",
+                                  "#include \"refraction/glass_materials.glsl\"\n"
+                                  "#include \"refraction/glass_extent.glsl\"\n"
+                                  "#include \"refraction/pair_ranges.glsl\"\n"
+                                  "#include \"refraction/walk_counters.glsl\"\n"
+                                  "layout(local_size_x = 1) in;\n"
+                                  "void main() {\n"
+                                  "    walkedPixels = glassMaterials[0].solid + pairFrontMin;\n"
+                                  "    glassBoxMax[0] = int(walkHybridBy[3]);\n"
+                                  "}\n"}};
 
 /** The byte offset GL gives `variable` of the program's storage blocks (-1: none). */
 int offsetOf(const gl::Program& program, const std::string& variable) {
@@ -41,7 +47,7 @@ int offsetOf(const gl::Program& program, const std::string& variable) {
     return offset;
 }
 
-TEST_F(SharedLayout, GlassMaterialsAndTheRectangleLieWhereTheirStructsSay) {
+TEST_F(SharedLayout, GlassMaterialsAndTheSmallBuffersLieWhereTheirStructsSay) {
     gl::ShaderLibrary library;
     library.add(engineShaderFiles());
     library.add(refractionShaderFiles());
@@ -86,19 +92,25 @@ TEST_F(SharedLayout, GlassMaterialsAndTheRectangleLieWhereTheirStructsSay) {
             << field;
     const int second = offsetOf(*program, "glassMaterials[1].ior");
     EXPECT_TRUE(second == -1 || second == int(sizeof(M))) << "the array's stride";
-    using R = refraction::GlassRectangleGpu;
-    const std::pair<const char*, std::size_t> rectangle[] = {
-        {"glassPixelMin[0]", offsetof(R, pixelMin)},
-        {"glassBoxMax[0]", offsetof(R, boxMax)},
-        {"glassOverflowPixels", offsetof(R, overflowPixels)},
-        {"glassBackRange[0]", offsetof(R, backRange)},
-        {"glassFrontMin", offsetof(R, frontMin)},
-        {"glassTraceRays", offsetof(R, traceRays)},
-        {"glassTraceMaxSteps", offsetof(R, traceMaxSteps)},
-        {"glassWalkedPixels", offsetof(R, walkedPixels)},
-        {"glassHybridBy[0]", offsetof(R, hybridBy)},
+    using E = refraction::GlassExtentGpu;
+    using P = refraction::PairRangesGpu;
+    using C = refraction::WalkCountersGpu;
+    const std::pair<const char*, std::size_t> small[] = {
+        {"glassPixelMin[0]", offsetof(E, pixelMin)},
+        {"glassPixelMax[0]", offsetof(E, pixelMax)},
+        {"glassBoxMin[0]", offsetof(E, boxMin)},
+        {"glassBoxMax[0]", offsetof(E, boxMax)},
+        {"pairBackRange[0]", offsetof(P, backRange)},
+        {"pairFrontMin", offsetof(P, frontMin)},
+        {"walkOverflowPixels", offsetof(C, overflowPixels)},
+        {"walkTraceRays", offsetof(C, traceRays)},
+        {"walkTraceSteps[0]", offsetof(C, traceSteps)},
+        {"walkTraceMaxSteps", offsetof(C, traceMaxSteps)},
+        {"walkedPixels", offsetof(C, walkedPixels)},
+        {"walkHybridTraced", offsetof(C, hybridTraced)},
+        {"walkHybridBy[0]", offsetof(C, hybridBy)},
     };
-    for (const auto& [field, offset] : rectangle)
+    for (const auto& [field, offset] : small)
         EXPECT_EQ(offsetOf(*program, field), int(offset)) << field;
 }
 

@@ -12,6 +12,7 @@
 //   6 cost: the surface-area cost of the tree, sum of each node's area over the root's (fixed
 //     point, 1/256 a node), which tells when a refitted tree has degraded enough to rebuild
 #include "refraction/bvh.glsl"
+#include "refraction/ordered.glsl"
 
 // The node records (Bvh::Node), for the tests' reading of the tree: the traversal reads the
 // children from the boxes (bvh.glsl's BvhBox).
@@ -35,15 +36,6 @@ layout(std430, binding = BVH_VISITS_BINDING) coherent buffer BvhVisits { uint vi
 uniform int uCount;     // threads: triangles n (stages 1, 4, 5), pairs (2, 3), GlassBvh's (6)
 uniform int uTriangles; // n
 uniform int uSortSize, uSortStride; // stage 3
-
-int orderedInt(float f) {
-    int i = floatBitsToInt(f);
-    return i < 0 ? i ^ 0x7FFFFFFF : i;
-}
-
-float orderedToFloat(int i) {
-    return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
-}
 
 vec3 corner(uint triangle, uint k) {
     vec3 p = vertices[indices[3u * triangle + k]].position.xyz;
@@ -89,11 +81,9 @@ float area(vec3 lo, vec3 hi) {
 
 #if BVH_STAGE == 6
 shared uint groupCost;
-#endif
 
-void main() {
-    int i = int(gl_GlobalInvocationID.x);
-#if BVH_STAGE == 6
+// Stage 6: the tree's cost, its nodes' areas relative to the root's summed.
+void treeCost(int i) {
     // The 2n - 1 nodes shared among uCount threads, a work group's sums added in shared memory,
     // then to the counter at once: an atomic a node on the one counter cost more than the refit
     // itself on a CPU rasteriser.
@@ -109,17 +99,19 @@ void main() {
     barrier();
     if (gl_LocalInvocationIndex == 0u)
         atomicAdd(cost, groupCost);
-    return;
-#endif
-    if (i >= uCount)
-        return;
-#if BVH_STAGE == 1
+}
+#elif BVH_STAGE == 1
+// Stage 1: the bounds of the triangles' centroids.
+void centroidBounds(int i) {
     vec3 c = centreOf(uint(i));
     for (int a = 0; a < 3; ++a) {
-        atomicMin(centroidMin[a], orderedInt(c[a]));
-        atomicMax(centroidMax[a], orderedInt(c[a]));
+        atomicMin(centroidMin[a], floatToOrdered(c[a]));
+        atomicMax(centroidMax[a], floatToOrdered(c[a]));
     }
+}
 #elif BVH_STAGE == 2
+// Stage 2: each triangle's Morton code (cubic cells over the centroids' bounds), its leaf.
+void mortonKeys(int i) {
     // Every slot of the padded pairs; the real triangles' leaves too.
     uint key = 0xFFFFFFFFu;
     if (i < uTriangles) {
@@ -136,7 +128,10 @@ void main() {
     }
     keys[i] = key;
     triangleOrder[i] = uint(i);
+}
 #elif BVH_STAGE == 3
+// Stage 3: one step of the bitonic sort of the keys with the triangles' order.
+void sortStep(int i) {
     int j = i ^ uSortStride;
     if (j > i) {
         bool ascending = (i & uSortSize) == 0;
@@ -149,7 +144,10 @@ void main() {
             triangleOrder[j] = vi;
         }
     }
+}
 #elif BVH_STAGE == 4
+// Stage 4: internal node i of Karras's hierarchy, its children and their parent.
+void hierarchy(int i) {
     if (i == uCount - 1)
         return; // n - 1 internal nodes
     int d = delta(i, i + 1) > delta(i, i - 1) ? 1 : -1;
@@ -180,7 +178,11 @@ void main() {
     parents[right] = i;
     if (i == 0)
         parents[0] = -1;
+}
 #elif BVH_STAGE == 5
+// Stage 5: leaf i's box and corners, then its ancestors' boxes, each by the last of its
+// two subtrees to finish.
+void refit(int i) {
     int node = uCount - 1 + i;
     uint triangle = triangleOrder[i];
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
@@ -222,5 +224,26 @@ void main() {
     int frame = boxes.length();
     packedBoxes[frame + 2] = uvec4(floatBitsToUint(lo - grow), 0u);
     packedBoxes[frame + 3] = uvec4(floatBitsToUint(hi + grow), 0u);
+}
+#endif
+
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+#if BVH_STAGE == 6
+    treeCost(i); // every thread of the group: it meets barriers
+#else
+    if (i >= uCount)
+        return;
+#if BVH_STAGE == 1
+    centroidBounds(i);
+#elif BVH_STAGE == 2
+    mortonKeys(i);
+#elif BVH_STAGE == 3
+    sortStep(i);
+#elif BVH_STAGE == 4
+    hierarchy(i);
+#elif BVH_STAGE == 5
+    refit(i);
+#endif
 #endif
 }

@@ -1,9 +1,10 @@
-// A glass fragment's material as the captures read it (layers_capture.frag.glsl, and the pair's
-// surface.frag.glsl): its texels, and with textured glass in the frame (GLASS_TEXTURES) its
-// surface, the material's factors times its textures.
+// A glass fragment's material as the captures read it (layer_capture.frag.glsl, and the pair's
+// pair_surface.frag.glsl): its texels, its normal after the normal map, and with textured glass
+// in the frame (GLASS_TEXTURES) its surface, the material's factors times its textures.
 #ifndef REFRACTION_FRAGMENT_SURFACE_GLSL
 #define REFRACTION_FRAGMENT_SURFACE_GLSL
 #include "common/material_uv.glsl"
+#include "common/normal_map.glsl"
 #include "refraction/glass_inputs.glsl"
 #include "refraction/glass_materials.glsl"
 
@@ -24,6 +25,17 @@ vec4 captureTexel(int slot) {
 #else
     return readTexture(slot, vUv);
 #endif
+}
+
+uniform float uNormalScale;
+
+// The fragment's outward view normal (a back face's points away from the camera) after its
+// normal map.
+vec3 fragmentNormal() {
+    vec3 n = normalize(vViewNormal);
+    if (hasTexture(SLOT_NORMAL))
+        n = perturbNormal(n, vViewTangent, captureTexel(SLOT_NORMAL).xyz, uNormalScale);
+    return n;
 }
 
 #if GLASS_TEXTURES

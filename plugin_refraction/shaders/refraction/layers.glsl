@@ -1,5 +1,5 @@
 // Every glass surface a pixel's primary ray crosses, captured in one geometry pass
-// (layers_capture.frag.glsl) into fixed per-pixel arrays of K fragments, in the order the
+// (layer_capture.frag.glsl) into fixed per-pixel arrays of K fragments, in the order the
 // rasteriser produced them (unsorted):
 //   LayerHeads  per pixel: [pixel] the fragment count (may exceed K: overflow), and for the
 //               overflow fallback [P + pixel] the nearest front key (atomicMin) and
@@ -17,11 +17,12 @@
 //               fallback's nearest front and farthest back (fallbackSurfaceIndex)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
 // (the two-surface model, never a partial list): see storedDepths. The pair capture
-// (resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
+// (pair_resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
 #ifndef REFRACTION_LAYERS_GLSL
 #define REFRACTION_LAYERS_GLSL
 #include "refraction/glass_materials.glsl"
-#include "refraction/surfaces.glsl" // uKeyNear, uKeyLogRange: the keys' log depth range
+#include "common/math.glsl" // octEncode, octDecode
+#include "refraction/depth_codes.glsl"
 #include "refraction/view.glsl"
 
 // K (layer-capacity) is compiled in (LAYER_CAPACITY, 1-8): every loop over a pixel's layers has
@@ -35,7 +36,9 @@ uniform int uPixelCount;    // P: width x height
 uniform int uViewportWidth;
 
 layout(std430, binding = LAYER_HEADS_BINDING) coherent buffer LayerHeads { uint layerHeads[]; };
+#ifndef LAYER_DEPTH_MAPS // (the walk reads the maps: one storage block fewer, of 16)
 layout(std430, binding = LAYER_DEPTHS_BINDING) coherent buffer LayerDepths { vec4 layerDepth4[]; };
+#endif
 layout(std430, binding = LAYER_ATTRS_BINDING) coherent buffer LayerAttrs { uvec2 layerAttr[]; };
 
 const uint kLayerFront = LAYER_FRONT_BIT;
@@ -74,15 +77,13 @@ vec3 unpackOctNormal(uint bits) {
 // depth order.
 
 uint fallbackKey(float z, vec3 n, uint id) {
-    float t = clamp(log2(max(z, uKeyNear) / uKeyNear) / uKeyLogRange, 0.0, 1.0);
-    uint q = min(uint(t * 65536.0), 65535u);
+    uint q = min(uint(logDepthFraction(z) * 65536.0), 65535u);
     uvec2 o = uvec2(round(clamp(octEncode(n), 0.0, 1.0) * 15.0));
     return (q << 16) | ((id & 255u) << 8) | (o.x << 4) | o.y;
 }
 
 float fallbackDepth(uint key) {
-    float t = (float(key >> 16) + 0.5) / 65536.0;
-    return uKeyNear * exp2(t * uKeyLogRange);
+    return depthAtLogFraction((float(key >> 16) + 0.5) / 65536.0);
 }
 
 vec3 fallbackNormal(uint key) {
@@ -97,6 +98,7 @@ int storedCount(ivec2 p) {
     return int(layerHeads[pixelIndex(p)]);
 }
 
+#ifndef LAYER_DEPTH_MAPS
 // Depths of stored layers 4g..4g+3 of pixel p, as the walk reads them (3e38 where unused): an
 // overflowing pixel's nearest front and farthest back stand in as layers 0 and 1. Read from the
 // arrays by the resolve pass; the walk reads its copy in the depth maps (LAYER_DEPTH_MAPS).
@@ -113,9 +115,10 @@ vec4 storedDepths(ivec2 p, int g) {
     vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
     return mix(vec4(NO_DEPTH), d, vec4(lessThan(slots, vec4(float(n)))));
 }
+#endif
 
 #ifdef LAYER_DEPTH_MAPS
-// layers 0-3, 4-7 (layers_resolve.frag.glsl)
+// layers 0-3, 4-7 (layer_depths.frag.glsl)
 layout(binding = LAYER_DEPTH_MAPS_UNIT) uniform sampler2D uLayerDepths0;
 layout(binding = LAYER_DEPTH_MAPS_UNIT + 1) uniform sampler2D uLayerDepths1;
 
@@ -198,10 +201,10 @@ vec3 layerNormal(uvec2 attr) {
     return unpackOctNormal(attr.x);
 }
 
-// d_N in view units at depth z, -1 where none was measured.
+// d_N in view units at depth z, -1 where none was measured (depth_codes.glsl's 16-bit code).
+const float kLayerDistanceLevels = 65534.0;
 float layerNormalDistance(uvec2 attr, float z) {
-    uint d = attr.y >> 16;
-    return d == 0u ? -1.0 : float(d - 1u) / 65534.0 * z;
+    return normalDistanceOf(attr.y >> 16, z, kLayerDistanceLevels);
 }
 
 #endif

@@ -20,10 +20,6 @@ uniform float uNear, uFar;
 
 const int MARCH_LAYERS = 0, MARCH_FRONT = 1, MARCH_BACK = 2, MARCH_SCENE = 3;
 
-float linearDepth(float d) {
-    float z = d * 2.0 - 1.0;
-    return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
-}
 
 // The view depth of the opaque scene at pixel p (3e38 where it shows the environment, and off
 // screen).
@@ -31,7 +27,7 @@ float sceneDepthAt(ivec2 p) {
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
         return NO_DEPTH;
     float d = texelFetch(uSceneDepth, p, 0).r;
-    return d < 1.0 ? linearDepth(d) : NO_DEPTH;
+    return d < 1.0 ? viewDepthOf(d, uNear, uFar) : NO_DEPTH;
 }
 
 struct ScreenRay {

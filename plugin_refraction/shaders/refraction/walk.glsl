@@ -1,5 +1,5 @@
 // The walk (walk.frag.glsl, the one shading pass over the glass pixels, and the hybrid's trace
-// pass, walk_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
+// pass, hybrid_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
 // enters the nearest captured layer and walks the others (layers.glsl) in
 // texture space, refracting at every interface it crosses (or reflecting under total internal
 // reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
@@ -25,8 +25,10 @@
 // How the walk finds each crossing (DIR's search over the layers and over the pair, ISR's
 // estimate, the trace's hit): walk_crossings.glsl.
 #define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
+#include "refraction/glass_extent.glsl"
 #include "refraction/glass_surface.glsl"
 #include "refraction/layers.glsl"
+#include "refraction/walk_counters.glsl"
 
 // METHOD_*, TIR_*, DISPERSION_SEARCH_*: the parameters' choices (Shared.h).
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
@@ -83,7 +85,7 @@ bool sampledPaths() {
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (walk_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
+// work groups of 64 (hybrid_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
 // row, handedOverListStart words) and the list of the pixels (x | y << 16).
 layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
@@ -110,18 +112,6 @@ vec3 sampleView(ivec2 p, vec3 centre) {
     vec4 sub =
         uInverseProjection * vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     return normalize(sub.xyz / sub.w);
-}
-
-float orderedToFloat(int i) {
-    return intBitsToFloat(i < 0 ? i ^ 0x7FFFFFFF : i);
-}
-
-// The view-space box of every glass vertex this frame (rectangle.comp.glsl).
-void glassBox(out vec3 lo, out vec3 hi) {
-    lo = vec3(orderedToFloat(glassBoxMin[0]), orderedToFloat(glassBoxMin[1]),
-              orderedToFloat(glassBoxMin[2]));
-    hi = vec3(orderedToFloat(glassBoxMax[0]), orderedToFloat(glassBoxMax[1]),
-              orderedToFloat(glassBoxMax[2]));
 }
 
 ivec2 pixelOf(vec3 X) {
@@ -304,6 +294,21 @@ SurfaceMet crossingSurface(Crossing c, Path path, uint inside, out vec3 N, out b
                       enters);
 }
 
+// The reflection of an interface the path (`before` it, `after` it) crossed at facet m of a
+// surface facing `facing` of roughness `roughness`, from where the path met it, carrying
+// `reflected` of its light.
+Path mirrorPath(Path before, Path after, vec3 m, vec3 facing, vec3 reflected, float roughness) {
+    Path mirror = before;
+    mirror.dir = reflect(before.dir, m);
+    mirror.weight =
+        reflected *
+        (m != facing ? microfacetWeight(mirror.dir, m, facing, roughness, false) : 1.0);
+    mirror.interfaces = after.interfaces;
+    mirror.crossings = after.crossings;
+    mirror.roughness = max(before.roughness, roughness);
+    return mirror;
+}
+
 // One step of a path: the next interface found (searched, estimated or traced), the segment
 // up to it absorbed, the surface crossed (crossInterface); false where the path ends (on an
 // opaque part: `end`). An interface into glass leaves its reflection in `mirror` (reflects).
@@ -382,14 +387,7 @@ bool walkStep(inout Walk w, inout Path path, inout Segment seg, inout PathEnd en
     }
     path.P = c.beyond;
     reflects = reflected != vec3(0.0);
-    mirror = before; // the interface's reflection, from where the path met it
-    mirror.dir = reflect(before.dir, m);
-    mirror.weight = reflected * (m != facing ? microfacetWeight(mirror.dir, m, facing,
-                                                                met.surface.roughness, false)
-                                             : 1.0);
-    mirror.interfaces = path.interfaces;
-    mirror.crossings = path.crossings;
-    mirror.roughness = max(before.roughness, met.surface.roughness);
+    mirror = mirrorPath(before, path, m, facing, reflected, met.surface.roughness);
     return true;
 }
 
@@ -588,11 +586,11 @@ vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
         color = shadeLayers(P1, V, dot(N, V) > 0.0 ? -N : N, attr, surface, rng, walk);
     }
     if (gTraceRays > 0) {
-        atomicAdd(glassTraceRays, uint(gTraceRays));
-        uint before = atomicAdd(glassTraceSteps[0], uint(gTraceSteps));
+        atomicAdd(walkTraceRays, uint(gTraceRays));
+        uint before = atomicAdd(walkTraceSteps[0], uint(gTraceSteps));
         if (before + uint(gTraceSteps) < before)
-            atomicAdd(glassTraceSteps[1], 1u); // the carry: the high word
-        atomicMax(glassTraceMaxSteps, uint(gTraceSteps));
+            atomicAdd(walkTraceSteps[1], 1u); // the carry: the high word
+        atomicMax(walkTraceMaxSteps, uint(gTraceSteps));
     }
     return color * uTraceWeight;
 }

@@ -15,7 +15,7 @@
 // search-steps halvings) and the layer crossed is the one that pixel's count passed.
 //
 // Over the pair capture (CAPTURE_PAIR, the papers' two-surface model: layer 0 the nearest
-// front, layer 1 the back, resolve.frag.glsl) the walk is the papers' path: one piece of glass
+// front, layer 1 the back, pair_resolve.frag.glsl) the walk is the papers' path: one piece of glass
 // entered at the front and left at the back, its exit searched in the back depths (DIR §3.2-3.3)
 // and, after a total internal reflection toward the camera, in the front ones, the normal there
 // read mip-filtered (DIR §3.1); past the pair there is nothing more to cross.
@@ -190,7 +190,8 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     return c;
 }
 
-#if CAPTURE_PAIR
+#if CAPTURE_PAIR && LAYER_METHOD != METHOD_TRACE // (the trace reads neither its maps nor ranges)
+#include "refraction/pair_ranges.glsl"
 // the front's and the back's outward normals, with mips
 layout(binding = PAIR_NORMALS_UNIT) uniform sampler2D uPairNormals[2];
 uniform float uNormalLod;
@@ -202,8 +203,8 @@ Crossing searchPair(vec3 P, vec3 dir, bool inGlass, bool first) {
     if (!inGlass)
         return c; // past the pair: nothing more
     bool back = dir.z < 0.0;
-    float zBackMin = uintBitsToFloat(glassBackRange[0]), zBackMax = uintBitsToFloat(glassBackRange[1]);
-    float zFrontMin = uintBitsToFloat(glassFrontMin);
+    float zBackMin = uintBitsToFloat(pairBackRange[0]), zBackMax = uintBitsToFloat(pairBackRange[1]);
+    float zFrontMin = uintBitsToFloat(pairFrontMin);
     float zFrom = back ? max(zBackMin, -P.z) : -P.z, zTo = back ? zBackMax : zFrontMin;
     // The first exit is searched for only going deeper, the way to the back; where it cannot be,
     // the ray leaves where it is, by the silhouette's normal (as where the search left the map).

@@ -1,20 +1,18 @@
-// What the refraction passes share: the frame's buffers and glass ids, the glass items drawn and
-// the glass rectangle, the walk's uniforms, the capture's and the walk's programs.
+// What the refraction passes share: the textures' descriptors, the frame's buffers imported,
+// the uniforms the walk and the layers' passes set, the glass items and the glass rectangle
+// drawn, and the walk's inputs, which the hybrid's trace reads too.
 #include "Passes.h"
 
 #include "engine/deform/GpuDeformer.h"
-
-#include "../Optics.h"
-
-#include "engine/core/Log.h"
 #include "engine/render/Environment.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <string>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
 
 namespace refraction {
 
@@ -34,25 +32,14 @@ gl::TextureDesc zDesc(glm::ivec2 size) {
 FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu) {
     FrameBuffers buffers;
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
-    buffers.distances = graph.importBuffer("refraction.distances", &gpu.glass);
-    buffers.rectangle = graph.importBuffer("refraction.rectangle", &gpu.rectangle);
+    buffers.bvh = graph.importBuffer("refraction.bvh", &gpu.glass);
+    buffers.extent = graph.importBuffer("refraction.extent", &gpu.extent);
+    buffers.pairRanges = graph.importBuffer("refraction.pair_ranges", &gpu.pairRanges);
+    buffers.counters = graph.importBuffer("refraction.counters", &gpu.counters);
     buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
+    buffers.handedOver = graph.importBuffer("refraction.handed_over", &gpu.handedOver);
     return buffers;
-}
-
-double GpuState::glassExtent(const scene::Character& character) {
-    auto& [model, rest] = sides[character.model.get()];
-    if (model.lock() != character.model) { // new, or another model at a freed one's address
-        model = character.model;
-        rest = restSides(*character.model);
-    }
-    return refraction::glassExtent(rest, character);
-}
-
-int GpuState::Glass::find(const Part& part) const {
-    const auto at = std::find(parts.begin(), parts.end(), part);
-    return at == parts.end() ? -1 : int(at - parts.begin());
 }
 
 SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
@@ -148,35 +135,6 @@ void FrameContext::drawGlass(
     }
 }
 
-void FrameContext::growGlassRectangle() const {
-    // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
-    using R = GlassRectangleGpu;
-    gpu->rectangle.fill(offsetof(R, pixelMin), 2, std::uint32_t(INT32_MAX));
-    gpu->rectangle.fill(offsetof(R, pixelMax), 2, std::uint32_t(INT32_MIN));
-    gpu->rectangle.fill(offsetof(R, boxMin), 3, std::uint32_t(INT32_MAX));
-    gpu->rectangle.fill(offsetof(R, boxMax), 3, std::uint32_t(INT32_MIN));
-    gpu->rectangle.fill(offsetof(R, overflowPixels), 1, 0u);
-    gpu->rectangle.fill(offsetof(R, backRange), 1, 0x7F7FFFFFu); // FLT_MAX
-    gpu->rectangle.fill(offsetof(R, backRange) + 4, 1, 0u);
-    gpu->rectangle.fill(offsetof(R, frontMin), 1, 0x7F7FFFFFu);
-    gpu->rectangle.fill(offsetof(R, traceRays), 10, 0u); // the trace's and the hybrid's counts
-    gpu->rectangleGrow.use();
-    gpu->rectangleGrow.set("uViewportSize", glm::vec2(frame->settings.size));
-    gl::bindStorage(slot::kGlassRectangle, gpu->rectangle);
-    for (const render::DrawItem& item : frame->items) {
-        if (!isGlass(item))
-            continue;
-        gpu->rectangleGrow.set("uModelViewProjection", frame->camera.viewProjection() * item.world);
-        gpu->rectangleGrow.set("uModelView", frame->camera.view * item.world);
-        const int count = int(item.primitive->vertexCount());
-        gpu->rectangleGrow.set("uVertexCount", count);
-        gl::bindStorage(gl::slot::kVertices,
-                        item.geometry->cage(item.instance, item.primitiveIndex).vertices);
-        gl::dispatch(std::uint32_t((count + 63) / 64));
-    }
-    gl::memoryBarrier(gl::BarrierStorage);
-}
-
 void FrameContext::drawMaskedRectangle(gl::Blend blend) const {
     // The rectangle lies at depth 1: it passes only where the mask holds less.
     gl::apply({.cull = gl::Cull::None,
@@ -187,7 +145,7 @@ void FrameContext::drawMaskedRectangle(gl::Blend blend) const {
 }
 
 void FrameContext::drawRectangle() const {
-    gl::bindStorage(slot::kGlassRectangle, gpu->rectangle);
+    gl::bindStorage(slot::kGlassExtent, gpu->extent);
     gpu->emptyVao.bind();
     gl::drawArrays(6);
 }
@@ -210,253 +168,58 @@ void FrameContext::setLayerUniforms(const gl::Program& program) const {
     render::setMotionUniforms(program, *frame);
 }
 
-core::Status walkPrograms(GpuState& gpu, FrameContext& c) {
-    const bool pair = !c.settings.layered();
-    const int capacity = pair ? 2 : c.settings.layerCapacity;
-    const bool textures = c.texturedGlass;
-    const std::string texturesDefine = std::string("GLASS_TEXTURES ") + (textures ? "1" : "0");
-    // The trace with several samples (or one a frame of a frame that accumulates) reads the
-    // textures at their entries as at every hit, at their base level (converging to the
-    // reference); with one, filtered like the walk (a pixel's texels averaged, its frame closer
-    // to the reference's many rays than one texel).
-    const bool baseLevel = c.settings.method == Settings::Method::Trace &&
-                           (c.settings.addsSamples() || c.frame->temporal.enabled);
-    if (!pair && gpu.layerPrograms != std::tuple{capacity, textures, baseLevel}) {
-        const std::vector<std::string> defines{
-            "LAYER_CAPACITY " + std::to_string(capacity), texturesDefine,
-            std::string("TEXTURES_BASE_LEVEL ") + (baseLevel ? "1" : "0")};
-        auto capture = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
-                                             "refraction/layers_capture.frag.glsl", defines);
-        if (!capture)
-            return capture.error();
-        auto resolve = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                             "refraction/layers_resolve.frag.glsl", defines);
-        if (!resolve)
-            return resolve.error();
-        gpu.layersCapture = std::move(*capture);
-        gpu.layersResolve = std::move(*resolve);
-        gpu.layerPrograms = {capacity, textures, baseLevel};
-    }
-    if (pair && gpu.pairPrograms != int(textures)) {
-        auto surface = gl::Program::graphics(*c.frame->shaders, "refraction/glass.vert.glsl",
-                                             "refraction/surface.frag.glsl", {texturesDefine});
-        if (!surface)
-            return surface.error();
-        auto resolve = gl::Program::graphics(
-            *c.frame->shaders, "refraction/rectangle.vert.glsl", "refraction/resolve.frag.glsl",
-            {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", texturesDefine});
-        if (!resolve)
-            return resolve.error();
-        gpu.surface = std::move(*surface);
-        gpu.resolve[0] = std::move(*resolve);
-        gpu.pairPrograms = int(textures);
-    }
-    // Dispersion: none in this frame, or the dispersion search's.
-    const bool dispersion =
-        std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
-                    [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    const int mode = dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion;
-    const bool lit = c.lit();
-    const int captureKey = pair ? 0 : capacity; // the pair, or K layers
-    auto key = [&](Settings::Method method) {
-        return GpuState::WalkKey{captureKey, int(method), mode, lit, textures};
+int FrameContext::traceSamples() const {
+    return frame->temporal.enabled ? 1 : settings.traceSamples;
+}
+
+WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
+                          const SceneInputs& scene, const Capture& capture) {
+    b.read(buffers.extent);
+    b.read(buffers.layers);
+    b.read(buffers.materials);
+    if (!c.settings.layered())
+        b.read(buffers.pairRanges);
+    if (c.settings.traces())
+        b.read(buffers.bvh);
+    WalkInputs in;
+    for (auto [from, to] : {std::pair{capture.mask, &in.capture.mask},
+                            std::pair{capture.depths0, &in.capture.depths0},
+                            std::pair{capture.depths1, &in.capture.depths1},
+                            std::pair{capture.normals[0], &in.capture.normals[0]},
+                            std::pair{capture.normals[1], &in.capture.normals[1]}})
+        if (from.valid())
+            *to = b.read(from);
+    in.sceneColor = b.read(scene.color);
+    in.sceneDepth = b.read(scene.depth);
+    return in;
+}
+
+core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in) {
+    GpuState& gpu = *c.gpu;
+    gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
+    gl::bindStorage(slot::kWalkCounters, gpu.counters);
+    gl::bindTexture(slot::kSceneColor, r.texture(in.sceneColor));
+    gl::bindTexture(slot::kSceneDepth, r.texture(in.sceneDepth));
+    // The layer depth maps (layers.glsl), the pair's normals; an absent map: the first depth
+    // map stands in (unread).
+    const auto present = [&](fg::TextureHandle h) -> const gl::Texture& {
+        return r.texture(h.valid() ? h : in.capture.depths0);
     };
-    auto walkDefines = [&](Settings::Method method) {
-        return std::vector<std::string>{"LAYER_CAPACITY " + std::to_string(capacity),
-                                        std::string("CAPTURE_PAIR ") + (pair ? "1" : "0"),
-                                        "LAYER_DISPERSION " + std::to_string(mode),
-                                        std::string("PUNCTUAL_LIGHTS ") + (lit ? "1" : "0"),
-                                        texturesDefine,
-                                        "LAYER_METHOD " + std::to_string(int(method)),
-                                        std::string("HYBRID_LIST ") +
-                                            (method == Settings::Method::Hybrid ? "1" : "0")};
-    };
-    if (!gpu.walkPrograms.count(key(c.settings.method))) {
-        // Every method's variant at once: switching methods (the viewer's panel) then compiles
-        // nothing, and the live programs do not depend on which methods ran.
-        for (const Settings::Method method :
-             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
-              Settings::Method::Trace, Settings::Method::Hybrid}) {
-            auto walk = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                              "refraction/walk.frag.glsl", walkDefines(method));
-            if (!walk)
-                return walk.error();
-            gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
-        }
-    }
-    c.walk = &gpu.walkPrograms.at(key(c.settings.method));
-    if (c.settings.method != Settings::Method::Hybrid)
+    gl::bindTexture(slot::kLayerDepthMaps, present(in.capture.depths0), 0);
+    gl::bindTexture(slot::kLayerDepthMaps, present(in.capture.depths1), 1);
+    gl::bindTexture(slot::kPairNormals, present(in.capture.normals[0]), 0);
+    gl::bindTexture(slot::kPairNormals, present(in.capture.normals[1]), 1);
+    if (!c.settings.traces())
         return {};
-    // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels,
-    // storing the format of the walk's target.
-    const bool addsUp = c.settings.addsSamples();
-    const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
-    if (!gpu.handedOverTrace.count(traceKey)) {
-        std::vector<std::string> defines = walkDefines(Settings::Method::Trace);
-        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list
-        defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
-        auto trace =
-            gl::Program::compute(*c.frame->shaders, "refraction/walk_trace.comp.glsl", defines);
-        if (!trace)
-            return trace.error();
-        gpu.handedOverTrace.insert_or_assign(traceKey, std::move(*trace));
-    }
-    c.handedOverTrace = &gpu.handedOverTrace.at(traceKey);
+    if (!gpu.glass.bvh)
+        return core::Error{"refraction: the trace has no glass BVH"};
+    gpu.glass.bvh->bindForTraversal();
+    // The glass textures, the first standing in for absent ones (unread).
+    const auto& textures = gpu.tracedTextures;
+    for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty(); ++i)
+        gl::bindTexture(slot::kTracedTextures,
+                        *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
     return {};
-}
-
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        int surfaceSlots, bool motions) {
-    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
-    const std::size_t motionBytes =
-        motions ? pixels * std::size_t(capacity) * sizeof(std::uint32_t) : sizeof(std::uint32_t);
-    if (layers.motions.size() != motionBytes)
-        layers.motions = gl::Buffer(motionBytes);
-    const std::size_t layerBytes = 2 * sizeof(std::uint32_t) * pixels;
-    const std::size_t surfaceBytes = layerBytes * std::size_t(surfaceSlots);
-    if (layers.surfaces.size() != surfaceBytes)
-        layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
-    layers.surfaceSlots = surfaceSlots;
-    if (layers.size == size && layers.capacity == capacity)
-        return;
-    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
-    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
-    layers.attrs = gl::Buffer(layerBytes * std::size_t(capacity));
-    layers.size = size;
-    layers.capacity = capacity;
-}
-
-std::size_t layerDepthSlots(int capacity) {
-    return (std::size_t(capacity) + 3) / 4 * 4;
-}
-
-std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots) {
-    // The arrays (head, depth slots, attributes, surfaces), the depth maps the resolve pass
-    // writes, and the nearest layers' map the outline pass reads.
-    const std::size_t layer = 2 * sizeof(std::uint32_t);
-    return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
-           std::size_t(capacity + surfaceSlots) * layer +
-           layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
-}
-
-namespace {
-
-/** `map` of `item`'s model as a texture the trace reads (among the first
- *  slot::kTracedTextures.count distinct ones of the frame; past them: a warning, and traced
- *  hits go without it). */
-TracedTextureGpu tracedTexture(FrameContext& c, const render::DrawItem& item,
-                               const scene::TextureRef& map, bool colour) {
-    TracedTextureGpu traced;
-    const gl::Texture* texture = map.present() ? (colour ? item.materials->srgb(map.texture)
-                                                         : item.materials->linear(map.texture))
-                                               : nullptr;
-    if (!texture)
-        return traced;
-    auto& textures = c.gpu->tracedTextures;
-    auto at = std::find(textures.begin(), textures.end(), texture);
-    if (at == textures.end() && textures.size() < slot::kTracedTextures.count)
-        at = textures.insert(textures.end(), texture);
-    if (at == textures.end()) {
-        if (!c.gpu->warnedTracedTextures)
-            core::logWarning("refraction: more than " +
-                             std::to_string(slot::kTracedTextures.count) +
-                             " glass textures in one frame; the trace meets the others' "
-                             "surfaces without them");
-        c.gpu->warnedTracedTextures = true;
-        return traced;
-    }
-    traced.unit = std::int32_t(at - textures.begin());
-    traced.uvSet = map.texCoord;
-    traced.row0 = {map.transform[0][0], map.transform[1][0], map.transform[2][0]};
-    traced.row1 = {map.transform[0][1], map.transform[1][1], map.transform[2][1]};
-    return traced;
-}
-
-/** The optics of glass id `item` (its character's glass extent `extent`, solid `solid`). */
-GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, double extent,
-                               int solid) {
-    const scene::Material* m =
-        item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
-    const Optics o = opticsFor(c.settings, m, item.source->overrides, extent);
-    GlassMaterialGpu g{};
-    g.ior = o.ior;
-    g.transmission = o.transmission;
-    g.sigma = o.sigma;
-    g.roughness = o.roughness;
-    g.baseColor = glm::vec3(o.baseColor);
-    g.metallic = o.metallic;
-    g.emissive = m ? m->emissiveFactor * m->emissiveStrength : glm::vec3(0.0f);
-    g.solid = std::uint32_t(solid);
-    g.specularColor = o.specularColor;
-    g.specularWeight = o.specularWeight;
-    g.sheenColor = o.sheenColor;
-    g.sheenRoughness = o.sheenRoughness;
-    g.clearcoat = o.clearcoat;
-    g.clearcoatRoughness = o.clearcoatRoughness;
-    g.iridescence = o.iridescence;
-    g.iridescenceIor = o.iridescenceIor;
-    g.filmThickness = o.iridescenceThickness;
-    g.authored = m && m->isTransmissive() ? 1u : 0u;
-    if (!m)
-        return g;
-    g.normalScale = m->normalTexture.scale;
-    g.normalTexture = tracedTexture(c, item, m->normalTexture, false);
-    g.baseColorTexture = tracedTexture(c, item, m->baseColorTexture, true);
-    if (g.authored) {
-        g.metallicRoughnessTexture = tracedTexture(c, item, m->metallicRoughnessTexture, false);
-        g.transmissionTexture = tracedTexture(c, item, m->transmissionTexture, false);
-    }
-    return g;
-}
-
-/** Whether the surface of glass `g` varies over it: a texture that the capture reads for the
- *  walk (the normal map aside, which it reads anyway). */
-bool textured(const scene::Material* m) {
-    return m && (m->baseColorTexture.present() ||
-                 (m->isTransmissive() &&
-                  (m->transmissionTexture.present() || m->metallicRoughnessTexture.present())));
-}
-
-} // namespace
-
-void assignGlassIds(FrameContext& c) {
-    const auto& items = c.frame->items;
-    c.gpu->glassIds.assign(items.size(), -1);
-    c.gpu->glassOptics.clear();
-    c.gpu->tracedTextures.clear();
-    c.texturedGlass = false;
-    std::map<std::pair<std::uint64_t, int>, int> ids;
-    std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
-    bool full = false;
-    for (std::size_t i = 0; i < items.size(); ++i) {
-        const render::DrawItem& item = items[i];
-        if (!c.isGlass(item))
-            continue;
-        const auto key = std::pair{item.key, item.material};
-        if (const auto known = ids.find(key); known != ids.end()) {
-            c.gpu->glassIds[i] = known->second;
-            continue;
-        }
-        if (c.gpu->glassOptics.size() == kMaxGlassIds) {
-            full = true;
-            c.gpu->glassIds[i] = int(kMaxGlassIds) - 1;
-            continue;
-        }
-        const int solid = solids.emplace(item.key, int(solids.size())).first->second;
-        c.gpu->glassOptics.push_back(
-            glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
-        c.texturedGlass =
-            c.texturedGlass ||
-            textured(item.material >= 0 ? &item.model->materials[std::size_t(item.material)]
-                                        : nullptr);
-        ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
-        c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
-    }
-    if (full && !c.gpu->warnedGlassIds) {
-        core::logWarning("refraction: more than 255 glass materials (character x material) in "
-                         "one frame; the layered path draws the rest with the 255th's optics");
-        c.gpu->warnedGlassIds = true;
-    }
 }
 
 } // namespace refraction

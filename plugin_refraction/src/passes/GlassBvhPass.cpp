@@ -40,13 +40,13 @@ std::uint32_t opaqueTag(const render::DrawItem& item) {
 
 void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     struct Data {
-        fg::BufferHandle distances;
+        fg::BufferHandle bvh;
     };
     const Data& pass = graph.addPass<Data>(
         "refraction.glass_bvh",
         [&](fg::Builder& b, Data& d) {
             b.read(buffers.vertices);
-            d.distances = b.write(buffers.distances);
+            d.bvh = b.write(buffers.bvh);
         },
         [c](const fg::Resources&, const Data&, gl::Context&) {
             GpuState& gpu = *c.gpu;
@@ -83,7 +83,7 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
             if (c.settings.usesNormalDistance())
                 glass.bvh->castNormalDistances(gpu.bvh);
         });
-    buffers.distances = pass.distances;
+    buffers.bvh = pass.bvh;
 }
 
 } // namespace refraction

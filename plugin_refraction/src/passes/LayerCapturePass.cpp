@@ -1,26 +1,26 @@
-// `refraction.layers`: the layered capture. Every glass item of every character in one geometry
-// pass, each fragment into its pixel's layer arrays (at most K, the nearest front and farthest
-// back kept aside for a pixel with more: layers_capture.frag.glsl), growing the glass rectangle
-// first; the depth attachment becomes the glass pixels' mask.
+// `refraction.layer_capture`: the layered capture. Every glass item of every character in one
+// geometry pass, each fragment into its pixel's layer arrays (at most K, the nearest front and
+// farthest back kept aside for a pixel with more: layer_capture.frag.glsl); the depth attachment
+// becomes the glass pixels' mask.
 #include "Passes.h"
 
 namespace refraction {
+
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers) {
     const glm::ivec2 size = c.frame->settings.size;
     struct CaptureData {
         fg::TextureHandle mask;
-        fg::BufferHandle layers, rectangle;
+        fg::BufferHandle layers;
     };
     const auto& captured = graph.addPass<CaptureData>(
-        "refraction.layers",
+        "refraction.layer_capture",
         [&](fg::Builder& b, CaptureData& d) {
             b.read(buffers.vertices);
             b.read(buffers.materials);
             if (c.settings.usesNormalDistance())
-                b.read(buffers.distances);
-            d.mask = b.write(b.create("refraction.layers.mask", {size, gl::Format::Depth32F, 1}));
-            d.rectangle = b.write(buffers.rectangle);
+                b.read(buffers.bvh); // d_N
+            d.mask = b.write(b.create("refraction.layer_capture.mask", zDesc(size)));
             d.layers = b.write(buffers.layers);
         },
         [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
@@ -34,14 +34,13 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             gpu.layers.heads.fill(0, pixels, 0u);                   // counts
             gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys
             gpu.layers.heads.fill(pixels * 8, pixels, 0u);          // farthest back keys
-            c.growGlassRectangle();
             // Depth only: the shading pass's mask.
             if (auto bound =
-                    gpu.framebuffer.bindTargets("refraction.layers", {}, &r.texture(d.mask));
+                    gpu.framebuffer.bindTargets("refraction.layer_capture", {}, &r.texture(d.mask));
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);
-            const gl::Program& program = gpu.layersCapture;
+            const gl::Program& program = gpu.layerCapture;
             program.use();
             c.setLayerUniforms(program);
             c.drawGlassMaterials(program,
@@ -50,7 +49,6 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             return {};
         });
     buffers.layers = captured.layers;
-    buffers.rectangle = captured.rectangle;
     return captured.mask;
 }
 

@@ -1,6 +1,6 @@
 // `refraction.layer_depths`: the layers' depths resolved, over the glass pixels, into the one or
 // two RGBA32F maps the walk's searches read (one texel fetch per sample; the overflow pair in
-// place, negated: layers_resolve.frag.glsl).
+// place, negated: layer_depths.frag.glsl).
 #include "Passes.h"
 
 #include <vector>
@@ -13,7 +13,7 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
     // The depths the walk's searches read, as maps (one texel fetch per sample).
     struct ResolveData {
         fg::TextureHandle mask, depths0, depths1;
-        fg::BufferHandle layers, rectangle;
+        fg::BufferHandle layers;
     };
     const bool twoMaps = c.settings.layerCapacity > 4;
     const gl::TextureDesc depthsDesc{size, gl::Format::RGBA32F, 1};
@@ -21,11 +21,11 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
         "refraction.layer_depths",
         [&](fg::Builder& b, ResolveData& d) {
             d.layers = b.read(buffers.layers);
-            d.rectangle = b.read(buffers.rectangle);
+            b.read(buffers.extent);
             d.mask = b.read(mask);
-            d.depths0 = b.write(b.create("refraction.layers.depths0", depthsDesc));
+            d.depths0 = b.write(b.create("refraction.layer_depths.depths0", depthsDesc));
             if (twoMaps)
-                d.depths1 = b.write(b.create("refraction.layers.depths1", depthsDesc));
+                d.depths1 = b.write(b.create("refraction.layer_depths.depths1", depthsDesc));
         },
         [c, twoMaps](const fg::Resources& r, const ResolveData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
@@ -38,8 +38,8 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
                 return bound;
             for (int i = 0; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(kNoDepth));
-            gpu.layersResolve.use();
-            c.setLayerUniforms(gpu.layersResolve);
+            gpu.layerDepths.use();
+            c.setLayerUniforms(gpu.layerDepths);
             c.drawMaskedRectangle();
             return {};
         });

@@ -1,16 +1,24 @@
-// The refraction plugin's passes, one file each in this folder, recorded into the frame graph by
-// RefractionPlugin::addPasses (ARCHITECTURE.md, "One frame"): one pipeline, a capture and the
-// walk. First d_N for ISR (NormalDistancePass) and the frame's glass optics
-// (GlassMaterialsPass); then the capture, either
-//   the layers (default): LayerCapturePass (every glass surface of every character, K a pixel,
-//     one geometry pass) -> LayerDepthsPass (their depths as maps), or
-//   the pair (the papers' two-surface model): GatherPass (one MAX-blended geometry pass) or
-//     SurfacePass (the papers' two depth-tested ones) -> ResolvePass (the pair as layers 0 and
-//     1, with the maps the papers' search reads);
-// then WalkPass (the walk over the glass pixels) and, over the layers, LayerOutlinePass
-// (optional: anti-aliased outlines). Each pass's function declares what it reads and writes;
-// the buffers the passes order themselves by (FrameBuffers) carry the version the last writer
-// left. Private to the plugin.
+// The refraction plugin's passes, one file each in this folder, named like the pass and its
+// shader, recorded into the frame graph by RefractionPlugin::addPasses (ARCHITECTURE.md, "One
+// frame"): one pipeline, a capture and the walk.
+//   glass_materials (GlassMaterialsPass): the frame's glass optics;
+//   glass_bvh (GlassBvhPass; ISR and the tracing methods): the BVH refitted, ISR's d_N cast;
+//   glass_extent (GlassExtentPass): where the glass lies on screen and in view space;
+// then the capture, either
+//   the layers (default): layer_capture (LayerCapturePass: every glass surface of every
+//     character, K a pixel, one geometry pass) -> layer_depths (LayerDepthsPass: their depths
+//     as maps), or
+//   the pair (the papers' two-surface model): pair_gather (PairGatherPass: one MAX-blended
+//     geometry pass) or pair_back and pair_front (PairSurfacesPass: the papers' two
+//     depth-tested ones) -> pair_resolve (PairResolvePass: the pair as layers 0 and 1, with the
+//     maps the papers' search reads);
+// then walk (WalkPass: the walk over the glass pixels), for the hybrid hybrid_trace
+// (HybridTracePass: the pixels its walk handed over, traced) and, optionally, outlines
+// (OutlinePass: the outlines anti-aliased). Each pass's function declares what it reads and
+// writes; the buffers the passes order themselves by (FrameBuffers) carry the version the last
+// writer left. What the passes share is in FrameContext.cpp (descriptors, imports, uniforms,
+// draws), Variants.cpp (the programs' variants), GlassIds.cpp (the glass ids and their optics)
+// and LayerStorage.cpp (the layer arrays' sizes). Private to the plugin.
 #pragma once
 
 #include "../GpuState.h"
@@ -48,8 +56,8 @@ struct FrameContext {
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
-    const gl::Program* walk = nullptr;            ///< the walk's variant (walkPrograms)
-    const gl::Program* handedOverTrace = nullptr; ///< the hybrid's trace pass (walkPrograms)
+    const gl::Program* walk = nullptr;        ///< the walk's variant (selectVariants)
+    const gl::Program* hybridTrace = nullptr; ///< the hybrid's trace pass's (selectVariants)
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** Whether the frame has punctual lights (the shading variants with them compiled in). */
@@ -59,9 +67,6 @@ struct FrameContext {
     void
     drawGlass(const gl::Program& program, const gl::PipelineState& state,
               const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {}) const;
-    /** The glass's pixel rectangle and view-space box from the deformed cages
-     *  (rectangle.comp.glsl), into GpuState::rectangle. */
-    void growGlassRectangle() const;
     /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
      *  mask: the early depth test runs the program only on glass pixels. */
     void drawMaskedRectangle(gl::Blend blend = gl::Blend::None) const;
@@ -74,15 +79,22 @@ struct FrameContext {
     void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state) const;
     /** layers.glsl's uniforms and the layer arrays. */
     void setLayerUniforms(const gl::Program& program) const;
+    /** The trace's and the hybrid's samples a frame (one where the frame accumulates). */
+    int traceSamples() const;
 };
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
- *  and the plugin's own (GpuState: d_N, the glass rectangle, the layers, the optics), imported
- *  each frame. A pass that writes one leaves the new version here for the passes after it. */
+ *  and the plugin's own (GpuState), imported each frame. A pass that writes one leaves the new
+ *  version here for the passes after it. */
 struct FrameBuffers {
-    fg::BufferHandle vertices, distances, rectangle;
-    fg::BufferHandle materials; ///< GpuState::glassMaterials (glass_materials.glsl)
-    fg::BufferHandle layers;    ///< GpuState::layers (what the capture holds)
+    fg::BufferHandle vertices;   ///< the engine's deformed vertices (plugin::kSceneVertices)
+    fg::BufferHandle bvh;        ///< GpuState::glass: the glass BVH and ISR's d_N
+    fg::BufferHandle extent;     ///< GpuState::extent (glass_extent.glsl)
+    fg::BufferHandle pairRanges; ///< GpuState::pairRanges (pair_ranges.glsl)
+    fg::BufferHandle counters;   ///< GpuState::counters (walk_counters.glsl)
+    fg::BufferHandle materials;  ///< GpuState::glassMaterials (glass_materials.glsl)
+    fg::BufferHandle layers;     ///< GpuState::layers (what the capture holds)
+    fg::BufferHandle handedOver; ///< GpuState::handedOver (the hybrid's list, walk.glsl)
 };
 
 /** The scene the glass is drawn over, from the blackboard; where the frame accumulates, the
@@ -98,19 +110,45 @@ struct Capture {
     fg::TextureHandle normals[2];
 };
 
+/** What the walk and the hybrid's trace read alike: the capture, the scene under the glass. */
+struct WalkInputs {
+    Capture capture;
+    fg::TextureHandle sceneColor, sceneDepth;
+};
+/** Declares `in`'s textures (and the BVH where the method traces) as read by the pass. */
+WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
+                          const SceneInputs& scene, const Capture& capture);
+/** Binds them, with the glass BVH and its textures where the method traces. */
+core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in);
+
 // ---- Shared by the passes (FrameContext.cpp)
 
 /** The frame's buffers: the engine's vertices from the blackboard, the plugin's imported. */
 FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu);
 SceneInputs sceneInputs(const fg::Blackboard& blackboard);
+gl::TextureDesc colorDesc(glm::ivec2 size);
+/** The walk's colour target: single precision where it adds samples up (in half floats each
+ *  sum rounds: 64 samples came out darker by up to 0.7/255), else colorDesc's. */
+gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings);
+gl::TextureDesc normalDesc(glm::ivec2 size);
+gl::TextureDesc zDesc(glm::ivec2 size);
+
+// ---- The glass ids and their optics (GlassIds.cpp)
+
 /** The frame's glass ids and their optics (GpuState::glassIds, glassOptics); ids past the 255
  *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
-/** The capture's programs for this frame (the layers' for capacity K, the pair resolve's), and
- *  into `c` the walk's variant for the capture, the method, the dispersion search and the lights
- *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass for them
- *  and the walk's target (walk_trace.comp.glsl), built when first needed and kept. */
-core::Status walkPrograms(GpuState& gpu, FrameContext& c);
+
+// ---- The programs' variants (Variants.cpp)
+
+/** The capture's programs for this frame (the layers' for capacity K, the pair's), and into
+ *  `c` the walk's variant for the capture, the method, the dispersion search and the lights
+ *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass's for them
+ *  and the walk's target (hybrid_trace.comp.glsl), built when first needed and kept. */
+core::Status selectVariants(GpuState& gpu, FrameContext& c);
+
+// ---- The layer arrays (LayerStorage.cpp)
+
 /** The layer arrays for `size` and capacity K, `surfaceSlots` surfaces a pixel (0: none;
  *  with textured glass K, and the overflow fallback's two where the capture can overflow) and
  *  with `motions` (the frame accumulates) each layer's motion, reallocated only when one
@@ -124,26 +162,20 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t layerDepthSlots(int capacity);
 
-gl::TextureDesc colorDesc(glm::ivec2 size);
-/** The walk's colour target, and the outline pass's over it: single precision where it adds
- *  samples up (in half floats each sum rounds: 64 samples came out darker by up to 0.7/255),
- *  else colorDesc's. */
-gl::TextureDesc walkDesc(glm::ivec2 size, const Settings& settings);
-gl::TextureDesc normalDesc(glm::ivec2 size);
-gl::TextureDesc zDesc(glm::ivec2 size);
-
 // ---- Before the capture
 
-/** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
- *  d_N of every deformed vertex cast against it (writes distances: the BVH and d_N). */
-void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 /** The optics of every glass id into GpuState::glassMaterials, which the walk reads. */
 void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
+ *  d_N of every deformed vertex cast against it (writes bvh). */
+void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** The glass's pixel rectangle and view-space box from the deformed cages (writes extent). */
+void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 
 // ---- The capture: the layers
 
-/** Every glass surface into the layer arrays (writes layers, rectangle); returns the glass
- *  pixels' mask. */
+/** Every glass surface into the layer arrays (writes layers); returns the glass pixels'
+ *  mask. */
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers);
 /** The layers' depths as the maps the walk's searches read (one or two RGBA32F). */
@@ -159,29 +191,35 @@ struct PairTargets {
     fg::TextureHandle frontDepth, frontNormal, backDepth, backNormal;
     fg::TextureHandle frontSurface, backSurface; ///< the two passes' with textured glass
 };
-/** One geometry pass, MAX blending, over the glass (writes rectangle). */
-PairTargets addGatherPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
-/** The papers' two geometry passes: back faces (farthest, or `firstBack`) and front faces
- *  (writes rectangle). */
-PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
-                             bool firstBack);
+/** One geometry pass, MAX blending, over the glass. */
+PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
+                              const FrameBuffers& buffers);
+/** The papers' two geometry passes: back faces (farthest, or `firstBack`) and front faces. */
+PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
+                                  const FrameBuffers& buffers, bool firstBack);
 /** The pair resolved into layers 0 and 1, the depth ranges and the mask (writes layers,
- *  rectangle). */
-Capture addResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
-                       const SceneInputs& scene, const PairTargets& pair);
+ *  pairRanges). */
+Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           const SceneInputs& scene, const PairTargets& pair);
 
 // ---- The walk
 
 /** The walk over the glass pixels: the new scene colour, for the outline pass each pixel's
  *  nearest layer, and where the frame accumulates, the scene's motion with the glass pixels'
- *  (walk_motion.glsl) (writes rectangle: the overflow count). */
+ *  (walk_motion.glsl) (writes counters; for the hybrid handedOver, the pixels it hands over). */
 struct Walked {
     fg::TextureHandle color, surface, motion;
 };
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture);
-/** The outlines of smooth glass anti-aliased; returns the new scene colour. */
-fg::TextureHandle addLayerOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
-                                      const FrameBuffers& buffers, const Walked& walked);
+/** The hybrid's handed-over pixels traced over the walk's colour (and motion); returns the
+ *  new versions (writes counters). */
+Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                          const SceneInputs& scene, const Capture& capture, const Walked& walked);
+/** The outlines of smooth glass anti-aliased over the walk's colour, into the scene colour
+ *  (the walk read it: no copy); returns its new version. */
+fg::TextureHandle addOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
+                                 const FrameBuffers& buffers, const SceneInputs& scene,
+                                 const Walked& walked);
 
 } // namespace refraction

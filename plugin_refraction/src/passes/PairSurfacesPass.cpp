@@ -1,8 +1,7 @@
-// `refraction.back_faces` and `refraction.front_faces`: the pair capture drawn as the papers'
-// two geometry passes, the back faces (farthest, or first) and the nearest front faces, each
-// into a depth map (with d_N) and a mip-filtered normal map (with the glass id), and where the
-// frame's glass is textured a map of its surfaces, under its own depth test (surface.frag.glsl),
-// growing the glass rectangle first.
+// `refraction.pair_back` and `refraction.pair_front`: the pair capture drawn as the papers' two
+// geometry passes, the back faces (farthest, or first) and the nearest front faces, each into a
+// depth map (with d_N) and a mip-filtered normal map (with the glass id), and where the frame's
+// glass is textured a map of its surfaces, under its own depth test (pair_surface.frag.glsl).
 #include "Passes.h"
 
 #include <string>
@@ -10,11 +9,10 @@
 
 namespace refraction {
 
-PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
-                             bool firstBack) {
+PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
+                                  const FrameBuffers& buffers, bool firstBack) {
     struct SurfaceData {
         fg::TextureHandle depth, normal, surface, zbuffer; // surface: with textured glass
-        fg::BufferHandle rectangle;
     };
     const glm::ivec2 size = c.frame->settings.size;
     // Farthest: GREATER from 0; nearest: LESS from 1.
@@ -25,8 +23,7 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
                 b.read(buffers.vertices);
                 b.read(buffers.materials);
                 if (c.settings.usesNormalDistance())
-                    b.read(buffers.distances);
-                d.rectangle = b.write(buffers.rectangle);
+                    b.read(buffers.bvh); // d_N
                 // The front's motion rides in z and w where the frame accumulates.
                 const bool motion = !backFaces && c.frame->temporal.enabled;
                 d.depth =
@@ -40,8 +37,6 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
                                           gl::Context&) -> core::Status {
-                if (backFaces)
-                    c.growGlassRectangle();
                 std::vector<const gl::Texture*> targets{&r.texture(d.depth), &r.texture(d.normal)};
                 if (d.surface.valid())
                     targets.push_back(&r.texture(d.surface));
@@ -55,7 +50,7 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
                     gl::clearColorUint(2, 0u);
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
                 c.drawGlassMaterials(
-                    c.gpu->surface,
+                    c.gpu->pairSurface,
                     {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
                      .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
                 // DIR §3.1: mip-filtered normals (the front's only for TIR bounces toward it)
@@ -64,10 +59,8 @@ PairTargets addSurfacePasses(fg::FrameGraph& graph, const FrameContext& c, Frame
                 return {};
             });
     };
-    const SurfaceData& back = surfacePass("refraction.back_faces", true, firstBack);
-    buffers.rectangle = back.rectangle;
-    const SurfaceData& front = surfacePass("refraction.front_faces", false, true);
-    buffers.rectangle = front.rectangle;
+    const SurfaceData& back = surfacePass("refraction.pair_back", true, firstBack);
+    const SurfaceData& front = surfacePass("refraction.pair_front", false, true);
     PairTargets pair;
     pair.frontDepth = front.depth;
     pair.frontNormal = front.normal;

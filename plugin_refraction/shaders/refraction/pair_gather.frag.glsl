@@ -1,6 +1,6 @@
-// The single geometry pass (surfaces.glsl): front and back fragments of the glass into the
+// The single geometry pass (pair_gather.glsl): front and back fragments of the glass into the
 // MAX-blended targets; no depth test, no culling.
-#include "refraction/surfaces.glsl"
+#include "refraction/pair_gather.glsl"
 #include "refraction/glass_inputs.glsl"
 
 layout(location = 0) out vec4 outNear;
@@ -12,7 +12,7 @@ void main() {
     uvec2 q = uvec2(quantise10(n.x), quantise10(n.y));
     if (gl_FrontFacing) {
         // d_N relative to the depth, 0 for none.
-        uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 1022.0)) : 0u;
+        uint d = normalDistanceCode(vNormalDistance, z, kGatheredDistanceLevels);
         outNear = vec4(kNoSurface, -z, -surfaceKey(z, q.x), -surfaceKey(z, q.y));
         outFar = vec4(kNoSurface, kNoSurface, -surfaceKey(z, d), kNoSurface);
     } else {

@@ -2,14 +2,16 @@
 // of the one walk, surfaces=two-surface): each pixel's nearest front surface as its layer 0 and
 // its back surface as layer 1 (layers.glsl: their attributes in the layer arrays, their depths
 // in the first depth map, 3e38 where absent), the depth ranges the papers' search is bounded by
-// (glass_rectangle.glsl), and the walk's mask: 0 where the front lies before the opaque scene.
-//   PAIR_GATHERED 1: from the one MAX-blended geometry pass (surfaces.glsl), also writing the
+// (pair_ranges.glsl), and the walk's mask: 0 where the front lies before the opaque scene.
+//   PAIR_GATHERED 1: from the one MAX-blended geometry pass (pair_gather.glsl), also writing the
 //     normals as the maps the papers' search reads mip-filtered (DIR §3.1);
-//   PAIR_GATHERED 0: from the two depth-tested passes (surface.frag.glsl), whose normal maps
+//   PAIR_GATHERED 0: from the two depth-tested passes (pair_surface.frag.glsl), whose normal maps
 //     are those maps already; with textured glass in the frame (GLASS_TEXTURES) also their
 //     surfaces, into the layers' (never gathered: the one pass reads no texture).
 #include "common/motion.glsl"
 #include "refraction/layers.glsl"
+#include "refraction/pair_gather.glsl"
+#include "refraction/pair_ranges.glsl"
 
 layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
 uniform float uNear, uFar;
@@ -35,8 +37,7 @@ void readPair(ivec2 p, out Surface front, out Surface back) {
     front.present = near.y > 0.5 * kNoSurface;
     front.z = -near.y;
     front.normal = octDecodePayload(near.z, near.w);
-    uint d = keyPayload(far.z);
-    front.normalDistance = d == 0u ? -1.0 : float(d - 1u) / 1022.0 * front.z;
+    front.normalDistance = normalDistanceOf(keyPayload(far.z), front.z, kGatheredDistanceLevels);
     back.present = near.x > 0.0;
     back.z = near.x;
     back.normal = octDecodePayload(far.x, far.y);
@@ -78,21 +79,20 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     Surface front, back;
     readPair(p, front, back);
-    uint pixel = pixelIndex(p), d = 0u;
-    if (front.normalDistance >= 0.0)
-        d = 1u + uint(round(clamp(front.normalDistance / front.z, 0.0, 1.0) * 65534.0));
+    uint pixel = pixelIndex(p);
+    uint d = normalDistanceCode(front.normalDistance, front.z, kLayerDistanceLevels);
     layerHeads[pixel] = uint(front.present) + uint(back.present);
     layerAttr[pixel * 2u] = uvec2(packOctNormal(front.normal), front.glass | kLayerFront | (d << 16));
     layerAttr[pixel * 2u + 1u] = uvec2(packOctNormal(back.normal), back.glass);
     outDepths0 = vec4(front.present ? front.z : NO_DEPTH, back.present ? back.z : NO_DEPTH,
                       NO_DEPTH, NO_DEPTH);
     if (back.present) {
-        atomicMin(glassBackRange[0], floatBitsToUint(back.z));
-        atomicMax(glassBackRange[1], floatBitsToUint(back.z));
+        atomicMin(pairBackRange[0], floatBitsToUint(back.z));
+        atomicMax(pairBackRange[1], floatBitsToUint(back.z));
     }
     if (front.present)
-        atomicMin(glassFrontMin, floatBitsToUint(front.z));
+        atomicMin(pairFrontMin, floatBitsToUint(front.z));
     float scene = texelFetch(uSceneDepth, p, 0).r;
-    float sceneZ = 2.0 * uNear * uFar / (uFar + uNear - (scene * 2.0 - 1.0) * (uFar - uNear));
-    gl_FragDepth = front.present && (scene >= 1.0 || front.z <= sceneZ) ? 0.0 : 1.0;
+    gl_FragDepth =
+        front.present && (scene >= 1.0 || front.z <= viewDepthOf(scene, uNear, uFar)) ? 0.0 : 1.0;
 }

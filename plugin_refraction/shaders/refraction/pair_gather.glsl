@@ -5,23 +5,21 @@
 // the fragment that wins the depth also wins the payload.
 //   target 0: z back, -z front, -key(front, normal.x), -key(front, normal.y)
 //   target 1: key(back, normal.x), key(back, normal.y), -key(front, d_N), unused
-// Target 0's red channel is the back-face depth map itself (search.glsl reads .r; no surface is
-// negative). Before it, rectangle.comp.glsl finds the screen rectangle of the glass
-// (glass_rectangle.glsl), so the full-screen passes after it rasterise only that rectangle.
-#ifndef REFRACTION_SURFACES_GLSL
-#define REFRACTION_SURFACES_GLSL
+// d_N: depth_codes.glsl's 10-bit code. pair_resolve.frag.glsl decodes them.
+#ifndef REFRACTION_PAIR_GATHER_GLSL
+#define REFRACTION_PAIR_GATHER_GLSL
 #include "common/math.glsl" // octEncode, octDecode
+#include "refraction/depth_codes.glsl"
 
 const float kNoSurface = NO_SURFACE; // the clear value: MAX keeps any fragment over it
 
-uniform float uKeyNear;     // log depth range of the keys: near plane ...
-uniform float uKeyLogRange; // ... and log2(far / near)
-
 float surfaceKey(float z, uint payload) {
-    float t = clamp(log2(max(z, uKeyNear) / uKeyNear) / uKeyLogRange, 0.0, 1.0);
-    uint q = min(uint(t * 8192.0), 8191u);
+    uint q = min(uint(logDepthFraction(z) * 8192.0), 8191u);
     return uintBitsToFloat(0x3F800000u | (q << 10) | (payload & 1023u));
 }
+
+// d_N's code in a key's 10 bits (depth_codes.glsl).
+const float kGatheredDistanceLevels = 1022.0;
 
 uint keyPayload(float key) {
     return floatBitsToUint(abs(key)) & 1023u;
@@ -30,8 +28,6 @@ uint keyPayload(float key) {
 uint quantise10(float x) {
     return uint(round(clamp(x, 0.0, 1.0) * 1023.0));
 }
-
-#include "refraction/glass_rectangle.glsl"
 
 vec3 octDecodePayload(float keyX, float keyY) {
     return octDecode(vec2(keyPayload(keyX), keyPayload(keyY)) / 1023.0);

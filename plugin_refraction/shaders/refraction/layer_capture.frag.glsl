@@ -8,23 +8,19 @@
 // the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's; where the
 // frame accumulates, each kept fragment's motion.
 #include "common/motion.glsl"
-#include "common/normal_map.glsl"
 #include "refraction/fragment_surface.glsl"
 #include "refraction/view.glsl"
 #include "refraction/layers.glsl"
 
 uniform int uGlassId;
-uniform float uNormalScale;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     uint pixel = pixelIndex(p);
     float z = -vViewPosition.z;
-    vec3 n = normalize(vViewNormal);
-    if (hasTexture(SLOT_NORMAL))
-        n = perturbNormal(n, vViewTangent, captureTexel(SLOT_NORMAL).xyz, uNormalScale);
+    vec3 n = fragmentNormal();
     uint id = uint(uGlassId);
-    uint d = vNormalDistance >= 0.0 ? 1u + uint(round(clamp(vNormalDistance / z, 0.0, 1.0) * 65534.0)) : 0u;
+    uint d = normalDistanceCode(vNormalDistance, z, kLayerDistanceLevels);
     uint slot = atomicAdd(layerHeads[pixel], 1u);
 #if GLASS_TEXTURES
     // Read by every fragment, kept or not: its textures' filtering needs the derivatives of

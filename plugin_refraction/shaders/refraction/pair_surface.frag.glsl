@@ -4,13 +4,11 @@
 // linear view depth and d_N (-1: none) (where the frame accumulates, the surface's motion in
 // the target's z and w: common/motion.glsl), and the outward view normal after the normal map with
 // the glass id + 1 in w (0: no surface, the clear value); with textured glass in the frame
-// (GLASS_TEXTURES), the glass surface there (packSurface). resolve.frag.glsl reads them.
+// (GLASS_TEXTURES), the glass surface there (packSurface). pair_resolve.frag.glsl reads them.
 #include "common/motion.glsl"
-#include "common/normal_map.glsl"
 #include "refraction/fragment_surface.glsl"
 
 uniform int uGlassId;
-uniform float uNormalScale;
 
 layout(location = 0) out vec4 outDepth;
 layout(location = 1) out vec4 outNormal;
@@ -19,9 +17,7 @@ layout(location = 2) out uvec2 outSurface;
 #endif
 
 void main() {
-    vec3 n = normalize(vViewNormal); // outward: a back face's points away from the camera
-    if (hasTexture(SLOT_NORMAL))
-        n = perturbNormal(n, vViewTangent, captureTexel(SLOT_NORMAL).xyz, uNormalScale);
+    vec3 n = fragmentNormal();
     outDepth = vec4(-vViewPosition.z, vNormalDistance,
                     uWriteMotion != 0 ? clipToPixel(vClip) - clipToPixel(vPreviousClip) : vec2(0.0));
     outNormal = vec4(n, float(uGlassId + 1));

@@ -1,9 +1,10 @@
-// Grows the glass rectangle (glass_rectangle.glsl) by the projected vertices of one glass primitive's
-// deformed cage: the refined surface lies in the convex hull of its cage (subdivision masks are
-// convex combinations), and so does its projection. One atomic per group and bound. The layered
-// path also takes the view-space box of the vertices (where its searches end).
+// The glass_extent pass: grows the glass extent (glass_extent.glsl) by the projected vertices of
+// one glass primitive's deformed cage, a dispatch a primitive. The refined surface lies in the
+// convex hull of its cage (subdivision masks are convex combinations), and so does its
+// projection. One atomic per group and bound. The view-space box of the vertices too (where
+// the walk's searches end).
 #include "common/vertex.glsl"
-#include "refraction/surfaces.glsl"
+#include "refraction/glass_extent.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -17,11 +18,6 @@ uniform int uVertexCount;
 
 shared ivec4 sBounds;
 shared int sBox[6]; // view-space min x, y, z, max x, y, z (ordered)
-
-int floatToOrdered(float f) {
-    int i = floatBitsToInt(f);
-    return i < 0 ? i ^ 0x7FFFFFFF : i;
-}
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) {

@@ -1,0 +1,40 @@
+// The layer arrays' sizes (layers.glsl): what they hold a pixel, reallocated when that changes.
+#include "Passes.h"
+
+namespace refraction {
+
+void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
+                        int surfaceSlots, bool motions) {
+    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
+    const std::size_t motionBytes =
+        motions ? pixels * std::size_t(capacity) * sizeof(std::uint32_t) : sizeof(std::uint32_t);
+    if (layers.motions.size() != motionBytes)
+        layers.motions = gl::Buffer(motionBytes);
+    const std::size_t layerBytes = 2 * sizeof(std::uint32_t) * pixels;
+    const std::size_t surfaceBytes = layerBytes * std::size_t(surfaceSlots);
+    if (layers.surfaces.size() != surfaceBytes)
+        layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
+    layers.surfaceSlots = surfaceSlots;
+    if (layers.size == size && layers.capacity == capacity)
+        return;
+    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
+    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
+    layers.attrs = gl::Buffer(layerBytes * std::size_t(capacity));
+    layers.size = size;
+    layers.capacity = capacity;
+}
+
+std::size_t layerDepthSlots(int capacity) {
+    return (std::size_t(capacity) + 3) / 4 * 4;
+}
+
+std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots) {
+    // The arrays (head, depth slots, attributes, surfaces), the depth maps the resolve pass
+    // writes, and the nearest layers' map the outline pass reads.
+    const std::size_t layer = 2 * sizeof(std::uint32_t);
+    return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
+           std::size_t(capacity + surfaceSlots) * layer +
+           layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
+}
+
+} // namespace refraction

@@ -1,0 +1,51 @@
+// `refraction.pair_gather`: the pair capture in one geometry pass, every glass item at once over
+// MAX-blended targets that keep each pixel's nearest front and farthest back with their normals
+// and d_N keys (pair_gather.frag.glsl).
+#include "Passes.h"
+
+#include <cmath>
+
+namespace refraction {
+
+PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
+                              const FrameBuffers& buffers) {
+    const glm::ivec2 size = c.frame->settings.size;
+    struct GatherData {
+        fg::TextureHandle nearTargets, farTargets;
+    };
+    const gl::TextureDesc gatherDesc{size, gl::Format::RGBA32F, 1};
+    const auto& gathered = graph.addPass<GatherData>(
+        "refraction.pair_gather",
+        [&](fg::Builder& b, GatherData& d) {
+            b.read(buffers.vertices);
+            if (c.settings.usesNormalDistance())
+                b.read(buffers.bvh); // d_N
+            d.nearTargets = b.write(b.create("refraction.pair_gather.near", gatherDesc));
+            d.farTargets = b.write(b.create("refraction.pair_gather.far", gatherDesc));
+        },
+        [c](const fg::Resources& r, const GatherData& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            const render::FrameInfo& frame = *c.frame;
+            if (auto bound = gpu.framebuffer.bindTargets(
+                    "refraction.pair_gather", {&r.texture(d.nearTargets), &r.texture(d.farTargets)},
+                    nullptr);
+                !bound)
+                return bound;
+            gl::clearColor(0, glm::vec4(kNoSurface));
+            gl::clearColor(1, glm::vec4(kNoSurface));
+            gpu.pairGather.use();
+            gpu.pairGather.set("uKeyNear", frame.camera.znear);
+            gpu.pairGather.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
+            c.drawGlass(gpu.pairGather, {.cull = gl::Cull::None,
+                                         .depthTest = false,
+                                         .depthWrite = false,
+                                         .blend = gl::Blend::Max});
+            return {};
+        });
+    PairTargets pair;
+    pair.nearTargets = gathered.nearTargets;
+    pair.farTargets = gathered.farTargets;
+    return pair;
+}
+
+} // namespace refraction

@@ -1,0 +1,119 @@
+// `refraction.pair_resolve`: the pair capture resolved over the glass rectangle into layers 0
+// and 1 of the layer arrays (K = 2; with textured glass their surfaces too) and the first depth
+// map, the depth ranges of its back and front, and the walk's mask; from one gathered pass also
+// the mip-filtered normal maps the papers' search reads (pair_resolve.frag.glsl).
+#include "Passes.h"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace refraction {
+
+namespace {
+
+struct ResolveData {
+    PairTargets pair;
+    fg::TextureHandle sceneDepth, depths0, normals[2], mask;
+    fg::BufferHandle layers, pairRanges;
+};
+
+core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const FrameContext& c) {
+    GpuState& gpu = *c.gpu;
+    const bool gathered = d.pair.nearTargets.valid();
+    const bool surfaces = d.pair.frontSurface.valid();
+    ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0,
+                       c.frame->temporal.enabled);
+    std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
+    if (gathered)
+        targets.insert(targets.end(), {&r.texture(d.normals[0]), &r.texture(d.normals[1])});
+    if (auto bound =
+            gpu.framebuffer.bindTargets("refraction.pair_resolve", targets, &r.texture(d.mask));
+        !bound)
+        return bound;
+    // Outside the glass rectangle: no surface, and the mask rejects.
+    gl::clearColor(0, glm::vec4(kNoDepth));
+    for (int i = 1; i < int(targets.size()); ++i)
+        gl::clearColor(i, glm::vec4(0.0f));
+    gl::clearDepth(1.0f);
+    // The depth ranges empty: the back's [FLT_MAX, 0], the front's nearest FLT_MAX.
+    constexpr std::uint32_t kFloatMax = 0x7F7FFFFFu;
+    gpu.pairRanges.fill(offsetof(PairRangesGpu, backRange), 1, kFloatMax);
+    gpu.pairRanges.fill(offsetof(PairRangesGpu, backRange) + 4, 1, 0u);
+    gpu.pairRanges.fill(offsetof(PairRangesGpu, frontMin), 1, kFloatMax);
+    gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
+    gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
+    const gl::Program& program = gpu.pairResolve[gathered ? 1 : 0];
+    program.use();
+    c.setLayerUniforms(program);
+    // The pair's maps in pair_resolve.frag.glsl's order (one pass's two, or two passes' four).
+    const fg::TextureHandle maps[] = {d.pair.nearTargets, d.pair.farTargets, d.pair.frontDepth,
+                                      d.pair.frontNormal, d.pair.backDepth,  d.pair.backNormal};
+    std::uint32_t element = 0;
+    for (const fg::TextureHandle handle : maps)
+        if (handle.valid())
+            gl::bindTexture(slot::kPairMaps, r.texture(handle), element++);
+    if (surfaces) {
+        gl::bindTexture(slot::kPairSurfaces, r.texture(d.pair.frontSurface), 0);
+        gl::bindTexture(slot::kPairSurfaces, r.texture(d.pair.backSurface), 1);
+    }
+    gl::bindTexture(slot::kSceneDepth, r.texture(d.sceneDepth));
+    program.set("uGlassId", c.firstGlassId);
+    program.set("uNear", c.frame->camera.znear);
+    program.set("uFar", c.frame->camera.zfar);
+    c.drawRectangle();
+    gl::memoryBarrier(gl::BarrierStorage);
+    if (gathered) {
+        r.texture(d.normals[1]).generateMipmaps(); // DIR §3.1: mip-filtered normals
+        if (c.reflect) // only TIR bounces toward the front read its normals' mips
+            r.texture(d.normals[0]).generateMipmaps();
+    }
+    return {};
+}
+
+} // namespace
+
+Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           const SceneInputs& scene, const PairTargets& pair) {
+    const glm::ivec2 size = c.frame->settings.size;
+    const bool gathered = pair.nearTargets.valid();
+    const auto& resolved = graph.addPass<ResolveData>(
+        "refraction.pair_resolve",
+        [&](fg::Builder& b, ResolveData& d) {
+            b.read(buffers.extent);
+            d.pairRanges = b.write(buffers.pairRanges);
+            d.layers = b.write(buffers.layers);
+            for (auto [from, to] : {std::pair{pair.nearTargets, &d.pair.nearTargets},
+                                    std::pair{pair.farTargets, &d.pair.farTargets},
+                                    std::pair{pair.frontDepth, &d.pair.frontDepth},
+                                    std::pair{pair.frontNormal, &d.pair.frontNormal},
+                                    std::pair{pair.backDepth, &d.pair.backDepth},
+                                    std::pair{pair.backNormal, &d.pair.backNormal},
+                                    std::pair{pair.frontSurface, &d.pair.frontSurface},
+                                    std::pair{pair.backSurface, &d.pair.backSurface}})
+                if (from.valid())
+                    *to = b.read(from);
+            d.sceneDepth = b.read(scene.depth);
+            d.depths0 = b.write(
+                b.create("refraction.pair_resolve.depths0", {size, gl::Format::RGBA32F, 1}));
+            if (gathered)
+                for (int i = 0; i < 2; ++i)
+                    d.normals[i] = b.write(b.create(i == 0 ? "refraction.pair_resolve.front_normal"
+                                                           : "refraction.pair_resolve.back_normal",
+                                                    normalDesc(size)));
+            d.mask = b.write(b.create("refraction.pair_resolve.mask", zDesc(size)));
+        },
+        [c](const fg::Resources& r, const ResolveData& d, gl::Context&) {
+            return resolvePair(r, d, c);
+        });
+    buffers.pairRanges = resolved.pairRanges;
+    buffers.layers = resolved.layers;
+    Capture capture;
+    capture.mask = resolved.mask;
+    capture.depths0 = resolved.depths0;
+    capture.normals[0] = gathered ? resolved.normals[0] : pair.frontNormal;
+    capture.normals[1] = gathered ? resolved.normals[1] : pair.backNormal;
+    return capture;
+}
+
+} // namespace refraction
