@@ -1,9 +1,9 @@
 // The refraction plugin: renders the engine's deforming glTF characters as glass, through every
-// glass surface a ray crosses (layers) or through the papers' two, with no preprocessing (DIR),
-// with per-frame d_N (ISR), or through one interface (SIR). Passes, per frame (ARCHITECTURE.md):
-// layers: [d_N] -> every glass layer in one capture pass -> the walk over the glass pixels;
-// two-surface: [d_N] -> the glass surfaces in one gathered geometry pass (or the papers'
-// back-face and front-depth passes) -> depth range -> shading over the scene colour.
+// glass surface a ray crosses (the layers) or through the papers' two (the pair), with no
+// preprocessing (DIR), with per-frame d_N (ISR), through one interface (SIR), traced through a
+// BVH of the deformed glass (trace) or both (hybrid). One pipeline a frame (ARCHITECTURE.md,
+// src/passes/Passes.h): the glass's optics, [its BVH], its extent -> a capture (the layers, or
+// the pair) -> the walk over the glass pixels -> [the hybrid's trace] -> [the outlines].
 #pragma once
 
 #include "engine/plugin/Plugin.h"

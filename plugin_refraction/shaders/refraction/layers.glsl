@@ -138,22 +138,6 @@ vec4 layerDepths(ivec2 p, int g) {
 }
 #endif
 
-// Whether a ray that went from depth zFrom to depth z, now in pixel p, is still in a segment of
-// layer parity `parity`: none of p's layers lies between the two depths (a ray along the line
-// of sight crosses surfaces within one pixel), and the number of p's layers in front of z has
-// that parity (a ray coming in from the side). Off screen: no layers.
-bool inSegment(ivec2 p, float zFrom, float z, int parity) {
-    float lo = min(zFrom, z), hi = max(zFrom, z);
-    int count = 0;
-    bool between = false;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(p, g);
-        count += int(dot(vec4(lessThan(d, vec4(z))), vec4(1.0)));
-        between = between || any(bvec4(vec4(greaterThan(d, vec4(lo))) * vec4(lessThan(d, vec4(hi)))));
-    }
-    return !between && (count & 1) == parity;
-}
-
 // Layer i of pixel p (see layerDepths), `overflow` if the pixel overflowed.
 uvec2 layerAttrOf(ivec2 p, int i, bool overflow) {
     uint pixel = pixelIndex(p);
@@ -174,6 +158,55 @@ bool layerOverflow(ivec2 p) {
 
 uvec2 layerAttrAt(ivec2 p, int i) {
     return layerAttrOf(p, i, layerOverflow(p));
+}
+
+const int kDepthSlots = 4 * kDepthGroups;
+
+// Pixel p's layers as every scan over them reads them: each slot's depth (UNUSED_DEPTH and up
+// where unused; all unused off screen) and whether the pixel overflowed (its nearest front and
+// farthest back then stand in as layers 0 and 1: layerAttrOf).
+struct PixelLayers {
+    vec4 depths[kDepthGroups]; // slots 4g..4g+3
+    bool overflow;
+};
+
+float layerDepth(PixelLayers l, int i) {
+    return l.depths[i / 4][i % 4];
+}
+
+PixelLayers pixelLayers(ivec2 p) {
+    PixelLayers l;
+    l.overflow = false;
+    for (int g = 0; g < kDepthGroups; ++g) {
+#ifdef LAYER_DEPTH_MAPS
+        vec4 stored = storedMap(p, g);
+        l.overflow = l.overflow || (g == 0 && stored.x < 0.0);
+        l.depths[g] = abs(stored);
+#else
+        l.depths[g] = layerDepths(p, g);
+#endif
+    }
+#ifndef LAYER_DEPTH_MAPS
+    l.overflow = layerOverflow(p);
+#endif
+    return l;
+}
+
+// Whether a ray that went from depth zFrom to depth z, now in pixel p, is still in a segment of
+// layer parity `parity`: none of p's layers lies between the two depths (a ray along the line
+// of sight crosses surfaces within one pixel), and the number of p's layers in front of z has
+// that parity (a ray coming in from the side). Off screen: no layers.
+bool inSegment(ivec2 p, float zFrom, float z, int parity) {
+    float lo = min(zFrom, z), hi = max(zFrom, z);
+    PixelLayers l = pixelLayers(p);
+    int count = 0;
+    bool between = false;
+    for (int g = 0; g < kDepthGroups; ++g) { // four slots at once
+        vec4 d = l.depths[g];
+        count += int(dot(vec4(lessThan(d, vec4(z))), vec4(1.0)));
+        between = between || any(bvec4(vec4(greaterThan(d, vec4(lo))) * vec4(lessThan(d, vec4(hi)))));
+    }
+    return !between && (count & 1) == parity;
 }
 
 // The glass surface of layer i of pixel p (its attributes `attr`): as the capture stored it

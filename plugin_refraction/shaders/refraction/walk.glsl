@@ -525,32 +525,30 @@ bool pixelEntry(ivec2 p, out Entry e) {
     e.farthest = 0;
     int nearest = -1;
     e.nearest = 0;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(p, g);
-        for (int k = 0; k < 4; ++k) {
-            if (d[k] >= UNUSED_DEPTH)
-                continue;
-            if (d[k] < e.z) {
-                e.z = d[k];
-                nearest = 4 * g + k;
-            }
-            if (d[k] > e.far) {
-                e.far = d[k];
-                e.farthest = 4 * g + k;
-            }
+    PixelLayers l = pixelLayers(p);
+    for (int i = 0; i < kDepthSlots; ++i) {
+        float d = layerDepth(l, i);
+        if (d >= UNUSED_DEPTH)
+            continue;
+        if (d < e.z) {
+            e.z = d;
+            nearest = i;
+        }
+        if (d > e.far) {
+            e.far = d;
+            e.farthest = i;
         }
     }
 #if CAPTURE_PAIR
     // The papers' model enters at the nearest front (a back face nearer than it is not entered).
-    nearest = e.z < NO_DEPTH && layerDepths(p, 0).x < UNUSED_DEPTH ? 0 : -1;
-    e.z = layerDepths(p, 0).x;
+    nearest = e.z < NO_DEPTH && layerDepth(l, 0) < UNUSED_DEPTH ? 0 : -1;
+    e.z = layerDepth(l, 0);
 #endif
     if (nearest < 0 || e.z >= sceneDepthAt(p))
         return false;
-    bool overflow = layerOverflow(p);
     e.nearest = nearest;
-    e.attr = layerAttrOf(p, nearest, overflow);
-    e.surface = layerSurfaceOf(p, nearest, e.attr, overflow);
+    e.attr = layerAttrOf(p, nearest, l.overflow);
+    e.surface = layerSurfaceOf(p, nearest, e.attr, l.overflow);
     vec4 ray = uInverseProjection * vec4((vec2(p) + 0.5) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     vec3 direction = ray.xyz / ray.w;
     e.P1 = direction * (e.z / -direction.z);

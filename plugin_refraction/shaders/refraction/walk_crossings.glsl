@@ -56,30 +56,25 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr,
     surface = GlassSurface(vec3(1.0), 1.0, 0.0, 0.0);
     int passed = -1, closest = -1;
     float passedDepth = deeper ? -1.0 : NO_DEPTH, closestGap = NO_DEPTH;
-    bool overflow = false;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 stored = storedMap(p, g);
-        overflow = overflow || (g == 0 && stored.x < 0.0);
-        vec4 d = abs(stored);
-        for (int k = 0; k < 4; ++k) {
-            if (d[k] >= UNUSED_DEPTH)
-                continue;
-            int i = 4 * g + k;
-            if (deeper ? d[k] <= z && d[k] > passedDepth : d[k] >= z && d[k] < passedDepth) {
-                passed = i;
-                passedDepth = d[k];
-            }
-            if (abs(d[k] - z) < closestGap) {
-                closestGap = abs(d[k] - z);
-                closest = i;
-            }
+    PixelLayers l = pixelLayers(p);
+    for (int i = 0; i < kDepthSlots; ++i) {
+        float d = layerDepth(l, i);
+        if (d >= UNUSED_DEPTH)
+            continue;
+        if (deeper ? d <= z && d > passedDepth : d >= z && d < passedDepth) {
+            passed = i;
+            passedDepth = d;
+        }
+        if (abs(d - z) < closestGap) {
+            closestGap = abs(d - z);
+            closest = i;
         }
     }
     if (closest < 0)
         return false;
     int picked = passed >= 0 && !nearest ? passed : closest;
-    attr = layerAttrOf(p, picked, overflow);
-    surface = layerSurfaceOf(p, picked, attr, overflow);
+    attr = layerAttrOf(p, picked, l.overflow);
+    surface = layerSurfaceOf(p, picked, attr, l.overflow);
     return true;
 }
 
@@ -102,24 +97,19 @@ vec3 filteredNormal(vec3 X, uvec2 attr, out bool outline) {
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1), q = base + offset;
         int best = -1;
-        bool overflow = false;
         float gap = 0.02 * z;
-        for (int g = 0; g < kDepthGroups; ++g) {
-            vec4 stored = storedMap(q, g);
-            overflow = overflow || (g == 0 && stored.x < 0.0);
-            vec4 d = abs(stored);
-            for (int j = 0; j < 4; ++j)
-                if (abs(d[j] - z) < gap) {
-                    gap = abs(d[j] - z);
-                    best = 4 * g + j;
-                }
-        }
+        PixelLayers l = pixelLayers(q);
+        for (int i = 0; i < kDepthSlots; ++i)
+            if (abs(layerDepth(l, i) - z) < gap) {
+                gap = abs(layerDepth(l, i) - z);
+                best = i;
+            }
         vec2 w = mix(1.0 - f, f, vec2(offset));
         if (best < 0) {
             missing += w.x * w.y;
             continue;
         }
-        uvec2 a = layerAttrOf(q, best, overflow);
+        uvec2 a = layerAttrOf(q, best, l.overflow);
         if (layerGlass(a) != glass) {
             missing += w.x * w.y;
             continue;
@@ -268,12 +258,11 @@ Crossing estimateExit(vec3 P1, vec3 V, vec3 N1, vec3 T1, float eta, uvec2 entryA
     Crossing c = noCrossing(P1, false);
     c.found = true;
     float z1 = -P1.z, next = 0.0;
-    for (int g = 0; g < kDepthGroups; ++g) {
-        vec4 d = layerDepths(pixelOf(P1), g);
-        for (int k = 0; k < 4; ++k)
-            if (d[k] < UNUSED_DEPTH && d[k] > z1 + 1e-5 * z1 && (next == 0.0 || d[k] < next))
-                next = d[k];
-    }
+    PixelLayers l = pixelLayers(pixelOf(P1));
+    for (int i = 0; i < kDepthSlots; ++i)
+        if (layerDepth(l, i) < UNUSED_DEPTH && layerDepth(l, i) > z1 + 1e-5 * z1 &&
+            (next == 0.0 || layerDepth(l, i) < next))
+            next = layerDepth(l, i);
     float dV = next > 0.0 ? (next - z1) / max(abs(V.z), 1e-4) : 0.0;
     float d = wymanDistance(V, N1, T1, eta, dV, layerNormalDistance(entryAttr, z1));
     // Nothing to estimate from (an open surface: no layer behind the entry, no d_N): no exit,
