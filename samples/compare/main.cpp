@@ -1,4 +1,5 @@
 // glass-compare: PSNR and SSIM between two images (over a mask if given) and an error heatmap.
+#include "../common/Cli.h"
 #include "../common/ToolMain.h"
 #include "engine/capture/Image.h"
 #include "engine/capture/Metrics.h"
@@ -11,24 +12,16 @@
 
 namespace {
 
-constexpr const char* kUsage =
-    R"(usage: glass-compare A.png B.png [--mask M.png] [--heatmap OUT.png] [--json]
-       glass-compare --contact-sheet OUT.png [--columns N] [--cell W] IMAGE...
+constexpr const char* kDescription =
+    R"(glass-compare A.png B.png: scores image A against image B (same size): PSNR over RGB and
+mean SSIM of luminance (8x8 windows), over every pixel and, with --mask, over the pixels where M
+is not black. --heatmap writes the per-pixel error as a colour ramp (black, blue, yellow, red at
+64/255 and over).
+glass-compare --contact-sheet OUT.png IMAGE...: lays the images (PNG or JPEG, any sizes) out in
+a grid of --columns columns of cells --cell pixels wide, each image fitted to its cell.)";
 
-Scores image A against image B (same size): PSNR over RGB and mean SSIM of luminance (8x8
-windows), over every pixel and, with --mask, over the pixels where M is not black. --heatmap
-writes the per-pixel error as a colour ramp (black, blue, yellow, red at 64/255 and over).
-
---contact-sheet lays the images (PNG or JPEG, any sizes) out in a grid of N columns (default
-2) of cells W pixels wide (default 256), each image fitted to its cell, and writes it to OUT.
-
-Exit status: 0 success, 1 an image could not be read or the sizes differ, 2 bad arguments.
-)";
-
-int usageError(const std::string& message) {
-    std::fprintf(stderr, "glass-compare: %s\n\n%s", message.c_str(), kUsage);
-    return 2;
-}
+constexpr const char* kExitStatus =
+    "Exit status: 0 success, 1 an image could not be read or the sizes differ, 2 bad arguments.";
 
 } // namespace
 
@@ -37,32 +30,28 @@ int run(int argc, char** argv) {
     std::optional<std::string> maskPath, heatmapPath, sheetPath;
     int columns = 2, cell = 256;
     bool json = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--json") {
-            json = true;
-        } else if (arg == "--mask" || arg == "--heatmap" || arg == "--contact-sheet") {
-            if (i + 1 >= argc)
-                return usageError(arg + " needs a value");
-            (arg == "--mask" ? maskPath : arg == "--heatmap" ? heatmapPath : sheetPath) = argv[++i];
-        } else if (arg == "--columns" || arg == "--cell") {
-            int n = 0;
-            if (i + 1 >= argc || std::sscanf(argv[i + 1], "%d", &n) != 1 || n < 1 || n > 4096)
-                return usageError(arg + " needs a whole number from 1 to 4096");
-            (arg == "--columns" ? columns : cell) = n;
-            ++i;
-        } else if (!arg.empty() && arg[0] == '-') {
-            return usageError("unknown option " + arg);
-        } else {
-            images.push_back(arg);
-        }
-    }
+    CLI::App app{"", "glass-compare"};
+    tool::configure(app, kDescription, kExitStatus);
+    app.add_option("images", images, "A.png B.png, or the contact sheet's images")
+        ->type_name("IMAGE");
+    app.add_option("--mask", maskPath, "score only where this image is not black")
+        ->type_name("M.png");
+    app.add_option("--heatmap", heatmapPath, "write the per-pixel error as a colour ramp")
+        ->type_name("OUT.png");
+    app.add_flag("--json", json, "print the scores as JSON");
+    app.add_option("--contact-sheet", sheetPath, "write the images side by side into OUT.png")
+        ->type_name("OUT.png");
+    app.add_option("--columns", columns, "the contact sheet's columns (default 2)")
+        ->check(tool::range(1, 4096))
+        ->type_name("N");
+    app.add_option("--cell", cell, "the contact sheet's cell width in pixels (default 256)")
+        ->check(tool::range(1, 4096))
+        ->type_name("W");
+    if (const auto code = tool::parseArguments(app, argc, argv))
+        return *code;
     if (sheetPath) {
         if (images.empty())
-            return usageError("--contact-sheet needs images");
+            return tool::usageError(app, "--contact-sheet needs images");
         std::vector<capture::Image> read;
         for (const std::string& path : images) {
             auto image = capture::readPng(path);
@@ -82,7 +71,7 @@ int run(int argc, char** argv) {
         return 0;
     }
     if (images.size() != 2)
-        return usageError("needs exactly two images");
+        return tool::usageError(app, "needs exactly two images");
     auto a = capture::readPng(images[0]);
     auto b = capture::readPng(images[1]);
     for (const auto* image : {&a, &b})

@@ -1,0 +1,172 @@
+// The tools' command lines, parsed by CLI11: the help `--help` prints is generated from the
+// options' own descriptions, and every tool answers a bad argument alike: a message naming the
+// argument on stderr, a pointer to --help, exit status 2.
+#pragma once
+
+#include "engine/plugin/ParameterSet.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tool {
+
+/** A bad argument, or a bad combination found after parsing: the message on stderr, 2. */
+inline int usageError(const CLI::App& app, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", app.get_name().c_str(),
+                 message.c_str(), app.get_name().c_str());
+    return 2;
+}
+
+/** Parses argv into `app`: nothing to go on with; 0 after --help (the help on stdout); 2 after a
+ *  bad argument (the message on stderr). */
+inline std::optional<int> parseArguments(CLI::App& app, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::fputs(app.help().c_str(), stdout);
+        return 0;
+    } catch (const CLI::ExtrasError& error) { // "...not expected: ARGS": name them alike
+        const std::string what = error.what();
+        const std::string extras = what.substr(what.rfind(": ") + 2);
+        return usageError(app,
+                          (extras[0] == '-' ? "unknown option " : "unexpected argument ") + extras);
+    } catch (const CLI::ParseError& error) {
+        return usageError(app, error.what());
+    }
+    return std::nullopt;
+}
+
+/** CLI11's help with each option's description wrapped to 100 columns. */
+class WrappingFormatter : public CLI::Formatter {
+public:
+    static constexpr std::size_t kColumn = 28, kWidth = 100;
+    WrappingFormatter() { column_width(kColumn); }
+    std::string make_option_desc(const CLI::Option* option) const override {
+        std::string wrapped, line;
+        std::istringstream words(CLI::Formatter::make_option_desc(option));
+        for (std::string word; words >> word;) {
+            if (!line.empty() && kColumn + line.size() + 1 + word.size() > kWidth) {
+                wrapped += line + "\n";
+                line.clear();
+            }
+            line += (line.empty() ? "" : " ") + word;
+        }
+        return wrapped + line;
+    }
+};
+
+/** The app with the tools' common settings: `description` above the options, `footer`
+ *  (the exit statuses) below them, help text wrapped to 100 columns. */
+inline void configure(CLI::App& app, const std::string& description, const std::string& footer) {
+    app.description(description + "\n");
+    app.footer(footer);
+    app.formatter(std::make_shared<WrappingFormatter>());
+}
+
+/** One of `choices`, exactly (the help shows them in the option's own text). */
+inline CLI::Validator oneOf(std::vector<std::string> choices) {
+    CLI::Validator member = CLI::IsMember(std::move(choices));
+    member.description("");
+    return member;
+}
+
+/** A whole number in lo..hi (the help shows the bounds in the option's own text). */
+inline CLI::Validator range(double lo, double hi) {
+    return CLI::Range(lo, hi).description("");
+}
+
+/** "on" or "off" into a bool. */
+inline CLI::Option* addOnOff(CLI::App& app, const std::string& name, bool& value,
+                             const std::string& help) {
+    return app
+        .add_option_function<std::string>(
+            name, [&value](const std::string& v) { value = v == "on"; }, help)
+        ->check(oneOf({"on", "off"}))
+        ->type_name("on|off");
+}
+
+/** WxH within 1..`limit` into `size` (x, y). */
+template <class Size>
+CLI::Option* addSize(CLI::App& app, const std::string& name, Size& size, int limit,
+                     const std::string& help) {
+    return app
+        .add_option_function<std::string>(
+            name,
+            [&size, name, limit](const std::string& v) {
+                int w = 0, h = 0;
+                char extra = 0;
+                if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
+                    w > limit || h > limit)
+                    throw CLI::ValidationError(
+                        name, "needs WxH within 1.." + std::to_string(limit) + ", got '" + v + "'");
+                size.x = w;
+                size.y = h;
+            },
+            help)
+        ->type_name("WxH");
+}
+
+/** A finite number, as the options that take one read it. */
+inline bool parseNumber(const std::string& s, double& out) {
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return !s.empty() && *end == '\0' && std::isfinite(out);
+}
+
+/** One option per parameter of `parameters` (--NAME VALUE, its help and choices from the
+ *  parameter's declaration, checked as ParameterSet::set checks it), each given one appended to
+ *  `given` as (name, value), in `group`; a value `intercept` takes (returns true for) is the
+ *  tool's own and goes neither through the check nor into `given`. */
+inline void
+addParameterOptions(CLI::App& app, const plugin::ParameterSet& parameters,
+                    std::vector<std::pair<std::string, std::string>>& given,
+                    const std::string& group,
+                    std::function<bool(const std::string&, const std::string&)> intercept = {}) {
+    for (const plugin::Parameter& p : parameters.declarations()) {
+        std::ostringstream bounds;
+        bounds << p.min << ".." << p.max;
+        std::string type = bounds.str();
+        if (!p.choices.empty()) {
+            type.clear();
+            for (const std::string& choice : p.choices)
+                type += (type.empty() ? "" : "|") + choice;
+        } else if (p.type == plugin::Parameter::Type::Color) {
+            type = "R,G,B";
+        } else if (p.type == plugin::Parameter::Type::Bool) {
+            type = "on|off";
+        }
+        std::ostringstream fallback;
+        if (!p.choices.empty())
+            fallback << p.choices[std::size_t(p.defaultValue)];
+        else if (p.type == plugin::Parameter::Type::Bool)
+            fallback << (p.defaultValue != 0.0 ? "on" : "off");
+        else if (p.type == plugin::Parameter::Type::Color)
+            fallback << p.defaultValue << "," << p.defaultValue << "," << p.defaultValue;
+        else
+            fallback << p.defaultValue;
+        app.add_option_function<std::string>(
+               "--" + p.name,
+               [&given, &parameters, intercept, name = p.name](const std::string& v) {
+                   if (intercept && intercept(name, v))
+                       return;
+                   plugin::ParameterSet check = parameters;
+                   if (auto status = check.set(name, v); !status)
+                       throw CLI::ValidationError("--" + name, status.error().message);
+                   given.emplace_back(name, v);
+               },
+               p.help + " (default " + fallback.str() + ")")
+            ->type_name(type)
+            ->group(group);
+    }
+}
+
+} // namespace tool
