@@ -2,6 +2,7 @@
 // grid), the methods interleaved frame by frame so that their ratios hold on a noisy machine.
 #include "Plot.h"
 
+#include "../common/Cli.h"
 #include "../common/HeadlessScene.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
@@ -33,56 +34,22 @@
 
 namespace {
 
-const char* const kUsage =
-    R"(usage: glass-bench MODEL|SCENE [MODEL...] [--methods opaque,sir,isr,dir] [--subdiv 0,1,2]
-                   [--instances 1,4,16,64] [--size WxH] [--frames N] [--warmup W]
-                   [--glass all|auto] [--ground] [--set KEY=VALUE]... [--temporal off,on]
-                   [--history-weight W]
-                   [--json FILE] [--plot PNG] [--force]
-
-Renders MODEL (a scene file, or several models side by side) headless (EGL) at each
-OpenSubdiv level of --subdiv (default 0: the file's triangles; 0..4, refined every frame on the
-GPU from the deformed mesh) with each method, interleaved frame by frame (opaque, sir, isr, dir,
-opaque, ...) while the clips play (1/30 s per round), after W warm-up rounds (default 10), for N
-measured rounds (default 60), at WxH (default 512x512). --instances N,... also runs each count N
-of characters: copies of the scene's characters in turn, on a square grid in the x-z plane, copy
-k at phase k/N of its clip, the camera framing all. Per method, level and count: median and p95
+constexpr const char* kDescription =
+    R"(glass-bench MODEL|SCENE [MODEL...] [OPTIONS]: renders MODEL (a scene file, or several models
+side by side) headless (EGL) at each OpenSubdiv level of --subdiv with each method, interleaved
+frame by frame (opaque, sir, isr, dir, opaque, ...) while the clips play (1/30 s per round),
+after --warmup rounds, for --frames measured rounds. Per method, level and count: median and p95
 frame time (render + finish, wall clock), the median CPU time of the frame on the render thread
-(animate, upload, record, issue and, on a CPU rasteriser, execute; "cpu ms") and of the
-engine's own work ("animate+record ms": pose every character, upload the skin matrices, list
-and claim the draw items, record and compile the frame graph), each pass's median GPU and CPU time, triangles drawn, pixels
-the world covers (CPU coverage of the deformed file triangles at the middle of the clip) and the
-GPU memory of the frame graph's pooled textures. Without --instances every pass is finished
-before its end timestamp (exact per-pass GPU times; the CPU times then include those waits);
-with it, frames pipeline as in an application and pass times come from the timer queries. --glass all
-(default) plays every mesh as glass; --ground draws the ground plane (opaque geometry the glass
-sees through its nearby-scene walk; without opaque geometry the walk is skipped); --set sets any
-other refraction parameter for every method (e.g. --set nearby=off, --set search-steps=8).
---temporal off,on also runs each method with temporal accumulation ("dir+temporal": the jitter,
-the motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's and
-the hybrid's samples one a frame), with its frame time as a ratio to the same method without it
-("x off") and the history's GPU memory (each such run has a renderer of its own, whose history
-carries across its frames as an application's does); --history-weight W sets the history's
-weight (0..0.99, default 0.8).
+(animate, upload, record, issue and, on a CPU rasteriser, execute; "cpu ms") and of the engine's
+own work ("animate+record ms": pose every character, upload the skin matrices, list and claim
+the draw items, record and compile the frame graph), each pass's median GPU and CPU time,
+triangles drawn, pixels the world covers (CPU coverage of the deformed file triangles at the
+middle of the clip) and the GPU memory of the frame graph's pooled textures. Without
+--instances every pass is finished before its end timestamp (exact per-pass GPU times; the CPU
+times then include those waits); with it, frames pipeline as in an application and pass times
+come from the timer queries. Prints a table (and a progress line on a terminal).)";
 
-Prints a table (and a progress line on a terminal); --json FILE also writes everything as JSON,
---plot PNG a chart of each method's median frame time against the triangles drawn (both
-atomically; an existing file needs --force). Exit status: 0, 1 a load or render error, 2 bad
-arguments.
-)";
-
-int usageError(const std::string& message) {
-    std::fprintf(stderr, "glass-bench: %s\n\n%s", message.c_str(), kUsage);
-    return 2;
-}
-
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');)
-        out.push_back(item);
-    return out;
-}
+constexpr const char* kExitStatus = "Exit status: 0, 1 a load or render error, 2 bad arguments.";
 
 double percentile(std::vector<double> values, double p) {
     if (values.empty())
@@ -318,266 +285,305 @@ capture::Image plot(const nlohmann::json& report) {
     return bench::drawChart(chart);
 }
 
-int run(int argc, char** argv) {
+struct Options {
     std::string jsonPath, plotPath, glass = "all";
     std::vector<std::string> paths;
     std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
-    std::vector<int> levels = {0};
-    std::vector<int> instances; // empty: the world as loaded
+    std::vector<std::string> levelNames = {"0"}, instanceNames, temporalNames = {"off"};
+    std::vector<int> levels;    ///< levelNames'
+    std::vector<int> instances; ///< instanceNames' (empty: the world as loaded)
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
     bool force = false, ground = false;
     std::vector<std::pair<std::string, std::string>> assignments;
-    std::vector<bool> temporalModes = {false};
+    std::vector<bool> temporalModes; ///< temporalNames'
     float historyWeight = render::TemporalSettings{}.historyWeight;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const bool hasValue = i + 1 < argc;
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--force") {
-            force = true;
-        } else if (arg == "--ground") {
-            ground = true;
-        } else if (arg == "--methods" && hasValue) {
-            methods = split(argv[++i]);
-        } else if (arg == "--subdiv" && hasValue) {
-            levels.clear();
-            for (const std::string& level : split(argv[++i])) {
-                char* end = nullptr;
-                const long n = std::strtol(level.c_str(), &end, 10);
-                if (level.empty() || *end != '\0' || n < 0 ||
-                    n > core::limits::kMaxSubdivisionLevel)
-                    return usageError("--subdiv needs levels 0.." +
-                                      std::to_string(core::limits::kMaxSubdivisionLevel) +
-                                      ", got '" + level + "'");
-                levels.push_back(int(n));
-            }
-        } else if (arg == "--instances" && hasValue) {
-            for (const std::string& count : split(argv[++i])) {
-                char* end = nullptr;
-                const long n = std::strtol(count.c_str(), &end, 10);
-                if (count.empty() || *end != '\0' || n < 1 ||
-                    n > long(core::limits::kMaxCharacters))
-                    return usageError("--instances needs counts 1.." +
-                                      std::to_string(core::limits::kMaxCharacters) + ", got '" +
-                                      count + "'");
-                instances.push_back(int(n));
-            }
-        } else if (arg == "--size" && hasValue) {
-            char extra = 0;
-            if (std::sscanf(argv[++i], "%dx%d%c", &size.x, &size.y, &extra) != 2 || size.x < 16 ||
-                size.y < 16 || size.x > 8192 || size.y > 8192)
-                return usageError("--size needs WxH within 16..8192");
-        } else if ((arg == "--frames" || arg == "--warmup") && hasValue) {
-            (arg == "--frames" ? frames : warmup) = std::atoi(argv[++i]);
-            if (frames < 1 || warmup < 0)
-                return usageError(arg + " needs a count");
-        } else if (arg == "--temporal" && hasValue) {
-            temporalModes.clear();
-            for (const std::string& mode : split(argv[++i])) {
-                if (mode != "off" && mode != "on")
-                    return usageError("--temporal needs off, on or off,on");
-                temporalModes.push_back(mode == "on");
-            }
-        } else if (arg == "--history-weight" && hasValue) {
-            char* end = nullptr;
-            historyWeight = std::strtof(argv[++i], &end);
-            if (*end != '\0' || !(historyWeight >= 0.0f && historyWeight <= 0.99f))
-                return usageError("--history-weight needs a weight in 0..0.99");
-        } else if (arg == "--json" && hasValue) {
-            jsonPath = argv[++i];
-        } else if (arg == "--plot" && hasValue) {
-            plotPath = argv[++i];
-        } else if (arg == "--glass" && hasValue) {
-            glass = argv[++i];
-        } else if (arg == "--set" && hasValue) {
-            const std::string assignment = argv[++i];
-            const std::size_t equals = assignment.find('=');
-            if (equals == std::string::npos)
-                return usageError("--set needs KEY=VALUE");
-            assignments.emplace_back(assignment.substr(0, equals), assignment.substr(equals + 1));
-        } else if (!arg.empty() && arg[0] != '-') {
-            paths.push_back(arg);
-        } else {
-            return usageError("unexpected '" + arg + "'");
-        }
-    }
-    if (paths.empty())
-        return usageError("no model given");
-    const std::string model = paths.size() == 1 ? paths[0] : paths[0] + " ...";
-    for (const std::string& path : {jsonPath, plotPath})
-        if (!path.empty() && !force && std::filesystem::exists(path)) {
-            std::fprintf(stderr, "glass-bench: %s exists (use --force to replace it)\n",
-                         path.c_str());
-            return 1;
-        }
-    // Checked on a copy of the parameters first: bad arguments exit 2 before any loading.
-    plugin::ParameterSet parameters = refraction::createPlugin()->parameters();
-    for (const std::string& method : methods)
-        if (auto ok = plugin::ParameterSet(parameters).set("method", method); !ok)
-            return usageError("--methods: " + ok.error().message);
-    assignments.insert(assignments.begin(), {"glass", glass});
-    for (const auto& [key, value] : assignments)
-        if (auto ok = parameters.set(key, value); !ok)
-            return usageError("--" + std::string(key == "glass" ? "glass" : "set " + key) + ": " +
-                              ok.error().message);
+    plugin::ParameterSet parameters; ///< the glass's, with --glass and every --set applied
+};
 
-    auto opened = tool::openHeadlessScene(paths);
-    if (!opened) {
-        std::fprintf(stderr, "glass-bench: %s\n", opened.error().message.c_str());
-        return 1;
-    }
-    tool::HeadlessScene& headless = *opened;
+/** Whether `text` is a whole number in lo..hi, into `n`. */
+bool wholeNumber(const std::string& text, long lo, long hi, long& n) {
+    char* end = nullptr;
+    n = std::strtol(text.c_str(), &end, 10);
+    return !text.empty() && *end == '\0' && n >= lo && n <= hi;
+}
+
+void addOptions(CLI::App& app, Options& o) {
+    app.add_option("models", o.paths, "glTF models or a scene file (.json)")
+        ->type_name("MODEL|SCENE")
+        ->required();
+    tool::addList(
+        app, "--methods", o.methods,
+        [&o](const std::string& method) {
+            return plugin::ParameterSet(o.parameters).set("method", method).ok();
+        },
+        "methods of the refraction plugin", "the methods to run (default opaque,sir,isr,dir)")
+        ->type_name("M,...");
+    const long maxLevel = core::limits::kMaxSubdivisionLevel;
+    tool::addList(
+        app, "--subdiv", o.levelNames,
+        [maxLevel](const std::string& level) {
+            long n = 0;
+            return wholeNumber(level, 0, maxLevel, n);
+        },
+        "levels 0.." + std::to_string(maxLevel),
+        "OpenSubdiv levels, each refined every frame on the GPU from the deformed mesh "
+        "(default 0: the file's triangles)")
+        ->type_name("L,...");
+    const long maxCharacters = long(core::limits::kMaxCharacters);
+    tool::addList(
+        app, "--instances", o.instanceNames,
+        [maxCharacters](const std::string& count) {
+            long n = 0;
+            return wholeNumber(count, 1, maxCharacters, n);
+        },
+        "counts 1.." + std::to_string(maxCharacters),
+        "also runs each count N of characters: copies of the scene's characters in turn, on a "
+        "square grid in the x-z plane, copy k at phase k/N of its clip, the camera framing all")
+        ->type_name("N,...");
+    tool::addSize(app, "--size", o.size, 16, 8192, "frame size (default 512x512)");
+    app.add_option("--frames", o.frames, "measured rounds (default 60)")
+        ->check(tool::range(1, 100000))
+        ->type_name("N");
+    app.add_option("--warmup", o.warmup, "warm-up rounds (default 10)")
+        ->check(tool::range(0, 100000))
+        ->type_name("W");
+    app.add_option("--glass", o.glass,
+                   "all (default): play every mesh as glass; auto: the "
+                   "transmissive materials")
+        ->check(tool::oneOf({"all", "auto"}))
+        ->type_name("all|auto");
+    app.add_flag("--ground", o.ground,
+                 "draw the ground plane (opaque geometry the glass sees through its nearby-scene "
+                 "walk; without opaque geometry the walk is skipped)");
+    app.add_option_function<std::string>(
+           "--set",
+           [&o](const std::string& v) {
+               const std::size_t equals = v.find('=');
+               if (equals == std::string::npos)
+                   throw CLI::ValidationError("--set", "needs KEY=VALUE, got '" + v + "'");
+               o.assignments.emplace_back(v.substr(0, equals), v.substr(equals + 1));
+           },
+           "sets any other refraction parameter for every method (e.g. --set nearby=off, --set "
+           "search-steps=8)")
+        ->type_name("KEY=VALUE")
+        ->trigger_on_parse()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    tool::addList(
+        app, "--temporal", o.temporalNames,
+        [](const std::string& mode) { return mode == "on" || mode == "off"; }, "off, on or off,on",
+        "on: also runs each method with temporal accumulation (\"dir+temporal\": the jitter, the "
+        "motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's "
+        "and the hybrid's samples one a frame), with its frame time as a ratio to the same "
+        "method without it (\"x off\") and the history's GPU memory (each such run has a "
+        "renderer of its own, whose history carries across its frames as an application's "
+        "does)")
+        ->type_name("off,on");
+    app.add_option("--history-weight", o.historyWeight, "the history's weight (default 0.8)")
+        ->check(tool::range(0.0, 0.99))
+        ->type_name("0..0.99");
+    app.add_option("--json", o.jsonPath, "also write everything as JSON (atomically)")
+        ->type_name("FILE");
+    app.add_option("--plot", o.plotPath,
+                   "also write a chart of each method's median frame time against the triangles "
+                   "drawn (atomically)")
+        ->type_name("PNG");
+    app.add_flag("--force", o.force, "replace the --json and --plot files if they exist");
+}
+
+std::optional<int> parse(int argc, char** argv, Options& o) {
+    o.parameters = refraction::createPlugin()->parameters();
+    CLI::App app{"", "glass-bench"};
+    tool::configure(app, kDescription, kExitStatus);
+    addOptions(app, o);
+    if (const auto code = tool::parseArguments(app, argc, argv))
+        return code;
+    for (const std::string& level : o.levelNames)
+        o.levels.push_back(std::stoi(level));
+    for (const std::string& count : o.instanceNames)
+        o.instances.push_back(std::stoi(count));
+    for (const std::string& mode : o.temporalNames)
+        o.temporalModes.push_back(mode == "on");
+    // Checked on the parameters before any loading.
+    o.assignments.insert(o.assignments.begin(), {"glass", o.glass});
+    for (const auto& [key, value] : o.assignments)
+        if (auto ok = o.parameters.set(key, value); !ok)
+            return tool::usageError(app, "--" +
+                                             std::string(key == "glass" ? "glass" : "set " + key) +
+                                             ": " + ok.error().message);
+    return std::nullopt;
+}
+
+/** The runs of one configuration: a method each, with and without accumulation; a temporal
+ *  run gets its own plugin and renderer. */
+core::Result<std::vector<MethodRun>> createRuns(const Options& o, tool::HeadlessScene& headless,
+                                                const scene::World& world, int level,
+                                                const render::Bounds& bounds) {
+    std::vector<MethodRun> runs;
+    for (bool temporal : o.temporalModes)
+        for (const std::string& method : o.methods) {
+            MethodRun run;
+            run.method = method;
+            run.temporal = temporal;
+            if (temporal) {
+                auto created = render::Renderer::create(headless.environment, *headless.context);
+                if (!created)
+                    return created.error();
+                run.renderer = std::move(*created);
+                run.glass = refraction::createPlugin();
+                run.glass->parameters() = o.parameters;
+                (void)run.glass->parameters().set("method", method);
+                core::Status ready = run.renderer->addPlugin(run.glass.get());
+                if (ready)
+                    ready = run.renderer->setSubdivisionLevel(level);
+                if (ready)
+                    ready = run.renderer->prepare(world);
+                if (!ready)
+                    return ready.error();
+                run.renderer->setGround(render::GroundPlane::under(bounds));
+            }
+            runs.push_back(std::move(run));
+        }
+    return runs;
+}
+
+/** One round's frame of run `r` at `time`, timed and recorded (after the warm-up). */
+core::Status measureFrame(MethodRun& r, tool::HeadlessScene& headless, const scene::World& world,
+                          const render::Camera& camera, render::RenderSettings& settings,
+                          double time, bool measured, bool last, const Options& o) {
     plugin::Plugin* const plugin = headless.glass.get();
-    plugin->parameters() = parameters;
-    render::RenderSettings settings;
-    settings.size = size;
-    settings.exactPassTimes = instances.empty();
-    settings.ground = ground || headless.world.ground;
-    const bool terminal = isatty(STDERR_FILENO) != 0;
-    const int rounds = warmup + frames;
+    if (!r.renderer)
+        (void)plugin->parameters().set("method", r.method);
+    settings.temporal.enabled = r.temporal;
+    settings.temporal.historyWeight = o.historyWeight;
+    render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
+    const auto start = std::chrono::steady_clock::now();
+    auto stats = renderer.render(world, camera, settings, time);
+    gl::finish();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!stats)
+        return stats.error();
+    if (!measured)
+        return {};
+    if (last && r.method != "opaque") // read back after timing
+        if (const auto* refractionPlugin =
+                dynamic_cast<const refraction::RefractionPlugin*>(r.glass ? r.glass.get() : plugin))
+            r.layers = refractionPlugin->layerStats();
+    r.frameMs.push_back(ms);
+    r.cpuMs.push_back(stats->cpuMs);
+    r.engineMs.push_back(stats->animateMs + stats->recordMs);
+    r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
+    r.historyBytes = std::max(r.historyBytes, stats->historyBytes);
+    for (const render::PassStats& p : stats->passes) {
+        if (!r.passes.count(p.name))
+            r.passOrder.push_back(p.name);
+        r.passes[p.name].first.push_back(p.gpuMs);
+        r.passes[p.name].second.push_back(p.cpuMs);
+    }
+    return {};
+}
 
-    std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), size.x, size.y,
-                frames, warmup, gl::rendererString());
+/** Every method's rounds on `world` at subdivision `level`, its rows added to `report`. */
+core::Status benchWorld(const Options& o, tool::HeadlessScene& headless, const scene::World& world,
+                        int level, render::RenderSettings& settings, nlohmann::json& report) {
+    const render::Bounds bounds = render::worldBounds(world);
+    headless.renderer->setGround(render::GroundPlane::under(bounds));
+    const render::Camera camera = tool::viewOf(world, bounds, o.size);
+    if (auto prepared = headless.renderer->prepare(world); !prepared)
+        return prepared;
+    std::size_t triangles = 0;
+    for (std::size_t c = 0; c < headless.renderer->characterCount(); ++c)
+        for (const auto& instance : headless.renderer->geometry(c).instances())
+            for (const auto& primitive : instance.primitives)
+                triangles += primitive.indexCount / 3;
+    const double duration = tool::sweepPeriod(world);
+    const std::size_t covered = coveredPixels(world, 0.5 * duration, camera, o.size);
+    auto runs = createRuns(o, headless, world, level, bounds);
+    if (!runs)
+        return runs.error();
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    const int rounds = o.warmup + o.frames;
+    for (int round = 0; round < rounds; ++round) {
+        const double time = std::fmod(round / 30.0, duration);
+        for (MethodRun& r : *runs)
+            if (auto measured = measureFrame(r, headless, world, camera, settings, time,
+                                             round >= o.warmup, round + 1 == rounds, o);
+                !measured)
+                return measured;
+        if (terminal)
+            std::fprintf(stderr, "\rglass-bench: level %d, %zu characters, %s round %d/%d   ",
+                         level, world.characters.size(), round < o.warmup ? "warm-up" : "measured",
+                         round + 1, rounds);
+    }
+    if (terminal)
+        std::fprintf(stderr, "\n");
+    if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0)
+        return core::Error{"GL errors (see the log)"};
+    for (nlohmann::json& row : summarise(*runs, level, world.characters.size(), triangles)) {
+        row["covered_pixels"] = covered;
+        report["results"].push_back(std::move(row));
+    }
+    return {};
+}
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "glass-bench: %s\n", message.c_str());
+    return 1;
+}
+
+int run(int argc, char** argv) {
+    Options o;
+    if (const auto code = parse(argc, argv, o))
+        return *code;
+    const std::string model = o.paths.size() == 1 ? o.paths[0] : o.paths[0] + " ...";
+    for (const std::string& path : {o.jsonPath, o.plotPath})
+        if (!path.empty() && !o.force && std::filesystem::exists(path))
+            return fail(path + " exists (use --force to replace it)");
+    auto opened = tool::openHeadlessScene(o.paths);
+    if (!opened)
+        return fail(opened.error().message);
+    tool::HeadlessScene& headless = *opened;
+    headless.glass->parameters() = o.parameters;
+    render::RenderSettings settings;
+    settings.size = o.size;
+    settings.exactPassTimes = o.instances.empty();
+    settings.ground = o.ground || headless.world.ground;
+
+    std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), o.size.x, o.size.y,
+                o.frames, o.warmup, gl::rendererString());
     std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
                 "cpu ms | animate+record ms | transients MiB | temporal: x off, history | layers | "
                 "trace | slowest passes (GPU ms) |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|\n");
     nlohmann::json report = {{"model", model},
-                             {"paths", paths},
+                             {"paths", o.paths},
                              {"renderer", gl::rendererString()},
-                             {"size", {size.x, size.y}},
-                             {"frames", frames},
-                             {"warmup", warmup},
-                             {"settings", assignments},
+                             {"size", {o.size.x, o.size.y}},
+                             {"frames", o.frames},
+                             {"warmup", o.warmup},
+                             {"settings", o.assignments},
                              {"ground", settings.ground},
                              {"exact_pass_times", settings.exactPassTimes},
                              {"results", nlohmann::json::array()}};
     std::vector<scene::World> worlds;
-    if (instances.empty())
+    if (o.instances.empty())
         worlds.push_back(headless.world);
-    for (int count : instances)
+    for (int count : o.instances)
         worlds.push_back(gridWorld(headless.world, count));
-    for (int level : levels) {
-        if (auto refined = headless.renderer->setSubdivisionLevel(level); !refined) {
-            std::fprintf(stderr, "glass-bench: %s: %s\n", model.c_str(),
-                         refined.error().message.c_str());
-            return 1;
-        }
-        for (const scene::World& world : worlds) {
-            const render::Bounds bounds = render::worldBounds(world);
-            headless.renderer->setGround(render::GroundPlane::under(bounds));
-            const render::Camera camera = tool::viewOf(world, bounds, size);
-            if (auto prepared = headless.renderer->prepare(world); !prepared) {
-                std::fprintf(stderr, "glass-bench: %s\n", prepared.error().message.c_str());
-                return 1;
-            }
-            std::size_t triangles = 0;
-            for (std::size_t c = 0; c < headless.renderer->characterCount(); ++c)
-                for (const auto& instance : headless.renderer->geometry(c).instances())
-                    for (const auto& primitive : instance.primitives)
-                        triangles += primitive.indexCount / 3;
-            const double duration = tool::sweepPeriod(world);
-            const std::size_t covered = coveredPixels(world, 0.5 * duration, camera, size);
-            std::vector<MethodRun> runs;
-            for (bool temporal : temporalModes)
-                for (const std::string& method : methods) {
-                    MethodRun run;
-                    run.method = method;
-                    run.temporal = temporal;
-                    if (temporal) {
-                        auto created =
-                            render::Renderer::create(headless.environment, *headless.context);
-                        if (!created) {
-                            std::fprintf(stderr, "glass-bench: %s\n",
-                                         created.error().message.c_str());
-                            return 1;
-                        }
-                        run.renderer = std::move(*created);
-                        run.glass = refraction::createPlugin();
-                        run.glass->parameters() = parameters;
-                        (void)run.glass->parameters().set("method", method);
-                        core::Status ready = run.renderer->addPlugin(run.glass.get());
-                        if (ready)
-                            ready = run.renderer->setSubdivisionLevel(level);
-                        if (ready)
-                            ready = run.renderer->prepare(world);
-                        if (!ready) {
-                            std::fprintf(stderr, "glass-bench: %s\n",
-                                         ready.error().message.c_str());
-                            return 1;
-                        }
-                        run.renderer->setGround(render::GroundPlane::under(bounds));
-                    }
-                    runs.push_back(std::move(run));
-                }
-            for (int round = 0; round < rounds; ++round) {
-                const double time = std::fmod(round / 30.0, duration);
-                for (MethodRun& r : runs) {
-                    if (!r.renderer)
-                        (void)plugin->parameters().set("method", r.method);
-                    settings.temporal.enabled = r.temporal;
-                    settings.temporal.historyWeight = historyWeight;
-                    render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
-                    const auto start = std::chrono::steady_clock::now();
-                    auto stats = renderer.render(world, camera, settings, time);
-                    gl::finish();
-                    const double ms = std::chrono::duration<double, std::milli>(
-                                          std::chrono::steady_clock::now() - start)
-                                          .count();
-                    if (!stats) {
-                        std::fprintf(stderr, "glass-bench: %s\n", stats.error().message.c_str());
-                        return 1;
-                    }
-                    if (round < warmup)
-                        continue;
-                    if (round + 1 == rounds && r.method != "opaque") // read back after timing
-                        if (const auto* refractionPlugin =
-                                dynamic_cast<const refraction::RefractionPlugin*>(
-                                    r.glass ? r.glass.get() : plugin))
-                            r.layers = refractionPlugin->layerStats();
-                    r.frameMs.push_back(ms);
-                    r.cpuMs.push_back(stats->cpuMs);
-                    r.engineMs.push_back(stats->animateMs + stats->recordMs);
-                    r.transientBytes = std::max(r.transientBytes, stats->transientBytes);
-                    r.historyBytes = std::max(r.historyBytes, stats->historyBytes);
-                    for (const render::PassStats& p : stats->passes) {
-                        if (!r.passes.count(p.name))
-                            r.passOrder.push_back(p.name);
-                        r.passes[p.name].first.push_back(p.gpuMs);
-                        r.passes[p.name].second.push_back(p.cpuMs);
-                    }
-                }
-                if (terminal)
-                    std::fprintf(stderr,
-                                 "\rglass-bench: level %d, %zu characters, %s round %d/%d   ",
-                                 level, world.characters.size(),
-                                 round < warmup ? "warm-up" : "measured", round + 1, rounds);
-            }
-            if (terminal)
-                std::fprintf(stderr, "\n");
-            if (gl::checkErrors("glass-bench") > 0 || gl::errorCount() > 0) {
-                std::fprintf(stderr, "glass-bench: GL errors (see the log)\n");
-                return 1;
-            }
-            for (nlohmann::json& row : summarise(runs, level, world.characters.size(), triangles)) {
-                row["covered_pixels"] = covered;
-                report["results"].push_back(std::move(row));
-            }
-        }
+    for (int level : o.levels) {
+        if (auto refined = headless.renderer->setSubdivisionLevel(level); !refined)
+            return fail(model + ": " + refined.error().message);
+        for (const scene::World& world : worlds)
+            if (auto benched = benchWorld(o, headless, world, level, settings, report); !benched)
+                return fail(benched.error().message);
     }
-    if (!jsonPath.empty())
-        if (auto written = core::writeFileAtomic(jsonPath, report.dump(2) + "\n"); !written) {
-            std::fprintf(stderr, "glass-bench: %s\n", written.error().message.c_str());
-            return 1;
-        }
-    if (!plotPath.empty())
-        if (auto written = capture::writePng(plotPath, plot(report)); !written) {
-            std::fprintf(stderr, "glass-bench: %s\n", written.error().message.c_str());
-            return 1;
-        }
+    if (!o.jsonPath.empty())
+        if (auto written = core::writeFileAtomic(o.jsonPath, report.dump(2) + "\n"); !written)
+            return fail(written.error().message);
+    if (!o.plotPath.empty())
+        if (auto written = capture::writePng(o.plotPath, plot(report)); !written)
+            return fail(written.error().message);
     return 0;
 }
 

@@ -6,10 +6,72 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace capture {
-namespace {} // namespace
+namespace {
+
+/** Temporal accumulation: "accumulate": N frames at each time from a fresh history, or
+ *  "temporal": {"warmup": W, "history_weight": H} to carry the history across the times. */
+core::Status readTemporal(const nlohmann::json& j, CaseFile& c, const std::string& where) {
+    c.session.accumulate = j.value("accumulate", 0);
+    if (c.session.accumulate < 0 || c.session.accumulate > 4096)
+        return core::Error{where + "\"accumulate\" must be 0..4096 frames"};
+    if (j.contains("temporal")) {
+        const auto& t = j["temporal"];
+        if (!t.is_object())
+            return core::Error{where + "\"temporal\" must be an object"};
+        c.session.temporal.enabled = true;
+        c.session.warmup = t.value("warmup", 10);
+        c.session.temporal.historyWeight =
+            t.value("history_weight", c.session.temporal.historyWeight);
+        if (c.session.warmup < 0 || c.session.warmup > 4096 ||
+            !(c.session.temporal.historyWeight >= 0.0f &&
+              c.session.temporal.historyWeight <= 0.99f))
+            return core::Error{where + "\"temporal\": warmup 0..4096, history_weight 0..0.99"};
+        if (c.times.size() > 1)
+            c.session.warmupStep = c.times[1] - c.times[0];
+    }
+    return {};
+}
+
+/** "camera": a position and target, or an orbit (azimuth, elevation), and the field of view. */
+void readCamera(const nlohmann::json& j, CaseFile& c) {
+    if (j.contains("camera") && j["camera"].is_object()) {
+        const auto& cam = j["camera"];
+        CameraOverride o;
+        if (cam.contains("position")) {
+            glm::vec3 position;
+            for (int k = 0; k < 3; ++k) {
+                position[k] = cam.at("position").at(std::size_t(k)).get<float>();
+                o.target[k] = cam.at("target").at(std::size_t(k)).get<float>();
+            }
+            o.position = position;
+        }
+        o.yfov = cam.value("yfov", 0.7f);
+        o.azimuth = cam.value("azimuth", 0.0f);
+        o.elevation = cam.value("elevation", 0.15f);
+        c.session.camera = o;
+    }
+}
+
+/** "plugins": each module's path (relative to the case file) and parameters. */
+void readPlugins(const nlohmann::json& j, CaseFile& c,
+                 const std::function<std::string(const std::string&)>& resolve) {
+    if (j.contains("plugins"))
+        for (const auto& p : j["plugins"]) {
+            SessionOptions::PluginSpec spec;
+            spec.path = resolve(p.at("path").get<std::string>());
+            if (p.contains("parameters"))
+                for (const auto& [key, value] : p["parameters"].items())
+                    spec.parameters.emplace_back(key, value.is_string() ? value.get<std::string>()
+                                                                        : value.dump());
+            c.session.plugins.push_back(spec);
+        }
+}
+
+} // namespace
 
 core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
     const std::string where = "glass-capture: " + path.string() + ": ";
@@ -58,52 +120,10 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         c.session.ground = j.value("ground", false);
         c.session.exposure = j.value("exposure", 1.0f);
         c.session.subdivision = j.value("subdiv", 0);
-        // Temporal accumulation: "accumulate": N frames at each time from a fresh history, or
-        // "temporal": {"warmup": W, "history_weight": H} to carry the history across the times.
-        c.session.accumulate = j.value("accumulate", 0);
-        if (c.session.accumulate < 0 || c.session.accumulate > 4096)
-            return core::Error{where + "\"accumulate\" must be 0..4096 frames"};
-        if (j.contains("temporal")) {
-            const auto& t = j["temporal"];
-            if (!t.is_object())
-                return core::Error{where + "\"temporal\" must be an object"};
-            c.session.temporal.enabled = true;
-            c.session.warmup = t.value("warmup", 10);
-            c.session.temporal.historyWeight =
-                t.value("history_weight", c.session.temporal.historyWeight);
-            if (c.session.warmup < 0 || c.session.warmup > 4096 ||
-                !(c.session.temporal.historyWeight >= 0.0f &&
-                  c.session.temporal.historyWeight <= 0.99f))
-                return core::Error{where + "\"temporal\": warmup 0..4096, history_weight 0..0.99"};
-            if (c.times.size() > 1)
-                c.session.warmupStep = c.times[1] - c.times[0];
-        }
-        if (j.contains("camera") && j["camera"].is_object()) {
-            const auto& cam = j["camera"];
-            CameraOverride o;
-            if (cam.contains("position")) {
-                glm::vec3 position;
-                for (int k = 0; k < 3; ++k) {
-                    position[k] = cam.at("position").at(std::size_t(k)).get<float>();
-                    o.target[k] = cam.at("target").at(std::size_t(k)).get<float>();
-                }
-                o.position = position;
-            }
-            o.yfov = cam.value("yfov", 0.7f);
-            o.azimuth = cam.value("azimuth", 0.0f);
-            o.elevation = cam.value("elevation", 0.15f);
-            c.session.camera = o;
-        }
-        if (j.contains("plugins"))
-            for (const auto& p : j["plugins"]) {
-                SessionOptions::PluginSpec spec;
-                spec.path = resolve(p.at("path").get<std::string>());
-                if (p.contains("parameters"))
-                    for (const auto& [key, value] : p["parameters"].items())
-                        spec.parameters.emplace_back(
-                            key, value.is_string() ? value.get<std::string>() : value.dump());
-                c.session.plugins.push_back(spec);
-            }
+        if (auto read = readTemporal(j, c, where); !read)
+            return read.error();
+        readCamera(j, c);
+        readPlugins(j, c, resolve);
         if (j.contains("refraction"))
             for (const auto& [key, value] : j["refraction"].items())
                 c.session.refraction.emplace_back(key, value.is_string() ? value.get<std::string>()

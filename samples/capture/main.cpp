@@ -118,7 +118,8 @@ void addSceneOptions(CLI::App& app, Options& o) {
            },
            "times S, S+STEP, ... up to E inclusive (at most 10000 frames)")
         ->type_name("S:E:STEP");
-    tool::addSize(app, "--size", o.session.size, 8192, "output size in pixels (default 256x256)");
+    tool::addSize(app, "--size", o.session.size, 1, 8192,
+                  "output size in pixels (default 256x256)");
     app.add_option("--env", o.session.environment,
                    "equirectangular environment (default: a procedural sky)")
         ->type_name("HDR");
@@ -337,25 +338,75 @@ int runCase(const Options& o) {
     return *result;
 }
 
-} // namespace
+std::filesystem::path sibling(std::filesystem::path path, const char* suffix) {
+    return path.replace_extension(std::string(suffix) + ".png");
+}
 
-int run(int argc, char** argv) {
-    Options o;
-    if (const auto code = parse(argc, argv, o))
-        return *code;
-    if (!o.caseFile.empty())
-        return runCase(o);
+/** What --compare-reference keeps from frame to frame: the last frame and its reference, and
+ *  the flicker summed over consecutive pairs (capture::flicker). */
+struct Comparison {
+    std::optional<capture::RenderedFrame> previous, previousReference;
+    double flickerSum = 0.0;
+    std::size_t flickerPairs = 0;
+};
 
-    auto session = capture::CaptureSession::create(o.session);
-    if (!session) {
-        std::fprintf(stderr, "%s\n", session.error().message.c_str());
-        return 1;
+void addReferenceFacts(nlohmann::json& entry, const capture::RenderedFrame& traced) {
+    entry["reference_ms"] = traced.milliseconds;
+    entry["trapped_samples"] = traced.trappedSamples;
+    entry["glass_surfaces_per_pixel"] = traced.surfaceHistogram;
+}
+
+/** The frame at `path` scored against the reference at its time, which is written beside it
+ *  with the heatmap; the scores into `entry` and `scoreText`, the flicker into `comparison`. */
+core::Status compareWithReference(capture::CaptureSession& session, const Options& o,
+                                  const capture::RenderedFrame& frame,
+                                  const std::filesystem::path& path, Outputs& outputs,
+                                  nlohmann::json& entry, std::string& scoreText,
+                                  Comparison& comparison) {
+    auto reference = session.renderReference(frame.time, o.referenceOptions);
+    if (!reference)
+        return reference.error();
+    const auto masked = capture::score(frame.image, reference->image, &reference->glassMask);
+    const auto full = capture::score(frame.image, reference->image);
+    for (const auto& [file, image] :
+         {std::pair{sibling(path, ".reference"), reference->image},
+          std::pair{sibling(path, ".heatmap"),
+                    capture::heatmap(frame.image, reference->image, 64, &reference->glassMask)}})
+        if (auto written = outputs.write(file, image); !written)
+            return written;
+    entry["reference_file"] = sibling(path, ".reference").string();
+    entry["heatmap_file"] = sibling(path, ".heatmap").string();
+    addReferenceFacts(entry, *reference);
+    entry["scores"] = {
+        {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
+        {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB", masked.pixels,
+                  masked.psnr, masked.ssim, full.psnr);
+    scoreText = text;
+    if (comparison.previous) {
+        std::vector<bool> both(reference->glassMask.size());
+        for (std::size_t p = 0; p < both.size(); ++p)
+            both[p] = reference->glassMask[p] && comparison.previousReference->glassMask[p];
+        const capture::Flicker f =
+            capture::flicker(comparison.previous->image, frame.image,
+                             comparison.previousReference->image, reference->image, both);
+        entry["flicker"] = f.meanAbsDifference;
+        comparison.flickerSum += f.meanAbsDifference;
+        ++comparison.flickerPairs;
     }
-    const std::string stem = (*session)->stem();
+    comparison.previous = frame;
+    comparison.previousReference = *reference;
+    return {};
+}
+
+/** The report's header: the model, clip, size and how the frames accumulate. */
+nlohmann::json reportHeader(const Options& o, const capture::CaptureSession& session) {
     nlohmann::json report = {{"model", o.session.models.size() == 1
                                            ? nlohmann::json(o.session.models[0])
                                            : nlohmann::json(o.session.models)},
-                             {"clip", (*session)->clipLabel()},
+                             {"clip", session.clipLabel()},
                              {"size", {o.session.size.x, o.session.size.y}},
                              {"frames", nlohmann::json::array()}};
     if (o.session.temporal.enabled)
@@ -364,25 +415,16 @@ int run(int argc, char** argv) {
                               {"history_weight", o.session.temporal.historyWeight}};
     if (o.session.accumulate > 0)
         report["accumulate"] = o.session.accumulate;
-    if (o.session.temporal.enabled && !o.json)
-        std::printf("temporal accumulation: %d warm-up frames %.4f s apart before the first\n",
-                    o.session.warmup, o.session.warmupStep);
-    std::error_code ec;
-    std::filesystem::create_directories(o.out, ec);
-    if (ec) {
-        std::fprintf(stderr, "glass-capture: cannot create %s: %s\n", o.out.c_str(),
-                     ec.message().c_str());
-        return 1;
-    }
-    o.referenceOptions.progress = !o.json;
+    return report;
+}
+
+/** Renders, writes (and compares) every frame, then the contact sheet; the report filled. */
+core::Status captureFrames(capture::CaptureSession& session, const Options& o, Outputs& outputs,
+                           nlohmann::json& report) {
     auto frameFile = [&](double time) {
         return std::filesystem::path(o.out) /
-               capture::frameFileName(stem, (*session)->clipLabel(), time);
+               capture::frameFileName(session.stem(), session.clipLabel(), time);
     };
-    auto sibling = [](std::filesystem::path path, const char* suffix) {
-        return path.replace_extension(std::string(suffix) + ".png");
-    };
-    Outputs outputs(o.force);
     std::vector<std::filesystem::path> planned;
     for (double time : o.times) {
         planned.push_back(frameFile(time));
@@ -392,83 +434,31 @@ int run(int argc, char** argv) {
     }
     if (!o.contactSheet.empty())
         planned.emplace_back(o.contactSheet);
-    if (auto free = outputs.check(planned); !free) {
-        std::fprintf(stderr, "%s\n", free.error().message.c_str());
-        return 1;
-    }
+    if (auto free = outputs.check(planned); !free)
+        return free;
     std::vector<capture::Image> sheetFrames;
-    // Temporal stability against the reference over consecutive frames (capture::flicker).
-    std::optional<capture::RenderedFrame> previous, previousReference;
-    double flickerSum = 0.0;
-    std::size_t flickerPairs = 0;
+    Comparison comparison;
     for (std::size_t i = 0; i < o.times.size(); ++i) {
-        auto frame = o.reference ? (*session)->renderReference(o.times[i], o.referenceOptions)
-                                 : (*session)->render(o.times[i]);
-        if (!frame) {
-            std::fprintf(stderr, "%s\n", frame.error().message.c_str());
-            return 1;
-        }
+        auto frame = o.reference ? session.renderReference(o.times[i], o.referenceOptions)
+                                 : session.render(o.times[i]);
+        if (!frame)
+            return frame.error();
         if (i == 0 && o.dumpGraph)
             std::fprintf(stderr, "%s", frame->stats.graph.c_str());
         const auto path = frameFile(frame->time);
-        if (auto written = outputs.write(path, frame->image); !written) {
-            std::fprintf(stderr, "%s\n", written.error().message.c_str());
-            return 1;
-        }
+        if (auto written = outputs.write(path, frame->image); !written)
+            return written;
         nlohmann::json entry = capture::statsJson(frame->stats);
         entry["time"] = frame->time;
         entry["file"] = path.string();
-        auto referenceFacts = [&entry](const capture::RenderedFrame& traced) {
-            entry["reference_ms"] = traced.milliseconds;
-            entry["trapped_samples"] = traced.trappedSamples;
-            entry["glass_surfaces_per_pixel"] = traced.surfaceHistogram;
-        };
         if (o.reference)
-            referenceFacts(*frame);
+            addReferenceFacts(entry, *frame);
         std::string scoreText;
-        if (o.compare) {
-            auto reference = (*session)->renderReference(o.times[i], o.referenceOptions);
-            if (!reference) {
-                std::fprintf(stderr, "%s\n", reference.error().message.c_str());
-                return 1;
-            }
-            const auto masked =
-                capture::score(frame->image, reference->image, &reference->glassMask);
-            const auto full = capture::score(frame->image, reference->image);
-            for (const auto& [file, image] :
-                 {std::pair{sibling(path, ".reference"), reference->image},
-                  std::pair{
-                      sibling(path, ".heatmap"),
-                      capture::heatmap(frame->image, reference->image, 64, &reference->glassMask)}})
-                if (auto written = outputs.write(file, image); !written) {
-                    std::fprintf(stderr, "%s\n", written.error().message.c_str());
-                    return 1;
-                }
-            entry["reference_file"] = sibling(path, ".reference").string();
-            entry["heatmap_file"] = sibling(path, ".heatmap").string();
-            referenceFacts(*reference);
-            entry["scores"] = {
-                {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
-                {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
-            char text[160];
-            std::snprintf(text, sizeof text,
-                          ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB",
-                          masked.pixels, masked.psnr, masked.ssim, full.psnr);
-            scoreText = text;
-            if (previous) {
-                std::vector<bool> both(reference->glassMask.size());
-                for (std::size_t p = 0; p < both.size(); ++p)
-                    both[p] = reference->glassMask[p] && previousReference->glassMask[p];
-                const capture::Flicker f =
-                    capture::flicker(previous->image, frame->image, previousReference->image,
-                                     reference->image, both);
-                entry["flicker"] = f.meanAbsDifference;
-                flickerSum += f.meanAbsDifference;
-                ++flickerPairs;
-            }
-            previous = *frame;
-            previousReference = *reference;
-        }
+        if (o.compare)
+            if (auto compared = compareWithReference(session, o, *frame, path, outputs, entry,
+                                                     scoreText, comparison);
+                !compared)
+                return compared;
         report["frames"].push_back(entry);
         if (!o.contactSheet.empty())
             sheetFrames.push_back(frame->image);
@@ -479,24 +469,53 @@ int run(int argc, char** argv) {
     if (!o.contactSheet.empty()) {
         const int cell = std::min(o.session.size.x, 320);
         const capture::Image sheet = capture::contactSheet(sheetFrames, 4, cell);
-        if (auto written = outputs.write(o.contactSheet, sheet); !written) {
-            std::fprintf(stderr, "%s\n", written.error().message.c_str());
-            return 1;
-        }
+        if (auto written = outputs.write(o.contactSheet, sheet); !written)
+            return written;
         report["contact_sheet"] = o.contactSheet;
         if (!o.json)
             std::printf("%s (contact sheet, %d frames)\n", o.contactSheet.c_str(),
                         int(sheetFrames.size()));
     }
-    outputs.commit();
-    if (flickerPairs > 0) {
-        const double mean = flickerSum / double(flickerPairs);
-        report["flicker"] = {{"mean_abs_difference", mean}, {"pairs", flickerPairs}};
+    if (comparison.flickerPairs > 0) {
+        const double mean = comparison.flickerSum / double(comparison.flickerPairs);
+        report["flicker"] = {{"mean_abs_difference", mean}, {"pairs", comparison.flickerPairs}};
         if (!o.json)
             std::printf("flicker against the reference: %.3f (mean |frame change - reference "
                         "change| over the glass, 1/255, %zu frame pairs)\n",
-                        mean, flickerPairs);
+                        mean, comparison.flickerPairs);
     }
+    return {};
+}
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "%s\n", message.c_str());
+    return 1;
+}
+
+} // namespace
+
+int run(int argc, char** argv) {
+    Options o;
+    if (const auto code = parse(argc, argv, o))
+        return *code;
+    if (!o.caseFile.empty())
+        return runCase(o);
+    auto session = capture::CaptureSession::create(o.session);
+    if (!session)
+        return fail(session.error().message);
+    nlohmann::json report = reportHeader(o, **session);
+    if (o.session.temporal.enabled && !o.json)
+        std::printf("temporal accumulation: %d warm-up frames %.4f s apart before the first\n",
+                    o.session.warmup, o.session.warmupStep);
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec)
+        return fail("glass-capture: cannot create " + o.out + ": " + ec.message());
+    o.referenceOptions.progress = !o.json;
+    Outputs outputs(o.force);
+    if (auto captured = captureFrames(**session, o, outputs, report); !captured)
+        return fail(captured.error().message);
+    outputs.commit();
     if (o.json) {
         report["median"] = capture::medianStats(report["frames"]);
         std::printf("%s\n", report.dump(2).c_str());

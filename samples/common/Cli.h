@@ -94,25 +94,45 @@ inline CLI::Option* addOnOff(CLI::App& app, const std::string& name, bool& value
         ->type_name("on|off");
 }
 
-/** WxH within 1..`limit` into `size` (x, y). */
+/** WxH within `lo`..`limit` into `size` (x, y). */
 template <class Size>
-CLI::Option* addSize(CLI::App& app, const std::string& name, Size& size, int limit,
+CLI::Option* addSize(CLI::App& app, const std::string& name, Size& size, int lo, int limit,
                      const std::string& help) {
     return app
         .add_option_function<std::string>(
             name,
-            [&size, name, limit](const std::string& v) {
+            [&size, name, lo, limit](const std::string& v) {
                 int w = 0, h = 0;
                 char extra = 0;
-                if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
+                if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < lo || h < lo ||
                     w > limit || h > limit)
-                    throw CLI::ValidationError(
-                        name, "needs WxH within 1.." + std::to_string(limit) + ", got '" + v + "'");
+                    throw CLI::ValidationError(name, "needs WxH within " + std::to_string(lo) +
+                                                         ".." + std::to_string(limit) + ", got '" +
+                                                         v + "'");
                 size.x = w;
                 size.y = h;
             },
             help)
         ->type_name("WxH");
+}
+
+/** A comma-separated list into `items` (replacing its defaults), each item checked by `valid`
+ *  (the option's error names a bad one and says what `expected` is). */
+inline CLI::Option* addList(CLI::App& app, const std::string& name, std::vector<std::string>& items,
+                            std::function<bool(const std::string&)> valid,
+                            const std::string& expected, const std::string& help) {
+    return app.add_option_function<std::string>(
+        name,
+        [&items, name, valid, expected](const std::string& v) {
+            items.clear();
+            std::stringstream in(v);
+            for (std::string item; std::getline(in, item, ',');) {
+                if (!valid(item))
+                    throw CLI::ValidationError(name, "needs " + expected + ", got '" + item + "'");
+                items.push_back(item);
+            }
+        },
+        help);
 }
 
 /** A finite number, as the options that take one read it. */
