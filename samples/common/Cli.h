@@ -20,10 +20,14 @@
 namespace tool {
 
 /** A bad argument, or a bad combination found after parsing: the message on stderr, 2. */
-inline int usageError(const CLI::App& app, const std::string& message) {
-    std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", app.get_name().c_str(),
-                 message.c_str(), app.get_name().c_str());
+inline int usageError(const std::string& tool, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", tool.c_str(), message.c_str(),
+                 tool.c_str());
     return 2;
+}
+
+inline int usageError(const CLI::App& app, const std::string& message) {
+    return usageError(app.get_name(), message);
 }
 
 /** Parses argv into `app`: nothing to go on with; 0 after --help (the help on stdout); 2 after a
@@ -45,30 +49,44 @@ inline std::optional<int> parseArguments(CLI::App& app, int argc, char** argv) {
     return std::nullopt;
 }
 
+/** `text` with every line longer than `width` broken between words. */
+inline std::string wrap(const std::string& text, std::size_t width) {
+    std::string wrapped;
+    std::istringstream lines(text);
+    for (std::string paragraph; std::getline(lines, paragraph);) {
+        if (paragraph.size() <= width) {
+            wrapped += paragraph + "\n";
+            continue;
+        }
+        std::string line;
+        std::istringstream words(paragraph);
+        for (std::string word; words >> word;) {
+            if (!line.empty() && line.size() + 1 + word.size() > width) {
+                wrapped += line + "\n";
+                line.clear();
+            }
+            line += (line.empty() ? "" : " ") + word;
+        }
+        wrapped += line + "\n";
+    }
+    return wrapped.empty() ? wrapped : wrapped.substr(0, wrapped.size() - 1);
+}
+
 /** CLI11's help with each option's description wrapped to 100 columns. */
 class WrappingFormatter : public CLI::Formatter {
 public:
     static constexpr std::size_t kColumn = 28, kWidth = 100;
     WrappingFormatter() { column_width(kColumn); }
     std::string make_option_desc(const CLI::Option* option) const override {
-        std::string wrapped, line;
-        std::istringstream words(CLI::Formatter::make_option_desc(option));
-        for (std::string word; words >> word;) {
-            if (!line.empty() && kColumn + line.size() + 1 + word.size() > kWidth) {
-                wrapped += line + "\n";
-                line.clear();
-            }
-            line += (line.empty() ? "" : " ") + word;
-        }
-        return wrapped + line;
+        return wrap(CLI::Formatter::make_option_desc(option), kWidth - kColumn);
     }
 };
 
 /** The app with the tools' common settings: `description` above the options, `footer`
  *  (the exit statuses) below them, help text wrapped to 100 columns. */
 inline void configure(CLI::App& app, const std::string& description, const std::string& footer) {
-    app.description(description + "\n");
-    app.footer(footer);
+    app.description(wrap(description, WrappingFormatter::kWidth) + "\n");
+    app.footer(wrap(footer, WrappingFormatter::kWidth));
     app.formatter(std::make_shared<WrappingFormatter>());
 }
 

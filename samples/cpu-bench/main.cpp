@@ -1,5 +1,6 @@
 // glass-cpu-bench: load time of models and the time to sample + deform one frame on the CPU
 // reference path (median of many runs). A benchmark, not a test: it asserts nothing.
+#include "../common/Cli.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/ModelLoader.h"
@@ -28,22 +29,23 @@ double median(std::vector<double> v) {
 } // namespace
 
 int run(int argc, char** argv) {
-    if (argc < 2 || std::string(argv[1]) == "--help") {
-        std::fprintf(stderr, "usage: glass-cpu-bench MODEL... [--runs N]\n"
-                             "Prints, per model, the median load time (with and without image\n"
-                             "decoding) and the median time to\n"
-                             "sample the first clip and deform every mesh node (CPU reference),\n"
-                             "as one JSON line per model.\n");
-        return argc < 2 ? 2 : 0;
-    }
     int runs = 200;
     std::vector<std::string> models;
-    for (int i = 1; i < argc; ++i) {
-        if (std::string(argv[i]) == "--runs" && i + 1 < argc)
-            runs = std::max(1, std::atoi(argv[++i]));
-        else
-            models.emplace_back(argv[i]);
-    }
+    CLI::App app{"", "glass-cpu-bench"};
+    tool::configure(app,
+                    "glass-cpu-bench MODEL... [--runs N]: prints, per model, the median load time "
+                    "(with and without image decoding) and the median time to sample the first "
+                    "clip and deform every mesh node (the CPU reference), as one JSON line per "
+                    "model. A benchmark: it asserts nothing.",
+                    "Exit status: 0, 1 a model could not be loaded, 2 bad arguments.");
+    app.add_option("models", models, "glTF models")->type_name("MODEL")->required();
+    app.add_option("--runs", runs,
+                   "runs of the sample and deform, a twentieth (at least 5) of "
+                   "the loads (default 200)")
+        ->check(tool::range(1, 1000000))
+        ->type_name("N");
+    if (const auto code = tool::parseArguments(app, argc, argv))
+        return *code;
     for (const std::string& path : models) {
         std::vector<double> loads, geometryLoads;
         for (int r = 0; r < std::max(5, runs / 20); ++r) {

@@ -1,4 +1,5 @@
 // glass-generate-assets: writes the project's default character and environment into assets/.
+#include "../common/Cli.h"
 #include "../common/ToolMain.h"
 #include "Figure.h"
 #include "Sky.h"
@@ -12,9 +13,8 @@
 
 namespace {
 
-const char* const kUsage = R"(usage: glass-generate-assets [--out DIR] [--force]
-
-Writes the project's own default assets (nothing third party):
+constexpr const char* kDescription =
+    R"(glass-generate-assets: writes the project's own default assets (nothing third party):
   DIR/models/glass_figure.glb  a glass figure: 19-joint skeleton, a breathing morph target,
                                clips walk, wave and idle; KHR_materials_transmission, _volume,
                                _ior and _dispersion
@@ -22,35 +22,24 @@ Writes the project's own default assets (nothing third party):
                                the same figure with a glass per body part (clear torso, blue
                                arms, amber legs) and a hammered-glass head (a normal map)
   DIR/env/sunset_sky.hdr       a procedural sunset: sun, coloured skyline, tiled floor
+The output is deterministic. Each file is written atomically (temporary file, then rename).)";
 
-  --out DIR   where to write (default: assets)
-  --force     replace files that exist (otherwise an existing file is an error and nothing
-              is written)
-
-The output is deterministic. Each file is written atomically (temporary file, then rename).
-Exit status: 0 written, 1 a write failed or a file exists without --force, 2 bad arguments.
-)";
+constexpr const char* kExitStatus =
+    "Exit status: 0 written, 1 a write failed or a file exists without --force, 2 bad arguments.";
 
 } // namespace
 
 int run(int argc, char** argv) {
     std::filesystem::path out = "assets";
     bool force = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--force") {
-            force = true;
-        } else if (arg == "--out" && i + 1 < argc) {
-            out = argv[++i];
-        } else {
-            std::fprintf(stderr, "glass-generate-assets: unexpected '%s'\n\n%s", arg.c_str(),
-                         kUsage);
-            return 2;
-        }
-    }
+    CLI::App app{"", "glass-generate-assets"};
+    tool::configure(app, kDescription, kExitStatus);
+    app.add_option("--out", out, "where to write (default: assets)")->type_name("DIR");
+    app.add_flag("--force", force,
+                 "replace files that exist (otherwise an existing file is an error and nothing "
+                 "is written)");
+    if (const auto code = tool::parseArguments(app, argc, argv))
+        return *code;
     const std::filesystem::path figure = out / "models" / "glass_figure.glb";
     const std::filesystem::path parts = out / "models" / "glass_figure_parts.glb";
     const std::filesystem::path sky = out / "env" / "sunset_sky.hdr";

@@ -1,6 +1,7 @@
 // glass-inspect: what a glTF character contains (meshes, skins, morph targets, clips, glass
 // materials), or a scene's characters, as text or JSON, and the deformed vertices at a given
 // time as PLY.
+#include "../common/Cli.h"
 #include "../common/ToolMain.h"
 #include "InspectJson.h"
 #include "Ply.h"
@@ -29,37 +30,21 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: glass-inspect MODEL|SCENE [MODEL...] [--json]
-       glass-inspect MODEL|SCENE [MODEL...] --vertices cpu|gpu --out FILE.ply [--time T]
-                     [--clip C] [--ascii]
-       glass-inspect --check DIR|FILE...
+constexpr const char* kDescription =
+    R"(glass-inspect MODEL|SCENE [MODEL...] [--json]: prints the meshes, primitives, vertex and
+triangle counts, skins and joints, morph targets, animation clips (duration, interpolation) and
+glass materials (KHR_materials_transmission, _volume, _ior, _dispersion) of a .gltf or .glb
+file. For a scene file (.json, README "Scene files"), or several models (a scene of them side by
+side, each playing its first clip from scene time 0): each character's model, clip, timing,
+glass mode and counts, and the totals. What loading skipped or could not honour (an extension
+the file uses that the engine does not implement, a POINTS or LINES primitive) is listed as
+warnings.
+glass-inspect MODEL|SCENE [MODEL...] --vertices cpu|gpu --out FILE.ply [--time T] [--clip C]
+[--ascii]: writes the deformed vertices.
+glass-inspect --check DIR|FILE...: checks every file below the folders.)";
 
-Prints the meshes, primitives, vertex and triangle counts, skins and joints, morph targets,
-animation clips (duration, interpolation) and glass materials (KHR_materials_transmission,
-_volume, _ior, _dispersion) of a .gltf or .glb file. For a scene file (.json, README "Scene
-files"), or several models (a scene of them side by side, each playing its first clip from
-scene time 0): each character's model, clip, timing, glass mode and counts, and the totals.
-What loading skipped or could not honour (an extension the file uses that the engine does not
-implement, a POINTS or LINES primitive) is listed as warnings.
-
-  --check         load every .gltf and .glb below the folders (and files) given, images
-                  decoded, and print one line per file: ok, ok with warnings (and which), or
-                  refused (and why); then a summary. Exit 1 if any file is refused.
-
-  --json          print the same as one JSON object (keys as in shared/assets/INVENTORY.json:
-                  meshes, primitives, triangles, vertices, skins, joints_per_skin,
-                  max_morph_targets, animations, animation_list)
-  --vertices cpu  deform the model on the CPU (double-precision reference: morph, then skin)
-                  and write its vertices to --out
-  --vertices gpu  the same through the engine's GPU deform pass (headless EGL context), read back
-  --out FILE.ply  PLY file to write (atomically: no partial file on failure)
-  --force         replace FILE.ply when it exists (otherwise that is an error)
-  --time T        clip time in seconds (default 0); for a scene, the scene time
-  --clip C        clip name or index (default: the first clip; the rest pose if none); only
-                  with one model (a scene's characters name their own)
-  --ascii         ASCII PLY instead of binary little-endian
-
-PLY layout: one vertex element with float properties x y z nx ny nz, in world space. Vertices
+constexpr const char* kFooter =
+    R"(PLY layout: one vertex element with float properties x y z nx ny nz, in world space. Vertices
 come mesh node by mesh node of the default scene in depth-first order (children in file order),
 then primitive by primitive in file order, then in the primitive's vertex order (the file's
 order; a primitive without NORMAL is unwelded, three vertices per triangle in index order). A
@@ -67,12 +52,10 @@ scene writes its characters in the file's order, each in that order, placed in t
 header comment per primitive gives its (character,) node, mesh, primitive, first vertex and
 count.
 
-Exit status: 0 success, 1 the model could not be loaded or the output written, 2 bad arguments.
-)";
+Exit status: 0 success, 1 the model could not be loaded or the output written, 2 bad arguments.)";
 
 int usageError(const std::string& message) {
-    std::fprintf(stderr, "glass-inspect: %s\n\n%s", message.c_str(), kUsage);
-    return 2;
+    return tool::usageError("glass-inspect", message);
 }
 
 struct Options {
@@ -88,57 +71,52 @@ struct Options {
     bool check = false;
 };
 
+void addOptions(CLI::App& app, Options& o) {
+    app.add_option("models", o.models,
+                   "glTF models, a scene file, or with --check folders and "
+                   "files")
+        ->type_name("MODEL|SCENE");
+    app.add_flag("--check", o.check,
+                 "load every .gltf and .glb below the folders (and files) given, images decoded, "
+                 "and print one line per file: ok, ok with warnings (and which), or refused (and "
+                 "why); then a summary. Exit 1 if any file is refused.");
+    app.add_flag("--json", o.json,
+                 "print the same as one JSON object (keys as in shared/assets/INVENTORY.json: "
+                 "meshes, primitives, triangles, vertices, skins, joints_per_skin, "
+                 "max_morph_targets, animations, animation_list)");
+    app.add_option("--vertices", o.vertices,
+                   "cpu: deform the model on the CPU (double-precision reference: morph, then "
+                   "skin) and write its vertices to --out; gpu: the same through the engine's "
+                   "GPU deform pass (headless EGL context), read back")
+        ->check(tool::oneOf({"cpu", "gpu"}))
+        ->type_name("cpu|gpu");
+    app.add_option("--out", o.out, "PLY file to write (atomically: no partial file on failure)")
+        ->type_name("FILE.ply");
+    app.add_flag("--force", o.force,
+                 "replace FILE.ply when it exists (otherwise that is an error)");
+    app.add_option("--time", o.time,
+                   "clip time in seconds (default 0); for a scene, the scene time")
+        ->check(CLI::NonNegativeNumber.description(""))
+        ->type_name("T");
+    app.add_option("--clip", o.clip,
+                   "clip name or index (default: the first clip; the rest pose if none); only "
+                   "with one model (a scene's characters name their own)")
+        ->type_name("C");
+    app.add_flag("--ascii", o.ascii, "ASCII PLY instead of binary little-endian");
+}
+
 /** Parses argv; returns an exit code when the program should stop (help or bad arguments). */
 std::optional<int> parse(int argc, char** argv, Options& o) {
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&](const char* flag) -> std::optional<std::string> {
-            if (i + 1 >= argc)
-                return std::nullopt;
-            (void)flag;
-            return std::string(argv[++i]);
-        };
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--json") {
-            o.json = true;
-        } else if (arg == "--ascii") {
-            o.ascii = true;
-        } else if (arg == "--force") {
-            o.force = true;
-        } else if (arg == "--check") {
-            o.check = true;
-        } else if (arg == "--vertices" || arg == "--out" || arg == "--time" || arg == "--clip") {
-            const auto v = value(arg.c_str());
-            if (!v)
-                return usageError(arg + " needs a value");
-            if (arg == "--vertices")
-                o.vertices = *v;
-            else if (arg == "--out")
-                o.out = *v;
-            else if (arg == "--clip")
-                o.clip = *v;
-            else {
-                char* end = nullptr;
-                o.time = std::strtod(v->c_str(), &end);
-                if (v->empty() || *end != '\0' || !std::isfinite(o.time) || o.time < 0.0)
-                    return usageError("--time needs a non-negative number of seconds, got '" + *v +
-                                      "'");
-            }
-        } else if (!arg.empty() && arg[0] == '-') {
-            return usageError("unknown option " + arg);
-        } else {
-            o.models.push_back(arg);
-        }
-    }
+    CLI::App app{"", "glass-inspect"};
+    tool::configure(app, kDescription, kFooter);
+    addOptions(app, o);
+    if (const auto code = tool::parseArguments(app, argc, argv))
+        return code;
     if (o.models.empty())
         return usageError(o.check ? "--check needs folders or files" : "no model given");
     if (o.check && (o.json || o.vertices || o.clip))
         return usageError("--check is a mode of its own");
     o.model = o.models.front();
-    if (o.vertices && *o.vertices != "cpu" && *o.vertices != "gpu")
-        return usageError("--vertices takes 'cpu' or 'gpu', got '" + *o.vertices + "'");
     if (o.vertices.has_value() != o.out.has_value())
         return usageError("--vertices and --out go together");
     if (o.json && o.vertices)

@@ -1,6 +1,7 @@
 // glass-soak: renders many frames headless while the clip loops, the glass method switches and
 // the viewport resizes, and reports the process's resident memory and the context's live GL
 // objects along the way; fails when either still grows after the warm-up.
+#include "../common/Cli.h"
 #include "../common/HeadlessScene.h"
 #include "../common/ToolMain.h"
 #include "engine/anim/Pose.h"
@@ -20,29 +21,29 @@
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
 
-const char* const kUsage =
-    R"(usage: glass-soak [MODEL|SCENE [MODEL...]] [--frames N] [--switch-every S] [--resize-every R]
-                  [--report-every K] [--json]
+constexpr const char* kDescription =
+    R"(glass-soak [MODEL|SCENE [MODEL...]] [OPTIONS]: renders MODEL (default: builtin:sphere; a
+scene file, or several models side by side) headless for --frames frames: the clips loop; every
+--switch-every frames the glass method moves on (opaque, sir, isr, dir, dir with TIR reflect and
+temporal accumulation, trace with it, hybrid); every --resize-every frames the viewport takes
+the next of 4 sizes (around 128x128) and the world gains or loses a character (a copy of the
+first, beside it: the renderer places and releases its deformer, the glass plugin its caches).
+Every --report-every frames it prints the frame, resident memory (RSS, from /proc/self/statm)
+and the live GL objects (counted by asking the driver about every name).
+Warm-up: two full cycles of every pairing of method and size (the least common multiple of 7
+switches and 4 resizes; every lazily created object exists by then).)";
 
-Renders MODEL (default: builtin:sphere; a scene file, or several models side by side) headless
-for N frames (default 10000): the clips loop; every S frames (default 100) the glass method moves on (opaque, sir, isr, dir, dir with
-TIR reflect and temporal accumulation, trace with it, hybrid); every R frames (default 175) the viewport takes the next of 4 sizes (around
-128x128) and the world gains or loses a character (a copy of the first, beside it: the
-renderer places and releases its deformer, the glass plugin its caches). Every K frames (default 220) it prints the frame, resident memory (RSS, from
-/proc/self/statm) and the live GL objects (counted by asking the driver about every name).
-
-Warm-up: two full cycles of every pairing of method and size (the least common multiple of
-7 S and 4 R frames; every lazily created object exists by then). It fails (exit 1) when a report after the warm-up counts more live GL objects than any report
-during it, when RSS at the end is more than 8 MiB over its warm-up maximum, or on any GL error;
-exit 2 when the run is too short to have a report after the warm-up.
---json prints the reports as JSON. --inject-leak keeps one more GL buffer alive at every report
-(the test that shows the check fails on a leak).
-)";
+constexpr const char* kExitStatus =
+    R"(Exit status: 0; 1 when a report after the warm-up counts more live GL objects than any
+report during it, when RSS at the end is more than 8 MiB over its warm-up maximum, or on any GL
+error; 2 bad arguments, or a run too short to have a report after the warm-up.)";
 
 long residentKiB() {
     std::ifstream statm("/proc/self/statm");
@@ -59,39 +60,101 @@ struct Report {
     glm::ivec2 size{0};
 };
 
-} // namespace
-
-int run(int argc, char** argv) {
+struct Options {
     std::vector<std::string> paths;
     int frames = 10000, switchEvery = 100, resizeEvery = 175, reportEvery = 220;
     bool json = false, injectLeak = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        int* target = arg == "--frames"         ? &frames
-                      : arg == "--switch-every" ? &switchEvery
-                      : arg == "--resize-every" ? &resizeEvery
-                      : arg == "--report-every" ? &reportEvery
-                                                : nullptr;
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (arg == "--json") {
-            json = true;
-        } else if (arg == "--inject-leak") {
-            injectLeak = true;
-        } else if (target && i + 1 < argc) {
-            *target = std::atoi(argv[++i]);
-            if (*target < 1) {
-                std::fprintf(stderr, "glass-soak: %s needs a positive count\n", arg.c_str());
-                return 2;
-            }
-        } else if (!arg.empty() && arg[0] != '-') {
-            paths.push_back(arg);
+};
+
+std::optional<int> parse(int argc, char** argv, Options& o) {
+    CLI::App app{"", "glass-soak"};
+    tool::configure(app, kDescription, kExitStatus);
+    app.add_option("models", o.paths, "glTF models or a scene file (.json)")
+        ->type_name("MODEL|SCENE");
+    for (auto [name, count, help] :
+         {std::tuple{"--frames", &o.frames, "frames to render (default 10000)"},
+          std::tuple{"--switch-every", &o.switchEvery,
+                     "frames between method switches (default 100)"},
+          std::tuple{"--resize-every", &o.resizeEvery,
+                     "frames between resizes and world changes (default 175)"},
+          std::tuple{"--report-every", &o.reportEvery, "frames between reports (default 220)"}})
+        app.add_option(name, *count, help)->check(tool::range(1, 100000000))->type_name("N");
+    app.add_flag("--json", o.json, "print the reports as JSON");
+    app.add_flag("--inject-leak", o.injectLeak,
+                 "keep one more GL buffer alive at every report (the test that shows the check "
+                 "fails on a leak)");
+    return tool::parseArguments(app, argc, argv);
+}
+
+/** The reports after the warm-up against those during it: 0 stable, 1 grown (or GL errors), 2
+ *  no report after the warm-up. */
+int judge(const std::vector<Report>& reports, const Options& o, int cycle) {
+    // Warm-up: two full cycles of every pairing of method, size and world, so that every lazily
+    // created object (a pass's timer query, ISR's BVH buffers, the pool's textures for each size,
+    // the driver's code for each method at each size) exists: with only the longer of the two
+    // cycles, the hybrid first ran at one size after the warm-up, and RSS rose by 3-15 MiB. After
+    // it, neither the live GL objects nor RSS may pass their warm-up maximum (RSS: by 8 MiB).
+    const int warmup = 2 * cycle;
+    int warmObjects = 0, maxObjects = 0;
+    long warmRss = 0, lastRss = 0;
+    bool pastWarmup = false;
+    for (const Report& r : reports) {
+        if (r.frame <= warmup) {
+            warmObjects = std::max(warmObjects, r.live.total());
+            warmRss = std::max(warmRss, r.rssKiB);
         } else {
-            std::fprintf(stderr, "glass-soak: unexpected '%s'\n\n%s", arg.c_str(), kUsage);
-            return 2;
+            pastWarmup = true;
+            maxObjects = std::max(maxObjects, r.live.total());
+            lastRss = r.rssKiB;
         }
     }
+    const bool objectsStable = maxObjects <= warmObjects;
+    const bool rssStable = lastRss - warmRss <= 8L * 1024L;
+    const std::uint64_t errors = gl::errorCount();
+    if (o.json) {
+        nlohmann::json out = {
+            {"model", o.paths.size() == 1 ? nlohmann::json(o.paths[0]) : nlohmann::json(o.paths)},
+            {"frames", o.frames},
+            {"cycle", cycle},
+            {"gl_errors", errors},
+            {"reports", nlohmann::json::array()}};
+        for (const Report& r : reports)
+            out["reports"].push_back({{"frame", r.frame},
+                                      {"rss_kib", r.rssKiB},
+                                      {"gl_objects", r.live.total()},
+                                      {"method", r.method},
+                                      {"size", {r.size.x, r.size.y}}});
+        std::printf("%s\n", out.dump(2).c_str());
+    }
+    std::printf("glass-soak: %d frames; warm-up (first %d): max %d GL objects, max RSS %ld KiB; "
+                "after: max %d GL objects, last RSS %ld KiB; %llu GL errors\n",
+                o.frames, warmup, warmObjects, warmRss, maxObjects, lastRss,
+                static_cast<unsigned long long>(errors));
+    if (!pastWarmup) {
+        std::fprintf(stderr, "glass-soak: no report after the warm-up of %d frames: run longer\n",
+                     warmup);
+        return 2;
+    }
+    if (!objectsStable || !rssStable || errors > 0) {
+        std::fprintf(stderr, "glass-soak: %s\n",
+                     !objectsStable ? "live GL objects grew after warm-up"
+                     : !rssStable   ? "resident memory grew by more than 8 MiB after warm-up"
+                                    : "GL errors");
+        return 1;
+    }
+    return 0;
+}
+
+} // namespace
+
+int run(int argc, char** argv) {
+    Options o;
+    if (const auto code = parse(argc, argv, o))
+        return *code;
+    std::vector<std::string>& paths = o.paths;
+    const int frames = o.frames, switchEvery = o.switchEvery, resizeEvery = o.resizeEvery,
+              reportEvery = o.reportEvery;
+    const bool json = o.json, injectLeak = o.injectLeak;
     if (paths.empty())
         paths.push_back("builtin:sphere");
     auto opened = tool::openHeadlessScene(paths, 256);
@@ -163,60 +226,7 @@ int run(int argc, char** argv) {
     }
     gl::checkErrors("glass-soak");
 
-    // Warm-up: two full cycles of every pairing of method, size and world, so that every lazily
-    // created object (a pass's timer query, ISR's BVH buffers, the pool's textures for each size,
-    // the driver's code for each method at each size) exists: with only the longer of the two
-    // cycles, the hybrid first ran at one size after the warm-up, and RSS rose by 3-15 MiB. After
-    // it, neither the live GL objects nor RSS may pass their warm-up maximum (RSS: by 8 MiB).
-    const int warmup = 2 * cycle;
-    int warmObjects = 0, maxObjects = 0;
-    long warmRss = 0, lastRss = 0;
-    bool pastWarmup = false;
-    for (const Report& r : reports) {
-        if (r.frame <= warmup) {
-            warmObjects = std::max(warmObjects, r.live.total());
-            warmRss = std::max(warmRss, r.rssKiB);
-        } else {
-            pastWarmup = true;
-            maxObjects = std::max(maxObjects, r.live.total());
-            lastRss = r.rssKiB;
-        }
-    }
-    const bool objectsStable = maxObjects <= warmObjects;
-    const bool rssStable = lastRss - warmRss <= 8L * 1024L;
-    const std::uint64_t errors = gl::errorCount();
-    if (json) {
-        nlohmann::json out = {
-            {"model", paths.size() == 1 ? nlohmann::json(paths[0]) : nlohmann::json(paths)},
-            {"frames", frames},
-            {"cycle", cycle},
-            {"gl_errors", errors},
-            {"reports", nlohmann::json::array()}};
-        for (const Report& r : reports)
-            out["reports"].push_back({{"frame", r.frame},
-                                      {"rss_kib", r.rssKiB},
-                                      {"gl_objects", r.live.total()},
-                                      {"method", r.method},
-                                      {"size", {r.size.x, r.size.y}}});
-        std::printf("%s\n", out.dump(2).c_str());
-    }
-    std::printf("glass-soak: %d frames; warm-up (first %d): max %d GL objects, max RSS %ld KiB; "
-                "after: max %d GL objects, last RSS %ld KiB; %llu GL errors\n",
-                frames, warmup, warmObjects, warmRss, maxObjects, lastRss,
-                static_cast<unsigned long long>(errors));
-    if (!pastWarmup) {
-        std::fprintf(stderr, "glass-soak: no report after the warm-up of %d frames: run longer\n",
-                     warmup);
-        return 2;
-    }
-    if (!objectsStable || !rssStable || errors > 0) {
-        std::fprintf(stderr, "glass-soak: %s\n",
-                     !objectsStable ? "live GL objects grew after warm-up"
-                     : !rssStable   ? "resident memory grew by more than 8 MiB after warm-up"
-                                    : "GL errors");
-        return 1;
-    }
-    return 0;
+    return judge(reports, o, cycle);
 }
 
 int main(int argc, char** argv) {
