@@ -620,77 +620,36 @@ nlohmann::json glassMaterial(const char* name, double ior, std::array<double, 3>
               {"KHR_materials_ior", {{"ior", ior}}}}}};
 }
 
-} // namespace
-
-std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
-    const std::vector<JointSpec> joints = skeleton();
-    const std::vector<Shape> shapes = bodyShapes(joints);
-    const auto body = [&](const dvec3& p) { return bodyDistance(shapes, p); };
-    const Surface surface =
-        surfaceNets(body, {-0.72, -0.03, -0.22}, {0.72, 1.82, 0.26}, options.cellSize);
-    const Surface eyeSurface = eyes();
-
-    Document doc;
-    doc.gltf = {{"asset",
-                 {{"version", "2.0"},
-                  {"generator", "glass-generate-assets (the glass project's default character)"}}},
-                {"scene", 0},
-                {"extensionsUsed",
-                 {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
-                  "KHR_materials_dispersion"}}};
-    nlohmann::json glass = glassMaterial("glass", 1.5, {0.80, 0.92, 1.0}, 0.6);
-    glass["extensions"]["KHR_materials_dispersion"] = {{"dispersion", 0.3}};
-    doc.gltf["materials"] = {glass,
-                             {{"name", "eyes"},
-                              {"pbrMetallicRoughness",
-                               {{"baseColorFactor", {0.02, 0.02, 0.03, 1.0}},
-                                {"metallicFactor", 0.0},
-                                {"roughnessFactor", 0.25}}}}};
-
-    Skinning eyeSkin;
-    eyeSkin.joints.assign(eyeSurface.positions.size(), {std::uint8_t(Head), 0, 0, 0});
-    eyeSkin.weights.assign(eyeSurface.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
-    const Skinning bodySkin = skin(shapes, surface.positions);
-    const std::vector<dvec3> breath = breathe(surface.positions, surface.normals);
-    nlohmann::json primitives = nlohmann::json::array();
-    if (!options.parts) {
-        primitives.push_back(primitive(doc, surface, bodySkin, breath, 0));
-    } else {
-        // Materials 2-5 (after the glass and the eyes): a glass per part, the head's with the
-        // hammered normal map (texture 0).
-        doc.gltf["materials"].push_back(glassMaterial("clear torso", 1.5, {0.85, 0.95, 1.0}, 0.8));
-        doc.gltf["materials"].push_back(glassMaterial("blue arms", 1.6, {0.35, 0.55, 1.0}, 0.35));
-        doc.gltf["materials"].push_back(glassMaterial("amber legs", 1.55, {1.0, 0.7, 0.3}, 0.4));
-        nlohmann::json head = glassMaterial("hammered head", 1.52, {0.9, 1.0, 0.9}, 0.8);
-        head["normalTexture"] = {{"index", 0}, {"scale", 1.0}};
-        doc.gltf["materials"].push_back(head);
-        const std::vector<std::uint8_t> png = capture::encodePng(hammeredNormals());
-        doc.gltf["images"] = {{{"bufferView", doc.view(png.data(), png.size(), std::nullopt)},
-                               {"mimeType", "image/png"}}};
-        doc.gltf["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
-        doc.gltf["textures"] = {{{"source", 0}, {"sampler", 0}}};
-        const auto parts = splitParts(surface, bodySkin, breath);
-        for (int part = 0; part < PartCount; ++part) {
-            const PartMesh& m = parts[std::size_t(part)];
-            if (m.surface.indices.empty())
-                continue;
-            const bool mapped = part == HeadPart; // the normal-mapped part
-            primitives.push_back(primitive(
-                doc, m.surface, m.skinning, m.breath, 2 + part,
-                mapped ? headUv(m.surface.positions) : std::vector<float>{},
-                mapped ? headTangents(m.surface.positions, m.surface.normals)
-                       : std::vector<float>{}));
-        }
+/** The parts figure's glasses (materials 2-5, after the glass and the eyes), the head's with
+ *  the hammered normal map (texture 0), and a primitive a part. */
+void addParts(Document& doc, const Surface& surface, const Skinning& bodySkin,
+              const std::vector<dvec3>& breath, nlohmann::json& primitives) {
+    doc.gltf["materials"].push_back(glassMaterial("clear torso", 1.5, {0.85, 0.95, 1.0}, 0.8));
+    doc.gltf["materials"].push_back(glassMaterial("blue arms", 1.6, {0.35, 0.55, 1.0}, 0.35));
+    doc.gltf["materials"].push_back(glassMaterial("amber legs", 1.55, {1.0, 0.7, 0.3}, 0.4));
+    nlohmann::json head = glassMaterial("hammered head", 1.52, {0.9, 1.0, 0.9}, 0.8);
+    head["normalTexture"] = {{"index", 0}, {"scale", 1.0}};
+    doc.gltf["materials"].push_back(head);
+    const std::vector<std::uint8_t> png = capture::encodePng(hammeredNormals());
+    doc.gltf["images"] = {{{"bufferView", doc.view(png.data(), png.size(), std::nullopt)},
+                           {"mimeType", "image/png"}}};
+    doc.gltf["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
+    doc.gltf["textures"] = {{{"source", 0}, {"sampler", 0}}};
+    const auto parts = splitParts(surface, bodySkin, breath);
+    for (int part = 0; part < PartCount; ++part) {
+        const PartMesh& m = parts[std::size_t(part)];
+        if (m.surface.indices.empty())
+            continue;
+        const bool mapped = part == HeadPart; // the normal-mapped part
+        primitives.push_back(primitive(doc, m.surface, m.skinning, m.breath, 2 + part,
+                                       mapped ? headUv(m.surface.positions) : std::vector<float>{},
+                                       mapped ? headTangents(m.surface.positions, m.surface.normals)
+                                              : std::vector<float>{}));
     }
-    primitives.push_back(primitive(doc, eyeSurface, eyeSkin,
-                                   std::vector<dvec3>(eyeSurface.positions.size(), dvec3(0.0)),
-                                   1));
-    doc.gltf["meshes"] = {{{"name", "glass_figure"},
-                           {"primitives", primitives},
-                           {"weights", {0.0}},
-                           {"extras", {{"targetNames", {"breathe"}}}}}};
+}
 
-    // Nodes: 0 the mesh, 1.. the joints (joint j is node j + 1).
+/** The nodes (0 the mesh, 1.. the joints: joint j is node j + 1), the skin and the scene. */
+void addSkeleton(Document& doc, const std::vector<JointSpec>& joints) {
     doc.gltf["nodes"] = {{{"name", "glass_figure"}, {"mesh", 0}, {"skin", 0}}};
     std::vector<float> inverseBind;
     for (std::size_t j = 0; j < joints.size(); ++j) {
@@ -718,8 +677,10 @@ std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
                           {"joints", skinJoints},
                           {"skeleton", 1}}};
     doc.gltf["scenes"] = {{{"name", "glass figure"}, {"nodes", {0, 1}}}};
+}
 
-    // Clips sampled at 30 frames per second, LINEAR between samples.
+/** The clips, sampled at 30 frames per second, LINEAR between samples. */
+void addClips(Document& doc, const std::vector<JointSpec>& joints) {
     for (const Clip& clip : clips()) {
         const int frames = int(std::lround(clip.duration * 30.0));
         std::vector<float> times;
@@ -762,6 +723,54 @@ std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
         doc.gltf["animations"].push_back(
             {{"name", clip.name}, {"samplers", samplers}, {"channels", channels}});
     }
+}
+
+} // namespace
+
+std::vector<std::uint8_t> buildFigureGlb(const FigureOptions& options) {
+    const std::vector<JointSpec> joints = skeleton();
+    const std::vector<Shape> shapes = bodyShapes(joints);
+    const auto body = [&](const dvec3& p) { return bodyDistance(shapes, p); };
+    const Surface surface =
+        surfaceNets(body, {-0.72, -0.03, -0.22}, {0.72, 1.82, 0.26}, options.cellSize);
+    const Surface eyeSurface = eyes();
+
+    Document doc;
+    doc.gltf = {{"asset",
+                 {{"version", "2.0"},
+                  {"generator", "glass-generate-assets (the glass project's default character)"}}},
+                {"scene", 0},
+                {"extensionsUsed",
+                 {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior",
+                  "KHR_materials_dispersion"}}};
+    nlohmann::json glass = glassMaterial("glass", 1.5, {0.80, 0.92, 1.0}, 0.6);
+    glass["extensions"]["KHR_materials_dispersion"] = {{"dispersion", 0.3}};
+    doc.gltf["materials"] = {glass,
+                             {{"name", "eyes"},
+                              {"pbrMetallicRoughness",
+                               {{"baseColorFactor", {0.02, 0.02, 0.03, 1.0}},
+                                {"metallicFactor", 0.0},
+                                {"roughnessFactor", 0.25}}}}};
+
+    Skinning eyeSkin;
+    eyeSkin.joints.assign(eyeSurface.positions.size(), {std::uint8_t(Head), 0, 0, 0});
+    eyeSkin.weights.assign(eyeSurface.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
+    const Skinning bodySkin = skin(shapes, surface.positions);
+    const std::vector<dvec3> breath = breathe(surface.positions, surface.normals);
+    nlohmann::json primitives = nlohmann::json::array();
+    if (!options.parts) {
+        primitives.push_back(primitive(doc, surface, bodySkin, breath, 0));
+    } else {
+        addParts(doc, surface, bodySkin, breath, primitives);
+    }
+    primitives.push_back(primitive(doc, eyeSurface, eyeSkin,
+                                   std::vector<dvec3>(eyeSurface.positions.size(), dvec3(0.0)), 1));
+    doc.gltf["meshes"] = {{{"name", "glass_figure"},
+                           {"primitives", primitives},
+                           {"weights", {0.0}},
+                           {"extras", {{"targetNames", {"breathe"}}}}}};
+    addSkeleton(doc, joints);
+    addClips(doc, joints);
 
     doc.bin.resize((doc.bin.size() + 3) / 4 * 4, 0);
     doc.gltf["buffers"] = {{{"byteLength", doc.bin.size()}}};

@@ -7,6 +7,54 @@
 
 namespace inspect {
 
+namespace {
+
+/** Each clip: its channels, their interpolations and paths, its duration. */
+nlohmann::ordered_json describeClips(const scene::Model& model) {
+    nlohmann::ordered_json clips = nlohmann::ordered_json::array();
+    for (const scene::Animation& a : model.animations) {
+        std::set<std::string> modes, paths;
+        for (const scene::AnimationChannel& c : a.channels) {
+            modes.insert(toString(a.samplers[std::size_t(c.sampler)].interpolation));
+            paths.insert(toString(c.path));
+        }
+        clips.push_back({{"name", a.name},
+                         {"channels", a.channels.size()},
+                         {"interpolation", std::vector<std::string>(modes.begin(), modes.end())},
+                         {"paths", std::vector<std::string>(paths.begin(), paths.end())},
+                         {"duration_s", a.duration}});
+    }
+    return clips;
+}
+
+/** Each transmissive material's glass: transmission, IOR, dispersion, volume, attenuation. */
+nlohmann::ordered_json describeGlass(const scene::Model& model) {
+    nlohmann::ordered_json glass = nlohmann::ordered_json::array();
+    for (const scene::Material& m : model.materials) {
+        if (!m.isTransmissive())
+            continue;
+        nlohmann::ordered_json g;
+        g["material"] = m.name;
+        g["transmission"] = m.transmissionFactor;
+        g["ior"] = m.ior;
+        g["ior_from_extension"] = m.hasIor;
+        g["dispersion"] = m.dispersion;
+        g["roughness"] = m.roughnessFactor;
+        g["metallic"] = m.metallicFactor;
+        g["volume"] = m.hasVolume;
+        g["thickness"] = m.thicknessFactor;
+        g["attenuationDistance"] = std::isinf(m.attenuationDistance)
+                                       ? nlohmann::ordered_json(nullptr)
+                                       : nlohmann::ordered_json(m.attenuationDistance);
+        g["attenuationColor"] = {m.attenuationColor.r, m.attenuationColor.g, m.attenuationColor.b};
+        g["doubleSided"] = m.doubleSided;
+        glass.push_back(g);
+    }
+    return glass;
+}
+
+} // namespace
+
 nlohmann::ordered_json describe(const scene::Model& model) {
     nlohmann::ordered_json j;
     std::size_t primitives = 0, triangles = 0, vertices = 0, maxTargets = 0;
@@ -48,20 +96,7 @@ nlohmann::ordered_json describe(const scene::Model& model) {
     j["max_influences"] = maxInfluences;
     j["max_morph_targets"] = maxTargets;
     j["animations"] = model.animations.size();
-    nlohmann::ordered_json clips = nlohmann::ordered_json::array();
-    for (const scene::Animation& a : model.animations) {
-        std::set<std::string> modes, paths;
-        for (const scene::AnimationChannel& c : a.channels) {
-            modes.insert(toString(a.samplers[std::size_t(c.sampler)].interpolation));
-            paths.insert(toString(c.path));
-        }
-        clips.push_back({{"name", a.name},
-                         {"channels", a.channels.size()},
-                         {"interpolation", std::vector<std::string>(modes.begin(), modes.end())},
-                         {"paths", std::vector<std::string>(paths.begin(), paths.end())},
-                         {"duration_s", a.duration}});
-    }
-    j["animation_list"] = clips;
+    j["animation_list"] = describeClips(model);
     j["variants"] = model.variants; // KHR_materials_variants' names
     j["cameras"] = model.cameras.size();
     nlohmann::ordered_json lights = nlohmann::ordered_json::array();
@@ -86,28 +121,7 @@ nlohmann::ordered_json describe(const scene::Model& model) {
     count("KHR_materials_iridescence", [](const scene::Material& m) { return m.hasIridescence; });
     count("KHR_materials_anisotropy", [](const scene::Material& m) { return m.hasAnisotropy; });
     j["material_layers"] = layers;
-    nlohmann::ordered_json glass = nlohmann::ordered_json::array();
-    for (const scene::Material& m : model.materials) {
-        if (!m.isTransmissive())
-            continue;
-        nlohmann::ordered_json g;
-        g["material"] = m.name;
-        g["transmission"] = m.transmissionFactor;
-        g["ior"] = m.ior;
-        g["ior_from_extension"] = m.hasIor;
-        g["dispersion"] = m.dispersion;
-        g["roughness"] = m.roughnessFactor;
-        g["metallic"] = m.metallicFactor;
-        g["volume"] = m.hasVolume;
-        g["thickness"] = m.thicknessFactor;
-        g["attenuationDistance"] = std::isinf(m.attenuationDistance)
-                                       ? nlohmann::ordered_json(nullptr)
-                                       : nlohmann::ordered_json(m.attenuationDistance);
-        g["attenuationColor"] = {m.attenuationColor.r, m.attenuationColor.g, m.attenuationColor.b};
-        g["doubleSided"] = m.doubleSided;
-        glass.push_back(g);
-    }
-    j["transmissive_materials"] = glass;
+    j["transmissive_materials"] = describeGlass(model);
     j["mesh_list"] = meshes;
     j["warnings"] = model.warnings;
     return j;

@@ -11,10 +11,11 @@ namespace viewer {
 
 using Type = plugin::Parameter::Type;
 
-plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
-                                      const std::vector<std::string>& environments,
-                                      const std::vector<std::string>& methods) {
-    plugin::ParameterSet p;
+namespace {
+
+/** The scene's: the clip, the clock, the environment, subdivision, exposure and the ground. */
+void declareScene(plugin::ParameterSet& p, const std::vector<std::string>& clips,
+                  const std::vector<std::string>& environments) {
     const std::vector<std::string> clipChoices =
         clips.empty() ? std::vector<std::string>{"(rest pose)"} : clips;
     p.declare({"clip", "Clip", Type::Enum, 0, 0, 0, clipChoices,
@@ -50,6 +51,10 @@ plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
                "GPU (0: the file's triangles; each level has four times the triangles)"});
     p.declare({"exposure", "Exposure", Type::Float, 0.05, 8.0, 1.0, {}, "before tonemapping"});
     p.declare({"ground", "Ground plane", Type::Bool, 0, 1, 1, {}, "a plane under the character"});
+}
+
+/** The view's: temporal accumulation, the A/B split, the render scale and the timings. */
+void declareView(plugin::ParameterSet& p, const std::vector<std::string>& methods) {
     p.declare({"temporal",
                "Accumulate",
                Type::Bool,
@@ -113,6 +118,16 @@ plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
                0,
                {},
                "finish each pass before timing it (true per-pass GPU times, slower frames)"});
+}
+
+} // namespace
+
+plugin::ParameterSet viewerParameters(const std::vector<std::string>& clips,
+                                      const std::vector<std::string>& environments,
+                                      const std::vector<std::string>& methods) {
+    plugin::ParameterSet p;
+    declareScene(p, clips, environments);
+    declareView(p, methods);
     return p;
 }
 

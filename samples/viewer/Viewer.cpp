@@ -89,8 +89,21 @@ std::filesystem::path assetsDir() {
 core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& options) {
     std::unique_ptr<Viewer> v(new Viewer());
     v->mOptions = options;
+    v->collectEnvironments(options);
+    core::Status ready = v->openWindow(options);
+    if (ready)
+        ready = v->createRenderer(options);
+    if (ready)
+        ready = v->openWorld(options);
+    if (ready)
+        ready = v->applyStartSettings(options);
+    if (!ready)
+        return ready.error();
+    return v;
+}
 
-    v->mEnvironments.push_back({"procedural sky", ""});
+void Viewer::collectEnvironments(const ViewerOptions& options) {
+    mEnvironments.push_back({"procedural sky", ""});
     std::vector<std::filesystem::path> found;
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator(assetsDir() / "env", ec))
@@ -101,17 +114,19 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
         found.emplace_back(env);
     for (const auto& path : found) {
         const bool known =
-            std::any_of(v->mEnvironments.begin(), v->mEnvironments.end(),
+            std::any_of(mEnvironments.begin(), mEnvironments.end(),
                         [&](const EnvironmentEntry& e) { return e.path == path.string(); });
         if (!known) {
             std::string name = path.stem().string();
-            for (const EnvironmentEntry& e : v->mEnvironments)
+            for (const EnvironmentEntry& e : mEnvironments)
                 if (e.name == name)
                     name = path.string();
-            v->mEnvironments.push_back({name, path.string()});
+            mEnvironments.push_back({name, path.string()});
         }
     }
+}
 
+core::Status Viewer::openWindow(const ViewerOptions& options) {
     gl::ContextOptions contextOptions;
     contextOptions.windowSize = options.windowSize;
     contextOptions.title = "glass-viewer";
@@ -120,9 +135,9 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
     if (!context)
         return core::Error{"glass-viewer needs a display (" + context.error().message +
                            "); without one use glass-capture, or run under xvfb-run"};
-    v->mContext = std::move(*context);
-    auto* window = static_cast<GLFWwindow*>(v->mContext->nativeWindow());
-    glfwSetWindowUserPointer(window, &v->mEvents);
+    mContext = std::move(*context);
+    auto* window = static_cast<GLFWwindow*>(mContext->nativeWindow());
+    glfwSetWindowUserPointer(window, &mEvents);
     glfwSetDropCallback(window, dropCallback);
     glfwSetKeyCallback(window, keyCallback); // before ImGui's, which calls it after its own
 
@@ -132,25 +147,31 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
     ImGui::StyleColorsDark();
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
+    return {};
+}
 
-    v->mRefraction = refraction::createPlugin();
+core::Status Viewer::createRenderer(const ViewerOptions& options) {
+    mRefraction = refraction::createPlugin();
     for (const std::string& path : options.plugins) {
         auto loaded = plugin::loadPlugin(path);
         if (!loaded)
             return loaded.error();
-        v->mPlugins.push_back(std::move(*loaded));
+        mPlugins.push_back(std::move(*loaded));
     }
 
-    auto renderer = render::Renderer::create(render::Environment::proceduralSky(), *v->mContext);
+    auto renderer = render::Renderer::create(render::Environment::proceduralSky(), *mContext);
     if (!renderer)
         return renderer.error();
-    v->mRenderer = std::move(*renderer);
-    if (auto added = v->mRenderer->addPlugin(v->mRefraction.get()); !added)
+    mRenderer = std::move(*renderer);
+    if (auto added = mRenderer->addPlugin(mRefraction.get()); !added)
         return added.error();
-    for (const auto& loaded : v->mPlugins)
-        if (auto added = v->mRenderer->addPlugin(loaded.get()); !added)
+    for (const auto& loaded : mPlugins)
+        if (auto added = mRenderer->addPlugin(loaded.get()); !added)
             return added.error();
+    return {};
+}
 
+core::Status Viewer::openWorld(const ViewerOptions& options) {
     // The world: as given, else the last session's scene, else the project's character.
     std::vector<std::string> paths = options.models;
     const std::filesystem::path lastScene = lastScenePath();
@@ -159,10 +180,10 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
         std::filesystem::exists(lastScene)) {
         auto world = asset::loadScene(lastScene);
         if (world && !world->characters.empty()) {
-            v->mWorld = std::move(*world);
+            mWorld = std::move(*world);
             restored = true;
             std::printf("glass-viewer: restored the last scene (%zu characters)\n",
-                        v->mWorld.characters.size());
+                        mWorld.characters.size());
         } else {
             std::fprintf(stderr, "glass-viewer: last scene not restored: %s\n",
                          world ? "no characters" : world.error().message.c_str());
@@ -174,61 +195,65 @@ core::Result<std::unique_ptr<Viewer>> Viewer::create(const ViewerOptions& option
         auto world = render::loadWorld(paths);
         if (!world)
             return world.error();
-        v->mWorld = std::move(*world);
+        mWorld = std::move(*world);
         if (paths.size() == 1 && asset::isSceneFile(paths[0]))
-            v->mScenePath = paths[0];
+            mScenePath = paths[0];
     }
-    v->worldChanged();
-    v->mSelected = v->mWorld.characters.empty() ? -1 : 0;
-    const glm::ivec2 size = v->mContext->framebufferSize();
-    v->mViewport = {size.x - Panel::width(size.x), size.y};
-    v->mCamera.frame(v->mBounds, v->viewportAspect());
+    return {};
+}
 
-    v->mSettings = v->settingsForScene();
-    v->worldChanged(); // the clip, loop and ground settings follow the world
+core::Status Viewer::applyStartSettings(const ViewerOptions& options) {
+    worldChanged();
+    mSelected = mWorld.characters.empty() ? -1 : 0;
+    const glm::ivec2 size = mContext->framebufferSize();
+    mViewport = {size.x - Panel::width(size.x), size.y};
+    mCamera.frame(mBounds, viewportAspect());
+
+    mSettings = settingsForScene();
+    worldChanged(); // the clip, loop and ground settings follow the world
     // Start on the first project HDR (the default environment), or the sky.
-    v->mSettings.setNumber("environment", v->mEnvironments.size() > 1 ? 1.0 : 0.0);
+    mSettings.setNumber("environment", mEnvironments.size() > 1 ? 1.0 : 0.0);
     // On a CPU rasteriser, half resolution keeps the glass interactive.
     if (std::string(gl::rendererString()).find("llvmpipe") != std::string::npos)
-        v->mSettings.setNumber("render-scale", 0.5);
-    v->mSettings.setNumber("split-method", 0.0);
+        mSettings.setNumber("render-scale", 0.5);
+    mSettings.setNumber("split-method", 0.0);
 
-    Orbit orbit = v->mCamera.orbitState();
+    Orbit orbit = mCamera.orbitState();
     const std::filesystem::path session = lastSessionPath();
     if (options.restoreSession && !session.empty() && std::filesystem::exists(session)) {
         auto preset = readPreset(session);
-        auto applied = preset ? applyPreset(*preset, v->scopes(), orbit, session.string())
+        auto applied = preset ? applyPreset(*preset, scopes(), orbit, session.string())
                               : core::Status(preset.error());
         if (!applied)
             std::fprintf(stderr, "glass-viewer: last session not restored: %s\n",
                          applied.error().message.c_str());
     }
     if (options.environments.empty()) {
-        v->useWorldEnvironment();
+        useWorldEnvironment();
     } else {
         const auto it = std::find_if(
-            v->mEnvironments.begin(), v->mEnvironments.end(),
+            mEnvironments.begin(), mEnvironments.end(),
             [&](const EnvironmentEntry& e) { return e.path == options.environments.front(); });
-        v->mSettings.setNumber("environment", double(it - v->mEnvironments.begin()));
+        mSettings.setNumber("environment", double(it - mEnvironments.begin()));
     }
     if (options.preset) {
         auto preset = readPreset(*options.preset);
         if (!preset)
             return preset.error();
-        auto applied = applyPreset(*preset, v->scopes(), orbit, *options.preset);
+        auto applied = applyPreset(*preset, scopes(), orbit, *options.preset);
         if (!applied)
             return applied.error();
     }
     for (const std::string& assignment : options.assignments)
-        if (auto set = setAssignment(v->scopes(), assignment); !set)
+        if (auto set = setAssignment(scopes(), assignment); !set)
             return set.error();
-    v->mCamera.setOrbit(orbit);
-    if (auto env = v->applyEnvironment(); !env)
+    mCamera.setOrbit(orbit);
+    if (auto env = applyEnvironment(); !env)
         return env.error();
     for (const std::string& path : options.add)
-        if (!v->addCharacter(path))
-            return core::Error{v->mMessage};
-    return v;
+        if (!addCharacter(path))
+            return core::Error{mMessage};
+    return {};
 }
 
 Viewer::~Viewer() {
@@ -288,7 +313,12 @@ plugin::ParameterSet Viewer::settingsForScene() const {
 }
 
 void Viewer::handleInput() {
-    ImGuiIO& io = ImGui::GetIO();
+    handleKeys();
+    handleMouse();
+}
+
+void Viewer::handleKeys() {
+    const ImGuiIO& io = ImGui::GetIO();
     plugin::ParameterSet& glass = methodPlugin()->parameters();
     const std::size_t methods = glass.find("method")->choices.size();
     for (const KeyEvent& key : std::exchange(mEvents.keys, {})) {
@@ -350,6 +380,10 @@ void Viewer::handleInput() {
             break;
         }
     }
+}
+
+void Viewer::handleMouse() {
+    const ImGuiIO& io = ImGui::GetIO();
     const float viewportWidth = float(std::max(mViewport.x, 1));
     const float dividerX = float(mSettings.number("split-position")) * viewportWidth;
     if (mDraggingDivider) {

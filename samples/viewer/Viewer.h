@@ -114,6 +114,16 @@ private:
     float viewportAspect() const { return float(mViewport.x) / float(std::max(mViewport.y, 1)); }
 
     void handleInput();
+    void handleKeys();  ///< the keys pressed since the last frame
+    void handleMouse(); ///< orbit, pan, zoom, pick, move the selection, drag the divider
+    // create()'s stages: the environments offered, the window and ImGui, the renderer and its
+    // plugins, the world (as given, else the last session's scene, else the project's
+    // character), then the settings (the last session's, --env, --preset, --set, --add).
+    void collectEnvironments(const ViewerOptions& options);
+    core::Status openWindow(const ViewerOptions& options);
+    core::Status createRenderer(const ViewerOptions& options);
+    core::Status openWorld(const ViewerOptions& options);
+    core::Status applyStartSettings(const ViewerOptions& options);
     void advance(double dt);
     render::RenderSettings settings(glm::ivec2 size) const;
     core::Status renderView(glm::ivec2 size);
