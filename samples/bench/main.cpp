@@ -319,25 +319,23 @@ void addOptions(CLI::App& app, Options& o) {
         },
         "methods of the refraction plugin", "the methods to run (default opaque,sir,isr,dir)")
         ->type_name("M,...");
-    const long maxLevel = core::limits::kMaxSubdivisionLevel;
     tool::addList(
         app, "--subdiv", o.levelNames,
-        [maxLevel](const std::string& level) {
+        [](const std::string& level) {
             long n = 0;
-            return wholeNumber(level, 0, maxLevel, n);
+            return wholeNumber(level, 0, core::limits::kMaxSubdivisionLevel, n);
         },
-        "levels 0.." + std::to_string(maxLevel),
+        "levels 0.." + std::to_string(core::limits::kMaxSubdivisionLevel),
         "OpenSubdiv levels, each refined every frame on the GPU from the deformed mesh "
         "(default 0: the file's triangles)")
         ->type_name("L,...");
-    const long maxCharacters = long(core::limits::kMaxCharacters);
     tool::addList(
         app, "--instances", o.instanceNames,
-        [maxCharacters](const std::string& count) {
+        [](const std::string& count) {
             long n = 0;
-            return wholeNumber(count, 1, maxCharacters, n);
+            return wholeNumber(count, 1, long(core::limits::kMaxCharacters), n);
         },
-        "counts 1.." + std::to_string(maxCharacters),
+        "counts 1.." + std::to_string(core::limits::kMaxCharacters),
         "also runs each count N of characters: copies of the scene's characters in turn, on a "
         "square grid in the x-z plane, copy k at phase k/N of its clip, the camera framing all")
         ->type_name("N,...");

@@ -115,7 +115,9 @@ struct WalkInputs {
     Capture capture;
     fg::TextureHandle sceneColor, sceneDepth;
 };
-/** Declares `in`'s textures (and the BVH where the method traces) as read by the pass. */
+/** Declares what the walk reads as read by the pass: the capture's maps, the scene's colour
+ *  and depth, the extent, layers, materials, the pair's ranges and, where the method traces,
+ *  the BVH. */
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture);
 /** Binds them, with the glass BVH and its textures where the method traces. */
