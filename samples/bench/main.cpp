@@ -310,8 +310,7 @@ bool wholeNumber(const std::string& text, long lo, long hi, long& n) {
 
 void addOptions(CLI::App& app, Options& o) {
     app.add_option("models", o.paths, "glTF models or a scene file (.json)")
-        ->type_name("MODEL|SCENE")
-        ->required();
+        ->type_name("MODEL|SCENE");
     tool::addList(
         app, "--methods", o.methods,
         [&o](const std::string& method) {
@@ -396,6 +395,8 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
     addOptions(app, o);
     if (const auto code = tool::parseArguments(app, argc, argv))
         return code;
+    if (o.paths.empty())
+        return tool::usageError(app, "no model given");
     for (const std::string& level : o.levelNames)
         o.levels.push_back(std::stoi(level));
     for (const std::string& count : o.instanceNames)
