@@ -51,7 +51,7 @@ const bool kPairCapture = CAPTURE_PAIR != 0, kTrace = LAYER_METHOD == METHOD_TRA
 // the surface's own (no band).
 const float kTirBand = kPairCapture ? 0.0 : radians(2.5), kOutlineTirBand = radians(4.0);
 
-// The method and the dispersion search are compiled in (a variant each, walkPrograms): on a CPU
+// The method and the dispersion search are compiled in (a variant each, selectVariants): on a CPU
 // rasteriser a shader pays for the code it carries.
 #ifndef LAYER_DISPERSION
 #define LAYER_DISPERSION DISPERSION_NONE // else DISPERSION_SEARCH_*
