@@ -28,6 +28,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -289,50 +290,51 @@ struct Options {
     std::string jsonPath, plotPath, glass = "all";
     std::vector<std::string> paths;
     std::vector<std::string> methods = {"opaque", "sir", "isr", "dir"};
-    std::vector<std::string> levelNames = {"0"}, instanceNames, temporalNames = {"off"};
-    std::vector<int> levels;    ///< levelNames'
-    std::vector<int> instances; ///< instanceNames' (empty: the world as loaded)
+    std::vector<int> levels = {0};
+    std::vector<int> instances; // empty: the world as loaded
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
     bool force = false, ground = false;
     std::vector<std::pair<std::string, std::string>> assignments;
-    std::vector<bool> temporalModes; ///< temporalNames'
+    std::vector<bool> temporalModes = {false};
     float historyWeight = render::TemporalSettings{}.historyWeight;
     plugin::ParameterSet parameters; ///< the glass's, with --glass and every --set applied
 };
 
-/** Whether `text` is a whole number in lo..hi, into `n`. */
-bool wholeNumber(const std::string& text, long lo, long hi, long& n) {
+/** `text` as a whole number in lo..hi, or nothing. */
+std::optional<int> wholeNumber(const std::string& text, long lo, long hi) {
     char* end = nullptr;
-    n = std::strtol(text.c_str(), &end, 10);
-    return !text.empty() && *end == '\0' && n >= lo && n <= hi;
+    const long n = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || n < lo || n > hi)
+        return std::nullopt;
+    return int(n);
 }
 
 void addOptions(CLI::App& app, Options& o) {
     app.add_option("models", o.paths, "glTF models or a scene file (.json)")
         ->type_name("MODEL|SCENE");
-    tool::addList(
+    tool::addList<std::string>(
         app, "--methods", o.methods,
-        [&o](const std::string& method) {
-            return plugin::ParameterSet(o.parameters).set("method", method).ok();
+        [&o](const std::string& method) -> std::optional<std::string> {
+            if (!plugin::ParameterSet(o.parameters).set("method", method))
+                return std::nullopt;
+            return method;
         },
         "methods of the refraction plugin", "the methods to run (default opaque,sir,isr,dir)")
         ->type_name("M,...");
-    tool::addList(
-        app, "--subdiv", o.levelNames,
+    tool::addList<int>(
+        app, "--subdiv", o.levels,
         [](const std::string& level) {
-            long n = 0;
-            return wholeNumber(level, 0, core::limits::kMaxSubdivisionLevel, n);
+            return wholeNumber(level, 0, core::limits::kMaxSubdivisionLevel);
         },
         "levels 0.." + std::to_string(core::limits::kMaxSubdivisionLevel),
         "OpenSubdiv levels, each refined every frame on the GPU from the deformed mesh "
         "(default 0: the file's triangles)")
         ->type_name("L,...");
-    tool::addList(
-        app, "--instances", o.instanceNames,
+    tool::addList<int>(
+        app, "--instances", o.instances,
         [](const std::string& count) {
-            long n = 0;
-            return wholeNumber(count, 1, long(core::limits::kMaxCharacters), n);
+            return wholeNumber(count, 1, long(core::limits::kMaxCharacters));
         },
         "counts 1.." + std::to_string(core::limits::kMaxCharacters),
         "also runs each count N of characters: copies of the scene's characters in turn, on a "
@@ -366,9 +368,14 @@ void addOptions(CLI::App& app, Options& o) {
         ->type_name("KEY=VALUE")
         ->trigger_on_parse()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    tool::addList(
-        app, "--temporal", o.temporalNames,
-        [](const std::string& mode) { return mode == "on" || mode == "off"; }, "off, on or off,on",
+    tool::addList<bool>(
+        app, "--temporal", o.temporalModes,
+        [](const std::string& mode) -> std::optional<bool> {
+            if (mode != "on" && mode != "off")
+                return std::nullopt;
+            return mode == "on";
+        },
+        "off, on or off,on",
         "on: also runs each method with temporal accumulation (\"dir+temporal\": the jitter, the "
         "motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's "
         "and the hybrid's samples one a frame), with its frame time as a ratio to the same "
@@ -397,12 +404,6 @@ std::optional<int> parse(int argc, char** argv, Options& o) {
         return code;
     if (o.paths.empty())
         return tool::usageError(app, "no model given");
-    for (const std::string& level : o.levelNames)
-        o.levels.push_back(std::stoi(level));
-    for (const std::string& count : o.instanceNames)
-        o.instances.push_back(std::stoi(count));
-    for (const std::string& mode : o.temporalNames)
-        o.temporalModes.push_back(mode == "on");
     // Checked on the parameters before any loading.
     o.assignments.insert(o.assignments.begin(), {"glass", o.glass});
     for (const auto& [key, value] : o.assignments)

@@ -42,7 +42,6 @@ struct Options {
     std::string caseFile;
     std::string contactSheet;
     bool force = false;
-    bool warmupGiven = false, weightGiven = false, accumulateGiven = false;
 };
 
 /** The files one run writes: refuses existing ones without --force before anything is written,
@@ -262,25 +261,24 @@ void addReferenceOptions(CLI::App& app, Options& o) {
 /** The combinations the options cannot say alone. */
 std::optional<int> checkCombinations(const CLI::App& app, Options& o) {
     const auto given = [&](const char* name) { return app.count(name) > 0; };
-    o.warmupGiven = given("--warmup");
-    o.accumulateGiven = given("--accumulate");
-    o.weightGiven = given("--history-weight") || given("--history-rejection") ||
-                    given("--converge-still") || given("--temporal-view");
+    const bool warmupGiven = given("--warmup"), accumulateGiven = given("--accumulate");
+    const bool weightGiven = given("--history-weight") || given("--history-rejection") ||
+                             given("--converge-still") || given("--temporal-view");
     o.outGiven = given("--out");
     if (given("--time") && given("--frames"))
         return tool::usageError(app, "--time and --frames are exclusive");
     if (o.reference && o.compare)
         return tool::usageError(app, "--method reference and --compare-reference are exclusive");
     o.referenceOptions.subdivision = o.session.subdivision; // the reference traces it too
-    if ((o.warmupGiven && !o.session.temporal.enabled) ||
-        (o.weightGiven && !o.session.temporal.enabled && !o.accumulateGiven))
+    if ((warmupGiven && !o.session.temporal.enabled) ||
+        (weightGiven && !o.session.temporal.enabled && !accumulateGiven))
         return tool::usageError(app, "--warmup goes with --temporal on; --history-weight, "
                                      "--history-rejection, --converge-still and --temporal-view "
                                      "with --temporal on or --accumulate");
-    if (o.accumulateGiven && o.session.temporal.enabled)
+    if (accumulateGiven && o.session.temporal.enabled)
         return tool::usageError(app, "--accumulate and --temporal on are exclusive (accumulate "
                                      "converges each frame from a fresh history)");
-    if (o.session.temporal.enabled && !o.warmupGiven)
+    if (o.session.temporal.enabled && !warmupGiven)
         o.session.warmup = 10;
     if (o.caseFile.empty() && o.session.models.empty())
         return tool::usageError(app, "no model given");

@@ -134,20 +134,22 @@ CLI::Option* addSize(CLI::App& app, const std::string& name, Size& size, int lo,
         ->type_name("WxH");
 }
 
-/** A comma-separated list into `items` (replacing its defaults), each item checked by `valid`
- *  (the option's error names a bad one and says what `expected` is). */
-inline CLI::Option* addList(CLI::App& app, const std::string& name, std::vector<std::string>& items,
-                            std::function<bool(const std::string&)> valid,
-                            const std::string& expected, const std::string& help) {
+/** A comma-separated list into `items` (replacing its defaults), each item converted by `item`
+ *  (nothing: a bad one, which the option's error names, saying what `expected` is). */
+template <class T>
+CLI::Option* addList(CLI::App& app, const std::string& name, std::vector<T>& items,
+                     std::function<std::optional<T>(const std::string&)> item,
+                     const std::string& expected, const std::string& help) {
     return app.add_option_function<std::string>(
         name,
-        [&items, name, valid, expected](const std::string& v) {
+        [&items, name, item, expected](const std::string& v) {
             items.clear();
             std::stringstream in(v);
-            for (std::string item; std::getline(in, item, ',');) {
-                if (!valid(item))
-                    throw CLI::ValidationError(name, "needs " + expected + ", got '" + item + "'");
-                items.push_back(item);
+            for (std::string text; std::getline(in, text, ',');) {
+                const std::optional<T> converted = item(text);
+                if (!converted)
+                    throw CLI::ValidationError(name, "needs " + expected + ", got '" + text + "'");
+                items.push_back(*converted);
             }
         },
         help);
