@@ -90,7 +90,8 @@ struct GpuState {
     // layers' surfaces and whether it reads textures at their base level (the trace's)
     // (layerPrograms, compiled in).
     gl::Program layerCapture, layerDepths;
-    gl::Program outlines; // the outline pass
+    gl::Program outlines;    // the outline pass
+    gl::Program glassShadow; // refraction.glass_shadow: the glass from the lights
     std::tuple<int, bool, bool> layerPrograms{0, false, false};
     /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
      *  punctual lights; textured glass). */

@@ -9,6 +9,7 @@
 #include "engine/deform/Subdivision.h"
 #include "engine/render/CpuShading.h"
 #include "engine/render/Lighting.h"
+#include "engine/render/Shadows.h"
 
 #include <embree3/rtcore.h>
 
@@ -64,15 +65,26 @@ struct Evaluation {
     int interfaces = 0, crossings = 0; ///< deterministic: where a path ends (the trace's bounds)
 };
 
+/** Which shadows the reference traces: none with RenderSettings::shadows off; the glass's
+ *  with the plugin's glass-shadows on. */
+struct Shadows {
+    bool enabled = true, glass = true;
+};
+
 class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
            const render::GroundPlane* ground, const ReferenceOptions& options,
            Settings::Fresnel fresnelMode, double epsilon, std::vector<scene::PlacedLight> lights,
-           Evaluation evaluation)
+           Evaluation evaluation, const Shadows& shadows)
         : mSurfaces(surfaces), mEnv(env), mLights(std::move(lights)), mGround(ground),
           mOptions(options), mFresnel(fresnelMode), mEpsilon(epsilon), mEvaluation(evaluation),
-          mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)) {
+          mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)), mShadows(shadows),
+          mCasts(shadows.enabled ? render::castingLights(mLights)
+                                 : std::vector<bool>(mLights.size(), false)),
+          mLighting{mEnv, mLights, [this](std::size_t i, dvec3 P, dvec3 N, dvec3 L) {
+                        return lightThrough(i, P, N, L);
+                    }} {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto* v = static_cast<float*>(
@@ -163,7 +175,7 @@ public:
     /** An opaque surface or the ground, lit like render/pbr.frag.glsl or ground.frag.glsl. */
     dvec3 shadeOpaque(const Hit& h, const dvec3& dir) const {
         const dvec3 V = -dir;
-        const render::cpu::Lighting lighting{mEnv, mLights};
+        const render::cpu::Lighting& lighting = mLighting;
         render::cpu::Surface surface;
         if (h.ground) {
             const double tile = mGround->halfSize / 8.0;
@@ -372,12 +384,12 @@ public:
      *  term where transmission is partial, the clear coat and sheen, emission. */
     dvec3 glassColor(const Hit& h, const Optics& o, const model::GlassSurface& s, dvec3 n, dvec3 V,
                      dvec3 glass) const {
-        const render::cpu::Lighting lighting{mEnv, mLights};
+        const render::cpu::Lighting& lighting = mLighting;
         const double NoV = std::clamp(glm::dot(n, V), 1e-4, 1.0);
         const double alpha = std::pow(std::max(s.roughness, 0.03), 2.0);
-        for (const scene::PlacedLight& light : mLights) {
+        for (std::size_t i = 0; i < mLights.size(); ++i) {
             dvec3 L;
-            const dvec3 arriving = render::cpu::lightArriving(light, h.point, L);
+            const dvec3 arriving = render::cpu::lightArriving(lighting, i, h.point, n, L);
             const dvec3 H = glm::normalize(L + V);
             const double NoL = glm::dot(n, L), VoH = std::max(glm::dot(V, H), 0.0);
             if (NoL > 0.0)
@@ -406,6 +418,51 @@ public:
         return render::cpu::layersOver(color, surface, lighting, h.point, n, V) + emissive;
     }
 
+    /** What reaches P (normal N) of light `i` toward L along the straight line to it, as the
+     *  GPU's shadow maps hold it (docs/materials.md, "Shadows"): nothing past an opaque surface
+     *  (the ground casts none); through glass, at each crossing 1 - F at the light's angle (the
+     *  entering reflectance), entering its tint and transmission too, and Beer-Lambert over the
+     *  length inside. */
+    dvec3 lightThrough(std::size_t i, dvec3 P, dvec3 N, dvec3 L) const {
+        if (!mCasts[i])
+            return dvec3(1.0);
+        const scene::PlacedLight& light = mLights[i];
+        const bool directional = light.light.type == scene::Light::Type::Directional;
+        double remaining = directional ? 1e300 : glm::distance(dvec3(light.position), P);
+        dvec3 origin = P + (glm::dot(N, L) < 0.0 ? -N : N) * (4.0 * mEpsilon);
+        dvec3 depth(0.0);       // optical depth, -ln of what passes
+        double travelled = 0.0; // from P toward the light
+        for (int crossing = 0; crossing < 1024; ++crossing) {
+            const Hit h = intersect(origin, L);
+            if (!h.hit || h.t >= remaining)
+                break;
+            travelled += h.t;
+            if (!h.ground) {
+                if (!h.surface->glass || !mShadows.glass)
+                    return dvec3(0.0);
+                const Optics& o = h.surface->optics;
+                const model::GlassSurface s = glassSurface(h);
+                const bool facesLight = glm::dot(h.geometricNormal, L) > 0.0;
+                const double cosI =
+                    std::clamp(std::abs(glm::dot(glm::normalize(h.shadingNormal), L)), 1e-4, 1.0);
+                // Distance from the light, up to a constant that cancels between a solid's two
+                // crossings: minus the way travelled toward it.
+                const double fromLight = -travelled;
+                for (int c = 0; c < 3; ++c) {
+                    double through =
+                        1.0 - model::reflectance(mFresnel, o, s, cosI, 1.0 / o.ior.g, c);
+                    if (facesLight)
+                        through *= s.baseColor[c] * (1.0 - s.metallic) * s.transmission;
+                    depth[c] += -std::log(std::max(through, 1e-6)) +
+                                (facesLight ? -1.0 : 1.0) * o.sigma[c] * fromLight;
+                }
+            }
+            origin = h.point;
+            remaining -= h.t;
+        }
+        return glm::exp(-glm::max(depth, dvec3(0.0)));
+    }
+
     /** How many glass surfaces the straight line from `origin` along `dir` crosses before an
      *  opaque surface (what the layered capture stores for the pixel), at most `cap`. */
     int countGlassSurfaces(dvec3 origin, const dvec3& dir, int cap) const {
@@ -430,6 +487,9 @@ private:
     Evaluation mEvaluation;
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
+    Shadows mShadows;
+    std::vector<bool> mCasts;        ///< per light: it casts (render::castingLights)
+    render::cpu::Lighting mLighting; ///< the lights with lightThrough as their visibility
 };
 
 /** Every character's surfaces at scene time `time`, deformed by the CPU reference, refined to
@@ -554,7 +614,8 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     const Evaluation evaluation{options.deterministic, decoded.interfaces - 1,
                                 2 * decoded.interfaces};
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
-                  decoded.fresnel, epsilon, render::worldLights(world, time), evaluation);
+                  decoded.fresnel, epsilon, render::worldLights(world, time), evaluation,
+                  Shadows{settings.shadows, decoded.glassShadows});
 
     ReferenceImage image;
     image.size = settings.size;

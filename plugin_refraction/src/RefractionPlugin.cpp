@@ -92,6 +92,10 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
          "refraction/pair_resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->outlines, rectangle, "refraction/outlines.frag.glsl", {}},
+        {&mGpu->glassShadow,
+         glass,
+         "refraction/glass_shadow.frag.glsl",
+         {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0"}},
         {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
@@ -160,18 +164,26 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
 
 } // namespace
 
-void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
-                                 fg::Blackboard& blackboard) {
-    if (stage != plugin::Stage::AfterOpaque || !mGpu)
-        return;
+/** What the frame's first stage decided and imported, which its later stages go on from. */
+struct RefractionPlugin::Frame {
+    const fg::FrameGraph* graph = nullptr; ///< the frame's (a stale one is not reused)
     FrameContext c;
+    FrameBuffers buffers;
+};
+
+bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard) {
+    if (mFrame && mFrame->graph == &graph)
+        return true;
+    mFrame.reset();
+    auto frame = std::make_unique<Frame>();
+    frame->graph = &graph;
+    FrameContext& c = frame->c;
     c.settings = settings();
     if (c.settings.method == Settings::Method::Opaque)
-        return;
+        return false;
     c.gpu = mGpu.get();
     c.plugin = this;
     c.frame = blackboard.get<const render::FrameInfo*>(plugin::kFrame);
-
     // Still frames that accumulate anti-alias every outline by their jitter: the outline pass
     // would blur them twice (while anything moves the history keeps little of an outline).
     if (c.frame->temporal.enabled && c.frame->temporal.still)
@@ -179,14 +191,32 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     c.reflect = c.settings.tir == Settings::Tir::Reflect && c.settings.twoInterfaces();
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
-        return;
+        return false;
     if (auto built = selectVariants(*mGpu, c); !built) {
         core::logError("refraction: " + built.error().message);
+        return false;
+    }
+    frame->buffers = importBuffers(graph, blackboard, *mGpu);
+    addGlassMaterialsPass(graph, c, frame->buffers);
+    mFrame = std::move(frame);
+    return true;
+}
+
+void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
+                                 fg::Blackboard& blackboard) {
+    if (!mGpu || stage == plugin::Stage::BeforeTonemap || !beginFrame(graph, blackboard))
+        return;
+    FrameContext& c = mFrame->c;
+    FrameBuffers& buffers = mFrame->buffers;
+    if (stage == plugin::Stage::Shadows) {
+        if (c.settings.glassShadows)
+            blackboard.put(
+                plugin::kShadowGlass,
+                addGlassShadowPass(graph, c, buffers,
+                                   blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)));
         return;
     }
-    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
     const SceneInputs scene = sceneInputs(blackboard);
-    addGlassMaterialsPass(graph, c, buffers);
     if (c.settings.usesGlassBvh())
         addGlassBvhPass(graph, c, buffers);
     addGlassExtentPass(graph, c, buffers);
@@ -204,6 +234,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
                                             ? addOutlinePass(graph, c, buffers, scene, walked)
                                             : walked.color);
+    mFrame.reset(); // the callbacks hold copies of what they use
 }
 
 LayerStats RefractionPlugin::layerStats() const {

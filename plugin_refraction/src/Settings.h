@@ -58,6 +58,8 @@ struct Settings {
     int hybridCriteria = kHandAll; ///< hybrid: what hands a pixel to the trace (HybridCriterion)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
+    /** The glass tints the light through it into the shadow maps (refraction.glass_shadow). */
+    bool glassShadows = true;
     int debug = 0; ///< index into the "debug" parameter's choices (the shaders' DEBUG_*)
 
     /** The plugin's parameters as data: name, label, type, range, default, choices, help. */

@@ -42,21 +42,21 @@ inline constexpr StorageSlot kPairRanges{42, "PAIR_RANGES_BINDING", "PairRanges"
 inline constexpr StorageSlot kWalkCounters{43, "WALK_COUNTERS_BINDING", "WalkCounters"};
 
 // Texture units.
-inline constexpr TextureSlot kSceneColor{24, "SCENE_COLOR_UNIT"};
-inline constexpr TextureSlot kSceneDepth{25, "SCENE_DEPTH_UNIT"};
-inline constexpr TextureSlot kLayerDepthMaps{26, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
-inline constexpr TextureSlot kPairNormals{28, "PAIR_NORMALS_UNIT", 2};        ///< front, back
+inline constexpr TextureSlot kSceneColor{26, "SCENE_COLOR_UNIT"};
+inline constexpr TextureSlot kSceneDepth{27, "SCENE_DEPTH_UNIT"};
+inline constexpr TextureSlot kLayerDepthMaps{28, "LAYER_DEPTH_MAPS_UNIT", 2}; ///< layers 0-3, 4-7
+inline constexpr TextureSlot kPairNormals{30, "PAIR_NORMALS_UNIT", 2};        ///< front, back
 /** The pair capture's maps the resolve reads (pair_resolve.frag.glsl): the one pass's nearest and
  *  farthest targets, or the two passes' front depth, front normal, back depth, back normal. */
-inline constexpr TextureSlot kPairMaps{30, "PAIR_MAPS_UNIT", 4};
-inline constexpr TextureSlot kOutlineSurface{34,
+inline constexpr TextureSlot kPairMaps{32, "PAIR_MAPS_UNIT", 4};
+inline constexpr TextureSlot kOutlineSurface{36,
                                              "OUTLINE_SURFACE_UNIT"}; ///< the walk's nearest layers
 /** The glass textures the trace reads at its hits (trace.glsl): normal maps, then base colour,
  *  transmission and roughness (GpuState::tracedTextures). */
-inline constexpr TextureSlot kTracedTextures{35, "TRACED_TEXTURES_UNIT", 8};
+inline constexpr TextureSlot kTracedTextures{37, "TRACED_TEXTURES_UNIT", 8};
 /** The two passes' surfaces where the frame's glass is textured (pair_resolve.frag.glsl): the
  *  front's, the back's. */
-inline constexpr TextureSlot kPairSurfaces{43, "PAIR_SURFACES_UNIT", 2};
+inline constexpr TextureSlot kPairSurfaces{45, "PAIR_SURFACES_UNIT", 2};
 
 } // namespace refraction::slot
 

@@ -118,6 +118,7 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
         if (j.contains("env") && !j["env"].is_null())
             c.session.environment = resolve(j["env"].get<std::string>());
         c.session.ground = j.value("ground", false);
+        c.session.shadows = j.value("shadows", true);
         c.session.exposure = j.value("exposure", 1.0f);
         c.session.subdivision = j.value("subdiv", 0);
         if (auto read = readTemporal(j, c, where); !read)

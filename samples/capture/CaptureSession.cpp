@@ -169,6 +169,7 @@ render::RenderSettings CaptureSession::settings() const {
     render::RenderSettings settings;
     settings.size = mOptions.size;
     settings.ground = mOptions.ground;
+    settings.shadows = mOptions.shadows;
     settings.exposure = mOptions.exposure;
     settings.exactPassTimes = true; // captures are not real-time: report true per-pass GPU times
     settings.temporal = mOptions.temporal;

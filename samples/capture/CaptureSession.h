@@ -38,6 +38,7 @@ struct SessionOptions {
     std::optional<std::string> environment;
     glm::ivec2 size{256, 256};
     bool ground = false; ///< also on when the scene file asks for it
+    bool shadows = true; ///< RenderSettings::shadows
     float exposure = 1.0f;
     int subdivision = 0; ///< OpenSubdiv level of every mesh (Renderer::setSubdivisionLevel)
     /** Default: the scene file's camera, else one model's glTF camera, else framing. */

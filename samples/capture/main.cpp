@@ -123,6 +123,9 @@ void addSceneOptions(CLI::App& app, Options& o) {
                    "equirectangular environment (default: a procedural sky)")
         ->type_name("HDR");
     app.add_flag("--ground", o.session.ground, "draw a ground plane under the character");
+    tool::addOnOff(
+        app, "--shadows", o.session.shadows,
+        "the lights cast shadows, each as its scene file's \"shadow\" says (default on)");
     app.add_option("--exposure", o.session.exposure,
                    "exposure multiplier before tonemapping (default 1)")
         ->check(CLI::PositiveNumber.description(""))

@@ -285,7 +285,7 @@ void Panel::camera(Viewer& v) {
 void Panel::environment(Viewer& v) {
     if (!section("Environment"))
         return;
-    for (const char* name : {"environment", "env-rotation", "exposure", "ground"})
+    for (const char* name : {"environment", "env-rotation", "exposure", "ground", "shadows"})
         widget(v.mSettings, name);
 }
 
@@ -340,6 +340,14 @@ void Panel::lights(Viewer& v) {
                                l.light.outerConeAngle - 0.01f, "%.2f rad");
             ImGui::SliderFloat("Outer cone", &l.light.outerConeAngle,
                                l.light.innerConeAngle + 0.01f, 1.5707f, "%.2f rad");
+        }
+        scene::LightShadow& shadow = l.light.shadow;
+        ImGui::Checkbox("Casts shadows", &shadow.enabled);
+        if (shadow.enabled) {
+            ImGui::SliderInt("Shadow map", &shadow.resolution, core::limits::kMinShadowResolution,
+                             core::limits::kMaxShadowResolution, "%d px",
+                             ImGuiSliderFlags_Logarithmic);
+            ImGui::SliderFloat("Softness", &shadow.softness, 0.0f, 8.0f, "%.1f texels");
         }
         ImGui::PopID();
         if (remove) {

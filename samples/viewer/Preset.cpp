@@ -51,6 +51,14 @@ void declareScene(plugin::ParameterSet& p, const std::vector<std::string>& clips
                "GPU (0: the file's triangles; each level has four times the triangles)"});
     p.declare({"exposure", "Exposure", Type::Float, 0.05, 8.0, 1.0, {}, "before tonemapping"});
     p.declare({"ground", "Ground plane", Type::Bool, 0, 1, 1, {}, "a plane under the character"});
+    p.declare({"shadows",
+               "Shadows",
+               Type::Bool,
+               0,
+               1,
+               1,
+               {},
+               "the lights cast shadows (each light's own in the Lights section)"});
 }
 
 /** The view's: temporal accumulation, the A/B split, the render scale and the timings. */

@@ -448,6 +448,7 @@ render::RenderSettings Viewer::settings(glm::ivec2 size) const {
     s.exposure = float(mSettings.number("exposure"));
     s.environmentRotation = float(glm::radians(mSettings.number("env-rotation")));
     s.ground = mSettings.flag("ground");
+    s.shadows = mSettings.flag("shadows");
     s.exactPassTimes = mSettings.flag("exact-timings");
     // The split draws two methods a frame: one history cannot serve both.
     s.temporal.enabled = mSettings.flag("temporal") && !mSettings.flag("split");

@@ -32,8 +32,9 @@ TEST(CaptureTool, BadArgumentsExitTwo) {
     EXPECT_EQ(capture("model.glb --set a=b", &out), 2);
     EXPECT_EQ(capture("--help", &out), 0);
     EXPECT_EQ(capture("builtin:sphere --method magic", &out), 2);
-    EXPECT_NE(out.find("--method: parameter 'method' takes opaque|sir|isr|dir|trace|hybrid, got 'magic'"),
-              std::string::npos)
+    EXPECT_NE(
+        out.find("--method: parameter 'method' takes opaque|sir|isr|dir|trace|hybrid, got 'magic'"),
+        std::string::npos)
         << out;
     EXPECT_EQ(capture("builtin:sphere --ior 9", &out), 2);
     EXPECT_EQ(capture("builtin:sphere --tint 1,2", &out), 2);
@@ -174,7 +175,7 @@ TEST(CaptureTool, PluginInterfaceVersionIsChecked) {
                       &out),
               1);
     EXPECT_NE(
-        out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/5'"),
+        out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/6'"),
         std::string::npos)
         << out;
     EXPECT_EQ(

@@ -75,6 +75,7 @@ public:
         render::RenderSettings settings;
         settings.size = {mSize, mSize};
         settings.ground = mWorld.ground;
+        settings.shadows = shadows;
         settings.hdrOutput = true;
         settings.temporal = temporal;
         auto stats = mRenderer->render(mWorld, mCamera, settings, time);
@@ -103,6 +104,7 @@ public:
         render::RenderSettings settings;
         settings.size = {mSize, mSize};
         settings.ground = mWorld.ground;
+        settings.shadows = shadows;
         refraction::ReferenceOptions options;
         options.samplesPerPixel = spp;
         options.deterministic = evaluation == Evaluation::Deterministic;
@@ -138,6 +140,8 @@ public:
     render::Renderer& renderer() { return *mRenderer; }
     const scene::World& world() const { return mWorld; }
     scene::Character& character(std::size_t i) { return mWorld.characters.at(i); }
+    /** The lights cast shadows, on the GPU and in the reference (RenderSettings::shadows). */
+    bool shadows = true;
     /** The frames' temporal accumulation (off unless set). */
     render::TemporalSettings temporal;
     const render::Camera& camera() const { return mCamera; }

@@ -148,7 +148,7 @@ vec3 layersOver(vec3 under, SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
-        vec3 arriving = lightArriving(i, P, L);
+        vec3 arriving = lightArriving(i, P, N, L);
         vec3 H = normalize(L + V);
         float NoL = dot(N, L), NoLc = dot(Nc, L);
         if (sheenLayer && NoL > 0.0)
@@ -206,7 +206,7 @@ vec3 shadeSurface(SurfaceMaterial m, vec3 P, vec3 N, vec3 V) {
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
-        vec3 arriving = lightArriving(i, P, L);
+        vec3 arriving = lightArriving(i, P, N, L);
         vec3 H = normalize(L + V);
         float NoL = dot(N, L), VoH = max(dot(V, H), 0.0), NoH = max(dot(N, H), 0.0);
         if (NoL <= 0.0)

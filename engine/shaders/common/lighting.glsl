@@ -1,6 +1,7 @@
-// The frame's punctual lights (KHR_lights_punctual, a scene file's "lights") and the table of the
-// sheen layer's directional albedo: one storage buffer the renderer binds for every pass
-// (render::Lighting; its C++ layout is render::LightingGpu).
+// The frame's punctual lights (KHR_lights_punctual, a scene file's "lights"), their shadow
+// views and the table of the sheen layer's directional albedo: one storage buffer the renderer
+// binds for every pass (render::LightingBuffer, which lays it out in C++), and the shadow
+// atlases every pass that shades samples (render::bindShadowMaps).
 #ifndef COMMON_LIGHTING_GLSL
 #define COMMON_LIGHTING_GLSL
 
@@ -15,23 +16,35 @@ struct PunctualLight {
     vec4 position;  // world; w: LIGHT_*
     vec4 direction; // where it shines (unit, world); w: range, 0 for unlimited
     vec4 radiance;  // colour * intensity; w: cosine of the outer cone angle
-    vec4 cone;      // x: cosine of the inner cone angle
+    vec4 cone;      // x: cosine of the inner cone angle, y: first shadow view (-1: none),
+                    // z: the shadow filter's radius in texels
+};
+// One map of a light (render::ShadowView) and its tile in the atlases.
+struct ShadowView {
+    mat4 viewProjection;
+    vec4 tile;  // the tile's corner (xy) and side (z) in atlas uv; w: one texel in atlas uv
+    vec4 axis;  // perspective: the light's position; else distance = dot(axis.xyz, P) + axis.w
+    vec4 texel; // x: a texel's world size at distance 1 (perspective) or anywhere; y: perspective;
+                // z: the near plane's distance
 };
 layout(std430, binding = LIGHTING_BINDING) readonly buffer Lighting {
     // E(NoV, roughness) of the sheen lobe, row r: roughness r / (size - 1), column c: NoV
     // c / (size - 1)
     float sheenAlbedoTable[SHEEN_TABLE_SIZE * SHEEN_TABLE_SIZE];
-    uvec4 lightCount; // x
+    uvec4 lightCount; // x: lights, y: shadow views
+    ShadowView shadowViews[MAX_SHADOW_VIEWS];
     PunctualLight punctualLights[];
 };
 
-// Light `i` as it arrives at P: its radiance after the distance, range and cone falloffs, and
-// the unit direction L toward it.
-vec3 lightArriving(uint i, vec3 P, out vec3 L) {
+#include "common/shadows.glsl"
+
+// Light `i` as it arrives at P (normal N): its radiance after the distance, range and cone
+// falloffs and what its shadow maps say blocks or tints it, and the unit direction L toward it.
+vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
     PunctualLight light = punctualLights[i];
     if (int(light.position.w) == LIGHT_DIRECTIONAL) {
         L = -light.direction.xyz;
-        return light.radiance.rgb;
+        return light.radiance.rgb * lightShadow(light, P, N, L);
     }
     vec3 toLight = light.position.xyz - P;
     float d2 = max(dot(toLight, toLight), 1e-8);
@@ -48,7 +61,9 @@ vec3 lightArriving(uint i, vec3 P, out vec3 L) {
                         0.0, 1.0);
         falloff *= t * t;
     }
-    return light.radiance.rgb * falloff;
+    if (falloff <= 0.0)
+        return vec3(0.0);
+    return light.radiance.rgb * falloff * lightShadow(light, P, N, L);
 }
 
 // The sheen lobe's albedo, bilinear in the table as render::sheenAlbedo reads it.

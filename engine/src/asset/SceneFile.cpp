@@ -101,6 +101,34 @@ const char* lightTypeName(scene::Light::Type type) {
                                                    : "point";
 }
 
+/** A light's "shadow" object: whether it casts, its maps' resolution and its filter's radius. */
+scene::LightShadow readShadow(const Json& j, const std::string& key, const std::string& where) {
+    if (!j.is_object())
+        fail(key, "expected an object, got " + j.dump());
+    warnUnknownKeys(j, {"enabled", "resolution", "softness"}, where + key + ".");
+    scene::LightShadow shadow;
+    if (j.contains("enabled"))
+        shadow.enabled = boolean(j["enabled"], key + ".enabled");
+    if (j.contains("resolution")) {
+        const double r = number(j["resolution"], key + ".resolution");
+        if (!(r == std::floor(r) && r >= core::limits::kMinShadowResolution &&
+              r <= core::limits::kMaxShadowResolution))
+            fail(key + ".resolution", "expected a whole number of texels in " +
+                                          std::to_string(core::limits::kMinShadowResolution) +
+                                          ".." +
+                                          std::to_string(core::limits::kMaxShadowResolution) +
+                                          ", got " + j["resolution"].dump());
+        shadow.resolution = int(r);
+    }
+    if (j.contains("softness")) {
+        shadow.softness = float(number(j["softness"], key + ".softness"));
+        if (!(shadow.softness >= 0.0f && shadow.softness <= 8.0f))
+            fail(key + ".softness",
+                 "expected a filter radius in 0..8 texels, got " + j["softness"].dump());
+    }
+    return shadow;
+}
+
 /** A light of the scene's "lights" array (README "Scene files"): KHR_lights_punctual's
  *  properties, placed in world space by position and direction. */
 scene::PlacedLight readLight(const Json& j, const std::string& key, const std::string& where) {
@@ -108,7 +136,7 @@ scene::PlacedLight readLight(const Json& j, const std::string& key, const std::s
         fail(key, "expected an object, got " + j.dump());
     warnUnknownKeys(j,
                     {"name", "type", "position", "direction", "color", "intensity", "range",
-                     "inner_cone_angle", "outer_cone_angle"},
+                     "inner_cone_angle", "outer_cone_angle", "shadow"},
                     where + key + ".");
     scene::PlacedLight placed;
     scene::Light& light = placed.light;
@@ -156,6 +184,8 @@ scene::PlacedLight readLight(const Json& j, const std::string& key, const std::s
     if (light.type == scene::Light::Type::Spot &&
         !(light.innerConeAngle < light.outerConeAngle && light.outerConeAngle <= 1.5708f))
         fail(key, "a spot light needs inner_cone_angle < outer_cone_angle <= pi/2 (radians)");
+    if (j.contains("shadow"))
+        light.shadow = readShadow(j["shadow"], key + ".shadow", where);
     return placed;
 }
 
@@ -483,6 +513,10 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
             j["inner_cone_angle"] = l.light.innerConeAngle;
             j["outer_cone_angle"] = l.light.outerConeAngle;
         }
+        if (l.light.shadow != scene::LightShadow{})
+            j["shadow"] = {{"enabled", l.light.shadow.enabled},
+                           {"resolution", l.light.shadow.resolution},
+                           {"softness", l.light.shadow.softness}};
         root["lights"].push_back(j);
     }
     root["characters"] = Json::array();

@@ -7,6 +7,8 @@
 
 #include <epoxy/gl.h>
 
+#include <utility>
+
 namespace gl {
 
 void apply(const PipelineState& s) {
@@ -27,7 +29,10 @@ void apply(const PipelineState& s) {
         glDisable(GL_BLEND);
     } else {
         glEnable(GL_BLEND);
-        glBlendEquation(s.blend == Blend::Max ? GL_MAX : GL_FUNC_ADD);
+        if (s.blend == Blend::AddMinAlpha)
+            glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
+        else
+            glBlendEquation(s.blend == Blend::Max ? GL_MAX : GL_FUNC_ADD);
         if (s.blend == Blend::Alpha)
             glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
                                 GL_ONE_MINUS_SRC_ALPHA);
@@ -35,8 +40,53 @@ void apply(const PipelineState& s) {
             glBlendFunc(GL_ONE, GL_ONE);
     }
     glFrontFace(s.clockwise ? GL_CW : GL_CCW);
+    if (s.depthBiasSlope != 0.0f || s.depthBiasUnits != 0.0f) {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(s.depthBiasSlope, s.depthBiasUnits);
+    } else {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void setViewport(const glm::ivec4& rect) {
+    glViewport(rect.x, rect.y, rect.z, rect.w);
+}
+
+Sampler::Sampler(Filter filter, Wrap wrap, bool compareDepth) {
+    glCreateSamplers(1, &mId);
+    const GLint mag = filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;
+    const GLint min = filter == Filter::LinearMipmap ? GL_LINEAR_MIPMAP_LINEAR : mag;
+    static const GLint wraps[] = {GL_REPEAT, GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT};
+    glSamplerParameteri(mId, GL_TEXTURE_MAG_FILTER, mag);
+    glSamplerParameteri(mId, GL_TEXTURE_MIN_FILTER, min);
+    glSamplerParameteri(mId, GL_TEXTURE_WRAP_S, wraps[int(wrap)]);
+    glSamplerParameteri(mId, GL_TEXTURE_WRAP_T, wraps[int(wrap)]);
+    if (compareDepth) {
+        glSamplerParameteri(mId, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(mId, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+}
+
+Sampler::~Sampler() {
+    if (mId)
+        glDeleteSamplers(1, &mId);
+}
+
+Sampler::Sampler(Sampler&& other) noexcept : mId(std::exchange(other.mId, 0)) {}
+
+Sampler& Sampler::operator=(Sampler&& other) noexcept {
+    if (this != &other) {
+        if (mId)
+            glDeleteSamplers(1, &mId);
+        mId = std::exchange(other.mId, 0);
+    }
+    return *this;
+}
+
+void Sampler::bind(const TextureSlot& slot) const {
+    glBindSampler(slot.index, mId);
 }
 
 void clearColor(int index, const glm::vec4& color) {

@@ -311,6 +311,13 @@ Surface readSurface(const scene::Model& model, const scene::Material& m, const P
     return s;
 }
 
+dvec3 lightArriving(const Lighting& lighting, std::size_t i, dvec3 P, dvec3 N, dvec3& L) {
+    const dvec3 arriving = lightArriving(lighting.lights[i], P, L);
+    if (!lighting.visibility || arriving == dvec3(0.0))
+        return arriving;
+    return arriving * lighting.visibility(i, P, N, L);
+}
+
 dvec3 layersOver(dvec3 under, const Surface& s, const Lighting& lighting, dvec3 P, dvec3 N,
                  dvec3 V) {
     const bool sheenLayer = maxOf(s.sheenColor) > 0.0, coatLayer = s.clearcoat > 0.0;
@@ -330,9 +337,9 @@ dvec3 layersOver(dvec3 under, const Surface& s, const Lighting& lighting, dvec3 
         coat = lighting.environment.radiance(glm::reflect(-V, Nc), s.clearcoatRoughness) *
                (0.04 * dfg.x + dfg.y) * s.occlusion;
     }
-    for (const scene::PlacedLight& light : lighting.lights) {
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
         dvec3 L;
-        const dvec3 arriving = lightArriving(light, P, L);
+        const dvec3 arriving = lightArriving(lighting, i, P, N, L);
         const dvec3 H = glm::normalize(L + V);
         const double NoL = glm::dot(N, L), NoLc = glm::dot(Nc, L);
         if (sheenLayer && NoL > 0.0)
@@ -377,9 +384,9 @@ dvec3 shadeSurface(const Surface& s, const Lighting& lighting, dvec3 P, dvec3 N,
     dvec3 base = (lighting.environment.irradiance(N) * s.baseColor * (1.0 - s.metallic) +
                   glm::mix(dielectric, metal, s.metallic)) *
                  s.occlusion;
-    for (const scene::PlacedLight& light : lighting.lights) {
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
         dvec3 L;
-        const dvec3 arriving = lightArriving(light, P, L);
+        const dvec3 arriving = lightArriving(lighting, i, P, N, L);
         const dvec3 H = glm::normalize(L + V);
         const double NoL = glm::dot(N, L), VoH = std::max(glm::dot(V, H), 0.0),
                      NoH = std::max(glm::dot(N, H), 0.0);

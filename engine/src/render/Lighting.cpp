@@ -2,6 +2,8 @@
 #include "engine/render/Lighting.h"
 
 #include "engine/anim/Pose.h"
+#include "engine/core/Check.h"
+#include "engine/core/Limits.h"
 #include "engine/gl/Commands.h"
 #include "engine/scene/World.h"
 
@@ -17,10 +19,33 @@ struct PunctualLightGpu {
     glm::vec4 position;  // w: type
     glm::vec4 direction; // w: range
     glm::vec4 radiance;  // w: cos outer
-    glm::vec4 cone;      // x: cos inner
+    glm::vec4 cone;      // x: cos inner, y: first shadow view (-1: none), z: filter radius
+};
+/** One shadow view as common/shadows.glsl's ShadowView lays it out (std430). */
+struct ShadowViewGpu {
+    glm::mat4 viewProjection;
+    glm::vec4 tile;  // the tile's corner and side in atlas uv, one texel in atlas uv
+    glm::vec4 axis;  // perspective: the light's position; else the view's row -z (the distance)
+    glm::vec4 texel; // x: ShadowView::texelSize, y: 1 for a perspective view, z: its near
 };
 constexpr std::size_t kTableBytes = sizeof(float) * kSheenTableSize * kSheenTableSize;
-constexpr std::size_t kHeaderBytes = kTableBytes + 16; // the table, then uvec4 lightCount
+constexpr std::size_t kViewsBytes = sizeof(ShadowViewGpu) * kMaxShadowViews;
+// The table, the counts (a uvec4), the views, then the lights.
+constexpr std::size_t kHeaderBytes = kTableBytes + 16 + kViewsBytes;
+static_assert(kMaxShadowViews == 6 * core::limits::kMaxShadowedLights);
+
+ShadowViewGpu packView(const ShadowView& v, glm::ivec2 atlas) {
+    const glm::vec2 scale = 1.0f / glm::vec2(atlas);
+    ShadowViewGpu g;
+    g.viewProjection = v.viewProjection();
+    g.tile = glm::vec4(glm::vec2(v.tile.x, v.tile.y) * scale, float(v.tile.z) * scale.x, scale.x);
+    // The distance ShadowView::distance measures: from the light's position, or -z in its view
+    // (dot(axis.xyz, p) + axis.w), less the near plane's.
+    g.axis = v.perspective ? glm::vec4(glm::vec3(glm::inverse(v.view)[3]), 0.0f)
+                           : -glm::transpose(v.view)[2];
+    g.texel = glm::vec4(v.texelSize, v.perspective ? 1.0f : 0.0f, v.near, 0.0f);
+    return g;
+}
 
 /** The sheen lobe's albedo at NoV and roughness, integrated over half vectors (the lobe is
  *  narrow around half vectors in the tangent plane, which a dense grid in theta resolves). */
@@ -108,24 +133,36 @@ std::vector<scene::PlacedLight> worldLights(const scene::World& world, double ti
     return lights;
 }
 
-void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights) {
+void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights,
+                            const ShadowPlan& shadows) {
     if (!mBuffer || lights.size() > mCapacity) {
         mCapacity = std::max<std::size_t>(lights.size(), 8);
         mBuffer = gl::Buffer(kHeaderBytes + mCapacity * sizeof(PunctualLightGpu));
         mBuffer.update(0, kTableBytes, sheenAlbedoTable().data());
     }
-    // The count (a uvec4), then the lights, written at once from storage kept across frames.
-    mStaging.resize(16 + lights.size() * sizeof(PunctualLightGpu));
-    const std::uint32_t count[4] = {std::uint32_t(lights.size()), 0, 0, 0};
+    // The counts (a uvec4), the views, then the lights, written at once from storage kept
+    // across frames.
+    ENGINE_CHECK(shadows.views.size() <= kMaxShadowViews, "too many shadow views");
+    constexpr std::size_t kLights = 16 + kViewsBytes;
+    mStaging.assign(kLights + lights.size() * sizeof(PunctualLightGpu), 0);
+    const std::uint32_t count[4] = {std::uint32_t(lights.size()),
+                                    std::uint32_t(shadows.views.size()), 0, 0};
     std::memcpy(mStaging.data(), count, sizeof(count));
+    for (std::size_t v = 0; v < shadows.views.size(); ++v) {
+        const ShadowViewGpu packed = packView(shadows.views[v], shadows.atlasSize);
+        std::memcpy(mStaging.data() + 16 + v * sizeof(ShadowViewGpu), &packed, sizeof(packed));
+    }
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const scene::PlacedLight& l = lights[i];
         const PunctualLightGpu packed{
             glm::vec4(l.position, float(int(l.light.type))), // w: LIGHT_* (render/Shared.h)
             glm::vec4(l.direction, l.light.range),
             glm::vec4(l.light.color * l.light.intensity, std::cos(l.light.outerConeAngle)),
-            glm::vec4(std::cos(l.light.innerConeAngle), 0.0f, 0.0f, 0.0f)};
-        std::memcpy(mStaging.data() + 16 + i * sizeof(PunctualLightGpu), &packed, sizeof(packed));
+            glm::vec4(std::cos(l.light.innerConeAngle),
+                      i < shadows.firstView.size() ? float(shadows.firstView[i]) : -1.0f,
+                      l.light.shadow.softness, 0.0f)};
+        std::memcpy(mStaging.data() + kLights + i * sizeof(PunctualLightGpu), &packed,
+                    sizeof(packed));
     }
     mBuffer.update(kTableBytes, mStaging.size(), mStaging.data());
     gl::bindStorage(gl::slot::kLighting, mBuffer);

@@ -27,6 +27,9 @@ struct ModelGpu {
     std::shared_ptr<const deform::GpuModel> upload;
     std::shared_ptr<MaterialTextures> materials; ///< kept when the level changes
     std::vector<int> lightNodes; ///< nodes with a KHR_lights_punctual light (render::lightNodes)
+    /** Per clip (-1: the rest pose): the bounds of its deformed meshes over the clip, which the
+     *  shadow views are fitted to (computed when a frame first plays the clip). */
+    std::map<int, Bounds> clipBounds;
     /** Per mesh, per primitive: a vertex array binding its index buffer (the same for every
      *  node, instance and placement that draws the mesh; empty for meshes no node draws). */
     std::vector<std::vector<gl::VertexArray>> vertexArrays;
@@ -47,6 +50,13 @@ struct RenderGpu {
     std::vector<DrawItem> items;                        // this frame's (storage reused)
     std::vector<scene::PlacedLight> lights;             // this frame's, in world space
     LightingBuffer lighting;                            // the lights (gl::slot::kLighting)
+    ShadowPlan shadows;                                 // this frame's shadow views
+    std::size_t reportedOverLimit = 0; ///< lights over the shadow limit last warned of
+    gl::Program shadowCaster;          ///< render/shadow.vert.glsl: depth from a light's view
+    /** Reads the shadow depth atlas as a shadow sampler (compared, bilinear). */
+    gl::Sampler shadowSampler{gl::Filter::Linear, gl::Wrap::Clamp, true};
+    /** What the shadow units hold in frames where no light casts: nothing in front. */
+    gl::Texture noShadowDepth, noShadowGlass;
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
     gl::Program temporal; ///< the temporal resolve (render/temporal.frag.glsl)

@@ -7,6 +7,7 @@
 #include "RenderGpu.h"
 #include "passes/Passes.h"
 
+#include "engine/core/Log.h"
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
 #include "engine/gl/Debug.h"
@@ -136,6 +137,25 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
             return core::Error{"render::Renderer::create(): " + program.error().message};
         *spec.target = std::move(*program);
     }
+    auto caster =
+        gl::Program::graphics(r->mShaders, "render/shadow.vert.glsl", "render/shadow.frag.glsl");
+    if (!caster)
+        return core::Error{"render::Renderer::create(): " + caster.error().message};
+    gpu.shadowCaster = std::move(*caster);
+    gpu.noShadowDepth = gl::Texture({glm::ivec2(1), gl::Format::Depth32F, 1});
+    gpu.noShadowGlass = gl::Texture({glm::ivec2(1), gl::Format::RGBA16F, 1});
+    for (const bool depth : {true, false}) {
+        const gl::Texture& t = depth ? gpu.noShadowDepth : gpu.noShadowGlass;
+        if (auto bound = gpu.framebuffer.bindTargets(
+                "no shadows", depth ? std::vector<const gl::Texture*>{} : std::vector{&t},
+                depth ? &t : nullptr);
+            !bound)
+            return bound.error();
+        if (depth)
+            gl::clearDepth(1.0f);
+        else
+            gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass));
+    }
     for (int lit = 0; lit < 2; ++lit) {
         auto program =
             gl::Program::graphics(r->mShaders, "render/ground.vert.glsl", "render/ground.frag.glsl",
@@ -243,6 +263,40 @@ core::Status Renderer::addPlugin(plugin::Plugin* p) {
     return {};
 }
 
+void Renderer::planShadows(const scene::World& world, const RenderSettings& settings) {
+    RenderGpu& gpu = *mGpu;
+    gpu.shadows = {};
+    if (!settings.shadows || gpu.lights.empty())
+        return;
+    // The casters' bounds: each character's over its clip, placed, a little grown.
+    Bounds casters;
+    for (std::size_t c = 0; c < world.characters.size(); ++c) {
+        const scene::Character& character = world.characters[c];
+        ModelGpu& m = *gpu.characters[c].model;
+        const int clip = character.playingClip();
+        auto [it, added] = m.clipBounds.try_emplace(clip);
+        if (added)
+            it->second = animatedBounds(*m.model, clip, 8);
+        const Bounds placed = transformed(it->second, character.transform());
+        const glm::vec3 margin(0.05f * std::max(placed.radius(), 1e-3f));
+        casters.add(placed.min - margin);
+        casters.add(placed.max + margin);
+    }
+    gpu.shadows = render::planShadows(gpu.lights, casters, gl::Texture::maxSize());
+    if (gpu.shadows.overLimit != gpu.reportedOverLimit) {
+        if (gpu.shadows.overLimit)
+            core::logWarning("render: " + std::to_string(gpu.shadows.overLimit) +
+                             " lights light without shadows: at most " +
+                             std::to_string(core::limits::kMaxShadowedLights) +
+                             " lights cast shadows in a frame");
+        gpu.reportedOverLimit = gpu.shadows.overLimit;
+    }
+    if (gpu.shadows.halved)
+        core::logWarning("render: the shadow maps' resolutions halved " +
+                         std::to_string(gpu.shadows.halved) +
+                         " times to fit the GPU's largest texture");
+}
+
 core::Result<FrameStats> Renderer::render(const scene::World& world, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
@@ -302,8 +356,9 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         return core::Error{
             "render::Renderer::render(): the scene places " + std::to_string(gpu.lights.size()) +
             " punctual lights, over the limit of " + std::to_string(core::limits::kMaxLights)};
-    gpu.lighting.upload(gpu.lights);         // bound for every pass of the frame
-    for (const int layers : gpu.layerSets) { // the opaque programs this frame draws with
+    planShadows(world, settings);
+    gpu.lighting.upload(gpu.lights, gpu.shadows); // bound for every pass of the frame
+    for (const int layers : gpu.layerSets) {      // the opaque programs this frame draws with
         const int key = RenderGpu::opaqueKey(layers, !gpu.lights.empty());
         if (gpu.opaque.count(key))
             continue;
@@ -332,6 +387,9 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.time = time;
     frame.ground = mGroundPlane;
     frame.opaqueGeometry = opaqueGeometry;
+    frame.shadows = &gpu.shadows;
+    frame.glassCasts = std::any_of(gpu.items.begin(), gpu.items.end(),
+                                   [](const DrawItem& item) { return item.owner != nullptr; });
     const auto since = [](std::chrono::steady_clock::time_point start) {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
@@ -344,17 +402,34 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
     const fg::BufferHandle vertices =
         passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", &gpu.characters));
+    passes::ShadowTargets shadows;
+    if (gpu.shadows.empty()) {
+        shadows.depth =
+            graph.importTexture("scene.shadow_depth", gpu.noShadowDepth.desc(), &gpu.noShadowDepth);
+        shadows.glass =
+            graph.importTexture("scene.shadow_glass", gpu.noShadowGlass.desc(), &gpu.noShadowGlass);
+        passes::bindShadowMaps(gpu, gpu.noShadowDepth, gpu.noShadowGlass);
+    } else {
+        shadows = passes::addShadows(graph, gpu, frame, vertices);
+    }
+    blackboard.put(plugin::kShadowDepth, shadows.depth);
+    blackboard.put(plugin::kShadowGlass, shadows.glass);
+    blackboard.put(plugin::kSceneVertices, vertices);
+    blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
+    if (!gpu.shadows.empty())
+        for (plugin::Plugin* p : mPlugins)
+            p->addPasses(plugin::Stage::Shadows, graph, blackboard);
+    shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
+
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (settings.ground)
-        scene = passes::addGround(graph, gpu, frame, scene);
-    scene = passes::addOpaque(graph, gpu, frame, scene, vertices);
+        scene = passes::addGround(graph, gpu, frame, scene, shadows);
+    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, shadows);
 
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
     if (scene.motion.valid())
         blackboard.put(plugin::kSceneMotion, scene.motion);
-    blackboard.put(plugin::kSceneVertices, vertices);
-    blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(stage, graph, blackboard);

@@ -20,6 +20,7 @@ constexpr Shared kTable[] = {
     Shared::integer("LIGHT_POINT", int(Light::Point)),
     Shared::integer("LIGHT_SPOT", int(Light::Spot)),
     Shared::integer("SHEEN_TABLE_SIZE", kSheenTableSize),
+    Shared::integer("MAX_SHADOW_VIEWS", int(kMaxShadowViews)),
     Shared::integer("SLOT_BASE_COLOR", Slot::BaseColor),
     Shared::integer("SLOT_METALLIC_ROUGHNESS", Slot::MetallicRoughness),
     Shared::integer("SLOT_NORMAL", Slot::Normal),

@@ -25,9 +25,9 @@ struct Settings;
 /** The layered path's figures for a frame: what its storage holds and how many pixels
  *  overflowed it. */
 struct LayerStats {
-    int capacity = 0;               ///< K
-    std::size_t bytesPerPixel = 0;  ///< the per-pixel arrays and maps at K
-    std::size_t bytes = 0;          ///< all of them at the frame's size
+    int capacity = 0;                 ///< K
+    std::size_t bytesPerPixel = 0;    ///< the per-pixel arrays and maps at K
+    std::size_t bytes = 0;            ///< all of them at the frame's size
     std::uint32_t overflowPixels = 0; ///< glass pixels with more than K layers (last frame)
     std::uint64_t traceRays = 0;      ///< method trace: rays traced through the glass BVH
     std::uint64_t traceSteps = 0;     ///< their BVH nodes visited
@@ -67,6 +67,11 @@ public:
 private:
     /** The parameters decoded, again only after they change. */
     const Settings& settings() const;
+    struct Frame;
+    /** At the frame's first stage: its decisions, glass ids, variants, buffers and the glass
+     *  materials pass, kept in mFrame for its later stages; false when no glass is drawn. */
+    bool beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard);
+    std::unique_ptr<Frame> mFrame;
     plugin::ParameterSet mParameters;
     mutable std::unique_ptr<Settings> mSettings;
     mutable std::uint64_t mSettingsRevision = 0;

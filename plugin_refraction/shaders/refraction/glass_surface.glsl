@@ -53,7 +53,7 @@ vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 t
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
-        vec3 arriving = lightArriving(i, Pw, L);
+        vec3 arriving = lightArriving(i, Pw, Nw, L);
         vec3 H = normalize(L + Vw);
         float NoL = dot(Nw, L);
         if (NoL > 0.0)

@@ -46,7 +46,9 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
     const auto* motion = blackboard.find<fg::TextureHandle>(plugin::kSceneMotion);
     return {blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
             blackboard.get<fg::TextureHandle>(plugin::kSceneDepth),
-            motion ? *motion : fg::TextureHandle{}};
+            motion ? *motion : fg::TextureHandle{},
+            blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
+            blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)};
 }
 
 void FrameContext::setWalkUniforms(const gl::Program& f) const {
@@ -87,26 +89,31 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
                              frame->settings.environmentIntensity);
 }
 
-void FrameContext::drawGlassMaterials(const gl::Program& program,
-                                      const gl::PipelineState& state) const {
+void FrameContext::drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
+                                      const std::optional<GlassView>& from) const {
     gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
-    drawGlass(program, state, [this, &program](const render::DrawItem& item, std::size_t index) {
-        program.set("uGlassId", gpu->glassIds[index]);
-        item.materials->bind(program, *item.model, item.material);
-    });
+    drawGlass(
+        program, state,
+        [this, &program](const render::DrawItem& item, std::size_t index) {
+            program.set("uGlassId", gpu->glassIds[index]);
+            item.materials->bind(program, *item.model, item.material);
+        },
+        from);
 }
 
 void FrameContext::drawGlass(
     const gl::Program& program, const gl::PipelineState& state,
-    const std::function<void(const render::DrawItem&, std::size_t)>& perItem) const {
+    const std::function<void(const render::DrawItem&, std::size_t)>& perItem,
+    const std::optional<GlassView>& from) const {
+    const GlassView v = from ? *from : cameraView();
     program.use();
-    program.set("uProjection", frame->camera.projection);
+    program.set("uProjection", v.projection);
     render::setMotionUniforms(program, *frame);
     for (std::size_t index = 0; index < frame->items.size(); ++index) {
         const render::DrawItem& item = frame->items[index];
         if (!isGlass(item))
             continue;
-        const glm::mat4 modelView = frame->camera.view * item.world;
+        const glm::mat4 modelView = v.view * item.world;
         program.set("uModelView", modelView);
         program.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(modelView)));
         program.set("uModel", item.world);
@@ -191,6 +198,8 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
             *to = b.read(from);
     in.sceneColor = b.read(scene.color);
     in.sceneDepth = b.read(scene.depth);
+    b.read(scene.shadowDepth); // the lights' shading samples them where they are bound
+    b.read(scene.shadowGlass);
     return in;
 }
 

@@ -33,6 +33,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 namespace refraction {
 
@@ -41,6 +42,11 @@ namespace refraction {
 // The mip level the papers' search over the pair reads the surface normals at (DIR §3.1:
 // mip-filtered normals); the normal maps need no level above it.
 constexpr int kNormalLod = 1;
+
+/** Where the glass is drawn from: the camera's view and projection, or a light's. */
+struct GlassView {
+    glm::mat4 view, projection;
+};
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
@@ -62,11 +68,13 @@ struct FrameContext {
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** Whether the frame has punctual lights (the shading variants with them compiled in). */
     bool lit() const { return !frame->lights.empty(); }
-    /** Draws every glass item with `program` (glass.vert.glsl), calling `perItem` (its index
-     *  in the frame's items) first when given. */
-    void
-    drawGlass(const gl::Program& program, const gl::PipelineState& state,
-              const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {}) const;
+    /** The camera's view and projection. */
+    GlassView cameraView() const { return {frame->camera.view, frame->camera.projection}; }
+    /** Draws every glass item with `program` (glass.vert.glsl) from `from` (the camera's when
+     *  not given), calling `perItem` (its index in the frame's items) first when given. */
+    void drawGlass(const gl::Program& program, const gl::PipelineState& state,
+                   const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {},
+                   const std::optional<GlassView>& from = {}) const;
     /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
      *  mask: the early depth test runs the program only on glass pixels. */
     void drawMaskedRectangle(gl::Blend blend = gl::Blend::None) const;
@@ -75,8 +83,10 @@ struct FrameContext {
     /** What the walk and the outline pass set alike: searches and march, TIR policy, Fresnel,
      *  debug view, camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
-    /** Draws every glass item with `program`, its glass id and material textures set. */
-    void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state) const;
+    /** Draws every glass item with `program`, its glass id and material textures set, from
+     *  `from` (the camera's when not given). */
+    void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
+                            const std::optional<GlassView>& from = {}) const;
     /** layers.glsl's uniforms and the layer arrays. */
     void setLayerUniforms(const gl::Program& program) const;
     /** The trace's and the hybrid's samples a frame (one where the frame accumulates). */
@@ -101,6 +111,8 @@ struct FrameBuffers {
  *  motion of its pixels. */
 struct SceneInputs {
     fg::TextureHandle color, depth, motion;
+    /** The shadow atlases, bound by the engine for the frame: what the lights' shading reads. */
+    fg::TextureHandle shadowDepth, shadowGlass;
 };
 
 /** What a capture leaves the walk: the glass pixels' mask and the depth maps (layers.glsl);
@@ -168,6 +180,10 @@ std::size_t layerDepthSlots(int capacity);
 
 /** The optics of every glass id into GpuState::glassMaterials, which the walk reads. */
 void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** `refraction.glass_shadow` (GlassShadowPass.cpp): the glass from every shadow view into the
+ *  engine's glass atlas `atlas`; returns its new version. */
+fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& c,
+                                     const FrameBuffers& buffers, fg::TextureHandle atlas);
 /** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
  *  d_N of every deformed vertex cast against it (writes bvh). */
 void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);

@@ -64,6 +64,7 @@ TEST(Settings, DecodesEveryChoice) {
         {"hybrid-criteria", {"5", [](const S& s) { return s.hybridCriteria == 5; }}},
         {"nearby", {"off", [](const S& s) { return !s.nearby; }}},
         {"outline-aa", {"off", [](const S& s) { return !s.outlineAntialiasing; }}},
+        {"glass-shadows", {"off", [](const S& s) { return !s.glassShadows; }}},
         {"debug", {"steps", [](const S& s) { return s.debug == 6; }}}, // the seventh entry
     };
     for (const plugin::Parameter& parameter : S::parameterTable()) {

@@ -48,6 +48,11 @@ inline constexpr std::size_t kMaxCharacters = 4096;
 /** Punctual lights in one frame (a scene file's and its characters' KHR_lights_punctual lights):
  *  every shaded pixel evaluates each of them. */
 inline constexpr std::size_t kMaxLights = 256;
+/** Lights that cast shadows in one frame (each a map, a point light six): the first this many
+ *  in the frame's order cast, the others light unshadowed, with a warning. */
+inline constexpr std::size_t kMaxShadowedLights = 4;
+/** A shadow map's texels per side. */
+inline constexpr int kMinShadowResolution = 64, kMaxShadowResolution = 4096;
 
 /** Bytes of a scene file: 4096 characters at a few hundred bytes each need about 2 MB; a file
  *  far larger is not a scene, and is refused before it is parsed. */

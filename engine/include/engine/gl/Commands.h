@@ -15,7 +15,9 @@ enum class Cull : std::uint8_t { None, Back, Front };
 enum class DepthFunc : std::uint8_t { Always, Less, LessEqual, Greater, GreaterEqual, Equal };
 /** Alpha: over; Additive: one + one; Max: per-channel maximum of source and destination (min/max
  *  gathering, e.g. the nearest and farthest surface of a pixel in one pass). */
-enum class Blend : std::uint8_t { None, Alpha, Additive, Max };
+/** Blending: none, over (alpha), added, the maximum, or added in RGB and the minimum in alpha (a
+ *  sum and a nearest distance in one target). */
+enum class Blend : std::uint8_t { None, Alpha, Additive, Max, AddMinAlpha };
 
 /** Fixed-function state for a draw; apply() sets all of it, so passes never inherit state. */
 struct PipelineState {
@@ -26,9 +28,33 @@ struct PipelineState {
     Blend blend = Blend::None;
     /** Front faces wind clockwise on screen (a mirrored mesh: glTF reverses its winding). */
     bool clockwise = false;
+    /** Polygon offset pushing depths away: by the slope and by the format's smallest step. */
+    float depthBiasSlope = 0.0f, depthBiasUnits = 0.0f;
 };
 
 void apply(const PipelineState& state);
+
+/** Draws into rectangle `rect` (x, y, width, height; GL's bottom-up rows) of the bound
+ *  framebuffer (a tile of an atlas; clears still clear it whole). */
+void setViewport(const glm::ivec4& rect);
+
+/** A sampler object: how a unit reads whichever texture is bound there, over the texture's own
+ *  sampling. `compareDepth`: a depth texture read as a shadow sampler, the reference depth less
+ *  or equal to the stored one passing. */
+class Sampler {
+public:
+    Sampler(Filter filter, Wrap wrap, bool compareDepth);
+    ~Sampler();
+    Sampler(Sampler&& other) noexcept;
+    Sampler& operator=(Sampler&& other) noexcept;
+    Sampler(const Sampler&) = delete;
+    Sampler& operator=(const Sampler&) = delete;
+    /** Binds to the first unit of `slot`. */
+    void bind(const TextureSlot& slot) const;
+
+private:
+    std::uint32_t mId = 0;
+};
 
 /** Clears the bound framebuffer's colour attachment `index` to `color`. */
 void clearColor(int index, const glm::vec4& color);

@@ -11,7 +11,7 @@
 //          evaluator binds 0-15 itself, so nothing bound there outlives its pass);
 //   16-19  the engine's frame-wide bindings (the lights, bound once a frame);
 //   20-    plugins (kFirstPluginBinding), each binding what it reads before its passes use it.
-// Texture units: 0-23 the engine's, 24- the plugins'. Image units: the engine's 0-1.
+// Texture units: 0-25 the engine's, 26- the plugins'. Image units: the engine's 0-1.
 #pragma once
 
 #include "engine/core/Result.h"
@@ -158,6 +158,9 @@ inline constexpr TextureSlot kMaterial{3, "MATERIAL_UNIT", 17}; ///< a material'
 inline constexpr TextureSlot kMotion{20, "MOTION_UNIT"};
 /// the temporal history: the last resolved colour and the motion texels it was resolved with
 inline constexpr TextureSlot kHistory{21, "HISTORY_UNIT", 2};
+/// the frame's shadow atlases (common/shadows.glsl): the casters' depth, compared, and the glass's
+inline constexpr TextureSlot kShadowDepth{23, "SHADOW_DEPTH_UNIT"};
+inline constexpr TextureSlot kShadowGlass{24, "SHADOW_GLASS_UNIT"};
 
 /** The engine's table: every slot above. */
 inline constexpr Shared kEngineTable[] = {kVertices,        kUvs,
@@ -170,7 +173,8 @@ inline constexpr Shared kEngineTable[] = {kVertices,        kUvs,
                                           kLighting,        kOutputImage,
                                           kMotionImage,     kEnvironment,
                                           kSource,          kMaterial,
-                                          kMotion,          kHistory};
+                                          kMotion,          kHistory,
+                                          kShadowDepth,     kShadowGlass};
 static_assert(distinct(kEngineTable));
 } // namespace slot
 

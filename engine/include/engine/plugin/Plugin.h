@@ -73,10 +73,14 @@ namespace plugin {
  *  (gl::bindStorage(gl::slot::kLighting, ...), plugins' own from gl::slot::kFirstPluginBinding,
  *  registered with ShaderLibrary::share), MaterialTextures::bind at gl::slot::kMaterial with
  *  seventeen slots (transmission and thickness added). */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/5";
+inline constexpr const char* kInterfaceVersion = "glass.plugin/6";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
+    /** Where lights cast shadows (FrameInfo::shadows not empty): after the engine's `shadows`
+     *  pass, before anything is shaded; a plugin whose surfaces let light through draws them
+     *  into the glass atlas (kShadowGlass, common/shadows.glsl) and puts its version back. */
+    Shadows,
     AfterOpaque,   ///< the background, the opaque scene and the ground are in the scene colour
     BeforeTonemap, ///< last HDR stage: after every plugin's AfterOpaque passes
 };
@@ -95,6 +99,12 @@ inline constexpr const char* kSceneDepth = "scene.depth";
  *  into a new version (or a copy) and puts it back, as it does the colour. */
 inline constexpr const char* kSceneMotion = "scene.motion";
 inline constexpr const char* kSceneVertices = "scene.vertices";
+/** The shadow atlases (fg::TextureHandle; render/Shadows.h, common/shadows.glsl), bound at
+ *  their units for the whole frame: a pass whose program shades with the lights declares reads
+ *  of both. "scene.shadow_glass" holds, per texel, the optical depth of the glass along the
+ *  light's ray (RGB, added) and its nearest distance from the light (A, the minimum). */
+inline constexpr const char* kShadowDepth = "scene.shadow_depth";
+inline constexpr const char* kShadowGlass = "scene.shadow_glass";
 inline constexpr const char* kFrame = "frame";
 
 class Plugin {

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -68,10 +69,16 @@ struct Surface {
     dvec3 anisotropyDirection{0.0};
 };
 
-/** What lights a surface: the environment and the punctual lights in world space. */
+/** What reaches P (normal N, unit L toward the light) of light `light` past what lies between:
+ *  1 unshadowed, 0 behind an opaque caster, the colour glass lets through. */
+using LightVisibility = std::function<dvec3(std::size_t light, dvec3 P, dvec3 N, dvec3 L)>;
+
+/** What lights a surface: the environment and the punctual lights in world space, and, where
+ *  the lights cast shadows, what reaches each point of them (common/shadows.glsl's twin). */
 struct Lighting {
     const EnvironmentSampler& environment;
     std::span<const scene::PlacedLight> lights;
+    LightVisibility visibility = {};
 };
 
 /** A point of a mesh as the fragment shader sees it: world position, its interpolated normal
@@ -102,6 +109,9 @@ dvec3 thinFilmReflectance(double cosI, double film, double nm, dvec3 substrate);
 double ggxLobe(double NoL, double NoV, double NoH, double a);
 /** A light's radiance arriving at P and the unit direction L toward it. */
 dvec3 lightArriving(const scene::PlacedLight& light, dvec3 P, dvec3& L);
+/** Light `i` of `lighting` arriving at P (normal N) past its shadows, as common/lighting.glsl's
+ *  lightArriving. */
+dvec3 lightArriving(const Lighting& lighting, std::size_t i, dvec3 P, dvec3 N, dvec3& L);
 
 /** Material `m` of `model` at `p` as render/pbr.frag.glsl reads it (the normal map already in
  *  p.normal); its emission in `emissive`. */

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/render/Camera.h"
+#include "engine/render/Shadows.h"
 #include "engine/scene/Light.h"
 
 #include <glm/glm.hpp>
@@ -79,6 +80,8 @@ struct RenderSettings {
     float environmentIntensity = 1.0f;
     float backgroundBlur = 0.0f; ///< roughness of the background lookup
     bool ground = false;
+    /** The lights cast shadows (each as its LightShadow says): off, none does. */
+    bool shadows = true;
     /** Finish the GPU work of each pass before timing its end. Tile-deferred rasterisers
      *  (llvmpipe) otherwise bill a pass's rasterisation to whichever pass flushes it; this
      *  gives true per-pass times at the cost of pipelining. */
@@ -154,6 +157,11 @@ struct FrameInfo {
      *  item no plugin claims. Screen-space effects that look for nearby geometry can skip
      *  their search when it is false (the background alone is the environment). */
     bool opaqueGeometry = false;
+    /** The shadow views of this frame's lights (empty where none casts or
+     *  RenderSettings::shadows is off): a plugin that casts draws into their tiles. */
+    const ShadowPlan* shadows = nullptr;
+    /** A plugin owns a draw item (its glass may cast into the glass atlas). */
+    bool glassCasts = false;
 };
 
 /** Sets common/motion.glsl's uniforms on `program` (this frame's and the previous frame's

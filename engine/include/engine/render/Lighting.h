@@ -4,6 +4,7 @@
 #pragma once
 
 #include "engine/gl/Buffer.h"
+#include "engine/render/Shadows.h"
 #include "engine/scene/Light.h"
 
 #include <glm/glm.hpp>
@@ -40,11 +41,16 @@ void placeLights(const scene::Model& model, std::span<const int> nodes, const an
 /** Every light of `world` at scene time `time`: its characters' (posed) and its own. */
 std::vector<scene::PlacedLight> worldLights(const scene::World& world, double time);
 
-/** The lighting buffer on the GPU: the sheen table, then the light count and the lights. */
+/** The shadow views the lighting buffer holds at most: every shadowed light a point light's six. */
+constexpr std::size_t kMaxShadowViews = 6 * 4;
+
+/** The lighting buffer on the GPU: the sheen table, the light and shadow view counts, the
+ *  shadow views (common/shadows.glsl), then the lights, each naming its first view. */
 class LightingBuffer {
 public:
-    /** Writes `lights` (growing the buffer when they do not fit) and binds it. */
-    void upload(const std::vector<scene::PlacedLight>& lights);
+    /** Writes `lights` and their `shadows` (growing the buffer when they do not fit) and binds
+     *  it. */
+    void upload(const std::vector<scene::PlacedLight>& lights, const ShadowPlan& shadows);
 
 private:
     gl::Buffer mBuffer;

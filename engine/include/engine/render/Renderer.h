@@ -123,6 +123,8 @@ public:
 
 private:
     Renderer() = default;
+    /** This frame's shadow views (RenderGpu::shadows) of its lights around the characters. */
+    void planShadows(const scene::World& world, const RenderSettings& settings);
     class Allocator;
     class Timer;
     gl::Context* mContext = nullptr;

@@ -8,6 +8,16 @@
 
 namespace scene {
 
+/** The shadows a light casts (the engine's own: glTF says nothing of shadows, so a file's lights
+ *  cast with these defaults). `resolution` is a map's texels per side (a point light has six
+ *  maps), `softness` the radius of the filter over the map in texels (0: hard edges). */
+struct LightShadow {
+    bool enabled = true;
+    int resolution = 1024;
+    float softness = 1.5f;
+    bool operator==(const LightShadow&) const = default;
+};
+
 /** A light as the extension defines it: directional (intensity in lux), point or spot
  *  (candela), shining down -z of its node; `range` 0 is unlimited; a spot's cone falls off
  *  between innerConeAngle and outerConeAngle (radians from its axis). */
@@ -19,6 +29,7 @@ struct Light {
     float range = 0.0f;
     float innerConeAngle = 0.0f;
     float outerConeAngle = 0.7853982f;
+    LightShadow shadow;
 };
 
 /** A light placed in the world: at `position` (point and spot), shining along `direction`

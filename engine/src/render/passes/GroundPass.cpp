@@ -1,4 +1,4 @@
-// `ground`: a tiled plane under the characters, lit by the environment.
+// `ground`: a tiled plane under the characters, lit by the environment and the lights, shadowed.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -6,10 +6,12 @@
 namespace render::passes {
 
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene) {
+                       SceneTargets scene, const ShadowTargets& shadows) {
     return graph.addPass<SceneTargets>(
         "ground",
         [&](fg::Builder& b, SceneTargets& d) {
+            b.read(shadows.depth);
+            b.read(shadows.glass);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())

@@ -18,10 +18,13 @@ gl::Cull cullFor(const scene::Model& model, int material) {
 } // namespace
 
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, fg::BufferHandle vertices) {
+                       SceneTargets scene, fg::BufferHandle vertices,
+                       const ShadowTargets& shadows) {
     return graph.addPass<SceneTargets>(
         "opaque",
         [&](fg::Builder& b, SceneTargets& d) {
+            b.read(shadows.depth);
+            b.read(shadows.glass);
             b.read(vertices);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);

@@ -1,5 +1,6 @@
 // The renderer's own passes, one file each, recorded by Renderer::render in this order:
-// deform -> background -> ground (optional) -> opaque -> [plugin stages] -> tonemap.
+// deform -> shadows (where lights cast) -> [plugins' Shadows stage] -> background -> ground
+// (optional) -> opaque -> [plugin stages] -> temporal (where the frame accumulates) -> tonemap.
 #pragma once
 
 #include "../RenderGpu.h"
@@ -31,17 +32,31 @@ inline std::vector<const gl::Texture*> sceneTargets(const fg::Resources& r,
  *  RenderGpu::poses (uploaded before the frame graph runs); writes `vertices` (the imported
  *  resource standing for every character's deformed buffers), returns the new version. */
 fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices);
+/** The shadow atlases (render/Shadows.h): the casters' depth, and the glass's optical depth and
+ *  nearest distance (common/shadows.glsl). */
+struct ShadowTargets {
+    fg::TextureHandle depth, glass;
+};
+
+/** `shadows`: creates both atlases of FrameInfo::shadows, draws every opaque item into each
+ *  view's tile of the depth atlas, clears the glass atlas (1 x 1 where no glass casts) for the
+ *  plugins, and binds both for the frame's shading passes (bindShadowMaps). */
+ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                         fg::BufferHandle vertices);
+/** Binds the shadow atlases at their units (gl::slot::kShadowDepth with the comparing sampler,
+ *  kShadowGlass), where every program that shades reads them. */
+void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything; where the frame accumulates, creates scene.motion with the
  *  environment's motion. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
 /** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene);
+                       SceneTargets scene, const ShadowTargets& shadows);
 /** `opaque`: every draw item no plugin claimed, metallic-roughness with image-based lighting,
  *  from the deformed vertices. */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, fg::BufferHandle vertices);
+                       SceneTargets scene, fg::BufferHandle vertices, const ShadowTargets& shadows);
 /** `temporal`: the frame (`color`, jittered) blended into the history (TemporalHistory, its
  *  textures imported) by each pixel's motion (`motion`), rejected where what the pixel tracks
  *  changed, clipped to the frame's neighbourhood while anything moves; returns the resolved

@@ -1,0 +1,2 @@
+// Shadow casters write depth only.
+void main() {}

@@ -1,0 +1,63 @@
+// `shadows`: the frame's shadow atlases (render/Shadows.h): every opaque draw item from each
+// shadow view into its tile of the depth atlas; the glass atlas cleared for the plugins that
+// draw their glass into it (plugin::Stage::Shadows). Both stay bound at their units for the
+// frame's shading passes, which declare reads of them.
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+namespace render::passes {
+
+ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                         fg::BufferHandle vertices) {
+    const ShadowPlan& plan = *frame.shadows;
+    return graph.addPass<ShadowTargets>(
+        "shadows",
+        [&](fg::Builder& b, ShadowTargets& d) {
+            b.read(vertices);
+            d.depth =
+                b.write(b.create("scene.shadow_depth", {plan.atlasSize, gl::Format::Depth32F, 1}));
+            d.glass = b.write(
+                b.create("scene.shadow_glass", {frame.glassCasts ? plan.atlasSize : glm::ivec2(1),
+                                                gl::Format::RGBA16F, 1}));
+        },
+        [&gpu, &frame, &plan](const fg::Resources& r, const ShadowTargets& d,
+                              gl::Context&) -> core::Status {
+            const gl::Texture& depth = r.texture(d.depth);
+            const gl::Texture& glass = r.texture(d.glass);
+            if (auto bound = gpu.framebuffer.bindTargets("shadows", {&glass}, nullptr); !bound)
+                return bound;
+            gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass)); // no glass: none in front
+            if (auto bound = gpu.framebuffer.bindTargets("shadows", {}, &depth); !bound)
+                return bound;
+            gl::clearDepth(1.0f);
+            gpu.shadowCaster.use();
+            for (const ShadowView& view : plan.views) {
+                gl::setViewport({view.tile.x, view.tile.y, view.tile.z, view.tile.z});
+                gpu.shadowCaster.set("uViewProjection", view.viewProjection());
+                for (const DrawItem& item : frame.items) {
+                    if (item.owner)
+                        continue;
+                    // Both sides, pushed back by their slope: no acne, and open meshes cast.
+                    gl::apply({.cull = gl::Cull::None,
+                               .clockwise = item.mirrored,
+                               .depthBiasSlope = 2.0f,
+                               .depthBiasUnits = 4.0f});
+                    gpu.shadowCaster.set("uModel", item.world);
+                    gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
+                    item.vertexArray->bind();
+                    gl::drawIndexed(item.gpu->indexCount);
+                }
+            }
+            bindShadowMaps(gpu, depth, glass);
+            return {};
+        });
+}
+
+void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass) {
+    gl::bindTexture(gl::slot::kShadowDepth, depth);
+    gpu.shadowSampler.bind(gl::slot::kShadowDepth);
+    gl::bindTexture(gl::slot::kShadowGlass, glass);
+}
+
+} // namespace render::passes

@@ -1,0 +1,31 @@
+// A glass fragment as a light sees it (refraction.glass_shadow): what it takes from the light
+// going straight through, as optical depth (-ln of what passes) added into its texel of the
+// engine's glass atlas, and its distance along the light's ray, of which the atlas keeps the
+// nearest (common/shadows.glsl reads both). A surface facing the light lets (1 - F) of it in,
+// through its tint and transmission, and starts its absorption; one facing away lets (1 - F)
+// out and ends it: summed over a closed surface, sigma times the length inside. F is the
+// entering reflectance at the light's angle to the surface (optics.glsl), at both crossings.
+#include "refraction/fragment_surface.glsl"
+#include "refraction/optics.glsl"
+
+uniform int uGlassId;
+uniform int uPerspective; // the view is a spot's or a point light's (else a directional one's)
+uniform float uNear;      // its near plane's distance, where the atlas's distances start
+
+layout(location = 0) out vec4 outGlass;
+
+void main() {
+    uint id = uint(uGlassId);
+    GlassMaterial m = glassMaterials[id];
+    GlassSurface s = fragmentSurface(id);
+    vec3 n = fragmentNormal();
+    vec3 toLight = uPerspective != 0 ? -normalize(vViewPosition) : vec3(0.0, 0.0, 1.0);
+    float d = (uPerspective != 0 ? length(vViewPosition) : -vViewPosition.z) - uNear;
+    float cosI = clamp(abs(dot(n, toLight)), 1e-4, 1.0);
+    vec3 through = 1.0 - reflectance(m, s, cosI, 1.0 / m.ior.g);
+    if (gl_FrontFacing)
+        through *= s.baseColor * (1.0 - s.metallic) * s.transmission;
+    vec3 depth = -log(max(through, vec3(1e-6)));
+    depth += gl_FrontFacing ? -m.sigma * d : m.sigma * d;
+    outGlass = vec4(depth, d);
+}
