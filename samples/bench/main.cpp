@@ -294,7 +294,7 @@ struct Options {
     std::vector<int> instances; // empty: the world as loaded
     glm::ivec2 size{512, 512};
     int frames = 60, warmup = 10;
-    bool force = false, ground = false;
+    bool force = false, ground = false, shadows = true;
     std::vector<std::pair<std::string, std::string>> assignments;
     std::vector<bool> temporalModes = {false};
     float historyWeight = render::TemporalSettings{}.historyWeight;
@@ -355,6 +355,8 @@ void addOptions(CLI::App& app, Options& o) {
     app.add_flag("--ground", o.ground,
                  "draw the ground plane (opaque geometry the glass sees through its nearby-scene "
                  "walk; without opaque geometry the walk is skipped)");
+    tool::addOnOff(app, "--shadows", o.shadows,
+                   "the lights cast shadows, each as its scene file's \"shadow\" says (default on)");
     app.add_option_function<std::string>(
            "--set",
            [&o](const std::string& v) {
@@ -549,6 +551,7 @@ int run(int argc, char** argv) {
     settings.size = o.size;
     settings.exactPassTimes = o.instances.empty();
     settings.ground = o.ground || headless.world.ground;
+    settings.shadows = o.shadows;
 
     std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), o.size.x, o.size.y,
                 o.frames, o.warmup, gl::rendererString());
@@ -564,6 +567,7 @@ int run(int argc, char** argv) {
                              {"warmup", o.warmup},
                              {"settings", o.assignments},
                              {"ground", settings.ground},
+                             {"shadows", settings.shadows},
                              {"exact_pass_times", settings.exactPassTimes},
                              {"results", nlohmann::json::array()}};
     std::vector<scene::World> worlds;
