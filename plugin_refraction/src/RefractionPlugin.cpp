@@ -166,18 +166,16 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
 
 /** What the frame's first stage decided and imported, which its later stages go on from. */
 struct RefractionPlugin::Frame {
-    const fg::FrameGraph* graph = nullptr; ///< the frame's (a stale one is not reused)
+    bool begun = false; ///< this frame's Shadows stage began it (its AfterOpaque ends it)
     FrameContext c;
     FrameBuffers buffers;
 };
 
 bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard) {
-    if (mFrame && mFrame->graph == &graph)
-        return true;
-    mFrame.reset();
-    auto frame = std::make_unique<Frame>();
-    frame->graph = &graph;
-    FrameContext& c = frame->c;
+    if (!mFrame)
+        mFrame = std::make_unique<Frame>();
+    *mFrame = Frame{};
+    FrameContext& c = mFrame->c;
     c.settings = settings();
     if (c.settings.method == Settings::Method::Opaque)
         return false;
@@ -196,15 +194,20 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
         core::logError("refraction: " + built.error().message);
         return false;
     }
-    frame->buffers = importBuffers(graph, blackboard, *mGpu);
-    addGlassMaterialsPass(graph, c, frame->buffers);
-    mFrame = std::move(frame);
+    mFrame->buffers = importBuffers(graph, blackboard, *mGpu);
+    addGlassMaterialsPass(graph, c, mFrame->buffers);
+    mFrame->begun = true;
     return true;
 }
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                                  fg::Blackboard& blackboard) {
-    if (!mGpu || stage == plugin::Stage::BeforeTonemap || !beginFrame(graph, blackboard))
+    if (!mGpu || stage == plugin::Stage::BeforeTonemap)
+        return;
+    // The Shadows stage (where lights cast) begins the frame; AfterOpaque goes on from it, or
+    // begins it where there was none.
+    const bool begun = stage == plugin::Stage::AfterOpaque && mFrame && mFrame->begun;
+    if (!begun && !beginFrame(graph, blackboard))
         return;
     FrameContext& c = mFrame->c;
     FrameBuffers& buffers = mFrame->buffers;
@@ -234,7 +237,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
                                             ? addOutlinePass(graph, c, buffers, scene, walked)
                                             : walked.color);
-    mFrame.reset(); // the callbacks hold copies of what they use
+    mFrame->begun = false; // the callbacks hold copies of what they use
 }
 
 LayerStats RefractionPlugin::layerStats() const {

@@ -31,7 +31,7 @@ layout(std430, binding = LIGHTING_BINDING) readonly buffer Lighting {
     // E(NoV, roughness) of the sheen lobe, row r: roughness r / (size - 1), column c: NoV
     // c / (size - 1)
     float sheenAlbedoTable[SHEEN_TABLE_SIZE * SHEEN_TABLE_SIZE];
-    uvec4 lightCount; // x: lights, y: shadow views
+    uvec4 lightCount; // x
     ShadowView shadowViews[MAX_SHADOW_VIEWS];
     PunctualLight punctualLights[];
 };

@@ -32,15 +32,14 @@ constexpr std::size_t kTableBytes = sizeof(float) * kSheenTableSize * kSheenTabl
 constexpr std::size_t kViewsBytes = sizeof(ShadowViewGpu) * kMaxShadowViews;
 // The table, the counts (a uvec4), the views, then the lights.
 constexpr std::size_t kHeaderBytes = kTableBytes + 16 + kViewsBytes;
-static_assert(kMaxShadowViews == 6 * core::limits::kMaxShadowedLights);
 
 ShadowViewGpu packView(const ShadowView& v, glm::ivec2 atlas) {
     const glm::vec2 scale = 1.0f / glm::vec2(atlas);
     ShadowViewGpu g;
     g.viewProjection = v.viewProjection();
     g.tile = glm::vec4(glm::vec2(v.tile.x, v.tile.y) * scale, float(v.tile.z) * scale.x, scale.x);
-    // The distance ShadowView::distance measures: from the light's position, or -z in its view
-    // (dot(axis.xyz, p) + axis.w), less the near plane's.
+    // What the shadows' distances along the light's rays are measured from: the light's
+    // position, or the plane of its view (-z = dot(axis.xyz, p) + axis.w); less the near plane's.
     g.axis = v.perspective ? glm::vec4(glm::vec3(glm::inverse(v.view)[3]), 0.0f)
                            : -glm::transpose(v.view)[2];
     g.texel = glm::vec4(v.texelSize, v.perspective ? 1.0f : 0.0f, v.near, 0.0f);
@@ -145,8 +144,7 @@ void LightingBuffer::upload(const std::vector<scene::PlacedLight>& lights,
     ENGINE_CHECK(shadows.views.size() <= kMaxShadowViews, "too many shadow views");
     constexpr std::size_t kLights = 16 + kViewsBytes;
     mStaging.assign(kLights + lights.size() * sizeof(PunctualLightGpu), 0);
-    const std::uint32_t count[4] = {std::uint32_t(lights.size()),
-                                    std::uint32_t(shadows.views.size()), 0, 0};
+    const std::uint32_t count[4] = {std::uint32_t(lights.size()), 0, 0, 0};
     std::memcpy(mStaging.data(), count, sizeof(count));
     for (std::size_t v = 0; v < shadows.views.size(); ++v) {
         const ShadowViewGpu packed = packView(shadows.views[v], shadows.atlasSize);

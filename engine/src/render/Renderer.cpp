@@ -388,8 +388,6 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.ground = mGroundPlane;
     frame.opaqueGeometry = opaqueGeometry;
     frame.shadows = &gpu.shadows;
-    frame.glassCasts = std::any_of(gpu.items.begin(), gpu.items.end(),
-                                   [](const DrawItem& item) { return item.owner != nullptr; });
     const auto since = [](std::chrono::steady_clock::time_point start) {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();

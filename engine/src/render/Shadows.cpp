@@ -97,20 +97,6 @@ glm::ivec2 packTiles(std::vector<ShadowView>& views, int limit) {
 
 } // namespace
 
-float ShadowView::distance(const glm::vec3& p) const {
-    const glm::vec3 v(view * glm::vec4(p, 1.0f));
-    return (perspective ? glm::length(v) : -v.z) - near;
-}
-
-int cubeFace(const glm::vec3& d) {
-    const glm::vec3 a = glm::abs(d);
-    if (a.x >= a.y && a.x >= a.z)
-        return d.x >= 0.0f ? 0 : 1;
-    if (a.y >= a.z)
-        return d.y >= 0.0f ? 2 : 3;
-    return d.z >= 0.0f ? 4 : 5;
-}
-
 std::vector<bool> castingLights(std::span<const scene::PlacedLight> lights) {
     std::vector<bool> casts(lights.size(), false);
     std::size_t count = 0;
@@ -151,6 +137,7 @@ ShadowPlan planShadows(std::span<const scene::PlacedLight> lights, const Bounds&
         } else {
             // A little over 90 degrees, so that a face's filter finds texels past its edge.
             const float fov = 2.0f * std::atan(1.0f + 8.0f / float(resolution));
+            // In the order common/shadows.glsl's shadowView() picks them: +x, -x, +y, -y, +z, -z.
             static const glm::vec3 kFaces[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
             for (const glm::vec3& face : kFaces)

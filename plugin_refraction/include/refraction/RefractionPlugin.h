@@ -69,7 +69,8 @@ private:
     const Settings& settings() const;
     struct Frame;
     /** At the frame's first stage: its decisions, glass ids, variants, buffers and the glass
-     *  materials pass, kept in mFrame for its later stages; false when no glass is drawn. */
+     *  materials pass, kept in mFrame (its storage reused) for its later stages; false when no
+     *  glass is drawn. */
     bool beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard);
     std::unique_ptr<Frame> mFrame;
     plugin::ParameterSet mParameters;

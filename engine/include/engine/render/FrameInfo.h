@@ -160,8 +160,6 @@ struct FrameInfo {
     /** The shadow views of this frame's lights (empty where none casts or
      *  RenderSettings::shadows is off): a plugin that casts draws into their tiles. */
     const ShadowPlan* shadows = nullptr;
-    /** A plugin owns a draw item (its glass may cast into the glass atlas). */
-    bool glassCasts = false;
 };
 
 /** Sets common/motion.glsl's uniforms on `program` (this frame's and the previous frame's

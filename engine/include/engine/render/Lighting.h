@@ -3,6 +3,7 @@
 // whole frame at gl::slot::kLighting).
 #pragma once
 
+#include "engine/core/Limits.h"
 #include "engine/gl/Buffer.h"
 #include "engine/render/Shadows.h"
 #include "engine/scene/Light.h"
@@ -42,7 +43,7 @@ void placeLights(const scene::Model& model, std::span<const int> nodes, const an
 std::vector<scene::PlacedLight> worldLights(const scene::World& world, double time);
 
 /** The shadow views the lighting buffer holds at most: every shadowed light a point light's six. */
-constexpr std::size_t kMaxShadowViews = 6 * 4;
+constexpr std::size_t kMaxShadowViews = 6 * core::limits::kMaxShadowedLights;
 
 /** The lighting buffer on the GPU: the sheen table, the light and shadow view counts, the
  *  shadow views (common/shadows.glsl), then the lights, each naming its first view. */

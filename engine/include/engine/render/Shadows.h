@@ -29,12 +29,10 @@ struct ShadowView {
     glm::ivec3 tile{0};      ///< x, y and side of the tile in the atlas, texels
     /** World size of one texel: at distance 1 from the light (perspective), or anywhere. */
     float texelSize = 0.0f;
-    float near = 0.0f; ///< the near plane's distance, where distance() starts
+    /** The near plane's distance: where the glass atlas's distances along the light's rays
+     *  start (small numbers, which its half floats keep). */
+    float near = 0.0f;
     glm::mat4 viewProjection() const { return projection * view; }
-    /** Distance along the light's rays to `p` past the near plane: from the light's position
-     *  (perspective) or its view's plane (orthographic), less `near` (small numbers, which the
-     *  glass atlas keeps in half floats). */
-    float distance(const glm::vec3& p) const;
 };
 
 /** What casts this frame: every view, the atlas they share, per light its first view. */
@@ -58,9 +56,5 @@ std::vector<bool> castingLights(std::span<const scene::PlacedLight> lights);
  *  `maxTextureSize` texels a side. */
 ShadowPlan planShadows(std::span<const scene::PlacedLight> lights, const Bounds& casters,
                        int maxTextureSize);
-
-/** A point light's cube face holding direction `d` (from the light): +x, -x, +y, -y, +z, -z,
- *  as common/shadows.glsl picks it. */
-int cubeFace(const glm::vec3& d);
 
 } // namespace render

@@ -6,6 +6,8 @@
 
 #include "engine/gl/Commands.h"
 
+#include <algorithm>
+
 namespace render::passes {
 
 ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
@@ -17,9 +19,12 @@ ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
             b.read(vertices);
             d.depth =
                 b.write(b.create("scene.shadow_depth", {plan.atlasSize, gl::Format::Depth32F, 1}));
-            d.glass = b.write(
-                b.create("scene.shadow_glass", {frame.glassCasts ? plan.atlasSize : glm::ivec2(1),
-                                                gl::Format::RGBA16F, 1}));
+            // Full size where a plugin draws items (its glass may cast into it), else 1 x 1.
+            const bool claimed = std::any_of(frame.items.begin(), frame.items.end(),
+                                             [](const DrawItem& item) { return item.owner; });
+            d.glass =
+                b.write(b.create("scene.shadow_glass", {claimed ? plan.atlasSize : glm::ivec2(1),
+                                                        gl::Format::RGBA16F, 1}));
         },
         [&gpu, &frame, &plan](const fg::Resources& r, const ShadowTargets& d,
                               gl::Context&) -> core::Status {
