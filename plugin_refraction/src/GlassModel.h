@@ -37,6 +37,10 @@ inline constexpr int kSampledSplitDepth = 3;
  *  times over: the two glass figures' 64 samples scored 35.14 dB against the reference, 35.43
  *  with it smooth. Lookups still blur by it where they blur. */
 inline constexpr double kSmooth = 0.05;
+/** A photon of the caustics (docs/materials.md, "Caustics") follows its refracted path only,
+ *  totally reflected where it must, across at most this many surfaces: one still in glass
+ *  after them is dropped. */
+inline constexpr int kMaxPhotonCrossings = 16;
 
 /** A glass surface at one point: its material's factors times its textures there (forced
  *  glass: base colour only, clear and not metallic). */

@@ -90,8 +90,20 @@ struct GpuState {
     // layers' surfaces and whether it reads textures at their base level (the trace's)
     // (layerPrograms, compiled in).
     gl::Program layerCapture, layerDepths;
-    gl::Program outlines;    // the outline pass
-    gl::Program glassShadow; // refraction.glass_shadow: the glass from the lights
+    gl::Program outlines; // the outline pass
+    /** refraction.glass_shadow: the glass from the lights; [1] also marks the caustics'
+     *  emitters (CAUSTIC_EMITTERS). */
+    gl::Program glassShadow[2];
+    /** refraction.caustic_photons (its work groups first: causticGrid, CAUSTIC_GRID) and
+     *  refraction.caustic_resolve. */
+    gl::Program causticGrid, causticPhotons, causticResolve;
+    /** The caustics' storage (caustics.glsl), for a caustics atlas of `size` texels, grown as
+     *  needed: the emitters (a count, the photons' work groups, then a bit a texel) and the
+     *  sums (3 words a texel). */
+    struct Caustics {
+        gl::Buffer emitters, sums;
+        glm::ivec2 size{0};
+    } caustics;
     std::tuple<int, bool, bool> layerPrograms{0, false, false};
     /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
      *  punctual lights; textured glass). */

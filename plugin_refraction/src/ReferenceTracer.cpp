@@ -4,6 +4,7 @@
 
 #include "GlassModel.h"
 #include "Optics.h"
+#include "PhotonMap.h"
 
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/Subdivision.h"
@@ -18,6 +19,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <thread>
 #include <unistd.h>
 
@@ -82,9 +84,13 @@ public:
           mDevice(rtcNewDevice(nullptr)), mScene(rtcNewScene(mDevice)), mShadows(shadows),
           mCasts(shadows.enabled ? render::castingLights(mLights)
                                  : std::vector<bool>(mLights.size(), false)),
-          mLighting{mEnv, mLights, [this](std::size_t i, dvec3 P, dvec3 N, dvec3 L) {
-                        return lightThrough(i, P, N, L);
-                    }} {
+          mLighting{mEnv, mLights,
+                    [this](std::size_t i, dvec3 P, dvec3 N, dvec3 L) {
+                        return lightThrough(i, P, N, L, true);
+                    }},
+          mGlassLighting{mEnv, mLights, [this](std::size_t i, dvec3 P, dvec3 N, dvec3 L) {
+                             return lightThrough(i, P, N, L, false);
+                         }} {
         for (const Surface& s : surfaces) {
             RTCGeometry g = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto* v = static_cast<float*>(
@@ -384,7 +390,7 @@ public:
      *  term where transmission is partial, the clear coat and sheen, emission. */
     dvec3 glassColor(const Hit& h, const Optics& o, const model::GlassSurface& s, dvec3 n, dvec3 V,
                      dvec3 glass) const {
-        const render::cpu::Lighting& lighting = mLighting;
+        const render::cpu::Lighting& lighting = mGlassLighting;
         const double NoV = std::clamp(glm::dot(n, V), 1e-4, 1.0);
         const double alpha = std::pow(std::max(s.roughness, 0.03), 2.0);
         for (std::size_t i = 0; i < mLights.size(); ++i) {
@@ -418,20 +424,25 @@ public:
         return render::cpu::layersOver(color, surface, lighting, h.point, n, V) + emissive;
     }
 
-    /** What reaches P (normal N) of light `i` toward L along the straight line to it, as the
-     *  GPU's shadow maps hold it (docs/materials.md, "Shadows"): nothing past an opaque surface
-     *  (the ground casts none); through glass, at each crossing 1 - F at the light's angle (the
-     *  entering reflectance), entering its tint and transmission too, and Beer-Lambert over the
-     *  length inside. */
-    dvec3 lightThrough(std::size_t i, dvec3 P, dvec3 N, dvec3 L) const {
+    /** What reaches P (normal N) of light `i` toward L, as a share of the light unblocked, as
+     *  the GPU's shadow maps hold it (docs/materials.md, "Shadows" and "Caustics"): nothing
+     *  past an opaque surface (the ground casts none). With the caustics, a `receiver` (an
+     *  opaque surface or the ground) gets the light no glass stands in front of, plus the
+     *  caustics' photons' irradiance around it over what the light would bring unblocked;
+     *  else (the glass's own highlights, or without caustics) light through glass goes
+     *  straight: at each crossing 1 - F at the light's angle (the entering reflectance),
+     *  entering its tint and transmission too, and Beer-Lambert over the length inside. */
+    dvec3 lightThrough(std::size_t i, dvec3 P, dvec3 N, dvec3 L, bool receiver) const {
         if (!mCasts[i])
             return dvec3(1.0);
+        const bool focused = receiver && !mCaustics.empty();
         const scene::PlacedLight& light = mLights[i];
         const bool directional = light.light.type == scene::Light::Type::Directional;
         double remaining = directional ? 1e300 : glm::distance(dvec3(light.position), P);
         dvec3 origin = P + (glm::dot(N, L) < 0.0 ? -N : N) * (4.0 * mEpsilon);
         dvec3 depth(0.0);       // optical depth, -ln of what passes
         double travelled = 0.0; // from P toward the light
+        bool behindGlass = false;
         for (int crossing = 0; crossing < 1024; ++crossing) {
             const Hit h = intersect(origin, L);
             if (!h.hit || h.t >= remaining)
@@ -440,6 +451,7 @@ public:
             if (!h.ground) {
                 if (!h.surface->glass || !mShadows.glass)
                     return dvec3(0.0);
+                behindGlass = true;
                 const Optics& o = h.surface->optics;
                 const model::GlassSurface s = glassSurface(h);
                 const bool facesLight = glm::dot(h.geometricNormal, L) > 0.0;
@@ -460,7 +472,138 @@ public:
             origin = h.point;
             remaining -= h.t;
         }
-        return glm::exp(-glm::max(depth, dvec3(0.0)));
+        if (!focused)
+            return glm::exp(-glm::max(depth, dvec3(0.0)));
+        // The light unblocked per unit area of the receiver, its intensity as 1.
+        double unblocked = std::max(glm::dot(N, L), 1e-3);
+        if (light.light.type != scene::Light::Type::Directional) {
+            unblocked /=
+                std::max(glm::dot(dvec3(light.position) - P, dvec3(light.position) - P), 1e-8);
+            if (light.light.type == scene::Light::Type::Spot)
+                unblocked *= render::cpu::spotFalloff(light, L);
+        }
+        const dvec3 focusedLight =
+            unblocked > 0.0 ? mCaustics[i].irradiance(P) / unblocked : dvec3(0.0);
+        return (behindGlass ? 0.0 : 1.0) + focusedLight;
+    }
+
+    /** The caustics' photons of every casting light (docs/materials.md, "Caustics"): `count`
+     *  a light, sent over the cone (a directional light: the disc) that holds the glass's
+     *  bounding sphere, stratified; each that meets glass first follows its refracted path
+     *  (model::crossInterface, the reflected share dropped, total internal reflection
+     *  followed, Beer-Lambert between surfaces), a path a channel, and lands on the first
+     *  opaque surface or the ground it meets in air after the glass; gathered within
+     *  `radius` (0: a twentieth of the glass's bounding radius). */
+    void traceCaustics(int count, double radius, unsigned threads) {
+        dvec3 lo(1e300), hi(-1e300);
+        for (const Surface& s : mSurfaces)
+            if (s.glass)
+                for (const dvec3& p : s.positions) {
+                    lo = glm::min(lo, p);
+                    hi = glm::max(hi, p);
+                }
+        if (lo.x > hi.x)
+            return;
+        const dvec3 centre = 0.5 * (lo + hi);
+        const double bound = 0.5 * glm::length(hi - lo);
+        if (radius <= 0.0)
+            radius = bound / 20.0;
+        mCaustics.assign(mLights.size(), PhotonMap{});
+        const int side = std::max(1, int(std::ceil(std::sqrt(double(count)))));
+        for (std::size_t i = 0; i < mLights.size(); ++i) {
+            if (!mCasts[i])
+                continue;
+            std::vector<std::vector<Photon>> landed(threads);
+            std::atomic<int> nextRow{0};
+            auto work = [&](unsigned t) {
+                for (int row = nextRow++; row < side; row = nextRow++)
+                    for (int column = 0; column < side; ++column)
+                        emitPhoton(i, centre, bound, (column + 0.5) / side, (row + 0.5) / side,
+                                   1.0 / (double(side) * side), landed[t]);
+            };
+            std::vector<std::thread> pool;
+            for (unsigned t = 0; t < threads; ++t)
+                pool.emplace_back(work, t);
+            for (auto& t : pool)
+                t.join();
+            std::vector<Photon> all;
+            for (auto& part : landed)
+                all.insert(all.end(), part.begin(), part.end());
+            mCaustics[i] = PhotonMap(std::move(all), radius);
+        }
+    }
+
+    /** One photon of light `i` toward the glass's bounding sphere (centre, bound) at the
+     *  stratum (u, v), a `share` of its photons: its landings into `landed`. */
+    void emitPhoton(std::size_t i, const dvec3& centre, double bound, double u, double v,
+                    double share, std::vector<Photon>& landed) const {
+        const scene::PlacedLight& light = mLights[i];
+        const double phi = 2.0 * std::numbers::pi * v;
+        dvec3 origin, dir, flux;
+        if (light.light.type == scene::Light::Type::Directional) {
+            dir = glm::normalize(dvec3(light.direction));
+            const auto [a, b] = basis(dir);
+            const double r = bound * std::sqrt(u);
+            origin = centre - 2.0 * bound * dir + r * (std::cos(phi) * a + std::sin(phi) * b);
+            flux = dvec3(std::numbers::pi * bound * bound * share);
+        } else {
+            origin = dvec3(light.position);
+            const dvec3 axis = centre - origin;
+            const double d = glm::length(axis);
+            const double cosMax = d > bound ? std::sqrt(1.0 - (bound / d) * (bound / d)) : -1.0;
+            const double cosTheta = 1.0 - u * (1.0 - cosMax);
+            const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+            const dvec3 w = d > 0.0 ? axis / d : dvec3(0, -1, 0);
+            const auto [a, b] = basis(w);
+            dir = cosTheta * w + sinTheta * (std::cos(phi) * a + std::sin(phi) * b);
+            double intensity = 2.0 * std::numbers::pi * (1.0 - cosMax) * share;
+            if (light.light.type == scene::Light::Type::Spot)
+                intensity *= render::cpu::spotFalloff(light, -dir);
+            flux = dvec3(intensity);
+        }
+        if (flux.x <= 0.0)
+            return;
+        const Hit first = intersect(origin, dir);
+        if (!first.hit || first.ground || !first.surface->glass)
+            return; // straight light, or stopped
+        for (int c = 0; c < 3; ++c) {
+            model::Path path;
+            path.origin = origin;
+            path.dir = dir;
+            path.weight = flux[c];
+            for (int k = 0; k <= model::kMaxPhotonCrossings; ++k) {
+                const Hit h = intersect(path.origin, path.dir);
+                const bool inGlass = path.media.top() != nullptr;
+                if (!h.hit)
+                    break;
+                if (inGlass)
+                    path.weight *= std::exp(-path.sigma * h.t);
+                if (h.ground || !h.surface->glass) {
+                    if (!inGlass && path.crossings > 0) {
+                        Photon p{h.point, dvec3(0.0)};
+                        p.light[c] = path.weight;
+                        landed.push_back(p);
+                    }
+                    break;
+                }
+                if (k == model::kMaxPhotonCrossings || path.weight < 1e-9)
+                    break;
+                const model::SurfaceMet met{&h.surface->optics, h.surface->solid, glassSurface(h),
+                                            glm::dot(path.dir, h.geometricNormal) < 0.0};
+                path.origin = h.point;
+                const dvec3 n =
+                    glm::dot(h.shadingNormal, path.dir) > 0 ? -h.shadingNormal : h.shadingNormal;
+                double reflected = 0.0;
+                model::crossInterface(path, met, n, c, mFresnel, reflected);
+            }
+        }
+    }
+
+    /** Two unit vectors that make a right-handed frame with unit w. */
+    static std::pair<dvec3, dvec3> basis(const dvec3& w) {
+        const dvec3 a =
+            glm::normalize(glm::cross(std::abs(w.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0), w));
+        return {a, glm::cross(w, a)};
     }
 
     /** How many glass surfaces the straight line from `origin` along `dir` crosses before an
@@ -488,8 +631,12 @@ private:
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
     Shadows mShadows;
-    std::vector<bool> mCasts;        ///< per light: it casts (render::castingLights)
-    render::cpu::Lighting mLighting; ///< the lights with lightThrough as their visibility
+    std::vector<bool> mCasts; ///< per light: it casts (render::castingLights)
+    /** Per light, its caustics' photons (traceCaustics; empty: the light goes straight). */
+    std::vector<PhotonMap> mCaustics;
+    /** The lights with lightThrough as their visibility: for the receivers, and for the
+     *  glass's own shading (straight through the glass). */
+    render::cpu::Lighting mLighting, mGlassLighting;
 };
 
 /** Every character's surfaces at scene time `time`, deformed by the CPU reference, refined to
@@ -616,6 +763,10 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,
                   decoded.fresnel, epsilon, render::worldLights(world, time), evaluation,
                   Shadows{settings.shadows, decoded.glassShadows});
+    const unsigned threads =
+        options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    if (settings.shadows && decoded.focusesCaustics())
+        tracer.traceCaustics(options.photons, options.causticRadius, threads);
 
     ReferenceImage image;
     image.size = settings.size;
@@ -627,8 +778,6 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     std::atomic<std::size_t> trapped{0};
     constexpr int kCountCap = 64;
     std::vector<std::atomic<std::size_t>> histogram(kCountCap + 1);
-    const unsigned threads =
-        options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     const bool bar = options.progress && isatty(2);
     auto work = [&] {
         std::size_t localTrapped = 0;

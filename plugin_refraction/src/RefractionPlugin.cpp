@@ -76,7 +76,8 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
                            std::to_string(gl::maxStorageBindings()) + ")"};
     mGpu = std::make_unique<GpuState>();
     // The programs every frame may use; the captures' that depend on K or on textured glass,
-    // and the walk's variants, are built when a frame first needs them (selectVariants).
+    // the walk's variants and the caustics' are built when a frame first needs them
+    // (selectVariants).
     struct Spec {
         gl::Program* target;
         const char* vertex; // null: a compute program
@@ -92,10 +93,11 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
          "refraction/pair_resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->outlines, rectangle, "refraction/outlines.frag.glsl", {}},
-        {&mGpu->glassShadow,
+        {&mGpu->glassShadow[0],
          glass,
          "refraction/glass_shadow.frag.glsl",
          {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0"}},
+
         {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
@@ -190,6 +192,7 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
         return false;
+    c.caustics = c.settings.focusesCaustics() && c.frame->shadows && !c.frame->shadows->empty();
     if (auto built = selectVariants(*mGpu, c); !built) {
         core::logError("refraction: " + built.error().message);
         return false;
@@ -212,15 +215,22 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     FrameContext& c = mFrame->c;
     FrameBuffers& buffers = mFrame->buffers;
     if (stage == plugin::Stage::Shadows) {
-        if (c.settings.glassShadows)
+        if (!c.settings.glassShadows)
+            return;
+        if (c.caustics) // the photons' BVH, the frame's from here on
+            addGlassBvhPass(graph, c, buffers);
+        blackboard.put(plugin::kShadowGlass,
+                       addGlassShadowPass(graph, c, buffers,
+                                          blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)));
+        if (c.caustics)
             blackboard.put(
-                plugin::kShadowGlass,
-                addGlassShadowPass(graph, c, buffers,
-                                   blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)));
+                plugin::kShadowCaustics,
+                addCausticPasses(graph, c, buffers,
+                                 blackboard.get<fg::TextureHandle>(plugin::kShadowDepth)));
         return;
     }
     const SceneInputs scene = sceneInputs(blackboard);
-    if (c.settings.usesGlassBvh())
+    if (c.settings.usesGlassBvh() && !c.caustics) // else built at the Shadows stage
         addGlassBvhPass(graph, c, buffers);
     addGlassExtentPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),

@@ -148,6 +148,21 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .defaultValue = 1,
          .help = "the glass tints the light it lets through to what it shadows (Fresnel, tint, "
                  "transmission, absorption); off: it casts no shadow"},
+        {.name = "caustics",
+         .label = "Caustics",
+         .type = Type::Bool,
+         .defaultValue = 1,
+         .help = "with glass shadows: the light the glass refracts lands where its path through "
+                 "the glass takes it, focused or spread (photons from the lights); off: the "
+                 "light through the glass goes straight"},
+        {.name = "caustic-photons",
+         .label = "Caustic photons (k)",
+         .type = Type::Int,
+         .min = 1,
+         .max = 4096,
+         .defaultValue = 12,
+         .help = "thousands of photons a frame over all the lights' glass (more: finer and "
+                 "smoother caustics, slower)"},
         {.name = "debug",
          .label = "Debug view",
          .type = Type::Enum,
@@ -185,6 +200,8 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.nearby = p.flag("nearby");
     s.outlineAntialiasing = p.flag("outline-aa");
     s.glassShadows = p.flag("glass-shadows");
+    s.caustics = p.flag("caustics");
+    s.causticPhotons = int(p.number("caustic-photons")) * 1000;
     s.debug = index("debug");
     return s;
 }

@@ -60,6 +60,9 @@ struct Settings {
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
     /** The glass tints the light through it into the shadow maps (refraction.glass_shadow). */
     bool glassShadows = true;
+    /** The glass focuses the light it refracts (refraction.caustic_*), with glass shadows. */
+    bool caustics = true;
+    int causticPhotons = 12000; ///< photons a frame over every light's glass, about
     int debug = 0; ///< index into the "debug" parameter's choices (the shaders' DEBUG_*)
 
     /** The plugin's parameters as data: name, label, type, range, default, choices, help. */
@@ -83,6 +86,8 @@ struct Settings {
         return layered() && outlineAntialiasing && !(method == Method::Trace && traceSamples > 1);
     }
     /** Isr (its d_N) and the tracing methods need the glass BVH. */
+    /** The lights' caustics are focused: on, with glass shadows. */
+    bool focusesCaustics() const { return glassShadows && caustics; }
     bool usesGlassBvh() const { return method == Method::Isr || traces(); }
     /** Whether a primitive drawn with `material` (of `model`; -1 the default, as its
      *  character's variant picks it) in glass mode `mode` renders as glass: never with Opaque

@@ -49,6 +49,9 @@ constexpr Shared kFixed[] = {
     slot::kOutlineSurface,
     slot::kTracedTextures,
     slot::kPairSurfaces,
+    slot::kCausticEmitters,
+    slot::kCausticSums,
+    slot::kCausticDepth,
     Shared::bits("OPAQUE_TAG", kOpaqueTag),
     Shared::bits("OPAQUE_TEXTURED_TAG", kOpaqueTextured),
     Shared::bits("MIRRORED_TAG", kMirroredTag),
@@ -66,6 +69,9 @@ constexpr Shared kFixed[] = {
     Shared::integer("SPLIT_DEPTH", model::kSplitDepth),
     Shared::real("SPLIT_WEIGHT", model::kSplitWeight),
     Shared::real("SMOOTH_ROUGHNESS", model::kSmooth),
+    Shared::integer("MAX_PHOTON_CROSSINGS", model::kMaxPhotonCrossings),
+    Shared::integer("CAUSTIC_SCALE", kCausticScale),
+    Shared::real("CAUSTIC_FIXED", kCausticFixed),
 };
 static_assert(gl::distinct(kFixed));
 

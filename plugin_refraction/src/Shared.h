@@ -40,6 +40,10 @@ inline constexpr StorageSlot kLayerSurfaces{40, "LAYER_SURFACES_BINDING", "Layer
 inline constexpr StorageSlot kLayerMotions{41, "LAYER_MOTIONS_BINDING", "LayerMotions"};
 inline constexpr StorageSlot kPairRanges{42, "PAIR_RANGES_BINDING", "PairRanges"};
 inline constexpr StorageSlot kWalkCounters{43, "WALK_COUNTERS_BINDING", "WalkCounters"};
+/** The caustics (caustics.glsl): the light's texels whose rays meet glass, listed by the glass
+ *  shadow pass, and the photons' light added up per texel of the caustics atlas. */
+inline constexpr StorageSlot kCausticEmitters{44, "CAUSTIC_EMITTERS_BINDING", "CausticEmitters"};
+inline constexpr StorageSlot kCausticSums{45, "CAUSTIC_SUMS_BINDING", "CausticSums"};
 
 // Texture units.
 inline constexpr TextureSlot kSceneColor{26, "SCENE_COLOR_UNIT"};
@@ -57,6 +61,9 @@ inline constexpr TextureSlot kTracedTextures{37, "TRACED_TEXTURES_UNIT", 8};
 /** The two passes' surfaces where the frame's glass is textured (pair_resolve.frag.glsl): the
  *  front's, the back's. */
 inline constexpr TextureSlot kPairSurfaces{45, "PAIR_SURFACES_UNIT", 2};
+/** The engine's shadow depth atlas read as depths (not compared): where photons land, and the
+ *  receivers the caustics are for. */
+inline constexpr TextureSlot kCausticDepth{47, "CAUSTIC_DEPTH_UNIT"};
 
 } // namespace refraction::slot
 
@@ -73,6 +80,11 @@ inline constexpr std::uint32_t kLayerFront = 256u;
  *  a depth from kUnusedDepth up marks one. The pair's MAX-blended targets clear to
  *  kNoSurface (below any fragment). */
 inline constexpr float kNoDepth = 3.0e38f, kUnusedDepth = 1.0e38f, kNoSurface = -3.0e38f;
+/** The caustics atlas is the shadow atlases' size divided by this (its tiles theirs, scaled). */
+inline constexpr int kCausticScale = 4;
+/** The photons' light is added up in fixed point (caustics.glsl): this many units are 1, the
+ *  light that reaches a receiver unblocked. */
+inline constexpr double kCausticFixed = 1048576.0;
 /** Glass ids a layer can name (8 bits, less the walk's 0 for air). */
 inline constexpr std::size_t kMaxGlassIds = 255;
 

@@ -22,10 +22,10 @@ struct PunctualLight {
 // One map of a light (render::ShadowView) and its tile in the atlases.
 struct ShadowView {
     mat4 viewProjection;
-    vec4 tile;  // the tile's corner (xy) and side (z) in atlas uv; w: one texel in atlas uv
+    vec4 tile;  // the tile's corner (xy) and sides (zw) in atlas uv
     vec4 axis;  // perspective: the light's position; else distance = dot(axis.xyz, P) + axis.w
     vec4 texel; // x: a texel's world size at distance 1 (perspective) or anywhere; y: perspective;
-                // z: the near plane's distance
+                // z: the near plane's distance; w: the tile's side in texels
 };
 layout(std430, binding = LIGHTING_BINDING) readonly buffer Lighting {
     // E(NoV, roughness) of the sheen lobe, row r: roughness r / (size - 1), column c: NoV
@@ -37,6 +37,14 @@ layout(std430, binding = LIGHTING_BINDING) readonly buffer Lighting {
 };
 
 #include "common/shadows.glsl"
+
+// The spot's cone falloff of its light toward -L (L: unit, toward the light).
+float spotFalloff(PunctualLight light, vec3 L) {
+    float t = clamp((dot(light.direction.xyz, -L) - light.radiance.w) /
+                        max(light.cone.x - light.radiance.w, 1e-4),
+                    0.0, 1.0);
+    return t * t;
+}
 
 // Light `i` as it arrives at P (normal N): its radiance after the distance, range and cone
 // falloffs and what its shadow maps say blocks or tints it, and the unit direction L toward it.
@@ -55,12 +63,8 @@ vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
         float window = clamp(1.0 - x * x, 0.0, 1.0);
         falloff *= window * window;
     }
-    if (int(light.position.w) == LIGHT_SPOT) {
-        float t = clamp((dot(light.direction.xyz, -L) - light.radiance.w) /
-                            max(light.cone.x - light.radiance.w, 1e-4),
-                        0.0, 1.0);
-        falloff *= t * t;
-    }
+    if (int(light.position.w) == LIGHT_SPOT)
+        falloff *= spotFalloff(light, L);
     if (falloff <= 0.0)
         return vec3(0.0);
     return light.radiance.rgb * falloff * lightShadow(light, P, N, L);

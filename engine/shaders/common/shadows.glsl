@@ -1,13 +1,18 @@
 // What a light's shadow maps say of a point: the opaque casters' depth atlas (compared, filtered
 // over the light's radius in texels) and the glass's, which holds along each of the light's rays
 // the glass's optical depth (RGB: -ln of what it lets through) and its nearest distance (A), so
-// that light through glass arrives tinted (docs/materials.md, "Shadows"). Included by
-// common/lighting.glsl; the atlases are bound by render::bindShadowMaps.
+// that light through glass arrives tinted; and the caustics a plugin focused, which hold the
+// light the glass refracted onto the receiver each texel sees (RGB, a share of the light that
+// would reach it unblocked) and that receiver's distance (A). A receiver behind glass takes only
+// the focused light; one in the open takes it on top of the light's own (docs/materials.md,
+// "Shadows" and "Caustics"). Included by common/lighting.glsl; the atlases are bound by
+// render::bindShadowMaps (the caustics by the plugin that focuses them).
 #ifndef COMMON_SHADOWS_GLSL
 #define COMMON_SHADOWS_GLSL
 
 layout(binding = SHADOW_DEPTH_UNIT) uniform sampler2DShadow uShadowDepth;
 layout(binding = SHADOW_GLASS_UNIT) uniform sampler2D uShadowGlass;
+layout(binding = SHADOW_CAUSTICS_UNIT) uniform sampler2D uShadowCaustics;
 
 // The view of `light` that sees P: its first, or for a point light the cube face of P.
 int shadowView(PunctualLight light, vec3 P) {
@@ -32,16 +37,23 @@ float shadowDistance(ShadowView view, vec3 P) {
 // what the glass in front of P lets through (P farther than the glass's nearest surface by more
 // than `texel`, a texel's size at P).
 vec3 shadowTap(ShadowView view, vec2 uv, float depth, float distanceToLight, float texel) {
-    vec2 lo = view.tile.xy + 0.5 * view.tile.w, hi = view.tile.xy + view.tile.z - 0.5 * view.tile.w;
+    vec2 halfTexel = 0.5 * view.tile.zw / view.texel.w;
+    vec2 lo = view.tile.xy + halfTexel, hi = view.tile.xy + view.tile.zw - halfTexel;
     uv = clamp(uv, lo, hi);
     float lit = texture(uShadowDepth, vec3(uv, depth));
     if (lit <= 0.0)
         return vec3(0.0);
     vec4 glass = textureLod(uShadowGlass, uv, 0.0);
     // The glass in front of P (a receiver behind the glass's nearest surface along the ray).
-    if (distanceToLight > glass.a + 2.0 * texel)
-        return lit * exp(-max(glass.rgb, vec3(0.0)));
-    return vec3(lit);
+    bool behindGlass = distanceToLight > glass.a + 2.0 * texel;
+    // P is the receiver the caustics fell on (not glass in front of it): its distance, that of
+    // the nearest receiver under the caustics' texel (unfiltered: receivers' edges do not blend).
+    ivec2 size = textureSize(uShadowCaustics, 0);
+    float receiver =
+        texelFetch(uShadowCaustics, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).a;
+    if (distanceToLight > receiver - 8.0 * texel - 0.01 * distanceToLight)
+        return lit * (textureLod(uShadowCaustics, uv, 0.0).rgb + (behindGlass ? 0.0 : 1.0));
+    return behindGlass ? lit * exp(-max(glass.rgb, vec3(0.0))) : vec3(lit);
 }
 
 // What reaches P (normal N, unit L toward the light) of `light` past its casters: 1 unshadowed.
@@ -61,13 +73,13 @@ vec3 lightShadow(PunctualLight light, vec3 P, vec3 N, vec3 L) {
     vec3 ndc = clip.xyz / clip.w;
     if (any(greaterThan(abs(ndc.xy), vec2(1.0))))
         return vec3(1.0); // outside the map: no caster there
-    vec2 uv = view.tile.xy + (ndc.xy * 0.5 + 0.5) * view.tile.z;
+    vec2 uv = view.tile.xy + (ndc.xy * 0.5 + 0.5) * view.tile.zw;
     float depth = min(ndc.z * 0.5 + 0.5, 1.0); // receivers past the far plane meet its clear
     if (softness <= 0.0)
         return shadowTap(view, uv, depth, distanceToLight, texel);
     // A 3 x 3 grid of filtered taps over the radius: a tent of about 2 * softness texels.
     vec3 sum = vec3(0.0);
-    float step = softness * view.tile.w;
+    vec2 step = softness * view.tile.zw / view.texel.w;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)
             sum += shadowTap(view, uv + vec2(x, y) * step, depth, distanceToLight, texel);

@@ -229,15 +229,19 @@ dvec3 lightArriving(const scene::PlacedLight& placed, dvec3 P, dvec3& L) {
         const double window = std::clamp(1.0 - x * x, 0.0, 1.0);
         falloff *= window * window;
     }
-    if (light.type == scene::Light::Type::Spot) {
-        const double cosOuter = std::cos(double(light.outerConeAngle));
-        const double cosInner = std::cos(double(light.innerConeAngle));
-        const double t = std::clamp((glm::dot(dvec3(placed.direction), -L) - cosOuter) /
-                                        std::max(cosInner - cosOuter, 1e-4),
-                                    0.0, 1.0);
-        falloff *= t * t;
-    }
+    if (light.type == scene::Light::Type::Spot)
+        falloff *= spotFalloff(placed, L);
     return radiance * falloff;
+}
+
+double spotFalloff(const scene::PlacedLight& placed, dvec3 L) {
+    const scene::Light& light = placed.light;
+    const double cosOuter = std::cos(double(light.outerConeAngle));
+    const double cosInner = std::cos(double(light.innerConeAngle));
+    const double t = std::clamp((glm::dot(dvec3(placed.direction), -L) - cosOuter) /
+                                    std::max(cosInner - cosOuter, 1e-4),
+                                0.0, 1.0);
+    return t * t;
 }
 
 Surface readSurface(const scene::Model& model, const scene::Material& m, const Point& p,

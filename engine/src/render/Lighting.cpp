@@ -24,9 +24,10 @@ struct PunctualLightGpu {
 /** One shadow view as common/shadows.glsl's ShadowView lays it out (std430). */
 struct ShadowViewGpu {
     glm::mat4 viewProjection;
-    glm::vec4 tile;  // the tile's corner and side in atlas uv, one texel in atlas uv
+    glm::vec4 tile;  // the tile's corner (xy) and sides (zw) in atlas uv
     glm::vec4 axis;  // perspective: the light's position; else the view's row -z (the distance)
-    glm::vec4 texel; // x: ShadowView::texelSize, y: 1 for a perspective view, z: its near
+    glm::vec4 texel; // x: ShadowView::texelSize, y: 1 for a perspective view, z: its near,
+                     // w: the tile's side in texels
 };
 constexpr std::size_t kTableBytes = sizeof(float) * kSheenTableSize * kSheenTableSize;
 constexpr std::size_t kViewsBytes = sizeof(ShadowViewGpu) * kMaxShadowViews;
@@ -37,12 +38,13 @@ ShadowViewGpu packView(const ShadowView& v, glm::ivec2 atlas) {
     const glm::vec2 scale = 1.0f / glm::vec2(atlas);
     ShadowViewGpu g;
     g.viewProjection = v.viewProjection();
-    g.tile = glm::vec4(glm::vec2(v.tile.x, v.tile.y) * scale, float(v.tile.z) * scale.x, scale.x);
+    // An atlas of several tiles need not be square: a tile's sides in uv differ.
+    g.tile = glm::vec4(glm::vec2(v.tile.x, v.tile.y) * scale, float(v.tile.z) * scale);
     // What the shadows' distances along the light's rays are measured from: the light's
     // position, or the plane of its view (-z = dot(axis.xyz, p) + axis.w); less the near plane's.
     g.axis = v.perspective ? glm::vec4(glm::vec3(glm::inverse(v.view)[3]), 0.0f)
                            : -glm::transpose(v.view)[2];
-    g.texel = glm::vec4(v.texelSize, v.perspective ? 1.0f : 0.0f, v.near, 0.0f);
+    g.texel = glm::vec4(v.texelSize, v.perspective ? 1.0f : 0.0f, v.near, float(v.tile.z));
     return g;
 }
 

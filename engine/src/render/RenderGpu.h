@@ -57,6 +57,9 @@ struct RenderGpu {
     gl::Sampler shadowSampler{gl::Filter::Linear, gl::Wrap::Clamp, true};
     /** What the shadow units hold in frames where no light casts: nothing in front. */
     gl::Texture noShadowDepth, noShadowGlass;
+    /** What the caustics unit holds where no plugin focuses light (every frame until one
+     *  binds its own): no receiver anywhere (kNoGlass), so light through glass goes straight. */
+    gl::Texture noCaustics;
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
     gl::Program temporal; ///< the temporal resolve (render/temporal.frag.glsl)

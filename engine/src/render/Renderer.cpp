@@ -144,17 +144,14 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     gpu.shadowCaster = std::move(*caster);
     gpu.noShadowDepth = gl::Texture({glm::ivec2(1), gl::Format::Depth32F, 1});
     gpu.noShadowGlass = gl::Texture({glm::ivec2(1), gl::Format::RGBA16F, 1});
-    for (const bool depth : {true, false}) {
-        const gl::Texture& t = depth ? gpu.noShadowDepth : gpu.noShadowGlass;
-        if (auto bound = gpu.framebuffer.bindTargets(
-                "no shadows", depth ? std::vector<const gl::Texture*>{} : std::vector{&t},
-                depth ? &t : nullptr);
-            !bound)
+    gpu.noCaustics = gl::Texture({glm::ivec2(1), gl::Format::RGBA16F, 1});
+    if (auto bound = gpu.framebuffer.bindTargets("no shadows", {}, &gpu.noShadowDepth); !bound)
+        return bound.error();
+    gl::clearDepth(1.0f);
+    for (const gl::Texture* t : {&gpu.noShadowGlass, &gpu.noCaustics}) {
+        if (auto bound = gpu.framebuffer.bindTargets("no shadows", {t}, nullptr); !bound)
             return bound.error();
-        if (depth)
-            gl::clearDepth(1.0f);
-        else
-            gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass));
+        gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass));
     }
     for (int lit = 0; lit < 2; ++lit) {
         auto program =
@@ -410,14 +407,18 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     } else {
         shadows = passes::addShadows(graph, gpu, frame, vertices);
     }
+    shadows.caustics =
+        graph.importTexture("scene.shadow_caustics", gpu.noCaustics.desc(), &gpu.noCaustics);
     blackboard.put(plugin::kShadowDepth, shadows.depth);
     blackboard.put(plugin::kShadowGlass, shadows.glass);
+    blackboard.put(plugin::kShadowCaustics, shadows.caustics);
     blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     if (!gpu.shadows.empty())
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(plugin::Stage::Shadows, graph, blackboard);
     shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
+    shadows.caustics = blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics);
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (settings.ground)

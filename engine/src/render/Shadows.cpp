@@ -68,6 +68,12 @@ ShadowView directionalView(const glm::vec3& direction, const Bounds& casters, in
     return v;
 }
 
+/** A tile's side rounded up to a multiple of 4 texels, so that its corner and side stay whole
+ *  in an atlas of the same tiles at a half or a quarter of the resolution (a plugin's). */
+int wholeTile(int side) {
+    return (side + 3) / 4 * 4;
+}
+
 /** Places the views' tiles on shelves, largest first, in an atlas at most `limit` wide. */
 glm::ivec2 packTiles(std::vector<ShadowView>& views, int limit) {
     std::vector<std::size_t> order(views.size());
@@ -125,8 +131,8 @@ ShadowPlan planShadows(std::span<const scene::PlacedLight> lights, const Bounds&
         }
         plan.firstView[i] = int(plan.views.size());
         const int resolution =
-            std::clamp(light.shadow.resolution, core::limits::kMinShadowResolution,
-                       core::limits::kMaxShadowResolution);
+            wholeTile(std::clamp(light.shadow.resolution, core::limits::kMinShadowResolution,
+                                 core::limits::kMaxShadowResolution));
         std::vector<ShadowView> views;
         if (light.type == scene::Light::Type::Directional) {
             views.push_back(directionalView(placed.direction, casters, resolution));
@@ -157,8 +163,9 @@ ShadowPlan planShadows(std::span<const scene::PlacedLight> lights, const Bounds&
             break;
         ++plan.halved;
         for (ShadowView& v : plan.views) {
-            v.tile.z = std::max(v.tile.z / 2, 16);
-            v.texelSize *= 2.0f;
+            const int side = std::max(wholeTile(v.tile.z / 2), 16);
+            v.texelSize *= float(v.tile.z) / float(side);
+            v.tile.z = side;
         }
     }
     return plan;

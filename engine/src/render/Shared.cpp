@@ -4,6 +4,7 @@
 #include "engine/render/FrameInfo.h"
 #include "engine/render/Lighting.h"
 #include "engine/render/MaterialTextures.h"
+#include "engine/render/Shadows.h"
 #include "engine/scene/Light.h"
 #include "engine/scene/Model.h"
 
@@ -21,6 +22,7 @@ constexpr Shared kTable[] = {
     Shared::integer("LIGHT_SPOT", int(Light::Spot)),
     Shared::integer("SHEEN_TABLE_SIZE", kSheenTableSize),
     Shared::integer("MAX_SHADOW_VIEWS", int(kMaxShadowViews)),
+    Shared::real("NO_GLASS", kNoGlass),
     Shared::integer("SLOT_BASE_COLOR", Slot::BaseColor),
     Shared::integer("SLOT_METALLIC_ROUGHNESS", Slot::MetallicRoughness),
     Shared::integer("SLOT_NORMAL", Slot::Normal),

@@ -43,6 +43,13 @@ struct ReferenceOptions {
     /** Follow only the entry and one exit (no further surfaces after leaving the glass): the
      *  closed-form two-interface model, for checking the tracer itself. */
     bool twoInterfaces = false;
+    /** The caustics (with the plugin's caustics and glass shadows, and shadows on): photons
+     *  sent toward the glass from each casting light, and the radius their density is
+     *  estimated over around a receiver (0: a twentieth of the glass's bounding radius). The
+     *  estimate's noise falls as 1 / sqrt(photons in the radius), its blur grows with the
+     *  radius (docs/materials.md, "Caustics"). */
+    int photons = 1 << 18;
+    double causticRadius = 0.0;
     unsigned threads = 0;  ///< 0: all cores
     bool progress = false; ///< a progress bar on stderr
 };

@@ -5,8 +5,16 @@
 // through its tint and transmission, and starts its absorption; one facing away lets (1 - F)
 // out and ends it: summed over a closed surface, sigma times the length inside. F is the
 // entering reflectance at the light's angle to the surface (optics.glsl), at both crossings.
+// With CAUSTIC_EMITTERS, it also marks each texel of the caustics atlas whose light meets glass,
+// where the photon pass emits (caustics.glsl).
 #include "refraction/fragment_surface.glsl"
 #include "refraction/optics.glsl"
+#ifndef CAUSTIC_EMITTERS
+#define CAUSTIC_EMITTERS 0
+#endif
+#if CAUSTIC_EMITTERS
+#include "refraction/caustics.glsl"
+#endif
 
 uniform int uGlassId;
 uniform int uPerspective; // the view is a spot's or a point light's (else a directional one's)
@@ -28,4 +36,10 @@ void main() {
     vec3 depth = -log(max(through, vec3(1e-6)));
     depth += gl_FrontFacing ? -m.sigma * d : m.sigma * d;
     outGlass = vec4(depth, d);
+#if CAUSTIC_EMITTERS
+    ivec2 texel = ivec2(gl_FragCoord.xy) / CAUSTIC_SCALE;
+    uint i = causticTexelIndex(texel), bit = 1u << (i % 32u);
+    if ((atomicOr(emitterBits[i / 32u], bit) & bit) == 0u) // the texel's first glass
+        atomicAdd(emitterCount, 1u);
+#endif
 }

@@ -39,6 +39,7 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
     buffers.handedOver = graph.importBuffer("refraction.handed_over", &gpu.handedOver);
+    buffers.caustics = graph.importBuffer("refraction.caustics", &gpu.caustics);
     return buffers;
 }
 
@@ -48,7 +49,8 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
             blackboard.get<fg::TextureHandle>(plugin::kSceneDepth),
             motion ? *motion : fg::TextureHandle{},
             blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
-            blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)};
+            blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
+            blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics)};
 }
 
 void FrameContext::setWalkUniforms(const gl::Program& f) const {
@@ -200,6 +202,7 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
     in.sceneDepth = b.read(scene.depth);
     b.read(scene.shadowDepth); // the lights' shading samples them where they are bound
     b.read(scene.shadowGlass);
+    b.read(scene.shadowCaustics);
     return in;
 }
 

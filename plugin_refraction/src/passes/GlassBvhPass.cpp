@@ -1,7 +1,7 @@
-// `refraction.glass_bvh` (ISR, trace, hybrid): every glass part's deformed surface as drawn
-// (refined under subdivision; for the tracing methods every opaque part's too) gathered into
-// the world mesh, the glass BVH refitted (or rebuilt) and its triangles' tags; for ISR d_N cast
-// from every vertex (GlassBvh).
+// `refraction.glass_bvh` (ISR, trace, hybrid, caustics): every glass part's deformed surface as
+// drawn (refined under subdivision; for the tracing methods and the caustics every opaque
+// part's too) gathered into the world mesh, the glass BVH refitted (or rebuilt) and its
+// triangles' tags; for ISR d_N cast from every vertex (GlassBvh).
 #include "Passes.h"
 
 #include "engine/deform/GpuDeformer.h"
@@ -51,13 +51,14 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
         [c](const fg::Resources&, const Data&, gl::Context&) {
             GpuState& gpu = *c.gpu;
             GpuState::Glass& glass = gpu.glass;
-            // This frame's parts: its glass items and, for the trace, its opaque ones (an exit
-            // ray meets them exactly), with their tags, in storage kept across frames.
+            // This frame's parts: its glass items and, for the trace and the caustics, its
+            // opaque ones (an exit ray or a photon meets them exactly), with their tags, in
+            // storage kept across frames.
             auto& [items, parts, tags] = glass.frame;
             items.clear();
             parts.clear();
             tags.clear();
-            const bool opaque = c.settings.traces();
+            const bool opaque = c.bvhHoldsOpaque();
             for (std::size_t index = 0; index < c.frame->items.size(); ++index) {
                 const render::DrawItem& item = c.frame->items[index];
                 if (!c.isGlass(item) && !opaque)

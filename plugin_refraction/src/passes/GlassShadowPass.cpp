@@ -2,49 +2,81 @@
 // the frame's lights into its tile of the engine's glass atlas, blended (optical depth added,
 // the nearest distance kept: glass_shadow.frag.glsl), so that light through the glass reaches
 // what lies behind it tinted by Fresnel, base colour, transmission and Beer-Lambert over the
-// distance it crosses, in a straight line (docs/materials.md, "Shadows").
+// distance it crosses, in a straight line (docs/materials.md, "Shadows"). With the caustics, it
+// also marks the texels of the caustics atlas whose light meets glass, where the photons start.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
 
 namespace refraction {
 
+namespace {
+
+/** The caustics' storage sized for an atlas of `size` texels (grown, never shrunk), the
+ *  emitters and the sums cleared. */
+void resetCaustics(GpuState::Caustics& caustics, glm::ivec2 size) {
+    const std::size_t texels = std::size_t(size.x) * std::size_t(size.y);
+    // The count and the photon pass's work groups, then a bit a texel (caustics.glsl).
+    const std::size_t emitterBytes = 4 * (4 + (texels + 31) / 32), sumBytes = 12 * texels;
+    if (caustics.emitters.size() < emitterBytes)
+        caustics.emitters = gl::Buffer(emitterBytes);
+    if (caustics.sums.size() < sumBytes)
+        caustics.sums = gl::Buffer(sumBytes);
+    caustics.size = size;
+    caustics.emitters.fill(0, emitterBytes / 4, 0u);
+    caustics.sums.fill(0, sumBytes / 4, 0u);
+}
+
+} // namespace
+
 fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& c,
-                                     const FrameBuffers& buffers, fg::TextureHandle atlas) {
+                                     FrameBuffers& buffers, fg::TextureHandle atlas) {
     struct Data {
         fg::TextureHandle atlas;
+        fg::BufferHandle caustics;
     };
-    return graph
-        .addPass<Data>(
-            "refraction.glass_shadow",
-            [&](fg::Builder& b, Data& d) {
-                b.read(buffers.vertices);
-                b.read(buffers.materials);
-                d.atlas = b.write(atlas);
-            },
-            [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
-                GpuState& gpu = *c.gpu;
-                if (auto bound = gpu.framebuffer.bindTargets("refraction.glass_shadow",
-                                                             {&r.texture(d.atlas)}, nullptr);
-                    !bound)
-                    return bound;
-                const gl::Program& program = gpu.glassShadow;
-                program.use();
-                program.set("uFresnelMode", int(c.settings.fresnel));
-                for (const render::ShadowView& view : c.frame->shadows->views) {
-                    gl::setViewport({view.tile.x, view.tile.y, view.tile.z, view.tile.z});
-                    program.set("uPerspective", view.perspective ? 1 : 0);
-                    program.set("uNear", view.near);
-                    c.drawGlassMaterials(program,
-                                         {.cull = gl::Cull::None,
-                                          .depthTest = false,
-                                          .depthWrite = false,
-                                          .blend = gl::Blend::AddMinAlpha},
-                                         GlassView{view.view, view.projection});
-                }
-                return {};
-            })
-        .atlas;
+    const Data& pass = graph.addPass<Data>(
+        "refraction.glass_shadow",
+        [&](fg::Builder& b, Data& d) {
+            b.read(buffers.vertices);
+            b.read(buffers.materials);
+            d.atlas = b.write(atlas);
+            if (c.caustics)
+                d.caustics = b.write(buffers.caustics);
+        },
+        [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            if (auto bound = gpu.framebuffer.bindTargets("refraction.glass_shadow",
+                                                         {&r.texture(d.atlas)}, nullptr);
+                !bound)
+                return bound;
+            const gl::Program& program = gpu.glassShadow[c.caustics ? 1 : 0];
+            program.use();
+            program.set("uFresnelMode", int(c.settings.fresnel));
+            if (c.caustics) {
+                resetCaustics(gpu.caustics, c.frame->shadows->atlasSize / kCausticScale);
+                program.set("uCausticSize", gpu.caustics.size);
+                gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
+                gl::bindStorage(slot::kCausticSums, gpu.caustics.sums); // declared, unwritten
+            }
+            for (const render::ShadowView& view : c.frame->shadows->views) {
+                gl::setViewport({view.tile.x, view.tile.y, view.tile.z, view.tile.z});
+                program.set("uPerspective", view.perspective ? 1 : 0);
+                program.set("uNear", view.near);
+                c.drawGlassMaterials(program,
+                                     {.cull = gl::Cull::None,
+                                      .depthTest = false,
+                                      .depthWrite = false,
+                                      .blend = gl::Blend::AddMinAlpha},
+                                     GlassView{view.view, view.projection});
+            }
+            if (c.caustics)
+                gl::memoryBarrier(gl::BarrierStorage);
+            return {};
+        });
+    if (c.caustics)
+        buffers.caustics = pass.caustics;
+    return pass.atlas;
 }
 
 } // namespace refraction

@@ -1,8 +1,14 @@
 // The refraction plugin's passes, one file each in this folder, named like the pass and its
 // shader, recorded into the frame graph by RefractionPlugin::addPasses (ARCHITECTURE.md, "One
 // frame"): one pipeline, a capture and the walk.
+// At the Shadows stage, where lights cast:
 //   glass_materials (GlassMaterialsPass): the frame's glass optics;
-//   glass_bvh (GlassBvhPass; ISR and the tracing methods): the BVH refitted, ISR's d_N cast;
+//   with caustics, glass_bvh (below);
+//   glass_shadow (GlassShadowPass): the glass into the engine's glass atlas, the caustics'
+//     emitters marked; with caustics, caustic_photons -> caustic_resolve (CausticsPass).
+// After the opaque scene (where no light casts, the frame begins here with glass_materials):
+//   glass_bvh (GlassBvhPass; ISR and the tracing methods, unless built for the caustics): the
+//     BVH refitted, ISR's d_N cast;
 //   glass_extent (GlassExtentPass): where the glass lies on screen and in view space;
 // then the capture, either
 //   the layers (default): layer_capture (LayerCapturePass: every glass surface of every
@@ -64,8 +70,13 @@ struct FrameContext {
     bool texturedGlass = false;
     const gl::Program* walk = nullptr;        ///< the walk's variant (selectVariants)
     const gl::Program* hybridTrace = nullptr; ///< the hybrid's trace pass's (selectVariants)
+    /** The lights cast this frame and the glass focuses their caustics (Settings's
+     *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
+    bool caustics = false;
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
+    /** The BVH holds the opaque parts too, which a traced ray or a photon may meet. */
+    bool bvhHoldsOpaque() const { return settings.traces() || caustics; }
     /** Whether the frame has punctual lights (the shading variants with them compiled in). */
     bool lit() const { return !frame->lights.empty(); }
     /** The camera's view and projection. */
@@ -105,14 +116,16 @@ struct FrameBuffers {
     fg::BufferHandle materials;  ///< GpuState::glassMaterials (glass_materials.glsl)
     fg::BufferHandle layers;     ///< GpuState::layers (what the capture holds)
     fg::BufferHandle handedOver; ///< GpuState::handedOver (the hybrid's list, walk.glsl)
+    fg::BufferHandle caustics;   ///< GpuState::caustics (caustics.glsl)
 };
 
 /** The scene the glass is drawn over, from the blackboard; where the frame accumulates, the
  *  motion of its pixels. */
 struct SceneInputs {
     fg::TextureHandle color, depth, motion;
-    /** The shadow atlases, bound by the engine for the frame: what the lights' shading reads. */
-    fg::TextureHandle shadowDepth, shadowGlass;
+    /** The shadow atlases, bound for the frame by the engine (the caustics by their pass):
+     *  what the lights' shading reads. */
+    fg::TextureHandle shadowDepth, shadowGlass, shadowCaustics;
 };
 
 /** What a capture leaves the walk: the glass pixels' mask and the depth maps (layers.glsl);
@@ -181,9 +194,16 @@ std::size_t layerDepthSlots(int capacity);
 /** The optics of every glass id into GpuState::glassMaterials, which the walk reads. */
 void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
 /** `refraction.glass_shadow` (GlassShadowPass.cpp): the glass from every shadow view into the
- *  engine's glass atlas `atlas`; returns its new version. */
+ *  engine's glass atlas `atlas`, and with the caustics their emitters marked; returns the
+ *  atlas's new version. */
 fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& c,
-                                     const FrameBuffers& buffers, fg::TextureHandle atlas);
+                                     FrameBuffers& buffers, fg::TextureHandle atlas);
+/** `refraction.caustic_photons` and `refraction.caustic_resolve` (CausticsPass.cpp): photons
+ *  from the emitters the glass shadow pass marked, refracted through the glass BVH onto the
+ *  receivers, then filtered into a new caustics atlas over the shadow depth atlas `depth`'s
+ *  tiles, bound at gl::slot::kShadowCaustics; returns it. */
+fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
+                                   FrameBuffers& buffers, fg::TextureHandle depth);
 /** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
  *  d_N of every deformed vertex cast against it (writes bvh). */
 void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);

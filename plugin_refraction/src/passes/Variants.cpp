@@ -79,10 +79,35 @@ std::vector<std::string> walkDefines(const GpuState::WalkKey& key, Settings::Met
             define("HYBRID_LIST", method == Settings::Method::Hybrid)};
 }
 
+/** The caustics' programs, the first frame that focuses them. */
+core::Status causticPrograms(GpuState& gpu, const FrameContext& c) {
+    if (!c.caustics || gpu.causticResolve.id() != 0)
+        return {};
+    const gl::ShaderLibrary& shaders = *c.frame->shaders;
+    const std::string photons = "refraction/caustic_photons.comp.glsl";
+    auto emitters = gl::Program::graphics(
+        shaders, "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
+        {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0", "CAUSTIC_EMITTERS 1"});
+    auto grid = gl::Program::compute(shaders, photons, {"CAUSTIC_GRID 1"});
+    auto trace = gl::Program::compute(shaders, photons, {});
+    auto resolve = gl::Program::graphics(shaders, "render/fullscreen.vert.glsl",
+                                         "refraction/caustic_resolve.frag.glsl", {});
+    for (const auto* built : {&emitters, &grid, &trace, &resolve})
+        if (!*built)
+            return built->error();
+    gpu.glassShadow[1] = std::move(*emitters);
+    gpu.causticGrid = std::move(*grid);
+    gpu.causticPhotons = std::move(*trace);
+    gpu.causticResolve = std::move(*resolve);
+    return {};
+}
+
 } // namespace
 
 core::Status selectVariants(GpuState& gpu, FrameContext& c) {
     if (auto built = captureVariants(gpu, c); !built)
+        return built;
+    if (auto built = causticPrograms(gpu, c); !built)
         return built;
     // Dispersion: none in this frame, or the dispersion search's.
     const bool dispersion =

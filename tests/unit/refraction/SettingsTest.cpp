@@ -65,6 +65,8 @@ TEST(Settings, DecodesEveryChoice) {
         {"nearby", {"off", [](const S& s) { return !s.nearby; }}},
         {"outline-aa", {"off", [](const S& s) { return !s.outlineAntialiasing; }}},
         {"glass-shadows", {"off", [](const S& s) { return !s.glassShadows; }}},
+        {"caustics", {"off", [](const S& s) { return !s.caustics; }}},
+        {"caustic-photons", {"64", [](const S& s) { return s.causticPhotons == 64000; }}},
         {"debug", {"steps", [](const S& s) { return s.debug == 6; }}}, // the seventh entry
     };
     for (const plugin::Parameter& parameter : S::parameterTable()) {

@@ -158,9 +158,11 @@ inline constexpr TextureSlot kMaterial{3, "MATERIAL_UNIT", 17}; ///< a material'
 inline constexpr TextureSlot kMotion{20, "MOTION_UNIT"};
 /// the temporal history: the last resolved colour and the motion texels it was resolved with
 inline constexpr TextureSlot kHistory{21, "HISTORY_UNIT", 2};
-/// the frame's shadow atlases (common/shadows.glsl): the casters' depth, compared, and the glass's
+/// the frame's shadow atlases (common/shadows.glsl): the casters' depth, compared, the glass's,
+/// and the caustics the glass focuses onto the receivers
 inline constexpr TextureSlot kShadowDepth{23, "SHADOW_DEPTH_UNIT"};
 inline constexpr TextureSlot kShadowGlass{24, "SHADOW_GLASS_UNIT"};
+inline constexpr TextureSlot kShadowCaustics{25, "SHADOW_CAUSTICS_UNIT"};
 
 /** The engine's table: every slot above. */
 inline constexpr Shared kEngineTable[] = {kVertices,        kUvs,
@@ -174,7 +176,8 @@ inline constexpr Shared kEngineTable[] = {kVertices,        kUvs,
                                           kMotionImage,     kEnvironment,
                                           kSource,          kMaterial,
                                           kMotion,          kHistory,
-                                          kShadowDepth,     kShadowGlass};
+                                          kShadowDepth,     kShadowGlass,
+                                          kShadowCaustics};
 static_assert(distinct(kEngineTable));
 } // namespace slot
 

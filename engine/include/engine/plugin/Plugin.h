@@ -72,8 +72,10 @@ namespace plugin {
  *  registry of shared numbers (gl/Registry.h): bindings and units as registered slots
  *  (gl::bindStorage(gl::slot::kLighting, ...), plugins' own from gl::slot::kFirstPluginBinding,
  *  registered with ShaderLibrary::share), MaterialTextures::bind at gl::slot::kMaterial with
- *  seventeen slots (transmission and thickness added). */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/6";
+ *  seventeen slots (transmission and thickness added); 6 shadows: Stage::Shadows, the shadow
+ *  atlases kShadowDepth and kShadowGlass at units 23 and 24, plugins' units from 26; 7 caustics:
+ *  kShadowCaustics at unit 25. */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/7";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
@@ -105,6 +107,14 @@ inline constexpr const char* kSceneVertices = "scene.vertices";
  *  light's ray (RGB, added) and its nearest distance from the light (A, the minimum). */
 inline constexpr const char* kShadowDepth = "scene.shadow_depth";
 inline constexpr const char* kShadowGlass = "scene.shadow_glass";
+/** The caustics (fg::TextureHandle, RGBA16F, common/shadows.glsl), bound at
+ *  gl::slot::kShadowCaustics: per texel of a light's view, the light that reached the receiver
+ *  seen there through glass, as a share of what would reach it unblocked (RGB), and that
+ *  receiver's distance from the light (A; kNoGlass: none, light through glass goes straight).
+ *  The engine's holds no receiver; a plugin that focuses light through its surfaces at the
+ *  Shadows stage creates its own atlas (the tiles of the depth atlas, any resolution), binds it
+ *  at the unit when written, and puts it here; a pass that shades with the lights reads it. */
+inline constexpr const char* kShadowCaustics = "scene.shadow_caustics";
 inline constexpr const char* kFrame = "frame";
 
 class Plugin {

@@ -109,6 +109,8 @@ dvec3 thinFilmReflectance(double cosI, double film, double nm, dvec3 substrate);
 double ggxLobe(double NoL, double NoV, double NoH, double a);
 /** A light's radiance arriving at P and the unit direction L toward it. */
 dvec3 lightArriving(const scene::PlacedLight& light, dvec3 P, dvec3& L);
+/** A spot's cone falloff toward -L (L: unit, toward the light), common/lighting.glsl's. */
+double spotFalloff(const scene::PlacedLight& light, dvec3 L);
 /** Light `i` of `lighting` arriving at P (normal N) past its shadows, as common/lighting.glsl's
  *  lightArriving. */
 dvec3 lightArriving(const Lighting& lighting, std::size_t i, dvec3 P, dvec3 N, dvec3& L);

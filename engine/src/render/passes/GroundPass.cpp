@@ -12,6 +12,7 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         [&](fg::Builder& b, SceneTargets& d) {
             b.read(shadows.depth);
             b.read(shadows.glass);
+            b.read(shadows.caustics);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())

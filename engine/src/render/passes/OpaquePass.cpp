@@ -25,6 +25,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         [&](fg::Builder& b, SceneTargets& d) {
             b.read(shadows.depth);
             b.read(shadows.glass);
+            b.read(shadows.caustics);
             b.read(vertices);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);

@@ -36,6 +36,8 @@ fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHand
  *  nearest distance (common/shadows.glsl). */
 struct ShadowTargets {
     fg::TextureHandle depth, glass;
+    /** The caustics a plugin focused (plugin::kShadowCaustics), else RenderGpu::noCaustics. */
+    fg::TextureHandle caustics;
 };
 
 /** `shadows`: creates both atlases of FrameInfo::shadows, draws every opaque item into each
@@ -44,7 +46,8 @@ struct ShadowTargets {
 ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                          fg::BufferHandle vertices);
 /** Binds the shadow atlases at their units (gl::slot::kShadowDepth with the comparing sampler,
- *  kShadowGlass), where every program that shades reads them. */
+ *  kShadowGlass), where every program that shades reads them, and RenderGpu::noCaustics at
+ *  kShadowCaustics, which a plugin that focuses light replaces with its caustics. */
 void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything; where the frame accumulates, creates scene.motion with the

@@ -63,6 +63,7 @@ void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Te
     gl::bindTexture(gl::slot::kShadowDepth, depth);
     gpu.shadowSampler.bind(gl::slot::kShadowDepth);
     gl::bindTexture(gl::slot::kShadowGlass, glass);
+    gl::bindTexture(gl::slot::kShadowCaustics, gpu.noCaustics); // until a plugin binds its own
 }
 
 } // namespace render::passes

@@ -1,0 +1,211 @@
+// The caustics' photons (refraction.caustic_photons, docs/materials.md "Caustics"): from each
+// texel of the caustics atlas whose light meets glass (caustics.glsl's emitters), photons on the
+// frame's grid follow the light's refracted path through the glass BVH (the model's crossings,
+// optics.glsl: the reflected share dropped, total internal reflection followed, Beer-Lambert
+// between surfaces) and land on the first opaque part or the ground square they meet in air
+// after the glass. Each adds its light into the cell of the atlas that sees where it landed:
+// what passed through, times the light it left with over the light the landing point gets
+// unblocked (the spot's falloff, and in a perspective view the solid angle of a texel,
+// cos^3 of its angle off the view's axis), over the photons a cell. A photon the light cannot
+// see land (hidden behind an opaque caster) adds nothing: the shading could not show it there.
+#include "common/lighting.glsl"
+#include "refraction/optics.glsl"
+#include "refraction/traced_surface.glsl"
+#include "refraction/caustics.glsl"
+#ifndef CAUSTIC_GRID
+#define CAUSTIC_GRID 0
+#endif
+
+// The engine's shadow depth atlas, read as depths: the receivers the light sees.
+layout(binding = CAUSTIC_DEPTH_UNIT) uniform sampler2D uCausticDepth;
+uniform int uViewCount;
+uniform int uViewLight[MAX_SHADOW_VIEWS]; // each view's light (index into punctualLights)
+uniform mat4 uInverseViewProjection[MAX_SHADOW_VIEWS];
+uniform vec3 uViewAxis[MAX_SHADOW_VIEWS]; // where each view looks (world, unit)
+uniform int uPhotonBudget;                // the frame's photons, about
+
+// A view's tile in the caustics atlas: its corner and side in texels.
+ivec3 causticTile(int v) {
+    vec4 tile = shadowViews[v].tile;
+    return ivec3(round(tile.xy * vec2(uCausticSize)), round(tile.z * float(uCausticSize.x)));
+}
+
+// The light of view v's light that leaves along unit `dir` into a texel of the view's image
+// plane, per unit of the plane: its spot's falloff, times cos^3 of the angle off the axis (the
+// solid angle of a texel) in a perspective view.
+float texelLight(int v, vec3 dir) {
+    PunctualLight light = punctualLights[uViewLight[v]];
+    if (shadowViews[v].texel.y < 0.5)
+        return 1.0;
+    float c = max(dot(dir, uViewAxis[v]), 0.0);
+    float spot = int(light.position.w) == LIGHT_SPOT ? spotFalloff(light, -dir) : 1.0;
+    return spot * c * c * c;
+}
+
+// Adds `light` at world point X, which a photon of view `emitted` reached, into the cell of
+// the view of its light that sees X; nothing where no view sees it or the light does not.
+void land(int emitted, vec3 X, vec3 light, int cell) {
+    PunctualLight punctual = punctualLights[uViewLight[emitted]];
+    int v = shadowView(punctual, X);
+    ShadowView view = shadowViews[v];
+    vec4 clip = view.viewProjection * vec4(X, 1.0);
+    if (clip.w <= 0.0)
+        return;
+    vec3 ndc = clip.xyz / clip.w;
+    if (any(greaterThan(abs(ndc.xy), vec2(1.0))))
+        return;
+    vec2 inTile = ndc.xy * 0.5 + 0.5;
+    // Hidden from the light: farther than the receiver its depth atlas sees there.
+    ivec2 depthTexel = ivec2(view.tile.xy * vec2(textureSize(uCausticDepth, 0)) + 0.5) +
+                       min(ivec2(inTile * view.texel.w), ivec2(view.texel.w) - 1);
+    float depth = texelFetch(uCausticDepth, depthTexel, 0).r;
+    float along = shadowDistance(view, X);
+    if (depth < 1.0) {
+        vec4 seen = uInverseViewProjection[v] * vec4(ndc.xy, depth * 2.0 - 1.0, 1.0);
+        float receiver = shadowDistance(view, seen.xyz / seen.w);
+        float texel = view.texel.x * (view.texel.y > 0.5 ? along + view.texel.z : 1.0);
+        if (along > receiver + 4.0 * texel + 0.01 * along)
+            return;
+    }
+    vec3 toX = view.texel.y > 0.5 ? normalize(X - view.axis.xyz) : uViewAxis[v];
+    light /= max(texelLight(v, toX), 1e-3);
+    // Bilinear into the tile's cells (cell centres at (i + 0.5) * cell texels).
+    ivec3 tile = causticTile(v);
+    int cells = (tile.z + cell - 1) / cell;
+    vec2 c = inTile * float(tile.z) / float(cell) - 0.5;
+    ivec2 c0 = ivec2(floor(c));
+    vec2 f = c - vec2(c0);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) {
+            ivec2 at = clamp(c0 + ivec2(x, y), ivec2(0), ivec2(cells - 1));
+            float w = (x == 0 ? 1.0 - f.x : f.x) * (y == 0 ? 1.0 - f.y : f.y);
+            uvec3 units = uvec3(light * w * CAUSTIC_FIXED + 0.5);
+            uint i = 3u * causticTexelIndex(tile.xy + at * cell);
+            for (int k = 0; k < 3; ++k)
+                if (units[k] != 0u)
+                    atomicAdd(causticSums[i + uint(k)], units[k]);
+        }
+}
+
+// One photon of view v in channel `channel` (its light in `weight`, the light per texel it
+// stands for), from `origin` along unit `dir`: through the glass, onto a receiver.
+void photon(int v, vec3 origin, vec3 dir, int channel, vec3 weight, int cell) {
+    float epsilon = 1e-5 * length(boxes[0].hi - boxes[0].lo);
+    Path path;
+    path.P = origin;
+    path.dir = dir;
+    path.weight = weight;
+    path.media = uvec2(0u);
+    path.ior = 1.0;
+    path.sigma = vec3(0.0);
+    path.roughness = 0.0;
+    path.interfaces = 0;
+    path.crossings = 0;
+    path.splits = 0;
+    int steps = 0;
+    for (int k = 0; k <= MAX_PHOTON_CROSSINGS; ++k) {
+        float t;
+        int leaf;
+        vec2 uv;
+        bool hit = bvhNearest(path.P, path.dir, epsilon, 3.0e38, t, leaf, uv, steps);
+        bool inAir = topMedium(path.media) == 0u;
+        if (inAir && path.crossings > 0) { // the ground, where nothing is nearer
+            float ground = groundDistance(path.P, path.dir);
+            if (ground > 0.0 && (!hit || ground < t)) {
+                land(v, path.P + ground * path.dir, path.weight, cell);
+                return;
+            }
+        }
+        if (!hit)
+            return; // out to the sky
+        path.weight *= exp(-path.sigma * t);
+        TracedHit h = tracedHit(leaf, uv, path.dir);
+        path.P += t * path.dir;
+        if ((h.tag & kOpaqueTag) != 0u) { // a receiver, if the light came through glass
+            if (inAir && path.crossings > 0)
+                land(v, path.P, path.weight, cell);
+            return;
+        }
+        if (k == MAX_PHOTON_CROSSINGS)
+            return; // still in the glass
+        SurfaceMet met = SurfaceMet((h.tag & 255u) + 1u, h.surface, h.entering);
+        vec3 reflected;
+        crossInterface(path, met, h.normal, channel, 0.0, true, reflected);
+        if (all(lessThan(path.weight, vec3(1e-6))))
+            return;
+    }
+}
+
+// A hash of three numbers to a uniform number in [0, 1) (the PCG hash optics.glsl's random01
+// steps by).
+float causticJitter(uvec3 v) {
+    uint state = v.x * 73856093u ^ v.y * 19349663u ^ v.z * 83492791u;
+    return random01(state);
+}
+
+#if CAUSTIC_GRID
+// The photon pass's work groups for this frame's emitters: an invocation a cell of the atlas.
+layout(local_size_x = 1) in;
+void main() {
+    int cell, side;
+    causticGrid(uint(uPhotonBudget), cell, side);
+    ivec2 cells = (uCausticSize + cell - 1) / cell;
+    photonGroups[0] = uint(cells.x + 7) / 8u;
+    photonGroups[1] = uint(cells.y + 7) / 8u;
+    photonGroups[2] = 1u;
+}
+#else
+layout(local_size_x = 8, local_size_y = 8) in;
+void main() {
+    int cell, side;
+    causticGrid(uint(uPhotonBudget), cell, side);
+    ivec2 corner = ivec2(gl_GlobalInvocationID.xy) * cell;
+    // Most cells see no glass: a cell of one texel is tested once, before its photons.
+    if (any(greaterThanEqual(corner, uCausticSize)) || (cell == 1 && !isEmitter(corner)))
+        return;
+    float share = 1.0 / float(side * side);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            // A point in the photon's stratum of the cell, jittered: its texel an emitter.
+            uvec3 seed = uvec3(gl_GlobalInvocationID.xy, uint(j * side + i));
+            vec2 jitter = vec2(causticJitter(seed), causticJitter(seed + uvec3(0u, 0u, 16u)));
+            vec2 at = vec2(corner) + float(cell) * (vec2(i, j) + jitter) / float(side);
+            ivec2 from = ivec2(floor(at));
+            if (any(greaterThanEqual(from, uCausticSize)) || !isEmitter(from))
+                continue;
+            int v = 0;
+            ivec3 tile;
+            for (; v < uViewCount; ++v) {
+                tile = causticTile(v);
+                if (all(greaterThanEqual(from, tile.xy)) && all(lessThan(from, tile.xy + tile.z)))
+                    break;
+            }
+            if (v == uViewCount)
+                continue;
+            vec2 ndc = (at - vec2(tile.xy)) / float(tile.z) * 2.0 - 1.0;
+            vec4 near = uInverseViewProjection[v] * vec4(ndc, -1.0, 1.0);
+            vec4 far = uInverseViewProjection[v] * vec4(ndc, 1.0, 1.0);
+            vec3 origin = near.xyz / near.w, dir = normalize(far.xyz / far.w - origin);
+            float leaving = share * texelLight(v, dir);
+            // Its first surface: glass, or the light stops; dispersive glass splits it.
+            float t;
+            int leaf, steps = 0;
+            vec2 uv;
+            if (!bvhNearest(origin, dir, 0.0, 3.0e38, t, leaf, uv, steps))
+                continue;
+            uint tag = triangleTags[triangleOrder[leaf]];
+            if ((tag & kOpaqueTag) != 0u)
+                continue;
+            vec3 ior = glassMaterials[tag & 255u].ior;
+            if (ior.r != ior.b) {
+                for (int channel = 0; channel < 3; ++channel) {
+                    vec3 weight = vec3(0.0);
+                    weight[channel] = leaving;
+                    photon(v, origin, dir, channel, weight, cell);
+                }
+            } else {
+                photon(v, origin, dir, 1, vec3(leaving), cell);
+            }
+        }
+}
+#endif

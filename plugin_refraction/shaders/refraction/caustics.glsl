@@ -1,0 +1,53 @@
+// The caustics' storage (CausticsPass.cpp, docs/materials.md "Caustics"). The emitters: a bit
+// for each texel of the caustics atlas whose light meets glass, set by the glass shadow pass
+// (glass_shadow.frag.glsl), and how many are set. The photon pass (caustic_photons.comp.glsl)
+// spreads the frame's photon budget over them: a photon every `cell` texels each way, or
+// `side` x `side` photons a texel (causticGrid), an invocation a cell of the atlas. The sums: the light the photons bring to each
+// cell, three words (RGB, CAUSTIC_FIXED units a 1: the light of one cell unblocked), which the
+// resolve filters into the atlas (caustic_resolve.frag.glsl). A cell is `cell` x `cell` texels
+// from its tile's corner, its sums at its corner texel.
+#ifndef REFRACTION_CAUSTICS_GLSL
+#define REFRACTION_CAUSTICS_GLSL
+
+uniform ivec2 uCausticSize; // the caustics atlas's texels: the shadow atlases' / CAUSTIC_SCALE
+
+layout(std430, binding = CAUSTIC_EMITTERS_BINDING) buffer CausticEmitters {
+    uint emitterCount;
+    uint photonGroups[3]; // the photon pass's work groups (causticGrid), an indirect dispatch
+    uint emitterBits[];   // a bit a texel, row by row
+};
+layout(std430, binding = CAUSTIC_SUMS_BINDING) buffer CausticSums { uint causticSums[]; };
+
+// The ground square (render::GroundPlane), a receiver: drawn, and its height, centre x and z and
+// half size.
+uniform int uGround;
+uniform vec4 uGroundPlane;
+
+// Where the ray from `origin` along unit `dir` (world) meets the ground square: t, or -1.
+float groundDistance(vec3 origin, vec3 dir) {
+    if (uGround == 0 || abs(dir.y) < 1e-9)
+        return -1.0;
+    float t = (uGroundPlane.x - origin.y) / dir.y;
+    vec2 q = abs(origin.xz + t * dir.xz - uGroundPlane.yz);
+    return t > 0.0 && max(q.x, q.y) <= uGroundPlane.w ? t : -1.0;
+}
+
+uint causticTexelIndex(ivec2 texel) {
+    return uint(texel.y) * uint(uCausticSize.x) + uint(texel.x);
+}
+
+bool isEmitter(ivec2 texel) {
+    uint i = causticTexelIndex(texel);
+    return (emitterBits[i / 32u] & (1u << (i % 32u))) != 0u;
+}
+
+// The frame's photon grid for `budget` photons over the emitters: cells of `cell` texels a side
+// with one photon each where the emitters outnumber the budget, else cells of one texel with
+// side x side photons (at most 4 x 4).
+void causticGrid(uint budget, out int cell, out int side) {
+    float spacing = sqrt(float(emitterCount) / float(max(budget, 1u)));
+    cell = max(int(ceil(spacing - 1e-4)), 1);
+    side = cell > 1 ? 1 : clamp(int(floor(1.0 / max(spacing, 1e-3))), 1, 4);
+}
+
+#endif

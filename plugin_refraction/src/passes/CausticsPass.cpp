@@ -1,0 +1,127 @@
+// `refraction.caustic_photons` and `refraction.caustic_resolve` (plugin::Stage::Shadows, after
+// the glass shadow pass has marked the emitters): the light the glass refracts, followed from
+// each light's views through the glass BVH onto the receivers as photons
+// (caustic_photons.comp.glsl), then filtered into the caustics atlas the shading reads
+// (caustic_resolve.frag.glsl, common/shadows.glsl; docs/materials.md, "Caustics").
+#include "Passes.h"
+
+#include "engine/gl/Commands.h"
+
+#include <string>
+
+namespace refraction {
+
+namespace {
+
+/** What the photons and the resolve share: the atlas's size, the budget, the ground. */
+void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
+    program.set("uCausticSize", c.gpu->caustics.size);
+    program.set("uPhotonBudget", c.settings.causticPhotons);
+    const render::GroundPlane& ground = c.frame->ground;
+    program.set("uGround", c.frame->settings.ground ? 1 : 0);
+    program.set("uGroundPlane",
+                glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
+}
+
+} // namespace
+
+fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
+                                   FrameBuffers& buffers, fg::TextureHandle depth) {
+    struct Photons {
+        fg::BufferHandle caustics;
+    };
+    const Photons& photons = graph.addPass<Photons>(
+        "refraction.caustic_photons",
+        [&](fg::Builder& b, Photons& d) {
+            b.read(buffers.bvh);
+            b.read(buffers.materials);
+            b.read(depth);
+            d.caustics = b.write(buffers.caustics);
+        },
+        [c, depth](const fg::Resources& r, const Photons&, gl::Context&) -> core::Status {
+            GpuState& gpu = *c.gpu;
+            if (!gpu.glass.bvh)
+                return core::Error{"refraction: the caustics have no glass BVH"};
+            const render::ShadowPlan& plan = *c.frame->shadows;
+            gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
+            gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
+            // The work groups for this frame's emitters, an invocation a cell.
+            gpu.causticGrid.use();
+            setCausticUniforms(gpu.causticGrid, c);
+            gl::dispatch(1);
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            const gl::Program& program = gpu.causticPhotons;
+            program.use();
+            setCausticUniforms(program, c);
+            program.set("uFresnelMode", int(c.settings.fresnel));
+            program.set("uViewCount", int(plan.views.size()));
+            for (std::size_t v = 0; v < plan.views.size(); ++v) {
+                const render::ShadowView& view = plan.views[v];
+                const std::string at = "[" + std::to_string(v) + "]";
+                program.set(("uViewLight" + at).c_str(), int(view.light));
+                program.set(("uInverseViewProjection" + at).c_str(),
+                            glm::inverse(view.viewProjection()));
+                // The view looks down its -z.
+                program.set(("uViewAxis" + at).c_str(), -glm::vec3(glm::transpose(view.view)[2]));
+            }
+            gpu.glass.bvh->bindForTraversal();
+            gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
+            gl::bindTexture(slot::kCausticDepth, r.texture(depth));
+            const auto& textures = gpu.tracedTextures; // the first stands in for absent ones
+            for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty(); ++i)
+                gl::bindTexture(slot::kTracedTextures,
+                                *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
+            gl::dispatchIndirect(gpu.caustics.emitters, 4);
+            gl::memoryBarrier(gl::BarrierStorage);
+            return {};
+        });
+    buffers.caustics = photons.caustics;
+
+    struct Resolve {
+        fg::TextureHandle atlas;
+    };
+    const glm::ivec2 size = c.frame->shadows->atlasSize / kCausticScale;
+    return graph
+        .addPass<Resolve>(
+            "refraction.caustic_resolve",
+            [&](fg::Builder& b, Resolve& d) {
+                b.read(buffers.caustics);
+                b.read(depth);
+                d.atlas = b.write(b.create("refraction.caustics", {size, gl::Format::RGBA16F, 1}));
+            },
+            [c, depth](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
+                GpuState& gpu = *c.gpu;
+                const gl::Texture& atlas = r.texture(d.atlas);
+                if (auto bound = gpu.framebuffer.bindTargets("refraction.caustic_resolve", {&atlas},
+                                                             nullptr);
+                    !bound)
+                    return bound;
+                // Texels outside every tile: no receiver.
+                gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, render::kNoGlass));
+                const gl::Program& program = gpu.causticResolve;
+                program.use();
+                setCausticUniforms(program, c);
+                gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
+                gl::bindTexture(slot::kCausticDepth, r.texture(depth));
+                gl::apply({.cull = gl::Cull::None,
+                           .depthTest = false,
+                           .depthWrite = false,
+                           .blend = gl::Blend::None});
+                gpu.emptyVao.bind();
+                const render::ShadowPlan& plan = *c.frame->shadows;
+                for (std::size_t v = 0; v < plan.views.size(); ++v) {
+                    const render::ShadowView& view = plan.views[v];
+                    const glm::ivec3 tile = view.tile / kCausticScale;
+                    gl::setViewport({tile.x, tile.y, tile.z, tile.z});
+                    program.set("uView", int(v));
+                    program.set("uInverseViewProjection", glm::inverse(view.viewProjection()));
+                    gl::drawArrays(3);
+                }
+                // The receivers' shading reads it from here on.
+                gl::bindTexture(gl::slot::kShadowCaustics, atlas);
+                return {};
+            })
+        .atlas;
+}
+
+} // namespace refraction
