@@ -4,6 +4,7 @@
 #include "engine/core/Files.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -119,6 +120,19 @@ core::Result<CaseFile> readCaseFile(const std::filesystem::path& path) {
             c.session.environment = resolve(j["env"].get<std::string>());
         c.session.ground = j.value("ground", false);
         c.session.shadows = j.value("shadows", true);
+        if (j.contains("shadow_map")) {
+            using View = render::RenderSettings::ShadowMapView;
+            const std::string view = j["shadow_map"].get<std::string>();
+            const std::array<std::pair<const char*, View>, 4> views{{{"off", View::Off},
+                                                                     {"depth", View::Depth},
+                                                                     {"glass", View::Glass},
+                                                                     {"caustics", View::Caustics}}};
+            const auto it = std::find_if(views.begin(), views.end(),
+                                         [&](const auto& v) { return view == v.first; });
+            if (it == views.end())
+                return core::Error{where + "\"shadow_map\" must be off, depth, glass or caustics"};
+            c.session.shadowMapView = it->second;
+        }
         c.session.exposure = j.value("exposure", 1.0f);
         c.session.subdivision = j.value("subdiv", 0);
         if (auto read = readTemporal(j, c, where); !read)

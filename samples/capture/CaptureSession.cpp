@@ -170,6 +170,7 @@ render::RenderSettings CaptureSession::settings() const {
     settings.size = mOptions.size;
     settings.ground = mOptions.ground;
     settings.shadows = mOptions.shadows;
+    settings.shadowMapView = mOptions.shadowMapView;
     settings.exposure = mOptions.exposure;
     settings.exactPassTimes = true; // captures are not real-time: report true per-pass GPU times
     settings.temporal = mOptions.temporal;

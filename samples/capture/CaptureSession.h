@@ -39,6 +39,9 @@ struct SessionOptions {
     glm::ivec2 size{256, 256};
     bool ground = false; ///< also on when the scene file asks for it
     bool shadows = true; ///< RenderSettings::shadows
+    /** RenderSettings::shadowMapView: a shadow atlas in place of the scene. */
+    render::RenderSettings::ShadowMapView shadowMapView =
+        render::RenderSettings::ShadowMapView::Off;
     float exposure = 1.0f;
     int subdivision = 0; ///< OpenSubdiv level of every mesh (Renderer::setSubdivisionLevel)
     /** Default: the scene file's camera, else one model's glTF camera, else framing. */

@@ -126,6 +126,19 @@ void addSceneOptions(CLI::App& app, Options& o) {
     tool::addOnOff(
         app, "--shadows", o.session.shadows,
         "the lights cast shadows, each as its scene file's \"shadow\" says (default on)");
+    app.add_option_function<std::string>(
+           "--shadow-map",
+           [&o](const std::string& v) {
+               using View = render::RenderSettings::ShadowMapView;
+               o.session.shadowMapView = v == "depth"      ? View::Depth
+                                         : v == "glass"    ? View::Glass
+                                         : v == "caustics" ? View::Caustics
+                                                           : View::Off;
+           },
+           "a debug view in place of the scene: the lights' shadow atlas fitted into the frame, "
+           "the casters' depth, the glass's transmittance or the caustics (default off)")
+        ->check(tool::oneOf({"off", "depth", "glass", "caustics"}))
+        ->type_name("off|depth|glass|caustics");
     app.add_option("--exposure", o.session.exposure,
                    "exposure multiplier before tonemapping (default 1)")
         ->check(CLI::PositiveNumber.description(""))

@@ -285,7 +285,8 @@ void Panel::camera(Viewer& v) {
 void Panel::environment(Viewer& v) {
     if (!section("Environment"))
         return;
-    for (const char* name : {"environment", "env-rotation", "exposure", "ground", "shadows"})
+    for (const char* name :
+         {"environment", "env-rotation", "exposure", "ground", "shadows", "shadow-map"})
         widget(v.mSettings, name);
 }
 

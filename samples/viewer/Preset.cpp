@@ -59,6 +59,15 @@ void declareScene(plugin::ParameterSet& p, const std::vector<std::string>& clips
                1,
                {},
                "the lights cast shadows (each light's own in the Lights section)"});
+    p.declare({"shadow-map",
+               "Shadow map view",
+               Type::Enum,
+               0,
+               0,
+               0,
+               {"off", "depth", "glass", "caustics"},
+               "a debug view in place of the scene: the lights' shadow atlas, the casters' "
+               "depth, the glass's transmittance or the caustics it focuses"});
 }
 
 /** The view's: temporal accumulation, the A/B split, the render scale and the timings. */

@@ -449,6 +449,7 @@ render::RenderSettings Viewer::settings(glm::ivec2 size) const {
     s.environmentRotation = float(glm::radians(mSettings.number("env-rotation")));
     s.ground = mSettings.flag("ground");
     s.shadows = mSettings.flag("shadows");
+    s.shadowMapView = render::RenderSettings::ShadowMapView(int(mSettings.number("shadow-map")));
     s.exactPassTimes = mSettings.flag("exact-timings");
     // The split draws two methods a frame: one history cannot serve both.
     s.temporal.enabled = mSettings.flag("temporal") && !mSettings.flag("split");

@@ -62,7 +62,8 @@ struct RenderGpu {
     gl::Texture noCaustics;
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
-    gl::Program temporal; ///< the temporal resolve (render/temporal.frag.glsl)
+    gl::Program shadowMapView; ///< the shadow atlases' debug view (shadow_map_view.frag.glsl)
+    gl::Program temporal;      ///< the temporal resolve (render/temporal.frag.glsl)
     TemporalHistory history;
     gl::Program ground[2]; ///< without and with the punctual lights (PUNCTUAL_LIGHTS)
     /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()) and with or

@@ -131,7 +131,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
          {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
           ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"},
-          ProgramSpec{&gpu.temporal, "render/fullscreen.vert.glsl", "render/temporal.frag.glsl"}}) {
+          ProgramSpec{&gpu.temporal, "render/fullscreen.vert.glsl", "render/temporal.frag.glsl"},
+          ProgramSpec{&gpu.shadowMapView, "render/fullscreen.vert.glsl",
+                      "render/shadow_map_view.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
         if (!program)
             return core::Error{"render::Renderer::create(): " + program.error().message};
@@ -436,6 +438,8 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     if (frame.temporal.enabled)
         color = passes::addTemporal(graph, gpu, frame, gpu.history, color,
                                     blackboard.get<fg::TextureHandle>(plugin::kSceneMotion));
+    if (settings.shadowMapView != RenderSettings::ShadowMapView::Off && !gpu.shadows.empty())
+        color = passes::addShadowMapView(graph, gpu, frame, shadows);
     passes::addTonemap(graph, gpu, frame, color, output);
 
     auto compiled = graph.compile();

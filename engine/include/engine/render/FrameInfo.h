@@ -89,6 +89,11 @@ struct RenderSettings {
     /** Output the HDR scene colour unchanged (RGBA32F, no exposure, tonemap or sRGB) instead of
      *  the display image: for measurements and debug views. */
     bool hdrOutput = false;
+    /** A debug view in place of the scene: one of the frame's shadow atlases (where a light
+     *  casts), fitted into the frame: the casters' depth, the glass's transmittance, or the
+     *  caustics a plugin focused (render/shadow_map_view.frag.glsl). */
+    enum class ShadowMapView { Off, Depth, Glass, Caustics };
+    ShadowMapView shadowMapView = ShadowMapView::Off;
     TemporalSettings temporal;
     bool operator==(const RenderSettings&) const = default;
 };

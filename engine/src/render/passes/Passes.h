@@ -49,6 +49,10 @@ ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
  *  kShadowGlass), where every program that shades reads them, and RenderGpu::noCaustics at
  *  kShadowCaustics, which a plugin that focuses light replaces with its caustics. */
 void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass);
+/** `shadow_map_view`: a new colour target showing the atlas frame.settings.shadowMapView
+ *  names (the depth, the glass's or the caustics), fitted into the frame, for the tonemap. */
+fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                                   const ShadowTargets& shadows);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything; where the frame accumulates, creates scene.motion with the
  *  environment's motion. */
