@@ -169,6 +169,10 @@ TEST(SceneFile, TheExampleSceneLoads) {
     EXPECT_EQ(world->characters[0].model, world->characters[2].model);
     EXPECT_NE(world->characters[0].clip, world->characters[2].clip); // walk, wave
     EXPECT_TRUE(world->environment && std::filesystem::exists(*world->environment));
+    // The sun of its sky, low, casting the characters' shadows (and the glass's caustics).
+    ASSERT_EQ(world->lights.size(), 1u);
+    EXPECT_EQ(world->lights[0].light.type, scene::Light::Type::Directional);
+    EXPECT_TRUE(world->lights[0].light.shadow.enabled);
 }
 
 TEST(SceneFile, MissingFileFailsNamingIt) {
