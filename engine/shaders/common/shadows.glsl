@@ -3,7 +3,7 @@
 // the glass's optical depth (RGB: -ln of what it lets through) and its nearest distance (A), so
 // that light through glass arrives tinted; and the caustics a plugin focused, which hold the
 // light the glass refracted onto the receiver each texel sees (RGB, a share of the light that
-// would reach it unblocked) and that receiver's distance (A). A receiver behind glass takes only
+// would reach it unblocked; A under NO_GLASS where focused). A receiver behind glass takes only
 // the focused light; one in the open takes it on top of the light's own (docs/materials.md,
 // "Shadows" and "Caustics"). Included by common/lighting.glsl; the atlases are bound by
 // render::bindShadowMaps (the caustics by the plugin that focuses them).
@@ -13,6 +13,10 @@
 layout(binding = SHADOW_DEPTH_UNIT) uniform sampler2DShadow uShadowDepth;
 layout(binding = SHADOW_GLASS_UNIT) uniform sampler2D uShadowGlass;
 layout(binding = SHADOW_CAUSTICS_UNIT) uniform sampler2D uShadowCaustics;
+// Whether the point being shaded receives the caustics: true for opaque surfaces and the
+// ground; glass shading clears it around its own lights (its highlights take the light
+// straight through the glass, as the reference's do).
+bool gCausticReceiver = true;
 
 // The view of `light` that sees P: its first, or for a point light the cube face of P.
 int shadowView(PunctualLight light, vec3 P) {
@@ -46,13 +50,11 @@ vec3 shadowTap(ShadowView view, vec2 uv, float depth, float distanceToLight, flo
     vec4 glass = textureLod(uShadowGlass, uv, 0.0);
     // The glass in front of P (a receiver behind the glass's nearest surface along the ray).
     bool behindGlass = distanceToLight > glass.a + 2.0 * texel;
-    // P is the receiver the caustics fell on (not glass in front of it): its distance, that of
-    // the nearest receiver under the caustics' texel (unfiltered: receivers' edges do not blend).
-    ivec2 size = textureSize(uShadowCaustics, 0);
-    float receiver =
-        texelFetch(uShadowCaustics, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).a;
-    if (distanceToLight > receiver - 8.0 * texel - 0.01 * distanceToLight)
-        return lit * (textureLod(uShadowCaustics, uv, 0.0).rgb + (behindGlass ? 0.0 : 1.0));
+    // A receiver where a plugin focused caustics takes the focused light, and the light's own
+    // where no glass is in front.
+    vec4 caustic = textureLod(uShadowCaustics, uv, 0.0);
+    if (gCausticReceiver && caustic.a < NO_GLASS)
+        return lit * (caustic.rgb + (behindGlass ? 0.0 : 1.0));
     return behindGlass ? lit * exp(-max(glass.rgb, vec3(0.0))) : vec3(lit);
 }
 

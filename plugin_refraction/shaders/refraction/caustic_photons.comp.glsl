@@ -8,6 +8,8 @@
 // unblocked (the spot's falloff, and in a perspective view the solid angle of a texel,
 // cos^3 of its angle off the view's axis), over the photons a cell. A photon the light cannot
 // see land (hidden behind an opaque caster) adds nothing: the shading could not show it there.
+// Through dispersive glass a photon follows one channel's path, the channels in turn. With
+// CAUSTIC_GRID, the one invocation that sizes the photon pass's dispatch to the frame's grid.
 #include "common/lighting.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/traced_surface.glsl"
@@ -196,13 +198,15 @@ void main() {
             uint tag = triangleTags[triangleOrder[leaf]];
             if ((tag & kOpaqueTag) != 0u)
                 continue;
+            // Dispersive glass: the photon takes one channel's path, in turn across the grid,
+            // carrying three times that channel's light (the three paths' sum on average).
             vec3 ior = glassMaterials[tag & 255u].ior;
             if (ior.r != ior.b) {
-                for (int channel = 0; channel < 3; ++channel) {
-                    vec3 weight = vec3(0.0);
-                    weight[channel] = leaving;
-                    photon(v, origin, dir, channel, weight, cell);
-                }
+                int channel = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y +
+                                  uint(j * side + i)) % 3;
+                vec3 weight = vec3(0.0);
+                weight[channel] = 3.0 * leaving;
+                photon(v, origin, dir, channel, weight, cell);
             } else {
                 photon(v, origin, dir, 1, vec3(leaving), cell);
             }

@@ -39,7 +39,8 @@ void main() {
 #if CAUSTIC_EMITTERS
     ivec2 texel = ivec2(gl_FragCoord.xy) / CAUSTIC_SCALE;
     uint i = causticTexelIndex(texel), bit = 1u << (i % 32u);
-    if ((atomicOr(emitterBits[i / 32u], bit) & bit) == 0u) // the texel's first glass
-        atomicAdd(emitterCount, 1u);
+    // A plain read first: most of a texel's fragments find its bit set, and skip the atomic.
+    if ((emitterBits[i / 32u] & bit) == 0u && (atomicOr(emitterBits[i / 32u], bit) & bit) == 0u)
+        atomicAdd(emitterCount, 1u); // the texel's first glass
 #endif
 }

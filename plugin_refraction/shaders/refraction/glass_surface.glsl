@@ -50,6 +50,7 @@ vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 t
     vec3 glass = F * reflected + (1.0 - F) * s.baseColor * (1.0 - s.metallic) * transmitted;
     float NoV = clamp(dot(Nw, Vw), 1e-4, 1.0);
     float alpha = max(s.roughness, 0.03) * max(s.roughness, 0.03);
+    gCausticReceiver = false; // the glass's own light goes straight through it
 #if PUNCTUAL_LIGHTS
     for (uint i = 0u; i < lightCount.x; ++i) {
         vec3 L;
@@ -71,7 +72,9 @@ vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 t
     layers.clearcoatRoughness = m.clearcoatRoughness;
     layers.sheenColor = m.sheenColor;
     layers.sheenRoughness = m.sheenRoughness;
-    return layersOver(color, layers, Pw, Nw, Vw) + m.emissive;
+    color = layersOver(color, layers, Pw, Nw, Vw) + m.emissive;
+    gCausticReceiver = true;
+    return color;
 }
 
 #endif

@@ -86,23 +86,21 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             "refraction.caustic_resolve",
             [&](fg::Builder& b, Resolve& d) {
                 b.read(buffers.caustics);
-                b.read(depth);
                 d.atlas = b.write(b.create("refraction.caustics", {size, gl::Format::RGBA16F, 1}));
             },
-            [c, depth](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
+            [c](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
                 GpuState& gpu = *c.gpu;
                 const gl::Texture& atlas = r.texture(d.atlas);
                 if (auto bound = gpu.framebuffer.bindTargets("refraction.caustic_resolve", {&atlas},
                                                              nullptr);
                     !bound)
                     return bound;
-                // Texels outside every tile: no receiver.
+                // Texels outside every tile: no caustics, the light straight.
                 gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, render::kNoGlass));
                 const gl::Program& program = gpu.causticResolve;
                 program.use();
                 setCausticUniforms(program, c);
                 gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
-                gl::bindTexture(slot::kCausticDepth, r.texture(depth));
                 gl::apply({.cull = gl::Cull::None,
                            .depthTest = false,
                            .depthWrite = false,
@@ -114,7 +112,6 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
                     const glm::ivec3 tile = view.tile / kCausticScale;
                     gl::setViewport({tile.x, tile.y, tile.z, tile.z});
                     program.set("uView", int(v));
-                    program.set("uInverseViewProjection", glm::inverse(view.viewProjection()));
                     gl::drawArrays(3);
                 }
                 // The receivers' shading reads it from here on.

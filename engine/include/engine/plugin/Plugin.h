@@ -109,11 +109,11 @@ inline constexpr const char* kShadowDepth = "scene.shadow_depth";
 inline constexpr const char* kShadowGlass = "scene.shadow_glass";
 /** The caustics (fg::TextureHandle, RGBA16F, common/shadows.glsl), bound at
  *  gl::slot::kShadowCaustics: per texel of a light's view, the light that reached the receiver
- *  seen there through glass, as a share of what would reach it unblocked (RGB), and that
- *  receiver's distance from the light (A; kNoGlass: none, light through glass goes straight).
- *  The engine's holds no receiver; a plugin that focuses light through its surfaces at the
- *  Shadows stage creates its own atlas (the tiles of the depth atlas, any resolution), binds it
- *  at the unit when written, and puts it here; a pass that shades with the lights reads it. */
+ *  seen there through glass, as a share of what would reach it unblocked (RGB), where A is
+ *  under kNoGlass; where A is kNoGlass, none was focused and light through glass goes straight.
+ *  The engine's holds none; a plugin that focuses light through its surfaces at the Shadows
+ *  stage creates its own atlas (the tiles of the depth atlas, any resolution), binds it at the
+ *  unit when written, and puts it here; a pass that shades with the lights reads it. */
 inline constexpr const char* kShadowCaustics = "scene.shadow_caustics";
 inline constexpr const char* kFrame = "frame";
 
