@@ -97,7 +97,6 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
          glass,
          "refraction/glass_shadow.frag.glsl",
          {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0"}},
-
         {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},

@@ -71,6 +71,7 @@ constexpr Shared kFixed[] = {
     Shared::real("SMOOTH_ROUGHNESS", model::kSmooth),
     Shared::integer("MAX_PHOTON_CROSSINGS", model::kMaxPhotonCrossings),
     Shared::integer("CAUSTIC_SCALE", kCausticScale),
+    Shared::integer("CAUSTIC_COARSE", kCausticCoarse),
     Shared::real("CAUSTIC_FIXED", kCausticFixed),
 };
 static_assert(gl::distinct(kFixed));

@@ -82,6 +82,8 @@ inline constexpr std::uint32_t kLayerFront = 256u;
 inline constexpr float kNoDepth = 3.0e38f, kUnusedDepth = 1.0e38f, kNoSurface = -3.0e38f;
 /** The caustics atlas is the shadow atlases' size divided by this (its tiles theirs, scaled). */
 inline constexpr int kCausticScale = 4;
+/** The caustics' coarse cells are this many fine cells wide (caustics.glsl). */
+inline constexpr int kCausticCoarse = 4;
 /** The photons' light is added up in fixed point (caustics.glsl): this many units are 1, the
  *  light that reaches a receiver unblocked. */
 inline constexpr double kCausticFixed = 1048576.0;

@@ -71,22 +71,24 @@ void land(int emitted, vec3 X, vec3 light, int cell) {
     }
     vec3 toX = view.texel.y > 0.5 ? normalize(X - view.axis.xyz) : uViewAxis[v];
     light /= max(texelLight(v, toX), 1e-3);
-    // Bilinear into the tile's cells (cell centres at (i + 0.5) * cell texels).
+    // Bilinear into the tile's fine cells, the light and the photon; the light alone into the
+    // coarse cell it fell in (the resolve's bilinear read smooths it).
     ivec3 tile = causticTile(v);
-    int cells = (tile.z + cell - 1) / cell;
-    vec2 c = inTile * float(tile.z) / float(cell) - 0.5;
-    ivec2 c0 = ivec2(floor(c));
-    vec2 f = c - vec2(c0);
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 2; ++x) {
-            ivec2 at = clamp(c0 + ivec2(x, y), ivec2(0), ivec2(cells - 1));
-            float w = (x == 0 ? 1.0 - f.x : f.x) * (y == 0 ? 1.0 - f.y : f.y);
-            uvec3 units = uvec3(light * w * CAUSTIC_FIXED + 0.5);
-            uint i = 3u * causticTexelIndex(tile.xy + at * cell);
-            for (int k = 0; k < 3; ++k)
-                if (units[k] != 0u)
-                    atomicAdd(causticSums[i + uint(k)], units[k]);
-        }
+    uint words[4];
+    float weights[4];
+    causticCells(tile.xy, tile.z, inTile * float(tile.z), cell, 0, words, weights);
+    for (int k = 0; k < 4; ++k) {
+        uvec4 units = uvec4(vec4(light, 1.0) * weights[k] * CAUSTIC_FIXED + 0.5);
+        for (int channel = 0; channel < 4; ++channel)
+            if (units[channel] != 0u)
+                atomicAdd(causticSums[words[k] + uint(channel)], units[channel]);
+    }
+    uint coarse = causticCellWord(tile.xy, ivec2(inTile * float(tile.z)) / (cell * CAUSTIC_COARSE),
+                                  cell, 1);
+    uvec3 units = uvec3(light * CAUSTIC_FIXED + 0.5);
+    for (int channel = 0; channel < 3; ++channel)
+        if (units[channel] != 0u)
+            atomicAdd(causticSums[coarse + uint(channel)], units[channel]);
 }
 
 // One photon of view v in channel `channel` (its light in `weight`, the light per texel it

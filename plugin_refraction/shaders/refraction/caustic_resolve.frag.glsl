@@ -1,7 +1,8 @@
 // The caustics atlas, one view's tile (refraction.caustic_resolve, drawn over the tile with
 // render/fullscreen.vert.glsl): per texel, the photons' light read bilinearly from the cells
-// around it (their splat bilinear too: a tent two cells wide), as a share of the light that
-// reaches the receiver unblocked (RGB); A 0, the tile's mark (outside the tiles the atlas
+// around it (their splat bilinear too: a tent two cells wide), the fine cells' where enough
+// photons landed, the coarse cells' where few did, as a share of the light that reaches the
+// receiver unblocked (RGB); A 0, the tile's mark (outside the tiles the atlas
 // clears to NO_GLASS, where common/shadows.glsl takes the light straight).
 #include "common/lighting.glsl"
 #include "refraction/caustics.glsl"
@@ -18,17 +19,21 @@ void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy), inTile = texel - corner;
     int cell, photons;
     causticGrid(uint(uPhotonBudget), cell, photons);
-    int cells = (side + cell - 1) / cell;
-    vec2 c = (vec2(inTile) + 0.5) / float(cell) - 0.5;
-    ivec2 c0 = ivec2(floor(c));
-    vec2 f = c - vec2(c0);
-    vec3 light = vec3(0.0);
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 2; ++x) {
-            ivec2 at = clamp(c0 + ivec2(x, y), ivec2(0), ivec2(cells - 1));
-            float w = (x == 0 ? 1.0 - f.x : f.x) * (y == 0 ? 1.0 - f.y : f.y);
-            uint i = 3u * causticTexelIndex(corner + at * cell);
-            light += w * vec3(causticSums[i], causticSums[i + 1u], causticSums[i + 2u]);
-        }
+    // Each grid's estimate here (RGB) and the photons in its footprint (A), a fine cell's area
+    // the unit of both: the fine one where enough photons landed, else toward the coarse one.
+    vec4 estimates[2];
+    for (int level = 0; level < 2; ++level) {
+        uint words[4];
+        float weights[4];
+        causticCells(corner, side, vec2(inTile) + 0.5, cell, level, words, weights);
+        estimates[level] = vec4(0.0);
+        for (int k = 0; k < 4; ++k)
+            estimates[level] += weights[k] * vec4(causticSums[words[k]], causticSums[words[k] + 1u],
+                                                  causticSums[words[k] + 2u],
+                                                  causticSums[words[k] + 3u]);
+    }
+    estimates[1] /= float(CAUSTIC_COARSE * CAUSTIC_COARSE);
+    float fine = clamp(estimates[0].a / (kCausticEnoughPhotons * CAUSTIC_FIXED), 0.0, 1.0);
+    vec3 light = mix(estimates[1].rgb, estimates[0].rgb, fine);
     outCaustic = vec4(light / CAUSTIC_FIXED, 0.0);
 }

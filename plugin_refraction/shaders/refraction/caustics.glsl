@@ -2,10 +2,13 @@
 // for each texel of the caustics atlas whose light meets glass, set by the glass shadow pass
 // (glass_shadow.frag.glsl), and how many are set. The photon pass (caustic_photons.comp.glsl)
 // spreads the frame's photon budget over them: a photon every `cell` texels each way, or
-// `side` x `side` photons a texel (causticGrid), an invocation a cell of the atlas. The sums: the light the photons bring to each
-// cell, three words (RGB, CAUSTIC_FIXED units a 1: the light of one cell unblocked), which the
-// resolve filters into the atlas (caustic_resolve.frag.glsl). A cell is `cell` x `cell` texels
-// from its tile's corner, its sums at its corner texel.
+// `side` x `side` photons a texel (causticGrid), an invocation a cell of the atlas. The sums: the
+// light the photons bring to each cell and how many photons brought it, four words (RGB and
+// the count, CAUSTIC_FIXED units a 1: the light of one cell unblocked, one photon), on two grids:
+// cells of `cell` x `cell` texels from their tile's corner, their sums at their corner texel,
+// and after them cells CAUSTIC_COARSE times as wide (their light only, the nearest cell's). The resolve (caustic_resolve.frag.glsl)
+// reads the fine cells where enough photons landed and the coarse ones where few did, so that a
+// thin spread of light is a glow, not a speckle.
 #ifndef REFRACTION_CAUSTICS_GLSL
 #define REFRACTION_CAUSTICS_GLSL
 
@@ -39,6 +42,34 @@ uint causticTexelIndex(ivec2 texel) {
 bool isEmitter(ivec2 texel) {
     uint i = causticTexelIndex(texel);
     return (emitterBits[i / 32u] & (1u << (i % 32u))) != 0u;
+}
+
+// Photons a fine cell's estimate needs (over its bilinear footprint) to be read alone.
+const float kCausticEnoughPhotons = 4.0;
+
+// Grid `level`'s cell `at` (0 fine, 1 coarse; `at` in cells from the tile's corner `corner`, for
+// fine cells of `cell` texels): its first word in the sums.
+uint causticCellWord(ivec2 corner, ivec2 at, int cell, int level) {
+    int size = level == 0 ? cell : cell * CAUSTIC_COARSE;
+    uint base = level == 0 ? 0u : 4u * uint(uCausticSize.x) * uint(uCausticSize.y);
+    return base + 4u * causticTexelIndex(corner + at * size);
+}
+
+// The cells of grid `level` around the point `at` of a tile (texels from its corner `corner`,
+// its side `side`) and their bilinear weights: the cells' centres at (i + 0.5) cell sizes.
+void causticCells(ivec2 corner, int side, vec2 at, int cell, int level, out uint words[4],
+                  out float weights[4]) {
+    int size = level == 0 ? cell : cell * CAUSTIC_COARSE;
+    int cells = (side + size - 1) / size;
+    vec2 c = at / float(size) - 0.5;
+    ivec2 c0 = ivec2(floor(c));
+    vec2 f = c - vec2(c0);
+    for (int k = 0; k < 4; ++k) {
+        ivec2 offset = ivec2(k & 1, k >> 1);
+        words[k] = causticCellWord(corner, clamp(c0 + offset, ivec2(0), ivec2(cells - 1)), cell,
+                                   level);
+        weights[k] = (offset.x == 0 ? 1.0 - f.x : f.x) * (offset.y == 0 ? 1.0 - f.y : f.y);
+    }
 }
 
 // The frame's photon grid for `budget` photons over the emitters: cells of `cell` texels a side

@@ -67,10 +67,7 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             gpu.glass.bvh->bindForTraversal();
             gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
             gl::bindTexture(slot::kCausticDepth, r.texture(depth));
-            const auto& textures = gpu.tracedTextures; // the first stands in for absent ones
-            for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty(); ++i)
-                gl::bindTexture(slot::kTracedTextures,
-                                *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
+            bindTracedTextures(gpu);
             gl::dispatchIndirect(gpu.caustics.emitters, 4);
             gl::memoryBarrier(gl::BarrierStorage);
             return {};

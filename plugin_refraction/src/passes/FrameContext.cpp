@@ -226,12 +226,16 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     if (!gpu.glass.bvh)
         return core::Error{"refraction: the trace has no glass BVH"};
     gpu.glass.bvh->bindForTraversal();
-    // The glass textures, the first standing in for absent ones (unread).
+    bindTracedTextures(gpu);
+    return {};
+}
+
+void bindTracedTextures(const GpuState& gpu) {
+    // The first stands in for absent ones (unread).
     const auto& textures = gpu.tracedTextures;
     for (std::uint32_t i = 0; i < slot::kTracedTextures.count && !textures.empty(); ++i)
         gl::bindTexture(slot::kTracedTextures,
                         *textures[std::min<std::size_t>(i, textures.size() - 1)], i);
-    return {};
 }
 
 } // namespace refraction

@@ -17,7 +17,8 @@ namespace {
 void resetCaustics(GpuState::Caustics& caustics, glm::ivec2 size) {
     const std::size_t texels = std::size_t(size.x) * std::size_t(size.y);
     // The count and the photon pass's work groups, then a bit a texel (caustics.glsl).
-    const std::size_t emitterBytes = 4 * (4 + (texels + 31) / 32), sumBytes = 12 * texels;
+    // The sums: four words a cell, for as many fine cells as texels and again for the coarse.
+    const std::size_t emitterBytes = 4 * (4 + (texels + 31) / 32), sumBytes = 2 * 16 * texels;
     if (caustics.emitters.size() < emitterBytes)
         caustics.emitters = gl::Buffer(emitterBytes);
     if (caustics.sums.size() < sumBytes)

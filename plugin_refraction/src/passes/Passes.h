@@ -147,6 +147,9 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
                           const SceneInputs& scene, const Capture& capture);
 /** Binds them, with the glass BVH and its textures where the method traces. */
 core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in);
+/** The frame's glass textures at the traced textures' units (traced_surface.glsl), for the
+ *  trace's and the photons' hits. */
+void bindTracedTextures(const GpuState& gpu);
 
 // ---- Shared by the passes (FrameContext.cpp)
 
