@@ -160,7 +160,7 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .type = Type::Int,
          .min = 1,
          .max = 4096,
-         .defaultValue = 12,
+         .defaultValue = 8,
          .help = "thousands of photons a frame over all the lights' glass (more: finer and "
                  "smoother caustics, slower)"},
         {.name = "debug",

@@ -62,7 +62,7 @@ struct Settings {
     bool glassShadows = true;
     /** The glass focuses the light it refracts (refraction.caustic_*), with glass shadows. */
     bool caustics = true;
-    int causticPhotons = 12000; ///< photons a frame over every light's glass, about
+    int causticPhotons = 8000; ///< photons a frame over every light's glass, about
     int debug = 0; ///< index into the "debug" parameter's choices (the shaders' DEBUG_*)
 
     /** The plugin's parameters as data: name, label, type, range, default, choices, help. */

@@ -247,8 +247,9 @@ void addTemporalOptions(CLI::App& app, Options& o) {
 void addReferenceOptions(CLI::App& app, Options& o) {
     const std::string group = "Reference (Embree, on the CPU; --method reference traces it alone)";
     app.add_flag("--compare-reference", o.compare,
-                 "render --method and the reference, report PSNR and SSIM over the glass mask "
-                 "and the whole image, write MODEL_..._tT.reference.png and .heatmap.png beside "
+                 "render --method and the reference, report PSNR and SSIM over the glass mask, "
+                 "PSNR outside it and over the whole image, write MODEL_..._tT.reference.png and "
+                 ".heatmap.png beside "
                  "the frame")
         ->group(group);
     app.add_option("--spp", o.referenceOptions.samplesPerPixel,
@@ -271,6 +272,18 @@ void addReferenceOptions(CLI::App& app, Options& o) {
                    "entry before it counts as trapped (default 1024)")
         ->check(tool::range(0, 4096))
         ->type_name("N")
+        ->group(group);
+    app.add_option("--photons", o.referenceOptions.photons,
+                   "the reference's caustics: photons sent from each light that casts (default "
+                   "262144)")
+        ->check(tool::range(1, 1 << 26))
+        ->type_name("N")
+        ->group(group);
+    app.add_option("--caustic-radius", o.referenceOptions.causticRadius,
+                   "the reference's caustics: the radius their photons are gathered over, world "
+                   "units (default 0: a twentieth of the glass's bounding radius)")
+        ->check(CLI::NonNegativeNumber.description(""))
+        ->type_name("R")
         ->group(group);
 }
 
@@ -382,6 +395,11 @@ core::Status compareWithReference(capture::CaptureSession& session, const Option
         return reference.error();
     const auto masked = capture::score(frame.image, reference->image, &reference->glassMask);
     const auto full = capture::score(frame.image, reference->image);
+    // Outside the glass: what receives the lights' shadows and caustics (and the sky).
+    std::vector<bool> outside(reference->glassMask.size());
+    for (std::size_t p = 0; p < outside.size(); ++p)
+        outside[p] = !reference->glassMask[p];
+    const auto around = capture::score(frame.image, reference->image, &outside);
     for (const auto& [file, image] :
          {std::pair{sibling(path, ".reference"), reference->image},
           std::pair{sibling(path, ".heatmap"),
@@ -393,11 +411,13 @@ core::Status compareWithReference(capture::CaptureSession& session, const Option
     addReferenceFacts(entry, *reference);
     entry["scores"] = {
         {"mask", {{"psnr", masked.psnr}, {"ssim", masked.ssim}, {"pixels", masked.pixels}}},
+        {"outside", {{"psnr", around.psnr}, {"ssim", around.ssim}, {"pixels", around.pixels}}},
         {"image", {{"psnr", full.psnr}, {"ssim", full.ssim}, {"pixels", full.pixels}}}};
-    char text[160];
+    char text[200];
     std::snprintf(text, sizeof text,
-                  ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; image PSNR %.2f dB", masked.pixels,
-                  masked.psnr, masked.ssim, full.psnr);
+                  ", glass mask %zu px: PSNR %.2f dB, SSIM %.4f; outside it %.2f dB; image PSNR "
+                  "%.2f dB",
+                  masked.pixels, masked.psnr, masked.ssim, around.psnr, full.psnr);
     scoreText = text;
     if (comparison.previous) {
         std::vector<bool> both(reference->glassMask.size());
