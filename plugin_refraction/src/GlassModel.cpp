@@ -132,12 +132,17 @@ double smithG1(const dvec3& v, const dvec3& m, const dvec3& n, double a) {
 
 } // namespace
 
+std::pair<dvec3, dvec3> tangentFrame(const dvec3& n) {
+    const dvec3 axis = std::abs(n.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
+    const dvec3 tx = glm::normalize(glm::cross(axis, n));
+    return {tx, glm::cross(n, tx)};
+}
+
 dvec3 sampleMicrofacet(const dvec3& n, double roughness, const dvec3& i, double u1, double u2) {
     // In the frame of n: the view stretched to the unit hemisphere's, a point of the projected
     // disk (the half the view sees more of), back on the hemisphere, unstretched.
     const double a = roughness * roughness;
-    const dvec3 axis = std::abs(n.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
-    const dvec3 tx = glm::normalize(glm::cross(axis, n)), ty = glm::cross(n, tx);
+    const auto [tx, ty] = tangentFrame(n);
     const dvec3 local(glm::dot(i, tx), glm::dot(i, ty), glm::dot(i, n));
     const dvec3 vh = glm::normalize(dvec3(a * local.x, a * local.y, local.z));
     const double lensq = vh.x * vh.x + vh.y * vh.y;

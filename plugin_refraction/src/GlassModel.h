@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 namespace refraction::model {
 
@@ -116,6 +117,10 @@ struct SurfaceMet {
  *  along reflect(dir, m)). Absorption along the segment before is the caller's. */
 Crossed crossInterface(Path& path, const SurfaceMet& met, dvec3 m, int c, Settings::Fresnel mode,
                        double& reflected);
+
+/** Two unit vectors that make a right-handed frame (tx, ty, n) with unit `n`: the frame
+ *  microfacets are sampled in, and the reference's photons are spread in about their axis. */
+std::pair<dvec3, dvec3> tangentFrame(const dvec3& n);
 
 /** A GGX microfacet normal around `n` (roughness `roughness`, alpha = roughness^2) as the
  *  view `i` (toward the viewer, on n's side) sees them, from two uniform numbers: the

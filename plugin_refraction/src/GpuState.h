@@ -92,14 +92,14 @@ struct GpuState {
     gl::Program layerCapture, layerDepths;
     gl::Program outlines; // the outline pass
     /** refraction.glass_shadow: the glass from the lights; [1] also marks the caustics'
-     *  emitters (CAUSTIC_EMITTERS). */
+     *  emitters (CAUSTIC_EMITTERS; built when a frame first focuses caustics, as the next). */
     gl::Program glassShadow[2];
     /** refraction.caustic_photons (its work groups first: causticGrid, CAUSTIC_GRID) and
      *  refraction.caustic_resolve. */
     gl::Program causticGrid, causticPhotons, causticResolve;
     /** The caustics' storage (caustics.glsl), for a caustics atlas of `size` texels, grown as
      *  needed: the emitters (a count, the photons' work groups, then a bit a texel) and the
-     *  sums (3 words a texel). */
+     *  sums (four words a cell, the fine cells' then the coarse). */
     struct Caustics {
         gl::Buffer emitters, sums;
         glm::ivec2 size{0};

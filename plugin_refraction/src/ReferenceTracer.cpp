@@ -5,9 +5,8 @@
 #include "GlassModel.h"
 #include "Optics.h"
 #include "PhotonMap.h"
+#include "ReferenceScene.h"
 
-#include "engine/deform/CpuDeformer.h"
-#include "engine/deform/Subdivision.h"
 #include "engine/render/CpuShading.h"
 #include "engine/render/Lighting.h"
 #include "engine/render/Shadows.h"
@@ -28,25 +27,11 @@ namespace refraction {
 using glm::dvec2;
 using glm::dvec3;
 using glm::dvec4;
+using reference::Surface;
 using render::cpu::perturbNormal;
 using render::cpu::textureImage;
 
 namespace {
-
-struct Surface {
-    std::vector<dvec3> positions, normals;     // world
-    std::vector<glm::dvec4> tangents;          // world, where a map or anisotropy needs them
-    std::vector<glm::dvec4> uv;                // TEXCOORD_0 in xy, TEXCOORD_1 in zw
-    const scene::Image* normalImage = nullptr; // the material's normal texture, if it has one
-    std::vector<std::uint32_t> indices;
-    bool glass = true;
-    bool authored = false;                     // glass by its material (its textures all count)
-    bool mirrored = false;                     // placed mirrored: its winding reversed (glTF)
-    int solid = 0;                             // the character: one closed solid (media rule)
-    const scene::Model* model = nullptr;       // whose material and textures
-    const scene::Material* material = nullptr; // opaque surfaces
-    Optics optics;                             // glass surfaces
-};
 
 struct Hit {
     bool hit = false, ground = false;
@@ -495,13 +480,7 @@ public:
      *  opaque surface or the ground it meets in air after the glass; gathered within
      *  `radius` (0: a twentieth of the glass's bounding radius). */
     void traceCaustics(int count, double radius, unsigned threads) {
-        dvec3 lo(1e300), hi(-1e300);
-        for (const Surface& s : mSurfaces)
-            if (s.glass)
-                for (const dvec3& p : s.positions) {
-                    lo = glm::min(lo, p);
-                    hi = glm::max(hi, p);
-                }
+        const auto [lo, hi] = reference::surfaceBounds(mSurfaces, true);
         if (lo.x > hi.x)
             return;
         const dvec3 centre = 0.5 * (lo + hi);
@@ -542,7 +521,7 @@ public:
         dvec3 origin, dir, flux;
         if (light.light.type == scene::Light::Type::Directional) {
             dir = glm::normalize(dvec3(light.direction));
-            const auto [a, b] = basis(dir);
+            const auto [a, b] = model::tangentFrame(dir);
             const double r = bound * std::sqrt(u);
             origin = centre - 2.0 * bound * dir + r * (std::cos(phi) * a + std::sin(phi) * b);
             flux = dvec3(std::numbers::pi * bound * bound * share);
@@ -554,7 +533,7 @@ public:
             const double cosTheta = 1.0 - u * (1.0 - cosMax);
             const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
             const dvec3 w = d > 0.0 ? axis / d : dvec3(0, -1, 0);
-            const auto [a, b] = basis(w);
+            const auto [a, b] = model::tangentFrame(w);
             dir = cosTheta * w + sinTheta * (std::cos(phi) * a + std::sin(phi) * b);
             double intensity = 2.0 * std::numbers::pi * (1.0 - cosMax) * share;
             if (light.light.type == scene::Light::Type::Spot)
@@ -599,13 +578,6 @@ public:
         }
     }
 
-    /** Two unit vectors that make a right-handed frame with unit w. */
-    static std::pair<dvec3, dvec3> basis(const dvec3& w) {
-        const dvec3 a =
-            glm::normalize(glm::cross(std::abs(w.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0), w));
-        return {a, glm::cross(w, a)};
-    }
-
     /** How many glass surfaces the straight line from `origin` along `dir` crosses before an
      *  opaque surface (what the layered capture stores for the pixel), at most `cap`. */
     int countGlassSurfaces(dvec3 origin, const dvec3& dir, int cap) const {
@@ -638,65 +610,6 @@ private:
      *  glass's own shading (straight through the glass). */
     render::cpu::Lighting mLighting, mGlassLighting;
 };
-
-/** Every character's surfaces at scene time `time`, deformed by the CPU reference, refined to
- *  `subdivision` as the GPU refines them, in world space. */
-core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, double time,
-                                                 const Settings& decoded, int subdivision) {
-    std::vector<Surface> surfaces;
-    for (std::size_t solid = 0; solid < world.characters.size(); ++solid) {
-        const scene::Character& character = world.characters[solid];
-        const scene::Model& model = *character.model;
-        const double extent = glassExtent(restSides(model), character);
-        for (const auto& instance : deform::deformCharacter(character, time)) {
-            const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
-            for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
-                const scene::Primitive& source = mesh.primitives[p];
-                deform::DeformedPrimitive deformed = instance.primitives[p];
-                const scene::Primitive* primitive = &source;
-                deform::Subdivision refined;
-                if (subdivision > 0) {
-                    auto built = deform::buildSubdivision(source, subdivision,
-                                                          "mesh " + std::to_string(instance.mesh) +
-                                                              " primitive " + std::to_string(p));
-                    if (!built)
-                        return built.error();
-                    refined = std::move(*built);
-                    const deform::RefinedSurface surface =
-                        deform::refineCage(refined, deformed.positions, deformed.tangents);
-                    deformed = {surface.positions, surface.normals, surface.tangents};
-                    primitive = &refined.rest;
-                }
-                const auto placed = deform::toWorld(deformed, instance.meshToWorld);
-                Surface s;
-                s.positions = placed.positions;
-                s.normals = placed.normals;
-                s.indices = primitive->indices;
-                if (!primitive->uv0.empty() || !primitive->uv1.empty())
-                    for (std::size_t v = 0; v < primitive->vertexCount(); ++v)
-                        s.uv.emplace_back(primitive->uvs(v));
-                const int material = source.materialFor(character.variant);
-                s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
-                if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
-                    s.normalImage = textureImage(model, s.material->normalTexture);
-                    if (s.normalImage || s.material->hasAnisotropy ||
-                        s.material->clearcoatNormalTexture.present())
-                        s.tangents = placed.tangents;
-                }
-                s.model = &model;
-                s.glass = decoded.isGlass(model, material, character.glass);
-                s.authored = s.material && s.material->isTransmissive();
-                s.mirrored = glm::determinant(glm::dmat3(instance.meshToWorld)) < 0.0;
-                s.solid = int(solid);
-                s.optics = opticsFor(decoded, s.material, character.overrides, extent);
-                if (!s.optics.dispersion)
-                    s.optics.ior = glm::vec3(s.optics.ior.g);
-                surfaces.push_back(std::move(s));
-            }
-        }
-    }
-    return surfaces;
-}
 
 /** The camera's rays through a pixel: `spp` samples, jittered (stratified where `spp` is a
  *  square) or through its centre. */
@@ -734,17 +647,6 @@ struct PixelRays {
     }
 };
 
-/** The tracer's epsilon: a hundred-thousandth of the surfaces' extent. */
-double sceneEpsilon(const std::vector<Surface>& surfaces) {
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const Surface& s : surfaces)
-        for (const auto& v : s.positions) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    return surfaces.empty() ? 1e-6 : 1e-5 * glm::length(hi - lo);
-}
-
 } // namespace
 
 core::Result<ReferenceImage>
@@ -753,11 +655,11 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
                const render::GroundPlane& ground, const plugin::ParameterSet& glass,
                const ReferenceOptions& options) {
     const Settings decoded = Settings::decode(glass);
-    auto built = worldSurfaces(world, time, decoded, options.subdivision);
+    auto built = reference::worldSurfaces(world, time, decoded, options.subdivision);
     if (!built)
         return built.error();
     const std::vector<Surface>& surfaces = *built;
-    const double epsilon = sceneEpsilon(surfaces);
+    const double epsilon = reference::sceneEpsilon(surfaces);
     const Evaluation evaluation{options.deterministic, decoded.interfaces - 1,
                                 2 * decoded.interfaces};
     Tracer tracer(surfaces, environment, settings.ground ? &ground : nullptr, options,

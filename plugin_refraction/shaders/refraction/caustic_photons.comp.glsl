@@ -26,10 +26,18 @@ uniform mat4 uInverseViewProjection[MAX_SHADOW_VIEWS];
 uniform vec3 uViewAxis[MAX_SHADOW_VIEWS]; // where each view looks (world, unit)
 uniform int uPhotonBudget;                // the frame's photons, about
 
-// A view's tile in the caustics atlas: its corner and side in texels.
-ivec3 causticTile(int v) {
-    vec4 tile = shadowViews[v].tile;
-    return ivec3(round(tile.xy * vec2(uCausticSize)), round(tile.z * float(uCausticSize.x)));
+// The ground square (render::GroundPlane), a receiver: drawn, and its height, centre x and z and
+// half size.
+uniform int uGround;
+uniform vec4 uGroundPlane;
+
+// Where the ray from `origin` along unit `dir` (world) meets the ground square: t, or -1.
+float groundDistance(vec3 origin, vec3 dir) {
+    if (uGround == 0 || abs(dir.y) < 1e-9)
+        return -1.0;
+    float t = (uGroundPlane.x - origin.y) / dir.y;
+    vec2 q = abs(origin.xz + t * dir.xz - uGroundPlane.yz);
+    return t > 0.0 && max(q.x, q.y) <= uGroundPlane.w ? t : -1.0;
 }
 
 // The light of view v's light that leaves along unit `dir` into a texel of the view's image
@@ -73,7 +81,7 @@ void land(int emitted, vec3 X, vec3 light, int cell) {
     light /= max(texelLight(v, toX), 1e-3);
     // Bilinear into the tile's fine cells, the light and the photon; the light alone into the
     // coarse cell it fell in (the resolve's bilinear read smooths it).
-    ivec3 tile = causticTile(v);
+    ivec3 tile = causticTile(shadowViews[v].tile);
     uint words[4];
     float weights[4];
     causticCells(tile.xy, tile.z, inTile * float(tile.z), cell, 0, words, weights);
@@ -180,7 +188,7 @@ void main() {
             int v = 0;
             ivec3 tile;
             for (; v < uViewCount; ++v) {
-                tile = causticTile(v);
+                tile = causticTile(shadowViews[v].tile);
                 if (all(greaterThanEqual(from, tile.xy)) && all(lessThan(from, tile.xy + tile.z)))
                     break;
             }

@@ -13,10 +13,9 @@ uniform int uPhotonBudget;
 layout(location = 0) out vec4 outCaustic;
 
 void main() {
-    ShadowView view = shadowViews[uView];
-    ivec2 corner = ivec2(round(view.tile.xy * vec2(uCausticSize)));
-    int side = int(round(view.tile.z * float(uCausticSize.x)));
-    ivec2 texel = ivec2(gl_FragCoord.xy), inTile = texel - corner;
+    ivec3 tile = causticTile(shadowViews[uView].tile);
+    ivec2 corner = tile.xy, inTile = ivec2(gl_FragCoord.xy) - corner;
+    int side = tile.z;
     int cell, photons;
     causticGrid(uint(uPhotonBudget), cell, photons);
     // Each grid's estimate here (RGB) and the photons in its footprint (A), a fine cell's area

@@ -21,18 +21,10 @@ layout(std430, binding = CAUSTIC_EMITTERS_BINDING) buffer CausticEmitters {
 };
 layout(std430, binding = CAUSTIC_SUMS_BINDING) buffer CausticSums { uint causticSums[]; };
 
-// The ground square (render::GroundPlane), a receiver: drawn, and its height, centre x and z and
-// half size.
-uniform int uGround;
-uniform vec4 uGroundPlane;
-
-// Where the ray from `origin` along unit `dir` (world) meets the ground square: t, or -1.
-float groundDistance(vec3 origin, vec3 dir) {
-    if (uGround == 0 || abs(dir.y) < 1e-9)
-        return -1.0;
-    float t = (uGroundPlane.x - origin.y) / dir.y;
-    vec2 q = abs(origin.xz + t * dir.xz - uGroundPlane.yz);
-    return t > 0.0 && max(q.x, q.y) <= uGroundPlane.w ? t : -1.0;
+// A shadow view's tile (ShadowView::tile, atlas uv) in the caustics atlas: its corner and side
+// in texels.
+ivec3 causticTile(vec4 tile) {
+    return ivec3(round(tile.xy * vec2(uCausticSize)), round(tile.z * float(uCausticSize.x)));
 }
 
 uint causticTexelIndex(ivec2 texel) {

@@ -13,10 +13,14 @@ namespace refraction {
 
 namespace {
 
-/** What the photons and the resolve share: the atlas's size, the budget, the ground. */
+/** What the photons' passes and the resolve share: the atlas's size and the budget. */
 void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
     program.set("uCausticSize", c.gpu->caustics.size);
     program.set("uPhotonBudget", c.settings.causticPhotons);
+}
+
+/** The photons' receivers besides the BVH's opaque parts: the ground square. */
+void setGroundUniforms(const gl::Program& program, const FrameContext& c) {
     const render::GroundPlane& ground = c.frame->ground;
     program.set("uGround", c.frame->settings.ground ? 1 : 0);
     program.set("uGroundPlane",
@@ -53,6 +57,7 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             const gl::Program& program = gpu.causticPhotons;
             program.use();
             setCausticUniforms(program, c);
+            setGroundUniforms(program, c);
             program.set("uFresnelMode", int(c.settings.fresnel));
             program.set("uViewCount", int(plan.views.size()));
             for (std::size_t v = 0; v < plan.views.size(); ++v) {

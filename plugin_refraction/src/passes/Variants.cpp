@@ -1,6 +1,7 @@
 // The programs' variants a frame needs, compiled when first needed and kept: the captures' for
 // K and textured glass, the walk's for the capture, method, dispersion search, lights and
-// textures, and the hybrid's trace pass's.
+// textures, the hybrid's trace pass's, and the caustics' (the emitters' glass shadow, the
+// photons, the resolve).
 #include "Passes.h"
 
 #include <algorithm>
