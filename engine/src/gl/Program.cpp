@@ -189,6 +189,16 @@ void Program::use() const {
     glUseProgram(mId);
 }
 
+std::string Program::element(const char* array, std::size_t index) {
+    // appended, not `"[" + std::string`: that trips GCC 12's -Wrestrict false positive at -O3
+    // (GCC bug 105329)
+    std::string name = array;
+    name += '[';
+    name += std::to_string(index);
+    name += ']';
+    return name;
+}
+
 int Program::location(const char* name) const {
     const auto it = mLocations.find(name);
     if (it != mLocations.end())

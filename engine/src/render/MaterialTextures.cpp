@@ -137,17 +137,9 @@ void MaterialTextures::bind(const gl::Program& program, const scene::Model& mode
     };
     static const auto names = [] {
         std::array<SlotNames, kSlotCount> n;
-        // appended, not `"[" + std::string`: that trips GCC 12's -Wrestrict false positive at
-        // -O3 (GCC bug 105329)
-        auto element = [](const char* array, int slot) {
-            std::string name = array;
-            name += '[';
-            name += std::to_string(slot);
-            name += ']';
-            return name;
-        };
         for (int slot = 0; slot < kSlotCount; ++slot)
-            n[std::size_t(slot)] = {element("uHasTexture", slot), element("uTextureUv", slot)};
+            n[std::size_t(slot)] = {gl::Program::element("uHasTexture", std::size_t(slot)),
+                                    gl::Program::element("uTextureUv", std::size_t(slot))};
         return n;
     }();
     int texCoords = 0;

@@ -62,12 +62,12 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             program.set("uViewCount", int(plan.views.size()));
             for (std::size_t v = 0; v < plan.views.size(); ++v) {
                 const render::ShadowView& view = plan.views[v];
-                const std::string at = "[" + std::to_string(v) + "]";
-                program.set(("uViewLight" + at).c_str(), int(view.light));
-                program.set(("uInverseViewProjection" + at).c_str(),
+                program.set(gl::Program::element("uViewLight", v).c_str(), int(view.light));
+                program.set(gl::Program::element("uInverseViewProjection", v).c_str(),
                             glm::inverse(view.viewProjection()));
                 // The view looks down its -z.
-                program.set(("uViewAxis" + at).c_str(), -glm::vec3(glm::transpose(view.view)[2]));
+                program.set(gl::Program::element("uViewAxis", v).c_str(),
+                            -glm::vec3(glm::transpose(view.view)[2]));
             }
             gpu.glass.bvh->bindForTraversal();
             gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);

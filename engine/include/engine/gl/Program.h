@@ -69,6 +69,9 @@ public:
     void set(const char* name, const glm::mat3& value) const;
     void set(const char* name, const glm::mat4& value) const;
 
+    /** The name of element `index` of a uniform array: `array[index]`. */
+    static std::string element(const char* array, std::size_t index);
+
     std::uint32_t id() const { return mId; }
     explicit operator bool() const { return mId != 0; }
 
