@@ -297,7 +297,8 @@ struct Options {
     bool force = false, ground = false, shadows = true;
     std::vector<std::pair<std::string, std::string>> assignments;
     std::vector<bool> temporalModes = {false};
-    float historyWeight = render::TemporalSettings{}.historyWeight;
+    render::TemporalSettings temporal; ///< a temporal run's (enabled per run)
+    bool paused = false;
     plugin::ParameterSet parameters; ///< the glass's, with --glass and every --set applied
 };
 
@@ -355,8 +356,9 @@ void addOptions(CLI::App& app, Options& o) {
     app.add_flag("--ground", o.ground,
                  "draw the ground plane (opaque geometry the glass sees through its nearby-scene "
                  "walk; without opaque geometry the walk is skipped)");
-    tool::addOnOff(app, "--shadows", o.shadows,
-                   "the lights cast shadows, each as its scene file's \"shadow\" says (default on)");
+    tool::addOnOff(
+        app, "--shadows", o.shadows,
+        "the lights cast shadows, each as its scene file's \"shadow\" says (default on)");
     app.add_option_function<std::string>(
            "--set",
            [&o](const std::string& v) {
@@ -385,9 +387,19 @@ void addOptions(CLI::App& app, Options& o) {
         "renderer of its own, whose history carries across its frames as an application's "
         "does)")
         ->type_name("off,on");
-    app.add_option("--history-weight", o.historyWeight, "the history's weight (default 0.8)")
+    app.add_option("--history-weight", o.temporal.historyWeight,
+                   "the history's weight while anything moves (default 0.8)")
         ->check(tool::range(0.0, 0.99))
         ->type_name("0..0.99");
+    tool::addOnOff(app, "--history-rejection", o.temporal.rejectHistory,
+                   "off: keep every reprojected history unclipped (default on)");
+    tool::addOnOff(app, "--converge-still", o.temporal.convergeStill,
+                   "off: still frames blend as moving ones do instead of averaging every frame "
+                   "(default on)");
+    app.add_flag("--paused", o.paused,
+                 "every round at the middle of the clips, as in a paused viewer: a temporal run's "
+                 "frames are still and converge (glass-capture --accumulate), the trace's paths "
+                 "sampled");
     app.add_option("--json", o.jsonPath, "also write everything as JSON (atomically)")
         ->type_name("FILE");
     app.add_option("--plot", o.plotPath,
@@ -456,8 +468,8 @@ core::Status measureFrame(MethodRun& r, tool::HeadlessScene& headless, const sce
     plugin::Plugin* const plugin = headless.glass.get();
     if (!r.renderer)
         (void)plugin->parameters().set("method", r.method);
+    settings.temporal = o.temporal;
     settings.temporal.enabled = r.temporal;
-    settings.temporal.historyWeight = o.historyWeight;
     render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
     const auto start = std::chrono::steady_clock::now();
     auto stats = renderer.render(world, camera, settings, time);
@@ -507,7 +519,7 @@ core::Status benchWorld(const Options& o, tool::HeadlessScene& headless, const s
     const bool terminal = isatty(STDERR_FILENO) != 0;
     const int rounds = o.warmup + o.frames;
     for (int round = 0; round < rounds; ++round) {
-        const double time = std::fmod(round / 30.0, duration);
+        const double time = o.paused ? 0.5 * duration : std::fmod(round / 30.0, duration);
         for (MethodRun& r : *runs)
             if (auto measured = measureFrame(r, headless, world, camera, settings, time,
                                              round >= o.warmup, round + 1 == rounds, o);
@@ -553,8 +565,8 @@ int run(int argc, char** argv) {
     settings.ground = o.ground || headless.world.ground;
     settings.shadows = o.shadows;
 
-    std::printf("%s, %dx%d, %d rounds after %d warm-up (%s)\n", model.c_str(), o.size.x, o.size.y,
-                o.frames, o.warmup, gl::rendererString());
+    std::printf("%s, %dx%d, %d rounds after %d warm-up%s (%s)\n", model.c_str(), o.size.x, o.size.y,
+                o.frames, o.warmup, o.paused ? ", paused" : "", gl::rendererString());
     std::printf("| method | level | characters | triangles | median ms | p95 ms | x opaque | "
                 "cpu ms | animate+record ms | transients MiB | temporal: x off, history | layers | "
                 "trace | slowest passes (GPU ms) |\n");
@@ -565,6 +577,10 @@ int run(int argc, char** argv) {
                              {"size", {o.size.x, o.size.y}},
                              {"frames", o.frames},
                              {"warmup", o.warmup},
+                             {"paused", o.paused},
+                             {"history_weight", o.temporal.historyWeight},
+                             {"history_rejection", o.temporal.rejectHistory},
+                             {"converge_still", o.temporal.convergeStill},
                              {"settings", o.assignments},
                              {"ground", settings.ground},
                              {"shadows", settings.shadows},
