@@ -9,6 +9,8 @@
 //      motion of the glass surface it entered (two halves), the resolve's first candidate
 //   w  where a path through glass left it: its world direction (octahedral, 16 + 16 bits; 0:
 //      none); a jump rejects the history
+// The environment seen directly is all zeros (the frame's motion target is cleared to it, and
+// the background writes none): its motion is the camera's turn at the pixel (motionAt).
 // Positions are measured without the frame's jitter: uMotionViewProjection is this frame's
 // unjittered world -> clip, uPreviousViewProjection the previous frame's.
 #ifndef COMMON_MOTION_GLSL
@@ -17,6 +19,7 @@
 
 uniform mat4 uMotionViewProjection;
 uniform mat4 uPreviousViewProjection;
+uniform mat4 uMotionInverseViewProjection; // this frame's unjittered clip -> world
 uniform vec2 uMotionSize; // the frame in pixels
 uniform int uWriteMotion;  // the frame accumulates: passes write their pixels' motion
 
@@ -53,6 +56,14 @@ uint motionKind(uvec4 m) {
     return m.x >> MOTION_KIND_SHIFT;
 }
 
+// The world direction through `pixel` (a position in pixels) of the unjittered frame.
+vec3 pixelDirection(vec2 pixel) {
+    vec2 ndc = pixel / uMotionSize * 2.0 - 1.0;
+    vec4 far = uMotionInverseViewProjection * vec4(ndc, 1.0, 1.0);
+    vec4 near = uMotionInverseViewProjection * vec4(ndc, -1.0, 1.0);
+    return normalize(far.xyz / far.w - near.xyz / near.w);
+}
+
 vec2 motionPixels(uvec4 m) {
     return unpackHalf2x16(m.y);
 }
@@ -61,14 +72,21 @@ vec2 motionDepths(uvec4 m) {
     return motionKind(m) == MOTION_THROUGH_GLASS ? vec2(0.0) : unpackHalf2x16(m.z);
 }
 
-// Where a pixel's history may lie, in the order the resolve tries them: by its motion; for a
-// path through glass first by the motion of the glass it entered (a moving body carries what
-// it refracts with it: a glass sphere crossing the ground accumulates to 36.8 dB, 32.3 by the
-// path's end first; Temporal.AGlassBodyCarriesWhatItRefractsWithIt), then by its end's.
-int motionCandidates(uvec4 m, out vec2 candidates[2]) {
+// The motion of the pixel at `pixel` (its centre, in pixels) whose texel is m.
+vec2 motionAt(uvec4 m, vec2 pixel) {
+    return m.x == motionIdentity(MOTION_ENVIRONMENT, 0u) ? directionMotion(pixelDirection(pixel))
+                                                        : motionPixels(m);
+}
+
+// Where the pixel at `pixel` (texel m) may find its history, in the order the resolve tries
+// them: by its motion; for a path through glass first by the motion of the glass it entered
+// (a moving body carries what it refracts with it: a glass sphere crossing the ground
+// accumulates to 36.8 dB, 32.3 by the path's end first;
+// Temporal.AGlassBodyCarriesWhatItRefractsWithIt), then by its end's.
+int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
     bool glass = motionKind(m) == MOTION_THROUGH_GLASS;
-    candidates[0] = glass ? unpackHalf2x16(m.z) : motionPixels(m);
-    candidates[1] = motionPixels(m);
+    candidates[1] = motionAt(m, pixel);
+    candidates[0] = glass ? unpackHalf2x16(m.z) : candidates[1];
     return glass ? 2 : 1;
 }
 

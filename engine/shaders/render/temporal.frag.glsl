@@ -100,7 +100,7 @@ void main() {
         color = vec3(0.0);
     uvec4 m = texelFetch(uMotion, p, 0);
     vec2 candidates[2];
-    int count = motionCandidates(m, candidates);
+    int count = motionCandidates(m, vec2(p) + 0.5, candidates);
     // Nothing moved: the history is this frame's own, whatever one sample a pixel showed.
     bool kept = false;
     vec2 previous = vec2(p) + 0.5, motion = candidates[0];

@@ -113,6 +113,7 @@ std::size_t TemporalHistory::bytes() const {
 void setMotionUniforms(const gl::Program& program, const FrameInfo& frame) {
     program.set("uMotionViewProjection", frame.temporal.viewProjection);
     program.set("uPreviousViewProjection", frame.temporal.previousViewProjection);
+    program.set("uMotionInverseViewProjection", glm::inverse(frame.temporal.viewProjection));
     program.set("uMotionSize", glm::vec2(frame.settings.size));
     program.set("uWriteMotion", frame.temporal.enabled ? 1 : 0);
 }

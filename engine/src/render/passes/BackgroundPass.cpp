@@ -1,5 +1,7 @@
-// `background`: the scene targets are created here, with the environment drawn behind all (and
-// where the frame accumulates, its motion).
+// `background`: the scene targets are created here, with the environment drawn behind all; where
+// the frame accumulates, the motion target cleared to the environment's texel (zeros, whose
+// motion the resolve works out from the pixel: common/motion.glsl), which costs a CPU rasteriser
+// less than a second target the full-screen draw writes.
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -25,6 +27,13 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);
+            if (d.motion.valid()) {
+                gl::clearColorUint(1, 0u);
+                if (auto bound = gpu.framebuffer.bindTargets("background", {&r.texture(d.color)},
+                                                             &r.texture(d.depth));
+                    !bound)
+                    return bound;
+            }
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
             gpu.background.use();
             gpu.environment->bind(gpu.background, frame.settings.environmentRotation,
@@ -32,7 +41,6 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
             gpu.background.set("uInverseViewProjection",
                                glm::inverse(frame.camera.viewProjection()));
             gpu.background.set("uBackgroundBlur", frame.settings.backgroundBlur);
-            setMotionUniforms(gpu.background, frame);
             gpu.emptyVao.bind();
             gl::drawArrays(3);
             return {};
