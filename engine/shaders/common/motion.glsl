@@ -48,8 +48,8 @@ uint motionDirection(vec3 direction) {
 }
 
 uvec4 packMotion(uint identity, vec2 motion, float depth, float previousDepth, uint direction) {
-    return uvec4(identity, packHalf2x16(clamp(motion, vec2(-8192.0), vec2(8192.0))), packHalf2x16(vec2(depth, previousDepth)),
-                 direction);
+    return uvec4(identity, packHalf2x16(clamp(motion, vec2(-8192.0), vec2(8192.0))),
+                 packHalf2x16(vec2(depth, previousDepth)), direction);
 }
 
 uint motionKind(uvec4 m) {
