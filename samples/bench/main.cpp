@@ -391,6 +391,10 @@ void addOptions(CLI::App& app, Options& o) {
                    "the history's weight while anything moves (default 0.8)")
         ->check(tool::range(0.0, 0.99))
         ->type_name("0..0.99");
+    app.add_option("--moving-jitter", o.temporal.movingJitter,
+                   "the jitter's extent while anything moves, a share of the pixel (default 0.5)")
+        ->check(tool::range(0.0, 1.0))
+        ->type_name("0..1");
     tool::addOnOff(app, "--history-rejection", o.temporal.rejectHistory,
                    "off: keep every reprojected history unclipped (default on)");
     tool::addOnOff(app, "--converge-still", o.temporal.convergeStill,
@@ -579,6 +583,7 @@ int run(int argc, char** argv) {
                              {"warmup", o.warmup},
                              {"paused", o.paused},
                              {"history_weight", o.temporal.historyWeight},
+                             {"moving_jitter", o.temporal.movingJitter},
                              {"history_rejection", o.temporal.rejectHistory},
                              {"converge_still", o.temporal.convergeStill},
                              {"settings", o.assignments},

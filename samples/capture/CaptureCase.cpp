@@ -14,7 +14,8 @@ namespace capture {
 namespace {
 
 /** Temporal accumulation: "accumulate": N frames at each time from a fresh history, or
- *  "temporal": {"warmup": W, "history_weight": H} to carry the history across the times. */
+ *  "temporal": {"warmup": W, "history_weight": H, "moving_jitter": J} to carry the history
+ *  across the times. */
 core::Status readTemporal(const nlohmann::json& j, CaseFile& c, const std::string& where) {
     c.session.accumulate = j.value("accumulate", 0);
     if (c.session.accumulate < 0 || c.session.accumulate > 4096)
@@ -27,10 +28,13 @@ core::Status readTemporal(const nlohmann::json& j, CaseFile& c, const std::strin
         c.session.warmup = t.value("warmup", 10);
         c.session.temporal.historyWeight =
             t.value("history_weight", c.session.temporal.historyWeight);
+        c.session.temporal.movingJitter = t.value("moving_jitter", c.session.temporal.movingJitter);
         if (c.session.warmup < 0 || c.session.warmup > 4096 ||
             !(c.session.temporal.historyWeight >= 0.0f &&
-              c.session.temporal.historyWeight <= 0.99f))
-            return core::Error{where + "\"temporal\": warmup 0..4096, history_weight 0..0.99"};
+              c.session.temporal.historyWeight <= 0.99f) ||
+            !(c.session.temporal.movingJitter >= 0.0f && c.session.temporal.movingJitter <= 1.0f))
+            return core::Error{where + "\"temporal\": warmup 0..4096, history_weight 0..0.99, "
+                                       "moving_jitter 0..1"};
         if (c.times.size() > 1)
             c.session.warmupStep = c.times[1] - c.times[0];
     }

@@ -216,6 +216,12 @@ void addTemporalOptions(CLI::App& app, Options& o) {
         ->check(tool::range(0.0, 0.99))
         ->type_name("0..0.99")
         ->group(group);
+    app.add_option("--moving-jitter", t.movingJitter,
+                   "the jitter's extent while anything moves, a share of the pixel (still frames "
+                   "take the whole pixel; default 0.5)")
+        ->check(tool::range(0.0, 1.0))
+        ->type_name("0..1")
+        ->group(group);
     tool::addOnOff(app, "--history-rejection", t.rejectHistory,
                    "off: keep every reprojected history unclipped (to show what the rejection "
                    "and clipping are for; default on)")
@@ -446,7 +452,8 @@ nlohmann::json reportHeader(const Options& o, const capture::CaptureSession& ses
     if (o.session.temporal.enabled)
         report["temporal"] = {{"warmup_frames", o.session.warmup},
                               {"warmup_step", o.session.warmupStep},
-                              {"history_weight", o.session.temporal.historyWeight}};
+                              {"history_weight", o.session.temporal.historyWeight},
+                              {"moving_jitter", o.session.temporal.movingJitter}};
     if (o.session.accumulate > 0)
         report["accumulate"] = o.session.accumulate;
     return report;

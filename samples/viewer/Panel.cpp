@@ -293,7 +293,8 @@ void Panel::environment(Viewer& v) {
 void Panel::temporal(Viewer& v) {
     if (!section("Temporal accumulation", false))
         return;
-    for (const char* name : {"temporal", "history-weight", "converge-paused", "temporal-view"})
+    for (const char* name :
+         {"temporal", "history-weight", "moving-jitter", "converge-paused", "temporal-view"})
         widget(v.mSettings, name);
     if (v.mSettings.flag("temporal") && v.mSettings.flag("split"))
         ImGui::TextDisabled("off while the A/B split draws two methods a frame");

@@ -89,6 +89,15 @@ void declareView(plugin::ParameterSet& p, const std::vector<std::string>& method
                0.8,
                {},
                "the history's weight while anything moves: higher is smoother and lags more"});
+    p.declare({"moving-jitter",
+               "Jitter while moving",
+               Type::Float,
+               0.0,
+               1.0,
+               0.5,
+               {},
+               "the jitter's extent while anything moves, a share of the pixel (paused: the "
+               "whole pixel)"});
     p.declare({"converge-paused",
                "Converge while paused",
                Type::Bool,

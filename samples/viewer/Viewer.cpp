@@ -454,6 +454,7 @@ render::RenderSettings Viewer::settings(glm::ivec2 size) const {
     // The split draws two methods a frame: one history cannot serve both.
     s.temporal.enabled = mSettings.flag("temporal") && !mSettings.flag("split");
     s.temporal.historyWeight = float(mSettings.number("history-weight"));
+    s.temporal.movingJitter = float(mSettings.number("moving-jitter"));
     s.temporal.convergeStill = mSettings.flag("converge-paused");
     s.temporal.view = render::TemporalSettings::View(int(mSettings.number("temporal-view")));
     return s;

@@ -81,7 +81,7 @@ vec2 motionAt(uvec4 m, vec2 pixel) {
 // Where the pixel at `pixel` (texel m) may find its history, in the order the resolve tries
 // them: by its motion; for a path through glass first by the motion of the glass it entered
 // (a moving body carries what it refracts with it: a glass sphere crossing the ground
-// accumulates to 36.8 dB, 32.3 by the path's end first;
+// accumulated to 36.8 dB, 32.3 by the path's end first, both with the whole pixel's jitter;
 // Temporal.AGlassBodyCarriesWhatItRefractsWithIt), then by its end's.
 int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
     bool glass = motionKind(m) == MOTION_THROUGH_GLASS;

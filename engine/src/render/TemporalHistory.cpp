@@ -21,9 +21,10 @@ float halton(std::uint32_t index, std::uint32_t base) {
 }
 
 /** The settings whose change starts the history over: all but the resolve's own weight and
- *  debug view, and how passes are timed. */
+ *  debug view, the jitter's extent and how passes are timed. */
 RenderSettings historyKey(RenderSettings s) {
     s.temporal.historyWeight = 0.0f;
+    s.temporal.movingJitter = 0.0f;
     s.temporal.view = TemporalSettings::View::Off;
     s.exactPassTimes = false;
     return s;
@@ -84,7 +85,9 @@ TemporalFrame TemporalHistory::begin(const scene::World& world, const Camera& ca
     frame.enabled = true;
     frame.index = reset ? 0 : mIndex + 1;
     frame.still = still;
-    frame.jitter = jitter(frame.index);
+    // A history's first frame has nothing to clip against: the whole pixel, as still frames.
+    frame.jitter =
+        jitter(frame.index) * (still || frame.index == 0 ? 1.0f : settings.temporal.movingJitter);
     if (!reset)
         frame.previousViewProjection = mViewProjection;
     mIndex = frame.index;
