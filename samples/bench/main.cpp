@@ -388,7 +388,7 @@ void addOptions(CLI::App& app, Options& o) {
         "does)")
         ->type_name("off,on");
     app.add_option("--history-weight", o.temporal.historyWeight,
-                   "the history's weight while anything moves (default 0.8)")
+                   "the history's weight while anything moves (default 0.7)")
         ->check(tool::range(0.0, 0.99))
         ->type_name("0..0.99");
     app.add_option("--moving-jitter", o.temporal.movingJitter,

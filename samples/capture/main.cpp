@@ -212,7 +212,7 @@ void addTemporalOptions(CLI::App& app, Options& o) {
         ->type_name("N")
         ->group(group);
     app.add_option("--history-weight", t.historyWeight,
-                   "the history's weight while anything moves (default 0.8)")
+                   "the history's weight while anything moves (default 0.7)")
         ->check(tool::range(0.0, 0.99))
         ->type_name("0..0.99")
         ->group(group);

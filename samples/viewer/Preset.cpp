@@ -86,7 +86,7 @@ void declareView(plugin::ParameterSet& p, const std::vector<std::string>& method
                Type::Float,
                0.0,
                0.99,
-               0.8,
+               0.7,
                {},
                "the history's weight while anything moves: higher is smoother and lags more"});
     p.declare({"moving-jitter",
