@@ -58,6 +58,20 @@ struct Shadows {
     bool enabled = true, glass = true;
 };
 
+/** work(row, thread) for every row in 0..rows-1, shared over `threads` threads (0..threads-1),
+ *  each taking the next row as it finishes one. */
+template <class Work> void forEachRow(int rows, unsigned threads, const Work& work) {
+    std::atomic<int> next{0};
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            for (int row = next++; row < rows; row = next++)
+                work(row, t);
+        });
+    for (auto& thread : pool)
+        thread.join();
+}
+
 class Tracer {
 public:
     Tracer(const std::vector<Surface>& surfaces, const EnvironmentSampler& env,
@@ -493,18 +507,11 @@ public:
             if (!mCasts[i])
                 continue;
             std::vector<std::vector<Photon>> landed(threads);
-            std::atomic<int> nextRow{0};
-            auto work = [&](unsigned t) {
-                for (int row = nextRow++; row < side; row = nextRow++)
-                    for (int column = 0; column < side; ++column)
-                        emitPhoton(i, centre, bound, (column + 0.5) / side, (row + 0.5) / side,
-                                   1.0 / (double(side) * side), landed[t]);
-            };
-            std::vector<std::thread> pool;
-            for (unsigned t = 0; t < threads; ++t)
-                pool.emplace_back(work, t);
-            for (auto& t : pool)
-                t.join();
+            forEachRow(side, threads, [&](int row, unsigned t) {
+                for (int column = 0; column < side; ++column)
+                    emitPhoton(i, centre, bound, (column + 0.5) / side, (row + 0.5) / side,
+                               1.0 / (double(side) * side), landed[t]);
+            });
             std::vector<Photon> all;
             for (auto& part : landed)
                 all.insert(all.end(), part.begin(), part.end());
@@ -676,54 +683,46 @@ traceReference(const scene::World& world, double time, const render::Camera& cam
     image.rgba.assign(std::size_t(w) * std::size_t(h) * 4, 0.0f);
     const PixelRays rays(camera, settings.size, options);
     const int spp = rays.spp;
-    std::atomic<int> nextRow{0}, rowsDone{0};
-    std::atomic<std::size_t> trapped{0};
+    std::atomic<int> rowsDone{0};
     constexpr int kCountCap = 64;
-    std::vector<std::atomic<std::size_t>> histogram(kCountCap + 1);
+    // Per thread: the samples trapped, and the histogram of glass surfaces.
+    std::vector<std::size_t> trapped(threads, 0);
+    std::vector<std::vector<std::size_t>> histograms(threads,
+                                                     std::vector<std::size_t>(kCountCap + 1, 0));
     const bool bar = options.progress && isatty(2);
-    auto work = [&] {
-        std::size_t localTrapped = 0;
-        std::vector<std::size_t> localHistogram(kCountCap + 1, 0);
-        for (int row = nextRow++; row < h; row = nextRow++) {
-            for (int x = 0; x < w; ++x) {
-                dvec3 sum(0.0);
-                int glassSamples = 0;
-                for (int s = 0; s < spp; ++s) {
-                    std::uint32_t rng = 0;
-                    dvec3 origin, dir;
-                    rays.ray(x, row, s, rng, origin, dir);
-                    bool glassHit = false;
-                    sum += tracer.primary(origin, dir, glassHit, rng, localTrapped);
-                    if (s == 0 && glassHit)
-                        ++localHistogram[std::size_t(
-                            tracer.countGlassSurfaces(origin, dir, kCountCap))];
-                    glassSamples += glassHit ? 1 : 0;
-                }
-                float* out = &image.rgba[(std::size_t(row) * std::size_t(w) + std::size_t(x)) * 4];
-                for (int c = 0; c < 3; ++c)
-                    out[c] = float(sum[c] / spp);
-                out[3] = float(glassSamples) / float(spp);
+    forEachRow(h, threads, [&](int row, unsigned t) {
+        for (int x = 0; x < w; ++x) {
+            dvec3 sum(0.0);
+            int glassSamples = 0;
+            for (int s = 0; s < spp; ++s) {
+                std::uint32_t rng = 0;
+                dvec3 origin, dir;
+                rays.ray(x, row, s, rng, origin, dir);
+                bool glassHit = false;
+                sum += tracer.primary(origin, dir, glassHit, rng, trapped[t]);
+                if (s == 0 && glassHit)
+                    ++histograms[t][std::size_t(tracer.countGlassSurfaces(origin, dir, kCountCap))];
+                glassSamples += glassHit ? 1 : 0;
             }
-            const int done = ++rowsDone;
-            if (bar && (done % 8 == 0 || done == h))
-                std::fprintf(stderr, "\rreference: [%-40s] %3d%%",
-                             std::string(std::size_t(40 * done / h), '#').c_str(), 100 * done / h);
+            float* out = &image.rgba[(std::size_t(row) * std::size_t(w) + std::size_t(x)) * 4];
+            for (int c = 0; c < 3; ++c)
+                out[c] = float(sum[c] / spp);
+            out[3] = float(glassSamples) / float(spp);
         }
-        trapped += localTrapped;
-        for (std::size_t i = 0; i < localHistogram.size(); ++i)
-            histogram[i] += localHistogram[i];
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back(work);
-    for (auto& t : pool)
-        t.join();
+        const int done = ++rowsDone;
+        if (bar && (done % 8 == 0 || done == h))
+            std::fprintf(stderr, "\rreference: [%-40s] %3d%%",
+                         std::string(std::size_t(40 * done / h), '#').c_str(), 100 * done / h);
+    });
     if (bar)
         std::fprintf(stderr, "\n");
-    image.trappedSamples = trapped.load();
-    image.surfaceHistogram.resize(histogram.size());
-    for (std::size_t i = 0; i < histogram.size(); ++i)
-        image.surfaceHistogram[i] = histogram[i].load();
+    image.trappedSamples = 0;
+    image.surfaceHistogram.assign(kCountCap + 1, 0);
+    for (unsigned t = 0; t < threads; ++t) {
+        image.trappedSamples += trapped[t];
+        for (std::size_t i = 0; i < image.surfaceHistogram.size(); ++i)
+            image.surfaceHistogram[i] += histograms[t][i];
+    }
     while (image.surfaceHistogram.size() > 1 && image.surfaceHistogram.back() == 0)
         image.surfaceHistogram.pop_back();
     return image;
