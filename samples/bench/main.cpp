@@ -387,19 +387,7 @@ void addOptions(CLI::App& app, Options& o) {
         "renderer of its own, whose history carries across its frames as an application's "
         "does)")
         ->type_name("off,on");
-    app.add_option("--history-weight", o.temporal.historyWeight,
-                   "the history's weight while anything moves (default 0.7)")
-        ->check(tool::range(0.0, 0.99))
-        ->type_name("0..0.99");
-    app.add_option("--moving-jitter", o.temporal.movingJitter,
-                   "the jitter's extent while anything moves, a share of the pixel (default 0.5)")
-        ->check(tool::range(0.0, 1.0))
-        ->type_name("0..1");
-    tool::addOnOff(app, "--history-rejection", o.temporal.rejectHistory,
-                   "off: keep every reprojected history unclipped (default on)");
-    tool::addOnOff(app, "--converge-still", o.temporal.convergeStill,
-                   "off: still frames blend as moving ones do instead of averaging every frame "
-                   "(default on)");
+    tool::addHistoryOptions(app, o.temporal);
     app.add_flag("--paused", o.paused,
                  "every round at the middle of the clips, as in a paused viewer: a temporal run's "
                  "frames are still and converge (glass-capture --accumulate), the trace's paths "

@@ -211,25 +211,7 @@ void addTemporalOptions(CLI::App& app, Options& o) {
         ->check(tool::range(0, 4096))
         ->type_name("N")
         ->group(group);
-    app.add_option("--history-weight", t.historyWeight,
-                   "the history's weight while anything moves (default 0.7)")
-        ->check(tool::range(0.0, 0.99))
-        ->type_name("0..0.99")
-        ->group(group);
-    app.add_option("--moving-jitter", t.movingJitter,
-                   "the jitter's extent while anything moves, a share of the pixel (still frames "
-                   "take the whole pixel; default 0.5)")
-        ->check(tool::range(0.0, 1.0))
-        ->type_name("0..1")
-        ->group(group);
-    tool::addOnOff(app, "--history-rejection", t.rejectHistory,
-                   "off: keep every reprojected history unclipped (to show what the rejection "
-                   "and clipping are for; default on)")
-        ->group(group);
-    tool::addOnOff(app, "--converge-still", t.convergeStill,
-                   "off: frames at one time blend as moving ones do (the history weight, the "
-                   "neighbourhood's clip) instead of averaging every frame (default on)")
-        ->group(group);
+    tool::addHistoryOptions(app, t, group);
     app.add_option_function<std::string>(
            "--temporal-view",
            [&t](const std::string& v) {

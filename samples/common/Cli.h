@@ -4,6 +4,7 @@
 #pragma once
 
 #include "engine/plugin/ParameterSet.h"
+#include "engine/render/FrameInfo.h"
 
 #include <CLI/CLI.hpp>
 
@@ -110,6 +111,32 @@ inline CLI::Option* addOnOff(CLI::App& app, const std::string& name, bool& value
             name, [&value](const std::string& v) { value = v == "on"; }, help)
         ->check(oneOf({"on", "off"}))
         ->type_name("on|off");
+}
+
+/** The temporal history's own options into `t` (glass-capture's and glass-bench's): its weight,
+ *  the jitter while anything moves, the rejection and clip, still frames' convergence; in
+ *  `group` where one is named. */
+inline void addHistoryOptions(CLI::App& app, render::TemporalSettings& t,
+                              const std::string& group = {}) {
+    std::vector<CLI::Option*> options{
+        app.add_option("--history-weight", t.historyWeight,
+                       "the history's weight while anything moves (default 0.7)")
+            ->check(range(0.0, 0.99))
+            ->type_name("0..0.99"),
+        app.add_option("--moving-jitter", t.movingJitter,
+                       "the jitter's extent while anything moves, a share of the pixel (still "
+                       "frames take the whole pixel; default 0.5)")
+            ->check(range(0.0, 1.0))
+            ->type_name("0..1"),
+        addOnOff(app, "--history-rejection", t.rejectHistory,
+                 "off: keep every reprojected history unclipped (to show what the rejection and "
+                 "clipping are for; default on)"),
+        addOnOff(app, "--converge-still", t.convergeStill,
+                 "off: frames at one time blend as moving ones do (the history weight, the "
+                 "neighbourhood's clip) instead of averaging every frame (default on)")};
+    if (!group.empty())
+        for (CLI::Option* option : options)
+            option->group(group);
 }
 
 /** WxH within `lo`..`limit` into `size` (x, y). */
