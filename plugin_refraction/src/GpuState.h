@@ -76,6 +76,7 @@ struct WalkCountersGpu {
     std::uint32_t overflowPixels;                          ///< pixels over K in the walk
     std::uint32_t traceRays, traceSteps[2], traceMaxSteps; ///< the trace's
     std::uint32_t walkedPixels, hybridTraced, hybridBy[4]; ///< the hybrid's
+    std::uint32_t freshPixels, freshGroups[3];             ///< take the fresh samples; their groups
 };
 
 struct GpuState {
@@ -109,10 +110,11 @@ struct GpuState {
      *  punctual lights; textured glass). */
     using WalkKey = std::tuple<int, int, int, bool, bool>;
     std::map<WalkKey, gl::Program> walkPrograms;
-    /** The hybrid's trace pass, by the same key and whether its target adds samples up. */
-    std::map<std::pair<WalkKey, bool>, gl::Program> hybridTrace;
+    /** The trace over a list of pixels, by the same key and whether its target adds samples
+     *  up. */
+    std::map<std::pair<WalkKey, bool>, gl::Program> listedTrace;
     /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
-     *  word a pixel; reallocated when the viewport grows. */
+     *  word a pixel; reallocated when the viewport grows (the trace's listed pass binds it). */
     gl::Buffer handedOver;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {

@@ -241,6 +241,8 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     Walked walked = addWalkPass(graph, c, buffers, scene, capture);
     if (c.settings.method == Settings::Method::Hybrid && c.settings.debug == 0)
         walked = addHybridTracePass(graph, c, buffers, scene, capture, walked);
+    if (c.freshSamples() > 1)
+        walked = addFreshSamplesPass(graph, c, buffers, scene, capture, walked);
     if (walked.motion.valid())
         blackboard.put(plugin::kSceneMotion, walked.motion);
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
@@ -268,6 +270,7 @@ LayerStats RefractionPlugin::layerStats() const {
     stats.walkedPixels = counts.walkedPixels;
     stats.hybridTraced = counts.hybridTraced;
     std::copy(std::begin(counts.hybridBy), std::end(counts.hybridBy), stats.hybridBy.begin());
+    stats.freshPixels = counts.freshPixels;
     return stats;
 }
 

@@ -123,6 +123,23 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .help = "trace and hybrid: rays per glass pixel, the first at its centre, the others "
                  "jittered (the hybrid's walk enters them on the plane of the pixel's nearest "
                  "layer)"},
+        {.name = "fresh-samples",
+         .label = "Samples without history",
+         .type = Type::Int,
+         .min = 1,
+         .max = 16,
+         .defaultValue = 4,
+         .help = "a frame that accumulates while anything moves: samples a glass pixel takes "
+                 "where its history will be rejected (a surface it did not show, a jump in its "
+                 "path's exit), the first jittered with the frame, the others over the pixel; "
+                 "1: one, as every other pixel"},
+        {.name = "fresh-contrast",
+         .label = "Fresh where the history differs",
+         .min = 0.0,
+         .max = 1.0,
+         .help = "with fresh-samples: also where the first sample's luminance differs from the "
+                 "history's by more than this share of the brighter; 0: only where the history "
+                 "will be rejected"},
         {.name = "hybrid-criteria",
          .label = "Hybrid criteria",
          .type = Type::Int,
@@ -196,6 +213,8 @@ Settings Settings::decode(const plugin::ParameterSet& p) {
     s.interfaces = index("interfaces");
     s.marchSteps = index("march-steps");
     s.traceSamples = index("trace-samples");
+    s.freshSamples = index("fresh-samples");
+    s.freshContrast = p.number("fresh-contrast");
     s.hybridCriteria = index("hybrid-criteria");
     s.nearby = p.flag("nearby");
     s.outlineAntialiasing = p.flag("outline-aa");

@@ -55,6 +55,11 @@ struct Settings {
     int interfaces = 8;    ///< N: interfaces a layered walk crosses at most
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     int traceSamples = 1;  ///< trace and hybrid: rays per glass pixel
+    /** Accumulating while anything moves: samples a glass pixel takes where the resolve will
+     *  reject its history (FrameContext::freshSamples). */
+    int freshSamples = 4;
+    /** And where the first sample's luminance differs from its history's by this share. */
+    double freshContrast = 0.0;
     int hybridCriteria = kHandAll; ///< hybrid: what hands a pixel to the trace (HybridCriterion)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)

@@ -186,10 +186,12 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
         const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
                                          ? median / off->second
                                          : 0.0;
-        char temporal[48] = "-";
+        char temporal[80] = "-";
         if (r.temporal)
-            std::snprintf(temporal, sizeof temporal, "%.3f, %.1f MiB", temporalRatio,
-                          double(r.historyBytes) / 1048576.0);
+            std::snprintf(temporal, sizeof temporal, "%.3f, %.1f MiB, fresh %.1f%%", temporalRatio,
+                          double(r.historyBytes) / 1048576.0,
+                          100.0 * double(r.layers.freshPixels) /
+                              std::max(double(r.layers.walkedPixels), 1.0));
         const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
         char layers[48] = "-";
         if (r.layers.capacity > 0)
@@ -243,6 +245,7 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
              {"trace_rays_per_second", raysPerSecond},
              {"walked_pixels", r.layers.walkedPixels},
              {"hybrid_traced_pixels", r.layers.hybridTraced},
+             {"fresh_pixels", r.layers.freshPixels},
              {"hybrid_traced_by",
               {{"overflow", by[0]}, {"off_the_layers", by[1]}, {"tir", by[2]}, {"outline", by[3]}}},
              {"passes", passes}});

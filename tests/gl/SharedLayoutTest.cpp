@@ -109,6 +109,9 @@ TEST_F(SharedLayout, GlassMaterialsAndTheSmallBuffersLieWhereTheirStructsSay) {
         {"walkedPixels", offsetof(C, walkedPixels)},
         {"walkHybridTraced", offsetof(C, hybridTraced)},
         {"walkHybridBy[0]", offsetof(C, hybridBy)},
+        {"walkFreshPixels", offsetof(C, freshPixels)},
+        {"freshGroups[0]", offsetof(C, freshGroups)},
+        {"freshPixelList[0]", sizeof(C)},
     };
     for (const auto& [field, offset] : small)
         EXPECT_EQ(offsetOf(*program, field), int(offset)) << field;

@@ -90,4 +90,24 @@ int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
     return glass ? 2 : 1;
 }
 
+// What the history must show for the resolve to reuse it: the relative depth change that
+// counts as a disocclusion, and the turn of a path's exit that counts as a jump (15 degrees).
+const float kDepthTolerance = 0.05;
+const float kExitTurn = 0.966;
+
+// Whether a history texel `h` (the previous frame's motion) shows what a pixel tracking `m`
+// tracks: the same kind and object, no depth jump, no jump in the direction a path through
+// glass left it.
+bool showsSame(uvec4 m, uvec4 h) {
+    if (m.x != h.x)
+        return false;
+    vec2 d = motionDepths(m), hd = motionDepths(h);
+    if (d.y > 0.0 && hd.x > 0.0 && abs(d.y - hd.x) > kDepthTolerance * max(d.y, hd.x))
+        return false;
+    if (m.w != 0u && h.w != 0u &&
+        dot(octDecode(unpackUnorm2x16(m.w)), octDecode(unpackUnorm2x16(h.w))) < kExitTurn)
+        return false;
+    return true;
+}
+
 #endif

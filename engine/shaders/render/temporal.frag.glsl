@@ -24,11 +24,6 @@ uniform int uView;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outView; // with a debug view
 
-// Relative depth change that counts as a disocclusion, and the turn of a path's exit that
-// counts as a jump (15 degrees).
-const float kDepthTolerance = 0.05;
-const float kExitTurn = 0.966;
-
 vec3 toYCoCg(vec3 c) {
     return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b,
                 -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
@@ -57,30 +52,17 @@ vec3 historyCatmullRom(vec2 pos) {
     return max(sum / (a + b + c + d + e), vec3(0.0));
 }
 
-// Whether the history texel `h` shows what a pixel tracking `m` tracks.
-bool sameSurface(uvec4 m, uvec4 h) {
-    if (m.x != h.x)
-        return false;
-    vec2 d = motionDepths(m), hd = motionDepths(h);
-    if (d.y > 0.0 && hd.x > 0.0 && abs(d.y - hd.x) > kDepthTolerance * max(d.y, hd.x))
-        return false;
-    if (m.w != 0u && h.w != 0u &&
-        dot(octDecode(unpackUnorm2x16(m.w)), octDecode(unpackUnorm2x16(h.w))) < kExitTurn)
-        return false;
-    return true;
-}
-
 // Whether the history texel `h` shows what pixel p, or a neighbour, tracks now (the pixel's
 // footprint spans them: one jittered sample a frame may see its neighbour's surface, or leave
 // curved glass in another direction, without the history being stale).
 bool seenAround(ivec2 p, uvec4 m, uvec4 h) {
-    if (sameSurface(m, h))
+    if (showsSame(m, h))
         return true;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x) {
             ivec2 q = p + ivec2(x, y);
             if ((x != 0 || y != 0) && all(greaterThanEqual(q, ivec2(0))) &&
-                all(lessThan(q, ivec2(uMotionSize))) && sameSurface(texelFetch(uMotion, q, 0), h))
+                all(lessThan(q, ivec2(uMotionSize))) && showsSame(texelFetch(uMotion, q, 0), h))
                 return true;
         }
     return false;

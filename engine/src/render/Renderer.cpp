@@ -429,15 +429,24 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
 
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
-    if (scene.motion.valid())
+    if (scene.motion.valid()) {
         blackboard.put(plugin::kSceneMotion, scene.motion);
+        blackboard.put(plugin::kHistoryColor,
+                       graph.importTexture("history.color", gpu.history.previousColor().desc(),
+                                           &gpu.history.previousColor()));
+        blackboard.put(plugin::kHistoryMotion,
+                       graph.importTexture("history.motion", gpu.history.previousMotion().desc(),
+                                           &gpu.history.previousMotion()));
+    }
     for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(stage, graph, blackboard);
     fg::TextureHandle color = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
     if (frame.temporal.enabled)
         color = passes::addTemporal(graph, gpu, frame, gpu.history, color,
-                                    blackboard.get<fg::TextureHandle>(plugin::kSceneMotion));
+                                    blackboard.get<fg::TextureHandle>(plugin::kSceneMotion),
+                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryColor),
+                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryMotion));
     if (settings.shadowMapView != RenderSettings::ShadowMapView::Off && !gpu.shadows.empty())
         color = passes::addShadowMapView(graph, gpu, frame, shadows);
     passes::addTonemap(graph, gpu, frame, color, output);

@@ -38,6 +38,9 @@ struct LayerStats {
      *  internal reflection, a crossing near an outline (the reasons met where its walk stopped:
      *  a pixel may have several). */
     std::array<std::uint32_t, 4> hybridBy{};
+    /** Glass pixels that took the fresh samples: their history will be rejected (a frame that
+     *  accumulates while anything moves, Settings' fresh-samples). */
+    std::uint32_t freshPixels = 0;
 };
 
 /** Parameters (ParameterSet names, also glass-capture flags; Settings.cpp's table has each

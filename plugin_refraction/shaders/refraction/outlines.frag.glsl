@@ -6,7 +6,8 @@
 // pixels it places the outline to a fraction of a pixel, and the surface's share of each pixel
 // it crosses follows (a straight edge through a pixel box). The rest of the pixel takes the
 // colour of the neighbour across the outline. Creases (a pane's edge) are left as they are.
-// What it reads of each pixel's nearest layer the shading pass wrote (outSurface).
+// What it reads of each pixel's nearest layer the shading pass wrote (outSurface); a pixel
+// whose colour's alpha is negative took the fresh samples, which anti-alias it already.
 layout(binding = SCENE_COLOR_UNIT) uniform sampler2D uColor; // the shaded frame
 // per pixel, packed: the nearest layer's depth, glass, part across
 layout(binding = OUTLINE_SURFACE_UNIT) uniform usampler2D uSurface;
@@ -63,7 +64,9 @@ float coverage(float distance, vec2 toward) {
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 color = texelFetch(uColor, p, 0);
-    outColor = color;
+    outColor = vec4(color.rgb, 1.0);
+    if (color.a < 0.0)
+        return; // a pixel that took the fresh samples (walk_motion.glsl): anti-aliased by them
     vec3 s = nearestSurface(p), nb[4];
     // Most pixels: the four neighbours' nearest depths agree with the pixel's.
     int nearer = -1; // the neighbour on the nearest surface in front of the pixel's

@@ -1,6 +1,7 @@
 // The walk's shading pass (walk.glsl): over the glass rectangle, against the capture's mask, a
 // draw each trace sample for the trace and the hybrid, added up; where the frame accumulates,
-// one sample, and each pixel's motion by what it shows (walk_motion.glsl).
+// one sample, each pixel's motion by what it shows (walk_motion.glsl), and while anything moves
+// the pixels whose history will be rejected listed for the trace pass's fresh samples.
 #include "refraction/walk.glsl"
 #include "refraction/walk_motion.glsl"
 
@@ -110,9 +111,18 @@ void main() {
     if (stored > kLayerCapacity && uTraceSample == 0)
         atomicAdd(walkOverflowPixels, 1u);
     color = debugView(color, p, e, walk, stored, handedOver);
-    outColor = vec4(color, 1.0);
-    // What the pixel shows, for the temporal resolve (the trace pass records its own pixels').
-    if (uWriteMotion != 0 && uTraceSample == 0)
-        imageStore(uGlassMotion, p, handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT)
-                                                     : handedOverMotion(p, e));
+    // What the pixel shows, for the temporal resolve, and whether it takes the fresh samples
+    // (the trace pass records and decides its own pixels').
+    float alpha = 1.0;
+    if (uWriteMotion != 0 && uTraceSample == 0) {
+        uvec4 m = handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT) : handedOverMotion(p, e);
+        imageStore(uGlassMotion, p, m);
+#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
+        if (uFreshSamples > 1 && handedOver == 0u && takesFreshSamples(p, m, color)) {
+            color /= float(uFreshSamples);
+            alpha = kFreshAlpha;
+        }
+#endif
+    }
+    outColor = vec4(color, alpha);
 }

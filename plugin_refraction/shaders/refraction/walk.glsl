@@ -1,5 +1,5 @@
 // The walk (walk.frag.glsl, the one shading pass over the glass pixels, and the hybrid's trace
-// pass, hybrid_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
+// pass, listed_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
 // enters the nearest captured layer and walks the others (layers.glsl) in
 // texture space, refracting at every interface it crosses (or reflecting under total internal
 // reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
@@ -85,7 +85,7 @@ bool sampledPaths() {
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (hybrid_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
+// work groups of 64 (listed_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
 // row, handedOverListStart words) and the list of the pixels (x | y << 16).
 layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
@@ -102,6 +102,14 @@ uvec2 handedOverBit(ivec2 p) {
     return uvec2(i / 32u, 1u << (i % 32u));
 }
 #endif
+
+// Pixel p into the list of those that take the fresh samples (walk_counters.glsl).
+void listFresh(ivec2 p) {
+    uint slot = atomicAdd(walkFreshPixels, 1u);
+    freshPixelList[slot] = uint(p.x) | uint(p.y) << 16;
+    if (slot % 64u == 0u)
+        atomicAdd(freshGroups[0], 1u);
+}
 
 // The view direction of trace sample uTraceSample through pixel p: the pixel's centre first,
 // then jittered points of it (a fixed R2 sequence).

@@ -2,7 +2,9 @@
 // back on the CPU as LayerStats: the pixels holding more than K layers; the trace's rays, the
 // BVH nodes they visited (low, high word) and the most one pixel's ray visited in one draw; the
 // glass pixels walked, and those the hybrid traced: all, and for each of its reasons (HYBRID_*:
-// bit k counts in walkHybridBy[k]).
+// bit k counts in walkHybridBy[k]); those that take the fresh samples (walk_motion.glsl), the
+// work groups of 64 of the trace pass over them (an indirect dispatch: listed_trace.comp.glsl)
+// and their list (x | y << 16), which the buffer holds where the frame takes fresh samples.
 #ifndef REFRACTION_WALK_COUNTERS_GLSL
 #define REFRACTION_WALK_COUNTERS_GLSL
 
@@ -10,6 +12,8 @@ layout(std430, binding = WALK_COUNTERS_BINDING) buffer WalkCounters {
     uint walkOverflowPixels;
     uint walkTraceRays, walkTraceSteps[2], walkTraceMaxSteps;
     uint walkedPixels, walkHybridTraced, walkHybridBy[4];
+    uint walkFreshPixels, freshGroups[3];
+    uint freshPixelList[];
 };
 
 #endif

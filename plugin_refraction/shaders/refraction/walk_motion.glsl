@@ -103,4 +103,58 @@ uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
                               exitDirection);
 }
 
+// While a frame accumulates and anything moves (uFreshSamples > 1), the glass pixels whose
+// history the resolve will reject take uFreshSamples samples, every other pixel one: the first
+// sample (the walk's, or the hybrid trace pass's for the pixels it takes) decides from the
+// previous frame's motion and lists the pixel for the trace pass, which takes the others.
+uniform int uFreshSamples;
+const float kFreshAlpha = -1.0; // no pass of the scene writes a negative alpha
+uniform float uFreshContrast;
+layout(binding = HISTORY_UNIT) uniform sampler2D uHistoryColor;
+layout(binding = HISTORY_UNIT + 1) uniform usampler2D uHistoryMotion;
+
+// Whether the history shows what pixel p (its motion texel m) shows now, where m says it was:
+// the resolve's test (temporal.frag.glsl) with the footprint taken on the history's side, a
+// texel of the 3x3 around, as this frame's neighbours are still being drawn.
+bool historyFound(ivec2 p, uvec4 m) {
+    vec2 candidates[2];
+    int count = motionCandidates(m, vec2(p) + 0.5, candidates);
+    for (int i = 0; i < count; ++i) {
+        ivec2 hp = ivec2(floor(vec2(p) + 0.5 - candidates[i]));
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                ivec2 q = hp + ivec2(x, y);
+                if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(uMotionSize))) &&
+                    showsSame(m, texelFetch(uHistoryMotion, q, 0)))
+                    return true;
+            }
+    }
+    return false;
+}
+
+// Whether the history, where pixel p's texel m first says it was, differs from the pixel's first
+// sample `color` by more than uFreshContrast of the brighter (luminance).
+bool historyDiffers(ivec2 p, uvec4 m, vec3 color) {
+    vec2 candidates[2];
+    motionCandidates(m, vec2(p) + 0.5, candidates);
+    vec3 history =
+        textureLod(uHistoryColor, (vec2(p) + 0.5 - candidates[0]) / uMotionSize, 0.0).rgb;
+    const vec3 kLuma = vec3(0.25, 0.5, 0.25);
+    float now = dot(color, kLuma), then = dot(history, kLuma);
+    return abs(now - then) > uFreshContrast * max(max(now, then), 0.02);
+}
+
+#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
+// Whether pixel p (its motion texel m, its first sample's colour `color`) takes the fresh
+// samples: its history will be rejected, or differs from it by uFreshContrast. Listed so for
+// the later ones. Its first sample then weighs 1 / uFreshSamples, and its colour's alpha is
+// kFreshAlpha: the outline pass leaves it (its samples anti-alias its outlines).
+bool takesFreshSamples(ivec2 p, uvec4 m, vec3 color) {
+    bool fresh = !historyFound(p, m) || (uFreshContrast > 0.0 && historyDiffers(p, m, color));
+    if (fresh)
+        listFresh(p);
+    return fresh;
+}
+#endif
+
 #endif

@@ -45,9 +45,13 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
 
 SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
     const auto* motion = blackboard.find<fg::TextureHandle>(plugin::kSceneMotion);
+    const auto* historyColor = blackboard.find<fg::TextureHandle>(plugin::kHistoryColor);
+    const auto* history = blackboard.find<fg::TextureHandle>(plugin::kHistoryMotion);
     return {blackboard.get<fg::TextureHandle>(plugin::kSceneColor),
             blackboard.get<fg::TextureHandle>(plugin::kSceneDepth),
             motion ? *motion : fg::TextureHandle{},
+            historyColor ? *historyColor : fg::TextureHandle{},
+            history ? *history : fg::TextureHandle{},
             blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
             blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
             blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics)};
@@ -66,6 +70,8 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uSampled", s.traceSamples > 1 || frame->temporal.still ? 1 : 0);
     f.set("uFrameSeed", int(frame->temporal.index));
     f.set("uTracedEntry", frame->temporal.enabled ? 1 : 0);
+    f.set("uFreshSamples", freshSamples() > 1 ? freshSamples() : 0);
+    f.set("uFreshContrast", float(s.freshContrast));
     f.set("uNormalLod", float(kNormalLod));
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
@@ -181,6 +187,12 @@ int FrameContext::traceSamples() const {
     return frame->temporal.enabled ? 1 : settings.traceSamples;
 }
 
+int FrameContext::freshSamples() const {
+    const render::TemporalFrame& t = frame->temporal;
+    const bool moving = t.enabled && !t.still && t.index > 0;
+    return moving && settings.traces() && settings.debug == 0 ? settings.freshSamples : 1;
+}
+
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture) {
     b.read(buffers.extent);
@@ -228,6 +240,11 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     gpu.glass.bvh->bindForTraversal();
     bindTracedTextures(gpu);
     return {};
+}
+
+void bindHistory(const fg::Resources& r, fg::TextureHandle color, fg::TextureHandle motion) {
+    gl::bindTexture(gl::slot::kHistory, r.texture(color), 0);
+    gl::bindTexture(gl::slot::kHistory, r.texture(motion), 1);
 }
 
 void bindTracedTextures(const GpuState& gpu) {

@@ -68,8 +68,10 @@ struct FrameContext {
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
-    const gl::Program* walk = nullptr;        ///< the walk's variant (selectVariants)
-    const gl::Program* hybridTrace = nullptr; ///< the hybrid's trace pass's (selectVariants)
+    const gl::Program* walk = nullptr; ///< the walk's variant (selectVariants)
+    /** The trace over a list of pixels (listed_trace.comp.glsl, selectVariants): the hybrid's
+     *  trace pass's, the fresh samples'. */
+    const gl::Program* listedTrace = nullptr;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
      *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
     bool caustics = false;
@@ -102,6 +104,11 @@ struct FrameContext {
     void setLayerUniforms(const gl::Program& program) const;
     /** The trace's and the hybrid's samples a frame (one where the frame accumulates). */
     int traceSamples() const;
+    /** Where the frame accumulates while anything moves (its history's second frame on), the
+     *  samples a glass pixel takes where its history will be rejected (Settings::freshSamples:
+     *  the first jittered with the frame, the others traced over the pixel), every other pixel
+     *  one; 1 in any other frame, a debug view or a method that does not trace. */
+    int freshSamples() const;
 };
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
@@ -123,6 +130,8 @@ struct FrameBuffers {
  *  motion of its pixels. */
 struct SceneInputs {
     fg::TextureHandle color, depth, motion;
+    /** With motion: the history's colour and the previous frame's motion (plugin::kHistory*). */
+    fg::TextureHandle historyColor, historyMotion;
     /** The shadow atlases, bound for the frame by the engine (the caustics by their pass):
      *  what the lights' shading reads. */
     fg::TextureHandle shadowDepth, shadowGlass, shadowCaustics;
@@ -147,6 +156,9 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
                           const SceneInputs& scene, const Capture& capture);
 /** Binds them, with the glass BVH and its textures where the method traces. */
 core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in);
+/** The history's colour and motion (SceneInputs' historyColor, historyMotion) at the engine's
+ *  history units, for the fresh samples' choice (walk_motion.glsl). */
+void bindHistory(const fg::Resources& r, fg::TextureHandle color, fg::TextureHandle motion);
 /** The frame's glass textures at the traced textures' units (traced_surface.glsl), for the
  *  trace's and the photons' hits. */
 void bindTracedTextures(const GpuState& gpu);
@@ -174,7 +186,7 @@ void assignGlassIds(FrameContext& c);
 /** The capture's programs for this frame (the layers' for capacity K, the pair's), and into
  *  `c` the walk's variant for the capture, the method, the dispersion search and the lights
  *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass's for them
- *  and the walk's target (hybrid_trace.comp.glsl), built when first needed and kept. */
+ *  and the walk's target (listed_trace.comp.glsl), built when first needed and kept. */
 core::Status selectVariants(GpuState& gpu, FrameContext& c);
 
 // ---- The layer arrays (LayerStorage.cpp)
@@ -247,16 +259,21 @@ Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
 
 /** The walk over the glass pixels: the new scene colour, for the outline pass each pixel's
  *  nearest layer, and where the frame accumulates, the scene's motion with the glass pixels'
- *  (walk_motion.glsl) (writes counters; for the hybrid handedOver, the pixels it hands over). */
+ *  (walk_motion.glsl) (writes counters; handedOver where it lists pixels: the hybrid's handed
+ *  over, those that take the fresh samples). */
 struct Walked {
     fg::TextureHandle color, surface, motion;
 };
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture);
 /** The hybrid's handed-over pixels traced over the walk's colour (and motion); returns the
- *  new versions (writes counters). */
+ *  new versions (writes counters; the fresh samples' list). */
 Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture, const Walked& walked);
+/** Where c.freshSamples() > 1: the later samples of the listed pixels (those whose history
+ *  will be rejected) traced and added to the walk's colour; returns its new version. */
+Walked addFreshSamplesPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           const SceneInputs& scene, const Capture& capture, const Walked& walked);
 /** The outlines of smooth glass anti-aliased over the walk's colour, into the scene colour
  *  (the walk read it: no copy); returns its new version. */
 fg::TextureHandle addOutlinePass(fg::FrameGraph& graph, const FrameContext& c,

@@ -134,23 +134,23 @@ core::Status selectVariants(GpuState& gpu, FrameContext& c) {
         }
     }
     c.walk = &gpu.walkPrograms.at(key(c.settings.method));
-    if (c.settings.method != Settings::Method::Hybrid)
+    if (!c.settings.traces())
         return {};
-    // The hybrid's trace pass: the walk as the trace's variant, over the handed-over pixels,
-    // storing the format of the walk's target.
+    // The listed trace: the walk as the trace's variant, over the hybrid's handed-over pixels
+    // or the fresh samples' (listed_trace.comp.glsl), storing the format of the walk's target.
     const bool addsUp = c.settings.addsSamples();
     const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
-    if (!gpu.hybridTrace.count(traceKey)) {
+    if (!gpu.listedTrace.count(traceKey)) {
         std::vector<std::string> defines = walkDefines(traceKey.first, Settings::Method::Trace);
-        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list
+        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
         defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
         auto trace =
-            gl::Program::compute(*c.frame->shaders, "refraction/hybrid_trace.comp.glsl", defines);
+            gl::Program::compute(*c.frame->shaders, "refraction/listed_trace.comp.glsl", defines);
         if (!trace)
             return trace.error();
-        gpu.hybridTrace.insert_or_assign(traceKey, std::move(*trace));
+        gpu.listedTrace.insert_or_assign(traceKey, std::move(*trace));
     }
-    c.hybridTrace = &gpu.hybridTrace.at(traceKey);
+    c.listedTrace = &gpu.listedTrace.at(traceKey);
     return {};
 }
 

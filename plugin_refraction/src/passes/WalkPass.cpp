@@ -3,7 +3,8 @@
 // in: walk.frag.glsl), and shaded over a copy of the scene colour; the hybrid's walk lists the
 // pixels the layers cannot represent for its trace pass (HybridTracePass). With outlines on,
 // each pixel's nearest layer for the outline pass; where the frame accumulates, a copy of the
-// scene's motion with each glass pixel's written over it.
+// scene's motion with each glass pixel's written over it, and while anything moves the pixels
+// whose history will be rejected listed for the fresh samples (FrameContext::freshSamples).
 #include "Passes.h"
 
 #include <cstddef>
@@ -27,9 +28,21 @@ void resetHandedOver(gl::Buffer& handedOver, glm::ivec2 size) {
     handedOver.fill(4 * sizeof(std::uint32_t), bits, 0u);
 }
 
+/** The walk's counters zeroed, the fresh samples' work groups (x, y, z) with them; where the
+ *  frame takes fresh samples, grown to hold the list of a `size` frame's pixels. */
+void resetCounters(gl::Buffer& counters, glm::ivec2 size, bool fresh) {
+    const std::size_t bytes =
+        sizeof(WalkCountersGpu) +
+        (fresh ? std::size_t(size.x) * std::size_t(size.y) * sizeof(std::uint32_t) : 0);
+    if (counters.size() < bytes)
+        counters = gl::Buffer(bytes);
+    counters.fill(0, sizeof(WalkCountersGpu) / sizeof(std::uint32_t), 0u);
+    counters.fill(offsetof(WalkCountersGpu, freshGroups) + sizeof(std::uint32_t), 2, 1u);
+}
+
 struct WalkData {
     WalkInputs in;
-    fg::TextureHandle sceneMotion, out, surface, motion;
+    fg::TextureHandle sceneMotion, historyColor, historyMotion, out, surface, motion;
     fg::BufferHandle counters, handedOver;
 };
 
@@ -51,7 +64,7 @@ core::Status copySceneColor(GpuState& gpu, const gl::Texture& sceneColor, const 
 core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext& c) {
     GpuState& gpu = *c.gpu;
     const bool hybrid = c.settings.method == Settings::Method::Hybrid;
-    gpu.counters.fill(0, sizeof(WalkCountersGpu) / sizeof(std::uint32_t), 0u);
+    resetCounters(gpu.counters, c.frame->settings.size, c.freshSamples() > 1);
     const gl::Texture& out = r.texture(d.out);
     if (auto copied = copySceneColor(gpu, r.texture(d.in.sceneColor), out); !copied)
         return copied;
@@ -69,14 +82,17 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
         gl::bindTexture(gl::slot::kMotion, r.texture(d.sceneMotion));
         gl::bindImage(gl::slot::kMotionImage, r.texture(d.motion), 0, true);
     }
+    if (d.historyMotion.valid())
+        bindHistory(r, d.historyColor, d.historyMotion);
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
-    if (hybrid) {
+    if (d.handedOver.valid()) {
         resetHandedOver(gpu.handedOver, c.frame->settings.size);
         gl::bindStorage(slot::kHandedOver, gpu.handedOver);
     }
     // The trace's and the hybrid's samples one draw each, added up (their weights sum to 1; a
-    // debug view shows the first alone).
+    // debug view shows the first alone); while a frame accumulates, one, and while anything
+    // moves the fresh samples' pass takes the later ones where the first lists the pixel.
     const int draws = c.settings.traces() && c.settings.debug == 0 ? c.traceSamples() : 1;
     c.setWalkUniforms(*c.walk);
     c.setLayerUniforms(*c.walk);
@@ -98,18 +114,21 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture) {
     const glm::ivec2 size = c.frame->settings.size;
-    const bool hybrid = c.settings.method == Settings::Method::Hybrid;
     const auto& walked = graph.addPass<WalkData>(
         "refraction.walk",
         [&](fg::Builder& b, WalkData& d) {
             d.in = readWalkInputs(b, c, buffers, scene, capture);
             d.counters = b.write(buffers.counters);
-            if (hybrid)
+            if (c.settings.traces()) // the pixel lists
                 d.handedOver = b.write(buffers.handedOver);
             d.out = b.write(b.create("refraction.walk.color", walkDesc(size, c.settings)));
             if (scene.motion.valid()) { // the scene's motion, the glass pixels' written over
                 d.sceneMotion = b.read(scene.motion);
                 d.motion = b.write(b.create("refraction.motion", {size, gl::Format::RGBA32UI, 1}));
+            }
+            if (c.freshSamples() > 1) { // which pixels take them, from the history
+                d.historyColor = b.read(scene.historyColor);
+                d.historyMotion = b.read(scene.historyMotion);
             }
             if (c.settings.outlinePass()) // the nearest layer per pixel, for the outline pass
                 d.surface =
@@ -117,7 +136,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         },
         [c](const fg::Resources& r, const WalkData& d, gl::Context&) { return walk(r, d, c); });
     buffers.counters = walked.counters;
-    if (hybrid)
+    if (walked.handedOver.valid())
         buffers.handedOver = walked.handedOver;
     return {walked.out, walked.surface, walked.motion};
 }

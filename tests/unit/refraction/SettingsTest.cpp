@@ -61,6 +61,8 @@ TEST(Settings, DecodesEveryChoice) {
         {"geometry-passes",
          {"two", [](const S& s) { return s.geometryPasses == S::GeometryPasses::Two; }}},
         {"trace-samples", {"16", [](const S& s) { return s.traceSamples == 16; }}},
+        {"fresh-samples", {"8", [](const S& s) { return s.freshSamples == 8; }}},
+        {"fresh-contrast", {"0.25", [](const S& s) { return s.freshContrast == 0.25; }}},
         {"hybrid-criteria", {"5", [](const S& s) { return s.hybridCriteria == 5; }}},
         {"nearby", {"off", [](const S& s) { return !s.nearby; }}},
         {"outline-aa", {"off", [](const S& s) { return !s.outlineAntialiasing; }}},

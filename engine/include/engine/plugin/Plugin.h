@@ -100,6 +100,14 @@ inline constexpr const char* kSceneDepth = "scene.depth";
  *  (common/motion.glsl, RGBA32UI). A plugin that draws pixels of its own writes their motion
  *  into a new version (or a copy) and puts it back, as it does the colour. */
 inline constexpr const char* kSceneMotion = "scene.motion";
+/** With "scene.motion": the previous frame's motion texels, which the temporal resolve checks
+ *  its history against (RGBA32UI; meaningless on a history's first frame, temporal.index 0).
+ *  A plugin reads it to know beforehand where a pixel's history will be rejected
+ *  (common/motion.glsl's historyShows). */
+inline constexpr const char* kHistoryMotion = "history.motion";
+/** With it: the history's colour as the previous frame's resolve left it (RGBA32F; rgb, and
+ *  in a the frames it holds). */
+inline constexpr const char* kHistoryColor = "history.color";
 inline constexpr const char* kSceneVertices = "scene.vertices";
 /** The shadow atlases (fg::TextureHandle; render/Shadows.h, common/shadows.glsl), bound at
  *  their units for the whole frame: a pass whose program shades with the lights declares reads

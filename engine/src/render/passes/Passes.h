@@ -70,7 +70,8 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
  *  colour (the history's next), or with a debug view that view. */
 fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                               TemporalHistory& history, fg::TextureHandle color,
-                              fg::TextureHandle motion);
+                              fg::TextureHandle motion, fg::TextureHandle previousColor,
+                              fg::TextureHandle previousMotion);
 /** `tonemap`: exposure, ACES fit and sRGB (or the raw HDR colour) into `output`. */
 void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                 fg::TextureHandle scene, fg::TextureHandle output);

@@ -9,14 +9,11 @@ namespace render::passes {
 
 fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                               TemporalHistory& history, fg::TextureHandle color,
-                              fg::TextureHandle motion) {
+                              fg::TextureHandle motion, fg::TextureHandle previousColor,
+                              fg::TextureHandle previousMotion) {
     struct Data {
         fg::TextureHandle color, motion, previousColor, previousMotion, nextColor, nextMotion, view;
     };
-    const fg::TextureHandle previousColor = graph.importTexture(
-        "history.color", history.previousColor().desc(), &history.previousColor());
-    const fg::TextureHandle previousMotion = graph.importTexture(
-        "history.motion", history.previousMotion().desc(), &history.previousMotion());
     const fg::TextureHandle nextColor =
         graph.importTexture("history.color.next", history.nextColor().desc(), &history.nextColor());
     const fg::TextureHandle nextMotion = graph.importTexture(

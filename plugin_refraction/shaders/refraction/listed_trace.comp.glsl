@@ -1,0 +1,41 @@
+// The trace over a list of pixels (ListedTracePasses.cpp), traced as the trace traces them
+// (walk.glsl compiled with LAYER_METHOD 4), a dispatch each trace sample, over the walk's
+// colour: the pixels the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD 5), or
+// (uFreshList) the later samples of the pixels that take the fresh samples (walk_motion.glsl).
+// A list, not the rectangle again: the trace's loops run as long as their longest lane, and a
+// listed pixel among others would hold its whole block of lanes through them (a CPU
+// rasteriser's 4x4 block, a GPU's warp).
+// The walk left the glass motion this pass reads in the motion image: the layers' motions are
+// one storage block past a compute shader's 16 (layers.glsl).
+#define GLASS_MOTION_READ
+#include "refraction/walk.glsl"
+#include "refraction/walk_motion.glsl"
+
+layout(local_size_x = 64) in;
+uniform int uFreshList; // 1: over the pixels that take the fresh samples
+// the walk's colour target
+layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    bool fresh = uFreshList != 0;
+    if (i >= (fresh ? walkFreshPixels : handedOverCount))
+        return;
+    uint pixel = fresh ? freshPixelList[i] : handedOverWords[handedOverListStart() + i];
+    ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
+    Entry e;
+    pixelEntry(p, e); // the walk found it
+    Walk walk;
+    vec4 color = vec4(tracedSample(p, e, walk), 1.0);
+    if (uTraceSample > 0) {
+        vec4 before = imageLoad(uShaded, p);
+        color = vec4(color.rgb + before.rgb, before.a);
+    }
+    if (uWriteMotion != 0 && uTraceSample == 0) {
+        uvec4 m = glassPixelMotion(p, e, walk, gEndT);
+        imageStore(uGlassMotion, p, m);
+        if (uFreshSamples > 1 && takesFreshSamples(p, m, color.rgb))
+            color = vec4(color.rgb / float(uFreshSamples), kFreshAlpha);
+    }
+    imageStore(uShaded, p, color);
+}
