@@ -71,6 +71,11 @@ core::Result<std::unique_ptr<Environment>> Environment::create(const asset::HdrI
     const std::vector<float> rgba = toRgba(image);
     env->mSource.upload(0, rgba.data());
     env->mSource.generateMipmaps();
+    // The prefilter's compute reads those levels. llvmpipe generates them by blits its
+    // rasteriser runs later, and a dispatch need not wait for them: under load the levels were
+    // read unfinished now and then (the environment's rough reflections came out darker, in
+    // about 1 run of 30 of Layers.TheReferenceAppliesNormalMapsToo). Once, at load.
+    gl::finish();
     env->mSource.setSampling(gl::Filter::LinearMipmap, gl::Wrap::Repeat);
     const int levels = std::min(kPrefilterLevels, env->mSource.levels());
     env->mPrefiltered = gl::Texture({size, gl::Format::RGBA16F, levels});

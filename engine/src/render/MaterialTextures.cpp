@@ -77,6 +77,10 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
             (asSrgb ? result.mSrgb : result.mLinear)[i] = std::move(texture);
         }
     }
+    // The trace's compute passes read these levels: finished before any dispatch can (as the
+    // environment's, Environment::create). Once, at load.
+    if (!model.textures.empty())
+        gl::finish();
     return result;
 }
 

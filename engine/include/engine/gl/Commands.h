@@ -110,7 +110,8 @@ enum Barrier : std::uint32_t {
 };
 void memoryBarrier(std::uint32_t barriers);
 
-/** Blocks until the GPU has finished all work (tools and tests only). */
+/** Blocks until the GPU has finished all work: tools and tests, and loading (a compute pass
+ *  reading mip levels just generated: render/Environment.cpp). */
 void finish();
 
 } // namespace gl
