@@ -1,14 +1,15 @@
 // Temporal accumulation (docs/methods.md, "Temporal accumulation"): the motion vectors of a
 // deforming, moving character seen by a moving camera against finite differences of the CPU
-// deformation; still frames that average exactly to the mean of their jittered samples and
-// converge as many samples in one frame do; no trail behind a character that moves off the
-// background; camera cuts that start the history over.
-#include "WorldRig.h"
+// deformation (skinned and morphed, refined by OpenSubdiv, instanced); still frames that average
+// exactly to the mean of their jittered samples and converge as many samples in one frame do; no
+// trail behind a character that moves off the background; camera cuts that start the history over.
+#include "MatrixWorlds.h"
 #include "support/GlTest.h"
 #include "support/TestSupport.h"
 
 #include "engine/asset/HdrImage.h"
 #include "engine/deform/CpuDeformer.h"
+#include "engine/deform/Subdivision.h"
 #include "engine/render/Shared.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <optional>
 
 namespace {
 
@@ -37,51 +40,76 @@ glm::dvec3 pixelOf(const glm::mat4& viewProjection, const glm::dvec3& p, int siz
     return {(clip.x / clip.w * 0.5 + 0.5) * size, (clip.y / clip.w * 0.5 + 0.5) * size, clip.w};
 }
 
-TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
-    // The default figure: skinned, a breathing morph target, walking; placed by a transform
-    // that moves too, seen by a camera that orbits a little between the two frames.
-    constexpr int kSize = 160;
-    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
-    rig.set("method", "opaque"); // drawn by the engine's opaque pass
+/** How the GPU's motion of a moving character agrees with finite differences of its CPU
+ *  deformation (refined by OpenSubdiv as the GPU refines it where `subdivision` > 0). */
+struct MotionAgreement {
+    std::size_t compared = 0, close = 0;
+    double worst = 0.0; ///< pixels
+};
+
+/** Renders `rig`'s character at t0 and, moved by `move` and seen by the camera turned a little,
+ *  at t1 = t0 + 1/30 s (the opaque pass, which writes every drawn surface's motion), then
+ *  compares each drawn triangle's centroid, deformed on the CPU at both times: where its pixel
+ *  shows it (its depth there), the GPU's motion must be the centroid's change of pixel
+ *  position. */
+MotionAgreement motionAgainstCpu(WorldRig& rig, int size, int subdivision, double t0,
+                                 const std::function<void(scene::Character&)>& move) {
+    rig.set("method", "opaque");
     rig.temporal.enabled = true;
-    const double t0 = 0.4, t1 = t0 + 1.0 / 30.0;
+    if (subdivision > 0)
+        rig.setSubdivisionLevel(subdivision);
+    const double t1 = t0 + 1.0 / 30.0;
     const render::Camera first = rig.camera();
-    rig.character(0).placement.translation = {0.0, 0.0, 0.0};
     rig.renderHdr(t0);
     const scene::Character before = rig.character(0);
-    rig.character(0).placement.translation = {0.03, 0.01, -0.02};
+    move(rig.character(0));
     render::Camera second = first;
     second.view = first.view * glm::rotate(glm::mat4(1.0f), 0.02f, glm::vec3(0.0f, 1.0f, 0.0f));
     rig.setCamera(second);
     rig.renderHdr(t1);
     const std::vector<std::uint32_t> texels = rig.renderer().lastMotion().downloadUint();
 
-    // Every triangle's centroid, deformed on the CPU at both times: where its pixel shows it
-    // (its depth there), the GPU's motion must be the centroid's change of pixel position.
+    // A primitive's deformed vertices in the world, refined where the frame is.
+    auto placed = [&](const deform::DeformedInstance& instance, std::size_t p,
+                      const deform::Subdivision* refined) {
+        deform::DeformedPrimitive deformed = instance.primitives[p];
+        if (refined) {
+            const deform::RefinedSurface surface =
+                deform::refineCage(*refined, deformed.positions, deformed.tangents);
+            deformed = {surface.positions, surface.normals, surface.tangents};
+        }
+        return deform::toWorld(deformed, instance.meshToWorld);
+    };
     const auto now = deform::deformCharacter(rig.character(0), t1);
     const auto then = deform::deformCharacter(before, t0);
     const scene::Model& model = *rig.character(0).model;
-    std::size_t compared = 0, close = 0;
-    double worst = 0.0;
+    MotionAgreement agreement;
     for (std::size_t i = 0; i < now.size(); ++i)
         for (std::size_t p = 0; p < now[i].primitives.size(); ++p) {
-            const auto a = deform::toWorld(now[i].primitives[p], now[i].meshToWorld);
-            const auto b = deform::toWorld(then[i].primitives[p], then[i].meshToWorld);
-            const scene::Primitive& primitive =
-                model.meshes[std::size_t(now[i].mesh)].primitives[p];
-            const auto& indices = primitive.indices;
+            const scene::Primitive& source = model.meshes[std::size_t(now[i].mesh)].primitives[p];
+            std::optional<deform::Subdivision> refined;
+            if (subdivision > 0) {
+                auto built = deform::buildSubdivision(source, subdivision, "test primitive");
+                EXPECT_TRUE(built.ok());
+                if (!built.ok())
+                    return agreement;
+                refined = std::move(*built);
+            }
+            const auto a = placed(now[i], p, refined ? &*refined : nullptr);
+            const auto b = placed(then[i], p, refined ? &*refined : nullptr);
+            const auto& indices = refined ? refined->rest.indices : source.indices;
             for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
                 glm::dvec3 ca(0.0), cb(0.0);
                 for (int k = 0; k < 3; ++k) {
                     ca += a.positions[indices[t + std::size_t(k)]] / 3.0;
                     cb += b.positions[indices[t + std::size_t(k)]] / 3.0;
                 }
-                const glm::dvec3 q = pixelOf(second.viewProjection(), ca, kSize);
-                const glm::dvec3 r = pixelOf(first.viewProjection(), cb, kSize);
+                const glm::dvec3 q = pixelOf(second.viewProjection(), ca, size);
+                const glm::dvec3 r = pixelOf(first.viewProjection(), cb, size);
                 const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
-                if (x < 1 || y < 1 || x >= kSize - 1 || y >= kSize - 1)
+                if (x < 1 || y < 1 || x >= size - 1 || y >= size - 1)
                     continue;
-                const std::uint32_t* m = &texels[(std::size_t(y) * kSize + std::size_t(x)) * 4];
+                const std::uint32_t* m = &texels[(std::size_t(y) * size + std::size_t(x)) * 4];
                 if ((m[0] >> render::kMotionKindShift) != std::uint32_t(render::MotionKind::Opaque))
                     continue;
                 const double depth = halfToFloat(m[2] & 0xFFFFu);
@@ -90,15 +118,53 @@ TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
                 const glm::dvec2 expected(q.x - r.x, q.y - r.y);
                 const glm::dvec2 gpu(halfToFloat(m[1] & 0xFFFFu), halfToFloat(m[1] >> 16));
                 const double error = glm::length(gpu - expected);
-                ++compared;
+                ++agreement.compared;
                 // The pixel's sample is up to a pixel from the centroid: the motion varies that
                 // little over it.
-                close += error < 0.15 + 0.1 * glm::length(expected) ? 1 : 0;
-                worst = std::max(worst, error);
+                agreement.close += error < 0.15 + 0.1 * glm::length(expected) ? 1 : 0;
+                agreement.worst = std::max(agreement.worst, error);
             }
         }
-    ASSERT_GT(compared, 100u);
-    EXPECT_GT(double(close) / double(compared), 0.95) << "worst error " << worst << " px";
+    return agreement;
+}
+
+TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
+    // The default figure: skinned, a breathing morph target, walking; placed by a transform
+    // that moves too, seen by a camera that orbits a little between the two frames.
+    constexpr int kSize = 160;
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
+    rig.character(0).placement.translation = {0.0, 0.0, 0.0};
+    const MotionAgreement a = motionAgainstCpu(rig, kSize, 0, 0.4, [](scene::Character& c) {
+        c.placement.translation = {0.03, 0.01, -0.02};
+    });
+    ASSERT_GT(a.compared, 100u);
+    EXPECT_GT(double(a.close) / double(a.compared), 0.95) << "worst error " << a.worst << " px";
+}
+
+TEST_F(Temporal, MotionVectorsOfTheRefinedSurfaceMatchItsCpuRefinement) {
+    // The same figure refined by OpenSubdiv on the GPU every frame: the previous frame's
+    // refined surface, not its cage, is where each pixel's surface was.
+    constexpr int kSize = 160;
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
+    rig.character(0).placement.translation = {0.0, 0.0, 0.0};
+    const MotionAgreement a = motionAgainstCpu(rig, kSize, 1, 0.4, [](scene::Character& c) {
+        c.placement.translation = {0.03, 0.01, -0.02};
+    });
+    ASSERT_GT(a.compared, 400u);
+    EXPECT_GT(double(a.close) / double(a.compared), 0.98) << "worst error " << a.worst << " px";
+}
+
+TEST_F(Temporal, EachInstanceMovesByItsOwnTransform) {
+    // One sphere drawn four times (EXT_mesh_gpu_instancing) by a character that turns: each
+    // instance moves its own way, and each must carry its own previous transform.
+    constexpr int kSize = 128;
+    WorldRig rig(test::matrix::instanced(), context(), kSize);
+    const MotionAgreement a = motionAgainstCpu(rig, kSize, 0, 0.0, [](scene::Character& c) {
+        c.placement.rotation = glm::angleAxis(0.08, glm::dvec3(0.0, 1.0, 0.0));
+        c.placement.translation = {0.02, -0.01, 0.0};
+    });
+    ASSERT_GT(a.compared, 200u);
+    EXPECT_GT(double(a.close) / double(a.compared), 0.95) << "worst error " << a.worst << " px";
 }
 
 TEST_F(Temporal, StillFramesAverageToTheMeanOfTheirJitteredSamples) {
