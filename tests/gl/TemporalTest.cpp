@@ -129,28 +129,28 @@ MotionAgreement motionAgainstCpu(WorldRig& rig, int size, int subdivision, doubl
     return agreement;
 }
 
-TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
-    // The default figure: skinned, a breathing morph target, walking; placed by a transform
-    // that moves too, seen by a camera that orbits a little between the two frames.
+/** The default figure (skinned, a breathing morph target, walking) refined to `subdivision`,
+ *  placed by a transform that moves too, seen by a camera that orbits a little between the two
+ *  frames: its motion against the CPU's. */
+MotionAgreement walkingFigureMotion(gl::Context& context, int subdivision) {
     constexpr int kSize = 160;
-    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context, kSize);
     rig.character(0).placement.translation = {0.0, 0.0, 0.0};
-    const MotionAgreement a = motionAgainstCpu(rig, kSize, 0, 0.4, [](scene::Character& c) {
+    return motionAgainstCpu(rig, kSize, subdivision, 0.4, [](scene::Character& c) {
         c.placement.translation = {0.03, 0.01, -0.02};
     });
+}
+
+TEST_F(Temporal, MotionVectorsMatchFiniteDifferencesOfTheCpuDeformation) {
+    const MotionAgreement a = walkingFigureMotion(context(), 0);
     ASSERT_GT(a.compared, 100u);
     EXPECT_GT(double(a.close) / double(a.compared), 0.95) << "worst error " << a.worst << " px";
 }
 
 TEST_F(Temporal, MotionVectorsOfTheRefinedSurfaceMatchItsCpuRefinement) {
-    // The same figure refined by OpenSubdiv on the GPU every frame: the previous frame's
-    // refined surface, not its cage, is where each pixel's surface was.
-    constexpr int kSize = 160;
-    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), kSize);
-    rig.character(0).placement.translation = {0.0, 0.0, 0.0};
-    const MotionAgreement a = motionAgainstCpu(rig, kSize, 1, 0.4, [](scene::Character& c) {
-        c.placement.translation = {0.03, 0.01, -0.02};
-    });
+    // Refined by OpenSubdiv on the GPU every frame: the previous frame's refined surface, not
+    // its cage, is where each pixel's surface was.
+    const MotionAgreement a = walkingFigureMotion(context(), 1);
     ASSERT_GT(a.compared, 400u);
     EXPECT_GT(double(a.close) / double(a.compared), 0.98) << "worst error " << a.worst << " px";
 }
