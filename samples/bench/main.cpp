@@ -182,16 +182,23 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
             top += item;
         }
         const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
+        char timesOpaque[16] = "-"; // without the opaque run: unknown
+        if (ratio > 0.0)
+            std::snprintf(timesOpaque, sizeof timesOpaque, "%.2f", ratio);
         const auto off = withoutTemporal.find(r.method);
         const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
                                          ? median / off->second
                                          : 0.0;
         char temporal[80] = "-";
-        if (r.temporal)
-            std::snprintf(temporal, sizeof temporal, "%.3f, %.1f MiB, fresh %.1f%%", temporalRatio,
+        if (r.temporal) {
+            char times[16] = "-"; // without the run without it (--temporal on alone): unknown
+            if (temporalRatio > 0.0)
+                std::snprintf(times, sizeof times, "%.3f", temporalRatio);
+            std::snprintf(temporal, sizeof temporal, "%s, %.1f MiB, fresh %.1f%%", times,
                           double(r.historyBytes) / 1048576.0,
                           100.0 * double(r.layers.freshPixels) /
                               std::max(double(r.layers.walkedPixels), 1.0));
+        }
         const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
         char layers[48] = "-";
         if (r.layers.capacity > 0)
@@ -215,16 +222,17 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                           "%.1f, outline %.1f)",
                           share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
                           share(by[3]));
-        std::printf(
-            "| %s | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %s | %s | %s "
-            "| %s |\n",
-            r.label().c_str(), level, characters, triangles, median, p95, ratio, cpu, engine,
-            double(r.transientBytes) / 1048576.0, temporal, layers, trace, top.c_str());
+        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %s | %.2f | %.2f | %.1f | %s | %s | %s "
+                    "| %s |\n",
+                    r.label().c_str(), level, characters, triangles, median, p95, timesOpaque, cpu,
+                    engine, double(r.transientBytes) / 1048576.0, temporal, layers, trace,
+                    top.c_str());
         std::fflush(stdout);
         rows.push_back(
             {{"method", r.label()},
              {"temporal", r.temporal},
-             {"ratio_to_without_temporal", temporalRatio},
+             {"ratio_to_without_temporal",
+              temporalRatio > 0.0 ? nlohmann::json(temporalRatio) : nlohmann::json()},
              {"history_bytes", r.historyBytes},
              {"level", level},
              {"characters", characters},
@@ -233,7 +241,7 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
              {"p95_ms", p95},
              {"cpu_ms", cpu},
              {"animate_record_ms", engine},
-             {"ratio_to_opaque", ratio},
+             {"ratio_to_opaque", ratio > 0.0 ? nlohmann::json(ratio) : nlohmann::json()},
              {"transient_bytes", r.transientBytes},
              {"layer_capacity", r.layers.capacity},
              {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
