@@ -46,7 +46,9 @@ glm::vec2 TemporalHistory::jitter(std::uint32_t index) {
 
 Camera TemporalHistory::jittered(const Camera& camera, glm::vec2 jitter, glm::ivec2 size) {
     Camera c = camera;
-    // Clip x and y move by 2 * jitter / size times w: the whole image moves by `jitter` pixels.
+    // The third column multiplies the view depth, which is -w: clip x and y move by -2 * jitter
+    // / size times w, the whole image by -jitter pixels, and each pixel's centre sees what the
+    // unjittered frame shows at its centre plus jitter.
     c.projection[2][0] += 2.0f * jitter.x / float(size.x);
     c.projection[2][1] += 2.0f * jitter.y / float(size.y);
     return c;

@@ -71,6 +71,9 @@ uniform int uTraceSamples;   // trace-samples
 // accumulates (uFrameSeed seeds each frame's).
 uniform int uSampled;
 uniform int uFrameSeed;
+// The frame's jitter where it accumulates: pixel p's centre sees what the unjittered frame shows
+// at p + 0.5 + uFrameJitter (TemporalHistory::jittered).
+uniform vec2 uFrameJitter;
 // Every sample's entry traced from the camera, as the trace's later samples are: a frame that
 // accumulates (the capture's entry, a rasterised fragment, is off near outlines by the
 // triangles' interpolation, a bias no number of frames averages away).
@@ -111,12 +114,17 @@ void listFresh(ivec2 p) {
         atomicAdd(freshGroups[0], 1u);
 }
 
-// The view direction of trace sample uTraceSample through pixel p: the pixel's centre first,
-// then jittered points of it (a fixed R2 sequence).
+// The view direction of trace sample uTraceSample through pixel p: the pixel's centre first
+// (the frame's jittered one where it accumulates), then points of the pixel (an R2 sequence),
+// placed in the pixel itself rather than around its jittered centre. A frame that accumulates
+// turns the sequence by its index in the history (a Cranley-Patterson rotation), so that a
+// pixel sampled on frame after frame covers its area rather than the same points.
 vec3 sampleView(ivec2 p, vec3 centre) {
     if (uTraceSample == 0)
         return centre;
-    vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403)) - 0.5;
+    vec2 turn = fract(float(uFrameSeed) * vec2(0.6180340, 0.4142136));
+    vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403) + turn) - 0.5 -
+                  uFrameJitter;
     vec4 sub =
         uInverseProjection * vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     return normalize(sub.xyz / sub.w);

@@ -113,7 +113,9 @@ struct TemporalFrame {
     std::uint32_t index = 0;
     /** Nothing moved since the previous frame: camera, time, placements and world the same. */
     bool still = false;
-    glm::vec2 jitter{0.0f}; ///< pixels (each in -0.5..0.5) FrameInfo::camera is offset by
+    /** Pixels (each in -0.5..0.5) FrameInfo::camera is offset by: each pixel's centre sees what
+     *  the unjittered frame shows at its centre plus this. */
+    glm::vec2 jitter{0.0f};
     /** World -> clip without the jitter, this frame's and the previous frame's (this frame's
      *  on the history's first): what motion vectors measure with. */
     glm::mat4 viewProjection{1.0f}, previousViewProjection{1.0f};
