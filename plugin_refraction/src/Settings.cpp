@@ -137,6 +137,7 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .label = "Fresh where the history differs",
          .min = 0.0,
          .max = 1.0,
+         .defaultValue = 0.3,
          .help = "with fresh-samples: also where the first sample's luminance differs from the "
                  "history's by more than this share of the brighter; 0: only where the history "
                  "will be rejected"},

@@ -59,7 +59,7 @@ struct Settings {
      *  reject its history (FrameContext::freshSamples). */
     int freshSamples = 4;
     /** And where the first sample's luminance differs from its history's by this share. */
-    double freshContrast = 0.0;
+    double freshContrast = 0.3;
     int hybridCriteria = kHandAll; ///< hybrid: what hands a pixel to the trace (HybridCriterion)
     bool nearby = true;
     bool outlineAntialiasing = true; ///< the layered path's outline pass (layers_outline)
