@@ -446,7 +446,7 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     // limb uncovers, a path that now leaves the glass another way) take four samples instead
     // of one: a share of the glass, and the frames score higher. Their later samples lie in the
     // pixel itself: placed around the frame's jittered centre (a wider filter than the
-    // reference's pixel), they gained 0.40 dB instead of 0.86.
+    // reference's pixel), they gained 0.31 dB instead of 0.81.
     double share = 0.0, none = 0.0;
     const double fresh = figureWalking(context(), 4, share),
                  one = figureWalking(context(), 1, none);
@@ -459,11 +459,12 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     EXPECT_GT(fresh, one + 0.6);
 }
 
-TEST_F(Temporal, FreshSamplesCoverTheirPixelFrameAfterFrame) {
+TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     // A pixel listed on frame after frame (its first sample differing from its history) takes
-    // its later samples over the pixel itself, at points turned every frame: listing more of
-    // CesiumMan's glass does not lose to listing less. With the same points every frame it lost
-    // 0.27 dB (0.30 with them also around the frame's jittered centre); it gains 0.11.
+    // its later samples over the pixel itself, at points turned every frame, and the resolve
+    // weighs them as the samples they are: listing 36% of CesiumMan's glass gains 1.44 dB over
+    // listing the 10% whose history is rejected. With the same points every frame it gained
+    // 1.12, with them around the frame's jittered centre 0.89, weighed as one sample 0.11.
     GLASS_REQUIRE_SHARED();
     auto model =
         asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
@@ -480,7 +481,7 @@ TEST_F(Temporal, FreshSamplesCoverTheirPixelFrameAfterFrame) {
                 "glass (contrast 0.3), %.2f dB on %.1f%% (rejected history only)\n",
                 wide, 100.0 * listed, narrow, 100.0 * rejected);
     EXPECT_GT(listed, rejected + 0.05);
-    EXPECT_GT(wide, narrow);
+    EXPECT_GT(wide, narrow + 1.25);
 }
 
 TEST_F(Temporal, EveryMethodAccumulatesWhileLitCharactersWalkPast) {

@@ -7,7 +7,8 @@
 // of the frame's 3x3 neighbourhood to 0.75 of its deviation (variance clipping in YCoCg) and
 // weighted uHistoryWeight (1 - 1/n over its first n frames); while nothing moves (uStill) it is
 // read where it lies, unclipped, and every frame weighs the same: N still frames average to N
-// samples of one frame.
+// samples of one frame. A pixel whose colour's alpha is -k holds the mean of k samples (a
+// plugin's fresh samples) and weighs k frames' samples, against the history's samples.
 #include "common/motion.glsl"
 
 layout(binding = SOURCE_UNIT) uniform sampler2D uColor;
@@ -77,9 +78,11 @@ vec3 motionColor(vec2 motion) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec3 color = texelFetch(uColor, p, 0).rgb;
+    vec4 source = texelFetch(uColor, p, 0);
+    vec3 color = source.rgb;
     if (any(isnan(color)) || any(isinf(color)))
         color = vec3(0.0);
+    float samples = source.a < 0.0 ? -source.a : 1.0;
     uvec4 m = texelFetch(uMotion, p, 0);
     vec2 candidates[2];
     int count = motionCandidates(m, vec2(p) + 0.5, candidates);
@@ -96,12 +99,15 @@ void main() {
                 seenAround(p, m, texelFetch(uHistoryMotion, hp, 0)));
     }
     bool clipped = false;
-    vec4 result = vec4(color, 1.0);
+    // The history's alpha: the samples it holds (counted up to the weight's equivalent while
+    // anything moves).
+    float cap = 1.0 / max(1.0 - uHistoryWeight, 1e-3);
+    vec4 result = vec4(color, uStill != 0 ? samples : min(samples, cap));
     if (kept) {
         float n = texelFetch(uHistoryColor, hp, 0).a;
-        if (uStill != 0) { // every frame the same weight: the history is the mean of n
+        if (uStill != 0) { // every sample the same weight: the history is the mean of n
             vec3 history = texelFetch(uHistoryColor, hp, 0).rgb;
-            result = vec4(history + (color - history) / (n + 1.0), n + 1.0);
+            result = vec4(mix(history, color, samples / (n + samples)), n + samples);
         } else {
             vec3 history = historyCatmullRom(previous);
             if (uReject != 0) { // variance clipping toward the neighbourhood's mean
@@ -124,9 +130,10 @@ void main() {
                     clipped = outside > 1.5;
                 }
             }
-            float cap = 1.0 / max(1.0 - uHistoryWeight, 1e-3);
-            float alpha = max(1.0 - uHistoryWeight, 1.0 / (n + 1.0));
-            result = vec4(mix(history, color, alpha), min(n + 1.0, cap));
+            // The history weighs as cap - 1 samples would (at most n): one sample takes
+            // 1 - uHistoryWeight of the result, k samples k / (k + cap - 1).
+            float alpha = samples / (samples + min(n, cap - 1.0));
+            result = vec4(mix(history, color, alpha), min(n + samples, cap));
         }
     }
     outColor = result;

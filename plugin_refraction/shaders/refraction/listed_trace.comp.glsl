@@ -35,7 +35,7 @@ void main() {
         uvec4 m = glassPixelMotion(p, e, walk, gEndT);
         imageStore(uGlassMotion, p, m);
         if (uFreshSamples > 1 && takesFreshSamples(p, m, color.rgb))
-            color = vec4(color.rgb / float(uFreshSamples), kFreshAlpha);
+            color = vec4(color.rgb / float(uFreshSamples), freshAlpha());
     }
     imageStore(uShaded, p, color);
 }

@@ -65,8 +65,10 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 color = texelFetch(uColor, p, 0);
     outColor = vec4(color.rgb, 1.0);
-    if (color.a < 0.0)
-        return; // a pixel that took the fresh samples (walk_motion.glsl): anti-aliased by them
+    if (color.a < 0.0) { // a pixel that took the fresh samples (walk_motion.glsl): anti-aliased
+        outColor.a = color.a; // by them; the resolve reads how many
+        return;
+    }
     vec3 s = nearestSurface(p), nb[4];
     // Most pixels: the four neighbours' nearest depths agree with the pixel's.
     int nearer = -1; // the neighbour on the nearest surface in front of the pixel's

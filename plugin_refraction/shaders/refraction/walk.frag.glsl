@@ -120,7 +120,7 @@ void main() {
 #if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
         if (uFreshSamples > 1 && handedOver == 0u && takesFreshSamples(p, m, color)) {
             color /= float(uFreshSamples);
-            alpha = kFreshAlpha;
+            alpha = freshAlpha();
         }
 #endif
     }

@@ -108,7 +108,11 @@ uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
 // sample (the walk's, or the hybrid trace pass's for the pixels it takes) decides from the
 // previous frame's motion and lists the pixel for the trace pass, which takes the others.
 uniform int uFreshSamples;
-const float kFreshAlpha = -1.0; // no pass of the scene writes a negative alpha
+// A pixel that takes them: its colour's alpha, minus the samples it will average (the resolve,
+// render/temporal.frag.glsl, weighs it so; no other pass of the scene writes a negative alpha).
+float freshAlpha() {
+    return -float(uFreshSamples);
+}
 uniform float uFreshContrast;
 layout(binding = HISTORY_UNIT) uniform sampler2D uHistoryColor;
 layout(binding = HISTORY_UNIT + 1) uniform usampler2D uHistoryMotion;
@@ -148,7 +152,7 @@ bool historyDiffers(ivec2 p, uvec4 m, vec3 color) {
 // Whether pixel p (its motion texel m, its first sample's colour `color`) takes the fresh
 // samples: its history will be rejected, or differs from it by uFreshContrast. Listed so for
 // the later ones. Its first sample then weighs 1 / uFreshSamples, and its colour's alpha is
-// kFreshAlpha: the outline pass leaves it (its samples anti-alias its outlines).
+// freshAlpha(): the outline pass leaves it (its samples anti-alias its outlines).
 bool takesFreshSamples(ivec2 p, uvec4 m, vec3 color) {
     bool fresh = !historyFound(p, m) || (uFreshContrast > 0.0 && historyDiffers(p, m, color));
     if (fresh)
