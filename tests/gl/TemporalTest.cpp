@@ -466,11 +466,12 @@ TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     // listing the 10% whose history is rejected. With the same points every frame it gained
     // 1.12, with them around the frame's jittered centre 0.89, weighed as one sample 0.11.
     GLASS_REQUIRE_SHARED();
-    auto model =
+    auto loaded =
         asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());
-    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    const auto model = std::make_shared<const scene::Model>(std::move(*loaded));
     auto world = [&] {
-        scene::World w = scene::singleCharacterWorld(std::make_shared<const scene::Model>(*model));
+        scene::World w = scene::singleCharacterWorld(model);
         w.characters[0].clip = 0;
         return w;
     };

@@ -69,7 +69,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     // sampled on still frames (which converge to the reference), deterministic while moving.
     f.set("uSampled", s.traceSamples > 1 || frame->temporal.still ? 1 : 0);
     f.set("uFrameSeed", int(frame->temporal.index));
-    f.set("uFrameJitter", frame->temporal.enabled ? frame->temporal.jitter : glm::vec2(0.0f));
+    f.set("uFrameJitter", frame->temporal.jitter); // zero where the frame does not accumulate
     f.set("uTracedEntry", frame->temporal.enabled ? 1 : 0);
     f.set("uFreshSamples", freshSamples() > 1 ? freshSamples() : 0);
     f.set("uFreshContrast", float(s.freshContrast));
