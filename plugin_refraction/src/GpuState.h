@@ -112,7 +112,7 @@ struct GpuState {
     std::map<WalkKey, gl::Program> walkPrograms;
     /** The trace over a list of pixels, by the same key and whether its target adds samples
      *  up. */
-    std::map<std::pair<WalkKey, bool>, gl::Program> listedTrace;
+    std::map<std::pair<WalkKey, bool>, gl::Program> listedSamples;
     /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
      *  word a pixel; reallocated when the viewport grows (the trace's listed pass binds it). */
     gl::Buffer handedOver;

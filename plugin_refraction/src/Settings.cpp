@@ -121,8 +121,8 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .max = 64,
          .defaultValue = 1,
          .help = "trace and hybrid: rays per glass pixel, the first at its centre, the others "
-                 "jittered (the hybrid's walk enters them on the plane of the pixel's nearest "
-                 "layer)"},
+                 "jittered (the hybrid's walk enters each where the layers around it place the "
+                 "surface)"},
         {.name = "fresh-samples",
          .label = "Samples without history",
          .type = Type::Int,

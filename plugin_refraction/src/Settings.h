@@ -56,7 +56,7 @@ struct Settings {
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     int traceSamples = 1;  ///< trace and hybrid: rays per glass pixel
     /** Accumulating while anything moves: samples a glass pixel takes where the resolve will
-     *  reject its history (FrameContext::freshSamples). */
+     *  reject its history (FrameContext::freshSamples), with every method. */
     int freshSamples = 4;
     /** And where the first sample's luminance differs from its history's by this share. */
     double freshContrast = 0.3;

@@ -404,14 +404,14 @@ TEST_F(Temporal, HalfAPixelOfJitterWhileMovingScoresBetterThanTheWhole) {
     EXPECT_GT(half, whole + 0.25);
 }
 
-/** A character walking at 30 frames a second from `start`, the trace at 96x96, accumulating
+/** A character walking at 30 frames a second from `start`, `method` at 96x96, accumulating
  *  with `fresh` samples where the history is rejected or differs from the first sample by
  *  `contrast`: the mean masked PSNR against the reference of its frames 12-15; into
  *  `freshShare`, the share of their glass pixels that took them. */
-double walking(gl::Context& context, scene::World world, double start, int fresh, double contrast,
-               double& freshShare) {
+double walking(gl::Context& context, scene::World world, double start, const char* method,
+               int fresh, double contrast, double& freshShare) {
     WorldRig rig(std::move(world), context, 96);
-    rig.set("method", "trace");
+    rig.set("method", method);
     rig.set("glass", "all");
     rig.set("fresh-samples", std::to_string(fresh));
     rig.set("fresh-contrast", std::to_string(contrast));
@@ -437,8 +437,9 @@ double walking(gl::Context& context, scene::World world, double start, int fresh
 }
 
 /** walking() on the default figure, fresh samples only where the history is rejected. */
-double figureWalking(gl::Context& context, int fresh, double& freshShare) {
-    return walking(context, test::generatedWorld("glass_figure.glb"), 0.5, fresh, 0.0, freshShare);
+double figureWalking(gl::Context& context, const char* method, int fresh, double& freshShare) {
+    return walking(context, test::generatedWorld("glass_figure.glb"), 0.5, method, fresh, 0.0,
+                   freshShare);
 }
 
 TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
@@ -448,8 +449,8 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     // pixel itself: placed around the frame's jittered centre (a wider filter than the
     // reference's pixel), they gained 0.31 dB instead of 0.81.
     double share = 0.0, none = 0.0;
-    const double fresh = figureWalking(context(), 4, share),
-                 one = figureWalking(context(), 1, none);
+    const double fresh = figureWalking(context(), "trace", 4, share),
+                 one = figureWalking(context(), "trace", 1, none);
     std::printf("the figure walking, accumulating: %.2f dB with 4 fresh samples on %.1f%% of "
                 "the glass, %.2f dB with one\n",
                 fresh, 100.0 * share, one);
@@ -457,6 +458,21 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     EXPECT_GT(share, 0.01);
     EXPECT_LT(share, 0.5);
     EXPECT_GT(fresh, one + 0.6);
+}
+
+TEST_F(Temporal, TheWalkTakesFreshSamplesToo) {
+    // DIR's fresh samples are walked as its first sample is, each from where the layers around
+    // its point place the surface (layeredSample; TheHybridsSamplesEnterWhere... in TraceTest).
+    const auto pair = [] { return test::projectScene("glass_pair.json"); };
+    double share = 0.0, none = 0.0;
+    const double fresh = walking(context(), pair(), 0.5, "dir", 4, 0.3, share),
+                 one = walking(context(), pair(), 0.5, "dir", 1, 0.3, none);
+    std::printf("the two figures walking, DIR accumulating: %.2f dB with 4 fresh samples on "
+                "%.1f%% of the glass, %.2f dB with one\n",
+                fresh, 100.0 * share, one);
+    EXPECT_EQ(none, 0.0);
+    EXPECT_GT(share, 0.05);
+    EXPECT_GT(fresh, one + 0.3);
 }
 
 TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
@@ -476,8 +492,8 @@ TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
         return w;
     };
     double listed = 0.0, rejected = 0.0;
-    const double wide = walking(context(), world(), 1.0, 4, 0.3, listed),
-                 narrow = walking(context(), world(), 1.0, 4, 0.0, rejected);
+    const double wide = walking(context(), world(), 1.0, "trace", 4, 0.3, listed),
+                 narrow = walking(context(), world(), 1.0, "trace", 4, 0.0, rejected);
     std::printf("CesiumMan walking, accumulating: %.2f dB with fresh samples on %.1f%% of the "
                 "glass (contrast 0.3), %.2f dB on %.1f%% (rejected history only)\n",
                 wide, 100.0 * listed, narrow, 100.0 * rejected);

@@ -221,8 +221,8 @@ TEST_F(Trace, TheHybridTracesThePixelsTheLayersCannotHold) {
 
 TEST_F(Trace, TheHybridSamplesTheShareItWalks) {
     // The default figure's hammered head and limbs, where the hybrid walks most pixels (handing
-    // over only the overflow): with trace-samples its walk also runs once a sample, entering
-    // where each jittered ray meets the plane of the pixel's nearest layer, so the walked pixels
+    // over only the overflow): with trace-samples its walk also runs once a sample, each
+    // jittered ray entering where the layers around it place the surface, so the walked pixels
     // are anti-aliased as the traced ones are.
     WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 256);
     rig.set("method", "hybrid");
@@ -236,6 +236,25 @@ TEST_F(Trace, TheHybridSamplesTheShareItWalks) {
                 one, eight, stats.hybridTraced, stats.walkedPixels);
     EXPECT_LT(stats.hybridTraced, stats.walkedPixels / 4);
     EXPECT_GT(eight, one + 0.8); // 1.3 dB here
+}
+
+TEST_F(Trace, TheHybridsSamplesEnterWhereTheLayersAroundThemPlaceTheSurface) {
+    // The glass spheres, where the hybrid walks nearly every pixel: a sample at another point of
+    // the pixel enters where the layers of the pixels around that point place the surface (its
+    // normal interpolated between them, the scene behind where it misses the glass), so each
+    // point of a curved pixel bends its own way and the samples converge. Entered on the plane
+    // of the pixel's nearest layer, every sample of a pixel bent alike: 16 samples scored
+    // 33.62 dB against one sample's 34.39 (35.77 now).
+    WorldRig rig(test::projectScene("glass_spheres.json"), context(), 96);
+    rig.useSceneCamera();
+    rig.set("method", "hybrid");
+    const WorldRig::Reference reference = rig.reference(0.0);
+    const double one = psnrWithSamples(rig, reference, "1"),
+                 sixteen = psnrWithSamples(rig, reference, "16");
+    std::printf("glass spheres, hybrid against the reference: 1 sample %.2f dB, 16 samples %.2f "
+                "dB\n",
+                one, sixteen);
+    EXPECT_GT(sixteen, one + 1.0);
 }
 
 TEST_F(Trace, TheHybridWalksALoneReflectionAtOneSample) {

@@ -1,7 +1,7 @@
 // The walk's shading pass (walk.glsl): over the glass rectangle, against the capture's mask, a
 // draw each trace sample for the trace and the hybrid, added up; where the frame accumulates,
 // one sample, each pixel's motion by what it shows (walk_motion.glsl), and while anything moves
-// the pixels whose history will be rejected listed for the trace pass's fresh samples.
+// the pixels whose history will be rejected listed for the fresh samples' pass.
 #include "refraction/walk.glsl"
 #include "refraction/walk_motion.glsl"
 
@@ -80,24 +80,12 @@ void main() {
 #if LAYER_METHOD == METHOD_TRACE
     vec3 color = tracedSample(p, e, walk);
 #else
-    vec3 color = vec3(0.0);
-    walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
-    walk.sightLayers = stored;
-    uint rng = sampleSeed(p);
 #if LAYER_METHOD == METHOD_HYBRID
     uvec2 bit = handedOverBit(p);
     if (uTraceSample > 0 && (handedOverWords[bit.x] & bit.y) != 0u)
         discard; // the first sample handed the pixel over: the trace pass shades it
 #endif
-    // The hybrid's later samples enter where their jittered rays meet the plane of the pixel's
-    // nearest layer (square to the line of sight where the layer grazes it).
-    vec3 V = sampleView(p, e.V), P1 = e.P1;
-    float facing = dot(V, N1);
-    if (uTraceSample > 0)
-        P1 = facing < -0.05 ? V * (dot(e.P1, N1) / facing) : V * (e.z / -V.z);
-    // A pixel the hybrid hands over for its own layers is not walked at all.
-    if (!stopsToHandOver(walk))
-        color = shadeLayers(P1, V, N1, e.attr, e.surface, rng, walk) * uTraceWeight;
+    vec3 color = layeredSample(p, e, N1, stored, walk);
 #if LAYER_METHOD == METHOD_HYBRID
     // The walk's path where the layers represent it, the trace's where they may not, judged
     // by the first sample from what the walk knows (handedOverBy).
@@ -112,17 +100,15 @@ void main() {
         atomicAdd(walkOverflowPixels, 1u);
     color = debugView(color, p, e, walk, stored, handedOver);
     // What the pixel shows, for the temporal resolve, and whether it takes the fresh samples
-    // (the trace pass records and decides its own pixels').
+    // (the hybrid's trace pass records and decides its own pixels').
     float alpha = 1.0;
     if (uWriteMotion != 0 && uTraceSample == 0) {
         uvec4 m = handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT) : handedOverMotion(p, e);
         imageStore(uGlassMotion, p, m);
-#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
         if (uFreshSamples > 1 && handedOver == 0u && takesFreshSamples(p, m, color)) {
             color /= float(uFreshSamples);
             alpha = freshAlpha();
         }
-#endif
     }
     outColor = vec4(color, alpha);
 }

@@ -1,5 +1,5 @@
 // The walk (walk.frag.glsl, the one shading pass over the glass pixels, and the hybrid's trace
-// pass, listed_trace.comp.glsl), whichever capture filled the layers: a pixel's primary ray
+// pass, listed_samples.comp.glsl), whichever capture filled the layers: a pixel's primary ray
 // enters the nearest captured layer and walks the others (layers.glsl) in
 // texture space, refracting at every interface it crosses (or reflecting under total internal
 // reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
@@ -88,7 +88,7 @@ bool sampledPaths() {
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (listed_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
+// work groups of 64 (listed_samples.comp.glsl's indirect dispatch), then a bit a pixel (row by
 // row, handedOverListStart words) and the list of the pixels (x | y << 16).
 layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
@@ -114,19 +114,25 @@ void listFresh(ivec2 p) {
         atomicAdd(freshGroups[0], 1u);
 }
 
-// The view direction of trace sample uTraceSample through pixel p: the pixel's centre first
-// (the frame's jittered one where it accumulates), then points of the pixel (an R2 sequence),
-// placed in the pixel itself rather than around its jittered centre. A frame that accumulates
-// turns the sequence by its index in the history (a Cranley-Patterson rotation), so that a
-// pixel sampled on frame after frame covers its area rather than the same points.
+// Where trace sample uTraceSample lies in pixel p, from the pixel's centre (the frame's
+// jittered one where it accumulates) in pixels: the centre first, then points of the pixel (an
+// R2 sequence), placed in the pixel itself rather than around its jittered centre. A frame that
+// accumulates turns the sequence by its index in the history (a Cranley-Patterson rotation), so
+// that a pixel sampled on frame after frame covers its area rather than the same points.
+vec2 sampleOffset() {
+    if (uTraceSample == 0)
+        return vec2(0.0);
+    vec2 turn = fract(float(uFrameSeed) * vec2(0.6180340, 0.4142136));
+    return fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403) + turn) - 0.5 -
+           uFrameJitter;
+}
+
+// The view direction of trace sample uTraceSample through pixel p (`centre`: its centre's).
 vec3 sampleView(ivec2 p, vec3 centre) {
     if (uTraceSample == 0)
         return centre;
-    vec2 turn = fract(float(uFrameSeed) * vec2(0.6180340, 0.4142136));
-    vec2 jitter = fract(0.5 + float(uTraceSample) * vec2(0.7548777, 0.5698403) + turn) - 0.5 -
-                  uFrameJitter;
-    vec4 sub =
-        uInverseProjection * vec4((vec2(p) + 0.5 + jitter) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
+    vec4 sub = uInverseProjection *
+               vec4((vec2(p) + 0.5 + sampleOffset()) / uViewportSize * 2.0 - 1.0, 1.0, 1.0);
     return normalize(sub.xyz / sub.w);
 }
 
@@ -607,5 +613,70 @@ vec3 tracedSample(ivec2 p, Entry e, out Walk walk) {
         atomicMax(walkTraceMaxSteps, uint(gTraceSteps));
     }
     return color * uTraceWeight;
+}
+#else
+// Whether layer entries a and b lie on one surface: one glass, depths within 5%.
+bool sameEntrySurface(Entry a, Entry b) {
+    return layerGlass(a.attr) == layerGlass(b.attr) && abs(a.z - b.z) <= 0.05 * min(a.z, b.z);
+}
+
+// A later sample's entry (at `offset` from pixel p's centre, its ray V), from the layers around
+// it rather than the pixel's alone: the pixel whose square holds the point gives the surface
+// (none: the sample misses the glass, and `behind` is the scene there), and the four pixels
+// around it on that surface its normal and point, interpolated (bilinear, the pixels on other
+// surfaces left out). Curved glass bends each point of a pixel its own way: the pixel's own
+// normal at every point of it would give each sample one path.
+bool subPixelEntry(ivec2 p, vec2 offset, vec3 V, inout Entry e, out vec3 N1, out vec3 behind) {
+    ivec2 last = ivec2(uViewportSize) - 1;
+    vec2 g = vec2(p) + 0.5 + offset;
+    ivec2 q = clamp(ivec2(floor(g)), ivec2(0), last);
+    behind = vec3(0.0);
+    if (q != p) {
+        Entry eq;
+        if (!pixelEntry(q, eq)) {
+            behind = texelFetch(uSceneColor, q, 0).rgb;
+            return false;
+        }
+        e = eq;
+    }
+    vec2 t = floor(g - 0.5), f = g - 0.5 - t;
+    vec3 normal = vec3(0.0), point = vec3(0.0);
+    float total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 r = clamp(ivec2(t) + o, ivec2(0), last);
+        Entry er;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        if (w <= 0.0 || (r != q && (!pixelEntry(r, er) || !sameEntrySurface(e, er))))
+            continue;
+        if (r == q)
+            er = e;
+        vec3 n = layerNormal(er.attr);
+        normal += w * (dot(n, er.V) > 0.0 ? -n : n);
+        point += w * er.P1;
+        total += w;
+    }
+    N1 = normalize(normal);
+    point /= total;
+    float facing = dot(V, N1);
+    e.P1 = facing < -0.05 ? V * (dot(point, N1) / facing) : V * (point.z / V.z);
+    return true;
+}
+
+// Sample uTraceSample of the walk through pixel p (its entry e, the nearest layer's normal N1
+// turned to the viewer, its `stored` layers), weighted: the first from the pixel's centre, the
+// later ones (the hybrid's, or a frame's fresh samples) along their jittered rays (sampleView)
+// from their own entries (subPixelEntry). A pixel the hybrid hands over for its own layers is
+// not walked at all (black).
+vec3 layeredSample(ivec2 p, Entry e, vec3 N1, int stored, out Walk walk) {
+    walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
+    walk.sightLayers = stored;
+    uint rng = sampleSeed(p);
+    vec3 V = sampleView(p, e.V), behind;
+    if (uTraceSample > 0 && !subPixelEntry(p, sampleOffset(), V, e, N1, behind))
+        return behind * uTraceWeight;
+    if (stopsToHandOver(walk))
+        return vec3(0.0);
+    return shadeLayers(e.P1, V, N1, e.attr, e.surface, rng, walk) * uTraceWeight;
 }
 #endif

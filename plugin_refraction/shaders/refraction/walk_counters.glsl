@@ -3,8 +3,9 @@
 // BVH nodes they visited (low, high word) and the most one pixel's ray visited in one draw; the
 // glass pixels walked, and those the hybrid traced: all, and for each of its reasons (HYBRID_*:
 // bit k counts in walkHybridBy[k]); those that take the fresh samples (walk_motion.glsl), the
-// work groups of 64 of the trace pass over them (an indirect dispatch: listed_trace.comp.glsl)
-// and their list (x | y << 16), which the buffer holds where the frame takes fresh samples.
+// work groups of 64 of the fresh samples' pass over them (an indirect dispatch:
+// listed_samples.comp.glsl) and their list (x | y << 16), which the buffer holds where the frame
+// takes fresh samples.
 #ifndef REFRACTION_WALK_COUNTERS_GLSL
 #define REFRACTION_WALK_COUNTERS_GLSL
 

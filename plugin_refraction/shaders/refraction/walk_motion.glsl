@@ -106,7 +106,8 @@ uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
 // While a frame accumulates and anything moves (uFreshSamples > 1), the glass pixels whose
 // history the resolve will reject take uFreshSamples samples, every other pixel one: the first
 // sample (the walk's, or the hybrid trace pass's for the pixels it takes) decides from the
-// previous frame's motion and lists the pixel for the trace pass, which takes the others.
+// previous frame's motion and lists the pixel for the fresh samples' pass, which takes the
+// others (listed_samples.comp.glsl).
 uniform int uFreshSamples;
 // A pixel that takes them: its colour's alpha, minus the samples it will average (the resolve,
 // render/temporal.frag.glsl, weighs it so; no other pass of the scene writes a negative alpha).
@@ -148,7 +149,6 @@ bool historyDiffers(ivec2 p, uvec4 m, vec3 color) {
     return abs(now - then) > uFreshContrast * max(max(now, then), 0.02);
 }
 
-#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
 // Whether pixel p (its motion texel m, its first sample's colour `color`) takes the fresh
 // samples: its history will be rejected, or differs from it by uFreshContrast. Listed so for
 // the later ones. Its first sample then weighs 1 / uFreshSamples, and its colour's alpha is
@@ -159,6 +159,5 @@ bool takesFreshSamples(ivec2 p, uvec4 m, vec3 color) {
         listFresh(p);
     return fresh;
 }
-#endif
 
 #endif

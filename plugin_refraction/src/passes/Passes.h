@@ -69,9 +69,9 @@ struct FrameContext {
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
     const gl::Program* walk = nullptr; ///< the walk's variant (selectVariants)
-    /** The trace over a list of pixels (listed_trace.comp.glsl, selectVariants): the hybrid's
-     *  trace pass's, the fresh samples'. */
-    const gl::Program* listedTrace = nullptr;
+    /** Samples of a list of pixels (listed_samples.comp.glsl, selectVariants): the hybrid's
+     *  trace pass's, the fresh samples' (traced for the trace and the hybrid). */
+    const gl::Program* listedSamples = nullptr;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
      *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
     bool caustics = false;
@@ -106,8 +106,9 @@ struct FrameContext {
     int traceSamples() const;
     /** Where the frame accumulates while anything moves (its history's second frame on), the
      *  samples a glass pixel takes where its history will be rejected (Settings::freshSamples:
-     *  the first jittered with the frame, the others traced over the pixel), every other pixel
-     *  one; 1 in any other frame, a debug view or a method that does not trace. */
+     *  the first jittered with the frame, the others over the pixel: traced for the trace and
+     *  the hybrid, walked for the others), every other pixel one; 1 in any other frame or a
+     *  debug view. */
     int freshSamples() const;
 };
 
@@ -185,8 +186,8 @@ void assignGlassIds(FrameContext& c);
 
 /** The capture's programs for this frame (the layers' for capacity K, the pair's), and into
  *  `c` the walk's variant for the capture, the method, the dispersion search and the lights
- *  (compiled in: walk.frag.glsl; every method's at once) and the hybrid's trace pass's for them
- *  and the walk's target (listed_trace.comp.glsl), built when first needed and kept. */
+ *  (compiled in: walk.frag.glsl; every method's at once) and the listed samples' for them and
+ *  the walk's target (listed_samples.comp.glsl), built when first needed and kept. */
 core::Status selectVariants(GpuState& gpu, FrameContext& c);
 
 // ---- The layer arrays (LayerStorage.cpp)
@@ -271,7 +272,8 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
 Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture, const Walked& walked);
 /** Where c.freshSamples() > 1: the later samples of the listed pixels (those whose history
- *  will be rejected) traced and added to the walk's colour; returns its new version. */
+ *  will be rejected) added to the walk's colour (traced for the trace and the hybrid);
+ *  returns its new version. */
 Walked addFreshSamplesPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            const SceneInputs& scene, const Capture& capture, const Walked& walked);
 /** The outlines of smooth glass anti-aliased over the walk's colour, into the scene colour

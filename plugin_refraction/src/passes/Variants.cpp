@@ -134,23 +134,27 @@ core::Status selectVariants(GpuState& gpu, FrameContext& c) {
         }
     }
     c.walk = &gpu.walkPrograms.at(key(c.settings.method));
-    if (!c.settings.traces())
+    if (!c.settings.traces() && c.freshSamples() <= 1)
         return {};
-    // The listed trace: the walk as the trace's variant, over the hybrid's handed-over pixels
-    // or the fresh samples' (listed_trace.comp.glsl), storing the format of the walk's target.
-    const bool addsUp = c.settings.addsSamples();
-    const auto traceKey = std::pair{key(Settings::Method::Hybrid), addsUp};
-    if (!gpu.listedTrace.count(traceKey)) {
-        std::vector<std::string> defines = walkDefines(traceKey.first, Settings::Method::Trace);
-        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
+    // The listed samples (listed_samples.comp.glsl), storing the format of the walk's target:
+    // the trace's and the hybrid's as the trace's variant of the walk, over the hybrid's handed-
+    // over pixels or the fresh samples'; the other methods' fresh samples as their own.
+    const bool traces = c.settings.traces(), addsUp = c.settings.addsSamples();
+    const auto listedKey =
+        std::pair{key(traces ? Settings::Method::Hybrid : c.settings.method), addsUp};
+    if (!gpu.listedSamples.count(listedKey)) {
+        std::vector<std::string> defines =
+            walkDefines(listedKey.first, traces ? Settings::Method::Trace : c.settings.method);
+        if (traces)
+            defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
         defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
-        auto trace =
-            gl::Program::compute(*c.frame->shaders, "refraction/listed_trace.comp.glsl", defines);
-        if (!trace)
-            return trace.error();
-        gpu.listedTrace.insert_or_assign(traceKey, std::move(*trace));
+        auto listed =
+            gl::Program::compute(*c.frame->shaders, "refraction/listed_samples.comp.glsl", defines);
+        if (!listed)
+            return listed.error();
+        gpu.listedSamples.insert_or_assign(listedKey, std::move(*listed));
     }
-    c.listedTrace = &gpu.listedTrace.at(traceKey);
+    c.listedSamples = &gpu.listedSamples.at(listedKey);
     return {};
 }
 

@@ -119,8 +119,9 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
         [&](fg::Builder& b, WalkData& d) {
             d.in = readWalkInputs(b, c, buffers, scene, capture);
             d.counters = b.write(buffers.counters);
-            // The hybrid's list, bound for the trace pass (and the fresh samples' program).
-            if (c.settings.method == Settings::Method::Hybrid || c.freshSamples() > 1)
+            // The hybrid's list, bound for its trace pass (and the traced fresh samples').
+            if (c.settings.method == Settings::Method::Hybrid ||
+                (c.settings.traces() && c.freshSamples() > 1))
                 d.handedOver = b.write(buffers.handedOver);
             d.out = b.write(b.create("refraction.walk.color", walkDesc(size, c.settings)));
             if (scene.motion.valid()) { // the scene's motion, the glass pixels' written over

@@ -1,6 +1,6 @@
-// The trace over a list of pixels (listed_trace.comp.glsl: the walk compiled as the trace's
-// variant, a dispatch each sample of as many work groups as the list holds), over the walk's
-// colour:
+// Samples of a list of pixels (listed_samples.comp.glsl: a dispatch each sample of as many work
+// groups as the list holds), over the walk's colour; traced (the walk compiled as the trace's
+// variant) for the trace and the hybrid, walked by their own method for the others:
 //   `refraction.hybrid_trace`: the pixels the hybrid's walk handed over (the layers could not
 //   hold their path), every sample; where the frame accumulates, their motion over the walk's,
 //   and the first sample lists those whose history will be rejected, as the walk lists its own;
@@ -27,7 +27,8 @@ enum class List : int { HandedOver, Fresh };
 void declare(fg::Builder& b, TraceData& d, const FrameContext& c, FrameBuffers& buffers,
              const SceneInputs& scene, const Capture& capture, const Walked& walked, List list) {
     d.in = readWalkInputs(b, c, buffers, scene, capture);
-    b.read(buffers.handedOver);
+    if (c.settings.traces()) // the traced samples' program reads the hybrid's list
+        b.read(buffers.handedOver);
     d.counters = b.write(buffers.counters);
     d.color = b.write(walked.color);
     if (list == List::HandedOver && walked.motion.valid()) {
@@ -40,14 +41,15 @@ void declare(fg::Builder& b, TraceData& d, const FrameContext& c, FrameBuffers& 
     }
 }
 
-/** Traces samples [first, last) of the list's pixels, each weighing 1 / `samples`. */
-core::Status trace(const fg::Resources& r, const TraceData& d, const FrameContext& c, List list,
-                   int first, int last, int samples) {
+/** Samples [first, last) of the list's pixels, each weighing 1 / `samples`. */
+core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameContext& c,
+                        List list, int first, int last, int samples) {
     GpuState& gpu = *c.gpu;
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
-    gl::bindStorage(slot::kHandedOver, gpu.handedOver);
-    const gl::Program& program = *c.listedTrace;
+    if (c.settings.traces())
+        gl::bindStorage(slot::kHandedOver, gpu.handedOver);
+    const gl::Program& program = *c.listedSamples;
     c.setWalkUniforms(program);
     c.setLayerUniforms(program);
     program.set("uFreshList", list == List::Fresh ? 1 : 0);
@@ -82,7 +84,7 @@ Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuf
         },
         [c](const fg::Resources& r, const TraceData& d, gl::Context&) {
             const int samples = c.traceSamples();
-            return trace(r, d, c, List::HandedOver, 0, samples, samples);
+            return sampleList(r, d, c, List::HandedOver, 0, samples, samples);
         });
     buffers.counters = traced.counters;
     return {traced.color, walked.surface, traced.motion};
@@ -97,7 +99,7 @@ Walked addFreshSamplesPass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
         },
         [c](const fg::Resources& r, const TraceData& d, gl::Context&) {
             const int samples = c.freshSamples();
-            return trace(r, d, c, List::Fresh, 1, samples, samples);
+            return sampleList(r, d, c, List::Fresh, 1, samples, samples);
         });
     buffers.counters = traced.counters;
     return {traced.color, walked.surface, walked.motion};

@@ -1,10 +1,12 @@
-// The trace over a list of pixels (ListedTracePasses.cpp), traced as the trace traces them
-// (walk.glsl compiled with LAYER_METHOD 4), a dispatch each trace sample, over the walk's
-// colour: the pixels the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD 5), or
-// (uFreshList) the later samples of the pixels that take the fresh samples (walk_motion.glsl).
-// A list, not the rectangle again: the trace's loops run as long as their longest lane, and a
+// Samples of a list of pixels (ListedPasses.cpp), a dispatch each sample, over the walk's
+// colour. The trace's and the hybrid's are traced as the trace traces them (walk.glsl compiled
+// with LAYER_METHOD 4): the pixels the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD
+// 5), or (uFreshList) the later samples of the pixels that take the fresh samples
+// (walk_motion.glsl). SIR's, ISR's and DIR's fresh samples are walked as their method walks
+// them (their LAYER_METHOD; HYBRID_LIST 0), each from its own entry (layeredSample).
+// A list, not the rectangle again: a walk's loops run as long as their longest lane, and a
 // listed pixel among others would hold its whole block of lanes through them (a CPU
-// rasteriser's 4x4 block, a GPU's warp).
+// rasteriser's 4x4 block, a GPU's warp), and would pay for the rectangle's other pixels.
 // The walk left the glass motion this pass reads in the motion image: the layers' motions are
 // one storage block past a compute shader's 16 (layers.glsl).
 #define GLASS_MOTION_READ
@@ -19,14 +21,28 @@ layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     bool fresh = uFreshList != 0;
+#if HYBRID_LIST
     if (i >= (fresh ? walkFreshPixels : handedOverCount))
+#else
+    if (i >= walkFreshPixels)
+#endif
         return;
+#if HYBRID_LIST
     uint pixel = fresh ? freshPixelList[i] : handedOverWords[handedOverListStart() + i];
+#else
+    uint pixel = freshPixelList[i];
+#endif
     ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
     Entry e;
     pixelEntry(p, e); // the walk found it
     Walk walk;
+#if LAYER_METHOD == METHOD_TRACE
     vec4 color = vec4(tracedSample(p, e, walk), 1.0);
+#else
+    vec3 N1 = layerNormal(e.attr);
+    vec4 color =
+        vec4(layeredSample(p, e, dot(N1, e.V) > 0.0 ? -N1 : N1, storedCount(p), walk), 1.0);
+#endif
     if (uTraceSample > 0) {
         vec4 before = imageLoad(uShaded, p);
         color = vec4(color.rgb + before.rgb, before.a);
