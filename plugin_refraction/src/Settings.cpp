@@ -122,17 +122,18 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .defaultValue = 1,
          .help = "trace and hybrid: rays per glass pixel, the first at its centre, the others "
                  "jittered (the hybrid's walk enters each where the layers around it place the "
-                 "surface)"},
+                 "surface); one a frame where the frame accumulates, whose frames are the "
+                 "samples"},
         {.name = "fresh-samples",
          .label = "Samples without history",
          .type = Type::Int,
          .min = 1,
          .max = 16,
          .defaultValue = 4,
-         .help = "a frame that accumulates while anything moves: samples a glass pixel takes "
-                 "where its history will be rejected (a surface it did not show, a jump in its "
-                 "path's exit), the first jittered with the frame, the others over the pixel; "
-                 "1: one, as every other pixel"},
+         .help = "DIR, trace and hybrid, a frame that accumulates while anything moves: "
+                 "samples a glass pixel takes where its history will be rejected (a surface it "
+                 "did not show, a jump in its path's exit), the first jittered with the frame, "
+                 "the others over the pixel; 1: one, as every other pixel"},
         {.name = "fresh-contrast",
          .label = "Fresh where the history differs",
          .min = 0.0,

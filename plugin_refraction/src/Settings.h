@@ -56,7 +56,7 @@ struct Settings {
     int marchSteps = 12;   ///< coarse samples of the layered search before the binary search
     int traceSamples = 1;  ///< trace and hybrid: rays per glass pixel
     /** Accumulating while anything moves: samples a glass pixel takes where the resolve will
-     *  reject its history (FrameContext::freshSamples), with every method. */
+     *  reject its history (FrameContext::freshSamples; DIR, the trace and the hybrid). */
     int freshSamples = 4;
     /** And where the first sample's luminance differs from its history's by this share. */
     double freshContrast = 0.3;
@@ -85,6 +85,11 @@ struct Settings {
     bool traces() const { return method == Method::Trace || method == Method::Hybrid; }
     /** The walk adds several samples a pixel up: the trace's and the hybrid's. */
     bool addsSamples() const { return traces() && traceSamples > 1; }
+    /** The methods that take fresh samples while a frame accumulates (freshSamples): those that
+     *  find each exit. SIR's and ISR's estimated exits change more from frame to frame than
+     *  across a pixel, and their history averages that (ISR lost 1.3 dB with them on the two
+     *  figures, SIR gained nothing: docs/accuracy.md). */
+    bool freshSampled() const { return traces() || method == Method::Dir; }
     /** The layers' outline pass runs: on, and the glass one sample a pixel (the trace's
      *  samples anti-alias its outlines themselves; the pass over them cost 0.5 dB). */
     bool outlinePass() const {

@@ -2,8 +2,8 @@
 // colour. The trace's and the hybrid's are traced as the trace traces them (walk.glsl compiled
 // with LAYER_METHOD 4): the pixels the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD
 // 5), or (uFreshList) the later samples of the pixels that take the fresh samples
-// (walk_motion.glsl). SIR's, ISR's and DIR's fresh samples are walked as their method walks
-// them (their LAYER_METHOD; HYBRID_LIST 0), each from its own entry (layeredSample).
+// (walk_motion.glsl). DIR's fresh samples are walked as DIR walks them (its LAYER_METHOD;
+// HYBRID_LIST 0), each from its own entry (layeredSample).
 // A list, not the rectangle again: a walk's loops run as long as their longest lane, and a
 // listed pixel among others would hold its whole block of lanes through them (a CPU
 // rasteriser's 4x4 block, a GPU's warp), and would pay for the rectangle's other pixels.

@@ -191,7 +191,7 @@ int FrameContext::traceSamples() const {
 int FrameContext::freshSamples() const {
     const render::TemporalFrame& t = frame->temporal;
     const bool moving = t.enabled && !t.still && t.index > 0;
-    return moving && settings.debug == 0 ? settings.freshSamples : 1;
+    return moving && settings.freshSampled() && settings.debug == 0 ? settings.freshSamples : 1;
 }
 
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,

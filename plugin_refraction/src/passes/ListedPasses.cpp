@@ -1,6 +1,6 @@
 // Samples of a list of pixels (listed_samples.comp.glsl: a dispatch each sample of as many work
 // groups as the list holds), over the walk's colour; traced (the walk compiled as the trace's
-// variant) for the trace and the hybrid, walked by their own method for the others:
+// variant) for the trace and the hybrid, walked by DIR's variant for DIR:
 //   `refraction.hybrid_trace`: the pixels the hybrid's walk handed over (the layers could not
 //   hold their path), every sample; where the frame accumulates, their motion over the walk's,
 //   and the first sample lists those whose history will be rejected, as the walk lists its own;

@@ -107,8 +107,8 @@ struct FrameContext {
     /** Where the frame accumulates while anything moves (its history's second frame on), the
      *  samples a glass pixel takes where its history will be rejected (Settings::freshSamples:
      *  the first jittered with the frame, the others over the pixel: traced for the trace and
-     *  the hybrid, walked for the others), every other pixel one; 1 in any other frame or a
-     *  debug view. */
+     *  the hybrid, walked for DIR), every other pixel one; 1 in any other frame, a debug view
+     *  or a method that takes none (Settings::freshSampled). */
     int freshSamples() const;
 };
 

@@ -138,7 +138,7 @@ core::Status selectVariants(GpuState& gpu, FrameContext& c) {
         return {};
     // The listed samples (listed_samples.comp.glsl), storing the format of the walk's target:
     // the trace's and the hybrid's as the trace's variant of the walk, over the hybrid's handed-
-    // over pixels or the fresh samples'; the other methods' fresh samples as their own.
+    // over pixels or the fresh samples'; DIR's fresh samples as its own.
     const bool traces = c.settings.traces(), addsUp = c.settings.addsSamples();
     const auto listedKey =
         std::pair{key(traces ? Settings::Method::Hybrid : c.settings.method), addsUp};
