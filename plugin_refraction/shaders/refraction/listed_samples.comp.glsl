@@ -20,16 +20,14 @@ layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
+#if HYBRID_LIST
     bool fresh = uFreshList != 0;
-#if HYBRID_LIST
     if (i >= (fresh ? walkFreshPixels : handedOverCount))
-#else
-    if (i >= walkFreshPixels)
-#endif
         return;
-#if HYBRID_LIST
     uint pixel = fresh ? freshPixelList[i] : handedOverWords[handedOverListStart() + i];
-#else
+#else // DIR's: the fresh samples' list alone
+    if (i >= walkFreshPixels)
+        return;
     uint pixel = freshPixelList[i];
 #endif
     ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
@@ -39,9 +37,7 @@ void main() {
 #if LAYER_METHOD == METHOD_TRACE
     vec4 color = vec4(tracedSample(p, e, walk), 1.0);
 #else
-    vec3 N1 = layerNormal(e.attr);
-    vec4 color =
-        vec4(layeredSample(p, e, dot(N1, e.V) > 0.0 ? -N1 : N1, storedCount(p), walk), 1.0);
+    vec4 color = vec4(layeredSample(p, e, facingNormal(e), storedCount(p), walk), 1.0);
 #endif
     if (uTraceSample > 0) {
         vec4 before = imageLoad(uShaded, p);

@@ -69,9 +69,7 @@ void main() {
     Entry e;
     if (!pixelEntry(p, e))
         discard; // no glass, or only glass hidden behind the opaque scene
-    vec3 N1 = layerNormal(e.attr);
-    if (dot(N1, e.V) > 0.0)
-        N1 = -N1;
+    vec3 N1 = facingNormal(e);
     outSurface = (packHalf2x16(vec2(e.z, 0.0)) & 0xFFFFu) | (layerGlass(e.attr) << 16) |
                  (uint(round(abs(dot(N1, e.V)) * 255.0)) << 24);
     Walk walk;

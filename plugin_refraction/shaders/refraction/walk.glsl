@@ -578,6 +578,12 @@ bool pixelEntry(ivec2 p, out Entry e) {
     return true;
 }
 
+// The nearest layer's normal at entry e, turned toward the viewer.
+vec3 facingNormal(Entry e) {
+    vec3 n = layerNormal(e.attr);
+    return dot(n, e.V) > 0.0 ? -n : n;
+}
+
 // The random numbers of pixel p's sample uTraceSample (the trace's sampled paths).
 uint sampleSeed(ivec2 p) {
     return uint(p.x) * 73856093u ^ uint(p.y) * 19349663u ^ uint(uTraceSample + 1) * 83492791u ^
@@ -645,14 +651,11 @@ bool subPixelEntry(ivec2 p, vec2 offset, vec3 V, inout Entry e, out vec3 N1, out
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         ivec2 r = clamp(ivec2(t) + o, ivec2(0), last);
-        Entry er;
+        Entry er = e;
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         if (w <= 0.0 || (r != q && (!pixelEntry(r, er) || !sameEntrySurface(e, er))))
             continue;
-        if (r == q)
-            er = e;
-        vec3 n = layerNormal(er.attr);
-        normal += w * (dot(n, er.V) > 0.0 ? -n : n);
+        normal += w * facingNormal(er);
         point += w * er.P1;
         total += w;
     }

@@ -72,9 +72,7 @@ uvec4 throughGlassMotion(uint object, vec2 motion, vec2 surface, uint exitDirect
 uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
     uint glass = layerGlass(e.attr);
     GlassMaterial m = glassMaterials[glass];
-    vec3 N1 = layerNormal(e.attr);
-    if (dot(N1, e.V) > 0.0)
-        N1 = -N1;
+    vec3 N1 = facingNormal(e);
     float reflected = fresnel(uFresnelMode, dot(-e.V, N1), 1.0 / m.ior.g);
     bool inGlass = !green.opaque && endT <= 0.0 && topMedium(green.path.media) != 0u;
     if (reflected > 0.5 || inGlass)
