@@ -404,13 +404,13 @@ TEST_F(Temporal, HalfAPixelOfJitterWhileMovingScoresBetterThanTheWhole) {
     EXPECT_GT(half, whole + 0.25);
 }
 
-/** A character walking at 30 frames a second from `start`, `method` at 96x96, accumulating
- *  with `fresh` samples where the history is rejected or differs from the first sample by
- *  `contrast`: the mean masked PSNR against the reference of its frames 12-15; into
+/** A character walking at 30 frames a second from `start`, `method` at `size` pixels square,
+ *  accumulating with `fresh` samples where the history is rejected or differs from the first
+ *  sample by `contrast`: the mean masked PSNR against the reference of its frames 12-15; into
  *  `freshShare`, the share of their glass pixels that took them. */
 double walking(gl::Context& context, scene::World world, double start, const char* method,
-               int fresh, double contrast, double& freshShare) {
-    WorldRig rig(std::move(world), context, 96);
+               int fresh, double contrast, double& freshShare, int size = 96) {
+    WorldRig rig(std::move(world), context, size);
     rig.set("method", method);
     rig.set("glass", "all");
     rig.set("fresh-samples", std::to_string(fresh));
@@ -427,7 +427,7 @@ double walking(gl::Context& context, scene::World world, double start, const cha
         freshPixels += stats.freshPixels;
         walked += stats.walkedPixels;
         const WorldRig::Reference reference = rig.reference(time);
-        sum += capture::score(capture::Image{96, 96, render::cpu::tonemap(hdr, 1.0f)},
+        sum += capture::score(capture::Image{size, size, render::cpu::tonemap(hdr, 1.0f)},
                               reference.image, &reference.mask)
                    .psnr;
         ++scored;
@@ -445,9 +445,11 @@ double figureWalking(gl::Context& context, const char* method, int fresh, double
 TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     // As the figure walks, the pixels whose history the resolve will reject (what a swinging
     // limb uncovers, a path that now leaves the glass another way) take four samples instead
-    // of one: a share of the glass, and the frames score higher. Their later samples lie in the
-    // pixel itself: placed around the frame's jittered centre (a wider filter than the
-    // reference's pixel), they gained 0.31 dB instead of 0.81.
+    // of one, and the frames score higher. They are a small share of the glass: a bending limb
+    // turns its paths' exits by tens of degrees and keeps its history (kExitTurn); rejecting
+    // at 15 degrees listed 9.7% of it and scored 0.8 dB lower. Their later samples lie in the
+    // pixel itself (around the frame's jittered centre, a wider filter than the reference's
+    // pixel, they gained less than half as much).
     double share = 0.0, none = 0.0;
     const double fresh = figureWalking(context(), "trace", 4, share),
                  one = figureWalking(context(), "trace", 1, none);
@@ -456,31 +458,34 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
                 fresh, 100.0 * share, one);
     EXPECT_EQ(none, 0.0);
     EXPECT_GT(share, 0.01);
-    EXPECT_LT(share, 0.5);
-    EXPECT_GT(fresh, one + 0.6);
+    EXPECT_LT(share, 0.05);
+    EXPECT_GT(fresh, one + 0.1);
 }
 
 TEST_F(Temporal, TheWalkTakesFreshSamplesToo) {
     // DIR's fresh samples are walked as its first sample is, each from where the layers around
     // its point place the surface (layeredSample; TheHybridsSamplesEnterWhere... in TraceTest).
+    // At 160 pixels: at 96 a figure's limbs are a few pixels wide and what four samples of
+    // them add is lost in what the layers miss.
     const auto pair = [] { return test::projectScene("glass_pair.json"); };
     double share = 0.0, none = 0.0;
-    const double fresh = walking(context(), pair(), 0.5, "dir", 4, 0.3, share),
-                 one = walking(context(), pair(), 0.5, "dir", 1, 0.3, none);
+    const double fresh = walking(context(), pair(), 0.5, "dir", 4, 0.3, share, 160),
+                 one = walking(context(), pair(), 0.5, "dir", 1, 0.3, none, 160);
     std::printf("the two figures walking, DIR accumulating: %.2f dB with 4 fresh samples on "
                 "%.1f%% of the glass, %.2f dB with one\n",
                 fresh, 100.0 * share, one);
     EXPECT_EQ(none, 0.0);
     EXPECT_GT(share, 0.05);
-    EXPECT_GT(fresh, one + 0.3);
+    EXPECT_GT(fresh, one + 0.1);
 }
 
 TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     // A pixel listed on frame after frame (its first sample differing from its history) takes
     // its later samples over the pixel itself, at points turned every frame, and the resolve
-    // weighs them as the samples they are: listing 36% of CesiumMan's glass gains 1.44 dB over
-    // listing the 10% whose history is rejected. With the same points every frame it gained
-    // 1.12, with them around the frame's jittered centre 0.89, weighed as one sample 0.11.
+    // weighs them as the samples they are: listing 34% of CesiumMan's glass gains 1.66 dB over
+    // listing the 3% whose history is rejected. When 10% was rejected (the exit turned by 15
+    // degrees), the gain of 1.44 dB was 1.12 with the same points every frame, 0.89 with them
+    // around the frame's jittered centre, and 0.11 with them weighed as one sample.
     GLASS_REQUIRE_SHARED();
     auto loaded =
         asset::loadModel((test::sharedDir() / "assets/gltf/CesiumMan/CesiumMan.glb").string());

@@ -91,9 +91,14 @@ int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
 }
 
 // What the history must show for the resolve to reuse it: the relative depth change that
-// counts as a disocclusion, and the turn of a path's exit that counts as a jump (15 degrees).
+// counts as a disocclusion, and the turn of a path's exit that counts as a jump: a right angle
+// or more, a path that now leaves the glass another way. A bending limb turns the exit of its
+// paths by tens of degrees between frames and the clip bounds what that changes; rejecting at
+// 15 degrees threw away the history of a tenth of a walking figure's glass (2% at 90) and cost
+// every method and scene 0.1-0.6 dB (docs/accuracy.md;
+// Temporal.PixelsWithoutHistoryTakeFreshSamples).
 const float kDepthTolerance = 0.05;
-const float kExitTurn = 0.966;
+const float kExitTurn = 0.0;
 
 // Whether a history texel `h` (the previous frame's motion) shows what a pixel tracking `m`
 // tracks: the same kind and object, no depth jump, no jump in the direction a path through
