@@ -91,12 +91,12 @@ int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
 }
 
 // What the history must show for the resolve to reuse it: the relative depth change that
-// counts as a disocclusion, and the turn of a path's exit that counts as a jump: a right angle
-// or more, a path that now leaves the glass another way. A bending limb turns the exit of its
-// paths by tens of degrees between frames and the clip bounds what that changes; rejecting at
-// 15 degrees threw away the history of a tenth of a walking figure's glass (2% at 90) and cost
-// every method and scene 0.1-0.6 dB (docs/accuracy.md;
-// Temporal.PixelsWithoutHistoryTakeFreshSamples).
+// counts as a disocclusion, and the turn of a path's exit that counts as a jump: more than a
+// right angle, a path that now leaves the glass another way. A bending limb turns the exit of
+// its paths by tens of degrees between frames and the clip bounds what that changes; rejecting
+// at 15 degrees threw away the history of a tenth of a walking figure's glass (2% at 90) and
+// cost every method and scene up to 0.5 dB (docs/accuracy.md;
+// Temporal.TheHistoryIsRejectedWhereThePathNowLeavesTheGlassAnotherWay).
 const float kDepthTolerance = 0.05;
 const float kExitTurn = 0.0;
 
