@@ -14,8 +14,6 @@
 #include "engine/deform/Subdivision.h"
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Commands.h"
-#include "engine/gl/Program.h"
-#include "engine/gl/Shaders.h"
 #include "engine/render/Shared.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -329,10 +327,8 @@ TEST_F(Temporal, TheHistoryIsRejectedWhereThePathNowLeavesTheGlassAnotherWay) {
     // is a jump (the path now leaves the glass another way) and rejects the history; a turn
     // short of it is what a bending limb does from frame to frame, and the clip bounds it.
     // Rejecting at 15 degrees cost every playing row 0.04-0.51 dB (docs/accuracy.md).
-    gl::ShaderLibrary library;
-    library.add(engineShaderFiles());
+    gl::ShaderLibrary library = shaders(); // the engine's, and the probe
     library.add(kShowsSameProbe);
-    ASSERT_TRUE(library.share("render", render::sharedTable()).ok());
     ASSERT_TRUE(library.share("probe", kProbeTable).ok());
     auto program = gl::Program::compute(library, "shows_same.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
