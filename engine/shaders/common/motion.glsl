@@ -2,7 +2,8 @@
 // pixel, what it tracks, where that was on the previous frame, and what the resolve checks
 // before it reuses the history there. One RGBA32UI texel:
 //   x  identity: the kind of what the pixel tracks (bits 24-31, MOTION_*) and which one
-//      (bits 0-23: a draw item, a glass id, a path end's); a change rejects the history
+//      (bits 0-23: a draw item, a glass id; a path through glass: the glass id it entered);
+//      the history must show the same (motionSubject)
 //   y  the motion in pixels, this frame's position minus the previous one (two halves)
 //   z  the view depth of the tracked point now and on the previous frame (two halves; 0: none,
 //      the environment and glass); for a path through glass (MOTION_THROUGH_GLASS) instead the
@@ -100,11 +101,23 @@ int motionCandidates(uvec4 m, vec2 pixel, out vec2 candidates[2]) {
 const float kDepthTolerance = 0.05;
 const float kExitTurn = 0.0;
 
+// What the history must show for a pixel tracking `m`: the same thing, and for a glass pixel
+// the same glass, whether its light is reflected or comes through it. What a path through glass
+// ends on is no part of it: a bending limb refracts the ground on one frame and the sky on the
+// next, and the clip bounds what such a history brings; rejected there too, the history of the
+// walking figures' glass was thrown away where it was worth keeping (every playing row scored
+// 0.03-0.24 dB less, docs/accuracy.md).
+uint motionSubject(uvec4 m) {
+    return motionKind(m) == MOTION_THROUGH_GLASS
+               ? motionIdentity(MOTION_GLASS, m.x & MOTION_OBJECT_MASK)
+               : m.x;
+}
+
 // Whether a history texel `h` (the previous frame's motion) shows what a pixel tracking `m`
-// tracks: the same kind and object, no depth jump, no jump in the direction a path through
-// glass left it.
+// tracks: the same subject, no depth jump, no jump in the direction a path through glass left
+// it.
 bool showsSame(uvec4 m, uvec4 h) {
-    if (m.x != h.x)
+    if (motionSubject(m) != motionSubject(h))
         return false;
     vec2 d = motionDepths(m), hd = motionDepths(h);
     if (d.y > 0.0 && hd.x > 0.0 && abs(d.y - hd.x) > kDepthTolerance * max(d.y, hd.x))

@@ -10,10 +10,11 @@
 //       an opaque surface or the ground: the virtual point held still in the world, plus the
 //       end's own motion where the opaque scene shows it (its motion there less the camera's),
 //       none where it is hidden.
-// Its identity is the kind of its end, the end's own identity and the glass entered, and the
-// direction the path left the glass goes with it: the resolve rejects the history where either
-// changed. A path's texel also carries the motion of the glass it entered, where the resolve
-// looks second (a body moving over a still background carries its refraction with it).
+// Its identity is the glass it entered (what the path ends on may change from frame to frame,
+// motionSubject), and the direction the path left the glass goes with it: the resolve rejects
+// the history where another glass is entered, or where the exit turned by more than a right
+// angle. A path's texel also carries the motion of the glass it entered, where the resolve looks
+// first (a body moving over a still background carries its refraction with it).
 #ifndef REFRACTION_WALK_MOTION_GLSL
 #define REFRACTION_WALK_MOTION_GLSL
 #include "common/motion.glsl"
@@ -48,10 +49,6 @@ vec2 enteredSurfaceMotion(ivec2 p, Entry e) {
 }
 #endif
 
-uint throughGlassObject(uint endKind, uint endObject, uint glass) {
-    return (endKind << 20) | ((endObject & 0xFFFu) << 8) | (glass & 255u);
-}
-
 // What a pixel the hybrid's walk hands over leaves its trace pass: the motion of the glass it
 // enters (glassPixelMotion's there).
 uvec4 handedOverMotion(ivec2 p, Entry e) {
@@ -60,8 +57,8 @@ uvec4 handedOverMotion(ivec2 p, Entry e) {
     return m;
 }
 
-uvec4 throughGlassMotion(uint object, vec2 motion, vec2 surface, uint exitDirection) {
-    uvec4 m = packMotion(motionIdentity(MOTION_THROUGH_GLASS, object), motion, 0.0, 0.0,
+uvec4 throughGlassMotion(uint glass, vec2 motion, vec2 surface, uint exitDirection) {
+    uvec4 m = packMotion(motionIdentity(MOTION_THROUGH_GLASS, glass), motion, 0.0, 0.0,
                          exitDirection);
     m.z = packHalf2x16(clamp(surface, vec2(-8192.0), vec2(8192.0)));
     return m;
@@ -82,23 +79,17 @@ uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
     vec2 surface = enteredSurfaceMotion(p, e);
     vec3 Vw = uViewToWorld * e.V;
     if (!green.opaque && endT <= 0.0) // the environment
-        return throughGlassMotion(throughGlassObject(MOTION_ENVIRONMENT, 0u, glass),
-                                  directionMotion(Vw), surface, exitDirection);
+        return throughGlassMotion(glass, directionMotion(Vw), surface, exitDirection);
     vec3 E = green.path.P + green.path.dir * endT;
     vec3 virtualPoint = viewToWorld(e.V * (length(e.P1) + length(E - e.P1)));
     vec2 motion = pointMotion(virtualPoint, virtualPoint);
-    uint endKind = MOTION_OPAQUE, endObject = 0xFFFu; // hidden: taken as still
     ivec2 h = ivec2(floor(projectToUv(E) * uViewportSize));
     float seen = sceneDepthAt(h);
-    if (seen < NO_DEPTH && abs(seen + E.z) < 0.02 * -E.z) {
-        uvec4 end = texelFetch(uSceneMotion, h, 0);
+    if (seen < NO_DEPTH && abs(seen + E.z) < 0.02 * -E.z) { // else hidden: taken as still
         vec3 Ew = viewToWorld(E);
-        motion += motionPixels(end) - pointMotion(Ew, Ew);
-        endKind = motionKind(end);
-        endObject = end.x & MOTION_OBJECT_MASK;
+        motion += motionPixels(texelFetch(uSceneMotion, h, 0)) - pointMotion(Ew, Ew);
     }
-    return throughGlassMotion(throughGlassObject(endKind, endObject, glass), motion, surface,
-                              exitDirection);
+    return throughGlassMotion(glass, motion, surface, exitDirection);
 }
 
 // While a frame accumulates and anything moves (uFreshSamples > 1), the glass pixels whose
