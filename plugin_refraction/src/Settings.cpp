@@ -130,10 +130,10 @@ const std::vector<plugin::Parameter>& Settings::parameterTable() {
          .min = 1,
          .max = 16,
          .defaultValue = 4,
-         .help = "DIR, trace and hybrid, a frame that accumulates while anything moves: "
-                 "samples a glass pixel takes where its history will be rejected (a surface it "
-                 "did not show, a jump in its path's exit), the first jittered with the frame, "
-                 "the others over the pixel; 1: one, as every other pixel"},
+         .help = "trace and hybrid, a frame that accumulates while anything moves: samples a "
+                 "glass pixel takes where its history will be rejected (a surface it did not "
+                 "show, a jump in its path's exit), the first jittered with the frame, the "
+                 "others over the pixel; 1: one, as every other pixel"},
         {.name = "fresh-contrast",
          .label = "Fresh where the history differs",
          .min = 0.0,

@@ -334,7 +334,7 @@ TEST_F(Temporal, TheHistoryIsRejectedWhereThePathNowLeavesTheGlassAnotherWay) {
     // Rejecting at 15 degrees cost every playing row 0.04-0.51 dB (docs/accuracy.md). A glass
     // pixel's history is its glass's, whether the light came through it or was reflected
     // (motionSubject: rejected when what the path ended on changed, every playing row scored
-    // 0.03-0.24 dB less).
+    // 0.01-0.22 dB less).
     gl::ShaderLibrary library = shaders(); // the engine's, and the probe
     library.add(kShowsSameProbe);
     ASSERT_TRUE(library.share("probe", kProbeTable).ok());
@@ -567,8 +567,8 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
 TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     // A pixel listed on frame after frame (its first sample differing from its history) takes
     // its later samples over the pixel itself, at points turned every frame, and the resolve
-    // weighs them as the samples they are: listing 34% of CesiumMan's glass gains 1.66 dB over
-    // listing the 3% whose history is rejected. When 10% was rejected (the exit turned by 15
+    // weighs them as the samples they are: listing 32% of CesiumMan's glass gains 1.65 dB over
+    // listing the 0.2% whose history is rejected. When 10% was rejected (the exit turned by 15
     // degrees), the gain of 1.44 dB was 1.12 with the same points every frame, 0.89 with them
     // around the frame's jittered centre, and 0.11 with them weighed as one sample.
     GLASS_REQUIRE_SHARED();

@@ -106,7 +106,7 @@ const float kExitTurn = 0.0;
 // ends on is no part of it: a bending limb refracts the ground on one frame and the sky on the
 // next, and the clip bounds what such a history brings; rejected there too, the history of the
 // walking figures' glass was thrown away where it was worth keeping (every playing row scored
-// 0.03-0.24 dB less, docs/accuracy.md).
+// 0.01-0.22 dB less, docs/accuracy.md).
 uint motionSubject(uvec4 m) {
     return motionKind(m) == MOTION_THROUGH_GLASS
                ? motionIdentity(MOTION_GLASS, m.x & MOTION_OBJECT_MASK)

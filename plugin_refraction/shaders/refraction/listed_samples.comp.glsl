@@ -1,9 +1,7 @@
 // Samples of a list of pixels (ListedPasses.cpp), a dispatch each sample, over the walk's
-// colour. The trace's and the hybrid's are traced as the trace traces them (walk.glsl compiled
-// with LAYER_METHOD 4): the pixels the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD
-// 5), or (uFreshList) the later samples of the pixels that take the fresh samples
-// (walk_motion.glsl). DIR's fresh samples are walked as DIR walks them (its LAYER_METHOD;
-// HYBRID_LIST 0), each from its own entry (layeredSample).
+// colour, traced as the trace traces them (walk.glsl compiled with LAYER_METHOD 4): the pixels
+// the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD 5), or (uFreshList) the later
+// samples of the trace's or the hybrid's pixels that take the fresh samples (walk_motion.glsl).
 // A list, not the rectangle again: a walk's loops run as long as their longest lane, and a
 // listed pixel among others would hold its whole block of lanes through them (a CPU
 // rasteriser's 4x4 block, a GPU's warp), and would pay for the rectangle's other pixels.
@@ -20,25 +18,15 @@ layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-#if HYBRID_LIST
     bool fresh = uFreshList != 0;
     if (i >= (fresh ? walkFreshPixels : handedOverCount))
         return;
     uint pixel = fresh ? freshPixelList[i] : handedOverWords[handedOverListStart() + i];
-#else // DIR's: the fresh samples' list alone
-    if (i >= walkFreshPixels)
-        return;
-    uint pixel = freshPixelList[i];
-#endif
     ivec2 p = ivec2(pixel & 0xFFFFu, pixel >> 16);
     Entry e;
     pixelEntry(p, e); // the walk found it
     Walk walk;
-#if LAYER_METHOD == METHOD_TRACE
     vec4 color = vec4(tracedSample(p, e, walk), 1.0);
-#else
-    vec4 color = vec4(layeredSample(p, e, facingNormal(e), storedCount(p), walk), 1.0);
-#endif
     if (uTraceSample > 0) {
         vec4 before = imageLoad(uShaded, p);
         color = vec4(color.rgb + before.rgb, before.a);

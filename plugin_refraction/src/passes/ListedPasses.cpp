@@ -1,6 +1,6 @@
 // Samples of a list of pixels (listed_samples.comp.glsl: a dispatch each sample of as many work
-// groups as the list holds), over the walk's colour; traced (the walk compiled as the trace's
-// variant) for the trace and the hybrid, walked by DIR's variant for DIR:
+// groups as the list holds), over the walk's colour, traced (the walk compiled as the trace's
+// variant); the trace's and the hybrid's:
 //   `refraction.hybrid_trace`: the pixels the hybrid's walk handed over (the layers could not
 //   hold their path), every sample; where the frame accumulates, their motion over the walk's,
 //   and the first sample lists those whose history will be rejected, as the walk lists its own;
@@ -27,8 +27,7 @@ enum class List : int { HandedOver, Fresh };
 void declare(fg::Builder& b, TraceData& d, const FrameContext& c, FrameBuffers& buffers,
              const SceneInputs& scene, const Capture& capture, const Walked& walked, List list) {
     d.in = readWalkInputs(b, c, buffers, scene, capture);
-    if (c.settings.traces()) // the traced samples' program reads the hybrid's list
-        b.read(buffers.handedOver);
+    b.read(buffers.handedOver); // the traced samples' program reads the hybrid's list
     d.counters = b.write(buffers.counters);
     d.color = b.write(walked.color);
     if (list == List::HandedOver && walked.motion.valid()) {
@@ -47,8 +46,7 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
     GpuState& gpu = *c.gpu;
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
-    if (c.settings.traces())
-        gl::bindStorage(slot::kHandedOver, gpu.handedOver);
+    gl::bindStorage(slot::kHandedOver, gpu.handedOver);
     const gl::Program& program = *c.listedSamples;
     c.setWalkUniforms(program);
     c.setLayerUniforms(program);

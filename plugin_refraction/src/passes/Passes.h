@@ -69,8 +69,8 @@ struct FrameContext {
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
     const gl::Program* walk = nullptr; ///< the walk's variant (selectVariants)
-    /** Samples of a list of pixels (listed_samples.comp.glsl, selectVariants): the hybrid's
-     *  trace pass's, the fresh samples' (traced for the trace and the hybrid). */
+    /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectVariants): the
+     *  hybrid's trace pass's, the fresh samples' (the trace and the hybrid). */
     const gl::Program* listedSamples = nullptr;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
      *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
@@ -271,9 +271,9 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
  *  new versions (writes counters; the fresh samples' list). */
 Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture, const Walked& walked);
-/** Where c.freshSamples() > 1: the later samples of the listed pixels (those whose history
- *  will be rejected) added to the walk's colour (traced for the trace and the hybrid);
- *  returns its new version. */
+/** Where c.freshSamples() > 1 (the trace and the hybrid): the later samples of the listed
+ *  pixels (those whose history will be rejected, or differs from their first sample) traced
+ *  and added to the walk's colour; returns its new version. */
 Walked addFreshSamplesPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            const SceneInputs& scene, const Capture& capture, const Walked& walked);
 /** The outlines of smooth glass anti-aliased over the walk's colour, into the scene colour

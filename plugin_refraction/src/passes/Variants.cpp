@@ -134,19 +134,16 @@ core::Status selectVariants(GpuState& gpu, FrameContext& c) {
         }
     }
     c.walk = &gpu.walkPrograms.at(key(c.settings.method));
-    if (!c.settings.traces() && c.freshSamples() <= 1)
+    if (!c.settings.traces())
         return {};
     // The listed samples (listed_samples.comp.glsl), storing the format of the walk's target:
-    // the trace's and the hybrid's as the trace's variant of the walk, over the hybrid's handed-
-    // over pixels or the fresh samples'; DIR's fresh samples as its own.
-    const bool traces = c.settings.traces(), addsUp = c.settings.addsSamples();
-    const auto listedKey =
-        std::pair{key(traces ? Settings::Method::Hybrid : c.settings.method), addsUp};
+    // the trace's variant of the walk, over the hybrid's handed-over pixels or the fresh
+    // samples'.
+    const bool addsUp = c.settings.addsSamples();
+    const auto listedKey = std::pair{key(Settings::Method::Hybrid), addsUp};
     if (!gpu.listedSamples.count(listedKey)) {
-        std::vector<std::string> defines =
-            walkDefines(listedKey.first, traces ? Settings::Method::Trace : c.settings.method);
-        if (traces)
-            defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
+        std::vector<std::string> defines = walkDefines(listedKey.first, Settings::Method::Trace);
+        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
         defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
         auto listed =
             gl::Program::compute(*c.frame->shaders, "refraction/listed_samples.comp.glsl", defines);
