@@ -556,8 +556,8 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     double share = 0.0, none = 0.0;
     const double fresh = sphereUncovered(context(), 4, share),
                  one = sphereUncovered(context(), 1, none);
-    std::printf("a box sliding off the sphere, accumulating: %.2f dB with 4 fresh samples on %.1f%% of the "
-                "glass, %.2f dB with one\n",
+    std::printf("a box sliding off the sphere, accumulating: %.2f dB with 4 fresh samples on "
+                "%.1f%% of the glass, %.2f dB with one\n",
                 fresh, 100.0 * share, one);
     EXPECT_EQ(none, 0.0);
     EXPECT_GT(share, 0.01);
