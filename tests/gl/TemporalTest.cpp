@@ -441,13 +441,11 @@ double sphereCrossingTheGround(gl::Context& context, bool temporal, float moving
     int scored = 0;
     for (int k = 0; k < 24; ++k) {
         rig.character(0).placement.translation = {-0.5 + 0.015 * k, 0.0, 0.0};
-        const std::vector<float> hdr = rig.renderHdr(0.0);
-        if (k < 16 || k % 2 != 0)
-            continue; // warm-up, and every other frame scored
-        const WorldRig::Reference reference = rig.reference(0.0);
-        sum += capture::score(capture::Image{128, 128, render::cpu::tonemap(hdr, 1.0f)},
-                              reference.image, &reference.mask)
-                   .psnr;
+        if (k < 16 || k % 2 != 0) { // warm-up, and every other frame scored
+            rig.renderHdr(0.0);
+            continue;
+        }
+        sum += rig.psnrAgainstReference();
         ++scored;
     }
     return sum / scored;
@@ -475,13 +473,21 @@ TEST_F(Temporal, HalfAPixelOfJitterWhileMovingScoresBetterThanTheWhole) {
     EXPECT_GT(half, whole + 0.25);
 }
 
-/** A character walking at 30 frames a second from `start`, `method` at `size` pixels square,
- *  accumulating with `fresh` samples where the history is rejected or differs from the first
- *  sample by `contrast`: the mean masked PSNR against the reference of its frames 12-15; into
- *  `freshShare`, the share of their glass pixels that took them. */
+/** Adds the glass pixels of the frame `rig` rendered last to `walked`, and those of them that
+ *  took the fresh samples to `fresh`. */
+void countFresh(const WorldRig& rig, double& fresh, double& walked) {
+    const refraction::LayerStats stats = rig.plugin().layerStats();
+    fresh += stats.freshPixels;
+    walked += stats.walkedPixels;
+}
+
+/** A character walking at 30 frames a second from `start`, `method` at 96x96, accumulating with
+ * `fresh` samples where the history is rejected or differs from the first sample by `contrast`: the
+ * mean masked PSNR against the reference of its frames 12-15; into `freshShare`, the share of their
+ * glass pixels that took them. */
 double walking(gl::Context& context, scene::World world, double start, const char* method,
-               int fresh, double contrast, double& freshShare, int size = 96) {
-    WorldRig rig(std::move(world), context, size);
+               int fresh, double contrast, double& freshShare) {
+    WorldRig rig(std::move(world), context, 96);
     rig.set("method", method);
     rig.set("glass", "all");
     rig.set("fresh-samples", std::to_string(fresh));
@@ -491,16 +497,12 @@ double walking(gl::Context& context, scene::World world, double start, const cha
     int scored = 0;
     for (int k = 0; k < 16; ++k) {
         const double time = start + k / 30.0;
-        const std::vector<float> hdr = rig.renderHdr(time);
-        if (k < 12)
+        if (k < 12) {
+            rig.renderHdr(time);
             continue;
-        const refraction::LayerStats stats = rig.plugin().layerStats();
-        freshPixels += stats.freshPixels;
-        walked += stats.walkedPixels;
-        const WorldRig::Reference reference = rig.reference(time);
-        sum += capture::score(capture::Image{size, size, render::cpu::tonemap(hdr, 1.0f)},
-                              reference.image, &reference.mask)
-                   .psnr;
+        }
+        sum += rig.psnrAgainstReference(time);
+        countFresh(rig, freshPixels, walked);
         ++scored;
     }
     freshShare = freshPixels / std::max(walked, 1.0);
@@ -533,16 +535,12 @@ double sphereUncovered(gl::Context& context, int fresh, double& freshShare) {
     int scored = 0;
     for (int k = 0; k < 20; ++k) {
         rig.character(1).placement.translation = {-0.1 * k, 0.0, 1.3};
-        const std::vector<float> hdr = rig.renderHdr(0.0);
-        if (k < 12)
+        if (k < 12) {
+            rig.renderHdr(0.0);
             continue;
-        const refraction::LayerStats stats = rig.plugin().layerStats();
-        freshPixels += stats.freshPixels;
-        walked += stats.walkedPixels;
-        const WorldRig::Reference reference = rig.reference(0.0);
-        sum += capture::score(capture::Image{128, 128, render::cpu::tonemap(hdr, 1.0f)},
-                              reference.image, &reference.mask)
-                   .psnr;
+        }
+        sum += rig.psnrAgainstReference();
+        countFresh(rig, freshPixels, walked);
         ++scored;
     }
     freshShare = freshPixels / std::max(walked, 1.0);

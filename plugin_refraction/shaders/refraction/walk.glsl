@@ -668,8 +668,8 @@ bool subPixelEntry(ivec2 p, vec2 offset, vec3 V, inout Entry e, out vec3 N1, out
 
 // Sample uTraceSample of the walk through pixel p (its entry e, the nearest layer's normal N1
 // turned to the viewer, its `stored` layers), weighted: the first from the pixel's centre, the
-// later ones (the hybrid's, or a frame's fresh samples) along their jittered rays (sampleView)
-// from their own entries (subPixelEntry). A pixel the hybrid hands over for its own layers is
+// hybrid's later ones along their jittered rays (sampleView) from their own entries
+// (subPixelEntry). A pixel the hybrid hands over for its own layers is
 // not walked at all (black).
 vec3 layeredSample(ivec2 p, Entry e, vec3 N1, int stored, out Walk walk) {
     walk.overflowed = walk.fallback = walk.hardReflection = walk.outline = false;
