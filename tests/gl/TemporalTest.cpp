@@ -3,8 +3,9 @@
 // deformation (skinned and morphed, refined by OpenSubdiv, instanced); still frames that average
 // exactly to the mean of their jittered samples and converge as many samples in one frame do; no
 // trail behind a character that moves off the background; the resolve's test of a history
-// (another body, a disocclusion, a path's exit turned more than a right angle); camera cuts that
-// start the history over; every method accumulating as lit characters walk past.
+// (another body, a disocclusion, a path's exit turned more than a right angle); camera cuts,
+// edits of the world, resizes and changed settings that start the history over; every method
+// accumulating as lit characters walk past.
 #include "MatrixWorlds.h"
 #include "support/GlTest.h"
 #include "support/TestSupport.h"
@@ -425,6 +426,40 @@ TEST_F(Temporal, ACameraCutStartsTheHistoryOver) {
     third.setCamera(near);
     rig.renderer().resetHistory();
     EXPECT_EQ(rig.renderHdr(0.8), third.renderHdr(0.8));
+}
+
+TEST_F(Temporal, EditsResizesAndChangedSettingsStartTheHistoryOver) {
+    // Each change, made to a rig with a history and to a fresh one: the frame after it is the
+    // history's first, as the fresh rig's is (TemporalHistory::begin). The resolve's own weight
+    // is no such change: the history shows.
+    struct Change {
+        const char* name;
+        std::function<void(WorldRig&)> apply;
+        bool resets;
+    };
+    const std::vector<Change> changes{
+        {"the clip", [](WorldRig& r) { r.character(0).clip = 1; }, true},
+        {"the character's time offset", [](WorldRig& r) { r.character(0).timeOffset = 0.3; }, true},
+        {"a plugin parameter", [](WorldRig& r) { r.set("ior", "1.4"); }, true},
+        {"the frame's size", [](WorldRig& r) { r.setSize(80); }, true},
+        {"the shadows", [](WorldRig& r) { r.shadows = false; }, true},
+        {"the history weight", [](WorldRig& r) { r.temporal.historyWeight = 0.8f; }, false},
+    };
+    for (const Change& change : changes) {
+        SCOPED_TRACE(change.name);
+        WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 96);
+        WorldRig fresh(test::generatedWorld("glass_figure.glb"), context(), 96);
+        rig.temporal.enabled = fresh.temporal.enabled = true;
+        for (int k = 0; k < 4; ++k)
+            rig.renderHdr(0.1 * k);
+        change.apply(rig);
+        change.apply(fresh);
+        const std::vector<float> after = rig.renderHdr(0.4), first = fresh.renderHdr(0.4);
+        if (change.resets)
+            EXPECT_EQ(after, first);
+        else
+            EXPECT_NE(after, first);
+    }
 }
 
 /** The glass sphere translating over the ground, half a pixel a frame, the camera still, the

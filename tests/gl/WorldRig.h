@@ -146,6 +146,8 @@ public:
     render::TemporalSettings temporal;
     const render::Camera& camera() const { return mCamera; }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
+    /** The frames' width and height from the next one on. */
+    void setSize(int size) { mSize = size; }
     /** Views the world from its scene file's camera instead of framing its bounds. */
     void useSceneCamera() {
         ASSERT_TRUE(mWorld.camera.has_value());
