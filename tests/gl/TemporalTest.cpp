@@ -232,6 +232,12 @@ scene::World glassSphere(bool ground) {
     return world;
 }
 
+/** A still camera over the glass sphere and the ground around it, with room for the sphere to
+ *  move a unit either way. */
+render::Camera sphereOverGroundCamera() {
+    return render::frameBounds(render::Bounds{{-2.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 1.0f}}, 1.0f);
+}
+
 /** The pixels (rows top to bottom) whose centre's ray from `camera` meets the unit sphere at
  *  `centre`, grown by a pixel: what the sphere covers. */
 std::vector<bool> sphereMask(const render::Camera& camera, const glm::dvec3& centre, int size) {
@@ -465,8 +471,7 @@ TEST_F(Temporal, EditsResizesAndChangedSettingsStartTheHistoryOver) {
  *  with accumulation or without. */
 double sphereCrossingTheGround(gl::Context& context, bool temporal, float movingJitter = 0.5f) {
     WorldRig rig(glassSphere(true), context, 128);
-    rig.setCamera(
-        render::frameBounds(render::Bounds{{-2.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 1.0f}}, 1.0f));
+    rig.setCamera(sphereOverGroundCamera());
     rig.set("method", "trace");
     rig.temporal.enabled = temporal;
     rig.temporal.movingJitter = movingJitter;
@@ -514,10 +519,10 @@ void countFresh(const WorldRig& rig, double& fresh, double& walked) {
     walked += stats.walkedPixels;
 }
 
-/** A character walking at 30 frames a second from `start`, `method` at 96x96, accumulating with
- * `fresh` samples where the history is rejected or differs from the first sample by `contrast`: the
- * mean masked PSNR against the reference of its frames 12-15; into `freshShare`, the share of their
- * glass pixels that took them. */
+/** A character walking at 30 frames a second from `start`, `method` at 96x96, accumulating
+ *  with `fresh` samples where the history is rejected or differs from the first sample by
+ *  `contrast`: the mean masked PSNR against the reference of its frames 12-15; into
+ *  `freshShare`, the share of their glass pixels that took them. */
 double walking(gl::Context& context, scene::World world, double start, const char* method,
                int fresh, double contrast, double& freshShare) {
     WorldRig rig(std::move(world), context, 96);
@@ -558,8 +563,7 @@ double sphereUncovered(gl::Context& context, int fresh, double& freshShare) {
     cover.placement.scale = glm::dvec3(0.9);
     world.characters.push_back(std::move(cover));
     WorldRig rig(std::move(world), context, 128);
-    rig.setCamera(
-        render::frameBounds(render::Bounds{{-2.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 1.0f}}, 1.0f));
+    rig.setCamera(sphereOverGroundCamera());
     rig.set("method", "trace");
     rig.set("fresh-samples", std::to_string(fresh));
     rig.set("fresh-contrast", "0");
