@@ -50,23 +50,24 @@ float spotFalloff(PunctualLight light, vec3 L) {
 // falloffs and what its shadow maps say blocks or tints it, and the unit direction L toward it.
 vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
     PunctualLight light = punctualLights[i];
+    float falloff = 1.0;
     if (int(light.position.w) == LIGHT_DIRECTIONAL) {
         L = -light.direction.xyz;
-        return light.radiance.rgb * lightShadow(light, P, N, L);
+    } else {
+        vec3 toLight = light.position.xyz - P;
+        float d2 = max(dot(toLight, toLight), 1e-8);
+        L = toLight * inversesqrt(d2);
+        falloff = 1.0 / d2;
+        if (light.direction.w > 0.0) { // the extension's smooth window to zero at the range
+            float x = d2 / (light.direction.w * light.direction.w);
+            float window = clamp(1.0 - x * x, 0.0, 1.0);
+            falloff *= window * window;
+        }
+        if (int(light.position.w) == LIGHT_SPOT)
+            falloff *= spotFalloff(light, L);
+        if (falloff <= 0.0)
+            return vec3(0.0);
     }
-    vec3 toLight = light.position.xyz - P;
-    float d2 = max(dot(toLight, toLight), 1e-8);
-    L = toLight * inversesqrt(d2);
-    float falloff = 1.0 / d2;
-    if (light.direction.w > 0.0) { // the extension's smooth window to zero at the range
-        float x = d2 / (light.direction.w * light.direction.w);
-        float window = clamp(1.0 - x * x, 0.0, 1.0);
-        falloff *= window * window;
-    }
-    if (int(light.position.w) == LIGHT_SPOT)
-        falloff *= spotFalloff(light, L);
-    if (falloff <= 0.0)
-        return vec3(0.0);
     return light.radiance.rgb * falloff * lightShadow(light, P, N, L);
 }
 

@@ -37,29 +37,62 @@ float shadowDistance(ShadowView view, vec3 P) {
            view.texel.z;
 }
 
-// One tap of both atlases at `uv` (clamped into the tile): the opaque casters' visibility times
-// what the glass in front of P lets through (P farther than the glass's nearest surface by more
-// than `texel`, a texel's size at P).
-vec3 shadowTap(ShadowView view, vec2 uv, float depth, float distanceToLight, float texel) {
+// Which parts of the lookup a program compiles (render::LightingFeatures::defines, from what
+// the frame's lights and plugins use; a program built without them keeps every part): a
+// CPU rasteriser runs every branch of a quad, so a part that is off must be out of the program.
+// SHADOW_MAPS: some light casts; SHADOW_SOFT: some casting light filters over a radius;
+// SHADOW_GLASS: a plugin drew glass into the glass atlas; SHADOW_CAUSTICS: a plugin focused
+// caustics.
+#ifndef SHADOW_MAPS
+#define SHADOW_MAPS 1
+#endif
+#ifndef SHADOW_SOFT
+#define SHADOW_SOFT 1
+#endif
+#ifndef SHADOW_GLASS
+#define SHADOW_GLASS 1
+#endif
+#ifndef SHADOW_CAUSTICS
+#define SHADOW_CAUSTICS 1
+#endif
+
+// The opaque casters' visibility at `uv` (clamped into the tile), a bilinear compared tap.
+float shadowVisibility(ShadowView view, vec2 uv, float depth) {
     vec2 halfTexel = 0.5 * view.tile.zw / view.texel.w;
-    vec2 lo = view.tile.xy + halfTexel, hi = view.tile.xy + view.tile.zw - halfTexel;
-    uv = clamp(uv, lo, hi);
-    float lit = texture(uShadowDepth, vec3(uv, depth));
-    if (lit <= 0.0)
-        return vec3(0.0);
+    return texture(uShadowDepth,
+                   vec3(clamp(uv, view.tile.xy + halfTexel, view.tile.xy + view.tile.zw - halfTexel),
+                        depth));
+}
+
+// What the glass and the caustics make of the light that reaches P past the opaque casters,
+// read once at the filter's centre `uv`: what the glass in front of P lets through (P farther
+// than the glass's nearest surface by more than `texel`, a texel's size at P), or where a
+// plugin focused caustics, the focused light plus the light's own where no glass is in front.
+vec3 shadowTransmittance(ShadowView view, vec2 uv, float distanceToLight, float texel) {
+    vec3 through = vec3(1.0);
+#if SHADOW_GLASS || SHADOW_CAUSTICS
+    vec2 halfTexel = 0.5 * view.tile.zw / view.texel.w;
+    uv = clamp(uv, view.tile.xy + halfTexel, view.tile.xy + view.tile.zw - halfTexel);
     vec4 glass = textureLod(uShadowGlass, uv, 0.0);
-    // The glass in front of P (a receiver behind the glass's nearest surface along the ray).
     bool behindGlass = distanceToLight > glass.a + 2.0 * texel;
-    // A receiver where a plugin focused caustics takes the focused light, and the light's own
-    // where no glass is in front.
+#if SHADOW_GLASS
+    if (behindGlass)
+        through = exp(-max(glass.rgb, vec3(0.0)));
+#endif
+#if SHADOW_CAUSTICS
     vec4 caustic = textureLod(uShadowCaustics, uv, 0.0);
     if (gCausticReceiver && caustic.a < NO_GLASS)
-        return lit * (caustic.rgb + (behindGlass ? 0.0 : 1.0));
-    return behindGlass ? lit * exp(-max(glass.rgb, vec3(0.0))) : vec3(lit);
+        through = caustic.rgb + (behindGlass ? 0.0 : 1.0);
+#endif
+#endif
+    return through;
 }
 
 // What reaches P (normal N, unit L toward the light) of `light` past its casters: 1 unshadowed.
 vec3 lightShadow(PunctualLight light, vec3 P, vec3 N, vec3 L) {
+#if !SHADOW_MAPS
+    return vec3(1.0);
+#else
     if (light.cone.y < 0.0)
         return vec3(1.0);
     ShadowView view = shadowViews[shadowView(light, P)];
@@ -77,15 +110,19 @@ vec3 lightShadow(PunctualLight light, vec3 P, vec3 N, vec3 L) {
         return vec3(1.0); // outside the map: no caster there
     vec2 uv = view.tile.xy + (ndc.xy * 0.5 + 0.5) * view.tile.zw;
     float depth = min(ndc.z * 0.5 + 0.5, 1.0); // receivers past the far plane meet its clear
-    if (softness <= 0.0)
-        return shadowTap(view, uv, depth, distanceToLight, texel);
-    // A 3 x 3 grid of filtered taps over the radius: a tent of about 2 * softness texels.
-    vec3 sum = vec3(0.0);
-    vec2 step = softness * view.tile.zw / view.texel.w;
-    for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x)
-            sum += shadowTap(view, uv + vec2(x, y) * step, depth, distanceToLight, texel);
-    return sum / 9.0;
+#if SHADOW_SOFT
+    // Four bilinear taps at (+-d, +-d), d = 0.75 softness texels (0 for a hard light: the four
+    // meet): a filter of about the light's radius, each tap four texels.
+    vec2 d = 0.75 * softness * view.tile.zw / view.texel.w;
+    float visible = 0.25 * (shadowVisibility(view, uv - d, depth) +
+                            shadowVisibility(view, uv + d, depth) +
+                            shadowVisibility(view, uv + vec2(d.x, -d.y), depth) +
+                            shadowVisibility(view, uv + vec2(-d.x, d.y), depth));
+#else
+    float visible = shadowVisibility(view, uv, depth);
+#endif
+    return visible * shadowTransmittance(view, uv, distanceToLight, texel);
+#endif
 }
 
 #endif
