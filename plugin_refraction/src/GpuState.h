@@ -82,22 +82,10 @@ struct WalkCountersGpu {
 struct GpuState {
     BvhPrograms bvh;        // the glass BVH's build and refit, the d_N cast
     gl::Program growExtent; // the glass_extent pass (glass_extent.comp.glsl)
-    // The pair capture: its two geometry passes' (pair_surface), or its one's (pair_gather), and
-    // its resolve (PAIR_GATHERED 0, 1); the two passes' and their resolve whether they keep the
-    // surfaces (pairPrograms: -1 none yet, else GLASS_TEXTURES, compiled in).
-    gl::Program pairSurface, pairGather, pairResolve[2];
-    int pairPrograms = -1;
-    // The layers (layers.glsl): the capture and its depth maps for K, whether it keeps the
-    // layers' surfaces and whether it reads textures at their base level (the trace's)
-    // (layerPrograms, compiled in).
-    gl::Program layerCapture, layerDepths;
+    // The pair capture in one pass (pair_gather) and its resolve (PAIR_GATHERED 1); the two
+    // passes' and theirs are variants (FrameContext::capture).
+    gl::Program pairGather, pairGatheredResolve;
     gl::Program outlines; // the outline pass
-    /** refraction.glass_shadow: the glass from the lights; [1] also marks the caustics'
-     *  emitters (CAUSTIC_EMITTERS; built when a frame first focuses caustics, as the next). */
-    gl::Program glassShadow[2];
-    /** refraction.caustic_photons (its work groups first: causticGrid, CAUSTIC_GRID) and
-     *  refraction.caustic_resolve. */
-    gl::Program causticGrid, causticPhotons, causticResolve;
     /** The caustics' storage (caustics.glsl), for a caustics atlas of `size` texels, grown as
      *  needed: the emitters (a count, the photons' work groups, then a bit a texel) and the
      *  sums (four words a cell, the fine cells' then the coarse). */
@@ -105,14 +93,6 @@ struct GpuState {
         gl::Buffer emitters, sums;
         glm::ivec2 size{0};
     } caustics;
-    std::tuple<int, bool, bool> layerPrograms{0, false, false};
-    /** The walk's variants by (capture: 0 the pair, else K; method; dispersion search;
-     *  punctual lights; textured glass). */
-    using WalkKey = std::tuple<int, int, int, bool, bool>;
-    std::map<WalkKey, gl::Program> walkPrograms;
-    /** The trace over a list of pixels, by the same key and whether its target adds samples
-     *  up. */
-    std::map<std::pair<WalkKey, bool>, gl::Program> listedSamples;
     /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
      *  word a pixel; reallocated when the viewport grows (the trace's listed pass binds it). */
     gl::Buffer handedOver;

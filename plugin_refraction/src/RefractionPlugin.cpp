@@ -75,9 +75,9 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
                            ", past this GL's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
                            std::to_string(gl::maxStorageBindings()) + ")"};
     mGpu = std::make_unique<GpuState>();
-    // The programs every frame may use; the captures' that depend on K or on textured glass,
-    // the walk's variants and the caustics' are built when a frame first needs them
-    // (selectVariants).
+    // The programs every frame may use; the variants (the captures', the glass shadow's, the
+    // walk's, the caustics') come from the engine's program cache when a frame first needs
+    // them (selectVariants, selectWalkVariants).
     struct Spec {
         gl::Program* target;
         const char* vertex; // null: a compute program
@@ -88,15 +88,11 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
     const char* rectangle = "refraction/rectangle.vert.glsl";
     const Spec specs[] = {
         {&mGpu->pairGather, glass, "refraction/pair_gather.frag.glsl", {}},
-        {&mGpu->pairResolve[1],
+        {&mGpu->pairGatheredResolve,
          rectangle,
          "refraction/pair_resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
         {&mGpu->outlines, rectangle, "refraction/outlines.frag.glsl", {}},
-        {&mGpu->glassShadow[0],
-         glass,
-         "refraction/glass_shadow.frag.glsl",
-         {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0"}},
         {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
@@ -192,7 +188,7 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
     if (c.gpu->glassOptics.empty())
         return false;
     c.caustics = c.settings.focusesCaustics() && c.frame->shadows && !c.frame->shadows->empty();
-    if (auto built = selectVariants(*mGpu, c); !built) {
+    if (auto built = selectVariants(c); !built) {
         core::logError("refraction: " + built.error().message);
         return false;
     }
@@ -226,6 +222,11 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                 plugin::kShadowCaustics,
                 addCausticPasses(graph, c, buffers,
                                  blackboard.get<fg::TextureHandle>(plugin::kShadowDepth)));
+        return;
+    }
+    if (auto built = selectWalkVariants(c); !built) {
+        core::logError("refraction: " + built.error().message);
+        mFrame->begun = false;
         return;
     }
     const SceneInputs scene = sceneInputs(blackboard);

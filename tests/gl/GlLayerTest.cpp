@@ -5,6 +5,7 @@
 #include "engine/gl/Commands.h"
 #include "engine/gl/Debug.h"
 #include "engine/gl/Framebuffer.h"
+#include "engine/gl/ProgramCache.h"
 #include "engine/gl/Registry.h"
 #include "engine/gl/Texture.h"
 
@@ -36,7 +37,25 @@ const gl::ShaderFile kFiles[] = {
                             "layout(std430, binding = OTHER_BINDING) buffer Out { float v[]; };\n"
                             "void main() { v[0] = 1.0; }\n"},
     {"broken.comp.glsl", "layout(local_size_x = 1) in;\nvoid main() { undefined_call(); }\n"},
+    // VALUE and SCALE (2 unless given) make the variant.
+    {"variant.comp.glsl", "layout(local_size_x = 1) in;\n"
+                          "layout(std430, binding = OUT_BINDING) buffer Out { float v[]; };\n"
+                          "#ifndef SCALE\n#define SCALE 2.0\n#endif\n"
+                          "void main() { v[0] = VALUE * SCALE; }\n"},
 };
+
+/** What `program` writes into a one-float buffer. */
+float runOnce(const gl::Program& program) {
+    gl::Buffer out(sizeof(float));
+    program.use();
+    gl::bindStorage(kOut, out);
+    gl::dispatch(1);
+    gl::memoryBarrier(gl::BarrierAll);
+    const auto bytes = out.download();
+    float value = 0.0f;
+    std::memcpy(&value, bytes.data(), sizeof value);
+    return value;
+}
 
 TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
     gl::ShaderLibrary library;
@@ -44,15 +63,32 @@ TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
     ASSERT_TRUE(library.share("test", kTestTable).ok());
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
-    gl::Buffer out(sizeof(float));
-    program->use();
-    gl::bindStorage(kOut, out);
-    gl::dispatch(1);
-    gl::memoryBarrier(gl::BarrierAll);
-    const auto bytes = out.download();
-    float value = 0.0f;
-    std::memcpy(&value, bytes.data(), sizeof value);
-    EXPECT_EQ(value, 2.0f);
+    EXPECT_EQ(runOnce(*program), 2.0f);
+}
+
+TEST_F(GlLayer, TheProgramCacheCompilesEachVariantOnce) {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ProgramCache cache(library);
+    auto three = cache.compute("variant.comp.glsl", {"VALUE 3.0"});
+    ASSERT_TRUE(three.ok()) << three.error().message;
+    auto scaled = cache.compute("variant.comp.glsl", {"VALUE 3.0", "SCALE 5.0"});
+    ASSERT_TRUE(scaled.ok()) << scaled.error().message;
+    EXPECT_NE(*three, *scaled);
+    EXPECT_EQ(runOnce(**three), 6.0f);
+    EXPECT_EQ(runOnce(**scaled), 15.0f);
+    // The same variant, asked again with its defines in another order: nothing compiled.
+    auto again = cache.compute("variant.comp.glsl", {"SCALE 5.0", "VALUE 3.0"});
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(*again, *scaled);
+    EXPECT_EQ(cache.size(), 2u);
+    // A variant that does not compile is an error naming the file, and is not kept.
+    auto broken = cache.compute("variant.comp.glsl", {});
+    ASSERT_FALSE(broken.ok());
+    EXPECT_NE(broken.error().message.find("variant.comp.glsl does not compile"), std::string::npos);
+    EXPECT_EQ(cache.size(), 2u);
+    acceptErrors(); // the driver also reports the failed compile through KHR_debug
 }
 
 TEST_F(GlLayer, TheRegistryRefusesABindingOrANameTwice) {

@@ -65,13 +65,12 @@ struct RenderGpu {
     gl::Program shadowMapView; ///< the shadow atlases' debug view (shadow_map_view.frag.glsl)
     gl::Program temporal;      ///< the temporal resolve (render/temporal.frag.glsl)
     TemporalHistory history;
-    gl::Program ground[2]; ///< without and with the punctual lights (PUNCTUAL_LIGHTS)
-    /** render/pbr.frag.glsl per set of material layers (Material::surfaceLayers()) and with or
-     *  without the punctual lights (opaqueKey), compiled when a frame first needs it. */
-    std::map<int, gl::Program> opaque;
+    /** This frame's variants (from the renderer's ProgramCache, for its lighting features):
+     *  the ground's, and render/pbr.frag.glsl's per set of material layers
+     *  (Material::surfaceLayers()). */
+    const gl::Program* ground = nullptr;
+    std::map<int, const gl::Program*> opaque;
     std::vector<int> layerSets; ///< the sets of layers the prepared models' materials use
-
-    static int opaqueKey(int layers, bool lit) { return layers | (lit ? 16 : 0); }
     gl::VertexArray emptyVao;
     gl::Framebuffer framebuffer;
 };

@@ -155,14 +155,7 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
             return bound.error();
         gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass));
     }
-    for (int lit = 0; lit < 2; ++lit) {
-        auto program =
-            gl::Program::graphics(r->mShaders, "render/ground.vert.glsl", "render/ground.frag.glsl",
-                                  {"PUNCTUAL_LIGHTS " + std::to_string(lit)});
-        if (!program)
-            return core::Error{"render::Renderer::create(): " + program.error().message};
-        gpu.ground[lit] = std::move(*program);
-    }
+    r->mPrograms = std::make_unique<gl::ProgramCache>(r->mShaders);
     r->mAllocator = std::make_unique<Allocator>();
     r->mPool = std::make_unique<fg::TexturePool>(*r->mAllocator);
     r->mTimer = std::make_unique<Timer>();
@@ -296,6 +289,29 @@ void Renderer::planShadows(const scene::World& world, const RenderSettings& sett
                          " times to fit the GPU's largest texture");
 }
 
+core::Status Renderer::selectPrograms(const LightingFeatures& lighting) {
+    RenderGpu& gpu = *mGpu;
+    auto fail = [](const core::Error& e) {
+        return core::Error{"render::Renderer::render(): " + e.message};
+    };
+    auto ground = mPrograms->graphics("render/ground.vert.glsl", "render/ground.frag.glsl",
+                                      lighting.defines());
+    if (!ground)
+        return fail(ground.error());
+    gpu.ground = *ground;
+    gpu.opaque.clear();
+    for (const int layers : gpu.layerSets) {
+        std::vector<std::string> defines = lighting.defines();
+        defines.push_back("SURFACE_LAYERS " + std::to_string(layers));
+        auto program =
+            mPrograms->graphics("render/mesh.vert.glsl", "render/pbr.frag.glsl", defines);
+        if (!program)
+            return fail(program.error());
+        gpu.opaque.emplace(layers, *program);
+    }
+    return {};
+}
+
 core::Result<FrameStats> Renderer::render(const scene::World& world, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
@@ -351,24 +367,14 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     }
     gpu.poses.upload(); // every character's, at once; the deform pass reads them
     gpu.lights.insert(gpu.lights.end(), world.lights.begin(), world.lights.end());
+    if (!settings.lights)
+        gpu.lights.clear();
     if (gpu.lights.size() > core::limits::kMaxLights)
         return core::Error{
             "render::Renderer::render(): the scene places " + std::to_string(gpu.lights.size()) +
             " punctual lights, over the limit of " + std::to_string(core::limits::kMaxLights)};
     planShadows(world, settings);
     gpu.lighting.upload(gpu.lights, gpu.shadows); // bound for every pass of the frame
-    for (const int layers : gpu.layerSets) {      // the opaque programs this frame draws with
-        const int key = RenderGpu::opaqueKey(layers, !gpu.lights.empty());
-        if (gpu.opaque.count(key))
-            continue;
-        auto program = gl::Program::graphics(
-            mShaders, "render/mesh.vert.glsl", "render/pbr.frag.glsl",
-            {"SURFACE_LAYERS " + std::to_string(layers),
-             std::string("PUNCTUAL_LIGHTS ") + (gpu.lights.empty() ? "0" : "1")});
-        if (!program)
-            return core::Error{"render::Renderer::render(): " + program.error().message};
-        gpu.opaque.emplace(key, std::move(*program));
-    }
     std::uint64_t pluginRevision = 0;
     for (plugin::Plugin* p : mPlugins)
         pluginRevision += p->parameters().revision();
@@ -379,6 +385,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.lights = gpu.lights;
     frame.environment = gpu.environment.get();
     frame.shaders = &mShaders;
+    frame.programs = mPrograms.get();
     frame.camera = frame.temporal.enabled
                        ? TemporalHistory::jittered(camera, frame.temporal.jitter, settings.size)
                        : camera;
@@ -419,8 +426,15 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     if (!gpu.shadows.empty())
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(plugin::Stage::Shadows, graph, blackboard);
+    // What the plugins drew into the glass and caustics atlases decides the shading's variants.
+    const passes::ShadowTargets engineShadows = shadows;
     shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
     shadows.caustics = blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics);
+    frame.lighting =
+        LightingFeatures::of(gpu.lights, gpu.shadows, !(shadows.glass == engineShadows.glass),
+                             !(shadows.caustics == engineShadows.caustics));
+    if (auto selected = selectPrograms(frame.lighting); !selected)
+        return selected.error();
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (settings.ground)

@@ -25,7 +25,11 @@ layout(location = 0) out vec4 outGlass;
 void main() {
     uint id = uint(uGlassId);
     GlassMaterial m = glassMaterials[id];
+#if GLASS_TEXTURES
     GlassSurface s = fragmentSurface(id);
+#else // no glass of the frame has textures that change its surface
+    GlassSurface s = materialSurface(m);
+#endif
     vec3 n = fragmentNormal();
     vec3 toLight = uPerspective != 0 ? -normalize(vViewPosition) : vec3(0.0, 0.0, 1.0);
     float d = (uPerspective != 0 ? length(vViewPosition) : -vViewPosition.z) - uNear;

@@ -50,11 +50,11 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
             gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
             // The work groups for this frame's emitters, an invocation a cell.
-            gpu.causticGrid.use();
-            setCausticUniforms(gpu.causticGrid, c);
+            c.causticPrograms.grid->use();
+            setCausticUniforms(*c.causticPrograms.grid, c);
             gl::dispatch(1);
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-            const gl::Program& program = gpu.causticPhotons;
+            const gl::Program& program = *c.causticPrograms.photons;
             program.use();
             setCausticUniforms(program, c);
             setGroundUniforms(program, c);
@@ -99,7 +99,7 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
                     return bound;
                 // Texels outside every tile: no caustics, the light straight.
                 gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, render::kNoGlass));
-                const gl::Program& program = gpu.causticResolve;
+                const gl::Program& program = *c.causticPrograms.resolve;
                 program.use();
                 setCausticUniforms(program, c);
                 gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);

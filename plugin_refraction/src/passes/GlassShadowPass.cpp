@@ -51,7 +51,7 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                                                          {&r.texture(d.atlas)}, nullptr);
                 !bound)
                 return bound;
-            const gl::Program& program = gpu.glassShadow[c.caustics ? 1 : 0];
+            const gl::Program& program = *c.glassShadow;
             program.use();
             program.set("uFresnelMode", int(c.settings.fresnel));
             if (c.caustics) {

@@ -40,7 +40,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);
-            const gl::Program& program = gpu.layerCapture;
+            const gl::Program& program = *c.capture.geometry;
             program.use();
             c.setLayerUniforms(program);
             c.drawGlassMaterials(program,

@@ -38,8 +38,8 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
                 return bound;
             for (int i = 0; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(kNoDepth));
-            gpu.layerDepths.use();
-            c.setLayerUniforms(gpu.layerDepths);
+            c.capture.resolve->use();
+            c.setLayerUniforms(*c.capture.resolve);
             c.drawMaskedRectangle();
             return {};
         });

@@ -43,7 +43,7 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     gpu.pairRanges.fill(offsetof(PairRangesGpu, frontMin), 1, kFloatMax);
     gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
     gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
-    const gl::Program& program = gpu.pairResolve[gathered ? 1 : 0];
+    const gl::Program& program = gathered ? gpu.pairGatheredResolve : *c.capture.resolve;
     program.use();
     c.setLayerUniforms(program);
     // The pair's maps in pair_resolve.frag.glsl's order (one pass's two, or two passes' four).

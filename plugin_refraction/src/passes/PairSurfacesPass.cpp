@@ -50,7 +50,7 @@ PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
                     gl::clearColorUint(2, 0u);
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
                 c.drawGlassMaterials(
-                    c.gpu->pairSurface,
+                    *c.capture.geometry,
                     {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
                      .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
                 // DIR §3.1: mip-filtered normals (the front's only for TIR bounces toward it)

@@ -68,8 +68,19 @@ struct FrameContext {
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
-    const gl::Program* walk = nullptr; ///< the walk's variant (selectVariants)
-    /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectVariants): the
+    /** The capture's variants (selectVariants): the layers' capture and depth maps, or the
+     *  pair's geometry passes and their resolve. */
+    struct CapturePrograms {
+        const gl::Program *geometry = nullptr, *resolve = nullptr;
+    } capture;
+    const gl::Program* walk = nullptr; ///< the walk's variant (selectWalkVariants)
+    /** refraction.glass_shadow's variant: textured glass, caustic emitters (selectVariants). */
+    const gl::Program* glassShadow = nullptr;
+    /** With the caustics: the photons' work groups (CAUSTIC_GRID), the photons, the resolve. */
+    struct CausticPrograms {
+        const gl::Program *grid = nullptr, *photons = nullptr, *resolve = nullptr;
+    } causticPrograms;
+    /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectWalkVariants): the
      *  hybrid's trace pass's, the fresh samples' (the trace and the hybrid). */
     const gl::Program* listedSamples = nullptr;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
@@ -79,8 +90,6 @@ struct FrameContext {
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
     /** The BVH holds the opaque parts too, which a traced ray or a photon may meet. */
     bool bvhHoldsOpaque() const { return settings.traces() || caustics; }
-    /** Whether the frame has punctual lights (the shading variants with them compiled in). */
-    bool lit() const { return !frame->lights.empty(); }
     /** The camera's view and projection. */
     GlassView cameraView() const { return {frame->camera.view, frame->camera.projection}; }
     /** Draws every glass item with `program` (glass.vert.glsl) from `from` (the camera's when
@@ -184,11 +193,14 @@ void assignGlassIds(FrameContext& c);
 
 // ---- The programs' variants (Variants.cpp)
 
-/** The capture's programs for this frame (the layers' for capacity K, the pair's), and into
- *  `c` the walk's variant for the capture, the method, the dispersion search and the lights
- *  (compiled in: walk.frag.glsl; every method's at once) and the listed samples' for them and
- *  the walk's target (listed_samples.comp.glsl), built when first needed and kept. */
-core::Status selectVariants(GpuState& gpu, FrameContext& c);
+/** Into `c`, from the engine's program cache (FrameInfo::programs): the capture's variants
+ *  (the layers' for capacity K, the pair's; textured glass), the glass shadow's and, where the
+ *  frame focuses caustics, the caustics' programs. */
+core::Status selectVariants(FrameContext& c);
+/** The walk's and the listed samples' variants (FrameContext::walk, listedSamples) for the
+ *  frame's method, capture, dispersion, textures and lighting features (FrameInfo::lighting,
+ *  known from the AfterOpaque stage on), from the engine's program cache. */
+core::Status selectWalkVariants(FrameContext& c);
 
 // ---- The layer arrays (LayerStorage.cpp)
 

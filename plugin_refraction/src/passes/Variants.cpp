@@ -1,12 +1,14 @@
-// The programs' variants a frame needs, compiled when first needed and kept: the captures' for
-// K and textured glass, the walk's for the capture, method, dispersion search, lights and
-// textures, the hybrid's trace pass's, and the caustics' (the emitters' glass shadow, the
-// photons, the resolve).
+// The programs' variants a frame needs, from the engine's program cache (each compiled the
+// first time a frame needs it): the captures' for K and textured glass, the glass shadow's, the
+// walk's for the capture, method, dispersion search, lighting features, layers and textures,
+// and the listed samples' (the hybrid's trace, the fresh samples); and the caustics'.
 #include "Passes.h"
+
+#include "engine/gl/ProgramCache.h"
+#include "engine/scene/Material.h"
 
 #include <algorithm>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -19,139 +21,123 @@ std::string define(const std::string& name, int value) {
 }
 
 /** The layers' capture and depth maps for capacity K, or the pair's two passes and their
- *  resolve, for whether the frame's glass is textured. */
-core::Status captureVariants(GpuState& gpu, const FrameContext& c) {
-    const gl::ShaderLibrary& shaders = *c.frame->shaders;
+ *  resolve, for whether the frame's glass is textured (FrameContext::capture). */
+core::Status captureVariants(FrameContext& c) {
+    gl::ProgramCache& programs = *c.frame->programs;
     const bool textures = c.texturedGlass;
+    const std::string glass = "refraction/glass.vert.glsl";
+    const std::string rectangle = "refraction/rectangle.vert.glsl";
+    core::Result<const gl::Program*> first = nullptr, second = nullptr;
     if (!c.settings.layered()) {
-        if (gpu.pairPrograms == int(textures))
-            return {};
-        auto surface = gl::Program::graphics(shaders, "refraction/glass.vert.glsl",
-                                             "refraction/pair_surface.frag.glsl",
-                                             {define("GLASS_TEXTURES", textures)});
-        if (!surface)
-            return surface.error();
-        auto resolve = gl::Program::graphics(
-            shaders, "refraction/rectangle.vert.glsl", "refraction/pair_resolve.frag.glsl",
+        first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
+                                  {define("GLASS_TEXTURES", textures)});
+        second = programs.graphics(
+            rectangle, "refraction/pair_resolve.frag.glsl",
             {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", define("GLASS_TEXTURES", textures)});
-        if (!resolve)
-            return resolve.error();
-        gpu.pairSurface = std::move(*surface);
-        gpu.pairResolve[0] = std::move(*resolve);
-        gpu.pairPrograms = int(textures);
-        return {};
+    } else {
+        // The trace with several samples (or one a frame of a frame that accumulates) reads the
+        // textures at their entries as at every hit, at their base level (converging to the
+        // reference); with one, filtered like the walk (a pixel's texels averaged, its frame
+        // closer to the reference's many rays than one texel).
+        const bool baseLevel = c.settings.method == Settings::Method::Trace &&
+                               (c.settings.addsSamples() || c.frame->temporal.enabled);
+        const std::vector<std::string> defines{define("LAYER_CAPACITY", c.settings.layerCapacity),
+                                               define("GLASS_TEXTURES", textures),
+                                               define("TEXTURES_BASE_LEVEL", baseLevel)};
+        first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
+        second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
     }
-    const int capacity = c.settings.layerCapacity;
-    // The trace with several samples (or one a frame of a frame that accumulates) reads the
-    // textures at their entries as at every hit, at their base level (converging to the
-    // reference); with one, filtered like the walk (a pixel's texels averaged, its frame closer
-    // to the reference's many rays than one texel).
-    const bool baseLevel = c.settings.method == Settings::Method::Trace &&
-                           (c.settings.addsSamples() || c.frame->temporal.enabled);
-    if (gpu.layerPrograms == std::tuple{capacity, textures, baseLevel})
-        return {};
-    const std::vector<std::string> defines{define("LAYER_CAPACITY", capacity),
-                                           define("GLASS_TEXTURES", textures),
-                                           define("TEXTURES_BASE_LEVEL", baseLevel)};
-    auto capture = gl::Program::graphics(shaders, "refraction/glass.vert.glsl",
-                                         "refraction/layer_capture.frag.glsl", defines);
-    if (!capture)
-        return capture.error();
-    auto depths = gl::Program::graphics(shaders, "refraction/rectangle.vert.glsl",
-                                        "refraction/layer_depths.frag.glsl", defines);
-    if (!depths)
-        return depths.error();
-    gpu.layerCapture = std::move(*capture);
-    gpu.layerDepths = std::move(*depths);
-    gpu.layerPrograms = {capacity, textures, baseLevel};
+    for (const auto* built : {&first, &second})
+        if (!*built)
+            return built->error();
+    c.capture = {*first, *second};
     return {};
 }
 
-/** The walk's defines for `method` under `key`'s capture, dispersion search, lights and
- *  textures. */
-std::vector<std::string> walkDefines(const GpuState::WalkKey& key, Settings::Method method) {
-    const int capture = std::get<0>(key);
-    return {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
-            define("CAPTURE_PAIR", capture == 0),
-            define("LAYER_DISPERSION", std::get<2>(key)),
-            define("PUNCTUAL_LIGHTS", std::get<3>(key)),
-            define("GLASS_TEXTURES", std::get<4>(key)),
-            define("LAYER_METHOD", int(method)),
-            define("HYBRID_LIST", method == Settings::Method::Hybrid)};
+/** The walk's defines for `method`: the capture (the pair, or the layers' K), the dispersion
+ *  search, the frame's lighting features, the glass's surface layers and textured glass. */
+std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method) {
+    const int capture = c.settings.layered() ? c.settings.layerCapacity : 0; // 0: the pair
+    // Dispersion: none in this frame, or the dispersion search's.
+    const bool dispersion =
+        std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
+                    [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
+    // The surface layers any of the frame's glass puts over its shading (its clear coat and
+    // sheen; the glass's own surfaces have no film or anisotropy of common/brdf.glsl's).
+    int layers = 0;
+    for (const GlassMaterialGpu& m : c.gpu->glassOptics) {
+        if (m.clearcoat > 0.0f)
+            layers |= scene::Material::kClearcoatLayer;
+        if (std::max({m.sheenColor.r, m.sheenColor.g, m.sheenColor.b}) > 0.0f)
+            layers |= scene::Material::kSheenLayer;
+    }
+    std::vector<std::string> defines = c.frame->lighting.defines();
+    defines.push_back(define("SURFACE_LAYERS", layers));
+    for (std::string d :
+         {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
+          define("CAPTURE_PAIR", capture == 0),
+          define("LAYER_DISPERSION",
+                 dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
+          define("GLASS_TEXTURES", c.texturedGlass), define("LAYER_METHOD", int(method)),
+          define("HYBRID_LIST", method == Settings::Method::Hybrid)})
+        defines.push_back(std::move(d));
+    return defines;
 }
 
-/** The caustics' programs, the first frame that focuses them. */
-core::Status causticPrograms(GpuState& gpu, const FrameContext& c) {
-    if (!c.caustics || gpu.causticResolve.id() != 0)
+/** The caustics' programs, in a frame that focuses them. */
+core::Status causticPrograms(FrameContext& c) {
+    if (!c.caustics)
         return {};
-    const gl::ShaderLibrary& shaders = *c.frame->shaders;
+    gl::ProgramCache& programs = *c.frame->programs;
     const std::string photons = "refraction/caustic_photons.comp.glsl";
-    auto emitters = gl::Program::graphics(
-        shaders, "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        {"GLASS_TEXTURES 1", "PUNCTUAL_LIGHTS 0", "CAUSTIC_EMITTERS 1"});
-    auto grid = gl::Program::compute(shaders, photons, {"CAUSTIC_GRID 1"});
-    auto trace = gl::Program::compute(shaders, photons, {});
-    auto resolve = gl::Program::graphics(shaders, "render/fullscreen.vert.glsl",
-                                         "refraction/caustic_resolve.frag.glsl", {});
-    for (const auto* built : {&emitters, &grid, &trace, &resolve})
+    auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
+    auto trace = programs.compute(photons);
+    auto resolve =
+        programs.graphics("render/fullscreen.vert.glsl", "refraction/caustic_resolve.frag.glsl");
+    for (const auto* built : {&grid, &trace, &resolve})
         if (!*built)
             return built->error();
-    gpu.glassShadow[1] = std::move(*emitters);
-    gpu.causticGrid = std::move(*grid);
-    gpu.causticPhotons = std::move(*trace);
-    gpu.causticResolve = std::move(*resolve);
+    c.causticPrograms = {*grid, *trace, *resolve};
     return {};
 }
 
 } // namespace
 
-core::Status selectVariants(GpuState& gpu, FrameContext& c) {
-    if (auto built = captureVariants(gpu, c); !built)
+core::Status selectVariants(FrameContext& c) {
+    if (auto built = captureVariants(c); !built)
         return built;
-    if (auto built = causticPrograms(gpu, c); !built)
+    if (auto built = causticPrograms(c); !built)
         return built;
-    // Dispersion: none in this frame, or the dispersion search's.
-    const bool dispersion =
-        std::any_of(gpu.glassOptics.begin(), gpu.glassOptics.end(),
-                    [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    const int mode = dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion;
-    const int capture = c.settings.layered() ? c.settings.layerCapacity : 0; // 0: the pair
-    auto key = [&](Settings::Method method) {
-        return GpuState::WalkKey{capture, int(method), mode, c.lit(), c.texturedGlass};
-    };
-    if (!gpu.walkPrograms.count(key(c.settings.method))) {
-        // Every method's variant at once: switching methods (the viewer's panel) then compiles
-        // nothing, and the live programs do not depend on which methods ran.
-        for (const Settings::Method method :
-             {Settings::Method::Sir, Settings::Method::Isr, Settings::Method::Dir,
-              Settings::Method::Trace, Settings::Method::Hybrid}) {
-            auto walk = gl::Program::graphics(*c.frame->shaders, "refraction/rectangle.vert.glsl",
-                                              "refraction/walk.frag.glsl",
-                                              walkDefines(key(method), method));
-            if (!walk)
-                return walk.error();
-            gpu.walkPrograms.insert_or_assign(key(method), std::move(*walk));
-        }
-    }
-    c.walk = &gpu.walkPrograms.at(key(c.settings.method));
+    auto shadow = c.frame->programs->graphics(
+        "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
+        {define("GLASS_TEXTURES", c.texturedGlass), "PUNCTUAL_LIGHTS 0",
+         define("CAUSTIC_EMITTERS", c.caustics)});
+    if (!shadow)
+        return shadow.error();
+    c.glassShadow = *shadow;
+    return {};
+}
+
+core::Status selectWalkVariants(FrameContext& c) {
+    gl::ProgramCache& programs = *c.frame->programs;
+    auto walk = programs.graphics("refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
+                                  walkDefines(c, c.settings.method));
+    if (!walk)
+        return walk.error();
+    c.walk = *walk;
     if (!c.settings.traces())
         return {};
     // The listed samples (listed_samples.comp.glsl), storing the format of the walk's target:
     // the trace's variant of the walk, over the hybrid's handed-over pixels or the fresh
     // samples'.
-    const bool addsUp = c.settings.addsSamples();
-    const auto listedKey = std::pair{key(Settings::Method::Hybrid), addsUp};
-    if (!gpu.listedSamples.count(listedKey)) {
-        std::vector<std::string> defines = walkDefines(listedKey.first, Settings::Method::Trace);
-        defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
-        defines.push_back(std::string("SHADED_FORMAT ") + (addsUp ? "rgba32f" : "rgba16f"));
-        auto listed =
-            gl::Program::compute(*c.frame->shaders, "refraction/listed_samples.comp.glsl", defines);
-        if (!listed)
-            return listed.error();
-        gpu.listedSamples.insert_or_assign(listedKey, std::move(*listed));
-    }
-    c.listedSamples = &gpu.listedSamples.at(listedKey);
+    std::vector<std::string> defines = walkDefines(c, Settings::Method::Trace);
+    defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
+    defines.push_back(std::string("SHADED_FORMAT ") +
+                      (c.settings.addsSamples() ? "rgba32f" : "rgba16f"));
+    auto listed = programs.compute("refraction/listed_samples.comp.glsl", defines);
+    if (!listed)
+        return listed.error();
+    c.listedSamples = *listed;
     return {};
 }
 

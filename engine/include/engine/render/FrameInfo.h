@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/render/Camera.h"
+#include "engine/render/LightingFeatures.h"
 #include "engine/render/Shadows.h"
 #include "engine/scene/Light.h"
 
@@ -23,6 +24,7 @@ struct GpuPrimitive;
 } // namespace deform
 namespace gl {
 class Program;
+class ProgramCache;
 class ShaderLibrary;
 class VertexArray;
 } // namespace gl
@@ -89,6 +91,9 @@ struct RenderSettings {
     bool ground = false;
     /** The lights cast shadows (each as its LightShadow says): off, none does. */
     bool shadows = true;
+    /** The frame's punctual lights (a file's on its nodes, a scene file's): off, the
+     *  environment lights the frame alone (what the lights cost: glass-bench --lights). */
+    bool lights = true;
     /** Finish the GPU work of each pass before timing its end. Tile-deferred rasterisers
      *  (llvmpipe) otherwise bill a pass's rasterisation to whichever pass flushes it; this
      *  gives true per-pass times at the cost of pipelining. */
@@ -160,6 +165,8 @@ struct FrameInfo {
      *  also in the storage buffer at gl::slot::kLighting. */
     std::span<const scene::PlacedLight> lights;
     const gl::ShaderLibrary* shaders = nullptr;
+    /** The renderer's program variants, compiled once each (passes ask it for theirs). */
+    gl::ProgramCache* programs = nullptr;
     /** The frame's camera: its projection offset by the temporal jitter where accumulating
      *  (temporal.viewProjection is the unjittered one). */
     Camera camera;
@@ -174,6 +181,9 @@ struct FrameInfo {
     /** The shadow views of this frame's lights (empty where none casts or
      *  RenderSettings::shadows is off): a plugin that casts draws into their tiles. */
     const ShadowPlan* shadows = nullptr;
+    /** What the frame's lights ask of the programs that shade (their defines), known once the
+     *  plugins' Shadows stage is recorded: empty before. */
+    LightingFeatures lighting;
 };
 
 /** Sets common/motion.glsl's uniforms on `program` (this frame's and the previous frame's

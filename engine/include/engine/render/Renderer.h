@@ -11,6 +11,7 @@
 #include "engine/gl/Context.h"
 #include "engine/gl/Framebuffer.h"
 #include "engine/gl/Program.h"
+#include "engine/gl/ProgramCache.h"
 #include "engine/plugin/Plugin.h"
 #include "engine/render/Environment.h"
 #include "engine/render/FrameInfo.h"
@@ -125,11 +126,15 @@ private:
     Renderer() = default;
     /** This frame's shadow views (RenderGpu::shadows) of its lights around the characters. */
     void planShadows(const scene::World& world, const RenderSettings& settings);
+    /** The ground's and the opaque pass's variants for `lighting` (RenderGpu::ground, opaque),
+     *  from the program cache. */
+    core::Status selectPrograms(const LightingFeatures& lighting);
     class Allocator;
     class Timer;
     gl::Context* mContext = nullptr;
     int mLevel = 0;
     gl::ShaderLibrary mShaders;
+    std::unique_ptr<gl::ProgramCache> mPrograms; ///< every pass's variants, over mShaders
     std::unique_ptr<Allocator> mAllocator;
     std::unique_ptr<fg::TexturePool> mPool;
     // What the passes draw with; declared after the pool so that its framebuffer goes before

@@ -25,7 +25,7 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None});
-            gl::Program& p = gpu.ground[frame.lights.empty() ? 0 : 1];
+            const gl::Program& p = *gpu.ground;
             p.use();
             gpu.environment->bind(p, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);

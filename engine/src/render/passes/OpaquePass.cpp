@@ -38,12 +38,12 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                     gpu.framebuffer.bindTargets("opaque", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
-            for (auto& [key, program] : gpu.opaque) {
-                gpu.environment->bind(program, frame.settings.environmentRotation,
+            for (auto& [layers, program] : gpu.opaque) {
+                gpu.environment->bind(*program, frame.settings.environmentRotation,
                                       frame.settings.environmentIntensity);
-                program.set("uViewProjection", frame.camera.viewProjection());
-                program.set("uCameraPosition", frame.camera.position);
-                setMotionUniforms(program, frame);
+                program->set("uViewProjection", frame.camera.viewProjection());
+                program->set("uCameraPosition", frame.camera.position);
+                setMotionUniforms(*program, frame);
             }
             for (std::size_t index = 0; index < frame.items.size(); ++index) {
                 const DrawItem& item = frame.items[index];
@@ -54,8 +54,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                     item.material >= 0
                         ? item.model->materials[std::size_t(item.material)].surfaceLayers()
                         : 0;
-                const gl::Program& p =
-                    gpu.opaque.at(RenderGpu::opaqueKey(layers, !frame.lights.empty()));
+                const gl::Program& p = *gpu.opaque.at(layers);
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));

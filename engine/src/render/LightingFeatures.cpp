@@ -1,0 +1,32 @@
+// render::LightingFeatures: from the frame's lights and shadow plan to defines.
+#include "engine/render/LightingFeatures.h"
+
+namespace render {
+
+LightingFeatures LightingFeatures::of(std::span<const scene::PlacedLight> lights,
+                                      const ShadowPlan& plan, bool glassShadows, bool caustics) {
+    LightingFeatures f;
+    f.lights = !lights.empty();
+    for (std::size_t i = 0; i < lights.size() && i < plan.firstView.size(); ++i)
+        if (plan.firstView[i] >= 0) {
+            f.shadowMaps = true;
+            f.softShadows = f.softShadows || lights[i].light.shadow.softness > 0.0f;
+        }
+    f.glassShadows = f.shadowMaps && glassShadows;
+    f.caustics = f.shadowMaps && caustics;
+    return f;
+}
+
+std::vector<std::string> LightingFeatures::defines() const {
+    auto define = [](const char* name, bool on) { return std::string(name) + (on ? " 1" : " 0"); };
+    return {define("PUNCTUAL_LIGHTS", lights), define("SHADOW_MAPS", shadowMaps),
+            define("SHADOW_SOFT", softShadows), define("SHADOW_GLASS", glassShadows),
+            define("SHADOW_CAUSTICS", caustics)};
+}
+
+int LightingFeatures::key() const {
+    return int(lights) | int(shadowMaps) << 1 | int(softShadows) << 2 | int(glassShadows) << 3 |
+           int(caustics) << 4;
+}
+
+} // namespace render
