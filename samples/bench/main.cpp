@@ -112,6 +112,7 @@ std::size_t coveredPixels(const scene::World& world, double time, const render::
 struct MethodRun {
     std::string method;
     bool temporal = false;
+    bool lit = true; ///< the frame's punctual lights on (RenderSettings::lights)
     /** A temporal run's own plugin and renderer, whose history carries across its frames as in
      *  an application (the other runs share the scene's, switching the method each frame). */
     std::unique_ptr<plugin::Plugin> glass;
@@ -121,7 +122,9 @@ struct MethodRun {
     std::vector<std::string> passOrder;
     std::size_t transientBytes = 0, historyBytes = 0;
     refraction::LayerStats layers; ///< after the last round (layered methods)
-    std::string label() const { return temporal ? method + "+temporal" : method; }
+    std::string label() const {
+        return method + (lit ? "" : "+unlit") + (temporal ? "+temporal" : "");
+    }
 };
 
 /** N characters from `base`: its characters in turn, on a square grid in the x-z plane (cells
@@ -153,13 +156,15 @@ scene::World gridWorld(const scene::World& base, int count) {
  *  are to the opaque run of the same configuration. */
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
                                       std::size_t characters, std::size_t triangles) {
-    double opaqueMedian = 0.0;
-    std::map<std::string, double> withoutTemporal;
+    // The opaque run's median with and without the lights (index: lit), and each method's
+    // without accumulation.
+    double opaqueMedian[2] = {0.0, 0.0};
+    std::map<std::pair<std::string, bool>, double> withoutTemporal;
     for (const MethodRun& r : runs) {
         if (r.method == "opaque" && !r.temporal)
-            opaqueMedian = percentile(r.frameMs, 0.5);
+            opaqueMedian[r.lit] = percentile(r.frameMs, 0.5);
         if (!r.temporal)
-            withoutTemporal[r.method] = percentile(r.frameMs, 0.5);
+            withoutTemporal[{r.method, r.lit}] = percentile(r.frameMs, 0.5);
     }
     std::vector<nlohmann::json> rows;
     for (const MethodRun& r : runs) {
@@ -181,11 +186,17 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                           slowest[i].first);
             top += item;
         }
-        const double ratio = opaqueMedian > 0.0 ? median / opaqueMedian : 0.0;
-        char timesOpaque[16] = "-"; // without the opaque run: unknown
+        const double ratio = opaqueMedian[r.lit] > 0.0 ? median / opaqueMedian[r.lit] : 0.0;
+        // A lit run beside an unlit opaque one: also its ratio to that (what the lights cost).
+        const double ratioUnlit = r.lit && opaqueMedian[0] > 0.0 ? median / opaqueMedian[0] : 0.0;
+        char timesOpaque[40] = "-"; // without the opaque run: unknown
         if (ratio > 0.0)
             std::snprintf(timesOpaque, sizeof timesOpaque, "%.2f", ratio);
-        const auto off = withoutTemporal.find(r.method);
+        if (ratioUnlit > 0.0)
+            std::snprintf(timesOpaque + std::strlen(timesOpaque),
+                          sizeof timesOpaque - std::strlen(timesOpaque), " (%.2f unlit)",
+                          ratioUnlit);
+        const auto off = withoutTemporal.find({r.method, r.lit});
         const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
                                          ? median / off->second
                                          : 0.0;
@@ -242,6 +253,9 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
              {"cpu_ms", cpu},
              {"animate_record_ms", engine},
              {"ratio_to_opaque", ratio > 0.0 ? nlohmann::json(ratio) : nlohmann::json()},
+             {"lights", r.lit},
+             {"ratio_to_unlit_opaque",
+              ratioUnlit > 0.0 ? nlohmann::json(ratioUnlit) : nlohmann::json()},
              {"transient_bytes", r.transientBytes},
              {"layer_capacity", r.layers.capacity},
              {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
@@ -308,6 +322,7 @@ struct Options {
     bool force = false, ground = false, shadows = true;
     std::vector<std::pair<std::string, std::string>> assignments;
     std::vector<bool> temporalModes = {false};
+    std::vector<bool> lightModes = {true};
     render::TemporalSettings temporal; ///< a temporal run's (enabled per run)
     bool paused = false;
     plugin::ParameterSet parameters; ///< the glass's, with --glass and every --set applied
@@ -320,6 +335,13 @@ std::optional<int> wholeNumber(const std::string& text, long lo, long hi) {
     if (text.empty() || *end != '\0' || n < lo || n > hi)
         return std::nullopt;
     return int(n);
+}
+
+/** "on" or "off" as a bool, or nothing. */
+std::optional<bool> onOrOff(const std::string& mode) {
+    if (mode != "on" && mode != "off")
+        return std::nullopt;
+    return mode == "on";
 }
 
 void addOptions(CLI::App& app, Options& o) {
@@ -384,19 +406,19 @@ void addOptions(CLI::App& app, Options& o) {
         ->trigger_on_parse()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     tool::addList<bool>(
-        app, "--temporal", o.temporalModes,
-        [](const std::string& mode) -> std::optional<bool> {
-            if (mode != "on" && mode != "off")
-                return std::nullopt;
-            return mode == "on";
-        },
-        "off, on or off,on",
+        app, "--temporal", o.temporalModes, onOrOff, "off, on or off,on",
         "on: also runs each method with temporal accumulation (\"dir+temporal\": the jitter, the "
         "motion vectors, the glass pixels' reprojection and the temporal resolve, the trace's "
         "and the hybrid's samples one a frame), with its frame time as a ratio to the same "
         "method without it (\"x off\") and the history's GPU memory (each such run has a "
         "renderer of its own, whose history carries across its frames as an application's "
         "does)")
+        ->type_name("off,on");
+    tool::addList<bool>(
+        app, "--lights", o.lightModes, onOrOff, "on, off or off,on",
+        "off: also runs each method without the punctual lights (\"dir+unlit\", the environment "
+        "alone); a lit run's x opaque then also gives its ratio to the unlit opaque run (default "
+        "on)")
         ->type_name("off,on");
     tool::addHistoryOptions(app, o.temporal);
     app.add_flag("--paused", o.paused,
@@ -437,30 +459,33 @@ core::Result<std::vector<MethodRun>> createRuns(const Options& o, tool::Headless
                                                 const scene::World& world, int level,
                                                 const render::Bounds& bounds) {
     std::vector<MethodRun> runs;
-    for (bool temporal : o.temporalModes)
-        for (const std::string& method : o.methods) {
-            MethodRun run;
-            run.method = method;
-            run.temporal = temporal;
-            if (temporal) {
-                auto created = render::Renderer::create(headless.environment, *headless.context);
-                if (!created)
-                    return created.error();
-                run.renderer = std::move(*created);
-                run.glass = refraction::createPlugin();
-                run.glass->parameters() = o.parameters;
-                (void)run.glass->parameters().set("method", method);
-                core::Status ready = run.renderer->addPlugin(run.glass.get());
-                if (ready)
-                    ready = run.renderer->setSubdivisionLevel(level);
-                if (ready)
-                    ready = run.renderer->prepare(world);
-                if (!ready)
-                    return ready.error();
-                run.renderer->setGround(render::GroundPlane::under(bounds));
+    for (bool lit : o.lightModes)
+        for (bool temporal : o.temporalModes)
+            for (const std::string& method : o.methods) {
+                MethodRun run;
+                run.method = method;
+                run.temporal = temporal;
+                run.lit = lit;
+                if (temporal) {
+                    auto created =
+                        render::Renderer::create(headless.environment, *headless.context);
+                    if (!created)
+                        return created.error();
+                    run.renderer = std::move(*created);
+                    run.glass = refraction::createPlugin();
+                    run.glass->parameters() = o.parameters;
+                    (void)run.glass->parameters().set("method", method);
+                    core::Status ready = run.renderer->addPlugin(run.glass.get());
+                    if (ready)
+                        ready = run.renderer->setSubdivisionLevel(level);
+                    if (ready)
+                        ready = run.renderer->prepare(world);
+                    if (!ready)
+                        return ready.error();
+                    run.renderer->setGround(render::GroundPlane::under(bounds));
+                }
+                runs.push_back(std::move(run));
             }
-            runs.push_back(std::move(run));
-        }
     return runs;
 }
 
@@ -473,6 +498,7 @@ core::Status measureFrame(MethodRun& r, tool::HeadlessScene& headless, const sce
         (void)plugin->parameters().set("method", r.method);
     settings.temporal = o.temporal;
     settings.temporal.enabled = r.temporal;
+    settings.lights = r.lit;
     render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
     const auto start = std::chrono::steady_clock::now();
     auto stats = renderer.render(world, camera, settings, time);
