@@ -6,6 +6,12 @@
 #include "refraction/optics.glsl"
 #include "refraction/scene_lookup.glsl"
 
+// GLASS_PARTIAL: some glass of the frame transmits only in part (its factor or texture), so
+// the opaque term is compiled in (the plugin's variants; on where not given).
+#ifndef GLASS_PARTIAL
+#define GLASS_PARTIAL 1
+#endif
+
 // ISR (Wyman 2005): the distance along T1 from the entry to the estimated exit, d_V and d_N
 // interpolated by theta_t / theta_i (d_V alone where no d_N was measured: dN < 0).
 float wymanDistance(vec3 V, vec3 N1, vec3 T1, float eta, float dV, float dN) {
@@ -63,10 +69,12 @@ vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 t
     }
 #endif
     vec3 color = glass;
+#if GLASS_PARTIAL
     if (s.transmission < 1.0) // clear glass skips the opaque term
         color = mix(shadeMetallicRoughness(s.baseColor, s.metallic, max(s.roughness, 0.03), 1.0,
                                            Pw, Nw, Vw),
                     glass, s.transmission);
+#endif
     SurfaceMaterial layers = coreSurface(s.baseColor, s.metallic, s.roughness, 1.0, Nw);
     layers.clearcoat = m.clearcoat;
     layers.clearcoatRoughness = m.clearcoatRoughness;

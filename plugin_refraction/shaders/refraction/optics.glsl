@@ -10,6 +10,16 @@
 // FRESNEL_EXACT, _SCHLICK, _OFF: the fresnel parameter's choices (Shared.h).
 uniform int uFresnelMode;
 
+// The parts of the interface model a program compiles (the plugin's variants, from the frame's
+// glass; a program built without them keeps both): GLASS_SPECULAR, some glass has
+// KHR_materials_specular's colour or weight; GLASS_FILM, some glass has an iridescent film.
+#ifndef GLASS_SPECULAR
+#define GLASS_SPECULAR 1
+#endif
+#ifndef GLASS_FILM
+#define GLASS_FILM 1
+#endif
+
 // Unpolarised reflectance of a dielectric interface; cosI > 0, eta = n_incident / n_transmitted.
 float fresnelExact(float cosI, float eta) {
     float sin2T = eta * eta * (1.0 - cosI * cosI);
@@ -61,15 +71,19 @@ const float kEstimatedTirBand = radians(20.0);
 // the base colour by metallic.
 vec3 reflectance(GlassMaterial m, GlassSurface s, float cosI, float eta) {
     vec3 F = vec3(fresnel(uFresnelMode, cosI, eta));
+#if GLASS_SPECULAR
     if (m.specularColor != vec3(1.0) || m.specularWeight != 1.0) {
         float f0 = fresnel(uFresnelMode, 1.0, eta);
         vec3 coloured = min(f0 * m.specularColor, vec3(1.0));
         F = m.specularWeight *
             (coloured + (1.0 - coloured) * (f0 < 1.0 ? (F - f0) / (1.0 - f0) : vec3(1.0)));
     }
+#endif
+#if GLASS_FILM
     if (m.iridescence > 0.0 && uFresnelMode != FRESNEL_OFF)
         F = mix(F, thinFilmReflectance(cosI, m.iridescenceIor, m.filmThickness, vec3(1.0 / eta)),
                 m.iridescence);
+#endif
     return mix(F, s.baseColor, s.metallic);
 }
 

@@ -20,6 +20,11 @@ std::string define(const std::string& name, int value) {
     return name + " " + std::to_string(value);
 }
 
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
 /** The layers' capture and depth maps for capacity K, or the pair's two passes and their
  *  resolve, for whether the frame's glass is textured (FrameContext::capture). */
 core::Status captureVariants(FrameContext& c) {
@@ -54,6 +59,25 @@ core::Status captureVariants(FrameContext& c) {
     return {};
 }
 
+/** The parts of the glass's model the frame's glass uses, as defines: the surface layers over
+ *  its shading (clear coat, sheen; its surfaces have no film or anisotropy of
+ *  common/brdf.glsl's), KHR_materials_specular, the iridescent film, partial transmission. */
+std::vector<std::string> glassDefines(const FrameContext& c) {
+    int layers = 0;
+    bool specular = false, film = false, partial = false;
+    for (const GlassMaterialGpu& m : c.gpu->glassOptics) {
+        if (m.clearcoat > 0.0f)
+            layers |= scene::Material::kClearcoatLayer;
+        if (std::max({m.sheenColor.r, m.sheenColor.g, m.sheenColor.b}) > 0.0f)
+            layers |= scene::Material::kSheenLayer;
+        specular = specular || m.specularColor != glm::vec3(1.0f) || m.specularWeight != 1.0f;
+        film = film || m.iridescence > 0.0f;
+        partial = partial || m.transmission < 1.0f || m.transmissionTexture.unit >= 0;
+    }
+    return {define("SURFACE_LAYERS", layers), define("GLASS_SPECULAR", specular),
+            define("GLASS_FILM", film), define("GLASS_PARTIAL", partial)};
+}
+
 /** The walk's defines for `method`: the capture (the pair, or the layers' K), the dispersion
  *  search, the frame's lighting features, the glass's surface layers and textured glass. */
 std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method) {
@@ -62,26 +86,13 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
     const bool dispersion =
         std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
                     [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    // The surface layers any of the frame's glass puts over its shading (its clear coat and
-    // sheen; the glass's own surfaces have no film or anisotropy of common/brdf.glsl's).
-    int layers = 0;
-    for (const GlassMaterialGpu& m : c.gpu->glassOptics) {
-        if (m.clearcoat > 0.0f)
-            layers |= scene::Material::kClearcoatLayer;
-        if (std::max({m.sheenColor.r, m.sheenColor.g, m.sheenColor.b}) > 0.0f)
-            layers |= scene::Material::kSheenLayer;
-    }
-    std::vector<std::string> defines = c.frame->lighting.defines();
-    defines.push_back(define("SURFACE_LAYERS", layers));
-    for (std::string d :
-         {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
-          define("CAPTURE_PAIR", capture == 0),
-          define("LAYER_DISPERSION",
-                 dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
-          define("GLASS_TEXTURES", c.texturedGlass), define("LAYER_METHOD", int(method)),
-          define("HYBRID_LIST", method == Settings::Method::Hybrid)})
-        defines.push_back(std::move(d));
-    return defines;
+    return concat(concat(c.frame->lighting.defines(), glassDefines(c)),
+                  {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
+                   define("CAPTURE_PAIR", capture == 0),
+                   define("LAYER_DISPERSION",
+                          dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
+                   define("GLASS_TEXTURES", c.texturedGlass), define("LAYER_METHOD", int(method)),
+                   define("HYBRID_LIST", method == Settings::Method::Hybrid)});
 }
 
 /** The caustics' programs, in a frame that focuses them. */
@@ -91,7 +102,7 @@ core::Status causticPrograms(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
     const std::string photons = "refraction/caustic_photons.comp.glsl";
     auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
-    auto trace = programs.compute(photons);
+    auto trace = programs.compute(photons, glassDefines(c));
     auto resolve =
         programs.graphics("render/fullscreen.vert.glsl", "refraction/caustic_resolve.frag.glsl");
     for (const auto* built : {&grid, &trace, &resolve})
@@ -110,8 +121,8 @@ core::Status selectVariants(FrameContext& c) {
         return built;
     auto shadow = c.frame->programs->graphics(
         "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        {define("GLASS_TEXTURES", c.texturedGlass), "PUNCTUAL_LIGHTS 0",
-         define("CAUSTIC_EMITTERS", c.caustics)});
+        concat(glassDefines(c), {define("GLASS_TEXTURES", c.texturedGlass), "PUNCTUAL_LIGHTS 0",
+                                 define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
         return shadow.error();
     c.glassShadow = *shadow;
