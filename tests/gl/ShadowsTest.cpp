@@ -195,6 +195,26 @@ TEST_F(Shadows, GlassFocusesCausticsWhereTheReferenceDoes) {
     EXPECT_NEAR(gpuPeak, referencePeakValue, 0.35 * referencePeakValue);
 }
 
+TEST_F(Shadows, AlternatingMethodsAndLightsCompilesEachVariantOnce) {
+    test::WorldRig rig(test::projectScene("shadows.json"), context(), 32);
+    rig.useSceneCamera();
+    // Two rounds of frames as the viewer's split and the bench alternate them: DIR, the hybrid
+    // (its trace too) and the opaque frame, with the shadows and without.
+    std::size_t afterFirstRound = 0;
+    for (int round = 0; round < 2; ++round) {
+        for (const char* method : {"dir", "hybrid", "opaque"})
+            for (bool shadows : {true, false}) {
+                rig.set("method", method);
+                rig.shadows = shadows;
+                rig.renderHdr();
+            }
+        if (round == 0)
+            afterFirstRound = rig.renderer().programVariants();
+    }
+    EXPECT_GT(afterFirstRound, 6u);
+    EXPECT_EQ(rig.renderer().programVariants(), afterFirstRound);
+}
+
 TEST_F(Shadows, GlassCastsNothingWithItsShadowsOff) {
     test::WorldRig rig(test::projectScene("shadows.json"), context(), kSize);
     rig.useSceneCamera();

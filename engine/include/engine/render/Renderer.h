@@ -115,6 +115,9 @@ public:
     const Environment& environment() const;
 
     gl::ShaderLibrary& shaders() { return mShaders; }
+    /** How many program variants the renderer and its plugins have compiled so far (its
+     *  ProgramCache): a frame like one drawn before compiles none. */
+    std::size_t programVariants() const { return mPrograms->size(); }
     /** Characters of the world last prepared, and each one's deformed geometry (as the last
      *  frame left it). */
     std::size_t characterCount() const;
