@@ -210,16 +210,17 @@ void main() {
                 continue;
             // Dispersive glass: the photon takes one channel's path, in turn across the grid,
             // carrying three times that channel's light (the three paths' sum on average).
+            // One call of photon() for both (a CPU rasteriser would run two calls' loops).
             vec3 ior = glassMaterials[tag & 255u].ior;
+            int channel = 1;
+            vec3 weight = vec3(leaving);
             if (ior.r != ior.b) {
-                int channel = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y +
-                                  uint(j * side + i)) % 3;
-                vec3 weight = vec3(0.0);
+                channel = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y +
+                              uint(j * side + i)) % 3;
+                weight = vec3(0.0);
                 weight[channel] = 3.0 * leaving;
-                photon(v, origin, dir, channel, weight, cell);
-            } else {
-                photon(v, origin, dir, 1, vec3(leaving), cell);
             }
+            photon(v, origin, dir, channel, weight, cell);
         }
 }
 #endif
