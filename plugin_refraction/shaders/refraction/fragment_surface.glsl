@@ -29,12 +29,20 @@ vec4 captureTexel(int slot) {
 
 uniform float uNormalScale;
 
+// GLASS_NORMAL_MAPS: some glass of the frame has a normal map (the plugin's variants; on where
+// not given).
+#ifndef GLASS_NORMAL_MAPS
+#define GLASS_NORMAL_MAPS 1
+#endif
+
 // The fragment's outward view normal (a back face's points away from the camera) after its
 // normal map.
 vec3 fragmentNormal() {
     vec3 n = normalize(vViewNormal);
+#if GLASS_NORMAL_MAPS
     if (hasTexture(SLOT_NORMAL))
         n = perturbNormal(n, vViewTangent, captureTexel(SLOT_NORMAL).xyz, uNormalScale);
+#endif
     return n;
 }
 

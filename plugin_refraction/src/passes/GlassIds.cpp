@@ -99,6 +99,7 @@ void assignGlassIds(FrameContext& c) {
     c.gpu->glassOptics.clear();
     c.gpu->tracedTextures.clear();
     c.texturedGlass = false;
+    c.normalMappedGlass = false;
     std::map<std::pair<std::uint64_t, int>, int> ids;
     std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
     bool full = false;
@@ -119,10 +120,11 @@ void assignGlassIds(FrameContext& c) {
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
         c.gpu->glassOptics.push_back(
             glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
-        c.texturedGlass =
-            c.texturedGlass ||
-            textured(item.material >= 0 ? &item.model->materials[std::size_t(item.material)]
-                                        : nullptr);
+        const scene::Material* material =
+            item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+        c.texturedGlass = c.texturedGlass || textured(material);
+        c.normalMappedGlass =
+            c.normalMappedGlass || (material && material->normalTexture.present());
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);
         c.gpu->glassIds[i] = int(c.gpu->glassOptics.size()) - 1;
     }

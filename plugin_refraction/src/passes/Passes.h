@@ -68,6 +68,9 @@ struct FrameContext {
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
      *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
     bool texturedGlass = false;
+    /** Some glass of the frame has a normal map (GLASS_NORMAL_MAPS of the captures and the
+     *  glass shadow, which read it per fragment). */
+    bool normalMappedGlass = false;
     /** The capture's variants (selectVariants): the layers' capture and depth maps, or the
      *  pair's geometry passes and their resolve. */
     struct CapturePrograms {

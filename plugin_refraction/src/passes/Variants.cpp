@@ -34,8 +34,9 @@ core::Status captureVariants(FrameContext& c) {
     const std::string rectangle = "refraction/rectangle.vert.glsl";
     core::Result<const gl::Program*> first = nullptr, second = nullptr;
     if (!c.settings.layered()) {
-        first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
-                                  {define("GLASS_TEXTURES", textures)});
+        first = programs.graphics(
+            glass, "refraction/pair_surface.frag.glsl",
+            {define("GLASS_TEXTURES", textures), define("GLASS_NORMAL_MAPS", c.normalMappedGlass)});
         second = programs.graphics(
             rectangle, "refraction/pair_resolve.frag.glsl",
             {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", define("GLASS_TEXTURES", textures)});
@@ -48,6 +49,7 @@ core::Status captureVariants(FrameContext& c) {
                                (c.settings.addsSamples() || c.frame->temporal.enabled);
         const std::vector<std::string> defines{define("LAYER_CAPACITY", c.settings.layerCapacity),
                                                define("GLASS_TEXTURES", textures),
+                                               define("GLASS_NORMAL_MAPS", c.normalMappedGlass),
                                                define("TEXTURES_BASE_LEVEL", baseLevel)};
         first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
         second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
@@ -121,8 +123,9 @@ core::Status selectVariants(FrameContext& c) {
         return built;
     auto shadow = c.frame->programs->graphics(
         "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        concat(glassDefines(c), {define("GLASS_TEXTURES", c.texturedGlass), "PUNCTUAL_LIGHTS 0",
-                                 define("CAUSTIC_EMITTERS", c.caustics)}));
+        concat(glassDefines(c), {define("GLASS_TEXTURES", c.texturedGlass),
+                                 define("GLASS_NORMAL_MAPS", c.normalMappedGlass),
+                                 "PUNCTUAL_LIGHTS 0", define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
         return shadow.error();
     c.glassShadow = *shadow;
