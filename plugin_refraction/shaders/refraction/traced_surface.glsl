@@ -7,6 +7,16 @@
 #include "refraction/bvh.glsl"
 #include "refraction/glass_materials.glsl"
 
+// GLASS_TEXTURES and GLASS_NORMAL_MAPS: some glass of the frame has textures that change its
+// surface, a normal map (the plugin's variants). Each texel read switches over the texture
+// units, which a CPU rasteriser runs all of: a hit reads none where the frame has none.
+#ifndef GLASS_TEXTURES
+#define GLASS_TEXTURES 1
+#endif
+#ifndef GLASS_NORMAL_MAPS
+#define GLASS_NORMAL_MAPS 1
+#endif
+
 // The world mesh's texture coordinates (GlassBvh::uvs) and the frame's glass textures
 // (GpuState::tracedTextures: a material's TracedTextures name their units).
 layout(std430, binding = WORLD_UVS_BINDING) readonly buffer WorldUvs { vec4 meshUvs[]; };
@@ -33,6 +43,7 @@ vec4 tracedTexel(TracedTexture t, vec4 uvs) {
 // Glass m's surface at a hit (its texture coordinates uvs), as the capture reads it.
 GlassSurface tracedSurface(GlassMaterial m, vec4 uvs) {
     GlassSurface s = materialSurface(m);
+#if GLASS_TEXTURES
     if (m.baseColorTexture.unit >= 0)
         s.baseColor *= tracedTexel(m.baseColorTexture, uvs).rgb;
     if (m.authored == 0u)
@@ -44,6 +55,7 @@ GlassSurface tracedSurface(GlassMaterial m, vec4 uvs) {
         s.roughness *= mr.g;
         s.metallic *= mr.b;
     }
+#endif
     return s;
 }
 
@@ -71,11 +83,13 @@ TracedHit tracedHit(int leaf, vec2 uv, vec3 along) {
         GlassMaterial m = glassMaterials[h.tag & 255u];
         vec4 uvs = w.x * meshUvs[v.x] + w.y * meshUvs[v.y] + w.z * meshUvs[v.z];
         h.surface = tracedSurface(m, uvs);
+#if GLASS_NORMAL_MAPS
         vec4 tangent = w.x * vertices[v.x].tangent + w.y * vertices[v.y].tangent +
                        w.z * vertices[v.z].tangent;
         if (m.normalTexture.unit >= 0 && dot(tangent.xyz, tangent.xyz) > 0.0)
             h.normal =
                 perturbNormal(h.normal, tangent, tracedTexel(m.normalTexture, uvs).xyz, m.normalScale);
+#endif
     }
     vec3 a = leafCorners[3 * leaf].xyz;
     vec3 face = cross(leafCorners[3 * leaf + 1].xyz - a, leafCorners[3 * leaf + 2].xyz - a);

@@ -63,7 +63,8 @@ core::Status captureVariants(FrameContext& c) {
 
 /** The parts of the glass's model the frame's glass uses, as defines: the surface layers over
  *  its shading (clear coat, sheen; its surfaces have no film or anisotropy of
- *  common/brdf.glsl's), KHR_materials_specular, the iridescent film, partial transmission. */
+ *  common/brdf.glsl's), KHR_materials_specular, the iridescent film, partial transmission,
+ *  textures that change its surface, normal maps. */
 std::vector<std::string> glassDefines(const FrameContext& c) {
     int layers = 0;
     bool specular = false, film = false, partial = false;
@@ -76,12 +77,16 @@ std::vector<std::string> glassDefines(const FrameContext& c) {
         film = film || m.iridescence > 0.0f;
         partial = partial || m.transmission < 1.0f || m.transmissionTexture.unit >= 0;
     }
-    return {define("SURFACE_LAYERS", layers), define("GLASS_SPECULAR", specular),
-            define("GLASS_FILM", film), define("GLASS_PARTIAL", partial)};
+    return {define("SURFACE_LAYERS", layers),
+            define("GLASS_SPECULAR", specular),
+            define("GLASS_FILM", film),
+            define("GLASS_PARTIAL", partial),
+            define("GLASS_TEXTURES", c.texturedGlass),
+            define("GLASS_NORMAL_MAPS", c.normalMappedGlass)};
 }
 
 /** The walk's defines for `method`: the capture (the pair, or the layers' K), the dispersion
- *  search, the frame's lighting features, the glass's surface layers and textured glass. */
+ *  search, the frame's lighting features and what of the glass's model it uses. */
 std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method) {
     const int capture = c.settings.layered() ? c.settings.layerCapacity : 0; // 0: the pair
     // Dispersion: none in this frame, or the dispersion search's.
@@ -93,7 +98,7 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
                    define("CAPTURE_PAIR", capture == 0),
                    define("LAYER_DISPERSION",
                           dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
-                   define("GLASS_TEXTURES", c.texturedGlass), define("LAYER_METHOD", int(method)),
+                   define("LAYER_METHOD", int(method)),
                    define("HYBRID_LIST", method == Settings::Method::Hybrid)});
 }
 
@@ -123,9 +128,7 @@ core::Status selectVariants(FrameContext& c) {
         return built;
     auto shadow = c.frame->programs->graphics(
         "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        concat(glassDefines(c), {define("GLASS_TEXTURES", c.texturedGlass),
-                                 define("GLASS_NORMAL_MAPS", c.normalMappedGlass),
-                                 "PUNCTUAL_LIGHTS 0", define("CAUSTIC_EMITTERS", c.caustics)}));
+        concat(glassDefines(c), {"PUNCTUAL_LIGHTS 0", define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
         return shadow.error();
     c.glassShadow = *shadow;
