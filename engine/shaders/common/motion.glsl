@@ -24,6 +24,15 @@ uniform mat4 uMotionInverseViewProjection; // this frame's unjittered clip -> wo
 uniform vec2 uMotionSize; // the frame in pixels
 uniform int uWriteMotion;  // the frame accumulates: passes write their pixels' motion
 
+// WRITE_MOTION 0: a program for frames that do not accumulate, every motion write left out (a
+// CPU rasteriser runs a branch the uniform turns off); where not given, the uniform decides.
+#ifndef WRITE_MOTION
+#define WRITE_MOTION 1
+#endif
+bool writesMotion() {
+    return WRITE_MOTION != 0 && uWriteMotion != 0;
+}
+
 vec2 clipToPixel(vec4 clip) {
     return (clip.xy / clip.w * 0.5 + 0.5) * uMotionSize;
 }

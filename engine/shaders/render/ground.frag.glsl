@@ -13,7 +13,7 @@ uniform float uTileSize;
 void main() {
     vec3 V = normalize(uCameraPosition - vWorldPosition);
     outColor = vec4(groundColor(vWorldPosition, V, uTileSize), 1.0);
-    if (uWriteMotion != 0) {
+    if (writesMotion()) {
         float depth = (uMotionViewProjection * vec4(vWorldPosition, 1.0)).w;
         float previous = (uPreviousViewProjection * vec4(vWorldPosition, 1.0)).w;
         outMotion = packMotion(motionIdentity(MOTION_GROUND, 0u),

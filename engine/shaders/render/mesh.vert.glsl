@@ -30,7 +30,7 @@ void main() {
     vWorldTangent = vec4(normalize(mat3(uModel) * v.tangent.xyz), v.tangent.w);
     vUv = uvs[gl_VertexID];
     vClip = vPreviousClip = vec4(0.0, 0.0, 0.0, 1.0);
-    if (uWriteMotion != 0) {
+    if (writesMotion()) {
         vClip = uMotionViewProjection * world;
         vPreviousClip = uPreviousViewProjection * uPreviousModel *
                         vec4(previousVertices[gl_VertexID].position.xyz, 1.0);

@@ -44,7 +44,7 @@ vec4 read(int slot) {
 }
 
 void main() {
-    if (uWriteMotion != 0)
+    if (writesMotion())
         outMotion = packMotion(motionIdentity(MOTION_OPAQUE, uint(uMotionObject)),
                                clipToPixel(vClip) - clipToPixel(vPreviousClip), vClip.w,
                                vPreviousClip.w, 0u);

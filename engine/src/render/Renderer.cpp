@@ -289,22 +289,24 @@ void Renderer::planShadows(const scene::World& world, const RenderSettings& sett
                          " times to fit the GPU's largest texture");
 }
 
-core::Status Renderer::selectPrograms(const LightingFeatures& lighting) {
+core::Status Renderer::selectPrograms(const LightingFeatures& lighting, bool temporal) {
     RenderGpu& gpu = *mGpu;
     auto fail = [](const core::Error& e) {
         return core::Error{"render::Renderer::render(): " + e.message};
     };
-    auto ground = mPrograms->graphics("render/ground.vert.glsl", "render/ground.frag.glsl",
-                                      lighting.defines());
+    std::vector<std::string> defines = lighting.defines();
+    defines.push_back(std::string("WRITE_MOTION ") + (temporal ? "1" : "0"));
+    auto ground =
+        mPrograms->graphics("render/ground.vert.glsl", "render/ground.frag.glsl", defines);
     if (!ground)
         return fail(ground.error());
     gpu.ground = *ground;
     gpu.opaque.clear();
     for (const int layers : gpu.layerSets) {
-        std::vector<std::string> defines = lighting.defines();
-        defines.push_back("SURFACE_LAYERS " + std::to_string(layers));
+        std::vector<std::string> layered = defines;
+        layered.push_back("SURFACE_LAYERS " + std::to_string(layers));
         auto program =
-            mPrograms->graphics("render/mesh.vert.glsl", "render/pbr.frag.glsl", defines);
+            mPrograms->graphics("render/mesh.vert.glsl", "render/pbr.frag.glsl", layered);
         if (!program)
             return fail(program.error());
         gpu.opaque.emplace(layers, *program);
@@ -433,7 +435,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.lighting =
         LightingFeatures::of(gpu.lights, gpu.shadows, !(shadows.glass == engineShadows.glass),
                              !(shadows.caustics == engineShadows.caustics));
-    if (auto selected = selectPrograms(frame.lighting); !selected)
+    if (auto selected = selectPrograms(frame.lighting, frame.temporal.enabled); !selected)
         return selected.error();
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);

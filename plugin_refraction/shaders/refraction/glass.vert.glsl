@@ -38,7 +38,7 @@ void main() {
     // d_N is measured in world units, which the view (rigid) keeps.
     vNormalDistance = uHasNormalDistance != 0 ? normalDistance[uDistanceBase + gl_VertexID] : -1.0;
     vClip = vPreviousClip = vec4(0.0, 0.0, 0.0, 1.0);
-    if (uWriteMotion != 0) {
+    if (writesMotion()) {
         vClip = uMotionViewProjection * uModel * vec4(v.position.xyz, 1.0);
         vPreviousClip = uPreviousViewProjection * uPreviousModel *
                         vec4(previousVertices[gl_VertexID].position.xyz, 1.0);

@@ -34,7 +34,7 @@ void main() {
 #if GLASS_TEXTURES
         layerSurface[pixel * uint(kLayerCapacity) + slot] = surface;
 #endif
-        if (uWriteMotion != 0)
+        if (writesMotion())
             layerMotion[pixel * uint(kLayerCapacity) + slot] =
                 packHalf2x16(clipToPixel(vClip) - clipToPixel(vPreviousClip));
     }

@@ -31,7 +31,7 @@ void main() {
         vec4 before = imageLoad(uShaded, p);
         color = vec4(color.rgb + before.rgb, before.a);
     }
-    if (uWriteMotion != 0 && uTraceSample == 0) {
+    if (writesMotion() && uTraceSample == 0) {
         uvec4 m = glassPixelMotion(p, e, walk, gEndT);
         imageStore(uGlassMotion, p, m);
         if (uFreshSamples > 1 && takesFreshSamples(p, m, color.rgb))

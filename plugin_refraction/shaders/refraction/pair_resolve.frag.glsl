@@ -65,7 +65,7 @@ Surface readSurface(sampler2D depth, sampler2D normal, ivec2 p) {
 void readPair(ivec2 p, out Surface front, out Surface back) {
     front = readSurface(uFrontDepth, uFrontNormal, p);
     back = readSurface(uBackDepth, uBackNormal, p);
-    if (uWriteMotion != 0) // the front's motion (the front pass's depth target, z and w)
+    if (writesMotion()) // the front's motion (the front pass's depth target, z and w)
         layerMotion[pixelIndex(p) * 2u] = packHalf2x16(texelFetch(uFrontDepth, p, 0).zw);
 #if GLASS_TEXTURES
     uint pixel = pixelIndex(p);

@@ -19,7 +19,7 @@ layout(location = 2) out uvec2 outSurface;
 void main() {
     vec3 n = fragmentNormal();
     outDepth = vec4(-vViewPosition.z, vNormalDistance,
-                    uWriteMotion != 0 ? clipToPixel(vClip) - clipToPixel(vPreviousClip) : vec2(0.0));
+                    writesMotion() ? clipToPixel(vClip) - clipToPixel(vPreviousClip) : vec2(0.0));
     outNormal = vec4(n, float(uGlassId + 1));
 #if GLASS_TEXTURES
     outSurface = packSurface(fragmentSurface(uint(uGlassId)));

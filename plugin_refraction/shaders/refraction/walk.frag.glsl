@@ -29,6 +29,11 @@ void handOver(ivec2 p, uvec2 bit, uint reasons) {
 }
 #endif
 
+// WALK_DEBUG 0: a variant for frames without a debug view, which leaves it out.
+#ifndef WALK_DEBUG
+#define WALK_DEBUG 1
+#endif
+
 // The debug view's colour for pixel p (uDebug; DEBUG_NONE: `color`, the shaded one), its
 // entry e, its walk, its `stored` layers and the hybrid's reasons to trace it.
 vec3 debugView(vec3 color, ivec2 p, Entry e, Walk walk, int stored, uint handedOver) {
@@ -96,11 +101,13 @@ void main() {
         atomicAdd(walkedPixels, 1u);
     if (stored > kLayerCapacity && uTraceSample == 0)
         atomicAdd(walkOverflowPixels, 1u);
+#if WALK_DEBUG
     color = debugView(color, p, e, walk, stored, handedOver);
+#endif
     // What the pixel shows, for the temporal resolve, and whether it takes the fresh samples
     // (the hybrid's trace pass records and decides its own pixels').
     float alpha = 1.0;
-    if (uWriteMotion != 0 && uTraceSample == 0) {
+    if (writesMotion() && uTraceSample == 0) {
         uvec4 m = handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT) : handedOverMotion(p, e);
         imageStore(uGlassMotion, p, m);
         if (uFreshSamples > 1 && handedOver == 0u && takesFreshSamples(p, m, color)) {

@@ -31,7 +31,7 @@ vec3 viewToWorld(vec3 X) {
 layout(rgba32ui, binding = MOTION_IMAGE_UNIT) uniform uimage2D uGlassMotion;
 
 vec2 enteredSurfaceMotion(ivec2 p, Entry e) {
-    return uWriteMotion == 0 ? vec2(0.0) : unpackHalf2x16(imageLoad(uGlassMotion, p).z);
+    return !writesMotion() ? vec2(0.0) : unpackHalf2x16(imageLoad(uGlassMotion, p).z);
 }
 #else
 layout(rgba32ui, binding = MOTION_IMAGE_UNIT) uniform writeonly uimage2D uGlassMotion;
@@ -39,7 +39,7 @@ layout(rgba32ui, binding = MOTION_IMAGE_UNIT) uniform writeonly uimage2D uGlassM
 // The motion of the glass surface pixel p enters (entry e): its capture layer's; an
 // overflowing pixel's fallback keeps none, its entry point is taken as still.
 vec2 enteredSurfaceMotion(ivec2 p, Entry e) {
-    if (uWriteMotion == 0)
+    if (!writesMotion())
         return vec2(0.0);
     if (layerOverflow(p)) {
         vec3 X = viewToWorld(e.P1);

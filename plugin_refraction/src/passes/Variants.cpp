@@ -30,16 +30,17 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 core::Status captureVariants(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
     const bool textures = c.texturedGlass;
+    const std::string motion = define("WRITE_MOTION", c.frame->temporal.enabled);
     const std::string glass = "refraction/glass.vert.glsl";
     const std::string rectangle = "refraction/rectangle.vert.glsl";
     core::Result<const gl::Program*> first = nullptr, second = nullptr;
     if (!c.settings.layered()) {
-        first = programs.graphics(
-            glass, "refraction/pair_surface.frag.glsl",
-            {define("GLASS_TEXTURES", textures), define("GLASS_NORMAL_MAPS", c.normalMappedGlass)});
+        first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
+                                  {define("GLASS_TEXTURES", textures),
+                                   define("GLASS_NORMAL_MAPS", c.normalMappedGlass), motion});
         second = programs.graphics(
             rectangle, "refraction/pair_resolve.frag.glsl",
-            {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", define("GLASS_TEXTURES", textures)});
+            {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", define("GLASS_TEXTURES", textures), motion});
     } else {
         // The trace with several samples (or one a frame of a frame that accumulates) reads the
         // textures at their entries as at every hit, at their base level (converging to the
@@ -50,7 +51,7 @@ core::Status captureVariants(FrameContext& c) {
         const std::vector<std::string> defines{define("LAYER_CAPACITY", c.settings.layerCapacity),
                                                define("GLASS_TEXTURES", textures),
                                                define("GLASS_NORMAL_MAPS", c.normalMappedGlass),
-                                               define("TEXTURES_BASE_LEVEL", baseLevel)};
+                                               define("TEXTURES_BASE_LEVEL", baseLevel), motion};
         first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
         second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
     }
@@ -86,7 +87,8 @@ std::vector<std::string> glassDefines(const FrameContext& c) {
 }
 
 /** The walk's defines for `method`: the capture (the pair, or the layers' K), the dispersion
- *  search, the frame's lighting features and what of the glass's model it uses. */
+ *  search, the frame's lighting features, what of the glass's model it uses, whether it writes
+ *  motion and shows a debug view. */
 std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method) {
     const int capture = c.settings.layered() ? c.settings.layerCapacity : 0; // 0: the pair
     // Dispersion: none in this frame, or the dispersion search's.
@@ -98,7 +100,8 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
                    define("CAPTURE_PAIR", capture == 0),
                    define("LAYER_DISPERSION",
                           dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
-                   define("LAYER_METHOD", int(method)),
+                   define("WRITE_MOTION", c.frame->temporal.enabled),
+                   define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
                    define("HYBRID_LIST", method == Settings::Method::Hybrid)});
 }
 
@@ -128,7 +131,8 @@ core::Status selectVariants(FrameContext& c) {
         return built;
     auto shadow = c.frame->programs->graphics(
         "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        concat(glassDefines(c), {"PUNCTUAL_LIGHTS 0", define("CAUSTIC_EMITTERS", c.caustics)}));
+        concat(glassDefines(c),
+               {"PUNCTUAL_LIGHTS 0", "WRITE_MOTION 0", define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
         return shadow.error();
     c.glassShadow = *shadow;

@@ -129,9 +129,9 @@ private:
     Renderer() = default;
     /** This frame's shadow views (RenderGpu::shadows) of its lights around the characters. */
     void planShadows(const scene::World& world, const RenderSettings& settings);
-    /** The ground's and the opaque pass's variants for `lighting` (RenderGpu::ground, opaque),
-     *  from the program cache. */
-    core::Status selectPrograms(const LightingFeatures& lighting);
+    /** The ground's and the opaque pass's variants for `lighting` and whether the frame
+     *  accumulates (their motion; RenderGpu::ground, opaque), from the program cache. */
+    core::Status selectPrograms(const LightingFeatures& lighting, bool temporal);
     class Allocator;
     class Timer;
     gl::Context* mContext = nullptr;
