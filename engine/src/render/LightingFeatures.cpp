@@ -24,9 +24,4 @@ std::vector<std::string> LightingFeatures::defines() const {
             define("SHADOW_CAUSTICS", caustics)};
 }
 
-int LightingFeatures::key() const {
-    return int(lights) | int(shadowMaps) << 1 | int(softShadows) << 2 | int(glassShadows) << 3 |
-           int(caustics) << 4;
-}
-
 } // namespace render

@@ -433,8 +433,8 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
     shadows.caustics = blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics);
     frame.lighting =
-        LightingFeatures::of(gpu.lights, gpu.shadows, !(shadows.glass == engineShadows.glass),
-                             !(shadows.caustics == engineShadows.caustics));
+        LightingFeatures::of(gpu.lights, gpu.shadows, shadows.glass != engineShadows.glass,
+                             shadows.caustics != engineShadows.caustics);
     if (auto selected = selectPrograms(frame.lighting, frame.temporal.enabled); !selected)
         return selected.error();
 

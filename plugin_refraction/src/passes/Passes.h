@@ -71,6 +71,10 @@ struct FrameContext {
     /** Some glass of the frame has a normal map (GLASS_NORMAL_MAPS of the captures and the
      *  glass shadow, which read it per fragment). */
     bool normalMappedGlass = false;
+    /** What of the glass's model the frame's glass uses, as the defines of every program that
+     *  shades or crosses it (selectVariants): surface layers, KHR_materials_specular, the film,
+     *  partial transmission, textures, normal maps. */
+    std::vector<std::string> glassModel;
     /** The capture's variants (selectVariants): the layers' capture and depth maps, or the
      *  pair's geometry passes and their resolve. */
     struct CapturePrograms {

@@ -26,21 +26,19 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 }
 
 /** The layers' capture and depth maps for capacity K, or the pair's two passes and their
- *  resolve, for whether the frame's glass is textured (FrameContext::capture). */
+ *  resolve, for the frame's glass model (FrameContext::capture). */
 core::Status captureVariants(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
-    const bool textures = c.texturedGlass;
     const std::string motion = define("WRITE_MOTION", c.frame->temporal.enabled);
     const std::string glass = "refraction/glass.vert.glsl";
     const std::string rectangle = "refraction/rectangle.vert.glsl";
     core::Result<const gl::Program*> first = nullptr, second = nullptr;
     if (!c.settings.layered()) {
         first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
-                                  {define("GLASS_TEXTURES", textures),
-                                   define("GLASS_NORMAL_MAPS", c.normalMappedGlass), motion});
+                                  concat(c.glassModel, {motion}));
         second = programs.graphics(
             rectangle, "refraction/pair_resolve.frag.glsl",
-            {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", define("GLASS_TEXTURES", textures), motion});
+            concat(c.glassModel, {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", motion}));
     } else {
         // The trace with several samples (or one a frame of a frame that accumulates) reads the
         // textures at their entries as at every hit, at their base level (converging to the
@@ -48,10 +46,9 @@ core::Status captureVariants(FrameContext& c) {
         // closer to the reference's many rays than one texel).
         const bool baseLevel = c.settings.method == Settings::Method::Trace &&
                                (c.settings.addsSamples() || c.frame->temporal.enabled);
-        const std::vector<std::string> defines{define("LAYER_CAPACITY", c.settings.layerCapacity),
-                                               define("GLASS_TEXTURES", textures),
-                                               define("GLASS_NORMAL_MAPS", c.normalMappedGlass),
-                                               define("TEXTURES_BASE_LEVEL", baseLevel), motion};
+        const std::vector<std::string> defines =
+            concat(c.glassModel, {define("LAYER_CAPACITY", c.settings.layerCapacity),
+                                  define("TEXTURES_BASE_LEVEL", baseLevel), motion});
         first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
         second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
     }
@@ -95,7 +92,7 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
     const bool dispersion =
         std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
                     [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    return concat(concat(c.frame->lighting.defines(), glassDefines(c)),
+    return concat(concat(c.frame->lighting.defines(), c.glassModel),
                   {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
                    define("CAPTURE_PAIR", capture == 0),
                    define("LAYER_DISPERSION",
@@ -112,7 +109,7 @@ core::Status causticPrograms(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
     const std::string photons = "refraction/caustic_photons.comp.glsl";
     auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
-    auto trace = programs.compute(photons, glassDefines(c));
+    auto trace = programs.compute(photons, c.glassModel);
     auto resolve =
         programs.graphics("render/fullscreen.vert.glsl", "refraction/caustic_resolve.frag.glsl");
     for (const auto* built : {&grid, &trace, &resolve})
@@ -125,13 +122,14 @@ core::Status causticPrograms(FrameContext& c) {
 } // namespace
 
 core::Status selectVariants(FrameContext& c) {
+    c.glassModel = glassDefines(c);
     if (auto built = captureVariants(c); !built)
         return built;
     if (auto built = causticPrograms(c); !built)
         return built;
     auto shadow = c.frame->programs->graphics(
         "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
-        concat(glassDefines(c),
+        concat(c.glassModel,
                {"PUNCTUAL_LIGHTS 0", "WRITE_MOTION 0", define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
         return shadow.error();

@@ -54,19 +54,4 @@ TEST(LightingFeatures, ShadowPartsFollowTheLightsThatCast) {
     EXPECT_TRUE(has(f.defines(), "SHADOW_CAUSTICS 0"));
 }
 
-TEST(LightingFeatures, EveryFeatureSetHasItsOwnKey) {
-    std::vector<int> keys;
-    for (int bits = 0; bits < 32; ++bits) {
-        render::LightingFeatures f;
-        f.lights = bits & 1;
-        f.shadowMaps = bits & 2;
-        f.softShadows = bits & 4;
-        f.glassShadows = bits & 8;
-        f.caustics = bits & 16;
-        keys.push_back(f.key());
-    }
-    std::sort(keys.begin(), keys.end());
-    EXPECT_EQ(std::unique(keys.begin(), keys.end()), keys.end());
-}
-
 } // namespace

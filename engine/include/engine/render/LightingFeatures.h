@@ -27,8 +27,6 @@ struct LightingFeatures {
                                bool glassShadows, bool caustics);
     /** The defines, one per feature: "PUNCTUAL_LIGHTS 1", "SHADOW_MAPS 0", ... */
     std::vector<std::string> defines() const;
-    /** A small number that differs between any two feature sets (a variant key's part). */
-    int key() const;
     bool operator==(const LightingFeatures&) const = default;
 };
 
