@@ -41,6 +41,7 @@ struct Options {
     refraction::ReferenceOptions referenceOptions;
     std::string caseFile;
     std::string contactSheet;
+    std::string dumpShaders;
     bool force = false;
 };
 
@@ -186,6 +187,11 @@ void addSceneOptions(CLI::App& app, Options& o) {
         ->type_name("PNG");
     app.add_flag("--dump-graph", o.dumpGraph,
                  "print the compiled frame graph of the first frame to stderr");
+    app.add_option("--dump-shaders", o.dumpShaders,
+                   "write every program the run compiles to DIR, each stage as the final source "
+                   "given to GL (the registry's and the variant's defines, includes expanded): "
+                   "DIR/<program>-<hash>.<vert|frag|comp>; variants already there are kept")
+        ->type_name("DIR");
     app.add_option("--case", o.caseFile,
                    "render a frame-capture case and compare with its goldens (exit 0 match, 1 "
                    "mismatch; .actual.png, .diff.png and a report go to --out, default the "
@@ -521,6 +527,9 @@ int run(int argc, char** argv) {
     Options o;
     if (const auto code = parse(argc, argv, o))
         return *code;
+    // every shader library the run makes (gl::ShaderLibrary) dumps where this names
+    if (!o.dumpShaders.empty())
+        setenv("GLASS_DUMP_SHADERS", o.dumpShaders.c_str(), 1);
     if (!o.caseFile.empty())
         return runCase(o);
     auto session = capture::CaptureSession::create(o.session);

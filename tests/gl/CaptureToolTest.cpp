@@ -3,7 +3,10 @@
 
 #include "engine/capture/Image.h"
 
+#include <algorithm>
 #include <fstream>
+#include <map>
+#include <set>
 
 namespace {
 
@@ -81,6 +84,45 @@ TEST(CaptureTool, JsonListsFilesTimesAndPassTimings) {
         EXPECT_GE(p["gpu_ms"].get<double>(), 0.0);
     }
     EXPECT_EQ(passes, (std::vector<std::string>{"deform", "background", "opaque", "tonemap"}));
+}
+
+TEST(CaptureTool, DumpShadersWritesEveryProgramAsGivenToGl) {
+    // --dump-shaders DIR: each program the frames compiled, each stage as GL got it, the
+    // variant's defines and the registry's in it; a second run adds nothing.
+    test::TempDir dir;
+    const std::string shaders = (dir / "shaders").string();
+    const std::string args = "builtin:sphere --size 32x32 --method dir --out " +
+                             (dir / "frames").string() + " --force --dump-shaders " + shaders;
+    std::string out;
+    const int status = capture(args + " 2>&1", &out);
+    SKIP_WITHOUT_GL(out);
+    ASSERT_EQ(status, 0) << out;
+    std::map<std::string, std::set<std::string>> stages; // program: its stages' extensions
+    for (const auto& entry : std::filesystem::directory_iterator(shaders))
+        stages[entry.path().stem().string()].insert(entry.path().extension().string());
+    const auto named = [&](const std::string& stem) {
+        return std::count_if(stages.begin(), stages.end(),
+                             [&](const auto& p) { return p.first.rfind(stem + "-", 0) == 0; });
+    };
+    EXPECT_EQ(named("walk"), 1) << "one walk variant in a DIR frame";
+    EXPECT_EQ(named("layer_capture"), 1);
+    EXPECT_GE(named("deform"), 1);
+    for (const auto& [program, extensions] : stages)
+        EXPECT_TRUE(extensions == std::set<std::string>{".comp"} ||
+                    extensions == (std::set<std::string>{".frag", ".vert"}))
+            << program;
+    const auto walk = std::find_if(stages.begin(), stages.end(),
+                                   [](const auto& p) { return p.first.rfind("walk-", 0) == 0; });
+    ASSERT_NE(walk, stages.end());
+    std::ifstream in(std::filesystem::path(shaders) / (walk->first + ".frag"));
+    const std::string source((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(source.rfind("#version 450 core\n", 0), 0u);
+    EXPECT_NE(source.find("#define LAYER_METHOD "), std::string::npos) << "the variant's";
+    EXPECT_NE(source.find("#define LAYER_HEADS_BINDING"), std::string::npos) << "the registry's";
+    EXPECT_EQ(source.find("#include"), std::string::npos) << "includes expanded";
+    const std::size_t files = std::distance(std::filesystem::directory_iterator(shaders), {});
+    ASSERT_EQ(capture(args + " 2>&1", &out), 0) << out;
+    EXPECT_EQ(std::size_t(std::distance(std::filesystem::directory_iterator(shaders), {})), files);
 }
 
 /** Writes the two-joint model and a case file for it into `dir`. */

@@ -1,5 +1,6 @@
 // The GL layer: shader includes, program errors, framebuffer completeness, error accounting.
 #include "support/GlTest.h"
+#include "support/TestSupport.h"
 
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Commands.h"
@@ -13,6 +14,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <span>
 
 namespace {
@@ -64,6 +67,34 @@ TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
     EXPECT_EQ(runOnce(*program), 2.0f);
+}
+
+TEST_F(GlLayer, ALibraryDumpsEachProgramItCompiledByItsSources) {
+    test::TempDir dir;
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    library.dumpTo(dir.path());
+    ASSERT_TRUE(gl::Program::compute(library, "variant.comp.glsl", {"VALUE 3.0"}).ok());
+    ASSERT_TRUE(gl::Program::compute(library, "variant.comp.glsl", {"VALUE 3.0"}).ok());
+    ASSERT_TRUE(gl::Program::compute(library, "variant.comp.glsl", {"VALUE 4.0"}).ok());
+    ASSERT_FALSE(gl::Program::compute(library, "broken.comp.glsl").ok());
+    acceptErrors(); // the driver also reports the failed compile through KHR_debug
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    ASSERT_EQ(names.size(), 2u) << "one file a variant; a program that did not compile, none";
+    for (const std::string& name : names) {
+        EXPECT_EQ(name.rfind("variant-", 0), 0u) << name;
+        EXPECT_EQ(name.substr(name.size() - 5), ".comp") << name;
+    }
+    std::ifstream in(dir / names[0]);
+    const std::string source((std::istreambuf_iterator<char>(in)), {});
+    auto assembled = library.assemble("variant.comp.glsl", {"VALUE 3.0"});
+    auto other = library.assemble("variant.comp.glsl", {"VALUE 4.0"});
+    ASSERT_TRUE(assembled.ok() && other.ok());
+    EXPECT_TRUE(source == *assembled || source == *other) << "the source as given to GL";
 }
 
 TEST_F(GlLayer, TheProgramCacheCompilesEachVariantOnce) {

@@ -7,7 +7,12 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
+#include <unistd.h>
 #include <utility>
 
 namespace gl {
@@ -92,7 +97,66 @@ core::Status link(const std::string& name, const std::vector<std::uint32_t>& sha
     return {};
 }
 
+/** "refraction/walk.frag.glsl" -> "walk". */
+std::string programStem(const std::string& file) {
+    std::string stem = std::filesystem::path(file).filename().string();
+    return stem.substr(0, stem.find('.'));
+}
+
+/** FNV-1a over every stage's source, 48 bits in hex: a dumped variant's name. */
+std::string sourceHash(const std::vector<StageSource>& stages) {
+    std::uint64_t hash = 14695981039346656037ull;
+    const auto mix = [&hash](char c) {
+        hash ^= std::uint8_t(c);
+        hash *= 1099511628211ull;
+    };
+    for (const StageSource& stage : stages) {
+        for (const char c : stage.source)
+            mix(c);
+        mix('\0');
+    }
+    char text[16];
+    std::snprintf(text, sizeof text, "%012llx", (unsigned long long)(hash >> 16));
+    return text;
+}
+
 } // namespace
+
+ShaderLibrary::ShaderLibrary() {
+    if (const char* directory = std::getenv("GLASS_DUMP_SHADERS"); directory && *directory)
+        mDumpDirectory = directory;
+}
+
+core::Status ShaderLibrary::dump(const std::string& name,
+                                 const std::vector<StageSource>& stages) const {
+    if (mDumpDirectory.empty())
+        return {};
+    std::error_code ec;
+    std::filesystem::create_directories(mDumpDirectory, ec);
+    if (ec)
+        return core::Error{"gl::ShaderLibrary: cannot create " + mDumpDirectory.string() + ": " +
+                           ec.message()};
+    const std::string program = programStem(name) + "-" + sourceHash(stages);
+    for (const StageSource& stage : stages) {
+        const auto path = mDumpDirectory / (program + "." + stage.extension);
+        if (std::filesystem::exists(path))
+            continue;
+        // written beside it and renamed: processes dumping the same variant at once each
+        // leave a whole file
+        const auto partial = path.string() + "." + std::to_string(getpid()) + ".part";
+        {
+            std::ofstream out(partial, std::ios::binary);
+            out << stage.source;
+            if (!out.flush())
+                return core::Error{"gl::ShaderLibrary: cannot write " + partial};
+        }
+        std::filesystem::rename(partial, path, ec);
+        if (ec)
+            return core::Error{"gl::ShaderLibrary: cannot write " + path.string() + ": " +
+                               ec.message()};
+    }
+    return {};
+}
 
 void ShaderLibrary::add(std::span<const ShaderFile> files) {
     for (const ShaderFile& f : files)
@@ -155,6 +219,8 @@ core::Result<Program> Program::compute(const ShaderLibrary& library, const std::
     detail::recordProgram(id, name);
     Program program;
     program.mId = id;
+    if (auto dumped = library.dump(name, {{"comp", *source}}); !dumped)
+        return dumped.error();
     return program;
 }
 
@@ -182,6 +248,8 @@ core::Result<Program> Program::graphics(const ShaderLibrary& library, const std:
     detail::recordProgram(id, vertex + " + " + fragment);
     Program program;
     program.mId = id;
+    if (auto dumped = library.dump(fragment, {{"vert", *vs}, {"frag", *fs}}); !dumped)
+        return dumped.error();
     return program;
 }
 

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <filesystem>
 #include <map>
 #include <span>
 #include <string>
@@ -20,10 +21,18 @@ struct ShaderFile {
     const char* source;
 };
 
+/** One stage of a program as given to GL: its extension (`vert`, `frag`, `comp`) and source. */
+struct StageSource {
+    const char* extension;
+    std::string source;
+};
+
 /** Named GLSL sources (embedded at build time); resolves `#include "name"` recursively. Every
  *  shader it assembles gets the registry's numbers as defines (gl/Registry.h). */
 class ShaderLibrary {
 public:
+    /** A library that writes its programs where GLASS_DUMP_SHADERS names, if it is set. */
+    ShaderLibrary();
     void add(std::span<const ShaderFile> files);
     /** Registers `owner`'s table of shared numbers (Registry::add: fails on a clash). */
     core::Status share(const std::string& owner, std::span<const Shared> table);
@@ -35,9 +44,19 @@ public:
     core::Result<std::string> assemble(const std::string& name,
                                        const std::vector<std::string>& defines) const;
 
+    /** From now on, every program compiled (and linked) from this library also writes its
+     *  stages, as given to GL, to `directory` (created): `<program>-<hash>.<vert|frag|comp>`, the
+     * program named by its last stage's file and the hash taken over the sources, so identical
+     * variants from any process share one name. An empty path stops it. */
+    void dumpTo(std::filesystem::path directory) { mDumpDirectory = std::move(directory); }
+    /** Writes `stages` of the program `name` (its last stage's file) where dumpTo says; a
+     *  program already written is left as it is. Fails naming the file it cannot write. */
+    core::Status dump(const std::string& name, const std::vector<StageSource>& stages) const;
+
 private:
     std::map<std::string, std::string> mFiles;
     Registry mRegistry;
+    std::filesystem::path mDumpDirectory;
 };
 
 class Program {
