@@ -43,6 +43,10 @@ scene::Mesh convertMesh(const tinygltf::Model& model, const AccessorReader& read
                         const std::vector<scene::Material>& materials, const std::set<int>& lossy,
                         std::vector<std::string>& warnings);
 
+/** A warning for each min or max of an integer accessor that is not whole numbers (the
+ *  validator's ARRAY_TYPE_MISMATCH): the engine reads bounds from the data, so it loads. */
+void fractionalBoundsWarnings(const tinygltf::Model& model, std::vector<std::string>& warnings);
+
 /** A KHR_materials_ extension: one the engine lacks loads without it, with a warning, even
  *  when the file requires it. */
 bool isMaterialExtension(const std::string& extension);

@@ -428,16 +428,27 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
                 !view["buffer"].is_number_unsigned())
                 continue;
             const auto fallback = fallbacks.find(view["buffer"].get<std::size_t>());
-            bool compressed = false;
+            const nlohmann::json* compressed = nullptr;
+            const char* extension = nullptr;
             for (const char* name : kMeshopt)
-                compressed =
-                    compressed || (view.contains("extensions") && view["extensions"].is_object() &&
-                                   view["extensions"].contains(name));
+                if (view.contains("extensions") && view["extensions"].is_object() &&
+                    view["extensions"].contains(name))
+                    compressed = &view["extensions"][name], extension = name;
             if (fallback != fallbacks.end() && !compressed)
                 fail("bufferView " + n(v) + " reads buffer " + n(fallback->first) +
                      ", a meshopt fallback buffer (" + fallback->second +
                      " bytes declared, never loaded): only a view compressed by "
                      "EXT_meshopt_compression may point into it");
+            // The compressed stream itself must come from a buffer that holds data.
+            if (compressed && compressed->is_object() && compressed->contains("buffer") &&
+                (*compressed)["buffer"].is_number_unsigned())
+                if (const auto source = fallbacks.find((*compressed)["buffer"].get<std::size_t>());
+                    source != fallbacks.end())
+                    fail("bufferView " + n(v) + " " + extension +
+                         " takes its compressed stream from buffer " + n(source->first) +
+                         ", a meshopt fallback buffer (" + source->second +
+                         " bytes declared, never loaded): the stream must be in "
+                         "a buffer with data");
         }
 
     const std::string text = document.dump();

@@ -617,6 +617,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         model.nodes = convertNodes(src);
         model.variants = variantNames(src);
         readInstancing(src, reader, model.nodes, model.warnings);
+        fractionalBoundsWarnings(src, model.warnings);
         for (std::size_t i = 0; i < src.materials.size(); ++i)
             model.materials.push_back(convertMaterial(src, int(i), model.warnings));
         for (std::size_t i = 0; i < src.meshes.size(); ++i)

@@ -105,49 +105,100 @@ void checkAttributeFormats(const tinygltf::Model& model, const tinygltf::Primiti
             check(semantic, index, what + " target " + n(t) + " " + semantic, true);
 }
 
+/** The largest value of a normalized integer component type (glTF's decoding divides by it). */
+double normalizedScale(int componentType) {
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return 127.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return 255.0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        return 32767.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return 65535.0;
+    default:
+        return 1.0;
+    }
+}
+
+bool wholeNumbers(const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(),
+                       [](double v) { return std::isfinite(v) && v == std::floor(v); });
+}
+
+std::string boundsText(const std::vector<double>& components) {
+    std::string out = "[";
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", components[c]);
+        out += (c ? ", " : "") + std::string(number);
+    }
+    return out + "]";
+}
+
 /** A warning where an accessor's declared min or max is not what its data (`values`, as read)
- *  reaches, beyond the precision of a float written as text. Checked for float and plain
- *  integer accessors, whose bounds are in the units the data is read in. */
+ *  reaches. Bounds are in the units the file stores: a normalized accessor's are its raw
+ *  integers (as the Khronos validator reads them), compared within half a step; a float's
+ *  within the precision of a float written as text. An integer accessor's fractional bounds
+ *  are warned of once, by fractionalBoundsWarnings. */
 template <class Vec, int N>
 void checkBounds(const tinygltf::Model& model, int index, const std::vector<Vec>& values,
                  const std::string& what, std::vector<std::string>& warnings) {
     const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
-    if (a.normalized || values.empty())
+    if (values.empty())
         return;
     Vec lo = values[0], hi = values[0];
     for (const Vec& v : values)
         for (int c = 0; c < N; ++c)
             lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
-    auto text = [](const std::vector<double>& components) {
-        std::string out = "[";
-        for (int c = 0; c < N; ++c) {
-            char number[32];
-            std::snprintf(number, sizeof number, "%g", components[std::size_t(c)]);
-            out += (c ? ", " : "") + std::string(number);
-        }
-        return out + "]";
-    };
+    const double scale = a.normalized ? normalizedScale(a.componentType) : 1.0;
+    const bool integer = a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT;
     struct Bound {
         const std::vector<double>& declared;
         Vec actual;
         const char* name;
     };
     for (const Bound& bound : {Bound{a.minValues, lo, "min"}, Bound{a.maxValues, hi, "max"}}) {
-        if (bound.declared.size() != std::size_t(N))
+        if (bound.declared.size() != std::size_t(N) || (integer && !wholeNumbers(bound.declared)))
             continue;
         std::vector<double> actual(N);
         bool differs = false;
         for (int c = 0; c < N; ++c) {
-            actual[std::size_t(c)] = double(bound.actual[c]);
-            const double d = bound.declared[std::size_t(c)], v = actual[std::size_t(c)];
-            differs = differs || std::abs(d - v) > 1e-5 * std::max(1.0, std::abs(v));
+            const double v = double(bound.actual[c]) * scale;
+            actual[std::size_t(c)] = a.normalized ? std::round(v) : v;
+            // glTF decodes a signed normalized integer as max(c / scale, -1): -scale - 1 is -1
+            const double declared = bound.declared[std::size_t(c)];
+            const double d = a.normalized ? std::max(declared, -scale) : declared;
+            const double tolerance = a.normalized ? 0.5 : 1e-5 * std::max(1.0, std::abs(v));
+            differs = differs || std::abs(d - v) > tolerance;
         }
         if (differs)
             warnings.push_back(what + " (accessor " + n(std::size_t(index)) + ") declares " +
-                               bound.name + " " + text(bound.declared) + ", its data's is " +
-                               text(actual) + ": the data is used");
+                               bound.name + " " + boundsText(bound.declared) + ", its data's is " +
+                               boundsText(actual) +
+                               (a.normalized ? " (raw integers, as normalized bounds are)" : "") +
+                               ": the data is used");
     }
 }
+
+} // namespace
+
+void fractionalBoundsWarnings(const tinygltf::Model& model, std::vector<std::string>& warnings) {
+    for (std::size_t i = 0; i < model.accessors.size(); ++i) {
+        const tinygltf::Accessor& a = model.accessors[i];
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+            continue;
+        for (const auto& [declared, name] :
+             {std::pair{&a.minValues, "min"}, std::pair{&a.maxValues, "max"}})
+            if (!wholeNumbers(*declared))
+                warnings.push_back("accessor " + n(i) + " (" + componentName(a.componentType) +
+                                   ") declares " + name + " " + boundsText(*declared) +
+                                   ", but an integer accessor's bounds are whole numbers: its "
+                                   "data's own are used");
+    }
+}
+
+namespace {
 
 /** A primitive's KHR_materials_variants mappings: the material of each variant (-2: its own). */
 std::vector<int> variantMaterials(const tinygltf::Model& model, const tinygltf::Value& ext,

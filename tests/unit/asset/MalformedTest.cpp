@@ -416,6 +416,59 @@ TEST(Degrade, BoundsThatAreNotTheDataAreNamed) {
     EXPECT_TRUE(clean->warnings.empty());
 }
 
+/** One triangle with quantized positions (KHR_mesh_quantization), SHORT, normalized or not,
+ *  its bounds declared as the data's raw integers. */
+test::GltfBuilder quantizedTriangle(bool normalized) {
+    test::GltfBuilder b;
+    const std::vector<std::int16_t> positions = {0, 0, 0, 32767, 0, -32768, 0, 16384, 0};
+    const int pos = b.addAccessor(positions, 5122, "VEC3", normalized);
+    b.doc["accessors"][std::size_t(pos)]["min"] = {0, 0, -32768};
+    b.doc["accessors"][std::size_t(pos)]["max"] = {32767, 16384, 0};
+    b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", pos}}}}}}}};
+    b.doc["nodes"] = {{{"mesh", 0}}};
+    b.doc["scenes"] = {{{"nodes", {0}}}};
+    b.doc["extensionsUsed"] = b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+    return b;
+}
+
+TEST(Degrade, QuantizedPositionsWhoseDataPassesTheirBoundsAreNamed) {
+    // The validator's ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND: a normalized accessor's bounds are its
+    // raw integers (-32768 is -1, as -32767 is), and the data past them is named.
+    test::TempDir dir;
+    for (bool normalized : {false, true}) {
+        const auto clean = asset::loadGltf(quantizedTriangle(normalized).save(dir.path(), "q"));
+        ASSERT_TRUE(clean.ok()) << clean.error().message;
+        EXPECT_TRUE(clean->warnings.empty()) << clean->warnings[0];
+        test::GltfBuilder past = quantizedTriangle(normalized);
+        past.doc["accessors"][0]["max"] = {30000, 16384, 0};
+        const auto model = asset::loadGltf(past.save(dir.path(), "past"));
+        ASSERT_TRUE(model.ok()) << model.error().message;
+        ASSERT_EQ(model->warnings.size(), 1u) << (normalized ? "normalized" : "not normalized");
+        EXPECT_NE(model->warnings[0].find("mesh 0 primitive 0 POSITION (accessor 0) declares max "
+                                          "[30000, 16384, 0], its data's is [32767, 16384, 0]"),
+                  std::string::npos)
+            << model->warnings[0];
+    }
+}
+
+TEST(Degrade, AnIntegerAccessorsFractionalBoundsAreNamed) {
+    // The validator's ARRAY_TYPE_MISMATCH: bounds of integers with fractions. The engine reads
+    // bounds from the data, so the file loads with one warning per bound.
+    test::TempDir dir;
+    test::GltfBuilder b = quantizedTriangle(true);
+    b.doc["accessors"][0]["min"] = {-0.5, 0, -32768};
+    b.doc["accessors"][0]["max"] = {32767.5, 16384, 0.25};
+    const auto model = asset::loadGltf(b.save(dir.path(), "fractional"));
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    ASSERT_EQ(model->warnings.size(), 2u);
+    EXPECT_EQ(model->warnings[0],
+              "accessor 0 (SHORT) declares min [-0.5, 0, -32768], but an integer accessor's "
+              "bounds are whole numbers: its data's own are used");
+    EXPECT_NE(model->warnings[1].find("accessor 0 (SHORT) declares max [32767.5, 16384, 0.25]"),
+              std::string::npos)
+        << model->warnings[1];
+}
+
 TEST(Degrade, ExtensionsUsedButNotRequiredLoadWithAWarningAndALater2xLoads) {
     test::TempDir dir;
     test::GltfBuilder builder = test::twoJointModel();

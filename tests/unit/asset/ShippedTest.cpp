@@ -141,6 +141,20 @@ TEST(Meshopt, AFallbackBufferIsNamedWhereItWouldBeRead) {
                                         "fallback buffer (72 bytes declared, never loaded)"),
               std::string::npos)
         << read.error().message;
+    // A compressed view whose stream is in the fallback buffer, which holds no data.
+    for (const char* extension : {"EXT_meshopt_compression", "KHR_meshopt_compression"}) {
+        test::GltfBuilder source = meshoptModel(extension);
+        const int view = source.doc["accessors"][position]["bufferView"].get<int>();
+        source.doc["bufferViews"][std::size_t(view)]["extensions"][extension]["buffer"] = 1;
+        const auto model = asset::loadGltf(source.save(dir.path(), "source"));
+        ASSERT_FALSE(model.ok());
+        EXPECT_NE(model.error().message.find(
+                      "source.gltf: bufferView " + std::to_string(view) + " " + extension +
+                      " takes its compressed stream from buffer 1, a meshopt fallback buffer (72 "
+                      "bytes declared, never loaded)"),
+                  std::string::npos)
+            << model.error().message;
+    }
     // A buffer with neither data nor the fallback flag (the extension lost by an exporter).
     test::GltfBuilder lost = meshoptModel();
     lost.doc["buffers"][1].erase("extensions");
