@@ -98,7 +98,7 @@ struct GpuState {
     gl::Buffer handedOver;
     /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
     struct LayerStorage {
-        gl::Buffer heads;    // count, nearest front key, farthest back key: 3 words per pixel
+        gl::Buffer heads;    // count, the fallback's front and back bids (layerHeadWords)
         gl::Buffer depths;   // K floats per pixel
         gl::Buffer attrs;    // K uvec2 per pixel
         gl::Buffer surfaces; // surfaceSlots uvec2 per pixel where the glass is textured

@@ -6,7 +6,8 @@
 // pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
 // ALWAYS) is the shading pass's mask: below 1 where any glass was kept. With textured glass in
 // the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's; where the
-// frame accumulates, each kept fragment's motion.
+// frame accumulates, each kept fragment's motion. Nothing depends on the order the fragments
+// of a pixel arrive in: slots are taken by one atomic, the fallback is won by atomic bids.
 #include "common/motion.glsl"
 #include "refraction/fragment_surface.glsl"
 #include "refraction/view.glsl"
@@ -38,13 +39,9 @@ void main() {
             layerMotion[pixel * uint(kLayerCapacity) + slot] =
                 packHalf2x16(clipToPixel(vClip) - clipToPixel(vPreviousClip));
     }
-    // The fallback's bids; a fragment that wins its bid when it makes it keeps its surface there
-    // too (fallbackSurfaceIndex).
-    uint key = fallbackKey(z, n, id);
-    uint beaten = gl_FrontFacing ? atomicMin(layerHeads[uint(uPixelCount) + pixel], key)
-                                 : atomicMax(layerHeads[2u * uint(uPixelCount) + pixel], key);
-#if GLASS_TEXTURES
-    if (gl_FrontFacing ? key < beaten : key > beaten)
-        layerSurface[fallbackSurfaceIndex(pixel, gl_FrontFacing ? 0 : 1)] = surface;
+    // The fallback's bids: its key, and its surface with it (layers.glsl, bidForFallback).
+#if !GLASS_TEXTURES
+    uvec2 surface = uvec2(0u);
 #endif
+    bidForFallback(pixel, gl_FrontFacing, fallbackKey(z, n, id), surface);
 }

@@ -1,9 +1,11 @@
 // Every glass surface a pixel's primary ray crosses, captured in one geometry pass
 // (layer_capture.frag.glsl) into fixed per-pixel arrays of K fragments, in the order the
 // rasteriser produced them (unsorted):
-//   LayerHeads  per pixel: [pixel] the fragment count (may exceed K: overflow), and for the
-//               overflow fallback [P + pixel] the nearest front key (atomicMin) and
-//               [2P + pixel] the farthest back key (atomicMax), P = pixels
+//   LayerHeads  planes of P words (P = pixels): [pixel] the fragment count (may exceed K:
+//               overflow); then the overflow fallback's nearest front (atomicMin) and
+//               farthest back (atomicMax), each its key and, with textured glass, its surface
+//               in three more words (fallbackIndex): every word an atomic bid, so the winner
+//               does not depend on the order fragments arrive in
 //   LayerDepths per pixel, ceil(K / 4) vec4: the linear view depth of the fragment in each slot
 //               (the search reads four at once)
 //   LayerAttrs  per pixel and slot: x the outward view normal (octahedral, 16 + 16 bits);
@@ -13,8 +15,7 @@
 //               glass surface there in pixels (common/motion.glsl; two halves)
 //   LayerSurfaces (frames with textured glass, GLASS_TEXTURES) per pixel and slot: the glass
 //               surface there (GlassSurface: its material's factors times its textures,
-//               packSurface's 64 bits); after them, per pixel, the surfaces of the overflow
-//               fallback's nearest front and farthest back (fallbackSurfaceIndex)
+//               packSurface's 64 bits)
 // A pixel with more than K fragments keeps only its nearest front and farthest back surface
 // (the two-surface model, never a partial list): see storedDepths. The pair capture
 // (pair_resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
@@ -55,13 +56,6 @@ layout(std430, binding = LAYER_SURFACES_BINDING) coherent buffer LayerSurfaces {
     uvec2 layerSurface[];
 };
 
-// Where the surface of the overflow fallback's layer i (0 the nearest front, 1 the farthest
-// back) of a pixel is kept: written by the fragment whose bid won when it made it (where two
-// fragments of one pixel race, a GPU may keep the earlier's; llvmpipe shades a pixel's
-// fragments in order).
-uint fallbackSurfaceIndex(uint pixel, int i) {
-    return uint(uPixelCount) * uint(kLayerCapacity) + pixel * 2u + uint(i);
-}
 #endif
 
 uint packOctNormal(vec3 n) {
@@ -74,7 +68,43 @@ vec3 unpackOctNormal(uint bits) {
 
 // The overflow fallback's keys: 16 bits of log depth, then the glass id (8 bits) and an
 // octahedral normal in 4 + 4 bits (coarse, only for overflowing pixels). Unsigned order is
-// depth order.
+// depth order. With textured glass the surface follows in three more bids, each the key's
+// depth over 16 bits of packSurface's 48: every word is won by the nearest (farthest) depth,
+// whatever the order, and fragments within one depth step of each other are one surface to
+// the fallback (each word the least, or greatest, of theirs).
+#if GLASS_TEXTURES
+const uint kFallbackWords = 4u;
+#else
+const uint kFallbackWords = 1u;
+#endif
+
+// Where word w (0 the key, 1-3 the surface) of the fallback's layer i (0 the nearest front, 1
+// the farthest back) of a pixel is bid for.
+uint fallbackIndex(uint pixel, int i, uint w) {
+    return uint(uPixelCount) * (1u + uint(i) * kFallbackWords + w) + pixel;
+}
+
+// One fragment's bid for every word of its side of the fallback.
+void bidForFallback(uint pixel, bool front, uint key, uvec2 surface) {
+    int i = front ? 0 : 1;
+    uint words[4] = uint[4](key, surface.x & 0xFFFFu, surface.x >> 16, surface.y & 0xFFFFu);
+    for (uint w = 0u; w < kFallbackWords; ++w) {
+        uint bid = w == 0u ? key : (key & 0xFFFF0000u) | words[w];
+        if (front)
+            atomicMin(layerHeads[fallbackIndex(pixel, i, w)], bid);
+        else
+            atomicMax(layerHeads[fallbackIndex(pixel, i, w)], bid);
+    }
+}
+
+#if GLASS_TEXTURES
+// The surface the fallback's layer i of a pixel won.
+uvec2 fallbackSurface(uint pixel, int i) {
+    uint lo = layerHeads[fallbackIndex(pixel, i, 1u)] & 0xFFFFu;
+    uint mid = layerHeads[fallbackIndex(pixel, i, 2u)] & 0xFFFFu;
+    return uvec2(lo | (mid << 16), layerHeads[fallbackIndex(pixel, i, 3u)] & 0xFFFFu);
+}
+#endif
 
 uint fallbackKey(float z, vec3 n, uint id) {
     uint q = min(uint(logDepthFraction(z) * 65536.0), 65535u);
@@ -107,7 +137,8 @@ vec4 storedDepths(ivec2 p, int g) {
     int n = int(layerHeads[pixel]);
     vec4 slots = vec4(float(4 * g)) + vec4(0.0, 1.0, 2.0, 3.0);
     if (n > kLayerCapacity) {
-        uint front = layerHeads[uint(uPixelCount) + pixel], back = layerHeads[2u * uint(uPixelCount) + pixel];
+        uint front = layerHeads[fallbackIndex(pixel, 0, 0u)];
+        uint back = layerHeads[fallbackIndex(pixel, 1, 0u)];
         vec4 d = vec4(front != 0xFFFFFFFFu ? fallbackDepth(front) : NO_DEPTH,
                       back != 0u ? fallbackDepth(back) : NO_DEPTH, NO_DEPTH, NO_DEPTH);
         return g == 0 ? d : vec4(NO_DEPTH);
@@ -142,7 +173,7 @@ vec4 layerDepths(ivec2 p, int g) {
 uvec2 layerAttrOf(ivec2 p, int i, bool overflow) {
     uint pixel = pixelIndex(p);
     if (overflow) {
-        uint key = layerHeads[uint(i == 0 ? uPixelCount : 2 * uPixelCount) + pixel];
+        uint key = layerHeads[fallbackIndex(pixel, i, 0u)];
         return uvec2(packOctNormal(fallbackNormal(key)), ((key >> 8) & 255u) | (i == 0 ? kLayerFront : 0u));
     }
     return layerAttr[pixel * uint(kLayerCapacity) + uint(i)];
@@ -215,7 +246,7 @@ bool inSegment(ivec2 p, float zFrom, float z, int parity) {
 GlassSurface layerSurfaceOf(ivec2 p, int i, uvec2 attr, bool overflow) {
 #if GLASS_TEXTURES
     if (overflow && (i == 0 || i == 1))
-        return unpackSurface(layerSurface[fallbackSurfaceIndex(pixelIndex(p), i)]);
+        return unpackSurface(fallbackSurface(pixelIndex(p), i));
     if (!overflow && i >= 0)
         return unpackSurface(layerSurface[pixelIndex(p) * uint(kLayerCapacity) + uint(i)]);
 #endif

@@ -26,14 +26,18 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
         [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
             GpuState& gpu = *c.gpu;
             const glm::ivec2 viewport = c.frame->settings.size;
-            // With textured glass: each layer's surface, and the overflow fallback's two.
-            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity,
-                               c.texturedGlass ? c.settings.layerCapacity + 2 : 0,
+            // With textured glass: each layer's surface (the fallback's bid in the heads).
+            const int surfaces = c.texturedGlass ? c.settings.layerCapacity : 0;
+            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity, surfaces,
                                c.frame->temporal.enabled);
+            // The counts, then the fallback's nearest front (bid down from the most) and
+            // farthest back (bid up from 0) words, a plane of pixels each (layers.glsl).
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
-            gpu.layers.heads.fill(0, pixels, 0u);                   // counts
-            gpu.layers.heads.fill(pixels * 4, pixels, 0xFFFFFFFFu); // nearest front keys
-            gpu.layers.heads.fill(pixels * 8, pixels, 0u);          // farthest back keys
+            const std::size_t side = (layerHeadWords(surfaces) - 1) / 2 * pixels;
+            const std::size_t word = sizeof(std::uint32_t);
+            gpu.layers.heads.fill(0, pixels, 0u);
+            gpu.layers.heads.fill(pixels * word, side, 0xFFFFFFFFu);
+            gpu.layers.heads.fill((pixels + side) * word, side, 0u);
             // Depth only: the shading pass's mask.
             if (auto bound =
                     gpu.framebuffer.bindTargets("refraction.layer_capture", {}, &r.texture(d.mask));
@@ -45,7 +49,8 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             c.setLayerUniforms(program);
             c.drawGlassMaterials(program,
                                  {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
-            gl::memoryBarrier(gl::BarrierStorage);
+            // the arrays for the passes that read them; the heads for the next frame's clear
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};
         });
     buffers.layers = captured.layers;

@@ -15,13 +15,20 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
     if (layers.surfaces.size() != surfaceBytes)
         layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
     layers.surfaceSlots = surfaceSlots;
+    const std::size_t headBytes = pixels * layerHeadWords(surfaceSlots) * sizeof(std::uint32_t);
+    if (layers.heads.size() != headBytes)
+        layers.heads = gl::Buffer(headBytes);
     if (layers.size == size && layers.capacity == capacity)
         return;
-    layers.heads = gl::Buffer(pixels * 3 * sizeof(std::uint32_t));
     layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
     layers.attrs = gl::Buffer(layerBytes * std::size_t(capacity));
     layers.size = size;
     layers.capacity = capacity;
+}
+
+std::size_t layerHeadWords(int surfaceSlots) {
+    // the count, then the fallback's two sides: each its key, and with surfaces three words more
+    return 1 + 2 * (surfaceSlots > 0 ? 4 : 1);
 }
 
 std::size_t layerDepthSlots(int capacity) {
@@ -32,7 +39,8 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots) {
     // The arrays (head, depth slots, attributes, surfaces), the depth maps the resolve pass
     // writes, and the nearest layers' map the outline pass reads.
     const std::size_t layer = 2 * sizeof(std::uint32_t);
-    return 3 * sizeof(std::uint32_t) + layerDepthSlots(capacity) * sizeof(float) +
+    return layerHeadWords(surfaceSlots) * sizeof(std::uint32_t) +
+           layerDepthSlots(capacity) * sizeof(float) +
            std::size_t(capacity + surfaceSlots) * layer +
            layerDepthSlots(capacity) * sizeof(float) + (outlines ? sizeof(float) : 0);
 }

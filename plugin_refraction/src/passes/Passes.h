@@ -212,8 +212,8 @@ core::Status selectWalkVariants(FrameContext& c);
 // ---- The layer arrays (LayerStorage.cpp)
 
 /** The layer arrays for `size` and capacity K, `surfaceSlots` surfaces a pixel (0: none;
- *  with textured glass K, and the overflow fallback's two where the capture can overflow) and
- *  with `motions` (the frame accumulates) each layer's motion, reallocated only when one
+ *  with textured glass K, and then the overflow fallback bids for its surfaces in the heads)
+ *  and with `motions` (the frame accumulates) each layer's motion, reallocated only when one
  *  changes. */
 void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
                         int surfaceSlots = 0, bool motions = false);
@@ -221,6 +221,8 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
  *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */
 std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0);
+/** Words per pixel in the layer heads (layers.glsl's LayerHeads planes). */
+std::size_t layerHeadWords(int surfaceSlots);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t layerDepthSlots(int capacity);
 
