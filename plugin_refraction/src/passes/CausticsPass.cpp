@@ -74,7 +74,8 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             gl::bindTexture(slot::kCausticDepth, r.texture(depth));
             bindTracedTextures(gpu);
             gl::dispatchIndirect(gpu.caustics.emitters, 4);
-            gl::memoryBarrier(gl::BarrierStorage);
+            // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};
         });
     buffers.caustics = photons.caustics;

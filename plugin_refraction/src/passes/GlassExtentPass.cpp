@@ -45,7 +45,7 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
                                 item.geometry->cage(item.instance, item.primitiveIndex).vertices);
                 gl::dispatch(std::uint32_t((count + 63) / 64));
             }
-            gl::memoryBarrier(gl::BarrierStorage);
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // and the next clear
         });
     buffers.extent = pass.extent;
 }

@@ -71,8 +71,8 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                                       .blend = gl::Blend::AddMinAlpha},
                                      GlassView{view.view, view.projection});
             }
-            if (c.caustics)
-                gl::memoryBarrier(gl::BarrierStorage);
+            if (c.caustics) // the emitters, for the photons and the next frame's clear
+                gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};
         });
     if (c.caustics)

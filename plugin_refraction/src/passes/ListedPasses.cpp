@@ -67,7 +67,7 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
             gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));
         gl::memoryBarrier(gl::BarrierImage | gl::BarrierStorage | gl::BarrierCommand);
     }
-    gl::memoryBarrier(gl::BarrierTexture | gl::BarrierFramebuffer);
+    gl::memoryBarrier(gl::BarrierTexture | gl::BarrierFramebuffer | gl::BarrierBufferUpdate);
     return {};
 }
 

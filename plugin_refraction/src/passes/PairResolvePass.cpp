@@ -62,7 +62,7 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     program.set("uNear", c.frame->camera.znear);
     program.set("uFar", c.frame->camera.zfar);
     c.drawRectangle();
-    gl::memoryBarrier(gl::BarrierStorage);
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // and the next clear
     if (gathered) {
         r.texture(d.normals[1]).generateMipmaps(); // DIR §3.1: mip-filtered normals
         if (c.reflect) // only TIR bounces toward the front read its normals' mips

@@ -104,8 +104,9 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
         c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
     }
     // The motion written, for the resolve; the list and counts, for the trace pass.
+    // (and the counts and list for their next clear, or layerStats' read back)
     gl::memoryBarrier(gl::BarrierTexture | gl::BarrierImage | gl::BarrierStorage |
-                      gl::BarrierCommand);
+                      gl::BarrierCommand | gl::BarrierBufferUpdate);
     return {};
 }
 
