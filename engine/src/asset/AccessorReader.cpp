@@ -48,26 +48,43 @@ int typeComponents(int type) {
     }
 }
 
+double normalizedScale(int componentType) {
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return 127.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return 255.0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        return 32767.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return 65535.0;
+    default:
+        return 1.0;
+    }
+}
+
 namespace {
 
 /** Reads one component at `p`, normalised per glTF §3.11 when `normalized`. */
 double readComponent(const unsigned char* p, int componentType, bool normalized) {
+    // a signed type's most negative value decodes to -1 too
+    const auto decode = [&](double v) {
+        return normalized ? std::max(v / normalizedScale(componentType), -1.0) : v;
+    };
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        const auto v = std::int8_t(*p);
-        return normalized ? std::max(double(v) / 127.0, -1.0) : double(v);
-    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return decode(double(std::int8_t(*p)));
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? double(*p) / 255.0 : double(*p);
+        return decode(double(*p));
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
         std::int16_t v;
         std::memcpy(&v, p, 2);
-        return normalized ? std::max(double(v) / 32767.0, -1.0) : double(v);
+        return decode(double(v));
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         std::uint16_t v;
         std::memcpy(&v, p, 2);
-        return normalized ? double(v) / 65535.0 : double(v);
+        return decode(double(v));
     }
     case TINYGLTF_COMPONENT_TYPE_INT: {
         std::int32_t v;

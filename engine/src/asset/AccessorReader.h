@@ -15,6 +15,9 @@ int componentSize(int componentType);
 
 /** Components of a glTF accessor type (TINYGLTF_TYPE_SCALAR..MAT4), 0 for another value. */
 int typeComponents(int type);
+/** The largest value of a normalized integer component type, which glTF's decoding divides by
+ *  (a signed one clamped to -1 below): 127, 255, 32767, 65535; 1 for the others. */
+double normalizedScale(int componentType);
 
 class AccessorReader {
 public:

@@ -105,22 +105,6 @@ void checkAttributeFormats(const tinygltf::Model& model, const tinygltf::Primiti
             check(semantic, index, what + " target " + n(t) + " " + semantic, true);
 }
 
-/** The largest value of a normalized integer component type (glTF's decoding divides by it). */
-double normalizedScale(int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return 127.0;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return 255.0;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-        return 32767.0;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return 65535.0;
-    default:
-        return 1.0;
-    }
-}
-
 bool wholeNumbers(const std::vector<double>& values) {
     return std::all_of(values.begin(), values.end(),
                        [](double v) { return std::isfinite(v) && v == std::floor(v); });
