@@ -218,6 +218,32 @@ TEST_F(GlLayer, ShaderErrorsNameTheFile) {
     acceptErrors(); // the driver also reports the failed compile through KHR_debug
 }
 
+TEST_F(GlLayer, ADispatchRightAfterAMipmapGenerationIsAnError) {
+    // llvmpipe's rasteriser makes the levels later and its compute does not wait for them (the
+    // timing-dependent frame, docs/hardening.md): a finish or barrier must come between.
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    auto program = gl::Program::compute(library, "main.comp.glsl");
+    ASSERT_TRUE(program.ok()) << program.error().message;
+    gl::Texture texture({{64, 64}, gl::Format::RGBA8, 0});
+    gl::Buffer out(sizeof(float));
+    program->use();
+    gl::bindStorage(kOut, out);
+    texture.generateMipmaps();
+    gl::finish();
+    const std::uint64_t before = gl::errorCount();
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before) << "a finish between: no error";
+    texture.generateMipmaps();
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before + 1) << "no finish between";
+    gl::dispatch(1);
+    EXPECT_EQ(gl::errorCount(), before + 1) << "reported once";
+    gl::memoryBarrier(gl::BarrierAll);
+    acceptErrors(); // the one above, on purpose
+}
+
 TEST_F(GlLayer, IncompleteFramebufferIsAnError) {
     gl::Texture color({{16, 16}, gl::Format::RGBA8, 1});
     gl::Texture depth({{8, 8}, gl::Format::Depth32F, 1});

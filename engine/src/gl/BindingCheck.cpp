@@ -34,6 +34,7 @@ struct State {
     bool enabled = false;
     std::map<std::uint32_t, ProgramBlocks> programs;
     std::map<std::uint32_t, Bound> storage; // by binding
+    bool mipmapsPending = false;            // generated since the last finish or barrier
 };
 
 State& state() {
@@ -126,6 +127,25 @@ void checkBindings(const char* command) {
             fail(where + " holds buffer " + std::to_string(actual) + ", not the buffer " +
                  std::to_string(bound->second.buffer) + " bound for " + bound->second.define +
                  " (bound over by code outside the registry, or deleted)");
+    }
+}
+
+void recordMipmaps() {
+    state().mipmapsPending = true;
+}
+
+void recordSynchronised() {
+    state().mipmapsPending = false;
+}
+
+void checkDispatch(const char* command) {
+    checkBindings(command);
+    State& s = state();
+    if (s.enabled && s.mipmapsPending) {
+        fail(std::string(command) + " after a mipmap generation with no finish or memory "
+                                    "barrier between: llvmpipe's compute does not wait for the "
+                                    "levels (gl::finish or gl::memoryBarrier first)");
+        s.mipmapsPending = false; // reported once
     }
 }
 

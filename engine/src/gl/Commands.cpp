@@ -116,12 +116,12 @@ void drawArrays(std::uint32_t vertexCount) {
 }
 
 void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-    detail::checkBindings("gl::dispatch");
+    detail::checkDispatch("gl::dispatch");
     glDispatchCompute(x, y, z);
 }
 
 void dispatchIndirect(const Buffer& groups, std::size_t offset) {
-    detail::checkBindings("gl::dispatchIndirect");
+    detail::checkDispatch("gl::dispatchIndirect");
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, groups.id());
     glDispatchComputeIndirect(GLintptr(offset));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -202,10 +202,12 @@ void memoryBarrier(std::uint32_t b) {
     if (b == BarrierAll)
         bits = GL_ALL_BARRIER_BITS;
     glMemoryBarrier(bits);
+    detail::recordSynchronised(); // (llvmpipe finishes on any barrier)
 }
 
 void finish() {
     glFinish();
+    detail::recordSynchronised();
 }
 
 } // namespace gl

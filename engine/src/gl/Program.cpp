@@ -147,13 +147,17 @@ core::Status ShaderLibrary::dump(const std::string& name,
         {
             std::ofstream out(partial, std::ios::binary);
             out << stage.source;
-            if (!out.flush())
+            if (!out.flush()) {
+                std::filesystem::remove(partial, ec);
                 return core::Error{"gl::ShaderLibrary: cannot write " + partial};
+            }
         }
         std::filesystem::rename(partial, path, ec);
-        if (ec)
-            return core::Error{"gl::ShaderLibrary: cannot write " + path.string() + ": " +
-                               ec.message()};
+        if (ec) {
+            const std::string reason = ec.message();
+            std::filesystem::remove(partial, ec);
+            return core::Error{"gl::ShaderLibrary: cannot write " + path.string() + ": " + reason};
+        }
     }
     return {};
 }

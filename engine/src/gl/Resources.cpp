@@ -1,4 +1,5 @@
 // RAII buffers, textures, framebuffers, vertex arrays and timer queries.
+#include "BindingCheck.h"
 #include "engine/core/Check.h"
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Commands.h"
@@ -186,6 +187,7 @@ void Texture::upload(int level, const void* data) {
 
 void Texture::generateMipmaps() {
     glGenerateTextureMipmap(mId);
+    detail::recordMipmaps();
 }
 
 void Texture::setSampling(Filter filter, Wrap wrap) {
