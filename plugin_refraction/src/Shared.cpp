@@ -56,6 +56,7 @@ constexpr Shared kFixed[] = {
     Shared::bits("OPAQUE_TEXTURED_TAG", kOpaqueTextured),
     Shared::bits("MIRRORED_TAG", kMirroredTag),
     Shared::bits("LAYER_FRONT_BIT", kLayerFront),
+    Shared::integer("FALLBACK_SURFACE_WORDS", kFallbackSurfaceWords),
     Shared::real("NO_DEPTH", kNoDepth),
     Shared::real("UNUSED_DEPTH", kUnusedDepth),
     Shared::real("NO_SURFACE", kNoSurface),

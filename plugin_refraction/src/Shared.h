@@ -76,6 +76,9 @@ inline constexpr std::uint32_t kOpaqueTag = 0x80000000u, kOpaqueTextured = 0x400
                                kMirroredTag = 0x20000000u;
 /** A layer's attributes (layers.glsl): bits 0-7 its glass id, this bit front-facing. */
 inline constexpr std::uint32_t kLayerFront = 256u;
+/** Words of the overflow fallback's surface in the layer heads, a side (layers.glsl,
+ *  bidForFallback: packSurface's 48 bits, 16 a word), after its key; with textured glass. */
+inline constexpr int kFallbackSurfaceWords = 3;
 /** A depth slot with no layer, a pixel without the opaque scene (the depth maps' clear value);
  *  a depth from kUnusedDepth up marks one. The pair's MAX-blended targets clear to
  *  kNoSurface (below any fragment). */

@@ -47,6 +47,14 @@ const gl::ShaderFile kFiles[] = {
                           "void main() { v[0] = VALUE * SCALE; }\n"},
 };
 
+/** A library of kFiles with the test's table shared. */
+gl::ShaderLibrary testLibrary() {
+    gl::ShaderLibrary library;
+    library.add(kFiles);
+    EXPECT_TRUE(library.share("test", kTestTable).ok());
+    return library;
+}
+
 /** What `program` writes into a one-float buffer. */
 float runOnce(const gl::Program& program) {
     gl::Buffer out(sizeof(float));
@@ -61,9 +69,7 @@ float runOnce(const gl::Program& program) {
 }
 
 TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
     EXPECT_EQ(runOnce(*program), 2.0f);
@@ -71,9 +77,7 @@ TEST_F(GlLayer, IncludesResolveAndComputeRuns) {
 
 TEST_F(GlLayer, ALibraryDumpsEachProgramItCompiledByItsSources) {
     test::TempDir dir;
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     library.dumpTo(dir.path());
     ASSERT_TRUE(gl::Program::compute(library, "variant.comp.glsl", {"VALUE 3.0"}).ok());
     ASSERT_TRUE(gl::Program::compute(library, "variant.comp.glsl", {"VALUE 3.0"}).ok());
@@ -98,9 +102,7 @@ TEST_F(GlLayer, ALibraryDumpsEachProgramItCompiledByItsSources) {
 }
 
 TEST_F(GlLayer, TheProgramCacheCompilesEachVariantOnce) {
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     gl::ProgramCache cache(library);
     auto three = cache.compute("variant.comp.glsl", {"VALUE 3.0"});
     ASSERT_TRUE(three.ok()) << three.error().message;
@@ -145,9 +147,7 @@ TEST_F(GlLayer, TheRegistryRefusesABindingOrANameTwice) {
 }
 
 TEST_F(GlLayer, ADispatchReadsOnlyBlocksBoundForThemThroughTheRegistry) {
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     const bool checks = gl::bindingChecks();
     gl::setBindingChecks(true);
     gl::Buffer out(sizeof(float)), other(sizeof(float));
@@ -221,9 +221,7 @@ TEST_F(GlLayer, ShaderErrorsNameTheFile) {
 TEST_F(GlLayer, ADispatchRightAfterAMipmapGenerationIsAnError) {
     // llvmpipe's rasteriser makes the levels later and its compute does not wait for them (the
     // timing-dependent frame, docs/hardening.md): a finish or barrier must come between.
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok()) << program.error().message;
     gl::Texture texture({{64, 64}, gl::Format::RGBA8, 0});
@@ -256,9 +254,7 @@ TEST_F(GlLayer, IncompleteFramebufferIsAnError) {
 }
 
 TEST_F(GlLayer, DebugOutputCountsErrors) {
-    gl::ShaderLibrary library;
-    library.add(kFiles);
-    ASSERT_TRUE(library.share("test", kTestTable).ok());
+    gl::ShaderLibrary library = testLibrary();
     auto program = gl::Program::compute(library, "main.comp.glsl");
     ASSERT_TRUE(program.ok());
     program->use();

@@ -55,7 +55,6 @@ layout(std430, binding = LAYER_MOTIONS_BINDING) coherent buffer LayerMotions { u
 layout(std430, binding = LAYER_SURFACES_BINDING) coherent buffer LayerSurfaces {
     uvec2 layerSurface[];
 };
-
 #endif
 
 uint packOctNormal(vec3 n) {
@@ -73,7 +72,7 @@ vec3 unpackOctNormal(uint bits) {
 // whatever the order, and fragments within one depth step of each other are one surface to
 // the fallback (each word the least, or greatest, of theirs).
 #if GLASS_TEXTURES
-const uint kFallbackWords = 4u;
+const uint kFallbackWords = 1u + uint(FALLBACK_SURFACE_WORDS);
 #else
 const uint kFallbackWords = 1u;
 #endif

@@ -27,8 +27,8 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
 }
 
 std::size_t layerHeadWords(int surfaceSlots) {
-    // the count, then the fallback's two sides: each its key, and with surfaces three words more
-    return 1 + 2 * (surfaceSlots > 0 ? 4 : 1);
+    // the count, then the fallback's two sides: each its key, and with surfaces its surface
+    return 1 + 2 * std::size_t(1 + (surfaceSlots > 0 ? kFallbackSurfaceWords : 0));
 }
 
 std::size_t layerDepthSlots(int capacity) {
