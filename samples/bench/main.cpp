@@ -31,6 +31,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -49,6 +50,27 @@ middle of the clip) and the GPU memory of the frame graph's pooled textures. Wit
 --instances every pass is finished before its end timestamp (exact per-pass GPU times; the CPU
 times then include those waits); with it, frames pipeline as in an application and pass times
 come from the timer queries. Prints a table (and a progress line on a terminal).)";
+
+/** The steps glass-bench --skip can leave out of a frame, each a define SKIP_<STEP> that the
+ *  shaders test (RenderSettings::skippedSteps; docs/performance.md, "Where the time goes"). */
+const std::vector<std::pair<std::string, std::string>> kSkippableSteps = {
+    {"entry", "the walk pass shades nothing (its rectangle and mask alone)"},
+    {"walk", "the walk shades its entry's colour and stops"},
+    {"search", "the walk's search: each crossing half way to the glass box's side"},
+    {"normals", "the walk's filtered normals: the crossed layer's own"},
+    {"surfaces", "the walk's textured surfaces per layer: the material's"},
+    {"interface", "the interface model (Fresnel, specular, film): a constant reflectance"},
+    {"scene", "the walk's marches through the nearby opaque scene"},
+    {"glass_color", "the light at the entry (reflection, highlights, clear coat, sheen)"},
+    {"lights", "every punctual light's shading (and its shadow), everywhere"},
+    {"shadows", "every shadow lookup, everywhere"},
+    {"motion", "the walk's motion for the temporal resolve"},
+    {"handover", "the hybrid hands no pixel to its trace"},
+    {"textures", "the captures' and the glass shadow's texture reads"},
+    {"fallback", "the capture's bids for the overflow fallback"},
+    {"history_filter", "the resolve's Catmull-Rom history read: one bilinear read"},
+    {"clip", "the resolve's variance clipping"},
+    {"footprint", "the resolve's 3x3 footprint check: the pixel's own motion"}};
 
 constexpr const char* kExitStatus = "Exit status: 0, 1 a load or render error, 2 bad arguments.";
 
@@ -112,7 +134,8 @@ std::size_t coveredPixels(const scene::World& world, double time, const render::
 struct MethodRun {
     std::string method;
     bool temporal = false;
-    bool lit = true; ///< the frame's punctual lights on (RenderSettings::lights)
+    bool lit = true;                  ///< the frame's punctual lights on (RenderSettings::lights)
+    std::vector<std::string> skipped; ///< RenderSettings::skippedSteps (--skip)
     /** A temporal run's own plugin and renderer, whose history carries across its frames as in
      *  an application (the other runs share the scene's, switching the method each frame). */
     std::unique_ptr<plugin::Plugin> glass;
@@ -123,7 +146,10 @@ struct MethodRun {
     std::size_t transientBytes = 0, historyBytes = 0;
     refraction::LayerStats layers; ///< after the last round (layered methods)
     std::string label() const {
-        return method + (lit ? "" : "+unlit") + (temporal ? "+temporal" : "");
+        std::string skips;
+        for (const std::string& step : skipped)
+            skips += (skips.empty() ? " -" : "-") + step;
+        return method + (lit ? "" : "+unlit") + (temporal ? "+temporal" : "") + skips;
     }
 };
 
@@ -152,6 +178,30 @@ scene::World gridWorld(const scene::World& base, int count) {
     return grid;
 }
 
+/** With --skip: what leaving each step out saved, against the same method with every step
+ *  (`whole`, by method, light and accumulation). */
+void printSkipped(const std::vector<MethodRun>& runs,
+                  const std::map<std::tuple<std::string, bool, bool>, double>& whole) {
+    bool header = false;
+    for (const MethodRun& r : runs) {
+        const auto all = whole.find({r.method, r.lit, r.temporal});
+        if (r.skipped.empty() || all == whole.end() || all->second <= 0.0)
+            continue;
+        if (!header)
+            std::printf("\n| run | skipped | median ms | saved ms | saved, of the frame |\n"
+                        "|---|---|---:|---:|---:|\n");
+        header = true;
+        std::string steps;
+        for (const std::string& step : r.skipped)
+            steps += (steps.empty() ? "" : ", ") + step;
+        const double median = percentile(r.frameMs, 0.5);
+        std::printf("| %s | %s | %.2f | %.2f | %.1f%% |\n", r.label().c_str(), steps.c_str(),
+                    median, all->second - median, 100.0 * (all->second - median) / all->second);
+    }
+    if (header)
+        std::printf("\n");
+}
+
 /** Prints one table row per run of `level` and `characters` and returns them as JSON; ratios
  *  are to the opaque run of the same configuration. */
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
@@ -160,11 +210,16 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
     // without accumulation.
     double opaqueMedian[2] = {0.0, 0.0};
     std::map<std::pair<std::string, bool>, double> withoutTemporal;
+    // Each method's median with every step (--skip), by light and accumulation.
+    std::map<std::tuple<std::string, bool, bool>, double> whole;
     for (const MethodRun& r : runs) {
+        if (!r.skipped.empty())
+            continue;
         if (r.method == "opaque" && !r.temporal)
             opaqueMedian[r.lit] = percentile(r.frameMs, 0.5);
         if (!r.temporal)
             withoutTemporal[{r.method, r.lit}] = percentile(r.frameMs, 0.5);
+        whole[{r.method, r.lit, r.temporal}] = percentile(r.frameMs, 0.5);
     }
     std::vector<nlohmann::json> rows;
     for (const MethodRun& r : runs) {
@@ -197,6 +252,8 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
                           sizeof timesOpaque - std::strlen(timesOpaque), " (%.2f unlit)",
                           ratioUnlit);
         const auto off = withoutTemporal.find({r.method, r.lit});
+        const auto all = whole.find({r.method, r.lit, r.temporal});
+        const double saved = !r.skipped.empty() && all != whole.end() ? all->second - median : 0.0;
         const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
                                          ? median / off->second
                                          : 0.0;
@@ -254,6 +311,8 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
              {"animate_record_ms", engine},
              {"ratio_to_opaque", ratio > 0.0 ? nlohmann::json(ratio) : nlohmann::json()},
              {"lights", r.lit},
+             {"skipped", r.skipped},
+             {"saved_ms", saved},
              {"ratio_to_unlit_opaque",
               ratioUnlit > 0.0 ? nlohmann::json(ratioUnlit) : nlohmann::json()},
              {"transient_bytes", r.transientBytes},
@@ -272,6 +331,7 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
               {{"overflow", by[0]}, {"off_the_layers", by[1]}, {"tir", by[2]}, {"outline", by[3]}}},
              {"passes", passes}});
     }
+    printSkipped(runs, whole);
     return rows;
 }
 
@@ -323,7 +383,8 @@ struct Options {
     std::vector<std::pair<std::string, std::string>> assignments;
     std::vector<bool> temporalModes = {false};
     std::vector<bool> lightModes = {true};
-    render::TemporalSettings temporal; ///< a temporal run's (enabled per run)
+    std::vector<std::vector<std::string>> skips = {{}}; ///< --skip: each run's left-out steps
+    render::TemporalSettings temporal;                  ///< a temporal run's (enabled per run)
     bool paused = false;
     plugin::ParameterSet parameters; ///< the glass's, with --glass and every --set applied
 };
@@ -420,6 +481,30 @@ void addOptions(CLI::App& app, Options& o) {
         "alone); a lit run's x opaque then also gives its ratio to the unlit opaque run (default "
         "on)")
         ->type_name("off,on");
+    std::string steps;
+    for (const auto& [step, what] : kSkippableSteps)
+        steps += "\n  " + step + ": " + what;
+    tool::addList<std::vector<std::string>>(
+        app, "--skip", o.skips,
+        [](const std::string& item) -> std::optional<std::vector<std::string>> {
+            std::vector<std::string> set;
+            if (item == "none")
+                return set;
+            std::stringstream in(item);
+            for (std::string step; std::getline(in, step, '+');) {
+                if (std::none_of(kSkippableSteps.begin(), kSkippableSteps.end(),
+                                 [&](const auto& known) { return known.first == step; }))
+                    return std::nullopt;
+                set.push_back(step);
+            }
+            return set.empty() ? std::nullopt : std::optional(set);
+        },
+        "none or steps joined by + (see --help)",
+        "for measurement: also runs each method with each set of steps left out of its shaders "
+        "(\"dir -search\"; none: every step), and prints what each set saved against the run "
+        "with every step. The frames are wrong by design. The steps:" +
+            steps)
+        ->type_name("none,STEP[+STEP],...");
     tool::addHistoryOptions(app, o.temporal);
     app.add_flag("--paused", o.paused,
                  "every round at the middle of the clips, as in a paused viewer: a temporal run's "
@@ -459,33 +544,35 @@ core::Result<std::vector<MethodRun>> createRuns(const Options& o, tool::Headless
                                                 const scene::World& world, int level,
                                                 const render::Bounds& bounds) {
     std::vector<MethodRun> runs;
-    for (bool lit : o.lightModes)
-        for (bool temporal : o.temporalModes)
-            for (const std::string& method : o.methods) {
-                MethodRun run;
-                run.method = method;
-                run.temporal = temporal;
-                run.lit = lit;
-                if (temporal) {
-                    auto created =
-                        render::Renderer::create(headless.environment, *headless.context);
-                    if (!created)
-                        return created.error();
-                    run.renderer = std::move(*created);
-                    run.glass = refraction::createPlugin();
-                    run.glass->parameters() = o.parameters;
-                    (void)run.glass->parameters().set("method", method);
-                    core::Status ready = run.renderer->addPlugin(run.glass.get());
-                    if (ready)
-                        ready = run.renderer->setSubdivisionLevel(level);
-                    if (ready)
-                        ready = run.renderer->prepare(world);
-                    if (!ready)
-                        return ready.error();
-                    run.renderer->setGround(render::GroundPlane::under(bounds));
+    for (const std::vector<std::string>& skipped : o.skips)
+        for (bool lit : o.lightModes)
+            for (bool temporal : o.temporalModes)
+                for (const std::string& method : o.methods) {
+                    MethodRun run;
+                    run.method = method;
+                    run.temporal = temporal;
+                    run.lit = lit;
+                    run.skipped = skipped;
+                    if (temporal) {
+                        auto created =
+                            render::Renderer::create(headless.environment, *headless.context);
+                        if (!created)
+                            return created.error();
+                        run.renderer = std::move(*created);
+                        run.glass = refraction::createPlugin();
+                        run.glass->parameters() = o.parameters;
+                        (void)run.glass->parameters().set("method", method);
+                        core::Status ready = run.renderer->addPlugin(run.glass.get());
+                        if (ready)
+                            ready = run.renderer->setSubdivisionLevel(level);
+                        if (ready)
+                            ready = run.renderer->prepare(world);
+                        if (!ready)
+                            return ready.error();
+                        run.renderer->setGround(render::GroundPlane::under(bounds));
+                    }
+                    runs.push_back(std::move(run));
                 }
-                runs.push_back(std::move(run));
-            }
     return runs;
 }
 
@@ -499,6 +586,7 @@ core::Status measureFrame(MethodRun& r, tool::HeadlessScene& headless, const sce
     settings.temporal = o.temporal;
     settings.temporal.enabled = r.temporal;
     settings.lights = r.lit;
+    settings.skippedSteps = r.skipped;
     render::Renderer& renderer = r.renderer ? *r.renderer : *headless.renderer;
     const auto start = std::chrono::steady_clock::now();
     auto stats = renderer.render(world, camera, settings, time);

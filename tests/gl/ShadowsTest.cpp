@@ -215,6 +215,20 @@ TEST_F(Shadows, AlternatingMethodsAndLightsCompilesEachVariantOnce) {
     EXPECT_EQ(rig.renderer().programVariants(), afterFirstRound);
 }
 
+// glass-bench --skip's steps reach the programs that test them, and leave no variant behind:
+// the frame without them is the frame it was.
+TEST_F(Shadows, SkippedStepsChangeTheFramesThatSkipThemAlone) {
+    test::WorldRig rig(test::projectScene("shadows.json"), context(), 32);
+    rig.useSceneCamera();
+    const std::vector<float> whole = rig.renderHdr();
+    for (const char* step : {"shadows", "walk", "interface"}) {
+        rig.skippedSteps = {step};
+        EXPECT_NE(rig.renderHdr(), whole) << step;
+    }
+    rig.skippedSteps.clear();
+    EXPECT_EQ(rig.renderHdr(), whole);
+}
+
 TEST_F(Shadows, GlassCastsNothingWithItsShadowsOff) {
     test::WorldRig rig(test::projectScene("shadows.json"), context(), kSize);
     rig.useSceneCamera();

@@ -78,6 +78,7 @@ public:
         settings.shadows = shadows;
         settings.hdrOutput = true;
         settings.temporal = temporal;
+        settings.skippedSteps = skippedSteps;
         auto stats = mRenderer->render(mWorld, mCamera, settings, time);
         EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
         if (stats && passes)
@@ -144,6 +145,7 @@ public:
     bool shadows = true;
     /** The frames' temporal accumulation (off unless set). */
     render::TemporalSettings temporal;
+    std::vector<std::string> skippedSteps; ///< RenderSettings::skippedSteps (measurement)
     const render::Camera& camera() const { return mCamera; }
     void setCamera(const render::Camera& camera) { mCamera = camera; }
     /** The frames' width and height from the next one on. */

@@ -49,6 +49,10 @@ float spotFalloff(PunctualLight light, vec3 L) {
 // Light `i` as it arrives at P (normal N): its radiance after the distance, range and cone
 // falloffs and what its shadow maps say blocks or tints it, and the unit direction L toward it.
 vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
+#ifdef SKIP_LIGHTS // glass-bench --skip lights: no light arrives (nor its shadow)
+    L = N;
+    return vec3(0.0);
+#endif
     PunctualLight light = punctualLights[i];
     float falloff = 1.0;
     if (int(light.position.w) == LIGHT_DIRECTIONAL) {

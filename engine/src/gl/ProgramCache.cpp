@@ -23,12 +23,14 @@ std::string variantKey(const std::vector<std::string>& stages, std::vector<std::
 core::Result<const Program*> ProgramCache::graphics(const std::string& vertex,
                                                     const std::string& fragment,
                                                     std::vector<std::string> defines) {
+    defines.insert(defines.end(), mExtraDefines.begin(), mExtraDefines.end());
     return kept(variantKey({vertex, fragment}, defines),
                 [&] { return Program::graphics(mLibrary, vertex, fragment, defines); });
 }
 
 core::Result<const Program*> ProgramCache::compute(const std::string& name,
                                                    std::vector<std::string> defines) {
+    defines.insert(defines.end(), mExtraDefines.begin(), mExtraDefines.end());
     return kept(variantKey({name}, defines),
                 [&] { return Program::compute(mLibrary, name, defines); });
 }

@@ -63,13 +63,14 @@ struct RenderGpu {
     std::unique_ptr<Environment> environment;
     gl::Program background, tonemap;
     gl::Program shadowMapView; ///< the shadow atlases' debug view (shadow_map_view.frag.glsl)
-    gl::Program temporal;      ///< the temporal resolve (render/temporal.frag.glsl)
     TemporalHistory history;
     /** This frame's variants (from the renderer's ProgramCache, for its lighting features):
-     *  the ground's, and render/pbr.frag.glsl's per set of material layers
-     *  (Material::surfaceLayers()). */
+     *  the ground's, render/pbr.frag.glsl's per set of material layers
+     *  (Material::surfaceLayers()), and the temporal resolve's for the frame's history (where
+     *  it accumulates). */
     const gl::Program* ground = nullptr;
     std::map<int, const gl::Program*> opaque;
+    const gl::Program* temporal = nullptr;
     std::vector<int> layerSets; ///< the sets of layers the prepared models' materials use
     gl::VertexArray emptyVao;
     gl::Framebuffer framebuffer;

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <map>
 
@@ -107,6 +108,18 @@ core::Result<std::shared_ptr<ModelGpu>> uploadModel(std::shared_ptr<const scene:
     return m;
 }
 
+/** RenderSettings::skippedSteps as defines: "search" is SKIP_SEARCH. */
+std::vector<std::string> skipDefines(const std::vector<std::string>& steps) {
+    std::vector<std::string> defines;
+    for (const std::string& step : steps) {
+        std::string define = "SKIP_";
+        for (char c : step)
+            define += char(std::toupper(static_cast<unsigned char>(c)));
+        defines.push_back(define);
+    }
+    return defines;
+}
+
 } // namespace
 
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& environment,
@@ -131,7 +144,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
          {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
                       "render/background.frag.glsl"},
           ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"},
-          ProgramSpec{&gpu.temporal, "render/fullscreen.vert.glsl", "render/temporal.frag.glsl"},
           ProgramSpec{&gpu.shadowMapView, "render/fullscreen.vert.glsl",
                       "render/shadow_map_view.frag.glsl"}}) {
         auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
@@ -289,12 +301,13 @@ void Renderer::planShadows(const scene::World& world, const RenderSettings& sett
                          " times to fit the GPU's largest texture");
 }
 
-core::Status Renderer::selectPrograms(const LightingFeatures& lighting, bool temporal) {
+core::Status Renderer::selectPrograms(const FrameInfo& frame) {
     RenderGpu& gpu = *mGpu;
     auto fail = [](const core::Error& e) {
         return core::Error{"render::Renderer::render(): " + e.message};
     };
-    std::vector<std::string> defines = lighting.defines();
+    const bool temporal = frame.temporal.enabled;
+    std::vector<std::string> defines = frame.lighting.defines();
     defines.push_back(std::string("WRITE_MOTION ") + (temporal ? "1" : "0"));
     auto ground =
         mPrograms->graphics("render/ground.vert.glsl", "render/ground.frag.glsl", defines);
@@ -311,6 +324,18 @@ core::Status Renderer::selectPrograms(const LightingFeatures& lighting, bool tem
             return fail(program.error());
         gpu.opaque.emplace(layers, *program);
     }
+    gpu.temporal = nullptr;
+    if (temporal) {
+        const TemporalSettings& s = frame.settings.temporal;
+        auto resolve = mPrograms->graphics(
+            "render/fullscreen.vert.glsl", "render/temporal.frag.glsl",
+            {"TEMPORAL_STILL " + std::to_string(frame.temporal.still && s.convergeStill ? 1 : 0),
+             "TEMPORAL_REJECT " + std::to_string(s.rejectHistory ? 1 : 0),
+             "TEMPORAL_VIEW " + std::to_string(int(s.view))});
+        if (!resolve)
+            return fail(resolve.error());
+        gpu.temporal = *resolve;
+    }
     return {};
 }
 
@@ -319,6 +344,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     const auto frameStart = std::chrono::steady_clock::now();
     if (auto prepared = prepare(world); !prepared)
         return prepared.error();
+    mPrograms->setExtraDefines(skipDefines(settings.skippedSteps));
     const gl::Format outputFormat = settings.hdrOutput ? gl::Format::RGBA32F : gl::Format::RGBA8;
     if (!mOutput || mOutput.desc().size != settings.size || mOutput.desc().format != outputFormat)
         mOutput = gl::Texture({settings.size, outputFormat, 1});
@@ -435,7 +461,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.lighting =
         LightingFeatures::of(gpu.lights, gpu.shadows, shadows.glass != engineShadows.glass,
                              shadows.caustics != engineShadows.caustics);
-    if (auto selected = selectPrograms(frame.lighting, frame.temporal.enabled); !selected)
+    if (auto selected = selectPrograms(frame); !selected)
         return selected.error();
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);

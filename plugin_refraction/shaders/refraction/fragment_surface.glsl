@@ -20,7 +20,9 @@
 #define TEXTURES_BASE_LEVEL 0
 #endif
 vec4 captureTexel(int slot) {
-#if TEXTURES_BASE_LEVEL
+#ifdef SKIP_TEXTURES // glass-bench --skip textures: no texel read (a flat normal)
+    return vec4(0.5, 0.5, 1.0, 1.0);
+#elif TEXTURES_BASE_LEVEL
     return textureLod(uTexture[slot], slotUv(vUv, slot), 0.0);
 #else
     return readTexture(slot, vUv);

@@ -49,6 +49,9 @@ vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
 // its tint, the opaque term where transmission is partial, the clear coat and sheen over it,
 // and emission.
 vec3 glassColor(GlassMaterial m, GlassSurface s, vec3 P, vec3 V, vec3 N1, vec3 transmitted) {
+#ifdef SKIP_GLASS_COLOR // glass-bench --skip glass_color: the transmitted light alone
+    return transmitted;
+#endif
     vec3 Pw = uViewToWorld * P + uViewOriginWorld, Nw = uViewToWorld * N1, Vw = uViewToWorld * -V;
     float eta = 1.0 / m.ior.g;
     vec3 F = reflectance(m, s, dot(-V, N1), eta);

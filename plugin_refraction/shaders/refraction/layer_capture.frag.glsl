@@ -43,5 +43,7 @@ void main() {
 #if !GLASS_TEXTURES
     uvec2 surface = uvec2(0u);
 #endif
+#ifndef SKIP_FALLBACK // glass-bench --skip fallback
     bidForFallback(pixel, gl_FrontFacing, fallbackKey(z, n, id), surface);
+#endif
 }

@@ -243,7 +243,7 @@ bool inSegment(ivec2 p, float zFrom, float z, int parity) {
 // where the frame's glass is textured (for an overflowing pixel, its fallback's), else its
 // material's.
 GlassSurface layerSurfaceOf(ivec2 p, int i, uvec2 attr, bool overflow) {
-#if GLASS_TEXTURES
+#if GLASS_TEXTURES && !defined(SKIP_SURFACES) // glass-bench --skip surfaces: the material's
     if (overflow && (i == 0 || i == 1))
         return unpackSurface(fallbackSurface(pixelIndex(p), i));
     if (!overflow && i >= 0)

@@ -70,6 +70,9 @@ const float kEstimatedTirBand = radians(20.0);
 // KHR_materials_specular (the rise toward grazing kept), through the iridescent film, toward
 // the base colour by metallic.
 vec3 reflectance(GlassMaterial m, GlassSurface s, float cosI, float eta) {
+#ifdef SKIP_INTERFACE // glass-bench --skip interface: a constant reflectance
+    return vec3(0.04);
+#endif
     vec3 F = vec3(fresnel(uFresnelMode, cosI, eta));
 #if GLASS_SPECULAR
     if (m.specularColor != vec3(1.0) || m.specularWeight != 1.0) {

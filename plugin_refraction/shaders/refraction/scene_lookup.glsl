@@ -94,8 +94,10 @@ vec3 groundSeen(vec3 P, vec3 dir, float t) {
 // environment.
 vec3 lookup(vec3 P, vec3 dir, float roughness, bool march, out float hitT) {
     ivec2 hit;
+#ifndef SKIP_SCENE // glass-bench --skip scene: the ground and the environment alone
     if (uNearby != 0 && march && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
         return texelFetch(uSceneColor, hit, 0).rgb;
+#endif
     hitT = uNearby != 0 ? groundHit(P, dir) : -1.0;
     return hitT > 0.0 ? groundSeen(P, dir, hitT)
                       : environmentRadiance(uViewToWorld * dir, roughness);

@@ -70,6 +70,11 @@ vec3 debugView(vec3 color, ivec2 p, Entry e, Walk walk, int stored, uint handedO
 }
 
 void main() {
+#ifdef SKIP_ENTRY // glass-bench --skip entry: the pass's rectangle and mask alone
+    outColor = vec4(0.0, 0.0, 0.0, 1.0);
+    outSurface = 0u;
+    return;
+#endif
     ivec2 p = ivec2(gl_FragCoord.xy);
     Entry e;
     if (!pixelEntry(p, e))
@@ -77,6 +82,10 @@ void main() {
     vec3 N1 = facingNormal(e);
     outSurface = (packHalf2x16(vec2(e.z, 0.0)) & 0xFFFFu) | (layerGlass(e.attr) << 16) |
                  (uint(round(abs(dot(N1, e.V)) * 255.0)) << 24);
+#ifdef SKIP_WALK // glass-bench --skip walk: the entry alone
+    outColor = vec4(e.surface.baseColor * abs(N1.z), 1.0);
+    return;
+#endif
     Walk walk;
     int stored = storedCount(p);
     uint handedOver = 0u; // the hybrid's reasons to trace this pixel (uHybridCriteria's bits)
@@ -107,6 +116,7 @@ void main() {
     // What the pixel shows, for the temporal resolve, and whether it takes the fresh samples
     // (the hybrid's trace pass records and decides its own pixels').
     float alpha = 1.0;
+#ifndef SKIP_MOTION // glass-bench --skip motion
     if (writesMotion() && uTraceSample == 0) {
         uvec4 m = handedOver == 0u ? glassPixelMotion(p, e, walk, gEndT) : handedOverMotion(p, e);
         imageStore(uGlassMotion, p, m);
@@ -115,5 +125,6 @@ void main() {
             alpha = freshAlpha();
         }
     }
+#endif
     outColor = vec4(color, alpha);
 }

@@ -191,6 +191,9 @@ struct Walk {
 // improve it (on a sphere, where light never reflects totally, such pixels lost 0.04 dB to
 // DIR when handed over).
 uint handedOverBy(Walk w) {
+#ifdef SKIP_HANDOVER // glass-bench --skip handover: the walk shades every pixel
+    return 0u;
+#endif
     return uint(uHybridCriteria) &
            ((w.sightLayers > kLayerCapacity || w.overflowed ? uint(HYBRID_OVERFLOW) : 0u) |
             (w.fallback ? uint(HYBRID_LEFT_LAYERS) : 0u) |
@@ -214,6 +217,9 @@ bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
     if (tracedOpaque(c))
         seen = opaqueSeen(c, dir);
     return tracedOpaque(c);
+#elif defined(SKIP_SCENE) // glass-bench --skip scene: no opaque part between interfaces
+    hitT = 0.0;
+    return false;
 #else
     ivec2 hit;
     bool met = uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, hit);

@@ -86,6 +86,10 @@ bool pickLayer(ivec2 p, float z, bool deeper, bool nearest, out uvec2 attr,
 // square to the line of sight: they count with that normal, continuing the others' direction
 // (`outline`: the normal was continued so, good to 2-4 degrees on a sphere).
 vec3 filteredNormal(vec3 X, uvec2 attr, out bool outline) {
+#ifdef SKIP_NORMALS // glass-bench --skip normals: the crossed layer's own normal
+    outline = false;
+    return layerNormal(attr);
+#endif
     vec2 texel = projectToUv(X) * uViewportSize - 0.5;
     ivec2 base = ivec2(floor(texel));
     vec2 f = texel - vec2(base);
@@ -153,6 +157,25 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
     // the ray only passes beside: the search goes on behind it (twice at most).
     int steps = clamp(int(ceil(pixels / (inGlass ? 4.0 : 8.0))), 1,
                       max(inGlass ? uMarchSteps : uMarchSteps / 2, 1));
+#ifdef SKIP_SEARCH // glass-bench --skip search: the next layer on the start's line of sight
+    float z = -P.z, next = dir.z < 0.0 ? NO_DEPTH : 0.0;
+    PixelLayers l = pixelLayers(pixelOf(P));
+    for (int i = 0; i < kDepthSlots; ++i) {
+        float d = layerDepth(l, i);
+        bool ahead = dir.z < 0.0 ? d > z * 1.0001 && d < next : d < z * 0.9999 && d > next;
+        if (d < UNUSED_DEPTH && ahead)
+            next = d;
+    }
+    if (next <= 0.0 || next >= NO_DEPTH || abs(dir.z) < 1e-6)
+        return c;
+    float t = (-next - P.z) / dir.z;
+    c.found = true;
+    c.point = P + dir * (t * 0.999);
+    c.beyond = P + dir * (t * 1.001);
+    c.silhouette =
+        !pickLayer(pixelOf(c.beyond), -c.beyond.z, dir.z < 0.0, false, c.attr, c.surface);
+    return c;
+#else
     for (int pass = 0; pass < 3; ++pass) {
         inside = start;
         outside = -1.0;
@@ -172,6 +195,7 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
             break;
         start = past;
     }
+#endif
     vec3 X0 = pointAt(r, inside), X1 = pointAt(r, outside);
     c.found = true;
     c.point = X0;

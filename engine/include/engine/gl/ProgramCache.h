@@ -26,6 +26,9 @@ public:
     /** The compute program of `name` under `defines`. */
     core::Result<const Program*> compute(const std::string& name,
                                          std::vector<std::string> defines = {});
+    /** Defines added to every variant asked for from now on, part of its key (measurement
+     *  builds: RenderSettings::skippedSteps). */
+    void setExtraDefines(std::vector<std::string> defines) { mExtraDefines = std::move(defines); }
     /** How many variants have been compiled (and kept) so far. */
     std::size_t size() const { return mPrograms.size(); }
 
@@ -36,6 +39,7 @@ private:
 
     const ShaderLibrary& mLibrary;
     std::map<std::string, std::unique_ptr<Program>> mPrograms;
+    std::vector<std::string> mExtraDefines;
 };
 
 } // namespace gl

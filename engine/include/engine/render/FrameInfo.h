@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace scene {
 struct Model;
@@ -107,6 +109,11 @@ struct RenderSettings {
     enum class ShadowMapView { Off, Depth, Glass, Caustics };
     ShadowMapView shadowMapView = ShadowMapView::Off;
     TemporalSettings temporal;
+    /** For measurement only (glass-bench --skip; docs/performance.md, "Where the time goes"):
+     *  each name S compiles every program of the renderer's cache with the define SKIP_S, which
+     *  leaves that step of the frame out (the shaders' `#ifdef SKIP_*`). The frames are wrong
+     *  by design; empty (the default) changes nothing. */
+    std::vector<std::string> skippedSteps;
     bool operator==(const RenderSettings&) const = default;
 };
 

@@ -129,9 +129,10 @@ private:
     Renderer() = default;
     /** This frame's shadow views (RenderGpu::shadows) of its lights around the characters. */
     void planShadows(const scene::World& world, const RenderSettings& settings);
-    /** The ground's and the opaque pass's variants for `lighting` and whether the frame
-     *  accumulates (their motion; RenderGpu::ground, opaque), from the program cache. */
-    core::Status selectPrograms(const LightingFeatures& lighting, bool temporal);
+    /** The ground's and the opaque pass's variants for the frame's lighting features and
+     *  whether it accumulates (their motion), and the temporal resolve's for its history
+     *  (RenderGpu::ground, opaque, temporal), from the program cache. */
+    core::Status selectPrograms(const FrameInfo& frame);
     class Allocator;
     class Timer;
     gl::Context* mContext = nullptr;

@@ -39,7 +39,7 @@ fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
             if (auto bound = gpu.framebuffer.bindTargets("temporal", targets, nullptr); !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            const gl::Program& p = gpu.temporal;
+            const gl::Program& p = *gpu.temporal;
             p.use();
             gl::bindTexture(gl::slot::kSource, r.texture(d.color));
             gl::bindTexture(gl::slot::kMotion, r.texture(d.motion));
@@ -48,10 +48,7 @@ fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
             const TemporalSettings& s = frame.settings.temporal;
             setMotionUniforms(p, frame);
             p.set("uIndex", int(frame.temporal.index));
-            p.set("uStill", frame.temporal.still && s.convergeStill ? 1 : 0);
             p.set("uHistoryWeight", s.historyWeight);
-            p.set("uReject", s.rejectHistory ? 1 : 0);
-            p.set("uView", int(s.view));
             gpu.emptyVao.bind();
             gl::drawArrays(3);
             // The motion the next frame checks its history against: this frame's, copied
