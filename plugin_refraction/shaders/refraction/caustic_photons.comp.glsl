@@ -8,14 +8,20 @@
 // unblocked (the spot's falloff, and in a perspective view the solid angle of a texel,
 // cos^3 of its angle off the view's axis), over the photons a cell. A photon the light cannot
 // see land (hidden behind an opaque caster) adds nothing: the shading could not show it there.
-// Through dispersive glass a photon follows one channel's path, the channels in turn. With
-// CAUSTIC_GRID, the one invocation that sizes the photon pass's dispatch to the frame's grid.
+// Through dispersive glass a photon follows one channel's path, the channels in turn. Three
+// programs: with CAUSTIC_GRID, the one invocation that sizes the list pass's dispatch to the
+// frame's grid; with CAUSTIC_LIST, the list pass, an invocation a cell of the grid, which lists
+// the cell's photons that start on an emitter (caustics.glsl); without either, the photon pass,
+// an invocation a listed photon (a CPU rasteriser's SIMD lanes, or a GPU's, then all trace).
 #include "common/lighting.glsl"
 #include "refraction/optics.glsl"
 #include "refraction/traced_surface.glsl"
 #include "refraction/caustics.glsl"
 #ifndef CAUSTIC_GRID
 #define CAUSTIC_GRID 0
+#endif
+#ifndef CAUSTIC_LIST
+#define CAUSTIC_LIST 0
 #endif
 
 // The engine's shadow depth atlas, read as depths: the receivers the light sees.
@@ -156,71 +162,99 @@ float causticJitter(uvec3 v) {
 }
 
 #if CAUSTIC_GRID
-// The photon pass's work groups for this frame's emitters: an invocation a cell of the atlas.
+// The list pass's work groups for this frame's emitters, an invocation a cell of the atlas;
+// the photon pass's from one.
 layout(local_size_x = 1) in;
 void main() {
     int cell, side;
     causticGrid(uint(uPhotonBudget), cell, side);
     ivec2 cells = (uCausticSize + cell - 1) / cell;
-    photonGroups[0] = uint(cells.x + 7) / 8u;
-    photonGroups[1] = uint(cells.y + 7) / 8u;
+    listGroups[0] = uint(cells.x + 7) / 8u;
+    listGroups[1] = uint(cells.y + 7) / 8u;
+    listGroups[2] = 1u;
+    photonCount = 0u;
+    photonGroups[0] = 0u;
+    photonGroups[1] = 1u;
     photonGroups[2] = 1u;
 }
 #else
+// Where in the atlas (texels) photon `stratum` of cell `at` of the grid (cells of `cell` texels,
+// side x side strata) starts: a jittered point of its stratum.
+vec2 photonStart(ivec2 at, int stratum, int cell, int side) {
+    uvec3 seed = uvec3(at, uint(stratum));
+    vec2 jitter = vec2(causticJitter(seed), causticJitter(seed + uvec3(0u, 0u, 16u)));
+    return vec2(at * cell) + float(cell) * (vec2(stratum % side, stratum / side) + jitter) /
+                                 float(side);
+}
+
+#if CAUSTIC_LIST
 layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
     int cell, side;
     causticGrid(uint(uPhotonBudget), cell, side);
-    ivec2 corner = ivec2(gl_GlobalInvocationID.xy) * cell;
+    ivec2 at = ivec2(gl_GlobalInvocationID.xy), corner = at * cell;
     // Most cells see no glass: a cell of one texel is tested once, before its photons.
     if (any(greaterThanEqual(corner, uCausticSize)) || (cell == 1 && !isEmitter(corner)))
         return;
-    float share = 1.0 / float(side * side);
-    for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-            // A point in the photon's stratum of the cell, jittered: its texel an emitter.
-            uvec3 seed = uvec3(gl_GlobalInvocationID.xy, uint(j * side + i));
-            vec2 jitter = vec2(causticJitter(seed), causticJitter(seed + uvec3(0u, 0u, 16u)));
-            vec2 at = vec2(corner) + float(cell) * (vec2(i, j) + jitter) / float(side);
-            ivec2 from = ivec2(floor(at));
-            if (any(greaterThanEqual(from, uCausticSize)) || !isEmitter(from))
-                continue;
-            int v = 0;
-            ivec3 tile;
-            for (; v < uViewCount; ++v) {
-                tile = causticTile(shadowViews[v].tile);
-                if (all(greaterThanEqual(from, tile.xy)) && all(lessThan(from, tile.xy + tile.z)))
-                    break;
-            }
-            if (v == uViewCount)
-                continue;
-            vec2 ndc = (at - vec2(tile.xy)) / float(tile.z) * 2.0 - 1.0;
-            vec4 near = uInverseViewProjection[v] * vec4(ndc, -1.0, 1.0);
-            vec4 far = uInverseViewProjection[v] * vec4(ndc, 1.0, 1.0);
-            vec3 origin = near.xyz / near.w, dir = normalize(far.xyz / far.w - origin);
-            float leaving = share * texelLight(v, dir);
-            // Its first surface: glass, or the light stops; dispersive glass splits it.
-            float t;
-            int leaf, steps = 0;
-            vec2 uv;
-            if (!bvhNearest(origin, dir, 0.0, 3.0e38, t, leaf, uv, steps))
-                continue;
-            uint tag = triangleTags[triangleOrder[leaf]];
-            if ((tag & kOpaqueTag) != 0u)
-                continue;
-            // Dispersive glass: the photon takes one channel's path, in turn across the grid,
-            // carrying three times that channel's light (the three paths' sum on average).
-            // One call of photon() for both (a CPU rasteriser would run two calls' loops).
-            vec3 ior = glassMaterials[tag & 255u].ior;
-            int channel = 1;
-            vec3 weight = vec3(leaving);
-            if (ior.r != ior.b) {
-                channel = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y +
-                              uint(j * side + i)) % 3;
-                weight = vec3(0.0);
-                weight[channel] = 3.0 * leaving;
-            }
-            photon(v, origin, dir, channel, weight, cell);
-        }
+    for (int stratum = 0; stratum < side * side; ++stratum) {
+        ivec2 from = ivec2(floor(photonStart(at, stratum, cell, side)));
+        if (any(greaterThanEqual(from, uCausticSize)) || !isEmitter(from))
+            continue;
+        // At most a photon a cell, or budget photons with cells of a texel: within the list's
+        // room (CausticsPass.cpp).
+        uint slot = atomicAdd(photonCount, 1u);
+        emitterWords[photonListStart() + slot] = photonEntry(at, stratum);
+        if (slot % 64u == 0u)
+            atomicAdd(photonGroups[0], 1u);
+    }
 }
+#else
+layout(local_size_x = 64) in;
+void main() {
+    if (gl_GlobalInvocationID.x >= photonCount)
+        return;
+    int cell, side;
+    causticGrid(uint(uPhotonBudget), cell, side);
+    ivec2 at;
+    int stratum;
+    photonOf(emitterWords[photonListStart() + gl_GlobalInvocationID.x], at, stratum);
+    vec2 start = photonStart(at, stratum, cell, side);
+    ivec2 from = ivec2(floor(start));
+    int v = 0;
+    ivec3 tile;
+    for (; v < uViewCount; ++v) {
+        tile = causticTile(shadowViews[v].tile);
+        if (all(greaterThanEqual(from, tile.xy)) && all(lessThan(from, tile.xy + tile.z)))
+            break;
+    }
+    if (v == uViewCount)
+        return;
+    vec2 ndc = (start - vec2(tile.xy)) / float(tile.z) * 2.0 - 1.0;
+    vec4 near = uInverseViewProjection[v] * vec4(ndc, -1.0, 1.0);
+    vec4 far = uInverseViewProjection[v] * vec4(ndc, 1.0, 1.0);
+    vec3 origin = near.xyz / near.w, dir = normalize(far.xyz / far.w - origin);
+    float leaving = (1.0 / float(side * side)) * texelLight(v, dir);
+    // Its first surface: glass, or the light stops; dispersive glass splits it.
+    float t;
+    int leaf, steps = 0;
+    vec2 uv;
+    if (!bvhNearest(origin, dir, 0.0, 3.0e38, t, leaf, uv, steps))
+        return;
+    uint tag = triangleTags[triangleOrder[leaf]];
+    if ((tag & kOpaqueTag) != 0u)
+        return;
+    // Dispersive glass: the photon takes one channel's path, in turn across the grid, carrying
+    // three times that channel's light (the three paths' sum on average). One call of photon()
+    // for both (a CPU rasteriser would run two calls' loops).
+    vec3 ior = glassMaterials[tag & 255u].ior;
+    int channel = 1;
+    vec3 weight = vec3(leaving);
+    if (ior.r != ior.b) {
+        channel = (at.x + at.y + stratum) % 3;
+        weight = vec3(0.0);
+        weight[channel] = 3.0 * leaving;
+    }
+    photon(v, origin, dir, channel, weight, cell);
+}
+#endif
 #endif

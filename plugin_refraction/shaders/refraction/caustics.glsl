@@ -14,11 +14,20 @@
 
 uniform ivec2 uCausticSize; // the caustics atlas's texels: the shadow atlases' / CAUSTIC_SCALE
 
+// After the bits, the list of the frame's photons (CausticsPass.cpp, caustic_photons.comp.glsl):
+// each its cell of the grid and its stratum in the cell, packed (photonEntry), listed by the
+// list pass so that the photon pass's lanes all trace (most cells of the atlas see no glass).
 layout(std430, binding = CAUSTIC_EMITTERS_BINDING) buffer CausticEmitters {
     uint emitterCount;
-    uint photonGroups[3]; // the photon pass's work groups (causticGrid), an indirect dispatch
-    uint emitterBits[];   // a bit a texel, row by row
+    uint listGroups[3];   // the list pass's work groups (an invocation a cell of the grid)
+    uint photonCount;
+    uint photonGroups[3]; // the photon pass's work groups (64 photons each)
+    uint emitterWords[];  // a bit a texel, row by row; then the photon list
 };
+
+uint photonListStart() {
+    return (uint(uCausticSize.x) * uint(uCausticSize.y) + 31u) / 32u;
+}
 layout(std430, binding = CAUSTIC_SUMS_BINDING) buffer CausticSums { uint causticSums[]; };
 
 // A shadow view's tile (ShadowView::tile, atlas uv) in the caustics atlas: its corner and side
@@ -33,7 +42,18 @@ uint causticTexelIndex(ivec2 texel) {
 
 bool isEmitter(ivec2 texel) {
     uint i = causticTexelIndex(texel);
-    return (emitterBits[i / 32u] & (1u << (i % 32u))) != 0u;
+    return (emitterWords[i / 32u] & (1u << (i % 32u))) != 0u;
+}
+
+// A photon of the list: its cell (13 bits each way: atlases up to 8192 texels a side) and its
+// stratum in the cell (6 bits: up to 4 x 4).
+uint photonEntry(ivec2 cell, int stratum) {
+    return uint(cell.x) | uint(cell.y) << 13 | uint(stratum) << 26;
+}
+
+void photonOf(uint entry, out ivec2 cell, out int stratum) {
+    cell = ivec2(entry & 0x1FFFu, (entry >> 13) & 0x1FFFu);
+    stratum = int(entry >> 26);
 }
 
 // Photons a fine cell's estimate needs (over its bilinear footprint) to be read alone.

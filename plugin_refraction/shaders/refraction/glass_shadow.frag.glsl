@@ -44,7 +44,7 @@ void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy) / CAUSTIC_SCALE;
     uint i = causticTexelIndex(texel), bit = 1u << (i % 32u);
     // A plain read first: most of a texel's fragments find its bit set, and skip the atomic.
-    if ((emitterBits[i / 32u] & bit) == 0u && (atomicOr(emitterBits[i / 32u], bit) & bit) == 0u)
+    if ((emitterWords[i / 32u] & bit) == 0u && (atomicOr(emitterWords[i / 32u], bit) & bit) == 0u)
         atomicAdd(emitterCount, 1u); // the texel's first glass
 #endif
 }

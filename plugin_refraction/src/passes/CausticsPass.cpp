@@ -49,11 +49,17 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             const render::ShadowPlan& plan = *c.frame->shadows;
             gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
             gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
-            // The work groups for this frame's emitters, an invocation a cell.
-            c.causticPrograms.grid->use();
-            setCausticUniforms(*c.causticPrograms.grid, c);
-            gl::dispatch(1);
-            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            // The grid for this frame's emitters, then the photons that start on them, listed
+            // (an invocation a cell of the grid; caustic_photons.comp.glsl).
+            for (const gl::Program* stage : {c.causticPrograms.grid, c.causticPrograms.list}) {
+                stage->use();
+                setCausticUniforms(*stage, c);
+                if (stage == c.causticPrograms.grid)
+                    gl::dispatch(1);
+                else
+                    gl::dispatchIndirect(gpu.caustics.emitters, 4);
+                gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            }
             const gl::Program& program = *c.causticPrograms.photons;
             program.use();
             setCausticUniforms(program, c);
@@ -73,7 +79,7 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
             gl::bindTexture(slot::kCausticDepth, r.texture(depth));
             bindTracedTextures(gpu);
-            gl::dispatchIndirect(gpu.caustics.emitters, 4);
+            gl::dispatchIndirect(gpu.caustics.emitters, 20); // a listed photon an invocation
             // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};

@@ -12,19 +12,23 @@ namespace refraction {
 
 namespace {
 
-/** The caustics' storage sized for an atlas of `size` texels (grown, never shrunk), the
- *  emitters and the sums cleared. */
-void resetCaustics(GpuState::Caustics& caustics, glm::ivec2 size) {
+/** The caustics' storage sized for an atlas of `size` texels and `photons` photons a frame
+ *  (grown, never shrunk), the emitters and the sums cleared. */
+void resetCaustics(GpuState::Caustics& caustics, glm::ivec2 size, int photons) {
     const std::size_t texels = std::size_t(size.x) * std::size_t(size.y);
-    // The count and the photon pass's work groups, then a bit a texel (caustics.glsl).
+    // The count and the passes' work groups, a bit a texel, then the photon list
+    // (caustics.glsl): at most a photon a cell of the grid where cells are wider than a texel,
+    // at most the budget (and a rounding's one) where they are a texel.
+    const std::size_t header = 8 + (texels + 31) / 32;
+    const std::size_t listed = texels + std::size_t(photons) + std::size_t(photons) / 1000 + 1;
+    const std::size_t emitterBytes = 4 * (header + listed), sumBytes = 2 * 16 * texels;
     // The sums: four words a cell, for as many fine cells as texels and again for the coarse.
-    const std::size_t emitterBytes = 4 * (4 + (texels + 31) / 32), sumBytes = 2 * 16 * texels;
     if (caustics.emitters.size() < emitterBytes)
         caustics.emitters = gl::Buffer(emitterBytes);
     if (caustics.sums.size() < sumBytes)
         caustics.sums = gl::Buffer(sumBytes);
     caustics.size = size;
-    caustics.emitters.fill(0, emitterBytes / 4, 0u);
+    caustics.emitters.fill(0, header, 0u); // the list is written before it is read
     caustics.sums.fill(0, sumBytes / 4, 0u);
 }
 
@@ -55,7 +59,8 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
             program.use();
             program.set("uFresnelMode", int(c.settings.fresnel));
             if (c.caustics) {
-                resetCaustics(gpu.caustics, c.frame->shadows->atlasSize / kCausticScale);
+                resetCaustics(gpu.caustics, c.frame->shadows->atlasSize / kCausticScale,
+                              c.settings.causticPhotons);
                 program.set("uCausticSize", gpu.caustics.size);
                 gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
                 gl::bindStorage(slot::kCausticSums, gpu.caustics.sums); // declared, unwritten

@@ -83,9 +83,11 @@ struct FrameContext {
     const gl::Program* walk = nullptr; ///< the walk's variant (selectWalkVariants)
     /** refraction.glass_shadow's variant: textured glass, caustic emitters (selectVariants). */
     const gl::Program* glassShadow = nullptr;
-    /** With the caustics: the photons' work groups (CAUSTIC_GRID), the photons, the resolve. */
+    /** With the caustics: the list pass's work groups (CAUSTIC_GRID), the list of photons
+     *  (CAUSTIC_LIST), the photons, the resolve. */
     struct CausticPrograms {
-        const gl::Program *grid = nullptr, *photons = nullptr, *resolve = nullptr;
+        const gl::Program *grid = nullptr, *list = nullptr, *photons = nullptr,
+                          *resolve = nullptr;
     } causticPrograms;
     /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectWalkVariants): the
      *  hybrid's trace pass's, the fresh samples' (the trace and the hybrid). */

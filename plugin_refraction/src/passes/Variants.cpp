@@ -109,13 +109,14 @@ core::Status causticPrograms(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
     const std::string photons = "refraction/caustic_photons.comp.glsl";
     auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
+    auto list = programs.compute(photons, {"CAUSTIC_LIST 1"});
     auto trace = programs.compute(photons, c.glassModel);
     auto resolve =
         programs.graphics("render/fullscreen.vert.glsl", "refraction/caustic_resolve.frag.glsl");
-    for (const auto* built : {&grid, &trace, &resolve})
+    for (const auto* built : {&grid, &list, &trace, &resolve})
         if (!*built)
             return built->error();
-    c.causticPrograms = {*grid, *trace, *resolve};
+    c.causticPrograms = {*grid, *list, *trace, *resolve};
     return {};
 }
 
