@@ -229,7 +229,9 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         mFrame->begun = false;
         return;
     }
-    const SceneInputs scene = sceneInputs(blackboard);
+    SceneInputs scene = sceneInputs(blackboard);
+    if (c.marchesScene())
+        scene.depthTiles = addSceneDepthTilesPass(graph, c, scene.depth);
     if (c.settings.usesGlassBvh() && !c.caustics) // else built at the Shadows stage
         addGlassBvhPass(graph, c, buffers);
     addGlassExtentPass(graph, c, buffers);

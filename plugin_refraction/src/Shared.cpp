@@ -52,6 +52,7 @@ constexpr Shared kFixed[] = {
     slot::kCausticEmitters,
     slot::kCausticSums,
     slot::kCausticDepth,
+    slot::kSceneDepthTiles,
     Shared::bits("OPAQUE_TAG", kOpaqueTag),
     Shared::bits("OPAQUE_TEXTURED_TAG", kOpaqueTextured),
     Shared::bits("MIRRORED_TAG", kMirroredTag),

@@ -64,6 +64,9 @@ inline constexpr TextureSlot kPairSurfaces{45, "PAIR_SURFACES_UNIT", 2};
 /** The engine's shadow depth atlas read as depths (not compared): where photons land, and the
  *  receivers the caustics are for. */
 inline constexpr TextureSlot kCausticDepth{47, "CAUSTIC_DEPTH_UNIT"};
+/** The opaque scene's nearest depth over tiles, a mip chain (scene_depth_tiles.comp.glsl): what
+ *  the marches through the nearby scene test first (march.glsl, segmentInFront). */
+inline constexpr TextureSlot kSceneDepthTiles{48, "SCENE_DEPTH_TILES_UNIT"};
 
 } // namespace refraction::slot
 

@@ -61,6 +61,7 @@ const std::vector<std::pair<std::string, std::string>> kSkippableSteps = {
     {"surfaces", "the walk's textured surfaces per layer: the material's"},
     {"interface", "the interface model (Fresnel, specular, film): a constant reflectance"},
     {"scene", "the walk's marches through the nearby opaque scene"},
+    {"scene_tiles", "the marches' test of the scene's depth tiles (the frame is the same)"},
     {"glass_color", "the light at the entry (reflection, highlights, clear coat, sheen)"},
     {"lights", "every punctual light's shading (and its shadow), everywhere"},
     {"shadows", "every shadow lookup, everywhere"},

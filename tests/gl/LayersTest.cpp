@@ -35,6 +35,31 @@ scene::World sceneFromText(const std::string& json) {
 
 class Layers : public test::GlTest {};
 
+// The scene's depth tiles let a march through the nearby scene skip a segment nothing opaque
+// comes near: the frame is the one the march makes without them, to the bit, with every method
+// that marches; a frame with no opaque geometry has nothing to march through, and no tiles.
+TEST_F(Layers, TheScenesDepthTilesChangeNoPixel) {
+    WorldRig rig(test::projectScene("walk_past.json"), context(), 48);
+    rig.useSceneCamera();
+    for (const char* method : {"dir", "hybrid", "isr"}) {
+        rig.set("method", method);
+        std::vector<std::string> passes;
+        rig.skippedSteps.clear();
+        const std::vector<float> tiled = rig.renderHdr(0.5, &passes);
+        EXPECT_NE(std::find(passes.begin(), passes.end(), "refraction.scene_depth_tiles"),
+                  passes.end())
+            << method;
+        rig.skippedSteps = {"scene_tiles"};
+        EXPECT_EQ(rig.renderHdr(0.5), tiled) << method;
+    }
+    WorldRig glassOnly(test::generatedWorld("glass_figure.glb"), context(), 48);
+    glassOnly.set("glass", "all");
+    std::vector<std::string> passes;
+    glassOnly.renderHdr(0.0, &passes);
+    EXPECT_EQ(std::find(passes.begin(), passes.end(), "refraction.scene_depth_tiles"),
+              passes.end());
+}
+
 TEST_F(Layers, GlassBehindGlassBeatsTheTwoSurfaceModel) {
     // Two spheres overlapping on screen: the far one is refracted at its own surfaces through
     // the near one only when the walk goes on after the first glass.

@@ -73,6 +73,39 @@ bool marchHolds(ScreenRay r, float from, float a, int test, int parity) {
     return d < UNUSED_DEPTH && (test == MARCH_BACK ? z < d : z > d);
 }
 
+#ifndef SCENE_DEPTH_TILES
+#define SCENE_DEPTH_TILES 0
+#endif
+#if SCENE_DEPTH_TILES
+// The opaque scene's nearest depth buffer value over tiles of 4 << L pixels at level L
+// (scene_depth_tiles.comp.glsl), uSceneTileLevels levels.
+layout(binding = SCENE_DEPTH_TILES_UNIT) uniform sampler2D uSceneDepthTiles;
+uniform int uSceneTileLevels;
+
+// Whether the segment r stays in front of the opaque scene wherever it is on screen: no tile
+// under its pixels holds anything nearer than its far end, so that no sample along it can be
+// behind the scene (a march along it meets nothing). False where it cannot tell: its pixels
+// wider than the coarsest tiles.
+bool segmentInFront(ScreenRay r) {
+    vec2 last = uViewportSize - 1.0;
+    vec2 lo = clamp(min(r.uvS, r.uvE) * uViewportSize, vec2(0.0), last);
+    vec2 hi = clamp(max(r.uvS, r.uvE) * uViewportSize, vec2(0.0), last);
+    // The finest level whose tiles are as wide as the pixels it spans: 2 x 2 tiles hold them.
+    float extent = max(hi.x - lo.x, hi.y - lo.y) + 1.0;
+    int level = 0;
+    while (level + 1 < uSceneTileLevels && float(4 << level) < extent)
+        ++level;
+    if (float(4 << level) < extent)
+        return false;
+    ivec2 t0 = ivec2(lo) >> (level + 2), t1 = ivec2(hi) >> (level + 2);
+    float nearest = min(min(texelFetch(uSceneDepthTiles, t0, level).r,
+                            texelFetch(uSceneDepthTiles, ivec2(t1.x, t0.y), level).r),
+                        min(texelFetch(uSceneDepthTiles, ivec2(t0.x, t1.y), level).r,
+                            texelFetch(uSceneDepthTiles, t1, level).r));
+    return nearest >= 1.0 || viewDepthOf(nearest, uNear, uFar) > 1.0001 * max(-r.S.z, -r.E.z);
+}
+#endif
+
 // `halvings` halvings between inside (the test holds) and outside (it does not), the last
 // accepted point `inside`; returns how many advanced. Halved in screen fraction, or `alongRay`
 // in the parameter of S + s (E - S) (the papers' search, and the scene's: even steps in depth).

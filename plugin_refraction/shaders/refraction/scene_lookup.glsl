@@ -45,6 +45,10 @@ bool marchScene(vec3 P, vec3 dir, float distance, int steps, out float hitT, out
     if (!(distance > 0.0))
         return false;
     ScreenRay r = screenRay(P, P + dir * distance);
+#if SCENE_DEPTH_TILES && !defined(SKIP_SCENE_TILES) // glass-bench --skip scene_tiles
+    if (segmentInFront(r))
+        return false;
+#endif
     bool inFront = marchHolds(r, 0.0, 0.0, MARCH_SCENE, 0);
     float previous = 0.0; // along the ray: S + s (E - S)
     for (int i = 1; i <= steps; ++i) {

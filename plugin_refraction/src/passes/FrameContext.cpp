@@ -54,7 +54,8 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
             history ? *history : fg::TextureHandle{},
             blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
             blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
-            blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics)};
+            blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics),
+            fg::TextureHandle{}};
 }
 
 void FrameContext::setWalkUniforms(const gl::Program& f) const {
@@ -87,6 +88,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uNear", frame->camera.znear);
     f.set("uFar", frame->camera.zfar);
     f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
+    f.set("uSceneTileLevels", sceneTileLevels());
     const render::GroundPlane& ground = frame->ground;
     f.set("uGround", frame->settings.ground ? 1 : 0);
     f.set("uGroundPlane",
@@ -194,6 +196,18 @@ int FrameContext::freshSamples() const {
     return moving && settings.freshSampled() && settings.debug == 0 ? settings.freshSamples : 1;
 }
 
+bool FrameContext::marchesScene() const {
+    return settings.nearby && frame->opaqueGeometry && settings.method != Settings::Method::Trace;
+}
+
+int FrameContext::sceneTileLevels() const {
+    const glm::ivec2 tiles = (frame->settings.size + 3) / 4;
+    int levels = 1;
+    while (levels < 6 && std::max(tiles.x, tiles.y) >> levels > 0)
+        ++levels;
+    return levels;
+}
+
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture) {
     b.read(buffers.extent);
@@ -213,6 +227,8 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
             *to = b.read(from);
     in.sceneColor = b.read(scene.color);
     in.sceneDepth = b.read(scene.depth);
+    if (scene.depthTiles.valid())
+        in.sceneDepthTiles = b.read(scene.depthTiles);
     b.read(scene.shadowDepth); // the lights' shading samples them where they are bound
     b.read(scene.shadowGlass);
     b.read(scene.shadowCaustics);
@@ -225,6 +241,8 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     gl::bindStorage(slot::kWalkCounters, gpu.counters);
     gl::bindTexture(slot::kSceneColor, r.texture(in.sceneColor));
     gl::bindTexture(slot::kSceneDepth, r.texture(in.sceneDepth));
+    if (in.sceneDepthTiles.valid())
+        gl::bindTexture(slot::kSceneDepthTiles, r.texture(in.sceneDepthTiles));
     // The layer depth maps (layers.glsl), the pair's normals; an absent map: the first depth
     // map stands in (unread).
     const auto present = [&](fg::TextureHandle h) -> const gl::Texture& {

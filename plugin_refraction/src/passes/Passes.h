@@ -86,8 +86,7 @@ struct FrameContext {
     /** With the caustics: the list pass's work groups (CAUSTIC_GRID), the list of photons
      *  (CAUSTIC_LIST), the photons, the resolve. */
     struct CausticPrograms {
-        const gl::Program *grid = nullptr, *list = nullptr, *photons = nullptr,
-                          *resolve = nullptr;
+        const gl::Program *grid = nullptr, *list = nullptr, *photons = nullptr, *resolve = nullptr;
     } causticPrograms;
     /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectWalkVariants): the
      *  hybrid's trace pass's, the fresh samples' (the trace and the hybrid). */
@@ -128,6 +127,11 @@ struct FrameContext {
      *  the hybrid, walked for DIR), every other pixel one; 1 in any other frame, a debug view
      *  or a method that takes none (Settings::freshSampled). */
     int freshSamples() const;
+    /** The walk marches through the nearby opaque scene (the nearby lookup on, opaque geometry
+     *  drawn, a method that does not trace): the scene's depth tiles help it. */
+    bool marchesScene() const;
+    /** The levels of the scene's depth tiles (tiles of 4 to 128 pixels, as the frame allows). */
+    int sceneTileLevels() const;
 };
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
@@ -154,6 +158,9 @@ struct SceneInputs {
     /** The shadow atlases, bound for the frame by the engine (the caustics by their pass):
      *  what the lights' shading reads. */
     fg::TextureHandle shadowDepth, shadowGlass, shadowCaustics;
+    /** Where the walk marches through the scene: its nearest depth over tiles (the scene's
+     *  depth tiles pass, added after the rest). */
+    fg::TextureHandle depthTiles;
 };
 
 /** What a capture leaves the walk: the glass pixels' mask and the depth maps (layers.glsl);
@@ -166,7 +173,7 @@ struct Capture {
 /** What the walk and the hybrid's trace read alike: the capture, the scene under the glass. */
 struct WalkInputs {
     Capture capture;
-    fg::TextureHandle sceneColor, sceneDepth;
+    fg::TextureHandle sceneColor, sceneDepth, sceneDepthTiles;
 };
 /** Declares what the walk reads as read by the pass: the capture's maps, the scene's colour
  *  and depth, the extent, layers, materials, the pair's ranges and, where the method traces,
@@ -288,6 +295,10 @@ Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
 struct Walked {
     fg::TextureHandle color, surface, motion;
 };
+/** `refraction.scene_depth_tiles`: the scene's nearest depth over tiles, for the walk's marches
+ *  (scene_depth_tiles.comp.glsl); returns the chain. */
+fg::TextureHandle addSceneDepthTilesPass(fg::FrameGraph& graph, const FrameContext& c,
+                                         fg::TextureHandle sceneDepth);
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture);
 /** The hybrid's handed-over pixels traced over the walk's colour (and motion); returns the

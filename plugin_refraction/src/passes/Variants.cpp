@@ -92,14 +92,15 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
     const bool dispersion =
         std::any_of(c.gpu->glassOptics.begin(), c.gpu->glassOptics.end(),
                     [](const GlassMaterialGpu& m) { return m.ior.r != m.ior.b; });
-    return concat(concat(c.frame->lighting.defines(), c.glassModel),
-                  {define("LAYER_CAPACITY", capture == 0 ? 2 : capture),
-                   define("CAPTURE_PAIR", capture == 0),
-                   define("LAYER_DISPERSION",
-                          dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
-                   define("WRITE_MOTION", c.frame->temporal.enabled),
-                   define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
-                   define("HYBRID_LIST", method == Settings::Method::Hybrid)});
+    return concat(
+        concat(c.frame->lighting.defines(), c.glassModel),
+        {define("LAYER_CAPACITY", capture == 0 ? 2 : capture), define("CAPTURE_PAIR", capture == 0),
+         define("LAYER_DISPERSION",
+                dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
+         define("WRITE_MOTION", c.frame->temporal.enabled),
+         define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
+         define("HYBRID_LIST", method == Settings::Method::Hybrid),
+         define("SCENE_DEPTH_TILES", c.marchesScene() && method != Settings::Method::Trace)});
 }
 
 /** The caustics' programs, in a frame that focuses them. */
@@ -151,7 +152,8 @@ core::Status selectWalkVariants(FrameContext& c) {
     // the trace's variant of the walk, over the hybrid's handed-over pixels or the fresh
     // samples'.
     std::vector<std::string> defines = walkDefines(c, Settings::Method::Trace);
-    defines.back() = "HYBRID_LIST 1"; // the trace's walk, over the hybrid's list too
+    // the trace's walk, over the hybrid's list too
+    *std::find(defines.begin(), defines.end(), "HYBRID_LIST 0") = "HYBRID_LIST 1";
     defines.push_back(std::string("SHADED_FORMAT ") +
                       (c.settings.addsSamples() ? "rgba32f" : "rgba16f"));
     auto listed = programs.compute("refraction/listed_samples.comp.glsl", defines);
