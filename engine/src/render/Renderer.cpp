@@ -41,22 +41,39 @@ public:
 class Renderer::Timer final : public fg::PassObserver {
 public:
     static constexpr std::size_t kFrames = 4;
+    /** Each pass timed alone: the GPU idle before it begins and finished before it ends, the
+     *  wall clock between (a timer query on a CPU rasteriser may time another pass's work). */
     bool exact = false;
-    void beginFrame() { mSlot = (mSlot + 1) % kFrames; }
-    void beginPass(const std::string& name) override { mQueries[name][mSlot].begin(); }
-    void endPass(const std::string& name) override {
-        if (exact)
+    void beginFrame() {
+        mSlot = (mSlot + 1) % kFrames;
+        mExact.clear();
+    }
+    void beginPass(const std::string& name) override {
+        if (exact) {
             gl::finish();
+            mStart = std::chrono::steady_clock::now();
+            return;
+        }
+        mQueries[name][mSlot].begin();
+    }
+    void endPass(const std::string& name) override {
+        if (exact) {
+            gl::finish();
+            mExact[name] += std::chrono::duration<double, std::milli>(
+                                std::chrono::steady_clock::now() - mStart)
+                                .count();
+            return;
+        }
         mQueries[name][mSlot].end();
     }
     double milliseconds(const std::string& name) {
+        if (exact) {
+            const auto it = mExact.find(name);
+            return it == mExact.end() ? 0.0 : it->second;
+        }
         const auto it = mQueries.find(name);
         if (it == mQueries.end())
             return 0.0;
-        if (exact) {
-            const auto ns = it->second[mSlot].resultNs(true);
-            return ns ? double(*ns) * 1e-6 : 0.0;
-        }
         for (std::size_t age = 1; age < kFrames; ++age) {
             const auto ns = it->second[(mSlot + kFrames - age) % kFrames].resultNs(false);
             if (ns)
@@ -67,7 +84,8 @@ public:
 
 private:
     std::map<std::string, std::array<gl::TimerQuery, kFrames>> mQueries;
-    std::map<std::string, double> mLatest;
+    std::map<std::string, double> mLatest, mExact;
+    std::chrono::steady_clock::time_point mStart;
     std::size_t mSlot = 0;
 };
 

@@ -96,9 +96,10 @@ struct RenderSettings {
     /** The frame's punctual lights (a file's on its nodes, a scene file's): off, the
      *  environment lights the frame alone (what the lights cost: glass-bench --lights). */
     bool lights = true;
-    /** Finish the GPU work of each pass before timing its end. Tile-deferred rasterisers
-     *  (llvmpipe) otherwise bill a pass's rasterisation to whichever pass flushes it; this
-     *  gives true per-pass times at the cost of pipelining. */
+    /** Time each pass alone: the GPU finished before it begins and before it ends, the wall
+     *  clock between. A timer query on a tile-deferred rasteriser (llvmpipe) bills a pass's
+     *  rasterisation to another pass, even with a finish before its end; this gives true
+     *  per-pass times at the cost of pipelining. */
     bool exactPassTimes = false;
     /** Output the HDR scene colour unchanged (RGBA32F, no exposure, tonemap or sRGB) instead of
      *  the display image: for measurements and debug views. */

@@ -27,9 +27,10 @@ namespace render {
 
 struct RenderGpu;
 
-/** One executed pass: CPU time of its execute callback, GPU time from a timer query: this
- *  frame's with RenderSettings::exactPassTimes, else the newest earlier frame's that the GPU
- *  has finished (up to 3 frames old; reading it never waits). */
+/** One executed pass: CPU time of its execute callback and its GPU time: with
+ *  RenderSettings::exactPassTimes this frame's, the wall clock from an idle GPU to the pass's
+ *  work finished; else a timer query's, the newest earlier frame's that the GPU has finished
+ *  (up to 3 frames old; reading it never waits). */
 struct PassStats {
     std::string name;
     double cpuMs = 0.0;
