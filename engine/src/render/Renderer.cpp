@@ -59,9 +59,9 @@ public:
     void endPass(const std::string& name) override {
         if (exact) {
             gl::finish();
-            mExact[name] += std::chrono::duration<double, std::milli>(
-                                std::chrono::steady_clock::now() - mStart)
-                                .count();
+            mExact[name] +=
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mStart)
+                    .count();
             return;
         }
         mQueries[name][mSlot].end();
@@ -357,6 +357,15 @@ core::Status Renderer::selectPrograms(const FrameInfo& frame) {
     return {};
 }
 
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+} // namespace
+
 core::Result<FrameStats> Renderer::render(const scene::World& world, const Camera& camera,
                                           const RenderSettings& settings, double time) {
     const auto frameStart = std::chrono::steady_clock::now();
@@ -367,7 +376,28 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     if (!mOutput || mOutput.desc().size != settings.size || mOutput.desc().format != outputFormat)
         mOutput = gl::Texture({settings.size, outputFormat, 1});
 
-    // Animate: pose every character, stage its uploads, list and claim the draw items.
+    const bool opaqueGeometry = animate(world, settings, time);
+    if (auto lit = light(world, settings); !lit)
+        return lit.error();
+    FrameInfo frame = describeFrame(world, camera, settings, time, opaqueGeometry);
+    FrameStats stats;
+    stats.animateMs = millisecondsSince(frameStart);
+
+    const auto recordStart = std::chrono::steady_clock::now();
+    fg::FrameGraph graph(*mPool);
+    if (auto recorded = record(graph, frame); !recorded)
+        return recorded.error();
+    if (auto compiled = graph.compile(); !compiled)
+        return compiled.error();
+    stats.recordMs = millisecondsSince(recordStart);
+
+    if (auto executed = execute(graph, frame, stats); !executed)
+        return executed.error();
+    stats.cpuMs = millisecondsSince(frameStart);
+    return stats;
+}
+
+bool Renderer::animate(const scene::World& world, const RenderSettings& settings, double time) {
     RenderGpu& gpu = *mGpu;
     gpu.poses.clear();
     gpu.items.clear();
@@ -382,36 +412,47 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
         cg.deformer->keepPrevious(settings.temporal.enabled); // motion vectors
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
         placeLights(model, cg.model->lightNodes, cg.pose, character.transform(), gpu.lights);
-        const auto& instances = cg.deformer->instances();
-        for (std::size_t i = 0; i < instances.size(); ++i)
-            for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
-                const deform::GpuPrimitive& primitive = instances[i].primitives[p];
-                DrawItem item;
-                item.character = c;
-                item.source = &character;
-                item.model = &model;
-                item.primitive = primitive.source;
-                item.material = primitive.source->materialFor(character.variant);
-                item.geometry = cg.deformer.get();
-                item.instance = std::uint32_t(i);
-                item.primitiveIndex = std::uint32_t(p);
-                item.gpu = &primitive;
-                item.vertexArray = &cg.model->vertexArrays[std::size_t(instances[i].mesh)][p];
-                item.materials = cg.model->materials.get();
-                item.world = instances[i].meshToWorld;
-                item.previousWorld = instances[i].previousMeshToWorld;
-                item.mirrored = glm::determinant(glm::mat3(item.world)) < 0.0f;
-                item.key = cg.deformer->serial();
-                for (const plugin::Plugin* plugin : mPlugins)
-                    if (plugin->claims(item)) {
-                        item.owner = plugin;
-                        break;
-                    }
-                opaqueGeometry = opaqueGeometry || !item.owner;
-                gpu.items.push_back(item);
-            }
+        opaqueGeometry = listItems(c, character, cg) || opaqueGeometry;
     }
     gpu.poses.upload(); // every character's, at once; the deform pass reads them
+    return opaqueGeometry;
+}
+
+bool Renderer::listItems(std::size_t c, const scene::Character& character, CharacterGpu& cg) {
+    bool unclaimed = false;
+    const auto& instances = cg.deformer->instances();
+    for (std::size_t i = 0; i < instances.size(); ++i)
+        for (std::size_t p = 0; p < instances[i].primitives.size(); ++p) {
+            const deform::GpuPrimitive& primitive = instances[i].primitives[p];
+            DrawItem item;
+            item.character = c;
+            item.source = &character;
+            item.model = character.model.get();
+            item.primitive = primitive.source;
+            item.material = primitive.source->materialFor(character.variant);
+            item.geometry = cg.deformer.get();
+            item.instance = std::uint32_t(i);
+            item.primitiveIndex = std::uint32_t(p);
+            item.gpu = &primitive;
+            item.vertexArray = &cg.model->vertexArrays[std::size_t(instances[i].mesh)][p];
+            item.materials = cg.model->materials.get();
+            item.world = instances[i].meshToWorld;
+            item.previousWorld = instances[i].previousMeshToWorld;
+            item.mirrored = glm::determinant(glm::mat3(item.world)) < 0.0f;
+            item.key = cg.deformer->serial();
+            for (const plugin::Plugin* plugin : mPlugins)
+                if (plugin->claims(item)) {
+                    item.owner = plugin;
+                    break;
+                }
+            unclaimed = unclaimed || !item.owner;
+            mGpu->items.push_back(item);
+        }
+    return unclaimed;
+}
+
+core::Status Renderer::light(const scene::World& world, const RenderSettings& settings) {
+    RenderGpu& gpu = *mGpu;
     gpu.lights.insert(gpu.lights.end(), world.lights.begin(), world.lights.end());
     if (!settings.lights)
         gpu.lights.clear();
@@ -421,6 +462,13 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
             " punctual lights, over the limit of " + std::to_string(core::limits::kMaxLights)};
     planShadows(world, settings);
     gpu.lighting.upload(gpu.lights, gpu.shadows); // bound for every pass of the frame
+    return {};
+}
+
+FrameInfo Renderer::describeFrame(const scene::World& world, const Camera& camera,
+                                  const RenderSettings& settings, double time,
+                                  bool opaqueGeometry) {
+    RenderGpu& gpu = *mGpu;
     std::uint64_t pluginRevision = 0;
     for (plugin::Plugin* p : mPlugins)
         pluginRevision += p->parameters().revision();
@@ -440,18 +488,55 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.ground = mGroundPlane;
     frame.opaqueGeometry = opaqueGeometry;
     frame.shadows = &gpu.shadows;
-    const auto since = [](std::chrono::steady_clock::time_point start) {
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
-    };
-    const double animateMs = since(frameStart);
-    const auto recordStart = std::chrono::steady_clock::now();
+    return frame;
+}
 
-    fg::FrameGraph graph(*mPool);
+core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
+    RenderGpu& gpu = *mGpu;
     fg::Blackboard blackboard;
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
     const fg::BufferHandle vertices =
         passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", &gpu.characters));
+    blackboard.put(plugin::kSceneVertices, vertices);
+    blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
+    const passes::ShadowTargets shadows = recordShadows(graph, blackboard, frame, vertices);
+    if (auto selected = selectPrograms(frame); !selected)
+        return selected;
+
+    passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
+    if (frame.settings.ground)
+        scene = passes::addGround(graph, gpu, frame, scene, shadows);
+    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, shadows);
+    blackboard.put(plugin::kSceneColor, scene.color);
+    blackboard.put(plugin::kSceneDepth, scene.depth);
+    if (scene.motion.valid()) {
+        blackboard.put(plugin::kSceneMotion, scene.motion);
+        blackboard.put(plugin::kHistoryColor,
+                       graph.importTexture("history.color", gpu.history.previousColor().desc(),
+                                           &gpu.history.previousColor()));
+        blackboard.put(plugin::kHistoryMotion,
+                       graph.importTexture("history.motion", gpu.history.previousMotion().desc(),
+                                           &gpu.history.previousMotion()));
+    }
+    for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
+        for (plugin::Plugin* p : mPlugins)
+            p->addPasses(stage, graph, blackboard);
+
+    fg::TextureHandle color = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
+    if (frame.temporal.enabled)
+        color = passes::addTemporal(graph, gpu, frame, gpu.history, color,
+                                    blackboard.get<fg::TextureHandle>(plugin::kSceneMotion),
+                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryColor),
+                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryMotion));
+    if (frame.settings.shadowMapView != RenderSettings::ShadowMapView::Off && !gpu.shadows.empty())
+        color = passes::addShadowMapView(graph, gpu, frame, shadows);
+    passes::addTonemap(graph, gpu, frame, color, output);
+    return {};
+}
+
+passes::ShadowTargets Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
+                                              FrameInfo& frame, fg::BufferHandle vertices) {
+    RenderGpu& gpu = *mGpu;
     passes::ShadowTargets shadows;
     if (gpu.shadows.empty()) {
         shadows.depth =
@@ -467,8 +552,6 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     blackboard.put(plugin::kShadowDepth, shadows.depth);
     blackboard.put(plugin::kShadowGlass, shadows.glass);
     blackboard.put(plugin::kShadowCaustics, shadows.caustics);
-    blackboard.put(plugin::kSceneVertices, vertices);
-    blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     if (!gpu.shadows.empty())
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(plugin::Stage::Shadows, graph, blackboard);
@@ -479,60 +562,24 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     frame.lighting =
         LightingFeatures::of(gpu.lights, gpu.shadows, shadows.glass != engineShadows.glass,
                              shadows.caustics != engineShadows.caustics);
-    if (auto selected = selectPrograms(frame); !selected)
-        return selected.error();
+    return shadows;
+}
 
-    passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
-    if (settings.ground)
-        scene = passes::addGround(graph, gpu, frame, scene, shadows);
-    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, shadows);
-
-    blackboard.put(plugin::kSceneColor, scene.color);
-    blackboard.put(plugin::kSceneDepth, scene.depth);
-    if (scene.motion.valid()) {
-        blackboard.put(plugin::kSceneMotion, scene.motion);
-        blackboard.put(plugin::kHistoryColor,
-                       graph.importTexture("history.color", gpu.history.previousColor().desc(),
-                                           &gpu.history.previousColor()));
-        blackboard.put(plugin::kHistoryMotion,
-                       graph.importTexture("history.motion", gpu.history.previousMotion().desc(),
-                                           &gpu.history.previousMotion()));
-    }
-    for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
-        for (plugin::Plugin* p : mPlugins)
-            p->addPasses(stage, graph, blackboard);
-    fg::TextureHandle color = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
-    if (frame.temporal.enabled)
-        color = passes::addTemporal(graph, gpu, frame, gpu.history, color,
-                                    blackboard.get<fg::TextureHandle>(plugin::kSceneMotion),
-                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryColor),
-                                    blackboard.get<fg::TextureHandle>(plugin::kHistoryMotion));
-    if (settings.shadowMapView != RenderSettings::ShadowMapView::Off && !gpu.shadows.empty())
-        color = passes::addShadowMapView(graph, gpu, frame, shadows);
-    passes::addTonemap(graph, gpu, frame, color, output);
-
-    auto compiled = graph.compile();
-    if (!compiled)
-        return compiled.error();
-    FrameStats stats;
-    stats.animateMs = animateMs;
-    stats.recordMs = since(recordStart);
-    mTimer->exact = settings.exactPassTimes;
+core::Status Renderer::execute(fg::FrameGraph& graph, const FrameInfo& frame, FrameStats& stats) {
+    RenderGpu& gpu = *mGpu;
+    mTimer->exact = frame.settings.exactPassTimes;
     mTimer->beginFrame();
     auto executed = graph.execute(*mContext, mTimer.get());
     // Unbind our framebuffers before the pool deletes idle textures: deleting a texture
     // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
-    gl::Framebuffer::bindDefault(settings.size);
+    gl::Framebuffer::bindDefault(frame.settings.size);
     if (!executed) {
         mPool->endFrame();
         return core::Error{"render::Renderer::render(): " + executed.error().message};
     }
-    for (const fg::PassTiming& t : *executed)
-        stats.passes.push_back({t.name, t.cpuMs, 0.0});
-    stats.cpuMs = since(frameStart);
-    for (PassStats& p : stats.passes) {
-        p.gpuMs = mTimer->milliseconds(p.name);
-        stats.gpuMs += p.gpuMs;
+    for (const fg::PassTiming& t : *executed) {
+        stats.passes.push_back({t.name, t.cpuMs, mTimer->milliseconds(t.name)});
+        stats.gpuMs += stats.passes.back().gpuMs;
     }
     if (frame.temporal.enabled)
         gpu.history.end();
@@ -540,7 +587,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     stats.graph = graph.dump();
     stats.transientBytes = mPool->allocatedBytes();
     mPool->endFrame();
-    return stats;
+    return {};
 }
 
 void Renderer::presentOutput(glm::ivec4 source, glm::ivec4 destination) const {

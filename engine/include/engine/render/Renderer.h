@@ -6,6 +6,8 @@
 #include "engine/anim/Pose.h"
 #include "engine/core/Result.h"
 #include "engine/deform/GpuDeformer.h"
+#include "engine/fg/Blackboard.h"
+#include "engine/fg/FrameGraph.h"
 #include "engine/fg/TexturePool.h"
 #include "engine/gl/Commands.h"
 #include "engine/gl/Context.h"
@@ -26,6 +28,10 @@
 namespace render {
 
 struct RenderGpu;
+struct CharacterGpu;
+namespace passes {
+struct ShadowTargets;
+}
 
 /** One executed pass: CPU time of its execute callback and its GPU time: with
  *  RenderSettings::exactPassTimes this frame's, the wall clock from an idle GPU to the pass's
@@ -134,6 +140,29 @@ private:
      *  whether it accumulates (their motion), and the temporal resolve's for its history
      *  (RenderGpu::ground, opaque, temporal), from the program cache. */
     core::Status selectPrograms(const FrameInfo& frame);
+    // The frame's steps (render), in order.
+    /** Poses every character at `time`, stages its skin and morph uploads, places its lights
+     *  and lists its draw items (RenderGpu::poses, lights, items); whether the opaque pass
+     *  draws anything besides the background (the ground, or an item no plugin claims). */
+    bool animate(const scene::World& world, const RenderSettings& settings, double time);
+    /** Character `c`'s draw items, each claimed by the first plugin that wants it, into
+     *  RenderGpu::items; whether one is left to the opaque pass. */
+    bool listItems(std::size_t c, const scene::Character& character, CharacterGpu& cg);
+    /** The frame's lights (the characters' and the scene file's, none without
+     *  RenderSettings::lights), their shadow views, uploaded for every pass. */
+    core::Status light(const scene::World& world, const RenderSettings& settings);
+    /** What the passes read of this frame (its place in the temporal history too). */
+    FrameInfo describeFrame(const scene::World& world, const Camera& camera,
+                            const RenderSettings& settings, double time, bool opaqueGeometry);
+    /** The engine's passes and the plugins' at their stages, into `graph`. */
+    core::Status record(fg::FrameGraph& graph, FrameInfo& frame);
+    /** The lights' shadow maps and the plugins' Shadows stage; the frame's lighting features
+     *  from what they drew. */
+    passes::ShadowTargets recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
+                                        FrameInfo& frame, fg::BufferHandle vertices);
+    /** Runs the compiled graph, each pass timed (RenderSettings::exactPassTimes), into
+     *  `stats`; ends the temporal history's frame and the pool's. */
+    core::Status execute(fg::FrameGraph& graph, const FrameInfo& frame, FrameStats& stats);
     class Allocator;
     class Timer;
     gl::Context* mContext = nullptr;
