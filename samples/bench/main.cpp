@@ -47,16 +47,16 @@ own work ("animate+record ms": pose every character, upload the skin matrices, l
 the draw items, record and compile the frame graph), each pass's median GPU and CPU time,
 triangles drawn, pixels the world covers (CPU coverage of the deformed file triangles at the
 middle of the clip) and the GPU memory of the frame graph's pooled textures. Without
---instances every pass is finished before its end timestamp (exact per-pass GPU times; the CPU
-times then include those waits); with it, frames pipeline as in an application and pass times
-come from the timer queries. Prints a table (and a progress line on a terminal).)";
+--instances every pass is timed alone, the wall clock between a finish before it and one after
+it (exact per-pass GPU times; the CPU times then include those waits); with it, frames pipeline
+as in an application and pass times come from the timer queries. Prints a table (and a progress line on a terminal).)";
 
 /** The steps glass-bench --skip can leave out of a frame, each a define SKIP_<STEP> that the
  *  shaders test (RenderSettings::skippedSteps; docs/performance.md, "Where the time goes"). */
 const std::vector<std::pair<std::string, std::string>> kSkippableSteps = {
     {"entry", "the walk pass shades nothing (its rectangle and mask alone)"},
     {"walk", "the walk shades its entry's colour and stops"},
-    {"search", "the walk's search: each crossing half way to the glass box's side"},
+    {"search", "the walk's search: each crossing at the next layer of the start's own pixel"},
     {"normals", "the walk's filtered normals: the crossed layer's own"},
     {"surfaces", "the walk's textured surfaces per layer: the material's"},
     {"interface", "the interface model (Fresnel, specular, film): a constant reflectance"},
