@@ -87,9 +87,10 @@ uniform int uSceneTileLevels;
 // behind the scene (a march along it meets nothing). False where it cannot tell: its pixels
 // wider than the coarsest tiles.
 bool segmentInFront(ScreenRay r) {
+    // Its pixels, a hundredth of a pixel more each way for the rounding of a sample's place.
     vec2 last = uViewportSize - 1.0;
-    vec2 lo = clamp(min(r.uvS, r.uvE) * uViewportSize, vec2(0.0), last);
-    vec2 hi = clamp(max(r.uvS, r.uvE) * uViewportSize, vec2(0.0), last);
+    vec2 lo = clamp(min(r.uvS, r.uvE) * uViewportSize - 0.01, vec2(0.0), last);
+    vec2 hi = clamp(max(r.uvS, r.uvE) * uViewportSize + 0.01, vec2(0.0), last);
     // The finest level whose tiles are as wide as the pixels it spans: 2 x 2 tiles hold them.
     float extent = max(hi.x - lo.x, hi.y - lo.y) + 1.0;
     int level = 0;
