@@ -159,6 +159,17 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
     return addPairResolvePass(graph, c, buffers, scene, pair);
 }
 
+/** A pass that fails the frame with `error`, what kept the plugin from recording its passes (a
+ *  variant that does not compile): the frame's render returns it, rather than a frame that
+ *  silently lacks its glass. */
+void failFrame(fg::FrameGraph& graph, const core::Error& error) {
+    struct Nothing {};
+    graph.addPass<Nothing>(
+        "refraction.failed", [](fg::Builder& b, Nothing&) { b.sideEffect(); },
+        [message = error.message](const fg::Resources&, const Nothing&, gl::Context&)
+            -> core::Status { return core::Error{"refraction: " + message}; });
+}
+
 } // namespace
 
 /** What the frame's first stage decided and imported, which its later stages go on from. */
@@ -189,7 +200,7 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
         return false;
     c.caustics = c.settings.focusesCaustics() && c.frame->shadows && !c.frame->shadows->empty();
     if (auto built = selectVariants(c); !built) {
-        core::logError("refraction: " + built.error().message);
+        failFrame(graph, built.error());
         return false;
     }
     mFrame->buffers = importBuffers(graph, blackboard, *mGpu);
@@ -225,7 +236,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         return;
     }
     if (auto built = selectWalkVariants(c); !built) {
-        core::logError("refraction: " + built.error().message);
+        failFrame(graph, built.error());
         mFrame->begun = false;
         return;
     }

@@ -35,6 +35,23 @@ scene::World sceneFromText(const std::string& json) {
 
 class Layers : public test::GlTest {};
 
+// A variant the plugin cannot compile fails the frame, naming what failed, rather than rendering
+// a frame that silently lacks its glass (and a tool exiting 0 with it).
+TEST_F(Layers, AGlassProgramThatDoesNotCompileFailsTheFrame) {
+    WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 32);
+    const gl::ShaderFile broken[] = {{"refraction/walk.frag.glsl", "void main() { not glsl }"}};
+    rig.renderer().shaders().add(broken);
+    render::RenderSettings settings;
+    settings.size = {32, 32};
+    const auto frame = rig.renderer().render(rig.world(), rig.camera(), settings, 0.0);
+    ASSERT_FALSE(frame.ok());
+    EXPECT_NE(frame.error().message.find("refraction: "), std::string::npos)
+        << frame.error().message;
+    EXPECT_NE(frame.error().message.find("walk.frag.glsl"), std::string::npos)
+        << frame.error().message;
+    acceptErrors(); // the driver's report of the compile that failed, on purpose
+}
+
 // The scene's depth tiles let a march through the nearby scene skip a segment nothing opaque
 // comes near: the frame is the one the march makes without them, to the bit, with every method
 // that marches; a frame with no opaque geometry has nothing to march through, and no tiles.
@@ -328,8 +345,7 @@ TEST_F(Layers, TouchingGlassGivesOneFrameInEitherDrawOrder) {
         scene::Character far = world.characters[0];
         world.characters[0].placement.translation = glm::dvec3(0.0, 0.0, 0.5);
         far.placement.translation = glm::dvec3(0.0, 0.0, -0.5);
-        world.characters.insert(farFirst ? world.characters.begin() : world.characters.end(),
-                                far);
+        world.characters.insert(farFirst ? world.characters.begin() : world.characters.end(), far);
         return world;
     };
     std::vector<std::vector<float>> frames;
