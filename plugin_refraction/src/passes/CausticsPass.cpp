@@ -27,65 +27,55 @@ void setGroundUniforms(const gl::Program& program, const FrameContext& c) {
                 glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
 }
 
-} // namespace
+/** Lists the frame's photons (an invocation a cell of the grid) and traces them (an invocation
+ *  a listed photon), adding their light into the caustics' sums. */
+core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::TextureHandle depth) {
+    GpuState& gpu = *c.gpu;
+    if (!gpu.glass.bvh)
+        return core::Error{"refraction: the caustics have no glass BVH"};
+    const render::ShadowPlan& plan = *c.frame->shadows;
+    gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
+    gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
+    // The grid for this frame's emitters, then the photons that start on them, listed
+    // (an invocation a cell of the grid; caustic_photons.comp.glsl).
+    for (const gl::Program* stage : {c.causticPrograms.grid, c.causticPrograms.list}) {
+        stage->use();
+        setCausticUniforms(*stage, c);
+        if (stage == c.causticPrograms.grid)
+            gl::dispatch(1);
+        else
+            gl::dispatchIndirect(gpu.caustics.emitters, 4);
+        gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+    }
+    const gl::Program& program = *c.causticPrograms.photons;
+    program.use();
+    setCausticUniforms(program, c);
+    setGroundUniforms(program, c);
+    program.set("uFresnelMode", int(c.settings.fresnel));
+    program.set("uViewCount", int(plan.views.size()));
+    for (std::size_t v = 0; v < plan.views.size(); ++v) {
+        const render::ShadowView& view = plan.views[v];
+        program.set(gl::Program::element("uViewLight", v).c_str(), int(view.light));
+        program.set(gl::Program::element("uInverseViewProjection", v).c_str(),
+                    glm::inverse(view.viewProjection()));
+        // The view looks down its -z.
+        program.set(gl::Program::element("uViewAxis", v).c_str(),
+                    -glm::vec3(glm::transpose(view.view)[2]));
+    }
+    gpu.glass.bvh->bindForTraversal();
+    gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
+    gl::bindTexture(slot::kCausticDepth, r.texture(depth));
+    bindTracedTextures(gpu);
+    gl::dispatchIndirect(gpu.caustics.emitters, 20); // a listed photon an invocation
+    // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
+    return {};
+}
 
-fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
-                                   FrameBuffers& buffers, fg::TextureHandle depth) {
-    struct Photons {
-        fg::BufferHandle caustics;
-    };
-    const Photons& photons = graph.addPass<Photons>(
-        "refraction.caustic_photons",
-        [&](fg::Builder& b, Photons& d) {
-            b.read(buffers.bvh);
-            b.read(buffers.materials);
-            b.read(depth);
-            d.caustics = b.write(buffers.caustics);
-        },
-        [c, depth](const fg::Resources& r, const Photons&, gl::Context&) -> core::Status {
-            GpuState& gpu = *c.gpu;
-            if (!gpu.glass.bvh)
-                return core::Error{"refraction: the caustics have no glass BVH"};
-            const render::ShadowPlan& plan = *c.frame->shadows;
-            gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
-            gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
-            // The grid for this frame's emitters, then the photons that start on them, listed
-            // (an invocation a cell of the grid; caustic_photons.comp.glsl).
-            for (const gl::Program* stage : {c.causticPrograms.grid, c.causticPrograms.list}) {
-                stage->use();
-                setCausticUniforms(*stage, c);
-                if (stage == c.causticPrograms.grid)
-                    gl::dispatch(1);
-                else
-                    gl::dispatchIndirect(gpu.caustics.emitters, 4);
-                gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-            }
-            const gl::Program& program = *c.causticPrograms.photons;
-            program.use();
-            setCausticUniforms(program, c);
-            setGroundUniforms(program, c);
-            program.set("uFresnelMode", int(c.settings.fresnel));
-            program.set("uViewCount", int(plan.views.size()));
-            for (std::size_t v = 0; v < plan.views.size(); ++v) {
-                const render::ShadowView& view = plan.views[v];
-                program.set(gl::Program::element("uViewLight", v).c_str(), int(view.light));
-                program.set(gl::Program::element("uInverseViewProjection", v).c_str(),
-                            glm::inverse(view.viewProjection()));
-                // The view looks down its -z.
-                program.set(gl::Program::element("uViewAxis", v).c_str(),
-                            -glm::vec3(glm::transpose(view.view)[2]));
-            }
-            gpu.glass.bvh->bindForTraversal();
-            gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
-            gl::bindTexture(slot::kCausticDepth, r.texture(depth));
-            bindTracedTextures(gpu);
-            gl::dispatchIndirect(gpu.caustics.emitters, 20); // a listed photon an invocation
-            // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
-            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
-            return {};
-        });
-    buffers.caustics = photons.caustics;
-
+/** `refraction.caustic_resolve`: the sums filtered into a new caustics atlas over the shadow
+ *  views' tiles, bound for the shading; returns it. */
+fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContext& c,
+                                        FrameBuffers& buffers) {
     struct Resolve {
         fg::TextureHandle atlas;
     };
@@ -128,6 +118,28 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
                 return {};
             })
         .atlas;
+}
+
+} // namespace
+
+fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
+                                   FrameBuffers& buffers, fg::TextureHandle depth) {
+    struct Photons {
+        fg::BufferHandle caustics;
+    };
+    const Photons& photons = graph.addPass<Photons>(
+        "refraction.caustic_photons",
+        [&](fg::Builder& b, Photons& d) {
+            b.read(buffers.bvh);
+            b.read(buffers.materials);
+            b.read(depth);
+            d.caustics = b.write(buffers.caustics);
+        },
+        [c, depth](const fg::Resources& r, const Photons&, gl::Context&) {
+            return tracePhotons(r, c, depth);
+        });
+    buffers.caustics = photons.caustics;
+    return addCausticResolvePass(graph, c, buffers);
 }
 
 } // namespace refraction
