@@ -207,21 +207,19 @@ void printSkipped(const std::vector<MethodRun>& runs,
  *  are to the opaque run of the same configuration. */
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
                                       std::size_t characters, std::size_t triangles) {
-    // The opaque run's median with and without the lights (index: lit), and each method's
-    // without accumulation.
-    double opaqueMedian[2] = {0.0, 0.0};
-    std::map<std::pair<std::string, bool>, double> withoutTemporal;
-    // Each method's median with every step (--skip), by light and accumulation.
+    // Each method's median with every step (no --skip), by light and accumulation: what the
+    // ratios are to (the opaque run's, the run without accumulation, the whole frame).
     std::map<std::tuple<std::string, bool, bool>, double> whole;
-    for (const MethodRun& r : runs) {
-        if (!r.skipped.empty())
-            continue;
-        if (r.method == "opaque" && !r.temporal)
-            opaqueMedian[r.lit] = percentile(r.frameMs, 0.5);
-        if (!r.temporal)
-            withoutTemporal[{r.method, r.lit}] = percentile(r.frameMs, 0.5);
-        whole[{r.method, r.lit, r.temporal}] = percentile(r.frameMs, 0.5);
-    }
+    for (const MethodRun& r : runs)
+        if (r.skipped.empty())
+            whole[{r.method, r.lit, r.temporal}] = percentile(r.frameMs, 0.5);
+    const auto wholeMedian = [&whole](const std::string& method, bool lit, bool temporal) {
+        const auto found = whole.find({method, lit, temporal});
+        return found == whole.end() ? 0.0 : found->second;
+    };
+    // The opaque run's median with and without the lights (index: lit).
+    const double opaqueMedian[2] = {wholeMedian("opaque", false, false),
+                                    wholeMedian("opaque", true, false)};
     std::vector<nlohmann::json> rows;
     for (const MethodRun& r : runs) {
         const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
@@ -252,12 +250,10 @@ std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int le
             std::snprintf(timesOpaque + std::strlen(timesOpaque),
                           sizeof timesOpaque - std::strlen(timesOpaque), " (%.2f unlit)",
                           ratioUnlit);
-        const auto off = withoutTemporal.find({r.method, r.lit});
-        const auto all = whole.find({r.method, r.lit, r.temporal});
-        const double saved = !r.skipped.empty() && all != whole.end() ? all->second - median : 0.0;
-        const double temporalRatio = r.temporal && off != withoutTemporal.end() && off->second > 0.0
-                                         ? median / off->second
-                                         : 0.0;
+        const double all = wholeMedian(r.method, r.lit, r.temporal);
+        const double saved = !r.skipped.empty() && all > 0.0 ? all - median : 0.0;
+        const double off = wholeMedian(r.method, r.lit, false);
+        const double temporalRatio = r.temporal && off > 0.0 ? median / off : 0.0;
         char temporal[80] = "-";
         if (r.temporal) {
             char times[16] = "-"; // without the run without it (--temporal on alone): unknown

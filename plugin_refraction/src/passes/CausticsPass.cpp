@@ -13,6 +13,11 @@ namespace refraction {
 
 namespace {
 
+/** Byte offsets in the emitters' buffer (caustics.glsl's CausticEmitters: the emitter count, the
+ *  list pass's work groups, the photon count, the photon pass's work groups) of the two
+ *  indirect dispatches' groups. */
+constexpr std::size_t kListGroups = 4, kPhotonGroups = 20;
+
 /** What the photons' passes and the resolve share: the atlas's size and the budget. */
 void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
     program.set("uCausticSize", c.gpu->caustics.size);
@@ -36,17 +41,16 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     const render::ShadowPlan& plan = *c.frame->shadows;
     gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
     gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
-    // The grid for this frame's emitters, then the photons that start on them, listed
-    // (an invocation a cell of the grid; caustic_photons.comp.glsl).
-    for (const gl::Program* stage : {c.causticPrograms.grid, c.causticPrograms.list}) {
-        stage->use();
-        setCausticUniforms(*stage, c);
-        if (stage == c.causticPrograms.grid)
-            gl::dispatch(1);
-        else
-            gl::dispatchIndirect(gpu.caustics.emitters, 4);
-        gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-    }
+    // The grid for this frame's emitters, then the photons that start on them, listed (an
+    // invocation a cell of the grid; caustic_photons.comp.glsl).
+    c.causticPrograms.grid->use();
+    setCausticUniforms(*c.causticPrograms.grid, c);
+    gl::dispatch(1);
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+    c.causticPrograms.list->use();
+    setCausticUniforms(*c.causticPrograms.list, c);
+    gl::dispatchIndirect(gpu.caustics.emitters, kListGroups);
+    gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
     const gl::Program& program = *c.causticPrograms.photons;
     program.use();
     setCausticUniforms(program, c);
@@ -66,7 +70,7 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
     gl::bindTexture(slot::kCausticDepth, r.texture(depth));
     bindTracedTextures(gpu);
-    gl::dispatchIndirect(gpu.caustics.emitters, 20); // a listed photon an invocation
+    gl::dispatchIndirect(gpu.caustics.emitters, kPhotonGroups); // a listed photon an invocation
     // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
     return {};

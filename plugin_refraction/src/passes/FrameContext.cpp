@@ -88,7 +88,7 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uNear", frame->camera.znear);
     f.set("uFar", frame->camera.zfar);
     f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
-    f.set("uSceneTileLevels", sceneTileLevels());
+    f.set("uSceneTileLevels", sceneTiles().levels);
     const render::GroundPlane& ground = frame->ground;
     f.set("uGround", frame->settings.ground ? 1 : 0);
     f.set("uGroundPlane",
@@ -200,12 +200,12 @@ bool FrameContext::marchesScene() const {
     return settings.nearby && frame->opaqueGeometry && settings.method != Settings::Method::Trace;
 }
 
-int FrameContext::sceneTileLevels() const {
+gl::TextureDesc FrameContext::sceneTiles() const {
     const glm::ivec2 tiles = (frame->settings.size + 3) / 4;
     int levels = 1;
     while (levels < 6 && std::max(tiles.x, tiles.y) >> levels > 0)
         ++levels;
-    return levels;
+    return {tiles, gl::Format::R32F, levels};
 }
 
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,

@@ -130,8 +130,9 @@ struct FrameContext {
     /** The walk marches through the nearby opaque scene (the nearby lookup on, opaque geometry
      *  drawn, a method that does not trace): the scene's depth tiles help it. */
     bool marchesScene() const;
-    /** The levels of the scene's depth tiles (tiles of 4 to 128 pixels, as the frame allows). */
-    int sceneTileLevels() const;
+    /** The scene's depth tiles (R32F): a texel a tile of 4 x 4 pixels, and levels of tiles up to
+     *  128 pixels as the frame allows. */
+    gl::TextureDesc sceneTiles() const;
 };
 
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices

@@ -13,17 +13,16 @@ fg::TextureHandle addSceneDepthTilesPass(fg::FrameGraph& graph, const FrameConte
     struct Data {
         fg::TextureHandle depth, tiles;
     };
-    const int levels = c.sceneTileLevels();
-    const glm::ivec2 size = (c.frame->settings.size + 3) / 4;
+    const gl::TextureDesc desc = c.sceneTiles();
     return graph
         .addPass<Data>(
             "refraction.scene_depth_tiles",
             [&](fg::Builder& b, Data& d) {
                 d.depth = b.read(sceneDepth);
-                d.tiles = b.write(
-                    b.create("refraction.scene_depth_tiles", {size, gl::Format::R32F, levels}));
+                d.tiles = b.write(b.create("refraction.scene_depth_tiles", desc));
             },
-            [c, levels](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            [c, levels = desc.levels](const fg::Resources& r, const Data& d,
+                                      gl::Context&) -> core::Status {
                 auto program = c.frame->programs->compute("refraction/scene_depth_tiles.comp.glsl");
                 if (!program)
                     return program.error();
