@@ -162,7 +162,8 @@ scene::World gridWorld(const scene::World& base, int count) {
     grid.camera.reset(); // the tool frames the whole grid
     float cell = 0.0f;
     for (const scene::Character& c : base.characters) {
-        const render::Bounds b = render::animatedBounds(*c.model, c.playingClip(), 4);
+        std::map<int, render::Bounds> perClip;
+        const render::Bounds b = render::performanceBounds(*c.model, c.performance, perClip, 4);
         cell = std::max({cell, b.max.x - b.min.x, b.max.z - b.min.z});
     }
     cell *= 1.2f;
@@ -173,7 +174,7 @@ scene::World gridWorld(const scene::World& base, int count) {
         const double centre = 0.5 * double(columns - 1);
         c.placement.translation = glm::dvec3(double(cell) * (double(k % columns) - centre), 0.0,
                                              double(cell) * (double(k / columns) - centre));
-        c.timeOffset = c.clipPeriod() * double(k) / double(count);
+        c.performance.shift(c.period() * double(k) / double(count));
         grid.characters.push_back(std::move(c));
     }
     return grid;

@@ -36,7 +36,15 @@ CaptureSession::create(const SessionOptions& options) {
             if (!clip)
                 return core::Error{"glass-capture: --clip: " + c.name + " (" + c.model->sourceName +
                                    ") has no clip '" + *options.clip + "'"};
-            c.clip = *clip;
+            // The clip alone, on the first layer's clock.
+            scene::Layer timing =
+                c.performance.layers.empty() ? scene::Layer{} : c.performance.layers.front();
+            c.play(*clip);
+            timing.clip = *clip;
+            timing.weight = 1.0;
+            timing.additive = false;
+            timing.mask.clear();
+            c.performance.layers.front() = timing;
         }
     if (options.variant) {
         std::string offered;
@@ -121,10 +129,11 @@ std::string CaptureSession::clipLabel() const {
     if (mWorld.characters.size() != 1)
         return "scene";
     const scene::Character& c = mWorld.characters[0];
-    if (c.clip < 0)
+    const int clip = c.mainClip();
+    if (clip < 0)
         return "rest";
-    const std::string& name = c.model->animations[std::size_t(c.clip)].name;
-    return fileNameSafe(name.empty() ? "clip" + std::to_string(c.clip) : name);
+    const std::string& name = c.model->animations[std::size_t(clip)].name;
+    return fileNameSafe(name.empty() ? "clip" + std::to_string(clip) : name);
 }
 
 std::string CaptureSession::stem() const {
@@ -138,7 +147,7 @@ std::optional<render::Camera> CaptureSession::modelCamera(double time, float asp
     if (mWorld.characters.size() != 1 || asset::isSceneFile(mOptions.models.at(0)))
         return std::nullopt; // a scene places its characters: their files' cameras do not apply
     const scene::Character& c = mWorld.characters[0];
-    return render::gltfCamera(*c.model, anim::evaluate(*c.model, c.clip, c.clipTime(time)), aspect);
+    return render::gltfCamera(*c.model, anim::evaluate(*c.model, c.performance, time), aspect);
 }
 
 render::Camera CaptureSession::cameraAt(double time) const {

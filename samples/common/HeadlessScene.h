@@ -43,7 +43,7 @@ inline render::Camera HeadlessScene::camera(glm::ivec2 size) const {
 /** The longest clip of `world` in scene seconds, 1 when none plays one: the period tools sweep
  *  their times over. */
 inline double sweepPeriod(const scene::World& world) {
-    const double longest = world.longestClipPeriod();
+    const double longest = world.longestPeriod();
     return longest > 1e-3 ? longest : 1.0;
 }
 

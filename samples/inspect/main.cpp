@@ -271,8 +271,8 @@ core::Result<scene::World> worldOf(const Options& o, const asset::LoadOptions& l
     c.model = std::make_shared<const scene::Model>(std::move(*model));
     c.modelPath = o.model;
     c.name = c.model->sourceName;
-    c.clip = c.model->animations.empty() ? -1 : 0;
-    c.loop = false;
+    c.play(c.model->animations.empty() ? -1 : 0);
+    c.performance.layers.front().loop = scene::Loop::Clamp;
     scene::World world;
     world.characters.push_back(std::move(c));
     return world;
@@ -306,7 +306,7 @@ deformWorld(const scene::World& world, double time, bool onGpu) {
         auto deformer = deform::GpuDeformer::create(upload, shaders);
         if (!deformer)
             return deformer.error();
-        (*deformer)->update(anim::evaluate(*c.model, c.clip, c.clipTime(time)), c.transform());
+        (*deformer)->update(anim::evaluate(*c.model, c.performance, time), c.transform());
         std::vector<deform::DeformedInstance>& instances = characters.emplace_back();
         const auto& placed = (*deformer)->instances();
         for (std::size_t i = 0; i < placed.size(); ++i) {
@@ -346,11 +346,11 @@ int writeVertices(const scene::World& world, const Options& o) {
     for (std::size_t i = 0; i < placed.size(); ++i)
         blocks.push_back({labels[i], &placed[i]});
     const scene::Character& first = world.characters.front();
-    const std::string what = isScene
-                                 ? "scene " + o.model + (o.models.size() > 1 ? " ..." : "") +
-                                       " time " + std::to_string(o.time)
-                                 : first.model->sourceName + " clip " + std::to_string(first.clip) +
-                                       " time " + std::to_string(o.time);
+    const std::string what = isScene ? "scene " + o.model + (o.models.size() > 1 ? " ..." : "") +
+                                           " time " + std::to_string(o.time)
+                                     : first.model->sourceName + " clip " +
+                                           std::to_string(first.mainClip()) + " time " +
+                                           std::to_string(o.time);
     const std::string comment =
         "glass-inspect " + what + " vertices " + *o.vertices + ", world space";
     const core::Status written =
@@ -374,16 +374,15 @@ nlohmann::ordered_json describeScene(const scene::World& world) {
         const auto model = inspect::describe(*c.model);
         vertices += model["vertices"].get<std::size_t>();
         triangles += model["triangles"].get<std::size_t>();
-        characters.push_back(
-            {{"name", c.name},
-             {"model", c.modelPath},
-             {"clip", c.clip >= 0 ? c.model->animations[std::size_t(c.clip)].name : ""},
-             {"time_offset", c.timeOffset},
-             {"speed", c.speed},
-             {"loop", c.loop},
-             {"glass", glassModeName(c.glass)},
-             {"vertices", model["vertices"]},
-             {"triangles", model["triangles"]}});
+        nlohmann::ordered_json character = {{"name", c.name}, {"model", c.modelPath}};
+        // What it plays, as its scene file spells it.
+        character.update(nlohmann::ordered_json::parse(asset::encodePerformance(c)));
+        if (!character.contains("clip") && !character.contains("layers"))
+            character["clip"] = ""; // the rest pose
+        character.update({{"glass", glassModeName(c.glass)},
+                          {"vertices", model["vertices"]},
+                          {"triangles", model["triangles"]}});
+        characters.push_back(std::move(character));
     }
     std::map<const scene::Model*, int> models;
     for (const scene::Character& c : world.characters)
@@ -394,6 +393,55 @@ nlohmann::ordered_json describeScene(const scene::World& world) {
             {"triangles", triangles}};
 }
 
+/** What `c` plays, in words: "clip 'walk' (offset 0 s, speed 1, looping)", or its layers. */
+std::string playsLine(const scene::Character& c) {
+    const auto clipName = [&](int clip) {
+        return clip < 0 ? std::string("rest")
+                        : "'" + c.model->animations[std::size_t(clip)].name + "'";
+    };
+    const auto timing = [](const scene::Layer& l) {
+        char text[96];
+        std::snprintf(text, sizeof text, "offset %.3g s, speed %.3g, %s", l.timeOffset, l.speed,
+                      l.loop == scene::Loop::Clamp      ? "clamped"
+                      : l.loop == scene::Loop::PingPong ? "ping-pong"
+                      : l.repetitions > 0
+                          ? ("looping " + std::to_string(l.repetitions) + " times").c_str()
+                          : "looping");
+        return std::string(text);
+    };
+    const scene::Performance& p = c.performance;
+    std::string line;
+    if (p.layers.size() == 1 && p.layers[0].weight == 1.0 && !p.layers[0].additive &&
+        p.layers[0].mask.empty()) {
+        line = "clip " + clipName(p.layers[0].clip) + " (" + timing(p.layers[0]) + ")";
+    } else {
+        line = "layers";
+        for (const scene::Layer& l : p.layers) {
+            char weight[32];
+            std::snprintf(weight, sizeof weight, " x%.3g", l.weight);
+            line += std::string(line == "layers" ? " " : "; ") + clipName(l.clip) + weight +
+                    (l.additive ? " additive" : "") + (l.mask.empty() ? "" : " masked") + " (" +
+                    timing(l) + ")";
+        }
+    }
+    for (const scene::Transition& t : p.transitions) {
+        char text[96];
+        std::snprintf(text, sizeof text, ", to %s at %.3g s over %.3g s", clipName(t.to).c_str(),
+                      t.at, t.duration);
+        line += text;
+    }
+    if (p.rootMotion != scene::RootMotion::Baked)
+        line += std::string(", root motion ") + scene::toString(p.rootMotion);
+    if (!p.morphs.empty())
+        line += ", " + std::to_string(p.morphs.size()) + " morph weights set";
+    if (p.pausedAt) {
+        char text[48];
+        std::snprintf(text, sizeof text, ", paused at %.3g s", *p.pausedAt);
+        line += text;
+    }
+    return line;
+}
+
 void printScene(const std::string& path, const scene::World& world) {
     const auto j = describeScene(world);
     std::printf("%s\n  characters %zu, models %zu, vertices %zu, triangles %zu\n", path.c_str(),
@@ -401,13 +449,10 @@ void printScene(const std::string& path, const scene::World& world) {
                 j["vertices"].get<std::size_t>(), j["triangles"].get<std::size_t>());
     for (std::size_t i = 0; i < world.characters.size(); ++i) {
         const auto& c = j["characters"][i];
-        std::printf("  [%zu] '%s': %s, clip '%s' (offset %.3g s, speed %.3g, %s), glass %s, %zu "
-                    "vertices, %zu triangles\n",
-                    i, c["name"].get<std::string>().c_str(), c["model"].get<std::string>().c_str(),
-                    c["clip"].get<std::string>().c_str(), c["time_offset"].get<double>(),
-                    c["speed"].get<double>(), c["loop"].get<bool>() ? "looping" : "clamped",
-                    c["glass"].get<std::string>().c_str(), c["vertices"].get<std::size_t>(),
-                    c["triangles"].get<std::size_t>());
+        std::printf("  [%zu] '%s': %s, %s, glass %s, %zu vertices, %zu triangles\n", i,
+                    c["name"].get<std::string>().c_str(), c["model"].get<std::string>().c_str(),
+                    playsLine(world.characters[i]).c_str(), c["glass"].get<std::string>().c_str(),
+                    c["vertices"].get<std::size_t>(), c["triangles"].get<std::size_t>());
     }
 }
 
@@ -437,7 +482,7 @@ int run(int argc, char** argv) {
         const auto found = only.model->findAnimation(*options.clip);
         if (!found)
             return usageError(only.model->sourceName + " has no clip '" + *options.clip + "'");
-        only.clip = *found;
+        only.performance.layers.front().clip = *found;
     }
     if (options.vertices)
         return writeVertices(*world, options);

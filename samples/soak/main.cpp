@@ -171,7 +171,7 @@ int run(int argc, char** argv) {
     scene::Character extra = grown.characters.front();
     extra.name += " (copy)";
     extra.placement.translation.x += 2.5 * double(headless.bounds.radius());
-    extra.timeOffset += 0.37;
+    extra.performance.shift(0.37);
     grown.characters.push_back(std::move(extra));
     // Two of them accumulate over frames (the temporal history allocated, kept while off).
     struct Method {

@@ -183,13 +183,11 @@ void Panel::character(Viewer& v, scene::Character& c) {
     if (ImGui::DragFloat("Scale", &scale, 0.01f, 0.01f, 100.0f, "%.3f",
                          ImGuiSliderFlags_Logarithmic))
         c.placement.scale = glm::dvec3(std::max(scale, 0.01f));
-    plugin::ParameterSet& s = v.mSettings;
-    if (c.model->animations.empty()) {
+    if (c.model->animations.empty())
         ImGui::TextDisabled("no clips: the rest pose");
-    } else {
-        widget(s, "clip");
-        widget(s, "loop");
-    }
+    else
+        performance(v, c);
+    morphWeights(c);
     if (!c.model->variants.empty()) { // KHR_materials_variants: the file's material sets
         const std::string current =
             c.variant >= 0 ? c.model->variants[std::size_t(c.variant)] : "as authored";
@@ -202,13 +200,6 @@ void Panel::character(Viewer& v, scene::Character& c) {
             ImGui::EndCombo();
         }
     }
-    float speed = float(c.speed), phase = float(c.timeOffset);
-    if (ImGui::DragFloat("Clip speed", &speed, 0.01f, -4.0f, 4.0f))
-        c.speed = double(speed);
-    if (ImGui::DragFloat("Phase (s)", &phase, 0.01f))
-        c.timeOffset = double(phase);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("seconds added to the scene time before the clip speed");
     int mode = int(c.glass);
     if (ImGui::Combo("Glass", &mode, "as authored\0all glass\0no glass\0"))
         c.glass = scene::GlassMode(mode);
@@ -239,11 +230,175 @@ void Panel::character(Viewer& v, scene::Character& c) {
     ImGui::EndDisabled();
 }
 
+namespace {
+
+/** The clips' names for a combo (an unnamed one by its index). */
+std::vector<std::string> clipNames(const scene::Model& model) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < model.animations.size(); ++i)
+        names.push_back(model.animations[i].name.empty() ? "clip " + std::to_string(i)
+                                                         : model.animations[i].name);
+    return names;
+}
+
+bool combo(const char* label, int& index, const std::vector<std::string>& names) {
+    bool changed = false;
+    const std::string shown =
+        index >= 0 && index < int(names.size()) ? names[std::size_t(index)] : "-";
+    if (ImGui::BeginCombo(label, shown.c_str())) {
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (ImGui::Selectable(names[i].c_str(), index == int(i))) {
+                index = int(i);
+                changed = true;
+            }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+} // namespace
+
+void Panel::performance(Viewer& v, scene::Character& c) {
+    plugin::ParameterSet& s = v.mSettings;
+    scene::Performance& p = c.performance;
+    if (p.layers.empty())
+        c.play(-1);
+    const std::vector<std::string> clips = clipNames(*c.model);
+    widget(s, "clip");
+    widget(s, "crossfade");
+    widget(s, "loop");
+    scene::Layer& first = p.layers.front();
+    float speed = float(first.speed), phase = float(first.timeOffset);
+    if (ImGui::DragFloat("Clip speed", &speed, 0.01f, -4.0f, 4.0f))
+        first.speed = double(speed);
+    if (ImGui::DragFloat("Phase (s)", &phase, 0.01f))
+        first.timeOffset = double(phase);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("seconds added to the scene time before the clip speed");
+    int root = int(p.rootMotion);
+    if (ImGui::Combo("Root motion", &root, "baked\0in place\0accumulate\0"))
+        p.rootMotion = scene::RootMotion(root);
+    // Hold: the character keeps one clip time while the scene plays; the slider scrubs it.
+    const int main = p.mainClip(*c.model);
+    const double duration = main >= 0 ? c.model->animations[std::size_t(main)].duration : 0.0;
+    bool held = p.pausedAt.has_value();
+    if (ImGui::Checkbox("Hold", &held))
+        p.pausedAt = held ? std::optional(first.clipTime(v.mTime, duration)) : std::nullopt;
+    if (held) {
+        ImGui::SameLine();
+        float t = float(*p.pausedAt);
+        if (ImGui::SliderFloat("Clip time (s)", &t, 0.0f, float(duration), "%.3f"))
+            p.pausedAt = double(t);
+    }
+    for (std::size_t i = 0; i < p.transitions.size(); ++i) {
+        const scene::Transition& t = p.transitions[i];
+        ImGui::PushID(int(i));
+        ImGui::BulletText("to %s at %.2f s over %.2f s",
+                          t.to >= 0 && t.to < int(clips.size()) ? clips[std::size_t(t.to)].c_str()
+                                                                : "-",
+                          t.at, t.duration);
+        ImGui::SameLine();
+        const bool remove = ImGui::SmallButton("x");
+        ImGui::PopID();
+        if (remove) {
+            p.transitions.erase(p.transitions.begin() + std::ptrdiff_t(i));
+            break;
+        }
+    }
+    layers(c, clips);
+}
+
+void Panel::layers(scene::Character& c, const std::vector<std::string>& clips) {
+    scene::Performance& p = c.performance;
+    if (!ImGui::TreeNode("Layers"))
+        return;
+    std::vector<std::string> joints{"every joint"};
+    std::vector<int> jointNodes{-1};
+    for (const scene::Skin& skin : c.model->skins)
+        for (int j : skin.joints)
+            if (std::find(jointNodes.begin(), jointNodes.end(), j) == jointNodes.end()) {
+                jointNodes.push_back(j);
+                const std::string& name = c.model->nodes[std::size_t(j)].name;
+                joints.push_back(name.empty() ? "node " + std::to_string(j) : name);
+            }
+    for (std::size_t i = 1; i < p.layers.size(); ++i) {
+        scene::Layer& layer = p.layers[i];
+        ImGui::PushID(int(i));
+        ImGui::Separator();
+        combo("Clip", layer.clip, clips);
+        float weight = float(layer.weight);
+        if (ImGui::SliderFloat("Weight", &weight, 0.0f, 1.0f))
+            layer.weight = double(weight);
+        ImGui::Checkbox("Additive", &layer.additive);
+        int mask =
+            layer.mask.empty()
+                ? 0
+                : int(std::find(jointNodes.begin(), jointNodes.end(), layer.mask.front().node) -
+                      jointNodes.begin());
+        if (combo("Mask", mask, joints)) {
+            layer.mask.clear();
+            if (mask > 0)
+                layer.mask.push_back({jointNodes[std::size_t(mask)], 1.0});
+        }
+        const bool remove = ImGui::SmallButton("Remove layer");
+        ImGui::PopID();
+        if (remove) {
+            p.layers.erase(p.layers.begin() + std::ptrdiff_t(i));
+            break;
+        }
+    }
+    if (ImGui::Button("Add layer")) {
+        scene::Layer& layer = p.layers.emplace_back();
+        layer.clip = 0;
+        layer.weight = 0.5;
+    }
+    ImGui::TreePop();
+}
+
+void Panel::morphWeights(scene::Character& c) {
+    const scene::Model& model = *c.model;
+    std::vector<scene::MorphSetting>& morphs = c.performance.morphs;
+    bool any = false;
+    for (std::size_t m = 0; m < model.meshes.size(); ++m)
+        any = any || model.meshes[m].morphTargetCount() > 0;
+    if (!any || !ImGui::TreeNode("Morph weights"))
+        return;
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        const scene::Mesh& mesh = model.meshes[m];
+        for (std::size_t t = 0; t < mesh.morphTargetCount(); ++t) {
+            const std::string name = t < mesh.targetNames.size() && !mesh.targetNames[t].empty()
+                                         ? mesh.targetNames[t]
+                                         : "target " + std::to_string(t);
+            const auto found = std::find_if(morphs.begin(), morphs.end(), [&](const auto& s) {
+                return (s.mesh == int(m) || s.mesh < 0) && s.target == int(t);
+            });
+            bool set = found != morphs.end();
+            ImGui::PushID(int(m * 1000 + t));
+            if (ImGui::Checkbox("##set", &set)) {
+                if (set)
+                    morphs.push_back({int(m), int(t), mesh.defaultWeights[t], false});
+                else
+                    morphs.erase(found);
+                ImGui::PopID();
+                break; // the list changed under the loop
+            }
+            ImGui::SameLine();
+            ImGui::BeginDisabled(!set);
+            float w = set ? float(found->value) : mesh.defaultWeights[t];
+            if (ImGui::SliderFloat((mesh.name + ": " + name).c_str(), &w, 0.0f, 1.0f) && set)
+                found->value = double(w);
+            ImGui::EndDisabled();
+            ImGui::PopID();
+        }
+    }
+    ImGui::TreePop();
+}
+
 void Panel::animation(Viewer& v) {
     if (!section("Animation"))
         return;
     plugin::ParameterSet& s = v.mSettings;
-    const double longest = v.mWorld.longestClipPeriod();
+    const double longest = v.mWorld.longestPeriod();
     if (longest <= 0.0) {
         ImGui::TextDisabled("no clips: the rest pose");
         return;

@@ -20,6 +20,11 @@ public:
 private:
     static void scene(Viewer& v);
     static void character(Viewer& v, scene::Character& c);
+    /** The selected character's clips: the clip and its clock, crossfades, root motion, hold,
+     *  layers. */
+    static void performance(Viewer& v, scene::Character& c);
+    static void layers(scene::Character& c, const std::vector<std::string>& clips);
+    static void morphWeights(scene::Character& c);
     static void animation(Viewer& v);
     static void camera(Viewer& v);
     static void environment(Viewer& v);

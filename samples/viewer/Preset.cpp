@@ -30,6 +30,23 @@ void declareScene(plugin::ParameterSet& p, const std::vector<std::string>& clips
                1,
                {},
                "off: the selected character stops at its clip's end"});
+    p.declare({"crossfade",
+               "Crossfade (s)",
+               Type::Float,
+               0.0,
+               2.0,
+               0.3,
+               {},
+               "a clip change fades from what plays to the new clip over this long, from the "
+               "scene time it is made at (saved as a transition); 0 snaps"});
+    p.declare({"skeleton",
+               "Skeleton",
+               Type::Bool,
+               0,
+               1,
+               0,
+               {},
+               "draws the selected character's joints over the frame"});
     p.declare({"environment", "Environment", Type::Enum, 0, 0, 0, environments,
                "the HDR around the character"});
     p.declare({"env-rotation",

@@ -429,9 +429,23 @@ void Viewer::handleMouse() {
         mCamera.zoom(io.MouseWheel);
 }
 
+void Viewer::changeClip(scene::Character& c, int clip) {
+    scene::Performance& p = c.performance;
+    const double fade = mSettings.number("crossfade");
+    const double now = p.characterTime(mTime);
+    if (fade <= 0.0 || p.pausedAt) { // a snap: the clip alone, on the first layer's clock
+        p.transitions.clear();
+        p.layers.front().clip = clip;
+        return;
+    }
+    // A crossfade from what plays now; what was scheduled after now is replaced.
+    std::erase_if(p.transitions, [&](const scene::Transition& t) { return t.at >= now; });
+    p.transitions.push_back({now, clip, fade});
+}
+
 void Viewer::advance(double dt) {
     // The scene clock wraps at the longest clip; each character loops or holds its own.
-    const double longest = mWorld.longestClipPeriod();
+    const double longest = mWorld.longestPeriod();
     mTime += dt;
     if (longest <= 0.0) {
         mTime = 0.0;
@@ -477,9 +491,16 @@ core::Status Viewer::renderView(glm::ivec2 size) {
     // The clip and loop settings are the selected character's.
     if (mSelected >= 0) {
         scene::Character& c = mWorld.characters[std::size_t(mSelected)];
-        if (!c.model->animations.empty())
-            c.clip = int(mSettings.number("clip"));
-        c.loop = mSettings.flag("loop");
+        if (c.performance.layers.empty())
+            c.play(-1);
+        if (const int clip = int(mSettings.number("clip"));
+            !c.model->animations.empty() && clip != c.performance.finalClip())
+            changeClip(c, clip);
+        scene::Layer& first = c.performance.layers.front();
+        if (mSettings.flag("loop") != (first.loop != scene::Loop::Clamp)) {
+            first.loop = mSettings.flag("loop") ? scene::Loop::Repeat : scene::Loop::Clamp;
+            first.repetitions = 0;
+        }
     }
     const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
     // Rendered at render-scale of the view and scaled up when shown.
@@ -615,6 +636,8 @@ int Viewer::run() {
         if (mShowPanel) {
             Panel::draw(*this);
             drawSelection();
+            if (mSettings.flag("skeleton"))
+                drawSkeleton();
         }
         ImGui::Render();
         auto takeScreenshot = [&] {

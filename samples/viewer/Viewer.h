@@ -102,6 +102,10 @@ private:
     bool moveSelected(glm::vec2 from, glm::vec2 to, bool vertical);
     /** Marks the selected character in the view: its origin, axes and name. */
     void drawSelection() const;
+    /** The selected character's joints, each a dot linked to its parent joint. */
+    void drawSkeleton() const;
+    /** Plays `clip` from now: a crossfade over the "crossfade" setting, or a snap at 0. */
+    void changeClip(scene::Character& c, int clip);
     void frameCharacters(bool selectionOnly);
     /** Shows the world's environment (added to the list when it is not there yet). */
     void useWorldEnvironment();
@@ -143,7 +147,8 @@ private:
     std::string mScenePath = "scene.json"; ///< the scene file opened or saved last
     bool mDropReplaces = false;            ///< a dropped model replaces the scene (or Shift)
     bool mMoving = false;                  ///< a Ctrl+drag is moving the selected character
-    mutable std::map<std::pair<std::shared_ptr<const scene::Model>, int>, render::Bounds>
+    /** Per model, per clip: the bounds render::performanceBounds() keeps. */
+    mutable std::map<std::shared_ptr<const scene::Model>, std::map<int, render::Bounds>>
         mClipBounds;
     std::vector<EnvironmentEntry> mEnvironments;
     int mEnvironmentShown = -1;

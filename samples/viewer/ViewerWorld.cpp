@@ -40,6 +40,15 @@ std::string loadWarnings(const scene::World& world) {
     return text;
 }
 
+/** Where world point `p` lands in a viewport of `size` pixels; none behind the camera. */
+std::optional<ImVec2> toScreen(const render::Camera& camera, glm::ivec2 size, glm::vec3 p) {
+    const glm::vec4 clip = camera.viewProjection() * glm::vec4(p, 1.0f);
+    if (clip.w <= 1e-6f)
+        return std::nullopt;
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return ImVec2((ndc.x * 0.5f + 0.5f) * float(size.x), (0.5f - 0.5f * ndc.y) * float(size.y));
+}
+
 } // namespace
 
 void Viewer::useWorldEnvironment() {
@@ -80,8 +89,10 @@ void Viewer::select(int index) {
     copyValues(mSettings, settings);
     if (mSelected >= 0) {
         const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
-        settings.setNumber("clip", double(std::max(c.clip, 0)));
-        settings.setNumber("loop", c.loop ? 1.0 : 0.0);
+        const scene::Layer first =
+            c.performance.layers.empty() ? scene::Layer{} : c.performance.layers.front();
+        settings.setNumber("clip", double(std::max(c.performance.finalClip(), 0)));
+        settings.setNumber("loop", first.loop == scene::Loop::Clamp ? 0.0 : 1.0);
     }
     mSettings = std::move(settings);
 }
@@ -164,11 +175,8 @@ bool Viewer::saveWorld(const std::string& path) {
 
 render::Bounds Viewer::characterBounds(std::size_t index) const {
     const scene::Character& c = mWorld.characters.at(index);
-    const int clip = c.playingClip();
-    auto [it, added] = mClipBounds.try_emplace({c.model, clip});
-    if (added)
-        it->second = render::animatedBounds(*c.model, clip);
-    return render::transformed(it->second, c.transform());
+    return render::transformed(
+        render::performanceBounds(*c.model, c.performance, mClipBounds[c.model]), c.transform());
 }
 
 std::pair<glm::vec3, glm::vec3> Viewer::viewRay(glm::vec2 pixel) const {
@@ -241,14 +249,7 @@ void Viewer::drawSelection() const {
         return; // one character: nothing to tell apart
     const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
     const render::Camera camera = mCamera.camera(viewportAspect());
-    auto project = [&](glm::vec3 p) -> std::optional<ImVec2> {
-        const glm::vec4 clip = camera.viewProjection() * glm::vec4(p, 1.0f);
-        if (clip.w <= 1e-6f)
-            return std::nullopt;
-        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-        return ImVec2((ndc.x * 0.5f + 0.5f) * float(mViewport.x),
-                      (0.5f - 0.5f * ndc.y) * float(mViewport.y));
-    };
+    const auto project = [&](glm::vec3 p) { return toScreen(camera, mViewport, p); };
     // The character's origin with its ground axes (x red, z blue) and its name: what Ctrl+drag
     // moves.
     const glm::vec3 origin(c.placement.translation);
@@ -264,6 +265,36 @@ void Viewer::drawSelection() const {
             draw->AddLine(*o, *end, color, 2.0f);
     draw->AddCircle(*o, 5.0f, IM_COL32(255, 255, 255, 220), 12, 2.0f);
     draw->AddText(ImVec2(o->x + 8.0f, o->y + 4.0f), IM_COL32(255, 255, 255, 220), c.name.c_str());
+}
+
+void Viewer::drawSkeleton() const {
+    if (mSelected < 0 || mViewport.x <= 0)
+        return;
+    const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
+    const scene::Model& model = *c.model;
+    const anim::Pose pose = anim::evaluate(model, c.performance, mTime);
+    const render::Camera camera = mCamera.camera(viewportAspect());
+    std::vector<std::uint8_t> joint(model.nodes.size(), 0);
+    for (const scene::Skin& skin : model.skins)
+        for (int j : skin.joints)
+            joint[std::size_t(j)] = 1;
+    const auto at = [&](std::size_t n) {
+        return toScreen(camera, mViewport,
+                        glm::vec3(c.transform() * glm::dvec4(glm::dvec3(pose.world[n][3]), 1.0)));
+    };
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+        if (!joint[n])
+            continue;
+        const auto p = at(n);
+        if (!p)
+            continue;
+        const int parent = model.nodes[n].parent;
+        if (parent >= 0 && joint[std::size_t(parent)])
+            if (const auto q = at(std::size_t(parent)))
+                draw->AddLine(*q, *p, IM_COL32(255, 210, 80, 220), 2.0f);
+        draw->AddCircleFilled(*p, 3.0f, IM_COL32(255, 120, 40, 240));
+    }
 }
 
 void Viewer::frameCharacters(bool selectionOnly) {

@@ -127,9 +127,10 @@ TEST_F(GpuDeform, PlacementsOfOneUploadDeformIndependently) {
 }
 
 TEST_F(GpuDeform, WorldOfCharactersMatchesCpuThroughOneUpload) {
-    // Two characters of one model at other phases, speeds and transforms, and one of a file with
-    // two skins: the renderer stages all their skin matrices into one upload and deforms each;
-    // every character's vertices in the world equal the CPU oracle's.
+    // Two characters of one model at other phases, speeds and transforms, one of a file with
+    // two skins, and one blending layers through a crossfade: the renderer stages all their skin
+    // matrices into one upload and deforms each; every character's vertices in the world equal the
+    // CPU oracle's.
     test::TempDir dir;
     auto oneSkin = asset::loadGltf(test::twoJointModel().save(dir.path(), "twojoint"));
     auto twoSkins = asset::loadGltf(twoSkinsFile(dir));
@@ -140,14 +141,27 @@ TEST_F(GpuDeform, WorldOfCharactersMatchesCpuThroughOneUpload) {
         scene::Character c;
         c.name = "character " + std::to_string(k);
         c.model = k < 2 ? shared : std::make_shared<const scene::Model>(std::move(*twoSkins));
-        c.clip = 0;
-        c.timeOffset = 0.31 * k;
-        c.speed = k == 1 ? -0.7 : 1.0;
+        c.play(0);
+        c.performance.layers[0].timeOffset = 0.31 * k;
+        c.performance.layers[0].speed = k == 1 ? -0.7 : 1.0;
         c.placement.translation = glm::dvec3(1.5 * k, 0.2 * k, -0.5 * k);
         c.placement.rotation = glm::angleAxis(0.4 * k + 0.1, glm::normalize(glm::dvec3(0.2, 1, 0)));
         c.placement.scale = glm::dvec3(1.0 + 0.25 * k);
         world.characters.push_back(std::move(c));
     }
+    // A fourth blends: a weighted layer, an additive one, a crossfade and a morph weight added.
+    scene::Character blended = world.characters[0];
+    blended.name = "blended";
+    blended.placement.translation.x -= 1.5;
+    scene::Performance& blend = blended.performance;
+    blend.layers[0].weight = 0.6;
+    blend.layers.push_back(blend.layers[0]);
+    blend.layers[1].additive = true;
+    blend.layers[1].weight = 0.5;
+    blend.layers[1].timeOffset = 0.2;
+    blend.transitions = {{0.3, 0, 0.5}};
+    blend.morphs = {{-1, 0, 0.2, true}};
+    world.characters.push_back(std::move(blended));
     auto renderer = render::Renderer::create(render::Environment::proceduralSky(16), context());
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     render::RenderSettings settings;

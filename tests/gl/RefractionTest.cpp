@@ -50,7 +50,7 @@ public:
         render::RenderSettings settings;
         settings.size = {size, size};
         settings.hdrOutput = true;
-        mWorld.characters[0].clip = clip;
+        mWorld.characters[0].play(clip);
         auto stats = mRenderer->render(mWorld, mCamera, settings, time);
         EXPECT_TRUE(stats.ok()) << (stats.ok() ? "" : stats.error().message);
         return mRenderer->readHdrOutput();

@@ -444,8 +444,9 @@ TEST_F(Temporal, EditsResizesAndChangedSettingsStartTheHistoryOver) {
         bool resets;
     };
     const std::vector<Change> changes{
-        {"the clip", [](WorldRig& r) { r.character(0).clip = 1; }, true},
-        {"the character's time offset", [](WorldRig& r) { r.character(0).timeOffset = 0.3; }, true},
+        {"the clip", [](WorldRig& r) { r.character(0).play(1); }, true},
+        {"the character's time offset", [](WorldRig& r) { r.character(0).performance.shift(0.3); },
+         true},
         {"a plugin parameter", [](WorldRig& r) { r.set("ior", "1.4"); }, true},
         {"the frame's size", [](WorldRig& r) { r.setSize(80); }, true},
         {"the shadows", [](WorldRig& r) { r.shadows = false; }, true},
@@ -613,7 +614,7 @@ TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     const auto model = std::make_shared<const scene::Model>(std::move(*loaded));
     auto world = [&] {
         scene::World w = scene::singleCharacterWorld(model);
-        w.characters[0].clip = 0;
+        w.characters[0].play(0);
         return w;
     };
     double listed = 0.0, rejected = 0.0;

@@ -44,7 +44,7 @@ inline scene::World generatedWorld(const std::string& file, bool normalMaps = tr
     EXPECT_EQ(mapped, file == "glass_figure_parts.glb" ? 1u : 0u);
     scene::World world =
         scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(*loaded)));
-    world.characters[0].clip = 0;
+    world.characters[0].play(0);
     return world;
 }
 #endif

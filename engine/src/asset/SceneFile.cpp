@@ -7,7 +7,7 @@
 #include "engine/core/Limits.h"
 #include "engine/core/Log.h"
 
-#include <nlohmann/json.hpp>
+#include "SceneJson.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,74 +15,10 @@
 #include <string_view>
 
 namespace asset {
+
+using namespace scenefile;
+
 namespace {
-
-using Json = nlohmann::json;
-
-/** A scene file error at a key: carries "key: message" up to loadScene, which names the file. */
-struct SceneError {
-    std::string message;
-};
-
-[[noreturn]] void fail(const std::string& key, const std::string& message) {
-    throw SceneError{key + ": " + message};
-}
-
-double number(const Json& j, const std::string& key) {
-    if (!j.is_number())
-        fail(key, "expected a number, got " + j.dump());
-    const double value = j.get<double>();
-    if (!std::isfinite(value))
-        fail(key, "expected a finite number");
-    return value;
-}
-
-template <int N> glm::vec<N, float> vector(const Json& j, const std::string& key) {
-    if (!j.is_array() || j.size() != std::size_t(N))
-        fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + j.dump());
-    glm::vec<N, float> v;
-    for (int i = 0; i < N; ++i)
-        v[i] = float(number(j[std::size_t(i)], key + "[" + std::to_string(i) + "]"));
-    return v;
-}
-
-bool boolean(const Json& j, const std::string& key) {
-    if (!j.is_boolean())
-        fail(key, "expected true or false, got " + j.dump());
-    return j.get<bool>();
-}
-
-std::string text(const Json& j, const std::string& key) {
-    if (!j.is_string())
-        fail(key, "expected a string, got " + j.dump());
-    return j.get<std::string>();
-}
-
-void warnUnknownKeys(const Json& object, std::initializer_list<const char*> known,
-                     const std::string& where) {
-    for (const auto& [key, value] : object.items()) {
-        bool found = false;
-        for (const char* k : known)
-            found = found || key == k;
-        if (!found)
-            core::logWarning(where + key + ": not a key of scene files, ignored");
-    }
-}
-
-/** `names` for an error, each unnamed one by its index ("none" for no names). */
-std::string nameList(const std::vector<std::string>& names) {
-    std::string list;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        list += (list.empty() ? "" : ", ") + (names[i].empty() ? std::to_string(i) : names[i]);
-    return list.empty() ? "none" : list;
-}
-
-std::string clipList(const scene::Model& model) {
-    std::vector<std::string> names;
-    for (const scene::Animation& a : model.animations)
-        names.push_back(a.name);
-    return nameList(names);
-}
 
 std::string fileName(const std::string& path) {
     return path.rfind("builtin:", 0) == 0 ? path : std::filesystem::path(path).filename().string();
@@ -197,7 +133,8 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
         fail(key, "expected an object, got " + j.dump());
     warnUnknownKeys(j,
                     {"name", "model", "translation", "rotation", "scale", "clip", "time_offset",
-                     "speed", "loop", "glass", "ior", "tint", "dispersion", "variant"},
+                     "speed", "loop", "layers", "transitions", "root_motion", "morph_weights",
+                     "paused_at", "glass", "ior", "tint", "dispersion", "variant"},
                     where + key + ".");
     scene::Character c;
     if (!j.contains("model"))
@@ -231,27 +168,7 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
             fail(key + ".scale", "a scale of 0 flattens the character");
     }
     const scene::Model& m = *c.model;
-    c.clip = m.animations.empty() ? -1 : 0;
-    if (j.contains("clip")) {
-        const Json& clip = j["clip"];
-        if (clip.is_number_integer()) {
-            const auto index = clip.get<long long>();
-            if (index < 0 || index >= (long long)m.animations.size())
-                fail(key + ".clip", "clip " + std::to_string(index) + " not in " +
-                                        fileName(c.modelPath) + " (clips: " + clipList(m) + ")");
-            c.clip = int(index);
-        } else {
-            const std::string name = text(clip, key + ".clip");
-            int found = -1;
-            for (std::size_t i = 0; i < m.animations.size() && found < 0; ++i)
-                if (m.animations[i].name == name)
-                    found = int(i);
-            if (found < 0)
-                fail(key + ".clip", "\"" + name + "\" not in " + fileName(c.modelPath) +
-                                        " (clips: " + clipList(m) + ")");
-            c.clip = found;
-        }
-    }
+    c.performance = readPerformance(j, key, m, fileName(c.modelPath));
     if (j.contains("variant")) { // KHR_materials_variants: by name or index
         const Json& variant = j["variant"];
         const std::string wanted =
@@ -262,12 +179,6 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
                                        " (variants: " + nameList(m.variants) + ")");
         c.variant = *found;
     }
-    if (j.contains("time_offset"))
-        c.timeOffset = number(j["time_offset"], key + ".time_offset");
-    if (j.contains("speed"))
-        c.speed = number(j["speed"], key + ".speed");
-    if (j.contains("loop"))
-        c.loop = boolean(j["loop"], key + ".loop");
     if (j.contains("glass")) {
         const std::string mode = text(j["glass"], key + ".glass");
         if (mode == "auto")
@@ -455,6 +366,12 @@ core::Status checkWorldLimits(const scene::World& world, const std::string& name
     return {};
 }
 
+std::string encodePerformance(const scene::Character& character) {
+    Json j = Json::object();
+    writePerformance(character.performance, *character.model, j);
+    return j.dump();
+}
+
 bool isSceneFile(const std::filesystem::path& path) {
     return path.extension() == ".json";
 }
@@ -528,15 +445,9 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
         j["translation"] = {t.translation.x, t.translation.y, t.translation.z};
         j["rotation"] = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
         j["scale"] = {t.scale.x, t.scale.y, t.scale.z};
-        if (c.playingClip() >= 0 && !c.model->animations[std::size_t(c.clip)].name.empty())
-            j["clip"] = c.model->animations[std::size_t(c.clip)].name;
-        else if (c.clip >= 0)
-            j["clip"] = c.clip;
+        writePerformance(c.performance, *c.model, j);
         if (c.variant >= 0 && std::size_t(c.variant) < c.model->variants.size())
             j["variant"] = c.model->variants[std::size_t(c.variant)];
-        j["time_offset"] = c.timeOffset;
-        j["speed"] = c.speed;
-        j["loop"] = c.loop;
         j["glass"] = c.glass == scene::GlassMode::All    ? "all"
                      : c.glass == scene::GlassMode::None ? "none"
                                                          : "auto";

@@ -115,8 +115,7 @@ std::vector<DeformedInstance> deformScene(const scene::Model& model, const anim:
 
 std::vector<DeformedInstance> deformCharacter(const scene::Character& character, double sceneTime) {
     ENGINE_CHECK(character.model != nullptr, "deformCharacter() of a character without a model");
-    const anim::Pose pose =
-        anim::evaluate(*character.model, character.clip, character.clipTime(sceneTime));
+    const anim::Pose pose = anim::evaluate(*character.model, character.performance, sceneTime);
     std::vector<DeformedInstance> instances = deformScene(*character.model, pose);
     const glm::dmat4 placement = character.transform();
     for (DeformedInstance& instance : instances)

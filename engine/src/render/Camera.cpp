@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace render {
 
@@ -38,16 +37,30 @@ Bounds transformed(const Bounds& bounds, const glm::dmat4& transform) {
     return out;
 }
 
-Bounds worldBounds(const scene::World& world, int samples) {
-    std::map<std::pair<const scene::Model*, int>, Bounds> perClip;
+Bounds performanceBounds(const scene::Model& model, const scene::Performance& performance,
+                         std::map<int, Bounds>& perClip, int samples) {
+    std::vector<int> clips = performance.clips(model);
+    if (clips.empty())
+        clips.push_back(-1);
     Bounds bounds;
-    for (const scene::Character& character : world.characters) {
-        const scene::Model& model = *character.model;
-        const int clip = character.playingClip();
-        auto [it, added] = perClip.try_emplace({&model, clip});
+    for (int clip : clips) {
+        auto [it, added] = perClip.try_emplace(clip);
         if (added)
             it->second = animatedBounds(model, clip, samples);
-        const Bounds placed = transformed(it->second, character.transform());
+        bounds.add(it->second.min);
+        bounds.add(it->second.max);
+    }
+    return bounds;
+}
+
+Bounds worldBounds(const scene::World& world, int samples) {
+    std::map<const scene::Model*, std::map<int, Bounds>> perModel;
+    Bounds bounds;
+    for (const scene::Character& character : world.characters) {
+        const Bounds placed =
+            transformed(performanceBounds(*character.model, character.performance,
+                                          perModel[character.model.get()], samples),
+                        character.transform());
         bounds.add(placed.min);
         bounds.add(placed.max);
     }

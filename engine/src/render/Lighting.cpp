@@ -126,10 +126,9 @@ std::vector<scene::PlacedLight> worldLights(const scene::World& world, double ti
     std::vector<scene::PlacedLight> lights;
     for (const scene::Character& character : world.characters)
         if (!character.model->lights.empty())
-            placeLights(
-                *character.model, lightNodes(*character.model),
-                anim::evaluate(*character.model, character.playingClip(), character.clipTime(time)),
-                character.transform(), lights);
+            placeLights(*character.model, lightNodes(*character.model),
+                        anim::evaluate(*character.model, character.performance, time),
+                        character.transform(), lights);
     lights.insert(lights.end(), world.lights.begin(), world.lights.end());
     return lights;
 }

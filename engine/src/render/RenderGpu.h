@@ -28,7 +28,8 @@ struct ModelGpu {
     std::shared_ptr<MaterialTextures> materials; ///< kept when the level changes
     std::vector<int> lightNodes; ///< nodes with a KHR_lights_punctual light (render::lightNodes)
     /** Per clip (-1: the rest pose): the bounds of its deformed meshes over the clip, which the
-     *  shadow views are fitted to (computed when a frame first plays the clip). */
+     *  shadow views are fitted to (performanceBounds(), computed when a frame first plays the
+     *  clip). */
     std::map<int, Bounds> clipBounds;
     /** Per mesh, per primitive: a vertex array binding its index buffer (the same for every
      *  node, instance and placement that draws the mesh; empty for meshes no node draws). */

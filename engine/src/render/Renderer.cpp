@@ -15,6 +15,8 @@
 #include "engine/gl/Shaders.h"
 #include "engine/render/Shared.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -295,11 +297,10 @@ void Renderer::planShadows(const scene::World& world, const RenderSettings& sett
     for (std::size_t c = 0; c < world.characters.size(); ++c) {
         const scene::Character& character = world.characters[c];
         ModelGpu& m = *gpu.characters[c].model;
-        const int clip = character.playingClip();
-        auto [it, added] = m.clipBounds.try_emplace(clip);
-        if (added)
-            it->second = animatedBounds(*m.model, clip, 8);
-        const Bounds placed = transformed(it->second, character.transform());
+        const glm::dmat4 travel = glm::translate(glm::dmat4(1.0), gpu.characters[c].pose.travel);
+        const Bounds placed =
+            transformed(performanceBounds(*m.model, character.performance, m.clipBounds, 8),
+                        character.transform() * travel);
         const glm::vec3 margin(0.05f * std::max(placed.radius(), 1e-3f));
         casters.add(placed.min - margin);
         casters.add(placed.max + margin);
@@ -407,8 +408,7 @@ bool Renderer::animate(const scene::World& world, const RenderSettings& settings
         const scene::Character& character = world.characters[c];
         CharacterGpu& cg = gpu.characters[c];
         const scene::Model& model = *character.model;
-        anim::applyClip(model, character.playingClip(), character.clipTime(time), cg.pose);
-        anim::updateWorld(model, cg.pose);
+        anim::evaluate(model, character.performance, time, cg.pose);
         cg.deformer->keepPrevious(settings.temporal.enabled); // motion vectors
         cg.deformer->stage(cg.pose, character.transform(), gpu.poses);
         placeLights(model, cg.model->lightNodes, cg.pose, character.transform(), gpu.lights);

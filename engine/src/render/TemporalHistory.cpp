@@ -67,8 +67,7 @@ TemporalFrame TemporalHistory::begin(const scene::World& world, const Camera& ca
     std::vector<CharacterKey> keys;
     keys.reserve(world.characters.size());
     for (const scene::Character& c : world.characters)
-        keys.push_back({c.model.get(), c.clip, c.variant, c.timeOffset, c.speed, c.loop, c.glass,
-                        c.overrides});
+        keys.push_back({c.model.get(), c.performance, c.variant, c.glass, c.overrides});
     const bool resized = !mColor[0] || mColor[0].size() != settings.size;
     const bool reset = !mValid || mResetRequested || resized ||
                        historyKey(settings) != historyKey(mSettings) || keys != mWorld ||

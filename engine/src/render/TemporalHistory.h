@@ -53,9 +53,8 @@ private:
     /** What an edit changes: a reset when it differs. */
     struct CharacterKey {
         const scene::Model* model = nullptr;
-        int clip = -1, variant = -1;
-        double timeOffset = 0.0, speed = 1.0;
-        bool loop = true;
+        scene::Performance performance; ///< declared: a scheduled crossfade changes no key
+        int variant = -1;
         scene::GlassMode glass = scene::GlassMode::Auto;
         scene::GlassOverrides overrides;
         bool operator==(const CharacterKey&) const = default;

@@ -1,6 +1,5 @@
 // Keyframe sampling against hand-computed values, one case per interpolation mode.
 #include "engine/anim/Sampler.h"
-#include "engine/anim/Playback.h"
 
 #include <gtest/gtest.h>
 
@@ -78,21 +77,6 @@ TEST(Sampler, CubicSplineRotationIsNormalised) {
     anim::sample(s, 0.5, true, q);
     EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1.0, 1e-12);
     EXPECT_NEAR(q[2], std::sqrt(0.5), 1e-12); // Hermite midpoint (0,0,.5,.5), normalised
-}
-
-TEST(Playback, LoopsAndClamps) {
-    anim::Playback p;
-    p.clip = 0;
-    p.advance(2.5, 1.0);
-    EXPECT_NEAR(p.time, 0.5, 1e-12);
-    p.speed = -1.0;
-    p.advance(0.75, 1.0);
-    EXPECT_NEAR(p.time, 0.75, 1e-12);
-    p.loop = false;
-    p.speed = 1.0;
-    p.advance(3.0, 1.0);
-    EXPECT_EQ(p.time, 1.0);
-    EXPECT_FALSE(p.playing);
 }
 
 } // namespace

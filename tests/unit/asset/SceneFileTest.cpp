@@ -72,8 +72,41 @@ std::vector<BadScene> badScenes() {
          "characters[0].scale: a scale of 0 flattens the character"},
         {"SpeedNotANumber", scene({character({{"speed", "fast"}})}),
          "characters[0].speed: expected a number, got \"fast\""},
+        {"LayersWithTheShortForm",
+         scene({character({{"clip", "bend"}, {"layers", {{{"clip", "bend"}}}}})}),
+         "characters[0].clip: give the clip and its timing in \"layers\" or as the short form, "
+         "not both"},
+        {"LayerWithoutClip", scene({character({{"layers", {{{"weight", 0.5}}}}})}),
+         "characters[0].layers[0].clip: missing (a clip's name or index)"},
+        {"LayerClipUnknown",
+         scene({character({{"layers", {{{"clip", "bend"}}, {{"clip", "run"}}}}})}),
+         "characters[0].layers[1].clip: \"run\" not in twojoint.glb (clips: bend)"},
+        {"LayerNegativeWeight", scene({character({{"layers", {{{"clip", 0}, {"weight", -1}}}}})}),
+         "characters[0].layers[0].weight: expected a weight in [0, 1000], got -1"},
+        {"MaskUnknownJoint", scene({character({{"layers", {{{"clip", 0}, {"mask", "elbow"}}}}})}),
+         "characters[0].layers[0].mask: no node \"elbow\" in twojoint.glb"},
+        {"MaskWeightOutOfRange",
+         scene({character({{"layers", {{{"clip", 0}, {"mask", {{"tip", 2}}}}}}})}),
+         "characters[0].layers[0].mask.tip: expected a weight in [0, 1], got 2"},
+        {"TransitionWithoutTarget", scene({character({{"transitions", {{{"at", 1}}}}})}),
+         "characters[0].transitions[0].to: missing"},
+        {"TransitionNegativeDuration",
+         scene({character({{"transitions", {{{"at", 1}, {"to", "bend"}, {"duration", -1}}}}})}),
+         "characters[0].transitions[0].duration: expected seconds >= 0, got -1"},
+        {"RootMotionUnknown", scene({character({{"root_motion", "teleport"}})}),
+         "characters[0].root_motion: expected \"baked\", \"in_place\" or \"accumulate\", got "
+         "\"teleport\""},
+        {"MorphTargetUnknown", scene({character({{"morph_weights", {{"smile", 1}}}})}),
+         "characters[0].morph_weights.smile: no morph target \"smile\" in twojoint.glb"},
+        {"MorphAddNotANumber", scene({character({{"morph_weights", {{"0", {{"add", "x"}}}}}})}),
+         "characters[0].morph_weights.0.add: expected a number, got \"x\""},
+        {"RepeatCountZero", scene({character({{"loop", 0}})}),
+         "characters[0].loop: expected a count of repeats in [1, 1000000], got 0"},
+        {"PausedAtNotANumber", scene({character({{"paused_at", "now"}})}),
+         "characters[0].paused_at: expected a number, got \"now\""},
         {"LoopNotABool", scene({character({{"loop", "yes"}})}),
-         "characters[0].loop: expected true or false, got \"yes\""},
+         "characters[0].loop: expected true, false, \"repeat\", \"clamp\", \"ping_pong\" or a "
+         "count of repeats, got \"yes\""},
         {"UnknownGlassMode", scene({character({{"glass", "glassy"}})}),
          "characters[0].glass: expected auto, all or none, got \"glassy\""},
         {"IorBelowOne", scene({character({{"ior", 0.5}})}),
@@ -167,7 +200,7 @@ TEST(SceneFile, TheExampleSceneLoads) {
     ASSERT_TRUE(world.ok()) << world.error().message;
     ASSERT_EQ(world->characters.size(), 3u);
     EXPECT_EQ(world->characters[0].model, world->characters[2].model);
-    EXPECT_NE(world->characters[0].clip, world->characters[2].clip); // walk, wave
+    EXPECT_NE(world->characters[0].mainClip(), world->characters[2].mainClip()); // walk, wave
     EXPECT_TRUE(world->environment && std::filesystem::exists(*world->environment));
     // The sun of its sky, low, casting the characters' shadows (and the glass's caustics).
     ASSERT_EQ(world->lights.size(), 1u);
@@ -224,24 +257,28 @@ TEST(SceneFile, ValidSceneSharesModelsAndKeepsEveryKey) {
     EXPECT_TRUE(world->ground);
     ASSERT_TRUE(world->camera);
     EXPECT_FLOAT_EQ(world->camera->yfov, 0.6f);
-    EXPECT_EQ(a.clip, 0);
+    EXPECT_EQ(a.mainClip(), 0);
     EXPECT_EQ(a.glass, scene::GlassMode::All);
     EXPECT_EQ(b.glass, scene::GlassMode::None);
     EXPECT_EQ(sphere.glass, scene::GlassMode::Auto);
     EXPECT_FLOAT_EQ(*a.overrides.ior, 1.33f);
     EXPECT_EQ(*a.overrides.tint, glm::vec3(1.0f, 0.5f, 0.25f));
     EXPECT_FALSE(b.overrides.ior);
-    EXPECT_EQ(sphere.clip, -1); // no clips: the rest pose
+    EXPECT_EQ(sphere.mainClip(), -1); // no clips: the rest pose
     // Transform: scale 2, a quarter turn about +y, then the translation.
     const glm::dvec4 x = a.transform() * glm::dvec4(1, 0, 0, 1);
     EXPECT_NEAR(x.x, 1.0, 1e-6);
     EXPECT_NEAR(x.z, -2.0, 1e-6);
     // Clocks: (t + offset) * speed, wrapped when looping, clamped otherwise.
-    EXPECT_NEAR(a.clipTime(1.65), 0.95, 1e-12); // (1.65 + 0.25) * 0.5
-    EXPECT_NEAR(a.clipTime(2.15), 0.2, 1e-12);  // 1.2 wraps to 0.2
-    EXPECT_NEAR(b.clipTime(-0.5), 0.0, 1e-12);  // clamped at the start
-    EXPECT_NEAR(b.clipTime(7.0), 1.0, 1e-12);   // and at the end
-    EXPECT_EQ(sphere.clipTime(3.0), 0.0);
+    const auto clipTime = [](const scene::Character& c, double t) {
+        return c.performance.layers.front().clipTime(
+            t, c.model->animations.empty() ? 0.0 : c.model->animations[0].duration);
+    };
+    EXPECT_NEAR(clipTime(a, 1.65), 0.95, 1e-12); // (1.65 + 0.25) * 0.5
+    EXPECT_NEAR(clipTime(a, 2.15), 0.2, 1e-12);  // 1.2 wraps to 0.2
+    EXPECT_NEAR(clipTime(b, -0.5), 0.0, 1e-12);  // clamped at the start
+    EXPECT_NEAR(clipTime(b, 7.0), 1.0, 1e-12);   // and at the end
+    EXPECT_EQ(clipTime(sphere, 3.0), 0.0);
 }
 
 TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
@@ -313,10 +350,7 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
                                            a.placement.rotation.z, a.placement.rotation.w)),
                     0.0, 1e-6);
         EXPECT_EQ(b.placement.scale, a.placement.scale);
-        EXPECT_EQ(b.clip, a.clip);
-        EXPECT_EQ(b.timeOffset, a.timeOffset);
-        EXPECT_EQ(b.speed, a.speed);
-        EXPECT_EQ(b.loop, a.loop);
+        EXPECT_EQ(b.performance, a.performance);
         EXPECT_EQ(b.glass, a.glass);
         EXPECT_EQ(b.overrides, a.overrides);
     }
@@ -324,6 +358,53 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
     ASSERT_TRUE(asset::saveScene(dir.dir / "c.json", *first).ok());
     std::ifstream inC(dir.dir / "c.json");
     EXPECT_EQ(Json::parse(inC)["characters"][0]["model"], "models/twojoint.glb");
+}
+
+TEST(SceneFile, PerformancesRoundTrip) {
+    SceneDir dir;
+    const Json root = {
+        {"characters",
+         {character({{"layers",
+                      {{{"clip", "bend"}, {"weight", 0.7}, {"loop", "ping_pong"}, {"speed", 0.5}},
+                       {{"clip", 0},
+                        {"weight", 0.4},
+                        {"time_offset", 0.2},
+                        {"loop", 3},
+                        {"additive", true},
+                        {"mask", {{"root", 1.0}, {"tip", 0.5}}}}}},
+                     {"transitions",
+                      {{{"at", 2.0}, {"to", "bend"}, {"duration", 0.5}},
+                       {{"at", 1.0}, {"to", 0}, {"duration", 0.25}}}},
+                     {"root_motion", "accumulate"},
+                     {"morph_weights", {{"0", 0.25}}},
+                     {"paused_at", 0.4}}),
+          character(
+              {{"clip", "bend"}, {"loop", "clamp"}, {"morph_weights", {{"0", {{"add", 0.5}}}}}}),
+          character({{"layers", {{{"clip", "bend"}, {"mask", "tip"}}}}})}}};
+    const auto first = asset::loadScene(dir.write("a.json", root.dump()));
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    const scene::Performance& p = first->characters[0].performance;
+    ASSERT_EQ(p.layers.size(), 2u);
+    EXPECT_EQ(p.layers[0].loop, scene::Loop::PingPong);
+    EXPECT_EQ(p.layers[0].speed, 0.5);
+    EXPECT_EQ(p.layers[1].loop, scene::Loop::Repeat);
+    EXPECT_EQ(p.layers[1].repetitions, 3);
+    EXPECT_TRUE(p.layers[1].additive);
+    EXPECT_EQ(p.layers[1].mask, (std::vector<scene::MaskEntry>{{1, 1.0}, {2, 0.5}})); // root, tip
+    ASSERT_EQ(p.transitions.size(), 2u);
+    EXPECT_EQ(p.transitions[0].at, 1.0) << "sorted by time";
+    EXPECT_EQ(p.rootMotion, scene::RootMotion::Accumulate);
+    EXPECT_EQ(p.morphs, (std::vector<scene::MorphSetting>{{-1, 0, 0.25, false}}));
+    EXPECT_EQ(p.pausedAt, 0.4);
+    EXPECT_EQ(first->characters[1].performance.layers[0].loop, scene::Loop::Clamp);
+    EXPECT_TRUE(first->characters[1].performance.morphs[0].add);
+    EXPECT_EQ(first->characters[2].performance.layers[0].mask,
+              (std::vector<scene::MaskEntry>{{2, 1.0}}));
+    ASSERT_TRUE(asset::saveScene(dir.dir / "b.json", *first).ok());
+    const auto second = asset::loadScene(dir.dir / "b.json");
+    ASSERT_TRUE(second.ok()) << second.error().message;
+    for (std::size_t i = 0; i < first->characters.size(); ++i)
+        EXPECT_EQ(second->characters[i].performance, first->characters[i].performance) << i;
 }
 
 TEST(LoadWorld, ModelsAreLoadedOnceAndPlacedSideBySide) {
@@ -334,8 +415,8 @@ TEST(LoadWorld, ModelsAreLoadedOnceAndPlacedSideBySide) {
     ASSERT_TRUE(world.ok()) << world.error().message;
     ASSERT_EQ(world->characters.size(), 3u);
     EXPECT_EQ(world->characters[0].model, world->characters[2].model) << "one file, one model";
-    EXPECT_EQ(world->characters[0].clip, 0) << "a model plays its first clip";
-    EXPECT_EQ(world->characters[1].clip, -1) << "the sphere has none";
+    EXPECT_EQ(world->characters[0].mainClip(), 0) << "a model plays its first clip";
+    EXPECT_EQ(world->characters[1].mainClip(), -1) << "the sphere has none";
     // Left to right in the order given, their bounds apart.
     std::vector<render::Bounds> bounds;
     for (const scene::Character& c : world->characters) {

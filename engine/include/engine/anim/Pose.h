@@ -2,15 +2,29 @@
 #pragma once
 
 #include "engine/scene/Model.h"
+#include "engine/scene/Performance.h"
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
+#include <array>
 #include <vector>
 
 namespace anim {
 
-/** Every node's state for one instant. Build with restPose(), then applyClip() and
- *  updateWorld(). Indices follow Model::nodes. */
+/** One node's blend in progress: the weight each property (translation, rotation, scale, morph
+ *  weights) has gathered from the blended layers, and the sums of the additive ones. */
+struct NodeBlend {
+    std::array<double, 4> weight{};
+    std::array<double, 4> added{};
+    glm::dvec3 addTranslation{0.0};
+    glm::dquat addRotation{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 addScale{0.0};
+    std::vector<double> addWeights;
+};
+
+/** Every node's state for one instant. Build with restPose(), then evaluate() (or applyClip()
+ *  and updateWorld()). Indices follow Model::nodes. */
 struct Pose {
     std::vector<scene::Trs> local;
     /** 1 while the node's local transform is the file's exact matrix (no channel targets it). */
@@ -20,6 +34,12 @@ struct Pose {
     std::vector<std::vector<double>> weights;
     /** Parents before children: the order updateWorld() walks. */
     std::vector<int> order;
+    /** The model-space travel accumulated root motion adds (the layers' weighted loops times
+     *  their clip's travel); zero in the other modes. */
+    glm::dvec3 travel{0.0};
+    /** The blend's scratch, kept between evaluations so that they allocate nothing. */
+    std::vector<NodeBlend> blend;
+    std::vector<double> mask, samples;
 };
 
 /** The model's rest pose: local transforms and morph weights from the file (node weights
@@ -43,7 +63,21 @@ std::vector<glm::dmat4> skinMatrices(const scene::Model& model, const Pose& pose
 void skinMatrices(const scene::Model& model, const Pose& pose, int meshNode,
                   std::vector<glm::mat4>& out);
 
-/** restPose + applyClip + updateWorld in one call (clip -1: rest pose). */
+/** The pose of `model` playing `performance` at scene time `sceneTime`, world matrices updated:
+ *  the one evaluator every renderer, tool and reference poses characters with. Layers blend as
+ *  three.js's AnimationMixer blends actions: per property, a running weighted average (slerp for
+ *  rotations, along the shorter arc); where the weights sum under one, the rest pose fills the
+ *  remainder; additive layers then add their change from their clip's first frame. */
+void evaluate(const scene::Model& model, const scene::Performance& performance, double sceneTime,
+              Pose& pose);
+Pose evaluate(const scene::Model& model, const scene::Performance& performance, double sceneTime);
+
+/** The pose of one clip at clip time `time` (clip -1: rest pose), world matrices updated. */
 Pose evaluate(const scene::Model& model, int clip, double time);
+
+/** The node whose horizontal travel root motion moves for `clip`: the shallowest node a
+ *  translation channel of the clip drives, among the skins' joints when the model has skins;
+ *  -1 when none. */
+int motionNode(const scene::Model& model, int clip);
 
 } // namespace anim

@@ -15,8 +15,10 @@ namespace asset {
 /** Reads a scene file: optional "environment" (an HDR path relative to the file), "ground"
  *  (bool), "camera" ({"position", "target", "yfov"}), and a "characters" array, each with
  *  "model" (a path relative to the file, or builtin:...), "translation" [x, y, z], "rotation"
- *  [x, y, z, w], "scale" [x, y, z], "clip" (name or index), "time_offset", "speed", "loop",
- *  "glass" (auto, all, none), "ior", "tint" [r, g, b], "dispersion" and "name". Keys it does
+ *  [x, y, z, w], "scale" [x, y, z], what it plays ("clip" (name or index), "time_offset",
+ *  "speed", "loop", or "layers"; "transitions", "root_motion", "morph_weights", "paused_at":
+ *  README "Scene files"), "glass" (auto, all, none), "ior", "tint" [r, g, b], "dispersion" and
+ *  "name". Keys it does
  *  not know are reported as warnings (core::logWarning), not refused. Fails, naming the file
  *  and the key (`crowd.json: characters[3].clip: "Jump" not in Fox.glb (clips: Survey, Walk,
  *  Run)`), on bad JSON, a wrong type or value, a model that does not load (naming the
@@ -35,6 +37,10 @@ core::Result<scene::World> parseScene(std::string_view text, const std::filesyst
  *  in all (each character counts its model's vertices). The error names `name` and the first
  *  character over the limit. */
 core::Status checkWorldLimits(const scene::World& world, const std::string& name);
+
+/** The keys of `character`'s scene file entry that say what it plays ("clip" ... "paused_at"),
+ *  as the text of one JSON object. */
+std::string encodePerformance(const scene::Character& character);
 
 /** True for a path the tools treat as a scene file rather than a model (a .json file). */
 bool isSceneFile(const std::filesystem::path& path);

@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include <map>
+
 #include <optional>
 
 namespace render {
@@ -39,8 +41,15 @@ Bounds animatedBounds(const scene::Model& model, int clip, int samples = 16);
 /** The box around the corners of `bounds` moved by `transform`. */
 Bounds transformed(const Bounds& bounds, const glm::dmat4& transform);
 
-/** Bounds of every character of `world` over its clip: animatedBounds() of each model and
- *  clip (computed once per pair), its corners through the character's transform. */
+/** Bounds of `model` over every clip `performance` plays: the union of their animatedBounds()
+ *  (each kept in `perClip` under its index; the rest pose's under -1 when it plays none), in
+ *  model space. Blends of the clips stay near their union; accumulated root motion moves it by
+ *  the pose's travel. */
+Bounds performanceBounds(const scene::Model& model, const scene::Performance& performance,
+                         std::map<int, Bounds>& perClip, int samples = 16);
+
+/** Bounds of every character of `world` over what it plays: performanceBounds() of each
+ *  (clips computed once per model), its corners through the character's transform. */
 Bounds worldBounds(const scene::World& world, int samples = 16);
 
 /** The camera a scene file places, its near and far planes fitted to `bounds`. */

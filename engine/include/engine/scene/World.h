@@ -1,9 +1,11 @@
 // A world of characters: loaded models placed any number of times, each with its own transform,
-// clip, timing and glass mode. Plain data; the scene file format (asset::loadScene) fills it.
+// performance (clip layers, crossfades, root motion) and glass mode. Plain data; the scene file
+// format (asset::loadScene) fills it.
 #pragma once
 
 #include "engine/scene/Model.h"
 #include "engine/scene/Node.h"
+#include "engine/scene/Performance.h"
 
 #include <glm/glm.hpp>
 
@@ -35,24 +37,20 @@ struct Character {
     std::string modelPath;
     /** Model space to world space, as glTF nodes spell it (translation, rotation, scale). */
     Trs placement;
-    int clip = -1;           ///< index into model->animations; -1: the rest pose
-    int variant = -1;        ///< index into model->variants; -1: the file's default materials
-    double timeOffset = 0.0; ///< seconds added to the scene time
-    double speed = 1.0;      ///< clip seconds per scene second (negative plays backwards)
-    bool loop = true;        ///< else the clip holds its ends
+    /** What it plays: anim::evaluate() poses the model from it and the scene time. */
+    Performance performance;
+    int variant = -1; ///< index into model->variants; -1: the file's default materials
     GlassMode glass = GlassMode::Auto;
     GlassOverrides overrides;
 
     /** The character's world matrix (translation * rotation * scale). */
     glm::dmat4 transform() const { return placement.matrix(); }
-    /** The clip time at scene time `sceneTime`: (sceneTime + timeOffset) * speed, wrapped into
-     *  the clip when looping, else clamped to it; 0 without a clip. */
-    double clipTime(double sceneTime) const;
-    /** `clip` when it names one of the model's clips, else -1 (the rest pose). */
-    int playingClip() const;
-    /** Scene seconds one run of the clip takes (its duration over |speed|); 0 without a clip or
-     *  at speed 0. */
-    double clipPeriod() const;
+    /** Plays `clip` alone (-1: the rest pose), from scene time 0, repeating. */
+    void play(int clip) { performance = Performance::single(clip); }
+    /** The first layer's clip when it names one of the model's clips, else -1. */
+    int mainClip() const { return model ? performance.mainClip(*model) : -1; }
+    /** Scene seconds after which what it plays repeats (Performance::period()). */
+    double period() const { return model ? performance.period(*model) : 0.0; }
 };
 
 /** A camera a scene file places: at `position`, looking at `target`, vertical field of view
@@ -71,8 +69,8 @@ struct World {
     /** Lights the scene file places (its characters' own lights come with their models). */
     std::vector<PlacedLight> lights;
 
-    /** The longest Character::clipPeriod() of the characters; 0 when none plays a clip. */
-    double longestClipPeriod() const;
+    /** The longest Character::period() of the characters; 0 when none plays a clip. */
+    double longestPeriod() const;
 };
 
 /** A world of one character placing `model` at the origin, playing clip `clip` (-1: the rest
