@@ -133,6 +133,38 @@ glm::dvec3 lerp3(const glm::dvec3& a, const glm::dvec3& b, double s) {
     return a + (b - a) * s;
 }
 
+/** Slerp along the shorter arc, as Sampler's slerpShortest, for the blend's one slerp per
+ *  rotation and layer. Near rotations (cos theta >= 0.7) take sin(t theta) / sin(theta) from its
+ *  series in cos(theta) - 1 (each term the last times (t^2 - i^2) / (i (2i + 1)) (cos - 1)),
+ *  summed to double precision in at most 21 terms: no transcendental call, and no
+ *  normalisation (the result is a unit quaternion to rounding). */
+glm::dquat blendRotation(const glm::dquat& a, const glm::dquat& b, double s) {
+    const double dot = glm::dot(a, b);
+    const glm::dquat end = dot < 0.0 ? -b : b;
+    const double c = std::abs(dot);
+    if (c < 0.7) {
+        const double theta = std::acos(c), sinTheta = std::sqrt(1.0 - c * c);
+        return glm::normalize(a * (std::sin((1.0 - s) * theta) / sinTheta) +
+                              end * (std::sin(s * theta) / sinTheta));
+    }
+    static constexpr auto kInverse = [] { // 1 / (i (2i + 1))
+        std::array<double, 24> inverse{};
+        for (std::size_t i = 1; i < inverse.size(); ++i)
+            inverse[i] = 1.0 / (double(i) * (2.0 * double(i) + 1.0));
+        return inverse;
+    }();
+    const double d = c - 1.0, u = 1.0 - s;
+    double termA = u, termB = s, weightA = u, weightB = s;
+    for (std::size_t i = 1; i < kInverse.size() && std::abs(termA) + std::abs(termB) > 1e-18; ++i) {
+        const double step = d * kInverse[i], square = double(i * i);
+        termA *= (u * u - square) * step;
+        termB *= (s * s - square) * step;
+        weightA += termA;
+        weightB += termB;
+    }
+    return a * weightA + end * weightB; // unit to rounding: the series is exact in doubles
+}
+
 /** What a performance plays: one layer per transition (its clip from the transition's time on)
  *  and, with accumulated root motion, the shift that starts each faded-to clip's root where the
  *  character stood when its fade began; then the contributions at one time. */
@@ -283,11 +315,11 @@ void addContribution(const scene::Model& model, const Performance& performance,
             if (additive) {
                 const glm::dquat delta = glm::conjugate(sampleRotation(sampler, 0.0)) * v;
                 blend.addRotation =
-                    slerpShortest(blend.addRotation, blend.addRotation * delta, weight);
+                    blendRotation(blend.addRotation, blend.addRotation * delta, weight);
                 blend.added[R] += weight;
                 break;
             }
-            accumulate(blend.weight[R], local.rotation, v, weight, slerpShortest);
+            accumulate(blend.weight[R], local.rotation, v, weight, blendRotation);
             break;
         }
         case scene::AnimationPath::Weights: {
@@ -335,7 +367,7 @@ void finishBlend(const scene::Model& model, Pose& pose) {
         if (b.weight[T] > 0.0 && b.weight[T] < 1.0)
             local.translation = lerp3(local.translation, rest.translation, 1.0 - b.weight[T]);
         if (b.weight[R] > 0.0 && b.weight[R] < 1.0)
-            local.rotation = slerpShortest(local.rotation, rest.rotation, 1.0 - b.weight[R]);
+            local.rotation = blendRotation(local.rotation, rest.rotation, 1.0 - b.weight[R]);
         if (b.weight[S] > 0.0 && b.weight[S] < 1.0)
             local.scale = lerp3(local.scale, rest.scale, 1.0 - b.weight[S]);
         std::vector<double>& weights = pose.weights[i];
