@@ -51,6 +51,22 @@ scene::World project(const char* scene) {
 scene::World figure(const char* file) {
     return test::generatedWorld(file);
 }
+/** The figure's walk crossfading to its idle clip over 0.4 s from 0.2 s, or idling with its
+ *  wave added on top at 0.7. */
+scene::World blended(scene::World world, bool additive) {
+    const scene::Model& model = *world.characters[0].model;
+    scene::Performance& p = world.characters[0].performance;
+    if (additive) {
+        p = scene::Performance::single(*model.findAnimation("idle"));
+        scene::Layer& wave = p.layers.emplace_back();
+        wave.clip = *model.findAnimation("wave");
+        wave.weight = 0.7;
+        wave.additive = true;
+    } else {
+        p.transitions = {{0.2, *model.findAnimation("idle"), 0.4}};
+    }
+    return world;
+}
 #endif
 
 std::vector<Row> rows() {
@@ -125,6 +141,12 @@ std::vector<Row> rows() {
          {19.5, 15.5, 23.5, 27.5, 25, 59}},
         {"morph targets and absorption", [] { return figure("glass_figure.glb"); },
          {14.5, 26, 26.5, 25, 26, 41}, 0.3, {{"dispersion-search", "per-channel"}}},
+        {"a crossfade", [] { return blended(figure("glass_figure.glb"), false); },
+         {17, 26, 26.5, 26, 26.5, 38}, 0.4, {{"dispersion-search", "per-channel"}}, 0, false,
+         "five pixels whose centre rays graze the arms and legs, where float and double part "
+         "ways"},
+        {"an additive layer", [] { return blended(figure("glass_figure.glb"), true); },
+         {18, 25.5, 26, 25, 26, 47}, 0.8, {{"dispersion-search", "per-channel"}}},
         {"subdivision", [] { return figure("glass_figure.glb"); }, {14.5, 25.5, 27, 25, 26, 40},
          0.3, {{"dispersion-search", "per-channel"}}, 1},
         {"characters overlapping", [] { return project("glass_pair.json"); },

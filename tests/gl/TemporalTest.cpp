@@ -467,6 +467,47 @@ TEST_F(Temporal, EditsResizesAndChangedSettingsStartTheHistoryOver) {
     }
 }
 
+/** The figure walking, then (with `fade`) crossfading to its idle clip over 0.4 s from 0.5 s,
+ *  accumulating at 96x96, 30 frames a second: the mean masked PSNR against the reference of
+ *  every other frame from 0.6 s to 0.8 s (the fade's middle). */
+double walkingFigure(gl::Context& context, bool fade) {
+    scene::World world = test::generatedWorld("glass_figure.glb");
+    scene::Performance& p = world.characters[0].performance;
+    if (fade)
+        p.transitions = {{0.5, *world.characters[0].model->findAnimation("idle"), 0.4}};
+    WorldRig rig(std::move(world), context, 96);
+    rig.temporal.enabled = true;
+    double sum = 0.0;
+    int scored = 0;
+    for (int k = 0; k <= 24; ++k) {
+        const double time = k / 30.0;
+        if (k < 18 || k % 2 != 0) {
+            rig.renderHdr(time);
+            continue;
+        }
+        sum += rig.psnrAgainstReference(time);
+        ++scored;
+    }
+    return sum / scored;
+}
+
+TEST_F(Temporal, AScheduledCrossfadeKeepsTheHistory) {
+    // A crossfade is declared with the character: playing through it is no edit of the world,
+    // so the history stays (TemporalHistory keys on the performance, not on what plays now).
+    scene::World world = test::generatedWorld("glass_figure.glb");
+    world.characters[0].performance.transitions = {{0.25, 1, 0.3}};
+    WorldRig rig(world, context(), 64), fresh(world, context(), 64);
+    rig.temporal.enabled = fresh.temporal.enabled = true;
+    for (int k = 0; k < 4; ++k)
+        rig.renderHdr(0.1 * k); // 0.3: into the fade
+    EXPECT_NE(rig.renderHdr(0.4), fresh.renderHdr(0.4)) << "the history started over";
+    // Over the fade, accumulation scores as it does on the clip alone.
+    const double alone = walkingFigure(context(), false), fading = walkingFigure(context(), true);
+    std::printf("the figure accumulating: %.2f dB walking, %.2f dB crossfading to idle\n", alone,
+                fading);
+    EXPECT_GT(fading, alone - 1.0);
+}
+
 /** The glass sphere translating over the ground, half a pixel a frame, the camera still, the
  *  trace at 128x128: the mean masked PSNR against the reference of every other frame after 16,
  *  with accumulation or without. */
