@@ -416,7 +416,8 @@ void Panel::animation(Viewer& v) {
         v.advance(1.0 / 30.0);
     }
     float time = float(v.mTime);
-    if (ImGui::SliderFloat("Scene time (s)", &time, 0.0f, float(longest), "%.3f"))
+    const double end = v.mWorld.repeats() ? longest : std::max(v.mWorld.timeline(), v.mTime);
+    if (ImGui::SliderFloat("Scene time (s)", &time, 0.0f, float(end), "%.3f"))
         v.mTime = double(time);
     widget(s, "speed");
 }

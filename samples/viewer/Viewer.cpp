@@ -444,11 +444,16 @@ void Viewer::changeClip(scene::Character& c, int clip) {
 }
 
 void Viewer::advance(double dt) {
-    // The scene clock wraps at the longest clip; each character loops or holds its own.
+    // The scene clock wraps at the longest clip, each character looping or holding its own,
+    // unless a pose never comes back (a crossfade, a walker walking on): then it runs on.
     const double longest = mWorld.longestPeriod();
     mTime += dt;
     if (longest <= 0.0) {
         mTime = 0.0;
+        return;
+    }
+    if (!mWorld.repeats()) {
+        mTime = std::max(mTime, 0.0);
         return;
     }
     mTime = std::fmod(mTime, longest);

@@ -83,18 +83,20 @@ double Performance::period(const scene::Model& model) const {
     if (pausedAt)
         return 0.0;
     const int clip = mainClip(model);
-    double longest =
-        clip < 0 || layers.front().speed == 0.0
-            ? 0.0
-            : model.animations[std::size_t(clip)].duration / std::abs(layers.front().speed);
-    if (!transitions.empty()) { // through the last fade, then one run of what it fades to
-        const Transition& last = transitions.back();
-        const double run = last.to >= 0 && last.to < int(model.animations.size())
-                               ? model.animations[std::size_t(last.to)].duration
-                               : 0.0;
-        longest = std::max(longest, last.at + last.duration + run);
-    }
-    return longest;
+    return clip < 0 || layers.front().speed == 0.0
+               ? 0.0
+               : model.animations[std::size_t(clip)].duration / std::abs(layers.front().speed);
+}
+
+bool Performance::repeats() const {
+    return transitions.empty() && rootMotion != RootMotion::Accumulate;
+}
+
+double Performance::lastChange() const {
+    double last = 0.0;
+    for (const Transition& t : transitions)
+        last = std::max(last, t.at + t.duration);
+    return last;
 }
 
 std::vector<int> Performance::clips(const scene::Model& model) const {

@@ -1,4 +1,4 @@
-// A world's longest period; a world of one character.
+// A world's periods and timeline; a world of one character.
 #include "engine/scene/World.h"
 
 #include <algorithm>
@@ -11,6 +11,20 @@ double World::longestPeriod() const {
     for (const Character& c : characters)
         longest = std::max(longest, c.period());
     return longest;
+}
+
+bool World::repeats() const {
+    for (const Character& c : characters)
+        if (!c.performance.repeats())
+            return false;
+    return true;
+}
+
+double World::timeline() const {
+    double last = 0.0;
+    for (const Character& c : characters)
+        last = std::max(last, c.performance.lastChange());
+    return last + longestPeriod();
 }
 
 World singleCharacterWorld(std::shared_ptr<const Model> model, int clip, std::string path) {

@@ -3,6 +3,7 @@
 // the tools make of model paths (render::loadWorld).
 #include "support/TestSupport.h"
 
+#include "engine/anim/Pose.h"
 #include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
 #include "engine/asset/SceneFile.h"
@@ -279,6 +280,33 @@ TEST(SceneFile, ValidSceneSharesModelsAndKeepsEveryKey) {
     EXPECT_NEAR(clipTime(b, -0.5), 0.0, 1e-12);  // clamped at the start
     EXPECT_NEAR(clipTime(b, 7.0), 1.0, 1e-12);   // and at the end
     EXPECT_EQ(clipTime(sphere, 3.0), 0.0);
+}
+
+TEST(SceneFile, TheExampleScenePlaysWithoutAJump) {
+    // The walker strolls in, walking on across its clip's loop (accumulated root motion), and
+    // crossfades into its idle where it stands: no character's root jumps on the scene clock.
+    const auto world =
+        asset::loadScene(std::filesystem::path(GLASS_SOURCE_DIR) / "assets/scenes/walk_past.json");
+    ASSERT_TRUE(world.ok()) << world.error().message;
+    EXPECT_FALSE(world->repeats()) << "a viewer's clock runs on rather than wrap";
+    for (const scene::Character& c : world->characters) {
+        SCOPED_TRACE(c.name);
+        const int root = anim::motionNode(*c.model, c.mainClip());
+        ASSERT_GE(root, 0);
+        anim::Pose pose = anim::restPose(*c.model);
+        const auto at = [&](double t) {
+            anim::evaluate(*c.model, c.performance, t, pose);
+            return glm::dvec3(c.transform() * pose.world[std::size_t(root)][3]);
+        };
+        glm::dvec3 previous = at(0.0);
+        double largest = 0.0;
+        for (int frame = 1; frame <= 12 * 60; ++frame) {
+            const glm::dvec3 now = at(frame / 60.0);
+            largest = std::max(largest, glm::length(now - previous));
+            previous = now;
+        }
+        EXPECT_LT(largest, 0.02) << "the largest step in a frame at 60 Hz, metres";
+    }
 }
 
 TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {

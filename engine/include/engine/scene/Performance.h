@@ -102,8 +102,13 @@ struct Performance {
                                     : layers.front().clip;
     }
     /** Scene seconds one run of the first layer takes (its clip's duration over |speed|); 0
-     *  without a clip, at speed 0 or while paused. */
+     *  without a clip, at speed 0 or while paused. The pose repeats with it where repeats(). */
     double period(const scene::Model& model) const;
+    /** False where the pose never comes back: after transitions, or walking on (accumulated
+     *  root motion). */
+    bool repeats() const;
+    /** The character time the last transition ends at; 0 without transitions. */
+    double lastChange() const;
     /** Every clip of `model` the performance plays, each once, in order of first use. */
     std::vector<int> clips(const scene::Model& model) const;
     bool operator==(const Performance&) const = default;

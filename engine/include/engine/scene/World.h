@@ -71,6 +71,12 @@ struct World {
 
     /** The longest Character::period() of the characters; 0 when none plays a clip. */
     double longestPeriod() const;
+    /** Whether every character's pose repeats (Performance::repeats()): a viewer's clock may
+     *  wrap at longestPeriod() without a jump. */
+    bool repeats() const;
+    /** Scene seconds a timeline shows: the longest period, past the last transition's end
+     *  where there is one. */
+    double timeline() const;
 };
 
 /** A world of one character placing `model` at the origin, playing clip `clip` (-1: the rest
