@@ -9,7 +9,8 @@ namespace inspect {
 
 namespace {
 
-/** Each clip: its channels, their interpolations and paths, its duration. */
+/** Each clip: its channels, their interpolations and paths, its duration, and its
+ *  KHR_animation_pointer channels, each played or skipped. */
 nlohmann::ordered_json describeClips(const scene::Model& model) {
     nlohmann::ordered_json clips = nlohmann::ordered_json::array();
     for (const scene::Animation& a : model.animations) {
@@ -18,11 +19,16 @@ nlohmann::ordered_json describeClips(const scene::Model& model) {
             modes.insert(toString(a.samplers[std::size_t(c.sampler)].interpolation));
             paths.insert(toString(c.path));
         }
+        nlohmann::ordered_json pointers = nlohmann::ordered_json::array();
+        for (const scene::PointerChannel& p : a.pointers)
+            pointers.push_back(
+                {{"channel", p.channel}, {"pointer", p.pointer}, {"played", p.played}});
         clips.push_back({{"name", a.name},
                          {"channels", a.channels.size()},
                          {"interpolation", std::vector<std::string>(modes.begin(), modes.end())},
                          {"paths", std::vector<std::string>(paths.begin(), paths.end())},
-                         {"duration_s", a.duration}});
+                         {"duration_s", a.duration},
+                         {"pointer_channels", std::move(pointers)}});
     }
     return clips;
 }

@@ -169,6 +169,10 @@ void printText(const scene::Model& model) {
         std::printf("  clip '%s': %.3f s, %zu channels, %s\n",
                     clip["name"].get<std::string>().c_str(), clip["duration_s"].get<double>(),
                     clip["channels"].get<std::size_t>(), modes.c_str());
+        for (const auto& p : clip["pointer_channels"])
+            std::printf("    channel %d: KHR_animation_pointer %s, %s\n", p["channel"].get<int>(),
+                        p["pointer"].get<std::string>().c_str(),
+                        p["played"].get<bool>() ? "played" : "skipped");
     }
     if (!model.variants.empty()) {
         std::string names;

@@ -189,6 +189,23 @@ GltfBuilder twoJointModel() {
     return b;
 }
 
+GltfBuilder pointerTwoJointModel(const std::string& rotationPointer) {
+    GltfBuilder b = twoJointModel();
+    const auto pointer = [](const std::string& to) {
+        return nlohmann::json{{"path", "pointer"},
+                              {"extensions", {{"KHR_animation_pointer", {{"pointer", to}}}}}};
+    };
+    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}}};
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    auto& channels = b.doc["animations"][0]["channels"];
+    channels[0]["target"] = pointer(rotationPointer);
+    channels[1]["target"] = pointer("/nodes/0/weights");
+    channels.push_back(
+        {{"sampler", 1}, {"target", pointer("/materials/0/pbrMetallicRoughness/metallicFactor")}});
+    b.doc["extensionsUsed"] = {"KHR_animation_pointer"};
+    return b;
+}
+
 GltfBuilder instancedTwoJointModel() {
     GltfBuilder b = twoJointModel();
     const std::vector<float> translations = {0, 0, 0, 2, 0, 0, 0, 0, 3};

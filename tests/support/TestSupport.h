@@ -88,6 +88,10 @@ GltfBuilder twoJointModel();
  *  at the origin, moved 2 along +x, and turned a quarter about +y, doubled and moved 3 along
  *  +z. */
 GltfBuilder instancedTwoJointModel();
+/** twoJointModel() with its channels as KHR_animation_pointer pointers (the rotation's
+ *  `rotationPointer`, the weights' /nodes/0/weights) and a third on material 0's metallic
+ *  factor, which the engine does not play. */
+GltfBuilder pointerTwoJointModel(const std::string& rotationPointer = "/nodes/2/rotation");
 
 /** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba);

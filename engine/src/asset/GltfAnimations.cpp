@@ -1,5 +1,6 @@
 // Animations: keyframe accessors into engine samplers, checked against their targets.
 #include "GltfConvert.h"
+#include "GltfDecode.h"
 
 #include "LoadError.h"
 
@@ -38,7 +39,8 @@ scene::AnimationPath parsePath(const std::string& s, const std::string& what) {
 } // namespace
 
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
-                                  int index, const std::vector<scene::Mesh>& meshes) {
+                                  std::vector<std::string>& warnings, int index,
+                                  const std::vector<scene::Mesh>& meshes) {
     const tinygltf::Animation& src = model.animations[std::size_t(index)];
     const std::string what = "animation " + n(std::size_t(index));
     scene::Animation anim;
@@ -50,6 +52,22 @@ scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorRe
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = src.channels[c];
         const std::string channelWhat = what + " channel " + n(c);
+        // KHR_animation_pointer (prepareForParser rewrote it): a node's TRS or weights plays as
+        // any channel; another pointer is skipped with a warning; none at all is refused.
+        if (ch.extras.Has(kPointerExtra)) {
+            const std::string pointer = ch.extras.Get(kPointerExtra).Get<std::string>();
+            if (ch.target_path == kMalformedPointer)
+                fail(channelWhat + " has KHR_animation_pointer without a pointer string (" +
+                     (pointer.empty() ? std::string("none") : pointer) + ")");
+            const bool played = ch.target_path != kSkippedPointer;
+            anim.pointers.push_back({int(c), pointer, played});
+            if (!played) {
+                warnings.push_back(channelWhat + (src.name.empty() ? "" : " ('" + src.name + "')") +
+                                   ": KHR_animation_pointer \"" + pointer +
+                                   "\" is not played by this engine: skipped");
+                continue;
+            }
+        }
         scene::AnimationChannel channel;
         channel.sampler = ch.sampler;
         channel.node = ch.target_node;

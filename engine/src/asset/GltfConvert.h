@@ -59,6 +59,7 @@ scene::Skin convertSkin(const tinygltf::Model& model, const AccessorReader& read
 
 /** Animation `index`; weight channels are checked against the target node's morph count. */
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
+                                  std::vector<std::string>& warnings,
                                   int index, const std::vector<scene::Mesh>& meshes);
 
 /** Material `index` with metallic-roughness, the KHR glass extensions, KHR_materials_unlit,

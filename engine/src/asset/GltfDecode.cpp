@@ -17,6 +17,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <regex>
 #include <string>
 
 namespace asset::detail {
@@ -376,17 +377,78 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
 
 } // namespace
 
+namespace {
+
+/** `/nodes/N/translation|rotation|scale|weights` as its node and path; nullopt for any other
+ *  pointer (N a decimal index, not checked against the nodes here). */
+std::optional<std::pair<long long, std::string>> nodePointer(const std::string& pointer) {
+    static const std::regex node(
+        R"(^/nodes/(0|[1-9][0-9]{0,8})/(translation|rotation|scale|weights)$)");
+    std::smatch match;
+    if (!std::regex_match(pointer, match, node))
+        return std::nullopt;
+    return std::pair{std::stoll(match[1].str()), match[2].str()};
+}
+
+/** KHR_animation_pointer channels in the terms the parser knows (it drops a channel without a
+ *  target node): a node's TRS or weights become that node and path; any other pointer, or a
+ *  channel without one, gets path kSkippedPointer or kMalformedPointer on node -1 for
+ *  convertAnimation to skip with a warning or refuse. Each keeps its pointer in its extras. */
+void rewritePointerChannels(nlohmann::json& document) {
+    if (!document.contains("animations") || !document["animations"].is_array())
+        return;
+    for (nlohmann::json& animation : document["animations"]) {
+        if (!animation.is_object() || !animation.contains("channels") ||
+            !animation["channels"].is_array())
+            continue;
+        for (nlohmann::json& channel : animation["channels"]) {
+            if (!channel.is_object() || !channel.contains("target") ||
+                !channel["target"].is_object())
+                continue;
+            nlohmann::json& target = channel["target"];
+            if (target.value("path", nlohmann::json()) != "pointer")
+                continue;
+            const nlohmann::json* pointer = nullptr;
+            if (target.contains("extensions") && target["extensions"].is_object() &&
+                target["extensions"].contains(kAnimationPointer) &&
+                target["extensions"][kAnimationPointer].is_object() &&
+                target["extensions"][kAnimationPointer].contains("pointer"))
+                pointer = &target["extensions"][kAnimationPointer]["pointer"];
+            const std::string text = pointer && pointer->is_string() ? pointer->get<std::string>()
+                                     : pointer                       ? pointer->dump()
+                                                                     : std::string();
+            if (!channel.contains("extras") || !channel["extras"].is_object())
+                channel["extras"] = nlohmann::json::object();
+            channel["extras"][kPointerExtra] = text;
+            if (const auto node =
+                    pointer && pointer->is_string() ? nodePointer(text) : std::nullopt) {
+                target["node"] = node->first;
+                target["path"] = node->second;
+            } else {
+                target["node"] = -1;
+                target["path"] = pointer && pointer->is_string() && !text.empty()
+                                     ? kSkippedPointer
+                                     : kMalformedPointer;
+            }
+        }
+    }
+}
+
+} // namespace
+
 std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::uint8_t> bytes,
                                                           bool isBinary) {
     const std::string_view json =
         isBinary ? glbChunks(bytes).json
                  : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     if (json.find(kDraco) == std::string_view::npos &&
-        json.find("meshopt_compression") == std::string_view::npos)
+        json.find("meshopt_compression") == std::string_view::npos &&
+        json.find(kAnimationPointer) == std::string_view::npos)
         return std::nullopt;
     nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
     if (!document.is_object())
         return std::nullopt; // the parser reports it
+    rewritePointerChannels(document);
 
     if (document.contains("meshes") && document["meshes"].is_array())
         for (nlohmann::json& mesh : document["meshes"])

@@ -13,11 +13,20 @@
 
 namespace asset::detail {
 
+/** KHR_animation_pointer: the extension, the extras key where a rewritten channel keeps its
+ *  pointer, and the paths of a channel whose pointer the engine does not play (skipped with a
+ *  warning) or that has no pointer string (refused). */
+inline constexpr const char* kAnimationPointer = "KHR_animation_pointer";
+inline constexpr const char* kPointerExtra = "glass_animation_pointer";
+inline constexpr const char* kSkippedPointer = "glass_skipped_pointer";
+inline constexpr const char* kMalformedPointer = "glass_malformed_pointer";
+
 /** The file rewritten where tinygltf 2.7 cannot parse what compression leaves: a Draco
  *  primitive's indices accessor has no bufferView (the index moves into the extension object,
  *  where decodeCompressedGeometry takes it back) and a meshopt fallback buffer may have no data
- *  at all (it gets one zero byte: the decoded views replace it). nullopt when the file uses
- *  neither extension, so other files are parsed from their own bytes. */
+ *  at all (it gets one zero byte: the decoded views replace it); and where it drops what it
+ *  does not know: KHR_animation_pointer channels (rewritePointerChannels). nullopt when the file
+ *  uses none of these extensions, so other files are parsed from their own bytes. */
 std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::uint8_t> bytes,
                                                           bool isBinary);
 

@@ -640,7 +640,7 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (std::size_t i = 0; i < src.skins.size(); ++i)
             model.skins.push_back(convertSkin(src, reader, int(i)));
         for (std::size_t i = 0; i < src.animations.size(); ++i)
-            model.animations.push_back(convertAnimation(src, reader, int(i), model.meshes));
+            model.animations.push_back(convertAnimation(src, reader, model.warnings, int(i), model.meshes));
         for (std::size_t i = 0; i < src.cameras.size(); ++i)
             model.cameras.push_back(convertCamera(src, int(i)));
         for (std::size_t i = 0; i < src.lights.size(); ++i)

@@ -1,6 +1,7 @@
 // Structural validation of a parsed glTF before any conversion: every index the engine follows
 // is in range, the node graph is a forest, required extensions are supported, limits hold.
 #include "GltfConvert.h"
+#include "GltfDecode.h"
 
 #include "LoadError.h"
 #include "engine/asset/GltfLoader.h"
@@ -21,6 +22,8 @@ const std::set<std::string>& supportedRequiredExtensions() {
         "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing", "KHR_materials_variants",
         "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_lights_punctual",
+        // node TRS and weights play; other pointers are skipped, each with a warning
+        "KHR_animation_pointer",
         // only its fallback images are used; a texture with none loads without it (warning)
         "KHR_texture_basisu"};
     return supported;
@@ -171,8 +174,10 @@ void validateStructure(const tinygltf::Model& m) {
             const std::string what = "animation " + n(a) + " channel " + n(c);
             checkIndex(anim.channels[c].sampler, anim.samplers.size(), false, what, "sampler",
                        "samplers in this animation");
-            checkIndex(anim.channels[c].target_node, m.nodes.size(), false, what + " target",
-                       "node", "nodes");
+            const std::string& path = anim.channels[c].target_path;
+            if (path != kSkippedPointer && path != kMalformedPointer) // convertAnimation's
+                checkIndex(anim.channels[c].target_node, m.nodes.size(), false, what + " target",
+                           "node", "nodes");
         }
     }
 }

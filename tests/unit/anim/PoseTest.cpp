@@ -66,4 +66,43 @@ TEST(Pose, ChangingClipResetsUntargetedState) {
     expectMatrixNear(pose.world[2], glm::translate(glm::dmat4(1.0), glm::dvec3(1, 0, 0)));
 }
 
+TEST(Pose, PointerChannelsPlayNodesAndSkipWhatTheEngineDoesNotPlay) {
+    const scene::Model model = loadTwoJoint(test::pointerTwoJointModel());
+    const scene::Model plain = loadTwoJoint();
+    const anim::Pose a = anim::evaluate(model, 0, 0.5), b = anim::evaluate(plain, 0, 0.5);
+    EXPECT_EQ(a.world, b.world) << "node pointers play as the node's channels";
+    EXPECT_EQ(a.weights, b.weights);
+    const auto& pointers = model.animations[0].pointers;
+    ASSERT_EQ(pointers.size(), 3u);
+    EXPECT_TRUE(pointers[0].played && pointers[1].played);
+    EXPECT_FALSE(pointers[2].played);
+    EXPECT_EQ(pointers[2].pointer, "/materials/0/pbrMetallicRoughness/metallicFactor");
+    std::size_t warned = 0;
+    for (const std::string& w : model.warnings) {
+        warned += w == "animation 0 channel 2 ('bend'): KHR_animation_pointer "
+                       "\"/materials/0/pbrMetallicRoughness/metallicFactor\" is not played by "
+                       "this engine: skipped";
+        EXPECT_EQ(w.find("extensionsUsed"), std::string::npos) << w;
+    }
+    EXPECT_EQ(warned, 1u);
+}
+
+TEST(Pose, AMalformedPointerChannelIsRefusedNamingIt) {
+    test::TempDir dir;
+    const auto outOfRange =
+        asset::loadGltf(test::pointerTwoJointModel("/nodes/9/rotation").save(dir.path(), "a"));
+    ASSERT_FALSE(outOfRange.ok());
+    EXPECT_NE(outOfRange.error().message.find("animation 0 channel 0 target"), std::string::npos)
+        << outOfRange.error().message;
+    test::GltfBuilder none = test::pointerTwoJointModel();
+    none.doc["animations"][0]["channels"][1]["target"]["extensions"]["KHR_animation_pointer"].erase(
+        "pointer");
+    const auto missing = asset::loadGltf(none.save(dir.path(), "b"));
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().message.find(
+                  "animation 0 channel 1 has KHR_animation_pointer without a pointer string"),
+              std::string::npos)
+        << missing.error().message;
+}
+
 } // namespace

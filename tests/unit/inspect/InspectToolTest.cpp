@@ -91,6 +91,23 @@ TEST(InspectTool, JsonDescribesTheModel) {
     EXPECT_NE(out.find("clip 'bend': 1.000 s"), std::string::npos) << out;
 }
 
+TEST(InspectTool, ListsEachPointerChannelAsPlayedOrSkipped) {
+    test::TempDir dir;
+    const auto path = test::pointerTwoJointModel().save(dir.path(), "pointers");
+    std::string out;
+    ASSERT_EQ(test::runCommand(kInspect + " " + path.string() + " 2>&1", &out), 0) << out;
+    for (const char* line : {"channel 0: KHR_animation_pointer /nodes/2/rotation, played",
+                             "channel 1: KHR_animation_pointer /nodes/0/weights, played",
+                             "channel 2: KHR_animation_pointer "
+                             "/materials/0/pbrMetallicRoughness/metallicFactor, skipped"})
+        EXPECT_NE(out.find(line), std::string::npos) << line << " in\n" << out;
+    ASSERT_EQ(test::runCommand("(" + kInspect + " " + path.string() + " --json 2>/dev/null)", &out),
+              0);
+    const auto pointers = nlohmann::json::parse(out)["animation_list"][0]["pointer_channels"];
+    ASSERT_EQ(pointers.size(), 3u);
+    EXPECT_EQ(pointers[2]["played"], false);
+}
+
 TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {
     GLASS_REQUIRE_SHARED();
     std::ifstream in(test::sharedDir() / "assets/INVENTORY.json");

@@ -28,11 +28,20 @@ struct AnimationChannel {
     AnimationPath path = AnimationPath::Translation;
 };
 
+/** A KHR_animation_pointer channel of the file: played (a node's TRS or weights, among the
+ *  channels) or skipped (a pointer this engine does not play). */
+struct PointerChannel {
+    int channel = -1; ///< the file's index in the animation's channels
+    std::string pointer;
+    bool played = false;
+};
+
 struct Animation {
     std::string name;
     std::vector<AnimationSampler> samplers;
     std::vector<AnimationChannel> channels;
-    double duration = 0.0; ///< last key time over all samplers, seconds
+    double duration = 0.0;                ///< last key time over all samplers, seconds
+    std::vector<PointerChannel> pointers; ///< the file's pointer channels, in its order
 };
 
 } // namespace scene
