@@ -2,6 +2,7 @@
 // refines them, placed in world space.
 #include "ReferenceScene.h"
 
+#include "engine/anim/Pose.h"
 #include "engine/deform/CpuDeformer.h"
 #include "engine/deform/Subdivision.h"
 #include "engine/render/CpuShading.h"
@@ -17,6 +18,12 @@ core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, doub
         const scene::Character& character = world.characters[solid];
         const scene::Model& model = *character.model;
         const double extent = glassExtent(restSides(model), character);
+        // Its materials as its pose at `time` shows them (KHR_animation_pointer factors).
+        anim::Pose pose = anim::evaluate(model, character.performance, time);
+        const auto animated =
+            pose.materials.empty()
+                ? nullptr
+                : std::make_shared<const std::vector<scene::Material>>(std::move(pose.materials));
         for (const auto& instance : deform::deformCharacter(character, time)) {
             const scene::Mesh& mesh = model.meshes[std::size_t(instance.mesh)];
             for (std::size_t p = 0; p < instance.primitives.size(); ++p) {
@@ -45,7 +52,10 @@ core::Result<std::vector<Surface>> worldSurfaces(const scene::World& world, doub
                     for (std::size_t v = 0; v < primitive->vertexCount(); ++v)
                         s.uv.emplace_back(primitive->uvs(v));
                 const int material = source.materialFor(character.variant);
-                s.material = material >= 0 ? &model.materials[std::size_t(material)] : nullptr;
+                s.animated = animated;
+                s.material = material < 0 ? nullptr
+                             : animated   ? &(*animated)[std::size_t(material)]
+                                          : &model.materials[std::size_t(material)];
                 if (s.material && !s.uv.empty() && !placed.tangents.empty()) {
                     s.normalImage = render::cpu::textureImage(model, s.material->normalTexture);
                     if (s.normalImage || s.material->hasAnisotropy ||

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -33,7 +34,10 @@ struct Surface {
     int solid = 0;                             // the character: one closed solid (media rule)
     const scene::Model* model = nullptr;       // whose material and textures
     const scene::Material* material = nullptr; // opaque surfaces
-    Optics optics;                             // glass surfaces
+    /** The character's materials with their animated factors played (anim::Pose::materials),
+     *  which `material` points into; null where none plays. */
+    std::shared_ptr<const std::vector<scene::Material>> animated;
+    Optics optics; // glass surfaces
 };
 
 /** Every character's surfaces at scene time `time`, deformed by the CPU reference, refined to

@@ -144,13 +144,13 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
             first = &item;
             c.firstGlassId = c.gpu->glassIds[index];
         }
+        // One material of one model, the same values (a character whose factors animate
+        // shows its own copy).
         oneMaterial = oneMaterial && item.model == first->model &&
-                      item.material == first->material &&
+                      item.material == first->material && item.values == first->values &&
                       item.source->overrides == first->source->overrides;
     }
-    const bool normalMap =
-        first->material >= 0 &&
-        first->model->materials[std::size_t(first->material)].normalTexture.present();
+    const bool normalMap = first->values && first->values->normalTexture.present();
     const bool firstBack = c.settings.backSurface == Settings::BackSurface::First;
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
                 !normalMap && !firstBack && !c.texturedGlass && !c.frame->temporal.enabled;

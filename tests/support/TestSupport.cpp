@@ -202,6 +202,8 @@ GltfBuilder pointerTwoJointModel(const std::string& rotationPointer) {
     channels[1]["target"] = pointer("/nodes/0/weights");
     channels.push_back(
         {{"sampler", 1}, {"target", pointer("/materials/0/pbrMetallicRoughness/metallicFactor")}});
+    channels.push_back({{"sampler", 1},
+                        {"target", pointer("/extensions/KHR_lights_punctual/lights/0/intensity")}});
     b.doc["extensionsUsed"] = {"KHR_animation_pointer"};
     return b;
 }

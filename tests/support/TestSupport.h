@@ -89,8 +89,8 @@ GltfBuilder twoJointModel();
  *  +z. */
 GltfBuilder instancedTwoJointModel();
 /** twoJointModel() with its channels as KHR_animation_pointer pointers (the rotation's
- *  `rotationPointer`, the weights' /nodes/0/weights) and a third on material 0's metallic
- *  factor, which the engine does not play. */
+ *  `rotationPointer`, the weights' /nodes/0/weights), a third on material 0's metallic factor
+ *  and a fourth on a light's intensity, which the engine does not play. */
 GltfBuilder pointerTwoJointModel(const std::string& rotationPointer = "/nodes/2/rotation");
 
 /** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */

@@ -265,6 +265,128 @@ void prepare(const scene::Model& model, const Performance& performance, double t
     }
 }
 
+/** A material factor as four doubles (unused components 0). */
+glm::dvec4 factor(const scene::Material& m, scene::MaterialProperty property) {
+    using P = scene::MaterialProperty;
+    switch (property) {
+    case P::BaseColor:
+        return glm::dvec4(m.baseColorFactor);
+    case P::Metallic:
+        return glm::dvec4(m.metallicFactor, 0.0, 0.0, 0.0);
+    case P::Roughness:
+        return glm::dvec4(m.roughnessFactor, 0.0, 0.0, 0.0);
+    case P::Emissive:
+        return glm::dvec4(glm::dvec3(m.emissiveFactor), 0.0);
+    case P::EmissiveStrength:
+        return glm::dvec4(m.emissiveStrength, 0.0, 0.0, 0.0);
+    case P::Transmission:
+        return glm::dvec4(m.transmissionFactor, 0.0, 0.0, 0.0);
+    case P::Ior:
+        return glm::dvec4(m.ior, 0.0, 0.0, 0.0);
+    case P::Thickness:
+        return glm::dvec4(m.thicknessFactor, 0.0, 0.0, 0.0);
+    case P::AttenuationDistance:
+        return glm::dvec4(m.attenuationDistance, 0.0, 0.0, 0.0);
+    case P::AttenuationColor:
+        return glm::dvec4(glm::dvec3(m.attenuationColor), 0.0);
+    case P::Dispersion:
+        return glm::dvec4(m.dispersion, 0.0, 0.0, 0.0);
+    }
+    return glm::dvec4(0.0);
+}
+
+void setFactor(scene::Material& m, scene::MaterialProperty property, const glm::dvec4& v) {
+    using P = scene::MaterialProperty;
+    const float x = float(v.x);
+    switch (property) {
+    case P::BaseColor:
+        m.baseColorFactor = glm::vec4(v);
+        break;
+    case P::Metallic:
+        m.metallicFactor = x;
+        break;
+    case P::Roughness:
+        m.roughnessFactor = x;
+        break;
+    case P::Emissive:
+        m.emissiveFactor = glm::vec3(v);
+        break;
+    case P::EmissiveStrength:
+        m.emissiveStrength = x;
+        break;
+    case P::Transmission:
+        m.transmissionFactor = x;
+        break;
+    case P::Ior:
+        m.ior = x;
+        break;
+    case P::Thickness:
+        m.thicknessFactor = x;
+        break;
+    case P::AttenuationDistance:
+        m.attenuationDistance = x;
+        break;
+    case P::AttenuationColor:
+        m.attenuationColor = glm::vec3(v);
+        break;
+    case P::Dispersion:
+        m.dispersion = x;
+        break;
+    }
+}
+
+glm::dvec4 lerp4(const glm::dvec4& a, const glm::dvec4& b, double s) {
+    return a + (b - a) * s;
+}
+
+/** A material channel's sample, blended into its material's factor as a node property is. */
+void addMaterial(const scene::Model& model, const scene::AnimationChannel& channel,
+                 const scene::AnimationSampler& sampler, const Contribution& c, Pose& pose) {
+    if (pose.materialBlend.size() != model.materials.size())
+        pose.materialBlend.assign(model.materials.size(), Pose::MaterialBlend{});
+    const auto read = [&](double time) {
+        std::array<double, 4> v{};
+        sample(sampler, time, false, std::span(v.data(), std::size_t(sampler.components)));
+        return glm::dvec4(v[0], v[1], v[2], v[3]);
+    };
+    Pose::MaterialBlend& b = pose.materialBlend[std::size_t(channel.material)];
+    const std::size_t p = std::size_t(channel.property);
+    if (c.layer->additive) {
+        b.added[p] += (read(c.clipTime) - read(0.0)) * c.weight;
+        b.addedWeight[p] += c.weight;
+    } else {
+        accumulate(b.weight[p], b.value[p], read(c.clipTime), c.weight, lerp4);
+    }
+}
+
+/** The model's materials with the played factors: rest filling weights under one, additive
+ *  sums on top; none when no factor plays. */
+void finishMaterials(const scene::Model& model, Pose& pose) {
+    bool played = false;
+    for (const Pose::MaterialBlend& b : pose.materialBlend)
+        for (int p = 0; p < scene::kMaterialProperties; ++p)
+            played =
+                played || b.weight[std::size_t(p)] > 0.0 || b.addedWeight[std::size_t(p)] > 0.0;
+    if (!played) {
+        pose.materials.clear();
+        return;
+    }
+    pose.materials.assign(model.materials.begin(), model.materials.end());
+    for (std::size_t m = 0; m < pose.materialBlend.size(); ++m)
+        for (int i = 0; i < scene::kMaterialProperties; ++i) {
+            const Pose::MaterialBlend& b = pose.materialBlend[m];
+            const std::size_t p = std::size_t(i);
+            if (b.weight[p] <= 0.0 && b.addedWeight[p] <= 0.0)
+                continue;
+            const auto property = scene::MaterialProperty(i);
+            const glm::dvec4 rest = factor(model.materials[m], property);
+            glm::dvec4 v = b.weight[p] <= 0.0  ? rest
+                           : b.weight[p] < 1.0 ? lerp4(b.value[p], rest, 1.0 - b.weight[p])
+                                               : b.value[p];
+            setFactor(pose.materials[m], property, v + b.added[p]);
+        }
+}
+
 /** Samples one contribution's clip and adds it to the blend. */
 void addContribution(const scene::Model& model, const Performance& performance,
                      const Contribution& c, Pose& pose, double& travelWeight) {
@@ -279,11 +401,15 @@ void addContribution(const scene::Model& model, const Performance& performance,
         travelWeight += c.weight;
     }
     for (const scene::AnimationChannel& channel : animation.channels) {
+        const auto& sampler = animation.samplers[std::size_t(channel.sampler)];
+        if (channel.path == scene::AnimationPath::Material) { // no joint to mask
+            addMaterial(model, channel, sampler, c, pose);
+            continue;
+        }
         const std::size_t node = std::size_t(channel.node);
         const double weight = c.weight * (masked ? pose.mask[node] : 1.0);
         if (weight <= 0.0)
             continue;
-        const auto& sampler = animation.samplers[std::size_t(channel.sampler)];
         scene::Trs& local = pose.local[node];
         NodeBlend& blend = pose.blend[node];
         pose.useRestMatrix[node] = 0;
@@ -322,6 +448,8 @@ void addContribution(const scene::Model& model, const Performance& performance,
             accumulate(blend.weight[R], local.rotation, v, weight, blendRotation);
             break;
         }
+        case scene::AnimationPath::Material:
+            break; // above
         case scene::AnimationPath::Weights: {
             const std::size_t n = std::size_t(sampler.components);
             pose.samples.resize(n);
@@ -439,6 +567,11 @@ void evaluate(const scene::Model& model, const Performance& performance, double 
         b.addRotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
         b.addWeights.assign(b.addWeights.size(), 0.0);
     }
+    for (Pose::MaterialBlend& b : pose.materialBlend) {
+        b.weight = {};
+        b.addedWeight = {};
+        b.added = {};
+    }
     thread_local Mix mix;
     const double time = performance.characterTime(sceneTime);
     prepare(model, performance, time, mix);
@@ -453,8 +586,16 @@ void evaluate(const scene::Model& model, const Performance& performance, double 
         pose.travel /= travelWeight;
     if (partial) // one full-weight clip needs no rest fill: its pose is the clip's, bit for bit
         finishBlend(model, pose);
+    finishMaterials(model, pose);
     applyMorphSettings(model, performance, pose);
     updateWorld(model, pose);
+}
+
+const scene::Material* materialOf(const scene::Model& model, const Pose& pose, int material) {
+    if (material < 0)
+        return nullptr;
+    return pose.materials.empty() ? &model.materials[std::size_t(material)]
+                                  : &pose.materials[std::size_t(material)];
 }
 
 Pose evaluate(const scene::Model& model, const Performance& performance, double sceneTime) {

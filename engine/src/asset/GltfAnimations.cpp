@@ -5,6 +5,8 @@
 #include "LoadError.h"
 
 #include <cmath>
+#include <optional>
+#include <regex>
 #include <string>
 
 namespace asset::detail {
@@ -36,6 +38,35 @@ scene::AnimationPath parsePath(const std::string& s, const std::string& what) {
     fail(what + " has unsupported target path \"" + s + "\"");
 }
 
+/** The material factor a pointer names: /materials/N/ and the property's glTF path. */
+std::optional<std::pair<int, scene::MaterialProperty>> materialPointer(const std::string& pointer) {
+    static const std::regex material(R"(^/materials/(0|[1-9][0-9]{0,8})/(.+)$)");
+    static const std::pair<const char*, scene::MaterialProperty> properties[] = {
+        {"pbrMetallicRoughness/baseColorFactor", scene::MaterialProperty::BaseColor},
+        {"pbrMetallicRoughness/metallicFactor", scene::MaterialProperty::Metallic},
+        {"pbrMetallicRoughness/roughnessFactor", scene::MaterialProperty::Roughness},
+        {"emissiveFactor", scene::MaterialProperty::Emissive},
+        {"extensions/KHR_materials_emissive_strength/emissiveStrength",
+         scene::MaterialProperty::EmissiveStrength},
+        {"extensions/KHR_materials_transmission/transmissionFactor",
+         scene::MaterialProperty::Transmission},
+        {"extensions/KHR_materials_ior/ior", scene::MaterialProperty::Ior},
+        {"extensions/KHR_materials_volume/thicknessFactor", scene::MaterialProperty::Thickness},
+        {"extensions/KHR_materials_volume/attenuationDistance",
+         scene::MaterialProperty::AttenuationDistance},
+        {"extensions/KHR_materials_volume/attenuationColor",
+         scene::MaterialProperty::AttenuationColor},
+        {"extensions/KHR_materials_dispersion/dispersion", scene::MaterialProperty::Dispersion},
+    };
+    std::smatch match;
+    if (!std::regex_match(pointer, match, material))
+        return std::nullopt;
+    for (const auto& [path, property] : properties)
+        if (match[2].str() == path)
+            return std::pair{std::stoi(match[1].str()), property};
+    return std::nullopt;
+}
+
 } // namespace
 
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
@@ -59,8 +90,28 @@ scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorRe
             if (ch.target_path == kMalformedPointer)
                 fail(channelWhat + " has KHR_animation_pointer without a pointer string (" +
                      (pointer.empty() ? std::string("none") : pointer) + ")");
-            const bool played = ch.target_path != kSkippedPointer;
+            const auto material = materialPointer(pointer);
+            const bool played = ch.target_path != kSkippedPointer || material;
             anim.pointers.push_back({int(c), pointer, played});
+            if (material) { // a material factor: its own kind of channel
+                if (material->first >= int(model.materials.size()))
+                    fail(channelWhat + " KHR_animation_pointer " + pointer + " names material " +
+                         n(std::size_t(material->first)) + ", file has " +
+                         n(model.materials.size()) + " materials");
+                scene::AnimationChannel channel;
+                channel.sampler = ch.sampler;
+                channel.path = scene::AnimationPath::Material;
+                channel.material = material->first;
+                channel.property = material->second;
+                const int needed = scene::componentCount(channel.property);
+                int& have = components[std::size_t(ch.sampler)];
+                if (have != 0 && have != needed) // a weights sampler of one target is scalar too
+                    fail(channelWhat + " shares sampler " + n(std::size_t(ch.sampler)) +
+                         " with a channel of a different value size");
+                have = needed;
+                anim.channels.push_back(channel);
+                continue;
+            }
             if (!played) {
                 warnings.push_back(channelWhat + (src.name.empty() ? "" : " ('" + src.name + "')") +
                                    ": KHR_animation_pointer \"" + pointer +

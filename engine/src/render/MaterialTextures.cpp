@@ -84,15 +84,14 @@ core::Result<MaterialTextures> MaterialTextures::create(const scene::Model& mode
     return result;
 }
 
-void MaterialTextures::bind(const gl::Program& program, const scene::Model& model,
-                            int material) const {
+void MaterialTextures::bind(const gl::Program& program, const scene::Material* material) const {
     static const scene::Material kDefault = [] {
         scene::Material m;
         m.metallicFactor = 1.0f;
         m.roughnessFactor = 1.0f;
         return m;
     }();
-    const scene::Material& m = material >= 0 ? model.materials[std::size_t(material)] : kDefault;
+    const scene::Material& m = material ? *material : kDefault;
     program.set("uBaseColorFactor", m.baseColorFactor);
     program.set("uMetallicFactor", m.metallicFactor);
     program.set("uRoughnessFactor", m.roughnessFactor);

@@ -430,6 +430,7 @@ bool Renderer::listItems(std::size_t c, const scene::Character& character, Chara
             item.model = character.model.get();
             item.primitive = primitive.source;
             item.material = primitive.source->materialFor(character.variant);
+            item.values = anim::materialOf(*item.model, cg.pose, item.material);
             item.geometry = cg.deformer.get();
             item.instance = std::uint32_t(i);
             item.primitiveIndex = std::uint32_t(p);

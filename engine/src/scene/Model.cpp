@@ -28,6 +28,18 @@ const char* toString(Interpolation interpolation) {
     return "?";
 }
 
+int componentCount(MaterialProperty property) {
+    switch (property) {
+    case MaterialProperty::BaseColor:
+        return 4;
+    case MaterialProperty::Emissive:
+    case MaterialProperty::AttenuationColor:
+        return 3;
+    default:
+        return 1;
+    }
+}
+
 const char* toString(AnimationPath path) {
     switch (path) {
     case AnimationPath::Translation:
@@ -38,6 +50,8 @@ const char* toString(AnimationPath path) {
         return "scale";
     case AnimationPath::Weights:
         return "weights";
+    case AnimationPath::Material:
+        return "material";
     }
     return "?";
 }

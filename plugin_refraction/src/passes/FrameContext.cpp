@@ -107,7 +107,7 @@ void FrameContext::drawGlassMaterials(const gl::Program& program, const gl::Pipe
         program, state,
         [this, &program](const render::DrawItem& item, std::size_t index) {
             program.set("uGlassId", gpu->glassIds[index]);
-            item.materials->bind(program, *item.model, item.material);
+            item.materials->bind(program, item.values);
         },
         from);
 }

@@ -21,8 +21,8 @@ std::uint32_t opaqueTag(const render::DrawItem& item) {
     glm::vec3 base(1.0f);
     float metallic = 1.0f, roughness = 1.0f; // glTF's default material
     bool textured = false;
-    if (item.material >= 0) {
-        const scene::Material& m = item.model->materials[std::size_t(item.material)];
+    if (item.values) {
+        const scene::Material& m = *item.values;
         base = glm::vec3(m.baseColorFactor);
         metallic = m.metallicFactor;
         roughness = m.roughnessFactor;

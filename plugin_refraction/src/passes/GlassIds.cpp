@@ -49,8 +49,7 @@ TracedTextureGpu tracedTexture(FrameContext& c, const render::DrawItem& item,
 /** The optics of glass id `item` (its character's glass extent `extent`, solid `solid`). */
 GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, double extent,
                                int solid) {
-    const scene::Material* m =
-        item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+    const scene::Material* m = item.values;
     const Optics o = opticsFor(c.settings, m, item.source->overrides, extent);
     GlassMaterialGpu g{};
     g.ior = o.ior;
@@ -120,8 +119,7 @@ void assignGlassIds(FrameContext& c) {
         const int solid = solids.emplace(item.key, int(solids.size())).first->second;
         c.gpu->glassOptics.push_back(
             glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
-        const scene::Material* material =
-            item.material >= 0 ? &item.model->materials[std::size_t(item.material)] : nullptr;
+        const scene::Material* material = item.values;
         c.texturedGlass = c.texturedGlass || textured(material);
         c.normalMappedGlass =
             c.normalMappedGlass || (material && material->normalTexture.present());

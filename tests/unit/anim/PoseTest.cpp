@@ -73,14 +73,21 @@ TEST(Pose, PointerChannelsPlayNodesAndSkipWhatTheEngineDoesNotPlay) {
     EXPECT_EQ(a.world, b.world) << "node pointers play as the node's channels";
     EXPECT_EQ(a.weights, b.weights);
     const auto& pointers = model.animations[0].pointers;
-    ASSERT_EQ(pointers.size(), 3u);
-    EXPECT_TRUE(pointers[0].played && pointers[1].played);
-    EXPECT_FALSE(pointers[2].played);
-    EXPECT_EQ(pointers[2].pointer, "/materials/0/pbrMetallicRoughness/metallicFactor");
+    ASSERT_EQ(pointers.size(), 4u);
+    EXPECT_TRUE(pointers[0].played && pointers[1].played && pointers[2].played);
+    EXPECT_FALSE(pointers[3].played);
+    EXPECT_EQ(pointers[3].pointer, "/extensions/KHR_lights_punctual/lights/0/intensity");
+    // The metallic factor plays as the weight does (0 to 1 over the second), on a copy.
+    const anim::Pose half = anim::evaluate(model, scene::Performance::single(0), 0.5);
+    ASSERT_EQ(half.materials.size(), 1u);
+    EXPECT_NEAR(half.materials[0].metallicFactor, 0.5f, 1e-6f);
+    EXPECT_EQ(model.materials[0].metallicFactor, 0.0f);
+    EXPECT_EQ(anim::materialOf(model, half, 0), &half.materials[0]);
+    EXPECT_TRUE(anim::evaluate(plain, scene::Performance::single(0), 0.5).materials.empty());
     std::size_t warned = 0;
     for (const std::string& w : model.warnings) {
-        warned += w == "animation 0 channel 2 ('bend'): KHR_animation_pointer "
-                       "\"/materials/0/pbrMetallicRoughness/metallicFactor\" is not played by "
+        warned += w == "animation 0 channel 3 ('bend'): KHR_animation_pointer "
+                       "\"/extensions/KHR_lights_punctual/lights/0/intensity\" is not played by "
                        "this engine: skipped";
         EXPECT_EQ(w.find("extensionsUsed"), std::string::npos) << w;
     }

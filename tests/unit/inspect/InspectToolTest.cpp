@@ -99,13 +99,15 @@ TEST(InspectTool, ListsEachPointerChannelAsPlayedOrSkipped) {
     for (const char* line : {"channel 0: KHR_animation_pointer /nodes/2/rotation, played",
                              "channel 1: KHR_animation_pointer /nodes/0/weights, played",
                              "channel 2: KHR_animation_pointer "
-                             "/materials/0/pbrMetallicRoughness/metallicFactor, skipped"})
+                             "/materials/0/pbrMetallicRoughness/metallicFactor, played",
+                             "channel 3: KHR_animation_pointer "
+                             "/extensions/KHR_lights_punctual/lights/0/intensity, skipped"})
         EXPECT_NE(out.find(line), std::string::npos) << line << " in\n" << out;
     ASSERT_EQ(test::runCommand("(" + kInspect + " " + path.string() + " --json 2>/dev/null)", &out),
               0);
     const auto pointers = nlohmann::json::parse(out)["animation_list"][0]["pointer_channels"];
-    ASSERT_EQ(pointers.size(), 3u);
-    EXPECT_EQ(pointers[2]["played"], false);
+    ASSERT_EQ(pointers.size(), 4u);
+    EXPECT_EQ(pointers[3]["played"], false);
 }
 
 TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {

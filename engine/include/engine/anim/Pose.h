@@ -37,10 +37,24 @@ struct Pose {
     /** The model-space travel accumulated root motion adds (the layers' weighted loops times
      *  their clip's travel); zero in the other modes. */
     glm::dvec3 travel{0.0};
+    /** The model's materials with the clips' KHR_animation_pointer factors played, where a clip
+     *  the performance plays animates one; else empty (the model's own apply). What every draw,
+     *  pass and the reference read for this character (materialOf()). */
+    std::vector<scene::Material> materials;
     /** The blend's scratch, kept between evaluations so that they allocate nothing. */
     std::vector<NodeBlend> blend;
+    /** Per material and factor: the blended value, its weight and the additive sum. */
+    struct MaterialBlend {
+        std::array<glm::dvec4, scene::kMaterialProperties> value{}, added{};
+        std::array<double, scene::kMaterialProperties> weight{}, addedWeight{};
+    };
+    std::vector<MaterialBlend> materialBlend;
     std::vector<double> mask, samples;
 };
+
+/** Material `material` of `model` as `pose` shows it: its animated copy, else the model's; null
+ *  for -1 (the default material). */
+const scene::Material* materialOf(const scene::Model& model, const Pose& pose, int material);
 
 /** The model's rest pose: local transforms and morph weights from the file (node weights
  *  override mesh defaults), world matrices computed. */

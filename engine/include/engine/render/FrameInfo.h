@@ -138,11 +138,14 @@ struct TemporalFrame {
  *  claim. Its deformed vertices are this frame's (read them after the deform pass: declare a
  *  read of "scene.vertices"). */
 struct DrawItem {
-    std::size_t character = 0;                      ///< index into FrameInfo::world->characters
-    const scene::Character* source = nullptr;       ///< glass mode, overrides, name
-    const scene::Model* model = nullptr;            ///< the character's model
-    const scene::Primitive* primitive = nullptr;    ///< the file's primitive (material, skin)
-    int material = -1;                              ///< index into model->materials, or -1
+    std::size_t character = 0;                   ///< index into FrameInfo::world->characters
+    const scene::Character* source = nullptr;    ///< glass mode, overrides, name
+    const scene::Model* model = nullptr;         ///< the character's model
+    const scene::Primitive* primitive = nullptr; ///< the file's primitive (material, skin)
+    int material = -1;                           ///< index into model->materials, or -1
+    /** The material's factors as the character's pose shows them (KHR_animation_pointer
+     *  channels played: anim::materialOf), or null for -1. What passes read, not the model's. */
+    const scene::Material* values = nullptr;
     const deform::GpuDeformer* geometry = nullptr;  ///< the character's deformer
     std::uint32_t instance = 0, primitiveIndex = 0; ///< into geometry->instances()
     const deform::GpuPrimitive* gpu = nullptr;      ///< deformed vertices, uvs, index count

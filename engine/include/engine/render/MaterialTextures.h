@@ -42,10 +42,11 @@ public:
     };
     static_assert(kSlotCount == int(gl::slot::kMaterial.count));
 
-    /** Sets the material uniforms (factors, unlit, and per slot its texture flag, texture
-     *  coordinate set and KHR_texture_transform matrix) and binds its textures to the units of
-     *  gl::slot::kMaterial. Material -1 is the glTF default material. */
-    void bind(const gl::Program& program, const scene::Model& model, int material) const;
+    /** Sets the uniforms of `material`, one of this model's materials or its animated copy
+     *  (DrawItem::values): factors, unlit, and per slot its texture flag, texture coordinate
+     *  set and KHR_texture_transform matrix; binds its textures to the units of
+     *  gl::slot::kMaterial. Null is the glTF default material. */
+    void bind(const gl::Program& program, const scene::Material* material) const;
 
     /** Texture `index` as the slots that read linear data (normals, metallic-roughness) have
      *  it; null where the model's materials never read it so. */

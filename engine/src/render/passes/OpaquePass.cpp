@@ -10,9 +10,8 @@
 namespace render::passes {
 namespace {
 
-gl::Cull cullFor(const scene::Model& model, int material) {
-    return material >= 0 && model.materials[std::size_t(material)].doubleSided ? gl::Cull::None
-                                                                               : gl::Cull::Back;
+gl::Cull cullFor(const scene::Material* material) {
+    return material && material->doubleSided ? gl::Cull::None : gl::Cull::Back;
 }
 
 } // namespace
@@ -50,19 +49,15 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 if (item.owner)
                     continue;
                 // The program of the layers its material puts on the base.
-                const int layers =
-                    item.material >= 0
-                        ? item.model->materials[std::size_t(item.material)].surfaceLayers()
-                        : 0;
+                const int layers = item.values ? item.values->surfaceLayers() : 0;
                 const gl::Program& p = *gpu.opaque.at(layers);
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));
                 p.set("uPreviousModel", item.previousWorld);
                 p.set("uMotionObject", int(index + 1));
-                gl::apply(
-                    {.cull = cullFor(*item.model, item.material), .clockwise = item.mirrored});
-                item.materials->bind(p, *item.model, item.material);
+                gl::apply({.cull = cullFor(item.values), .clockwise = item.mirrored});
+                item.materials->bind(p, item.values);
                 gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
                 gl::bindStorage(gl::slot::kPreviousVertices,
                                 item.gpu->previous ? *item.gpu->previous : *item.gpu->deformed);
