@@ -436,36 +436,6 @@ TEST_F(Materials, GlassReflectsThroughItsSpecularColourAndFilmOnTheGpuAndInTheRe
 
 } // namespace
 
-namespace {
-
-/** A clip of `model` playing material 0's factors from `from` to `to` over a second: a
- *  KHR_animation_pointer channel each, as the loader makes them. */
-void animateMaterial(
-    scene::Model& model,
-    const std::vector<std::tuple<scene::MaterialProperty, glm::vec4, glm::vec4>>& factors) {
-    scene::Animation clip;
-    clip.name = "factors";
-    clip.duration = 1.0;
-    for (const auto& [property, from, to] : factors) {
-        scene::AnimationSampler sampler;
-        sampler.times = {0.0f, 1.0f};
-        sampler.components = scene::componentCount(property);
-        for (const glm::vec4& v : {from, to})
-            for (int c = 0; c < sampler.components; ++c)
-                sampler.values.push_back(v[c]);
-        scene::AnimationChannel channel;
-        channel.sampler = int(clip.samplers.size());
-        channel.path = scene::AnimationPath::Material;
-        channel.material = 0;
-        channel.property = property;
-        clip.samplers.push_back(std::move(sampler));
-        clip.channels.push_back(channel);
-    }
-    model.animations.push_back(std::move(clip));
-}
-
-} // namespace
-
 TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
     // An opaque sphere's base colour and roughness, and a glass sphere's IOR and transmission,
     // played by a clip to 0.7 s: each frame is the frame of the same sphere with those factors
@@ -481,16 +451,16 @@ TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
     const glm::vec4 grey(0.6f, 0.6f, 0.6f, 1.0f), blue(0.1f, 0.5f, 0.9f, 1.0f);
     const glm::vec4 rough0(0.3f), rough1(0.8f), ior0(1.2f), ior1(1.8f), tr0(1.0f), tr1(0.6f);
     std::vector<Case> cases;
-    cases.push_back(
-        {"an opaque sphere's base colour and roughness",
-         withTestLights(sphereWorld([&](scene::Model& model) {
-             animateMaterial(model, {{P::BaseColor, grey, blue}, {P::Roughness, rough0, rough1}});
-         })),
-         withTestLights(sphereWorld([&](scene::Model& model) {
-             model.materials[0].baseColorFactor = mix(grey, blue);
-             model.materials[0].roughnessFactor = mix(rough0, rough1).x;
-         })),
-         60.0}); // measured 64.2 dB
+    cases.push_back({"an opaque sphere's base colour and roughness",
+                     withTestLights(sphereWorld([&](scene::Model& model) {
+                         test::matrix::animateMaterial(
+                             model, {{P::BaseColor, grey, blue}, {P::Roughness, rough0, rough1}});
+                     })),
+                     withTestLights(sphereWorld([&](scene::Model& model) {
+                         model.materials[0].baseColorFactor = mix(grey, blue);
+                         model.materials[0].roughnessFactor = mix(rough0, rough1).x;
+                     })),
+                     60.0}); // measured 64.2 dB
     const auto glass = [&](bool animated) {
         scene::Material m = test::matrix::glassMaterial();
         if (!animated) {
@@ -500,7 +470,8 @@ TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
         scene::World world = test::matrix::glassSphere(std::move(m));
         scene::Model model = *world.characters[0].model;
         if (animated)
-            animateMaterial(model, {{P::Ior, ior0, ior1}, {P::Transmission, tr0, tr1}});
+            test::matrix::animateMaterial(model,
+                                          {{P::Ior, ior0, ior1}, {P::Transmission, tr0, tr1}});
         world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
         return world;
     };

@@ -145,6 +145,7 @@ std::vector<Row> rows() {
          {17, 26, 26.5, 26, 26.5, 38}, 0.4, {{"dispersion-search", "per-channel"}}, 0, false,
          "five pixels whose centre rays graze the arms and legs, where float and double part "
          "ways"},
+        {"an animated glass material", animatedGlass, {20, 31.5, 43, 43, 43, 62}, 0.7},
         {"an additive layer", [] { return blended(figure("glass_figure.glb"), true); },
          {18, 25.5, 26, 25, 26, 47}, 0.8, {{"dispersion-search", "per-channel"}}},
         {"subdivision", [] { return figure("glass_figure.glb"); }, {14.5, 25.5, 27, 25, 26, 40},

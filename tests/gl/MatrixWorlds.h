@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -138,6 +139,50 @@ inline scene::World robot(bool blackAndMetal) {
     c.part(false, grey, {-0.14, 0.45, 0.0}, {0.1, 0.35, 0.1});
     c.part(false, light, {0.14, 0.45, 0.0}, {0.1, 0.35, 0.1});
     return c.world(scene::GlassMode::All);
+}
+
+/** A clip of `model` playing material 0's factors from `from` to `to` over a second: a
+ *  KHR_animation_pointer channel each, as the loader makes them. */
+inline void animateMaterial(
+    scene::Model& model,
+    const std::vector<std::tuple<scene::MaterialProperty, glm::vec4, glm::vec4>>& factors) {
+    scene::Animation clip;
+    clip.name = "factors";
+    clip.duration = 1.0;
+    for (const auto& [property, from, to] : factors) {
+        scene::AnimationSampler sampler;
+        sampler.times = {0.0f, 1.0f};
+        sampler.components = scene::componentCount(property);
+        for (const glm::vec4& v : {from, to})
+            for (int c = 0; c < sampler.components; ++c)
+                sampler.values.push_back(v[c]);
+        scene::AnimationChannel channel;
+        channel.sampler = int(clip.samplers.size());
+        channel.path = scene::AnimationPath::Material;
+        channel.material = 0;
+        channel.property = property;
+        clip.samplers.push_back(std::move(sampler));
+        clip.channels.push_back(channel);
+    }
+    model.animations.push_back(std::move(clip));
+}
+
+/** A glass sphere whose IOR (1.2 to 1.8) and transmission (1 to 0.6) a clip plays over a
+ *  second, the clip playing. */
+inline scene::World animatedGlass() {
+    scene::World world;
+    {
+        Composer c;
+        c.part(true, c.material(glassMaterial()), glm::dvec3(0.0));
+        world = c.world();
+    }
+    scene::Model model = *world.characters[0].model;
+    animateMaterial(model,
+                    {{scene::MaterialProperty::Ior, glm::vec4(1.2f), glm::vec4(1.8f)},
+                     {scene::MaterialProperty::Transmission, glm::vec4(1.0f), glm::vec4(0.6f)}});
+    world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
+    world.characters[0].play(0);
+    return world;
 }
 
 /** A glass sphere whose material is `m` (its own glass). */
