@@ -387,6 +387,31 @@ void finishMaterials(const scene::Model& model, Pose& pose) {
         }
 }
 
+/** A weights channel's sample blended into node `node`'s morph weights (or its additive sum). */
+void addMorphWeights(const scene::AnimationSampler& sampler, const Contribution& c, double weight,
+                     std::size_t node, Pose& pose) {
+    NodeBlend& blend = pose.blend[node];
+    const std::size_t n = std::size_t(sampler.components);
+    pose.samples.resize(n);
+    sample(sampler, c.clipTime, false, pose.samples);
+    std::vector<double>& into = c.layer->additive ? blend.addWeights : pose.weights[node];
+    if (into.size() < n)
+        into.resize(n, 0.0);
+    if (c.layer->additive) {
+        std::vector<double> reference(n);
+        sample(sampler, 0.0, false, reference);
+        for (std::size_t k = 0; k < n; ++k)
+            into[k] += (pose.samples[k] - reference[k]) * weight;
+        blend.added[W] += weight;
+        return;
+    }
+    double& total = blend.weight[W];
+    const double mix = total == 0.0 ? 1.0 : weight / (total + weight);
+    for (std::size_t k = 0; k < n; ++k)
+        into[k] = total == 0.0 ? pose.samples[k] : into[k] + (pose.samples[k] - into[k]) * mix;
+    total += weight;
+}
+
 /** Samples one contribution's clip and adds it to the blend. */
 void addContribution(const scene::Model& model, const Performance& performance,
                      const Contribution& c, Pose& pose, double& travelWeight) {
@@ -450,29 +475,9 @@ void addContribution(const scene::Model& model, const Performance& performance,
         }
         case scene::AnimationPath::Material:
             break; // above
-        case scene::AnimationPath::Weights: {
-            const std::size_t n = std::size_t(sampler.components);
-            pose.samples.resize(n);
-            sample(sampler, c.clipTime, false, pose.samples);
-            std::vector<double>& into = additive ? blend.addWeights : pose.weights[node];
-            if (into.size() < n)
-                into.resize(n, 0.0);
-            if (additive) {
-                std::vector<double> reference(n);
-                sample(sampler, 0.0, false, reference);
-                for (std::size_t k = 0; k < n; ++k)
-                    into[k] += (pose.samples[k] - reference[k]) * weight;
-                blend.added[W] += weight;
-                break;
-            }
-            double& total = blend.weight[W];
-            const double mix = total == 0.0 ? 1.0 : weight / (total + weight);
-            for (std::size_t k = 0; k < n; ++k)
-                into[k] =
-                    total == 0.0 ? pose.samples[k] : into[k] + (pose.samples[k] - into[k]) * mix;
-            total += weight;
+        case scene::AnimationPath::Weights:
+            addMorphWeights(sampler, c, weight, node, pose);
             break;
-        }
         }
     }
 }

@@ -67,6 +67,47 @@ std::optional<std::pair<int, scene::MaterialProperty>> materialPointer(const std
     return std::nullopt;
 }
 
+/** A KHR_animation_pointer channel (prepareForParser rewrote it), listed in anim.pointers: a
+ *  material factor becomes a channel of its own; a pointer the engine does not play is skipped
+ *  with a warning; a channel without a pointer string is refused. False for a node's TRS or
+ *  weights, which the caller converts as any channel. */
+bool convertPointerChannel(const tinygltf::Model& model, const tinygltf::AnimationChannel& ch,
+                           int c, const std::string& channelWhat, std::vector<int>& components,
+                           std::vector<std::string>& warnings, scene::Animation& anim) {
+    const std::string pointer = ch.extras.Get(kPointerExtra).Get<std::string>();
+    if (ch.target_path == kMalformedPointer)
+        fail(channelWhat + " has KHR_animation_pointer without a pointer string (" +
+             (pointer.empty() ? std::string("none") : pointer) + ")");
+    const auto material = materialPointer(pointer);
+    const bool played = ch.target_path != kSkippedPointer || material;
+    anim.pointers.push_back({c, pointer, played});
+    if (!played) {
+        warnings.push_back(channelWhat + (anim.name.empty() ? "" : " ('" + anim.name + "')") +
+                           ": KHR_animation_pointer \"" + pointer +
+                           "\" is not played by this engine: skipped");
+        return true;
+    }
+    if (!material)
+        return false;
+    if (material->first >= int(model.materials.size()))
+        fail(channelWhat + " KHR_animation_pointer " + pointer + " names material " +
+             n(std::size_t(material->first)) + ", file has " + n(model.materials.size()) +
+             " materials");
+    scene::AnimationChannel channel;
+    channel.sampler = ch.sampler;
+    channel.path = scene::AnimationPath::Material;
+    channel.material = material->first;
+    channel.property = material->second;
+    const int needed = scene::componentCount(channel.property);
+    int& have = components[std::size_t(ch.sampler)];
+    if (have != 0 && have != needed) // a weights sampler of one target is scalar too
+        fail(channelWhat + " shares sampler " + n(std::size_t(ch.sampler)) +
+             " with a channel of a different value size");
+    have = needed;
+    anim.channels.push_back(channel);
+    return true;
+}
+
 } // namespace
 
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
@@ -83,42 +124,9 @@ scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorRe
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = src.channels[c];
         const std::string channelWhat = what + " channel " + n(c);
-        // KHR_animation_pointer (prepareForParser rewrote it): a node's TRS or weights plays as
-        // any channel; another pointer is skipped with a warning; none at all is refused.
-        if (ch.extras.Has(kPointerExtra)) {
-            const std::string pointer = ch.extras.Get(kPointerExtra).Get<std::string>();
-            if (ch.target_path == kMalformedPointer)
-                fail(channelWhat + " has KHR_animation_pointer without a pointer string (" +
-                     (pointer.empty() ? std::string("none") : pointer) + ")");
-            const auto material = materialPointer(pointer);
-            const bool played = ch.target_path != kSkippedPointer || material;
-            anim.pointers.push_back({int(c), pointer, played});
-            if (material) { // a material factor: its own kind of channel
-                if (material->first >= int(model.materials.size()))
-                    fail(channelWhat + " KHR_animation_pointer " + pointer + " names material " +
-                         n(std::size_t(material->first)) + ", file has " +
-                         n(model.materials.size()) + " materials");
-                scene::AnimationChannel channel;
-                channel.sampler = ch.sampler;
-                channel.path = scene::AnimationPath::Material;
-                channel.material = material->first;
-                channel.property = material->second;
-                const int needed = scene::componentCount(channel.property);
-                int& have = components[std::size_t(ch.sampler)];
-                if (have != 0 && have != needed) // a weights sampler of one target is scalar too
-                    fail(channelWhat + " shares sampler " + n(std::size_t(ch.sampler)) +
-                         " with a channel of a different value size");
-                have = needed;
-                anim.channels.push_back(channel);
-                continue;
-            }
-            if (!played) {
-                warnings.push_back(channelWhat + (src.name.empty() ? "" : " ('" + src.name + "')") +
-                                   ": KHR_animation_pointer \"" + pointer +
-                                   "\" is not played by this engine: skipped");
-                continue;
-            }
-        }
+        if (ch.extras.Has(kPointerExtra) &&
+            convertPointerChannel(model, ch, int(c), channelWhat, components, warnings, anim))
+            continue;
         scene::AnimationChannel channel;
         channel.sampler = ch.sampler;
         channel.node = ch.target_node;

@@ -434,6 +434,24 @@ void rewritePointerChannels(nlohmann::json& document) {
     }
 }
 
+/** A Draco primitive's indices accessor moved into its extension object, where
+ *  decodeCompressedGeometry takes it back (the parser wants a bufferView for it). */
+void moveDracoIndices(nlohmann::json& document) {
+    if (!document.contains("meshes") || !document["meshes"].is_array())
+        return;
+    for (nlohmann::json& mesh : document["meshes"])
+        if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+            for (nlohmann::json& primitive : mesh["primitives"]) {
+                if (!primitive.is_object() || !primitive.contains("indices") ||
+                    !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
+                    !primitive["extensions"].contains(kDraco) ||
+                    !primitive["extensions"][kDraco].is_object())
+                    continue;
+                primitive["extensions"][kDraco][kDracoIndices] = primitive["indices"];
+                primitive.erase("indices");
+            }
+}
+
 } // namespace
 
 std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::uint8_t> bytes,
@@ -449,19 +467,7 @@ std::optional<std::vector<std::uint8_t>> prepareForParser(std::span<const std::u
     if (!document.is_object())
         return std::nullopt; // the parser reports it
     rewritePointerChannels(document);
-
-    if (document.contains("meshes") && document["meshes"].is_array())
-        for (nlohmann::json& mesh : document["meshes"])
-            if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
-                for (nlohmann::json& primitive : mesh["primitives"]) {
-                    if (!primitive.is_object() || !primitive.contains("indices") ||
-                        !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
-                        !primitive["extensions"].contains(kDraco) ||
-                        !primitive["extensions"][kDraco].is_object())
-                        continue;
-                    primitive["extensions"][kDraco][kDracoIndices] = primitive["indices"];
-                    primitive.erase("indices");
-                }
+    moveDracoIndices(document);
     std::map<std::size_t, std::string> fallbacks; // buffer index: its declared byteLength
     if (document.contains("buffers") && document["buffers"].is_array())
         for (std::size_t b = 0; b < document["buffers"].size(); ++b) {
