@@ -41,8 +41,8 @@ struct DeformedInstance {
 /** Deforms every mesh node of the default scene (Model::meshNodes() order) for `pose`. */
 std::vector<DeformedInstance> deformScene(const scene::Model& model, const anim::Pose& pose);
 
-/** A character of a world at scene time `sceneTime`: its model deformed in the pose of its clip
- *  at Character::clipTime(sceneTime), each instance's meshToWorld including the character's
+/** A character of a world at scene time `sceneTime`: its model deformed in the pose of what it
+ *  plays then (anim::evaluate), each instance's meshToWorld including the character's
  *  transform (so toWorld() gives the character's vertices in the world). */
 std::vector<DeformedInstance> deformCharacter(const scene::Character& character,
                                               double sceneTime);

@@ -78,8 +78,8 @@ public:
     core::Status prepare(const scene::World& world);
 
     /** Renders `world` at scene time `time` seen by `camera` into output() (RGBA8,
-     *  sRGB-encoded, size settings.size): each character posed by its clip at
-     *  Character::clipTime(time) and placed by its transform, every character's skin matrices
+     *  sRGB-encoded, size settings.size): each character posed by what it plays at `time`
+     *  (anim::evaluate) and placed by its transform, every character's skin matrices
      *  and morph weights uploaded at once, deformed, then the frame graph. With
      *  settings.temporal on, the frame is jittered and blended into the history kept across
      *  calls (TemporalHistory). Fails (no crash) on a
