@@ -265,74 +265,49 @@ void prepare(const scene::Model& model, const Performance& performance, double t
     }
 }
 
-/** A material factor as four doubles (unused components 0). */
-glm::dvec4 factor(const scene::Material& m, scene::MaterialProperty property) {
+/** Where material `m` (const or not) keeps `property`: its componentCount() floats. */
+template <class M> auto* factorIn(M& m, scene::MaterialProperty property) {
     using P = scene::MaterialProperty;
     switch (property) {
     case P::BaseColor:
-        return glm::dvec4(m.baseColorFactor);
+        return &m.baseColorFactor.x;
     case P::Metallic:
-        return glm::dvec4(m.metallicFactor, 0.0, 0.0, 0.0);
+        return &m.metallicFactor;
     case P::Roughness:
-        return glm::dvec4(m.roughnessFactor, 0.0, 0.0, 0.0);
+        return &m.roughnessFactor;
     case P::Emissive:
-        return glm::dvec4(glm::dvec3(m.emissiveFactor), 0.0);
+        return &m.emissiveFactor.x;
     case P::EmissiveStrength:
-        return glm::dvec4(m.emissiveStrength, 0.0, 0.0, 0.0);
+        return &m.emissiveStrength;
     case P::Transmission:
-        return glm::dvec4(m.transmissionFactor, 0.0, 0.0, 0.0);
+        return &m.transmissionFactor;
     case P::Ior:
-        return glm::dvec4(m.ior, 0.0, 0.0, 0.0);
+        return &m.ior;
     case P::Thickness:
-        return glm::dvec4(m.thicknessFactor, 0.0, 0.0, 0.0);
+        return &m.thicknessFactor;
     case P::AttenuationDistance:
-        return glm::dvec4(m.attenuationDistance, 0.0, 0.0, 0.0);
+        return &m.attenuationDistance;
     case P::AttenuationColor:
-        return glm::dvec4(glm::dvec3(m.attenuationColor), 0.0);
+        return &m.attenuationColor.x;
     case P::Dispersion:
-        return glm::dvec4(m.dispersion, 0.0, 0.0, 0.0);
+        return &m.dispersion;
     }
-    return glm::dvec4(0.0);
+    return &m.metallicFactor;
+}
+
+/** A material factor as four doubles (unused components 0). */
+glm::dvec4 factor(const scene::Material& m, scene::MaterialProperty property) {
+    const float* f = factorIn(m, property);
+    glm::dvec4 v(0.0);
+    for (int c = 0; c < scene::componentCount(property); ++c)
+        v[c] = f[c];
+    return v;
 }
 
 void setFactor(scene::Material& m, scene::MaterialProperty property, const glm::dvec4& v) {
-    using P = scene::MaterialProperty;
-    const float x = float(v.x);
-    switch (property) {
-    case P::BaseColor:
-        m.baseColorFactor = glm::vec4(v);
-        break;
-    case P::Metallic:
-        m.metallicFactor = x;
-        break;
-    case P::Roughness:
-        m.roughnessFactor = x;
-        break;
-    case P::Emissive:
-        m.emissiveFactor = glm::vec3(v);
-        break;
-    case P::EmissiveStrength:
-        m.emissiveStrength = x;
-        break;
-    case P::Transmission:
-        m.transmissionFactor = x;
-        break;
-    case P::Ior:
-        m.ior = x;
-        break;
-    case P::Thickness:
-        m.thicknessFactor = x;
-        break;
-    case P::AttenuationDistance:
-        m.attenuationDistance = x;
-        break;
-    case P::AttenuationColor:
-        m.attenuationColor = glm::vec3(v);
-        break;
-    case P::Dispersion:
-        m.dispersion = x;
-        break;
-    }
+    float* f = factorIn(m, property);
+    for (int c = 0; c < scene::componentCount(property); ++c)
+        f[c] = float(v[c]);
 }
 
 glm::dvec4 lerp4(const glm::dvec4& a, const glm::dvec4& b, double s) {
@@ -398,10 +373,10 @@ void addMorphWeights(const scene::AnimationSampler& sampler, const Contribution&
     if (into.size() < n)
         into.resize(n, 0.0);
     if (c.layer->additive) {
-        std::vector<double> reference(n);
-        sample(sampler, 0.0, false, reference);
+        pose.firstFrame.resize(n);
+        sample(sampler, 0.0, false, pose.firstFrame);
         for (std::size_t k = 0; k < n; ++k)
-            into[k] += (pose.samples[k] - reference[k]) * weight;
+            into[k] += (pose.samples[k] - pose.firstFrame[k]) * weight;
         blend.added[W] += weight;
         return;
     }
@@ -542,13 +517,17 @@ void applyMorphSettings(const scene::Model& model, const Performance& performanc
 int motionNode(const scene::Model& model, int clip) {
     if (clip < 0 || clip >= int(model.animations.size()))
         return -1;
-    std::vector<std::uint8_t> joint(model.nodes.size(), model.skins.empty() ? 1 : 0);
-    for (const scene::Skin& skin : model.skins)
-        for (int j : skin.joints)
-            joint[std::size_t(j)] = 1;
+    const auto isJoint = [&](int node) { // every node when the model has no skin
+        if (model.skins.empty())
+            return true;
+        for (const scene::Skin& skin : model.skins)
+            if (std::find(skin.joints.begin(), skin.joints.end(), node) != skin.joints.end())
+                return true;
+        return false;
+    };
     int best = -1, bestDepth = 0;
     for (const scene::AnimationChannel& channel : model.animations[std::size_t(clip)].channels) {
-        if (channel.path != scene::AnimationPath::Translation || !joint[std::size_t(channel.node)])
+        if (channel.path != scene::AnimationPath::Translation || !isJoint(channel.node))
             continue;
         const int d = depth(model, channel.node);
         if (best < 0 || d < bestDepth) {

@@ -39,17 +39,24 @@ Bounds transformed(const Bounds& bounds, const glm::dmat4& transform) {
 
 Bounds performanceBounds(const scene::Model& model, const scene::Performance& performance,
                          std::map<int, Bounds>& perClip, int samples) {
-    std::vector<int> clips = performance.clips(model);
-    if (clips.empty())
-        clips.push_back(-1);
     Bounds bounds;
-    for (int clip : clips) {
+    const auto add = [&](int clip) { // a clip played twice adds the same box again
+        if (clip >= int(model.animations.size()))
+            return;
         auto [it, added] = perClip.try_emplace(clip);
         if (added)
             it->second = animatedBounds(model, clip, samples);
         bounds.add(it->second.min);
         bounds.add(it->second.max);
-    }
+    };
+    for (const scene::Layer& layer : performance.layers)
+        if (layer.clip >= 0)
+            add(layer.clip);
+    for (const scene::Transition& transition : performance.transitions)
+        if (transition.to >= 0)
+            add(transition.to);
+    if (bounds.empty()) // no clip: the rest pose
+        add(-1);
     return bounds;
 }
 

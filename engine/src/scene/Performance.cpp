@@ -99,20 +99,6 @@ double Performance::lastChange() const {
     return last;
 }
 
-std::vector<int> Performance::clips(const scene::Model& model) const {
-    std::vector<int> used;
-    const auto use = [&](int clip) {
-        if (clip >= 0 && clip < int(model.animations.size()) &&
-            std::find(used.begin(), used.end(), clip) == used.end())
-            used.push_back(clip);
-    };
-    for (const Layer& layer : layers)
-        use(layer.clip);
-    for (const Transition& transition : transitions)
-        use(transition.to);
-    return used;
-}
-
 const char* toString(Loop loop) {
     switch (loop) {
     case Loop::Repeat:

@@ -49,7 +49,7 @@ struct Pose {
         std::array<double, scene::kMaterialProperties> weight{}, addedWeight{};
     };
     std::vector<MaterialBlend> materialBlend;
-    std::vector<double> mask, samples;
+    std::vector<double> mask, samples, firstFrame;
 };
 
 /** Material `material` of `model` as `pose` shows it: its animated copy, else the model's; null

@@ -109,8 +109,6 @@ struct Performance {
     bool repeats() const;
     /** The character time the last transition ends at; 0 without transitions. */
     double lastChange() const;
-    /** Every clip of `model` the performance plays, each once, in order of first use. */
-    std::vector<int> clips(const scene::Model& model) const;
     bool operator==(const Performance&) const = default;
 };
 
