@@ -436,31 +436,46 @@ TEST_F(Materials, GlassReflectsThroughItsSpecularColourAndFilmOnTheGpuAndInTheRe
 
 } // namespace
 
-TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
-    // An opaque sphere's base colour and roughness, and a glass sphere's IOR and transmission,
-    // played by a clip to 0.7 s: each frame is the frame of the same sphere with those factors
-    // set (within 1/255), agrees with the reference at 0.7 s, and differs from the frame at 0.
-    using P = scene::MaterialProperty;
-    const double t = 0.7;
+namespace {
+
+/** A world whose clip plays KHR_animation_pointer properties, beside the same world with their
+ *  values at the time scored set; the floor its frame meets against the reference. */
+struct AnimatedCase {
+    const char* name;
+    scene::World animated, fixed;
+    double floor;
+};
+
+/** `make(animated)`'s world, its model's clip played where animated. */
+scene::World played(const std::function<scene::World(bool)>& make, bool animated) {
+    scene::World world = make(animated);
+    if (animated)
+        world.characters[0].play(0);
+    return world;
+}
+
+/** The worlds of Materials.AnimatedPointersPlayOnTheGpuAndInTheReference at time `t`: an opaque
+ *  sphere's factors, a glass's, a glass's texture transform and a light of the model. */
+std::vector<AnimatedCase> animatedCases(double t) {
+    using P = scene::PointerProperty;
+    using test::matrix::animatePointers;
     const auto mix = [t](glm::vec4 a, glm::vec4 b) { return a + (b - a) * float(t); };
-    struct Case {
-        const char* name;
-        scene::World animated, fixed;
-        double floor;
-    };
     const glm::vec4 grey(0.6f, 0.6f, 0.6f, 1.0f), blue(0.1f, 0.5f, 0.9f, 1.0f);
     const glm::vec4 rough0(0.3f), rough1(0.8f), ior0(1.2f), ior1(1.8f), tr0(1.0f), tr1(0.6f);
-    std::vector<Case> cases;
-    cases.push_back({"an opaque sphere's base colour and roughness",
-                     withTestLights(sphereWorld([&](scene::Model& model) {
-                         test::matrix::animateMaterial(
-                             model, {{P::BaseColor, grey, blue}, {P::Roughness, rough0, rough1}});
-                     })),
-                     withTestLights(sphereWorld([&](scene::Model& model) {
-                         model.materials[0].baseColorFactor = mix(grey, blue);
-                         model.materials[0].roughnessFactor = mix(rough0, rough1).x;
-                     })),
-                     60.0}); // measured 64.2 dB
+    const glm::vec4 offset0(0.1f, 0.0f, 0.0f, 0.0f), offset1(0.35f, 0.2f, 0.0f, 0.0f);
+    const glm::vec4 turn0(0.0f), turn1(0.6f), power0(8.0f), power1(30.0f), cone0(0.45f),
+        cone1(0.8f), white(1.0f), amber(1.0f, 0.55f, 0.2f, 1.0f);
+    const auto opaque = [&](bool animated) {
+        return withTestLights(sphereWorld([&](scene::Model& model) {
+            if (animated) {
+                animatePointers(model,
+                                {{P::BaseColor, grey, blue}, {P::Roughness, rough0, rough1}});
+                return;
+            }
+            model.materials[0].baseColorFactor = mix(grey, blue);
+            model.materials[0].roughnessFactor = mix(rough0, rough1).x;
+        }));
+    };
     const auto glass = [&](bool animated) {
         scene::Material m = test::matrix::glassMaterial();
         if (!animated) {
@@ -470,25 +485,69 @@ TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
         scene::World world = test::matrix::glassSphere(std::move(m));
         scene::Model model = *world.characters[0].model;
         if (animated)
-            test::matrix::animateMaterial(model,
-                                          {{P::Ior, ior0, ior1}, {P::Transmission, tr0, tr1}});
+            animatePointers(model, {{P::Ior, ior0, ior1}, {P::Transmission, tr0, tr1}});
         world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
         return world;
     };
-    cases.push_back({"a glass sphere's IOR and transmission", glass(true), glass(false), 43.0});
-    // measured 44.9 dB
-    for (Case& c : cases) {
+    const auto textured = [&](bool animated) { // the base colour's transform slides and turns
+        scene::World world = test::matrix::texturedGlass();
+        scene::Model model = *world.characters[0].model;
+        scene::TextureRef& base = model.materials[0].baseColorTexture;
+        if (animated)
+            animatePointers(model, {{P::TextureOffset, offset0, offset1, 0, 0},
+                                    {P::TextureRotation, turn0, turn1, 0, 0}});
+        else
+            base.setUv({glm::vec2(mix(offset0, offset1)), mix(turn0, turn1).x, base.uv.scale});
+        world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
+        return world;
+    };
+    const auto lamp = [&](bool animated) { // a spot of the model's brightens, warms and widens
+        test::matrix::Composer c;
+        c.part(true, c.material(test::matrix::opaqueMaterial(glm::vec3(0.7f), 0.0f, 0.4f)),
+               glm::dvec3(0.0));
+        scene::Light spot;
+        spot.type = scene::Light::Type::Spot;
+        spot.innerConeAngle = 0.25f;
+        spot.intensity = animated ? power0.x : mix(power0, power1).x;
+        spot.color = animated ? glm::vec3(white) : glm::vec3(mix(white, amber));
+        spot.outerConeAngle = animated ? cone0.x : mix(cone0, cone1).x;
+        c.light(spot, glm::dvec3(0.6, 0.8, 2.5));
+        if (animated)
+            animatePointers(c.model, {{P::LightIntensity, power0, power1},
+                                      {P::LightColor, white, amber},
+                                      {P::LightOuterCone, cone0, cone1}});
+        return c.world();
+    };
+    std::vector<AnimatedCase> cases;
+    const auto add = [&](const char* name, const std::function<scene::World(bool)>& make,
+                         double floor) {
+        cases.push_back({name, played(make, true), played(make, false), floor});
+    };
+    add("an opaque sphere's base colour and roughness", opaque, 60.0); // measured 64.2 dB
+    add("a glass sphere's IOR and transmission", glass, 43.0);         // measured 44.9 dB
+    add("a glass sphere's texture transform", textured, 33.0);         // measured 35.2 dB
+    add("a spot light of the model", lamp, 60.0);                      // measured 64.0 dB
+    return cases;
+}
+
+} // namespace
+
+TEST_F(Materials, AnimatedPointersPlayOnTheGpuAndInTheReference) {
+    // Each case played by its clip to 0.7 s: the frame is the frame of the same world with the
+    // values set (within 1/255), agrees with the reference at 0.7 s, and differs from the frame
+    // at 0.
+    const double t = 0.7;
+    for (AnimatedCase& c : animatedCases(t)) {
         SCOPED_TRACE(c.name);
-        c.animated.characters[0].play(0);
         WorldRig rig(c.animated, context(), kSize), fixed(c.fixed, context(), kSize);
         fixed.setCamera(rig.camera());
         const capture::Image played = rig.render(t), set = fixed.render(t);
         int most = 0;
         for (std::size_t i = 0; i < played.rgba.size(); ++i)
             most = std::max(most, std::abs(int(played.rgba[i]) - int(set.rgba[i])));
-        EXPECT_LE(most, 1) << "the played factors against the same factors set";
+        EXPECT_LE(most, 1) << "the played values against the same values set";
         const auto reference = rig.reference(t, WorldRig::Evaluation::Deterministic);
-        // The opaque sphere over the whole frame; the glass over its mask.
+        // An opaque sphere over the whole frame; the glass over its mask.
         const bool masked =
             std::find(reference.mask.begin(), reference.mask.end(), true) != reference.mask.end();
         const double agreed =
@@ -498,6 +557,6 @@ TEST_F(Materials, AnimatedFactorsPlayOnTheGpuAndInTheReference) {
                     "by %.2f dB\n",
                     c.name, t, agreed, capture::score(start, played).psnr);
         EXPECT_GE(agreed, c.floor);
-        EXPECT_LT(capture::score(start, played).psnr, 40.0) << "the factors changed the frame";
+        EXPECT_LT(capture::score(start, played).psnr, 40.0) << "the values changed the frame";
     }
 }

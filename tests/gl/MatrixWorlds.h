@@ -14,7 +14,6 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -73,6 +72,23 @@ public:
             model.scenes.emplace_back();
         model.scenes[0].push_back(int(model.nodes.size()) - 1);
         return int(model.nodes.size()) - 1;
+    }
+    /** Adds a KHR_lights_punctual light on a node of its own at `translation`, shining down
+     *  the node's -z; returns the light. */
+    int light(scene::Light light, glm::dvec3 translation,
+              glm::dquat rotation = glm::dquat(1.0, 0.0, 0.0, 0.0)) {
+        model.lights.push_back(std::move(light));
+        scene::Node node;
+        node.name = "light " + std::to_string(model.lights.size() - 1);
+        node.light = int(model.lights.size()) - 1;
+        node.rest.translation = translation;
+        node.rest.rotation = rotation;
+        node.restMatrix = node.rest.matrix();
+        model.nodes.push_back(std::move(node));
+        if (model.scenes.empty())
+            model.scenes.emplace_back();
+        model.scenes[0].push_back(int(model.nodes.size()) - 1);
+        return node.light;
     }
     /** A square texture of `size` texels from `texel(x, y)` (RGBA8), sampled linearly. */
     int texture(int size, const std::function<glm::u8vec4(int, int)>& texel) {
@@ -141,26 +157,33 @@ inline scene::World robot(bool blackAndMetal) {
     return c.world(scene::GlassMode::All);
 }
 
-/** A clip of `model` playing material 0's factors from `from` to `to` over a second: a
- *  KHR_animation_pointer channel each, as the loader makes them. */
-inline void animateMaterial(
-    scene::Model& model,
-    const std::vector<std::tuple<scene::MaterialProperty, glm::vec4, glm::vec4>>& factors) {
+/** One property a test clip plays, from `from` to `to` over a second: of material, light or
+ *  camera `object`, in texture slot `slot` for a texture transform. */
+struct PointerKeys {
+    scene::PointerProperty property;
+    glm::vec4 from, to;
+    int object = 0, slot = -1;
+};
+
+/** A clip of `model` playing `keys`: a KHR_animation_pointer channel each, as the loader makes
+ *  them. */
+inline void animatePointers(scene::Model& model, const std::vector<PointerKeys>& keys) {
     scene::Animation clip;
-    clip.name = "factors";
+    clip.name = "pointers";
     clip.duration = 1.0;
-    for (const auto& [property, from, to] : factors) {
+    for (const PointerKeys& k : keys) {
         scene::AnimationSampler sampler;
         sampler.times = {0.0f, 1.0f};
-        sampler.components = scene::componentCount(property);
-        for (const glm::vec4& v : {from, to})
+        sampler.components = scene::componentCount(k.property);
+        for (const glm::vec4& v : {k.from, k.to})
             for (int c = 0; c < sampler.components; ++c)
                 sampler.values.push_back(v[c]);
         scene::AnimationChannel channel;
         channel.sampler = int(clip.samplers.size());
-        channel.path = scene::AnimationPath::Material;
-        channel.material = 0;
-        channel.property = property;
+        channel.path = scene::AnimationPath::Pointer;
+        channel.object = k.object;
+        channel.property = k.property;
+        channel.slot = k.slot;
         clip.samplers.push_back(std::move(sampler));
         clip.channels.push_back(channel);
     }
@@ -177,9 +200,9 @@ inline scene::World animatedGlass() {
         world = c.world();
     }
     scene::Model model = *world.characters[0].model;
-    animateMaterial(model,
-                    {{scene::MaterialProperty::Ior, glm::vec4(1.2f), glm::vec4(1.8f)},
-                     {scene::MaterialProperty::Transmission, glm::vec4(1.0f), glm::vec4(0.6f)}});
+    animatePointers(model,
+                    {{scene::PointerProperty::Ior, glm::vec4(1.2f), glm::vec4(1.8f)},
+                     {scene::PointerProperty::Transmission, glm::vec4(1.0f), glm::vec4(0.6f)}});
     world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
     world.characters[0].play(0);
     return world;
@@ -204,7 +227,7 @@ inline scene::World texturedGlass() {
         return ((x / 8 + y / 8) % 2) ? glm::u8vec4(255, 200, 120, 255)
                                      : glm::u8vec4(120, 190, 255, 255);
     });
-    m.baseColorTexture.transform = glm::mat3(2.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.1f, 0.0f, 1.0f);
+    m.baseColorTexture.setUv({glm::vec2(0.1f, 0.0f), 0.0f, glm::vec2(2.0f, 1.0f)});
     m.transmissionTexture.texture = c.texture(
         64, [](int x, int) { return glm::u8vec4((x / 6) % 4 == 0 ? 60 : 255, 0, 0, 255); });
     m.metallicRoughnessTexture.texture = c.texture(64, [](int, int y) {

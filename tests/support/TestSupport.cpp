@@ -195,16 +195,55 @@ GltfBuilder pointerTwoJointModel(const std::string& rotationPointer) {
         return nlohmann::json{{"path", "pointer"},
                               {"extensions", {{"KHR_animation_pointer", {{"pointer", to}}}}}};
     };
-    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}}};
+    const std::vector<std::uint8_t> png = makePng(2, 2, {200, 120, 40, 255});
+    b.doc["images"] = {
+        {{"bufferView", b.addView(png.data(), png.size())}, {"mimeType", "image/png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    nlohmann::json baseColor = {{"index", 0}};
+    baseColor["extensions"]["KHR_texture_transform"]["offset"] = {0.0, 0.0};
+    b.doc["materials"] = nlohmann::json::array();
+    b.doc["materials"][0]["pbrMetallicRoughness"] = {{"metallicFactor", 0.0},
+                                                     {"baseColorTexture", baseColor}};
     b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["extensions"] = {{"KHR_lights_punctual",
+                            {{"lights",
+                              {{{"type", "spot"},
+                                {"intensity", 4.0},
+                                {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}}}}}}};
+    b.doc["cameras"] = {
+        {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    b.doc["nodes"].push_back({{"name", "lamp"},
+                              {"translation", {0.0, 2.0, 0.0}},
+                              {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc["nodes"].push_back({{"name", "eye"}, {"translation", {0.0, 0.5, 4.0}}, {"camera", 0}});
+    b.doc["scenes"][0]["nodes"] = {0, 1, 3, 4};
+    // Samplers over the clip's second: a colour, an offset (0, 0) -> (0.5, 0.25) and an angle.
+    auto& samplers = b.doc["animations"][0]["samplers"];
+    const int times = samplers[1]["input"];
+    samplers.push_back(
+        {{"input", times},
+         {"output", b.addAccessor(std::vector<float>{1, 1, 1, 0, 1, 0.5f}, 5126, "VEC3")}});
+    samplers.push_back(
+        {{"input", times},
+         {"output", b.addAccessor(std::vector<float>{0, 0, 0.5f, 0.25f}, 5126, "VEC2")}});
+    samplers.push_back({{"input", times},
+                        {"output", b.addAccessor(std::vector<float>{0.6f, 1.0f}, 5126, "SCALAR")}});
     auto& channels = b.doc["animations"][0]["channels"];
     channels[0]["target"] = pointer(rotationPointer);
     channels[1]["target"] = pointer("/nodes/0/weights");
-    channels.push_back(
-        {{"sampler", 1}, {"target", pointer("/materials/0/pbrMetallicRoughness/metallicFactor")}});
-    channels.push_back({{"sampler", 1},
-                        {"target", pointer("/extensions/KHR_lights_punctual/lights/0/intensity")}});
-    b.doc["extensionsUsed"] = {"KHR_animation_pointer"};
+    const auto add = [&](int sampler, const std::string& to) {
+        channels.push_back({{"sampler", sampler}, {"target", pointer(to)}});
+    };
+    add(1, "/materials/0/pbrMetallicRoughness/metallicFactor");
+    add(1, "/materials/0/alphaCutoff");
+    add(1, "/extensions/KHR_lights_punctual/lights/0/intensity");
+    add(2, "/extensions/KHR_lights_punctual/lights/0/color");
+    add(4, "/extensions/KHR_lights_punctual/lights/0/spot/outerConeAngle");
+    add(3, "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/"
+           "KHR_texture_transform/offset");
+    add(4, "/cameras/0/perspective/yfov");
+    b.doc["extensionsUsed"] = {"KHR_animation_pointer", "KHR_lights_punctual",
+                               "KHR_texture_transform"};
     return b;
 }
 

@@ -89,8 +89,10 @@ GltfBuilder twoJointModel();
  *  +z. */
 GltfBuilder instancedTwoJointModel();
 /** twoJointModel() with its channels as KHR_animation_pointer pointers (the rotation's
- *  `rotationPointer`, the weights' /nodes/0/weights), a third on material 0's metallic factor
- *  and a fourth on a light's intensity, which the engine does not play. */
+ *  `rotationPointer`, the weights' /nodes/0/weights), and more over the clip's second: material
+ *  0's metallic factor (0 -> 1), its alpha cutoff (which the engine does not play), a spot
+ *  light's intensity (0 -> 1), colour ((1, 1, 1) -> (0, 1, 0.5)) and outer cone (0.6 -> 1), the
+ *  base colour texture's offset ((0, 0) -> (0.5, 0.25)) and a camera's yfov (0.6 -> 1). */
 GltfBuilder pointerTwoJointModel(const std::string& rotationPointer = "/nodes/2/rotation");
 
 /** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */

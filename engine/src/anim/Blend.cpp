@@ -3,6 +3,8 @@
 // per layer, morph settings last.
 #include "engine/anim/Pose.h"
 
+#include "Pointers.h"
+
 #include "engine/anim/Sampler.h"
 #include "engine/core/Check.h"
 
@@ -265,103 +267,6 @@ void prepare(const scene::Model& model, const Performance& performance, double t
     }
 }
 
-/** Where material `m` (const or not) keeps `property`: its componentCount() floats. */
-template <class M> auto* factorIn(M& m, scene::MaterialProperty property) {
-    using P = scene::MaterialProperty;
-    switch (property) {
-    case P::BaseColor:
-        return &m.baseColorFactor.x;
-    case P::Metallic:
-        return &m.metallicFactor;
-    case P::Roughness:
-        return &m.roughnessFactor;
-    case P::Emissive:
-        return &m.emissiveFactor.x;
-    case P::EmissiveStrength:
-        return &m.emissiveStrength;
-    case P::Transmission:
-        return &m.transmissionFactor;
-    case P::Ior:
-        return &m.ior;
-    case P::Thickness:
-        return &m.thicknessFactor;
-    case P::AttenuationDistance:
-        return &m.attenuationDistance;
-    case P::AttenuationColor:
-        return &m.attenuationColor.x;
-    case P::Dispersion:
-        return &m.dispersion;
-    }
-    return &m.metallicFactor;
-}
-
-/** A material factor as four doubles (unused components 0). */
-glm::dvec4 factor(const scene::Material& m, scene::MaterialProperty property) {
-    const float* f = factorIn(m, property);
-    glm::dvec4 v(0.0);
-    for (int c = 0; c < scene::componentCount(property); ++c)
-        v[c] = f[c];
-    return v;
-}
-
-void setFactor(scene::Material& m, scene::MaterialProperty property, const glm::dvec4& v) {
-    float* f = factorIn(m, property);
-    for (int c = 0; c < scene::componentCount(property); ++c)
-        f[c] = float(v[c]);
-}
-
-glm::dvec4 lerp4(const glm::dvec4& a, const glm::dvec4& b, double s) {
-    return a + (b - a) * s;
-}
-
-/** A material channel's sample, blended into its material's factor as a node property is. */
-void addMaterial(const scene::Model& model, const scene::AnimationChannel& channel,
-                 const scene::AnimationSampler& sampler, const Contribution& c, Pose& pose) {
-    if (pose.materialBlend.size() != model.materials.size())
-        pose.materialBlend.assign(model.materials.size(), Pose::MaterialBlend{});
-    const auto read = [&](double time) {
-        std::array<double, 4> v{};
-        sample(sampler, time, false, std::span(v.data(), std::size_t(sampler.components)));
-        return glm::dvec4(v[0], v[1], v[2], v[3]);
-    };
-    Pose::MaterialBlend& b = pose.materialBlend[std::size_t(channel.material)];
-    const std::size_t p = std::size_t(channel.property);
-    if (c.layer->additive) {
-        b.added[p] += (read(c.clipTime) - read(0.0)) * c.weight;
-        b.addedWeight[p] += c.weight;
-    } else {
-        accumulate(b.weight[p], b.value[p], read(c.clipTime), c.weight, lerp4);
-    }
-}
-
-/** The model's materials with the played factors: rest filling weights under one, additive
- *  sums on top; none when no factor plays. */
-void finishMaterials(const scene::Model& model, Pose& pose) {
-    bool played = false;
-    for (const Pose::MaterialBlend& b : pose.materialBlend)
-        for (int p = 0; p < scene::kMaterialProperties; ++p)
-            played =
-                played || b.weight[std::size_t(p)] > 0.0 || b.addedWeight[std::size_t(p)] > 0.0;
-    if (!played) {
-        pose.materials.clear();
-        return;
-    }
-    pose.materials.assign(model.materials.begin(), model.materials.end());
-    for (std::size_t m = 0; m < pose.materialBlend.size(); ++m)
-        for (int i = 0; i < scene::kMaterialProperties; ++i) {
-            const Pose::MaterialBlend& b = pose.materialBlend[m];
-            const std::size_t p = std::size_t(i);
-            if (b.weight[p] <= 0.0 && b.addedWeight[p] <= 0.0)
-                continue;
-            const auto property = scene::MaterialProperty(i);
-            const glm::dvec4 rest = factor(model.materials[m], property);
-            glm::dvec4 v = b.weight[p] <= 0.0  ? rest
-                           : b.weight[p] < 1.0 ? lerp4(b.value[p], rest, 1.0 - b.weight[p])
-                                               : b.value[p];
-            setFactor(pose.materials[m], property, v + b.added[p]);
-        }
-}
-
 /** A weights channel's sample blended into node `node`'s morph weights (or its additive sum). */
 void addMorphWeights(const scene::AnimationSampler& sampler, const Contribution& c, double weight,
                      std::size_t node, Pose& pose) {
@@ -402,8 +307,8 @@ void addContribution(const scene::Model& model, const Performance& performance,
     }
     for (const scene::AnimationChannel& channel : animation.channels) {
         const auto& sampler = animation.samplers[std::size_t(channel.sampler)];
-        if (channel.path == scene::AnimationPath::Material) { // no joint to mask
-            addMaterial(model, channel, sampler, c, pose);
+        if (channel.path == scene::AnimationPath::Pointer) { // no joint to mask
+            detail::addPointer(channel, sampler, c.clipTime, c.weight, additive, pose);
             continue;
         }
         const std::size_t node = std::size_t(channel.node);
@@ -448,7 +353,7 @@ void addContribution(const scene::Model& model, const Performance& performance,
             accumulate(blend.weight[R], local.rotation, v, weight, blendRotation);
             break;
         }
-        case scene::AnimationPath::Material:
+        case scene::AnimationPath::Pointer:
             break; // above
         case scene::AnimationPath::Weights:
             addMorphWeights(sampler, c, weight, node, pose);
@@ -551,11 +456,7 @@ void evaluate(const scene::Model& model, const Performance& performance, double 
         b.addRotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
         b.addWeights.assign(b.addWeights.size(), 0.0);
     }
-    for (Pose::MaterialBlend& b : pose.materialBlend) {
-        b.weight = {};
-        b.addedWeight = {};
-        b.added = {};
-    }
+    detail::resetPointers(pose);
     thread_local Mix mix;
     const double time = performance.characterTime(sceneTime);
     prepare(model, performance, time, mix);
@@ -570,7 +471,7 @@ void evaluate(const scene::Model& model, const Performance& performance, double 
         pose.travel /= travelWeight;
     if (partial) // one full-weight clip needs no rest fill: its pose is the clip's, bit for bit
         finishBlend(model, pose);
-    finishMaterials(model, pose);
+    detail::finishPointers(model, pose);
     applyMorphSettings(model, performance, pose);
     updateWorld(model, pose);
 }
@@ -580,6 +481,15 @@ const scene::Material* materialOf(const scene::Model& model, const Pose& pose, i
         return nullptr;
     return pose.materials.empty() ? &model.materials[std::size_t(material)]
                                   : &pose.materials[std::size_t(material)];
+}
+
+const scene::Light& lightOf(const scene::Model& model, const Pose& pose, int light) {
+    return pose.lights.empty() ? model.lights[std::size_t(light)] : pose.lights[std::size_t(light)];
+}
+
+const scene::Camera& cameraOf(const scene::Model& model, const Pose& pose, int camera) {
+    return pose.cameras.empty() ? model.cameras[std::size_t(camera)]
+                                : pose.cameras[std::size_t(camera)];
 }
 
 Pose evaluate(const scene::Model& model, const Performance& performance, double sceneTime) {

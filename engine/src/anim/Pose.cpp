@@ -58,8 +58,8 @@ void applyClip(const scene::Model& model, int clip, double time, Pose& pose) {
     const scene::Animation& animation = model.animations[std::size_t(clip)];
     std::array<double, 4> value{};
     for (const scene::AnimationChannel& channel : animation.channels) {
-        if (channel.path == scene::AnimationPath::Material)
-            continue; // the performance's evaluate() plays materials
+        if (channel.path == scene::AnimationPath::Pointer)
+            continue; // the performance's evaluate() plays materials, lights and cameras
         const scene::AnimationSampler& sampler = animation.samplers[std::size_t(channel.sampler)];
         const std::size_t node = std::size_t(channel.node);
         scene::Trs& local = pose.local[node];
@@ -81,7 +81,7 @@ void applyClip(const scene::Model& model, int clip, double time, Pose& pose) {
             pose.weights[node].resize(std::size_t(sampler.components));
             sample(sampler, time, false, pose.weights[node]);
             break;
-        case scene::AnimationPath::Material:
+        case scene::AnimationPath::Pointer:
             break;
         }
     }

@@ -7,10 +7,13 @@
 #include <cmath>
 #include <optional>
 #include <regex>
+#include <span>
 #include <string>
 
 namespace asset::detail {
 namespace {
+
+using PropertyName = std::pair<const char*, scene::PointerProperty>;
 
 std::string n(std::size_t v) {
     return std::to_string(v);
@@ -38,39 +41,96 @@ scene::AnimationPath parsePath(const std::string& s, const std::string& what) {
     fail(what + " has unsupported target path \"" + s + "\"");
 }
 
-/** The material factor a pointer names: /materials/N/ and the property's glTF path. */
-std::optional<std::pair<int, scene::MaterialProperty>> materialPointer(const std::string& pointer) {
-    static const std::regex material(R"(^/materials/(0|[1-9][0-9]{0,8})/(.+)$)");
-    static const std::pair<const char*, scene::MaterialProperty> properties[] = {
-        {"pbrMetallicRoughness/baseColorFactor", scene::MaterialProperty::BaseColor},
-        {"pbrMetallicRoughness/metallicFactor", scene::MaterialProperty::Metallic},
-        {"pbrMetallicRoughness/roughnessFactor", scene::MaterialProperty::Roughness},
-        {"emissiveFactor", scene::MaterialProperty::Emissive},
-        {"extensions/KHR_materials_emissive_strength/emissiveStrength",
-         scene::MaterialProperty::EmissiveStrength},
-        {"extensions/KHR_materials_transmission/transmissionFactor",
-         scene::MaterialProperty::Transmission},
-        {"extensions/KHR_materials_ior/ior", scene::MaterialProperty::Ior},
-        {"extensions/KHR_materials_volume/thicknessFactor", scene::MaterialProperty::Thickness},
-        {"extensions/KHR_materials_volume/attenuationDistance",
-         scene::MaterialProperty::AttenuationDistance},
-        {"extensions/KHR_materials_volume/attenuationColor",
-         scene::MaterialProperty::AttenuationColor},
-        {"extensions/KHR_materials_dispersion/dispersion", scene::MaterialProperty::Dispersion},
-    };
-    std::smatch match;
-    if (!std::regex_match(pointer, match, material))
-        return std::nullopt;
-    for (const auto& [path, property] : properties)
-        if (match[2].str() == path)
-            return std::pair{std::stoi(match[1].str()), property};
+/** What a pointer other than a node's names: the object's index in its list, the property
+ *  and the texture slot of a texture transform. */
+struct PointerTarget {
+    int object = -1;
+    scene::PointerProperty property = scene::PointerProperty::BaseColor;
+    int slot = -1;
+};
+
+std::optional<scene::PointerProperty> propertyNamed(std::span<const PropertyName> names,
+                                                    const std::string& path) {
+    for (const auto& [name, property] : names)
+        if (path == name)
+            return property;
     return std::nullopt;
 }
 
+/** A material factor, or a texture slot's transform: `path` follows /materials/N/. */
+std::optional<PointerTarget> materialTarget(int material, const std::string& path) {
+    using P = scene::PointerProperty;
+    static const PropertyName factors[] = {
+        {"pbrMetallicRoughness/baseColorFactor", P::BaseColor},
+        {"pbrMetallicRoughness/metallicFactor", P::Metallic},
+        {"pbrMetallicRoughness/roughnessFactor", P::Roughness},
+        {"emissiveFactor", P::Emissive},
+        {"extensions/KHR_materials_emissive_strength/emissiveStrength", P::EmissiveStrength},
+        {"extensions/KHR_materials_transmission/transmissionFactor", P::Transmission},
+        {"extensions/KHR_materials_ior/ior", P::Ior},
+        {"extensions/KHR_materials_volume/thicknessFactor", P::Thickness},
+        {"extensions/KHR_materials_volume/attenuationDistance", P::AttenuationDistance},
+        {"extensions/KHR_materials_volume/attenuationColor", P::AttenuationColor},
+        {"extensions/KHR_materials_dispersion/dispersion", P::Dispersion},
+    };
+    static const PropertyName transform[] = {
+        {"offset", P::TextureOffset}, {"rotation", P::TextureRotation}, {"scale", P::TextureScale}};
+    if (const auto factor = propertyNamed(factors, path))
+        return PointerTarget{material, *factor, -1};
+    for (std::size_t slot = 0; slot < std::size(scene::kTextureSlots); ++slot) {
+        const std::string prefix =
+            std::string(scene::kTextureSlots[slot].path) + "/extensions/KHR_texture_transform/";
+        if (path.rfind(prefix, 0) == 0)
+            if (const auto part = propertyNamed(transform, path.substr(prefix.size())))
+                return PointerTarget{material, *part, int(slot)};
+    }
+    return std::nullopt;
+}
+
+/** The target of a material, light or camera pointer; none for any other. */
+std::optional<PointerTarget> pointerTarget(const std::string& pointer) {
+    using P = scene::PointerProperty;
+    static const std::regex object(
+        R"(^/(materials|extensions/KHR_lights_punctual/lights|cameras)/(0|[1-9][0-9]{0,8})/(.+)$)");
+    static const PropertyName light[] = {{"color", P::LightColor},
+                                         {"intensity", P::LightIntensity},
+                                         {"range", P::LightRange},
+                                         {"spot/innerConeAngle", P::LightInnerCone},
+                                         {"spot/outerConeAngle", P::LightOuterCone}};
+    static const PropertyName camera[] = {{"perspective/yfov", P::CameraYfov}};
+    std::smatch match;
+    if (!std::regex_match(pointer, match, object))
+        return std::nullopt;
+    const int index = std::stoi(match[2].str());
+    const std::string list = match[1].str(), path = match[3].str();
+    if (list == "materials")
+        return materialTarget(index, path);
+    const auto property =
+        list == "cameras" ? propertyNamed(camera, path) : propertyNamed(light, path);
+    if (!property)
+        return std::nullopt;
+    return PointerTarget{index, *property, -1};
+}
+
+/** How many objects of the kind a pointer target names the file has, and the kind. */
+std::pair<std::size_t, const char*> objectsOf(const tinygltf::Model& model,
+                                              scene::PointerProperty property) {
+    switch (scene::objectOf(property)) {
+    case scene::PointerObject::Material:
+        return {model.materials.size(), "material"};
+    case scene::PointerObject::Light:
+        return {model.lights.size(), "light"};
+    case scene::PointerObject::Camera:
+        return {model.cameras.size(), "camera"};
+    }
+    return {0, ""};
+}
+
 /** A KHR_animation_pointer channel (prepareForParser rewrote it), listed in anim.pointers: a
- *  material factor becomes a channel of its own; a pointer the engine does not play is skipped
- *  with a warning; a channel without a pointer string is refused. False for a node's TRS or
- *  weights, which the caller converts as any channel. */
+ *  material's, light's or camera's property becomes a channel of its own; a pointer the engine
+ *  does not play is skipped with a warning; a channel without a pointer string, or naming an
+ *  object the file lacks, is refused. False for a node's TRS or weights, which the caller
+ *  converts as any channel. */
 bool convertPointerChannel(const tinygltf::Model& model, const tinygltf::AnimationChannel& ch,
                            int c, const std::string& channelWhat, std::vector<int>& components,
                            std::vector<std::string>& warnings, scene::Animation& anim) {
@@ -78,8 +138,8 @@ bool convertPointerChannel(const tinygltf::Model& model, const tinygltf::Animati
     if (ch.target_path == kMalformedPointer)
         fail(channelWhat + " has KHR_animation_pointer without a pointer string (" +
              (pointer.empty() ? std::string("none") : pointer) + ")");
-    const auto material = materialPointer(pointer);
-    const bool played = ch.target_path != kSkippedPointer || material;
+    const auto target = pointerTarget(pointer);
+    const bool played = ch.target_path != kSkippedPointer || target;
     anim.pointers.push_back({c, pointer, played});
     if (!played) {
         warnings.push_back(channelWhat + (anim.name.empty() ? "" : " ('" + anim.name + "')") +
@@ -87,17 +147,19 @@ bool convertPointerChannel(const tinygltf::Model& model, const tinygltf::Animati
                            "\" is not played by this engine: skipped");
         return true;
     }
-    if (!material)
+    if (!target)
         return false;
-    if (material->first >= int(model.materials.size()))
-        fail(channelWhat + " KHR_animation_pointer " + pointer + " names material " +
-             n(std::size_t(material->first)) + ", file has " + n(model.materials.size()) +
-             " materials");
+    const auto [count, kind] = objectsOf(model, target->property);
+    if (std::size_t(target->object) >= count)
+        fail(channelWhat + " KHR_animation_pointer " + pointer + " names " + kind + " " +
+             n(std::size_t(target->object)) + ", file has " + n(count) + " " + kind +
+             (count == 1 ? "" : "s"));
     scene::AnimationChannel channel;
     channel.sampler = ch.sampler;
-    channel.path = scene::AnimationPath::Material;
-    channel.material = material->first;
-    channel.property = material->second;
+    channel.path = scene::AnimationPath::Pointer;
+    channel.object = target->object;
+    channel.property = target->property;
+    channel.slot = target->slot;
     const int needed = scene::componentCount(channel.property);
     int& have = components[std::size_t(ch.sampler)];
     if (have != 0 && have != needed) // a weights sampler of one target is scalar too

@@ -140,7 +140,7 @@ int intNumber(const tinygltf::Value& object, const char* key, int fallback) {
 }
 
 /** KHR_texture_transform in a textureInfo's `extensions`, folded into `ref`: its texCoord
- *  override and the matrix translation * rotation * scale of the extension's text. */
+ *  override, offset, rotation and scale. */
 void readTransform(const tinygltf::ExtensionMap& extensions, scene::TextureRef& ref,
                    const std::string& what) {
     const auto it = extensions.find("KHR_texture_transform");
@@ -155,19 +155,16 @@ void readTransform(const tinygltf::ExtensionMap& extensions, scene::TextureRef& 
             fail(what + " KHR_texture_transform " + key + " is not two numbers");
         return glm::vec2(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
     };
-    const glm::vec2 offset = pair("offset", glm::vec2(0.0f));
-    const glm::vec2 scale = pair("scale", glm::vec2(1.0f));
-    const float rotation = float(number(e, "rotation", 0.0));
-    if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(scale.x) ||
-        !std::isfinite(scale.y) || !std::isfinite(rotation))
+    scene::UvTransform t;
+    t.offset = pair("offset", glm::vec2(0.0f));
+    t.scale = pair("scale", glm::vec2(1.0f));
+    t.rotation = float(number(e, "rotation", 0.0));
+    if (!std::isfinite(t.offset.x) || !std::isfinite(t.offset.y) || !std::isfinite(t.scale.x) ||
+        !std::isfinite(t.scale.y) || !std::isfinite(t.rotation))
         fail(what + " KHR_texture_transform has a non-finite value");
     if (e.IsObject() && e.Has("texCoord"))
         ref.texCoord = intNumber(e, "texCoord", 0);
-    const float c = std::cos(rotation), s = std::sin(rotation);
-    const glm::mat3 translate(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.x, offset.y, 1.0f);
-    const glm::mat3 rotate(c, -s, 0.0f, s, c, 0.0f, 0.0f, 0.0f, 1.0f);
-    const glm::mat3 scaling(scale.x, 0.0f, 0.0f, 0.0f, scale.y, 0.0f, 0.0f, 0.0f, 1.0f);
-    ref.transform = translate * rotate * scaling; // rotation: counter-clockwise in UV space
+    ref.setUv(t);
 }
 
 /** A glTF textureInfo object (index, texCoord, KHR_texture_transform) at `key` of `object`,
@@ -640,7 +637,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
         for (std::size_t i = 0; i < src.skins.size(); ++i)
             model.skins.push_back(convertSkin(src, reader, int(i)));
         for (std::size_t i = 0; i < src.animations.size(); ++i)
-            model.animations.push_back(convertAnimation(src, reader, model.warnings, int(i), model.meshes));
+            model.animations.push_back(
+                convertAnimation(src, reader, model.warnings, int(i), model.meshes));
         for (std::size_t i = 0; i < src.cameras.size(); ++i)
             model.cameras.push_back(convertCamera(src, int(i)));
         for (std::size_t i = 0; i < src.lights.size(); ++i)

@@ -22,7 +22,7 @@ const std::set<std::string>& supportedRequiredExtensions() {
         "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing", "KHR_materials_variants",
         "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_lights_punctual",
-        // node TRS and weights play; other pointers are skipped, each with a warning
+        // nodes, materials, texture transforms, lights and yfov play; others are skipped
         "KHR_animation_pointer",
         // only its fallback images are used; a texture with none loads without it (warning)
         "KHR_texture_basisu"};

@@ -114,7 +114,7 @@ std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& po
         const scene::Node& n = model.nodes[std::size_t(node)];
         if (n.camera < 0)
             continue;
-        const scene::Camera& cam = model.cameras[std::size_t(n.camera)];
+        const scene::Camera& cam = anim::cameraOf(model, pose, n.camera);
         if (cam.type != scene::Camera::Type::Perspective)
             continue;
         Camera c;

@@ -116,7 +116,7 @@ void placeLights(const scene::Model& model, std::span<const int> nodes, const an
         const int light = model.nodes[std::size_t(node)].light;
         const glm::dmat4 world = placement * pose.world[std::size_t(node)];
         const glm::dvec3 axis(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)); // scale does not count
-        out.push_back({model.lights[std::size_t(light)], glm::vec3(world[3]),
+        out.push_back({anim::lightOf(model, pose, light), glm::vec3(world[3]),
                        glm::length(axis) > 0.0 ? glm::vec3(glm::normalize(axis))
                                                : glm::vec3(0.0f, 0.0f, -1.0f)});
     }

@@ -28,13 +28,25 @@ const char* toString(Interpolation interpolation) {
     return "?";
 }
 
-int componentCount(MaterialProperty property) {
+PointerObject objectOf(PointerProperty property) {
+    if (property >= PointerProperty::CameraYfov)
+        return PointerObject::Camera;
+    if (property >= PointerProperty::LightColor)
+        return PointerObject::Light;
+    return PointerObject::Material;
+}
+
+int componentCount(PointerProperty property) {
     switch (property) {
-    case MaterialProperty::BaseColor:
+    case PointerProperty::BaseColor:
         return 4;
-    case MaterialProperty::Emissive:
-    case MaterialProperty::AttenuationColor:
+    case PointerProperty::Emissive:
+    case PointerProperty::AttenuationColor:
+    case PointerProperty::LightColor:
         return 3;
+    case PointerProperty::TextureOffset:
+    case PointerProperty::TextureScale:
+        return 2;
     default:
         return 1;
     }
@@ -50,8 +62,8 @@ const char* toString(AnimationPath path) {
         return "scale";
     case AnimationPath::Weights:
         return "weights";
-    case AnimationPath::Material:
-        return "material";
+    case AnimationPath::Pointer:
+        return "pointer";
     }
     return "?";
 }

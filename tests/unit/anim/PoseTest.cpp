@@ -3,6 +3,8 @@
 
 #include "engine/anim/Pose.h"
 #include "engine/asset/GltfLoader.h"
+#include "engine/render/Camera.h"
+#include "engine/render/Lighting.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -70,13 +72,15 @@ TEST(Pose, PointerChannelsPlayNodesAndSkipWhatTheEngineDoesNotPlay) {
     const scene::Model model = loadTwoJoint(test::pointerTwoJointModel());
     const scene::Model plain = loadTwoJoint();
     const anim::Pose a = anim::evaluate(model, 0, 0.5), b = anim::evaluate(plain, 0, 0.5);
-    EXPECT_EQ(a.world, b.world) << "node pointers play as the node's channels";
-    EXPECT_EQ(a.weights, b.weights);
+    for (std::size_t i = 0; i < b.world.size(); ++i) { // the pointer model adds a lamp, a camera
+        EXPECT_EQ(a.world[i], b.world[i]) << "node pointers play as the node's channels";
+        EXPECT_EQ(a.weights[i], b.weights[i]);
+    }
     const auto& pointers = model.animations[0].pointers;
-    ASSERT_EQ(pointers.size(), 4u);
-    EXPECT_TRUE(pointers[0].played && pointers[1].played && pointers[2].played);
-    EXPECT_FALSE(pointers[3].played);
-    EXPECT_EQ(pointers[3].pointer, "/extensions/KHR_lights_punctual/lights/0/intensity");
+    ASSERT_EQ(pointers.size(), 9u);
+    for (std::size_t i = 0; i < pointers.size(); ++i)
+        EXPECT_EQ(pointers[i].played, i != 3) << pointers[i].pointer;
+    EXPECT_EQ(pointers[3].pointer, "/materials/0/alphaCutoff");
     // The metallic factor plays as the weight does (0 to 1 over the second), on a copy.
     const anim::Pose half = anim::evaluate(model, scene::Performance::single(0), 0.5);
     ASSERT_EQ(half.materials.size(), 1u);
@@ -87,11 +91,39 @@ TEST(Pose, PointerChannelsPlayNodesAndSkipWhatTheEngineDoesNotPlay) {
     std::size_t warned = 0;
     for (const std::string& w : model.warnings) {
         warned += w == "animation 0 channel 3 ('bend'): KHR_animation_pointer "
-                       "\"/extensions/KHR_lights_punctual/lights/0/intensity\" is not played by "
-                       "this engine: skipped";
+                       "\"/materials/0/alphaCutoff\" is not played by this engine: skipped";
         EXPECT_EQ(w.find("extensionsUsed"), std::string::npos) << w;
     }
     EXPECT_EQ(warned, 1u);
+}
+
+TEST(Pose, PointerChannelsPlayTextureTransformsLightsAndCameras) {
+    const scene::Model model = loadTwoJoint(test::pointerTwoJointModel());
+    scene::Performance performance = scene::Performance::single(0);
+    performance.layers[0].weight = 0.5; // the rest fills the other half
+    const anim::Pose pose = anim::evaluate(model, performance, 0.5);
+    const scene::TextureRef& base = pose.materials.at(0).baseColorTexture;
+    EXPECT_NEAR(base.uv.offset.x, 0.125f, 1e-6f);
+    EXPECT_NEAR(base.uv.offset.y, 0.0625f, 1e-6f);
+    EXPECT_EQ(base.transform, base.uv.matrix()) << "the matrix follows the offset";
+    EXPECT_EQ(model.materials[0].baseColorTexture.uv.offset, glm::vec2(0.0f));
+    const scene::Light& light = anim::lightOf(model, pose, 0);
+    EXPECT_EQ(&light, &pose.lights.at(0));
+    EXPECT_NEAR(light.intensity, 0.5 * 0.5 + 0.5 * 4.0, 1e-6);
+    EXPECT_NEAR(light.color.r, 0.75f, 1e-6f);
+    EXPECT_NEAR(light.color.b, 0.875f, 1e-6f);
+    EXPECT_NEAR(light.outerConeAngle, 0.5 * 0.8 + 0.5 * 0.5, 1e-6);
+    EXPECT_NEAR(anim::cameraOf(model, pose, 0).yfov, 0.5 * 0.8 + 0.5 * 0.8, 1e-6);
+    // What reads them: the placed light and the file's camera.
+    std::vector<scene::PlacedLight> placed;
+    render::placeLights(model, render::lightNodes(model), pose, glm::dmat4(1.0), placed);
+    ASSERT_EQ(placed.size(), 1u);
+    EXPECT_EQ(placed[0].light.intensity, light.intensity);
+    const auto camera = render::gltfCamera(model, anim::evaluate(model, 0, 0.0), 1.0f);
+    ASSERT_TRUE(camera.has_value());
+    const anim::Pose full = anim::evaluate(model, scene::Performance::single(0), 0.75);
+    EXPECT_NEAR(render::gltfCamera(model, full, 1.0f)->yfov, 0.9f, 1e-6f);
+    EXPECT_TRUE(anim::evaluate(model, 0, 0.5).lights.empty()) << "one clip's nodes alone";
 }
 
 TEST(Pose, AMalformedPointerChannelIsRefusedNamingIt) {
@@ -110,6 +142,22 @@ TEST(Pose, AMalformedPointerChannelIsRefusedNamingIt) {
                   "animation 0 channel 1 has KHR_animation_pointer without a pointer string"),
               std::string::npos)
         << missing.error().message;
+    for (const auto& [pointer, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"/extensions/KHR_lights_punctual/lights/3/intensity",
+              "names light 3, file has 1 light"},
+             {"/cameras/2/perspective/yfov", "names camera 2, file has 1 camera"},
+             {"/materials/1/normalTexture/extensions/KHR_texture_transform/rotation",
+              "names material 1, file has 1 material"}}) {
+        test::GltfBuilder far = test::pointerTwoJointModel();
+        far.doc["animations"][0]["channels"][2]["target"]["extensions"]["KHR_animation_pointer"]
+               ["pointer"] = pointer;
+        const auto refused = asset::loadGltf(far.save(dir.path(), "c"));
+        ASSERT_FALSE(refused.ok()) << pointer;
+        EXPECT_NE(refused.error().message.find("animation 0 channel 2 KHR_animation_pointer " +
+                                               pointer + " " + expected),
+                  std::string::npos)
+            << refused.error().message;
+    }
 }
 
 } // namespace

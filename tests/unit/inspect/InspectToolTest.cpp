@@ -100,14 +100,20 @@ TEST(InspectTool, ListsEachPointerChannelAsPlayedOrSkipped) {
                              "channel 1: KHR_animation_pointer /nodes/0/weights, played",
                              "channel 2: KHR_animation_pointer "
                              "/materials/0/pbrMetallicRoughness/metallicFactor, played",
-                             "channel 3: KHR_animation_pointer "
-                             "/extensions/KHR_lights_punctual/lights/0/intensity, skipped"})
+                             "channel 3: KHR_animation_pointer /materials/0/alphaCutoff, skipped",
+                             "channel 4: KHR_animation_pointer "
+                             "/extensions/KHR_lights_punctual/lights/0/intensity, played",
+                             "channel 7: KHR_animation_pointer /materials/0/pbrMetallicRoughness/"
+                             "baseColorTexture/extensions/KHR_texture_transform/offset, played",
+                             "channel 8: KHR_animation_pointer /cameras/0/perspective/yfov, "
+                             "played"})
         EXPECT_NE(out.find(line), std::string::npos) << line << " in\n" << out;
     ASSERT_EQ(test::runCommand("(" + kInspect + " " + path.string() + " --json 2>/dev/null)", &out),
               0);
     const auto pointers = nlohmann::json::parse(out)["animation_list"][0]["pointer_channels"];
-    ASSERT_EQ(pointers.size(), 4u);
+    ASSERT_EQ(pointers.size(), 9u);
     EXPECT_EQ(pointers[3]["played"], false);
+    EXPECT_EQ(pointers[8]["played"], true);
 }
 
 TEST(InspectTool, JsonMatchesInventoryForSharedCharacters) {

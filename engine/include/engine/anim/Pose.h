@@ -37,24 +37,32 @@ struct Pose {
     /** The model-space travel accumulated root motion adds (the layers' weighted loops times
      *  their clip's travel); zero in the other modes. */
     glm::dvec3 travel{0.0};
-    /** The model's materials with the clips' KHR_animation_pointer factors played, where a clip
-     *  the performance plays animates one; else empty (the model's own apply). What every draw,
-     *  pass and the reference read for this character (materialOf()). */
+    /** The model's materials, lights and cameras with the clips' KHR_animation_pointer
+     *  channels played. Each list is a copy where a clip the performance plays animates one of
+     *  its kind, else empty (the model's own apply). What every draw, pass, light and the
+     *  reference read for this character (materialOf(), lightOf(), cameraOf()). */
     std::vector<scene::Material> materials;
+    std::vector<scene::Light> lights;
+    std::vector<scene::Camera> cameras;
     /** The blend's scratch, kept between evaluations so that they allocate nothing. */
     std::vector<NodeBlend> blend;
-    /** Per material and factor: the blended value, its weight and the additive sum. */
-    struct MaterialBlend {
-        std::array<glm::dvec4, scene::kMaterialProperties> value{}, added{};
-        std::array<double, scene::kMaterialProperties> weight{}, addedWeight{};
+    /** One pointer property's blend: its blended value and weight, and the additive sum. */
+    struct PointerBlend {
+        int object = -1, slot = -1;
+        scene::PointerProperty property = scene::PointerProperty::BaseColor;
+        glm::dvec4 value{0.0}, added{0.0};
+        double weight = 0.0, addedWeight = 0.0;
     };
-    std::vector<MaterialBlend> materialBlend;
+    std::vector<PointerBlend> pointers; ///< the properties this evaluation played
     std::vector<double> mask, samples, firstFrame;
 };
 
 /** Material `material` of `model` as `pose` shows it: its animated copy, else the model's; null
  *  for -1 (the default material). */
 const scene::Material* materialOf(const scene::Model& model, const Pose& pose, int material);
+/** Light `light` (KHR_lights_punctual) and camera `camera` of `model` as `pose` shows them. */
+const scene::Light& lightOf(const scene::Model& model, const Pose& pose, int light);
+const scene::Camera& cameraOf(const scene::Model& model, const Pose& pose, int camera);
 
 /** The model's rest pose: local transforms and morph weights from the file (node weights
  *  override mesh defaults), world matrices computed. */

@@ -7,12 +7,14 @@
 namespace scene {
 
 enum class Interpolation { Step, Linear, CubicSpline };
-/** What a channel drives: a node's TRS or morph weights, or (KHR_animation_pointer) a material
- *  factor. */
-enum class AnimationPath { Translation, Rotation, Scale, Weights, Material };
+/** What a channel drives: a node's TRS or morph weights, or (KHR_animation_pointer) a property
+ *  of a material, a light or a camera. */
+enum class AnimationPath { Translation, Rotation, Scale, Weights, Pointer };
 
-/** The material factors KHR_animation_pointer channels play, each as its glTF property. */
-enum class MaterialProperty {
+/** The properties KHR_animation_pointer channels play besides a node's, each as its glTF
+ *  property: a material's factors and its texture slots' KHR_texture_transform, a
+ *  KHR_lights_punctual light's, a camera's. */
+enum class PointerProperty {
     BaseColor,           ///< pbrMetallicRoughness/baseColorFactor (4)
     Metallic,            ///< pbrMetallicRoughness/metallicFactor
     Roughness,           ///< pbrMetallicRoughness/roughnessFactor
@@ -24,11 +26,23 @@ enum class MaterialProperty {
     AttenuationDistance, ///< KHR_materials_volume/attenuationDistance
     AttenuationColor,    ///< KHR_materials_volume/attenuationColor (3)
     Dispersion,          ///< KHR_materials_dispersion/dispersion
+    TextureOffset,       ///< a texture slot's KHR_texture_transform/offset (2)
+    TextureRotation,     ///< a texture slot's KHR_texture_transform/rotation
+    TextureScale,        ///< a texture slot's KHR_texture_transform/scale (2)
+    LightColor,          ///< a light's color (3)
+    LightIntensity,      ///< a light's intensity
+    LightRange,          ///< a light's range
+    LightInnerCone,      ///< a spot light's spot/innerConeAngle
+    LightOuterCone,      ///< a spot light's spot/outerConeAngle
+    CameraYfov,          ///< a camera's perspective/yfov
 };
-inline constexpr int kMaterialProperties = 11;
 
-/** The number of floats `property` holds: 4 for the base colour, 3 for colours, else 1. */
-int componentCount(MaterialProperty property);
+/** What a pointer property belongs to. */
+enum class PointerObject { Material, Light, Camera };
+PointerObject objectOf(PointerProperty property);
+
+/** The number of floats `property` holds (1 to 4). */
+int componentCount(PointerProperty property);
 
 const char* toString(Interpolation interpolation);
 const char* toString(AnimationPath path);
@@ -47,12 +61,15 @@ struct AnimationChannel {
     int sampler = -1;
     int node = -1; ///< the node it drives; -1 for a material channel
     AnimationPath path = AnimationPath::Translation;
-    int material = -1; ///< for AnimationPath::Material: the material and its factor
-    MaterialProperty property = MaterialProperty::BaseColor;
+    /** For AnimationPath::Pointer: the material, light or camera (an index into the model's),
+     *  its property and, for a texture transform, the texture slot (kTextureSlots). */
+    int object = -1;
+    PointerProperty property = PointerProperty::BaseColor;
+    int slot = -1;
 };
 
-/** A KHR_animation_pointer channel of the file: played (a node's TRS or weights, among the
- *  channels) or skipped (a pointer this engine does not play). */
+/** A KHR_animation_pointer channel of the file: played (among the channels) or skipped (a
+ *  pointer this engine does not play). */
 struct PointerChannel {
     int channel = -1; ///< the file's index in the animation's channels
     std::string pointer;

@@ -5,21 +5,42 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <limits>
 #include <string>
 
 namespace scene {
 
+/** KHR_texture_transform's offset, rotation (radians, counter-clockwise in UV space) and
+ *  scale. */
+struct UvTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
+    /** translation * rotation * scale, as the extension composes them. */
+    glm::mat3 matrix() const {
+        const float c = std::cos(rotation), s = std::sin(rotation);
+        return glm::mat3(c * scale.x, -s * scale.x, 0.0f, s * scale.y, c * scale.y, 0.0f, offset.x,
+                         offset.y, 1.0f);
+    }
+};
+
 /** A texture reference; texture == -1 means none. `scale` is the normal scale or occlusion
  *  strength where the slot has one. `transform` maps the mesh's texture coordinates to the
- *  texture's (KHR_texture_transform: translation * rotation * scale, identity without it). */
+ *  texture's: `uv`'s matrix, identity without KHR_texture_transform (setUv() keeps the two in
+ *  step). */
 struct TextureRef {
     int texture = -1;
     int texCoord = 0;
     float scale = 1.0f;
+    UvTransform uv{};
     glm::mat3 transform{1.0f};
     bool present() const { return texture >= 0; }
-    glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(transform * glm::vec3(uv, 1.0f)); }
+    glm::vec2 apply(glm::vec2 at) const { return glm::vec2(transform * glm::vec3(at, 1.0f)); }
+    void setUv(const UvTransform& t) {
+        uv = t;
+        transform = t.matrix();
+    }
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -136,6 +157,37 @@ struct Material {
 
     /** Glass as the plugin sees it: any transmission. */
     bool isTransmissive() const { return hasTransmission && transmissionFactor > 0.0f; }
+};
+
+/** A material's texture slot: its path in a glTF material (as KHR_animation_pointer names it)
+ *  and its member. */
+struct TextureSlot {
+    const char* path;
+    TextureRef Material::*ref;
+};
+
+/** Every texture slot, in the order AnimationChannel::slot indexes them. */
+inline constexpr TextureSlot kTextureSlots[] = {
+    {"pbrMetallicRoughness/baseColorTexture", &Material::baseColorTexture},
+    {"pbrMetallicRoughness/metallicRoughnessTexture", &Material::metallicRoughnessTexture},
+    {"normalTexture", &Material::normalTexture},
+    {"occlusionTexture", &Material::occlusionTexture},
+    {"emissiveTexture", &Material::emissiveTexture},
+    {"extensions/KHR_materials_transmission/transmissionTexture", &Material::transmissionTexture},
+    {"extensions/KHR_materials_volume/thicknessTexture", &Material::thicknessTexture},
+    {"extensions/KHR_materials_specular/specularTexture", &Material::specularTexture},
+    {"extensions/KHR_materials_specular/specularColorTexture", &Material::specularColorTexture},
+    {"extensions/KHR_materials_clearcoat/clearcoatTexture", &Material::clearcoatTexture},
+    {"extensions/KHR_materials_clearcoat/clearcoatRoughnessTexture",
+     &Material::clearcoatRoughnessTexture},
+    {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture",
+     &Material::clearcoatNormalTexture},
+    {"extensions/KHR_materials_sheen/sheenColorTexture", &Material::sheenColorTexture},
+    {"extensions/KHR_materials_sheen/sheenRoughnessTexture", &Material::sheenRoughnessTexture},
+    {"extensions/KHR_materials_iridescence/iridescenceTexture", &Material::iridescenceTexture},
+    {"extensions/KHR_materials_iridescence/iridescenceThicknessTexture",
+     &Material::iridescenceThicknessTexture},
+    {"extensions/KHR_materials_anisotropy/anisotropyTexture", &Material::anisotropyTexture},
 };
 
 } // namespace scene
