@@ -52,6 +52,24 @@ void OrbitCamera::setOrbit(const Orbit& orbit) {
     mOrbit.distance = std::max(orbit.distance, 1e-4f);
 }
 
+void OrbitCamera::look(const scene::WorldCamera& camera) {
+    const glm::vec3 back = camera.position - camera.target;
+    const float distance = glm::length(back);
+    if (!(distance > 0.0f))
+        return;
+    Orbit o;
+    o.target = camera.target;
+    o.distance = distance;
+    o.azimuth = std::atan2(back.x, back.z);
+    o.elevation = std::asin(std::clamp(back.y / distance, -1.0f, 1.0f));
+    setOrbit(o);
+    mYfov = camera.yfov;
+}
+
+scene::WorldCamera OrbitCamera::placement() const {
+    return {mOrbit.target + direction(mOrbit) * mOrbit.distance, mOrbit.target, mYfov};
+}
+
 render::Camera OrbitCamera::camera(float aspect) const {
     render::Camera c;
     c.yfov = mYfov;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/render/Camera.h"
+#include "engine/scene/World.h"
 
 #include <glm/glm.hpp>
 
@@ -38,6 +39,12 @@ public:
     const Orbit& orbitState() const { return mOrbit; }
     void setOrbit(const Orbit& orbit);
     float yfov() const { return mYfov; }
+
+    /** Looks from `camera.position` at `camera.target` with its field of view (a scene file's
+     *  camera, or a file's camera where it stands). */
+    void look(const scene::WorldCamera& camera);
+    /** Where the camera stands and looks, as a scene file keeps it. */
+    scene::WorldCamera placement() const;
 
 private:
     Orbit mOrbit, mHome;

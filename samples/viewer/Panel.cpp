@@ -1,6 +1,7 @@
 // glass-viewer's panel.
 #include "Panel.h"
 
+#include "UiMap.h"
 #include "Viewer.h"
 
 #include "engine/core/Limits.h"
@@ -20,7 +21,9 @@ namespace {
 
 /** A collapsible section; false when it is closed (draw nothing of it). */
 bool section(const char* title, bool open = true) {
-    return ImGui::CollapsingHeader(title, open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    const bool shown = ImGui::CollapsingHeader(title, open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    uimap::mark(title);
+    return shown;
 }
 
 void widget(plugin::ParameterSet& set, const char* name) {
@@ -57,6 +60,7 @@ bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
         const bool wide = p.min >= 0.0 && p.max > 100.0 * std::max(p.min, 1.0);
         changed = ImGui::SliderFloat(label, &value, float(p.min), float(p.max), "%.3f",
                                      wide ? ImGuiSliderFlags_Logarithmic : 0);
+        uimap::mark(label);
         if (changed)
             set.setNumber(p.name, double(value));
         break;
@@ -64,6 +68,7 @@ bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
     case Type::Int: {
         int value = int(set.number(p.name));
         changed = ImGui::SliderInt(label, &value, int(p.min), int(p.max));
+        uimap::mark(label);
         if (changed)
             set.setNumber(p.name, double(value));
         break;
@@ -71,13 +76,16 @@ bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
     case Type::Bool: {
         bool value = set.flag(p.name);
         changed = ImGui::Checkbox(label, &value);
+        uimap::mark(label);
         if (changed)
             set.setNumber(p.name, value ? 1.0 : 0.0);
         break;
     }
     case Type::Enum: {
         int index = int(set.number(p.name));
-        if (ImGui::BeginCombo(label, p.choices[std::size_t(index)].c_str())) {
+        const bool open = ImGui::BeginCombo(label, p.choices[std::size_t(index)].c_str());
+        uimap::mark(label);
+        if (open) {
             for (std::size_t i = 0; i < p.choices.size(); ++i)
                 if (ImGui::Selectable(p.choices[i].c_str(), int(i) == index)) {
                     set.setNumber(p.name, double(i));
@@ -91,6 +99,7 @@ bool parameterWidget(plugin::ParameterSet& set, const plugin::Parameter& p) {
         const auto c = set.color(p.name);
         float rgb[3] = {float(c[0]), float(c[1]), float(c[2])};
         changed = ImGui::ColorEdit3(label, rgb);
+        uimap::mark(label);
         if (changed) {
             char text[96];
             std::snprintf(text, sizeof text, "%g,%g,%g", double(rgb[0]), double(rgb[1]),
@@ -361,7 +370,11 @@ void Panel::morphWeights(scene::Character& c) {
     bool any = false;
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
         any = any || model.meshes[m].morphTargetCount() > 0;
-    if (!any || !ImGui::TreeNode("Morph weights"))
+    if (!any)
+        return;
+    const bool open = ImGui::TreeNode("Morph weights");
+    uimap::mark("Morph weights");
+    if (!open)
         return;
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const scene::Mesh& mesh = model.meshes[m];
@@ -373,8 +386,11 @@ void Panel::morphWeights(scene::Character& c) {
                 return (s.mesh == int(m) || s.mesh < 0) && s.target == int(t);
             });
             bool set = found != morphs.end();
+            const std::string label = mesh.name + ": " + name;
             ImGui::PushID(int(m * 1000 + t));
-            if (ImGui::Checkbox("##set", &set)) {
+            const bool toggled = ImGui::Checkbox("##set", &set);
+            uimap::mark("set " + label);
+            if (toggled) {
                 if (set)
                     morphs.push_back({int(m), int(t), mesh.defaultWeights[t], false});
                 else
@@ -385,7 +401,9 @@ void Panel::morphWeights(scene::Character& c) {
             ImGui::SameLine();
             ImGui::BeginDisabled(!set);
             float w = set ? float(found->value) : mesh.defaultWeights[t];
-            if (ImGui::SliderFloat((mesh.name + ": " + name).c_str(), &w, 0.0f, 1.0f) && set)
+            const bool moved = ImGui::SliderFloat(label.c_str(), &w, 0.0f, 1.0f);
+            uimap::mark(label);
+            if (moved && set)
                 found->value = double(w);
             ImGui::EndDisabled();
             ImGui::PopID();
@@ -431,11 +449,35 @@ void Panel::camera(Viewer& v) {
     if (ImGui::Button("Frame selection (Shift+F)"))
         v.frameCharacters(true);
     if (ImGui::Button("Reset (R)")) {
+        v.viewThrough(std::nullopt);
         v.mCamera.reset();
-        v.mRenderer->resetHistory(); // a camera cut
     }
+    fileCameras(v);
     ImGui::TextDisabled("drag orbit, right/shift-drag pan, wheel zoom;\n"
                         "click select, ctrl-drag move (ctrl-shift: up/down)");
+}
+
+void Panel::fileCameras(Viewer& v) {
+    // The characters' files' cameras: one looked through follows its node as the clip plays;
+    // an orbit, pan or zoom takes the view back where it stands.
+    bool any = false;
+    for (std::size_t i = 0; i < v.mWorld.characters.size(); ++i) {
+        const scene::Character& c = v.mWorld.characters[i];
+        for (int node : render::cameraNodes(*c.model)) {
+            if (!any)
+                ImGui::TextUnformatted("The files' cameras");
+            any = true;
+            const std::string& name = c.model->nodes[std::size_t(node)].name;
+            const std::string label =
+                c.name + ": " + (name.empty() ? "node " + std::to_string(node) : name);
+            const FileCamera camera{i, node};
+            const bool through = v.mViewThrough == camera;
+            const bool chosen = ImGui::Selectable(label.c_str(), through);
+            uimap::mark(label);
+            if (chosen)
+                v.viewThrough(through ? std::nullopt : std::optional(camera));
+        }
+    }
 }
 
 void Panel::environment(Viewer& v) {

@@ -27,6 +27,8 @@ private:
     static void morphWeights(scene::Character& c);
     static void animation(Viewer& v);
     static void camera(Viewer& v);
+    /** The characters' files' cameras, each a choice to look through. */
+    static void fileCameras(Viewer& v);
     static void environment(Viewer& v);
     static void temporal(Viewer& v);
     static void lights(Viewer& v);

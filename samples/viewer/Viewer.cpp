@@ -2,6 +2,7 @@
 #include "Viewer.h"
 
 #include "Panel.h"
+#include "UiMap.h"
 #include "engine/anim/Pose.h"
 #include "engine/asset/HdrImage.h"
 #include "engine/asset/ModelLoader.h"
@@ -228,6 +229,10 @@ core::Status Viewer::applyStartSettings(const ViewerOptions& options) {
             std::fprintf(stderr, "glass-viewer: last session not restored: %s\n",
                          applied.error().message.c_str());
     }
+    if (mWorld.camera) { // a scene's own camera, over the last session's
+        mCamera.look(*mWorld.camera);
+        orbit = mCamera.orbitState();
+    }
     if (options.environments.empty()) {
         useWorldEnvironment();
     } else {
@@ -340,6 +345,11 @@ void Viewer::handleKeys() {
         case GLFW_KEY_M:
             glass.setNumber("method", double((std::size_t(glass.number("method")) + 1) % methods));
             break;
+        case GLFW_KEY_C: // the next clip, faded to over the crossfade setting
+            if (const plugin::Parameter* clip = mSettings.find("clip"))
+                mSettings.setNumber("clip", double((std::size_t(mSettings.number("clip")) + 1) %
+                                                   clip->choices.size()));
+            break;
         case GLFW_KEY_F:
             frameCharacters(key.mods & GLFW_MOD_SHIFT);
             break;
@@ -348,8 +358,8 @@ void Viewer::handleKeys() {
                 removeCharacter(std::size_t(mSelected));
             break;
         case GLFW_KEY_R:
+            viewThrough(std::nullopt); // a camera cut
             mCamera.reset();
-            mRenderer->resetHistory(); // a camera cut
             break;
         case GLFW_KEY_T:
             toggle("temporal");
@@ -421,6 +431,10 @@ void Viewer::handleMouse() {
     const glm::vec2 delta = pressed ? glm::vec2(0.0f) : glm::vec2(io.MouseDelta.x, io.MouseDelta.y);
     const bool panning =
         ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
+    const bool moving = ((panning || ImGui::IsMouseDown(0)) && delta != glm::vec2(0.0f)) ||
+                        io.MouseWheel != 0.0f;
+    if (mViewThrough && moving)
+        viewThrough(std::nullopt); // the orbit takes over where the file's camera stands
     if (panning)
         mCamera.pan(delta, io.DisplaySize.y);
     else if (ImGui::IsMouseDown(0))
@@ -507,7 +521,8 @@ core::Status Viewer::renderView(glm::ivec2 size) {
             first.repetitions = 0;
         }
     }
-    const render::Camera camera = mCamera.camera(float(size.x) / float(size.y));
+    boundsChanged();
+    const render::Camera camera = viewCamera(float(size.x) / float(size.y));
     // Rendered at render-scale of the view and scaled up when shown.
     const double scale = mSettings.number("render-scale");
     const glm::ivec2 internal = glm::max(glm::ivec2(glm::round(glm::dvec2(size) * scale)), 1);
@@ -539,7 +554,7 @@ core::Status Viewer::screenshot(const std::filesystem::path& path, std::optional
     capture::Image image;
     if (size) {
         // Offscreen at the chosen resolution: the left (A) method, no panel.
-        auto stats = mRenderer->render(mWorld, mCamera.camera(float(size->x) / float(size->y)),
+        auto stats = mRenderer->render(mWorld, viewCamera(float(size->x) / float(size->y)),
                                        settings(*size), mTime);
         if (!stats)
             return stats.error();
@@ -555,8 +570,8 @@ core::Status Viewer::screenshot(const std::filesystem::path& path, std::optional
         return written;
     mMessage = "screenshot " + path.string();
     mMessageIsError = false;
-    std::printf("glass-viewer: wrote %s (%dx%d)\n", path.string().c_str(), image.width,
-                image.height);
+    std::printf("glass-viewer: wrote %s (%dx%d) at scene time %.6f s\n", path.string().c_str(),
+                image.width, image.height, mTime);
     std::fflush(stdout);
     return {};
 }
@@ -644,6 +659,7 @@ int Viewer::run() {
             if (mSettings.flag("skeleton"))
                 drawSkeleton();
         }
+        uimap::publish(mOptions.uiMap);
         ImGui::Render();
         auto takeScreenshot = [&] {
             const auto path = *std::exchange(mPendingScreenshot, std::nullopt);

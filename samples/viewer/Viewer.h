@@ -41,6 +41,7 @@ struct ViewerOptions {
     bool restoreSession = true;
     bool force = false; ///< overwrite an existing --screenshot
     std::filesystem::path screenshotDir = ".";
+    std::filesystem::path uiMap; ///< --ui-map: where the panel's widgets are (UiMap.h)
 };
 
 /** A key press (or repeat) from the window, in arrival order. */
@@ -53,6 +54,13 @@ struct KeyEvent {
 struct WindowEvents {
     std::vector<std::string> dropped;
     std::vector<KeyEvent> keys;
+};
+
+/** A camera of a character's file, on its node. */
+struct FileCamera {
+    std::size_t character = 0;
+    int node = -1;
+    bool operator==(const FileCamera&) const = default;
 };
 
 /** An environment the panel offers: the procedural sky (empty path) or an HDR file. */
@@ -91,6 +99,9 @@ private:
     /** After characters or their models change: ground under the new bounds, selection kept in
      *  range. */
     void worldChanged();
+    /** The world's bounds (and the ground under them) from its characters' performances now:
+     *  a clip, layer or crossfade added widens them, as glass-capture's of the saved scene. */
+    void boundsChanged();
     /** The character under window pixel `pixel` of the view (nearest hit of its bounds), or -1. */
     int pick(glm::vec2 pixel) const;
     /** Character `index`'s bounds over its clip, in the world (clip bounds cached per model). */
@@ -107,6 +118,14 @@ private:
     /** Plays `clip` from now: a crossfade over the "crossfade" setting, or a snap at 0. */
     void changeClip(scene::Character& c, int clip);
     void frameCharacters(bool selectionOnly);
+    /** The view's camera: the file's camera looked through, as its character poses it now,
+     *  else the orbit. */
+    render::Camera viewCamera(float aspect) const;
+    /** Where the view's camera stands and looks, as the scene file keeps it. */
+    scene::WorldCamera viewPlacement() const;
+    /** Looks through a file's camera, or (none) hands the view back to the orbit where it
+     *  stands. */
+    void viewThrough(std::optional<FileCamera> camera);
     /** Shows the world's environment (added to the list when it is not there yet). */
     void useWorldEnvironment();
     void reportStatus(const core::Status& status, const std::string& success);
@@ -154,6 +173,7 @@ private:
     int mEnvironmentShown = -1;
     plugin::ParameterSet mSettings;
     OrbitCamera mCamera;
+    std::optional<FileCamera> mViewThrough; ///< a file's camera the view looks through
     double mTime = 0.0;
     render::FrameStats mStats;
     double mFrameMs = 0.0; ///< smoothed wall-clock frame time

@@ -73,11 +73,18 @@ void Viewer::useWorldEnvironment() {
 
 void Viewer::worldChanged() {
     mClipBounds.clear(); // releases models no character places any more
-    mBounds = render::worldBounds(mWorld);
-    mRenderer->setGround(render::GroundPlane::under(mBounds));
+    boundsChanged();
     if (mWorld.ground && mSettings.find("ground"))
         mSettings.setNumber("ground", 1.0);
     select(std::min(mSelected, int(mWorld.characters.size()) - 1));
+    if (mViewThrough) { // a character removed or replaced takes its camera with it
+        const std::size_t c = mViewThrough->character;
+        const std::vector<int> nodes = c < mWorld.characters.size()
+                                           ? render::cameraNodes(*mWorld.characters[c].model)
+                                           : std::vector<int>{};
+        if (std::ranges::find(nodes, mViewThrough->node) == nodes.end())
+            mViewThrough.reset();
+    }
 }
 
 void Viewer::select(int index) {
@@ -161,7 +168,9 @@ void Viewer::removeCharacter(std::size_t index) {
 }
 
 bool Viewer::saveWorld(const std::string& path) {
-    // The scene keeps what is shown: the environment (the sky: none) and the ground.
+    // The scene keeps what is shown: the camera, the environment (the sky: none) and the
+    // ground.
+    mWorld.camera = viewPlacement();
     const std::string& environment =
         mEnvironments[std::size_t(mSettings.number("environment"))].path;
     mWorld.environment = environment.empty() ? std::nullopt : std::optional(environment);
@@ -173,6 +182,21 @@ bool Viewer::saveWorld(const std::string& path) {
     return bool(saved);
 }
 
+void Viewer::boundsChanged() {
+    render::Bounds bounds;
+    for (std::size_t i = 0; i < mWorld.characters.size(); ++i) {
+        const render::Bounds b = characterBounds(i);
+        bounds.add(b.min);
+        bounds.add(b.max);
+    }
+    if (bounds.empty())
+        bounds.add(glm::vec3(0.0f));
+    if (bounds.min == mBounds.min && bounds.max == mBounds.max && !mBounds.empty())
+        return;
+    mBounds = bounds; // as render::worldBounds has them, from the cached clips' bounds
+    mRenderer->setGround(render::GroundPlane::under(mBounds));
+}
+
 render::Bounds Viewer::characterBounds(std::size_t index) const {
     const scene::Character& c = mWorld.characters.at(index);
     return render::transformed(
@@ -180,7 +204,7 @@ render::Bounds Viewer::characterBounds(std::size_t index) const {
 }
 
 std::pair<glm::vec3, glm::vec3> Viewer::viewRay(glm::vec2 pixel) const {
-    const render::Camera camera = mCamera.camera(viewportAspect());
+    const render::Camera camera = viewCamera(viewportAspect());
     const glm::vec2 ndc(2.0f * pixel.x / float(std::max(mViewport.x, 1)) - 1.0f,
                         1.0f - 2.0f * pixel.y / float(std::max(mViewport.y, 1)));
     const glm::mat4 inverse = glm::inverse(camera.viewProjection());
@@ -248,7 +272,7 @@ void Viewer::drawSelection() const {
     if (mSelected < 0 || mViewport.x <= 0 || (mWorld.characters.size() < 2 && !mMoving))
         return; // one character: nothing to tell apart
     const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
-    const render::Camera camera = mCamera.camera(viewportAspect());
+    const render::Camera camera = viewCamera(viewportAspect());
     const auto project = [&](glm::vec3 p) { return toScreen(camera, mViewport, p); };
     // The character's origin with its ground axes (x red, z blue) and its name: what Ctrl+drag
     // moves.
@@ -273,7 +297,7 @@ void Viewer::drawSkeleton() const {
     const scene::Character& c = mWorld.characters[std::size_t(mSelected)];
     const scene::Model& model = *c.model;
     const anim::Pose pose = anim::evaluate(model, c.performance, mTime);
-    const render::Camera camera = mCamera.camera(viewportAspect());
+    const render::Camera camera = viewCamera(viewportAspect());
     std::vector<std::uint8_t> joint(model.nodes.size(), 0);
     for (const scene::Skin& skin : model.skins)
         for (int j : skin.joints)
@@ -297,8 +321,36 @@ void Viewer::drawSkeleton() const {
     }
 }
 
-void Viewer::frameCharacters(bool selectionOnly) {
+render::Camera Viewer::viewCamera(float aspect) const {
+    if (mViewThrough && mViewThrough->character < mWorld.characters.size()) {
+        const scene::Character& c = mWorld.characters[mViewThrough->character];
+        if (auto camera =
+                render::nodeCamera(*c.model, anim::evaluate(*c.model, c.performance, mTime),
+                                   mViewThrough->node, c.transform(), aspect))
+            return *camera;
+    }
+    return mCamera.camera(aspect);
+}
+
+scene::WorldCamera Viewer::viewPlacement() const {
+    if (!mViewThrough)
+        return mCamera.placement();
+    // The file's camera where it stands, looking as far ahead as the scene's centre is.
+    const render::Camera c = viewCamera(viewportAspect());
+    const glm::vec3 forward = -glm::vec3(glm::inverse(c.view)[2]);
+    const float ahead = std::max(glm::length(mBounds.center() - c.position), 1e-2f);
+    return {c.position, c.position + forward * ahead, c.yfov};
+}
+
+void Viewer::viewThrough(std::optional<FileCamera> camera) {
+    if (mViewThrough && !camera)
+        mCamera.look(viewPlacement());
+    mViewThrough = camera;
     mRenderer->resetHistory(); // a camera cut
+}
+
+void Viewer::frameCharacters(bool selectionOnly) {
+    viewThrough(std::nullopt); // a camera cut
     if (!selectionOnly || mSelected < 0) {
         mCamera.frame(mBounds, viewportAspect());
         return;

@@ -26,7 +26,7 @@ constexpr const char* kFooter =
     R"(Mouse: drag to orbit, right- or shift-drag to pan, wheel to zoom, drag the A/B divider; click a
        character to select it, Ctrl+drag to move it over the ground (Ctrl+Shift+drag: up and
        down).
-Keys: Space play/pause, Left/Right step one frame, M next method, 1-4 method,
+Keys: Space play/pause, Left/Right step one frame, M next method, 1-6 method, C next clip,
       F frame all (Shift+F the selection), R reset the camera, Del remove the selected
       character, G ground, B A/B split, T temporal accumulation, Tab panel,
       F12 or P screenshot, Esc or Ctrl+Q quit.
@@ -65,6 +65,11 @@ void addOptions(CLI::App& app, viewer::ViewerOptions& o) {
     app.add_option("--screenshot-dir", o.screenshotDir,
                    "where F12 screenshots go (default: the current folder)")
         ->type_name("DIR");
+    app.add_option("--ui-map", o.uiMap,
+                   "write where the panel's named widgets are to FILE whenever they move "
+                   "(\"name<TAB>x0 y0 x1 y1\" lines, window pixels): for scripts that drive the "
+                   "viewer with real input")
+        ->type_name("FILE");
     const std::string scripted = "Scripted mode (tests, demos)";
     app.add_option("--frames", o.frames,
                    "advance N frames of 1/30 s each (then continue interactively)")

@@ -5,11 +5,14 @@
 
 #include "engine/asset/SceneFile.h"
 #include "engine/capture/Image.h"
+#include "engine/capture/Metrics.h"
 #include "engine/render/WorldLoader.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -18,6 +21,7 @@ namespace {
 const std::string kViewer = std::string(GLASS_BIN_DIR) + "/glass-viewer";
 const std::string kCapture = std::string(GLASS_BIN_DIR) + "/glass-capture";
 const std::string kDrive = std::string(GLASS_SOURCE_DIR) + "/tests/viewer/drive_viewer.sh";
+const std::string kDrivePanel = std::string(GLASS_SOURCE_DIR) + "/tests/viewer/drive_panel.sh";
 // A window small enough for a fast test; the panel takes 45% of it, up to 380 pixels.
 const std::string kWindow = "--size 640x400";
 const int kViewWidth = 640 - 640 * 45 / 100;
@@ -54,6 +58,16 @@ protected:
     }
     void expectViewerMatchesCapture(const std::string& viewerArguments,
                                     const std::string& captureArguments);
+    /** The viewer started with `arguments`, driven through its panel by `steps`
+     *  (tests/viewer/drive_panel.sh), then quit with Escape. */
+    int throughThePanel(const std::string& steps, const std::string& arguments,
+                        std::string* output) {
+        const auto file = mOut / "steps.txt";
+        std::ofstream(file) << steps;
+        return inX(kDrivePanel + " " + kViewer + " " + mOut.path().string() + " " + file.string() +
+                       " " + arguments,
+                   output);
+    }
     test::TempDir mConfig, mOut;
 };
 
@@ -250,6 +264,105 @@ TEST_F(ViewerWindow, AClickSelectsACharacterAndCtrlDragMovesItOverTheGround) {
         world->characters[1].placement.translation - before->characters[1].placement.translation;
     EXPECT_GT(moved.x, 0.1) << "the picked one dragged to the right";
     EXPECT_EQ(moved.y, 0.0) << "over the ground, not up";
+}
+
+/** glass-capture's frame of `what` (a scene or model file, and options) at `time`, `size`
+ *  pixels, written into `out`. */
+capture::Image captureFrame(const std::string& what, const std::string& time, glm::ivec2 size,
+                            const std::filesystem::path& out) {
+    std::string log;
+    EXPECT_EQ(test::runCommand(kCapture + " " + what + " --time " + time + " --size " +
+                                   std::to_string(size.x) + "x" + std::to_string(size.y) +
+                                   " --out " + out.string() + " --force",
+                               &log),
+              0)
+        << log;
+    if (std::filesystem::is_directory(out))
+        for (const auto& entry : std::filesystem::directory_iterator(out))
+            if (entry.path().extension() == ".png")
+                return load(entry.path());
+    ADD_FAILURE() << "no frame in " << out << ": " << log;
+    return {};
+}
+
+TEST_F(ViewerWindow, AMorphWeightAndACrossfadeSetInThePanelAreSavedAndCapturedAsShown) {
+    // Through the panel with real input, each widget found by name (--ui-map): "Crossfade (s)"
+    // set to 0.6, the morph target "breathe" ticked and set to 0.8, C for the next clip (a
+    // crossfade from now), six frame steps, F12, then Escape, which saves the scene.
+    // glass-capture of the saved scene at the screenshot's scene time draws the screenshot;
+    // the same scene without the morph weight, or without the crossfade, does not.
+    const std::string model = std::string(GLASS_SOURCE_DIR) + "/assets/models/glass_figure.glb";
+    std::string out;
+    ASSERT_EQ(throughThePanel("enter Crossfade (s)=0.6\n"
+                              "click Morph weights\n"
+                              "click set glass_figure: breathe\n"
+                              "enter glass_figure: breathe=0.8\n"
+                              "key c\n"
+                              "key Right\nkey Right\nkey Right\nkey Right\nkey Right\nkey Right\n"
+                              "screenshot 1\n",
+                              model + " --size 640x700 --no-restore --set playing=0"
+                                      " --set render-scale=1 --set temporal=0",
+                              &out),
+              0)
+        << out;
+    std::smatch at;
+    ASSERT_TRUE(std::regex_search(out, at, std::regex("at scene time ([0-9.]+) s"))) << out;
+    const auto saved = mConfig / "glass-viewer" / "last-scene.json";
+    auto world = asset::loadScene(saved);
+    ASSERT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message) << out;
+    const scene::Performance& p = world->characters.at(0).performance;
+    ASSERT_EQ(p.morphs.size(), 1u);
+    EXPECT_NEAR(p.morphs[0].value, 0.8, 1e-6);
+    ASSERT_EQ(p.transitions.size(), 1u);
+    EXPECT_NEAR(p.transitions[0].duration, 0.6, 1e-6);
+    EXPECT_EQ(p.transitions[0].to, 1) << "C: from the first clip to the second";
+    EXPECT_TRUE(world->camera.has_value()) << "the view's camera is saved";
+
+    const capture::Image shot = load(mOut / "glass-viewer-0001.png");
+    const glm::ivec2 size(shot.width, shot.height);
+    const double same =
+        capture::score(captureFrame(saved.string(), at[1], size, mOut / "saved"), shot).psnr;
+    std::printf("the saved scene's capture against the viewer's screenshot: %.2f dB\n", same);
+    EXPECT_GE(same, 50.0); // measured 58.1 dB
+    std::ifstream in(saved);
+    const nlohmann::json scene = nlohmann::json::parse(in);
+    for (const char* key : {"morph_weights", "transitions"}) {
+        nlohmann::json without = scene;
+        without["characters"][0].erase(key);
+        const auto path = mOut / (std::string("without_") + key + ".json");
+        std::ofstream(path) << without.dump();
+        const double other =
+            capture::score(captureFrame(path.string(), at[1], size, mOut / key), shot).psnr;
+        std::printf("without %s: %.2f dB\n", key, other);
+        EXPECT_LT(other, same - 6.0) << "the panel's " << key << " show in the screenshot";
+    }
+}
+
+TEST_F(ViewerWindow, TheFilesCamerasAreListedAndLookedThrough) {
+    // A model with a camera whose yfov its clip plays (0.6 -> 1 rad over a second): chosen in
+    // the panel's list (the scene section closed to bring it into the window), the view looks
+    // through it as glass-capture does (a model's capture looks through its first camera), at
+    // the screenshot's time.
+    const auto model = test::pointerTwoJointModel().save(mOut.path(), "eye");
+    std::string out;
+    ASSERT_EQ(throughThePanel("key Right\nkey Right\nkey Right\nkey Right\nkey Right\n"
+                              "click Scene\nclick eye.gltf: eye\nscreenshot 1\n",
+                              model.string() +
+                                  " --size 640x400 --no-restore --set playing=0"
+                                  " --set render-scale=1 --set temporal=0 --set method=opaque",
+                              &out),
+              0)
+        << out;
+    std::smatch at;
+    ASSERT_TRUE(std::regex_search(out, at, std::regex("at scene time ([0-9.]+) s"))) << out;
+    const capture::Image shot = load(mOut / "glass-viewer-0001.png");
+    const capture::Image captured =
+        captureFrame(model.string() + " --ground --method opaque --env " +
+                         std::string(GLASS_SOURCE_DIR) + "/assets/env/sunset_sky.hdr",
+                     at[1], {shot.width, shot.height}, mOut / "capture");
+    const double psnr = capture::score(captured, shot).psnr;
+    std::printf("through the file's camera against glass-capture: %.2f dB\n", psnr);
+    EXPECT_GE(psnr, 50.0);
 }
 
 TEST_F(ViewerWindow, BadInputFailsClearlyWithoutOutput) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace render {
 
@@ -76,6 +77,19 @@ Bounds worldBounds(const scene::World& world, int samples) {
     return bounds;
 }
 
+namespace {
+
+/** The view depth at which the bottom edge of the view meets a ground `height` below the
+ *  camera (no roll: the whole edge meets it at one depth); infinity where it does not. */
+float groundDepth(const glm::mat4& view, float yfov, float height) {
+    const glm::vec3 up = glm::mat3(view) * glm::vec3(0.0f, 1.0f, 0.0f);
+    const float facing = up.y * std::tan(0.5f * yfov) + up.z;
+    return height > 0.0f && facing > 0.0f ? height / facing
+                                          : std::numeric_limits<float>::infinity();
+}
+
+} // namespace
+
 Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds& bounds) {
     Camera c;
     c.yfov = camera.yfov;
@@ -86,7 +100,11 @@ Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds&
     c.view = glm::lookAt(camera.position, camera.target, up);
     const float distance = glm::length(bounds.center() - camera.position);
     const float radius = std::max(bounds.radius(), 1e-3f);
-    c.znear = std::max(distance - 2.0f * radius, std::max(distance, radius) * 0.005f);
+    // In front of the bounds, and of the nearest ground the view shows (the ground plane
+    // reaches beyond the bounds, under the camera's feet).
+    const float ground = 0.9f * groundDepth(c.view, c.yfov, camera.position.y - bounds.min.y);
+    c.znear =
+        std::max(std::min(distance - 2.0f * radius, ground), std::max(distance, radius) * 0.005f);
     c.zfar = distance + 4.0f * radius;
     c.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar);
     return c;
@@ -109,28 +127,44 @@ Camera frameBounds(const Bounds& bounds, float aspect, float yfov, float azimuth
     return c;
 }
 
-std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& pose, float aspect) {
+std::optional<Camera> nodeCamera(const scene::Model& model, const anim::Pose& pose, int node,
+                                 const glm::dmat4& placement, float aspect) {
+    const scene::Node& n = model.nodes[std::size_t(node)];
+    if (n.camera < 0)
+        return std::nullopt;
+    const scene::Camera& cam = anim::cameraOf(model, pose, n.camera);
+    if (cam.type != scene::Camera::Type::Perspective)
+        return std::nullopt;
+    Camera c;
+    glm::dmat4 world = placement * pose.world[std::size_t(node)];
+    // Remove scale: a camera's frame is its node's rotation and translation.
+    for (int i = 0; i < 3; ++i)
+        world[i] = glm::dvec4(glm::normalize(glm::dvec3(world[i])), 0.0);
+    c.view = glm::mat4(glm::inverse(world));
+    c.position = glm::vec3(world[3]);
+    c.yfov = float(cam.yfov);
+    c.znear = float(cam.znear);
+    c.zfar = cam.zfar > 0.0 ? float(cam.zfar) : float(cam.znear) * 1e4f;
+    c.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar);
+    return c;
+}
+
+std::vector<int> cameraNodes(const scene::Model& model) {
+    std::vector<int> nodes;
     for (int node : model.sceneNodes()) {
-        const scene::Node& n = model.nodes[std::size_t(node)];
-        if (n.camera < 0)
-            continue;
-        const scene::Camera& cam = anim::cameraOf(model, pose, n.camera);
-        if (cam.type != scene::Camera::Type::Perspective)
-            continue;
-        Camera c;
-        glm::dmat4 world = pose.world[std::size_t(node)];
-        // Remove scale: a camera's frame is its node's rotation and translation.
-        for (int i = 0; i < 3; ++i)
-            world[i] = glm::dvec4(glm::normalize(glm::dvec3(world[i])), 0.0);
-        c.view = glm::mat4(glm::inverse(world));
-        c.position = glm::vec3(world[3]);
-        c.yfov = float(cam.yfov);
-        c.znear = float(cam.znear);
-        c.zfar = cam.zfar > 0.0 ? float(cam.zfar) : float(cam.znear) * 1e4f;
-        c.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar);
-        return c;
+        const int camera = model.nodes[std::size_t(node)].camera;
+        if (camera >= 0 &&
+            model.cameras[std::size_t(camera)].type == scene::Camera::Type::Perspective)
+            nodes.push_back(node);
     }
-    return std::nullopt;
+    return nodes;
+}
+
+std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& pose, float aspect) {
+    const std::vector<int> nodes = cameraNodes(model);
+    if (nodes.empty())
+        return std::nullopt;
+    return nodeCamera(model, pose, nodes.front(), glm::dmat4(1.0), aspect);
 }
 
 } // namespace render

@@ -60,7 +60,17 @@ Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds&
 Camera frameBounds(const Bounds& bounds, float aspect, float yfov = 0.7f, float azimuth = 0.0f,
                    float elevation = 0.15f, float distanceScale = 1.0f);
 
-/** The first camera node of the default scene posed by `pose` (nullopt when there is none). */
+/** The first perspective camera node of the default scene posed by `pose` (nullopt when there
+ *  is none). */
 std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& pose, float aspect);
+
+/** The perspective camera on node `node` posed by `pose`, its model placed in the world by
+ *  `placement` (nullopt when the node has none, or an orthographic one); its yfov as the pose
+ *  plays it. */
+std::optional<Camera> nodeCamera(const scene::Model& model, const anim::Pose& pose, int node,
+                                 const glm::dmat4& placement, float aspect);
+
+/** The perspective camera nodes of `model`'s default scene. */
+std::vector<int> cameraNodes(const scene::Model& model);
 
 } // namespace render
