@@ -431,8 +431,8 @@ void Viewer::handleMouse() {
     const glm::vec2 delta = pressed ? glm::vec2(0.0f) : glm::vec2(io.MouseDelta.x, io.MouseDelta.y);
     const bool panning =
         ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2) || (ImGui::IsMouseDown(0) && io.KeyShift);
-    const bool moving = ((panning || ImGui::IsMouseDown(0)) && delta != glm::vec2(0.0f)) ||
-                        io.MouseWheel != 0.0f;
+    const bool moving =
+        ((panning || ImGui::IsMouseDown(0)) && delta != glm::vec2(0.0f)) || io.MouseWheel != 0.0f;
     if (mViewThrough && moving)
         viewThrough(std::nullopt); // the orbit takes over where the file's camera stands
     if (panning)
@@ -599,6 +599,32 @@ void Viewer::saveSession() {
         std::fprintf(stderr, "glass-viewer: scene not saved\n");
 }
 
+void Viewer::handleDrops() {
+    // A dropped model joins the scene; a scene file, or Shift (or the panel's choice), replaces
+    // it.
+    const bool replace =
+        mDropReplaces || glfwGetKey(static_cast<GLFWwindow*>(mContext->nativeWindow()),
+                                    GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+    const std::vector<std::string> dropped = std::exchange(mEvents.dropped, {});
+    if (!dropped.empty() && (replace || (dropped.size() == 1 && asset::isSceneFile(dropped[0]))))
+        openWorld(dropped);
+    else
+        for (const std::string& path : dropped)
+            addCharacter(path);
+}
+
+bool Viewer::takeScreenshot(glm::ivec2 window) {
+    const auto path = *std::exchange(mPendingScreenshot, std::nullopt);
+    const core::Status shot = screenshot(path, mPendingScreenshotSize, mPendingScreenshotPanel);
+    if (!shot) {
+        mMessage = shot.error().message;
+        mMessageIsError = true;
+        std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
+    }
+    gl::Framebuffer::bindDefault(window);
+    return bool(shot);
+}
+
 int Viewer::run() {
     int status = 0;
     int frame = 0;
@@ -606,18 +632,7 @@ int Viewer::run() {
     auto last = std::chrono::steady_clock::now();
     while (!mQuit && !mContext->shouldClose()) {
         mContext->pollEvents();
-        // A dropped model joins the scene; a scene file, or Shift (or the panel's choice),
-        // replaces it.
-        const bool replace =
-            mDropReplaces || glfwGetKey(static_cast<GLFWwindow*>(mContext->nativeWindow()),
-                                        GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
-        const std::vector<std::string> dropped = std::exchange(mEvents.dropped, {});
-        if (!dropped.empty() &&
-            (replace || (dropped.size() == 1 && asset::isSceneFile(dropped[0]))))
-            openWorld(dropped);
-        else
-            for (const std::string& path : dropped)
-                addCharacter(path);
+        handleDrops();
         const auto now = std::chrono::steady_clock::now();
         const double wallMs = std::chrono::duration<double, std::milli>(now - last).count();
         last = now;
@@ -661,23 +676,12 @@ int Viewer::run() {
         }
         uimap::publish(mOptions.uiMap);
         ImGui::Render();
-        auto takeScreenshot = [&] {
-            const auto path = *std::exchange(mPendingScreenshot, std::nullopt);
-            if (auto shot = screenshot(path, mPendingScreenshotSize, mPendingScreenshotPanel);
-                !shot) {
-                mMessage = shot.error().message;
-                mMessageIsError = true;
-                std::fprintf(stderr, "glass-viewer: %s\n", mMessage.c_str());
-                if (scripted)
-                    status = 1;
-            }
-            gl::Framebuffer::bindDefault(size);
-        };
-        if (mPendingScreenshot && !mPendingScreenshotPanel)
-            takeScreenshot();
+        // The view's screenshot before the panel is drawn over it, the window's after.
+        if (mPendingScreenshot && !mPendingScreenshotPanel && !takeScreenshot(size) && scripted)
+            status = 1;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (mPendingScreenshot)
-            takeScreenshot();
+        if (mPendingScreenshot && !takeScreenshot(size) && scripted)
+            status = 1;
         mContext->swapBuffers();
         gl::checkErrors("glass-viewer frame");
         ++frame;

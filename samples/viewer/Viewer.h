@@ -136,6 +136,11 @@ private:
     plugin::ParameterSet settingsForScene() const;
     float viewportAspect() const { return float(mViewport.x) / float(std::max(mViewport.y, 1)); }
 
+    /** Files dropped on the window: they join the scene, or replace it (a scene file, Shift
+     *  held, or "Drops replace"). */
+    void handleDrops();
+    /** Writes the pending screenshot; false (the error shown) when it fails. */
+    bool takeScreenshot(glm::ivec2 window);
     void handleInput();
     void handleKeys();  ///< the keys pressed since the last frame
     void handleMouse(); ///< orbit, pan, zoom, pick, move the selection, drag the divider

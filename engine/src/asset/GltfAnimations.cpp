@@ -170,6 +170,50 @@ bool convertPointerChannel(const tinygltf::Model& model, const tinygltf::Animati
     return true;
 }
 
+/** Sampler `ss`'s keys, with `components` floats a value (from the channels that use it;
+ *  0: none does, its output is not read), weights when `isWeights`. Times must not decrease
+ *  nor start below zero, the values must fill every key, and rotation keys (not tangents)
+ *  must be usable quaternions, which are normalised. */
+scene::AnimationSampler convertSampler(const AccessorReader& reader,
+                                       const tinygltf::AnimationSampler& ss, int components,
+                                       bool isWeights, const std::string& what) {
+    scene::AnimationSampler sampler;
+    sampler.interpolation = parseInterpolation(ss.interpolation, what);
+    sampler.components = components;
+    sampler.times = reader.readFloats(ss.input, 1, what + " input");
+    if (sampler.times.empty())
+        fail(what + " input has no keyframes");
+    for (std::size_t k = 1; k < sampler.times.size(); ++k)
+        if (sampler.times[k] < sampler.times[k - 1])
+            fail(what + " input time " + n(k) + " decreases");
+    if (sampler.times.front() < 0.0f)
+        fail(what + " input starts at a negative time");
+    if (sampler.components == 0)
+        return sampler; // unused by any channel
+    const std::vector<float> values =
+        reader.readFloats(ss.output, isWeights ? 1 : sampler.components, what + " output");
+    const std::size_t perKey =
+        std::size_t(sampler.components) *
+        (sampler.interpolation == scene::Interpolation::CubicSpline ? 3u : 1u);
+    if (values.size() != sampler.times.size() * perKey)
+        fail(what + " output has " + n(values.size()) + " values, expected " +
+             n(sampler.times.size() * perKey) + " for " + n(sampler.times.size()) + " keys");
+    sampler.values = values;
+    if (sampler.components == 4 && !isWeights) {
+        // Rotation keys (not tangents) must be usable quaternions.
+        const std::size_t stride = perKey, offset = perKey == 12 ? 4 : 0;
+        for (std::size_t k = 0; k < sampler.times.size(); ++k) {
+            float* q = &sampler.values[k * stride + offset];
+            const float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+            if (!(length > 1e-8f))
+                fail(what + " rotation key " + n(k) + " is a zero quaternion");
+            for (int c = 0; c < 4; ++c)
+                q[c] /= length;
+        }
+    }
+    return sampler;
+}
+
 } // namespace
 
 scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorReader& reader,
@@ -214,48 +258,10 @@ scene::Animation convertAnimation(const tinygltf::Model& model, const AccessorRe
     }
 
     for (std::size_t s = 0; s < src.samplers.size(); ++s) {
-        const tinygltf::AnimationSampler& ss = src.samplers[s];
-        const std::string samplerWhat = what + " sampler " + n(s);
-        scene::AnimationSampler sampler;
-        sampler.interpolation = parseInterpolation(ss.interpolation, samplerWhat);
-        sampler.components = components[s];
-        sampler.times = reader.readFloats(ss.input, 1, samplerWhat + " input");
-        if (sampler.times.empty())
-            fail(samplerWhat + " input has no keyframes");
-        for (std::size_t k = 1; k < sampler.times.size(); ++k)
-            if (sampler.times[k] < sampler.times[k - 1])
-                fail(samplerWhat + " input time " + n(k) + " decreases");
-        if (sampler.times.front() < 0.0f)
-            fail(samplerWhat + " input starts at a negative time");
-        if (sampler.components == 0) {
-            anim.samplers.push_back(std::move(sampler)); // unused by any channel
-            continue;
-        }
-        const bool isWeights = drivesWeights[s];
-        const std::vector<float> values = reader.readFloats(
-            ss.output, isWeights ? 1 : sampler.components, samplerWhat + " output");
-        const std::size_t perKey =
-            std::size_t(sampler.components) *
-            (sampler.interpolation == scene::Interpolation::CubicSpline ? 3u : 1u);
-        if (values.size() != sampler.times.size() * perKey)
-            fail(samplerWhat + " output has " + n(values.size()) + " values, expected " +
-                 n(sampler.times.size() * perKey) + " for " + n(sampler.times.size()) + " keys");
-        sampler.values = values;
-        if (sampler.components == 4 && !isWeights) {
-            // Rotation keys (not tangents) must be usable quaternions.
-            const std::size_t stride = perKey, offset = perKey == 12 ? 4 : 0;
-            for (std::size_t k = 0; k < sampler.times.size(); ++k) {
-                float* q = &sampler.values[k * stride + offset];
-                const float length =
-                    std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-                if (!(length > 1e-8f))
-                    fail(samplerWhat + " rotation key " + n(k) + " is a zero quaternion");
-                for (int c = 0; c < 4; ++c)
-                    q[c] /= length;
-            }
-        }
-        anim.duration = std::max(anim.duration, double(sampler.times.back()));
-        anim.samplers.push_back(std::move(sampler));
+        anim.samplers.push_back(convertSampler(reader, src.samplers[s], components[s],
+                                               drivesWeights[s], what + " sampler " + n(s)));
+        if (!anim.samplers.back().values.empty())
+            anim.duration = std::max(anim.duration, double(anim.samplers.back().times.back()));
     }
     return anim;
 }

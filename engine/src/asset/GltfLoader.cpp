@@ -527,6 +527,120 @@ scene::Camera convertCamera(const tinygltf::Model& m, int index) {
 
 } // namespace detail
 
+namespace {
+
+using namespace detail;
+
+/** tinygltf's parse of `bytes` into `src`; a failure is refused naming its cause: a buffer
+ *  without a uri, or a required extension the engine lacks, before the parser's words. */
+void parse(tinygltf::TinyGLTF& parser, tinygltf::Model& src, std::span<const std::uint8_t> bytes,
+           bool isBinary, const std::string& baseDir) {
+    std::string err, warn;
+    const bool parsed =
+        isBinary ? parser.LoadBinaryFromMemory(&src, &err, &warn, bytes.data(),
+                                               unsigned(bytes.size()), baseDir)
+                 : parser.LoadASCIIFromString(&src, &err, &warn,
+                                              reinterpret_cast<const char*>(bytes.data()),
+                                              unsigned(bytes.size()), baseDir);
+    if (parsed)
+        return;
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' '))
+        err.pop_back();
+    std::replace(err.begin(), err.end(), '\n', ';');
+    if (err.empty())
+        err = "not a valid glTF file";
+    if (err.find("'uri' is missing") != std::string::npos)
+        if (const std::string buffer = bufferWithoutUri(bytes, isBinary); !buffer.empty())
+            fail(buffer);
+    // A required extension the engine lacks (Draco, say) makes the parser stumble on what the
+    // extension stores elsewhere: name the extension, not the symptom.
+    for (const std::string& extension : requiredExtensions(bytes, isBinary))
+        if (!supportedRequiredExtensions().count(extension) && !isMaterialExtension(extension))
+            fail("extensionsRequired lists " + extension +
+                 ", which this engine does not support (the parser: " + err + ")");
+    fail(err);
+}
+
+/** Extensions the file uses, or requires (a material one, then), that this engine does not
+ *  implement: the file loads without them (what they add is missing), with a warning each. */
+void extensionWarnings(const tinygltf::Model& src, std::vector<std::string>& warnings) {
+    for (const std::string& extension : src.extensionsUsed)
+        if (!supportedRequiredExtensions().count(extension))
+            warnings.push_back("extensionsUsed lists " + extension +
+                               ", which this engine does not implement: loaded without it");
+    for (const std::string& extension : src.extensionsRequired)
+        if (!supportedRequiredExtensions().count(extension) &&
+            std::find(src.extensionsUsed.begin(), src.extensionsUsed.end(), extension) ==
+                src.extensionsUsed.end())
+            warnings.push_back("extensionsRequired lists " + extension +
+                               ", which this engine does not implement: loaded without it");
+}
+
+/** Each instance is drawn as a placement of its own: the instances of one node must fit the
+ *  scene's vertex limit on their own (the scene's total is checked when placed). Node morph
+ *  weights must match their mesh's targets. */
+void checkNodes(const scene::Model& model) {
+    for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+        const scene::Node& node = model.nodes[i];
+        if (node.mesh < 0)
+            continue;
+        const scene::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
+        std::size_t vertices = 0;
+        for (const scene::Primitive& p : mesh.primitives)
+            vertices += p.vertexCount();
+        if (!node.instances.empty() &&
+            vertices * node.instances.size() > core::limits::kMaxSceneVertices)
+            fail("node " + n(i) + " EXT_mesh_gpu_instancing: " + n(node.instances.size()) +
+                 " instances of " + n(vertices) + " vertices are over the limit of " +
+                 n(core::limits::kMaxSceneVertices) + " deformed vertices");
+        if (!node.weights.empty() && node.weights.size() != mesh.morphTargetCount())
+            fail("node " + n(i) + " has " + n(node.weights.size()) + " morph weights, mesh " +
+                 n(std::size_t(node.mesh)) + " has " + n(mesh.morphTargetCount()) + " targets");
+    }
+}
+
+/** The engine's model of the parsed, checked and decoded file. */
+scene::Model convertModel(tinygltf::Model& src, const AccessorReader& reader,
+                          const std::set<int>& lossy, const ImageDecoding& images,
+                          const std::string& file) {
+    scene::Model model;
+    model.sourceName = file;
+    extensionWarnings(src, model.warnings);
+    model.nodes = convertNodes(src);
+    model.variants = variantNames(src);
+    readInstancing(src, reader, model.nodes, model.warnings);
+    fractionalBoundsWarnings(src, model.warnings);
+    for (std::size_t i = 0; i < src.materials.size(); ++i)
+        model.materials.push_back(convertMaterial(src, int(i), model.warnings));
+    for (std::size_t i = 0; i < src.meshes.size(); ++i)
+        model.meshes.push_back(
+            convertMesh(src, reader, int(i), model.materials, lossy, model.warnings));
+    for (std::size_t i = 0; i < src.skins.size(); ++i)
+        model.skins.push_back(convertSkin(src, reader, int(i)));
+    for (std::size_t i = 0; i < src.animations.size(); ++i)
+        model.animations.push_back(
+            convertAnimation(src, reader, model.warnings, int(i), model.meshes));
+    for (std::size_t i = 0; i < src.cameras.size(); ++i)
+        model.cameras.push_back(convertCamera(src, int(i)));
+    for (std::size_t i = 0; i < src.lights.size(); ++i)
+        model.lights.push_back(convertLight(src, int(i)));
+    checkNodes(model);
+    validateSkinnedMeshes(model);
+    for (const tinygltf::Sampler& s : src.samplers)
+        model.samplers.push_back({s.magFilter, s.minFilter, s.wrapS, s.wrapT});
+    for (std::size_t i = 0; i < src.textures.size(); ++i)
+        model.textures.push_back(convertTexture(src, int(i), images.ktx2, model.warnings));
+    for (tinygltf::Image& image : src.images)
+        model.images.push_back({image.name, image.uri, image.width, image.height, image.component,
+                                image.bits, std::move(image.image)});
+    for (const tinygltf::Scene& s : src.scenes)
+        model.scenes.push_back(s.nodes);
+    model.defaultScene = src.scenes.empty() ? -1 : std::max(src.defaultScene, 0);
+    return model;
+}
+
+} // namespace
+
 core::Result<scene::Model> loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
     auto bytes = core::readFile(path);
     if (!bytes)
@@ -539,53 +653,21 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
                                               const std::string& file,
                                               const std::filesystem::path& baseDirectory,
                                               const LoadOptions& options) {
-    using namespace detail;
     const std::string prefix = "asset::loadGltf(): " + file + ": ";
     try {
-        const std::span<const std::uint8_t>* bytes = &data;
-        if (bytes->size() > 0xFFFFFFFFu)
+        if (data.size() > 0xFFFFFFFFu)
             return core::Error{prefix + "file is over 4 GiB"};
-
         tinygltf::TinyGLTF parser;
         ImageDecoding images{options.decodeImages, {}};
         parser.SetImageLoader(decodeImage, &images);
-        tinygltf::Model src;
-        std::string err, warn;
-        const std::string baseDir = baseDirectory.string();
-        const bool isBinary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
+        const bool isBinary = data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0;
         if (isBinary)
-            checkGlbContainer(*bytes);
-        const std::optional<std::vector<std::uint8_t>> prepared =
-            prepareForParser(*bytes, isBinary);
-        const std::span<const std::uint8_t> preparedBytes =
+            checkGlbContainer(data);
+        const std::optional<std::vector<std::uint8_t>> prepared = prepareForParser(data, isBinary);
+        const std::span<const std::uint8_t> bytes =
             prepared ? std::span<const std::uint8_t>(*prepared) : data;
-        bytes = &preparedBytes;
-        const bool parsed =
-            isBinary ? parser.LoadBinaryFromMemory(&src, &err, &warn, bytes->data(),
-                                                   unsigned(bytes->size()), baseDir)
-                     : parser.LoadASCIIFromString(&src, &err, &warn,
-                                                  reinterpret_cast<const char*>(bytes->data()),
-                                                  unsigned(bytes->size()), baseDir);
-        if (!parsed) {
-            while (!err.empty() && (err.back() == '\n' || err.back() == ' '))
-                err.pop_back();
-            std::replace(err.begin(), err.end(), '\n', ';');
-            if (err.empty())
-                err = "not a valid glTF file";
-            if (err.find("'uri' is missing") != std::string::npos)
-                if (const std::string buffer = bufferWithoutUri(*bytes, isBinary); !buffer.empty())
-                    return core::Error{prefix + buffer};
-            // A required extension the engine lacks (Draco, say) makes the parser stumble on
-            // what the extension stores elsewhere: name the extension, not the symptom.
-            for (const std::string& extension : requiredExtensions(*bytes, isBinary))
-                if (!supportedRequiredExtensions().count(extension) &&
-                    !isMaterialExtension(extension))
-                    return core::Error{prefix + "extensionsRequired lists " + extension +
-                                       ", which this engine does not support (the parser: " + err +
-                                       ")"};
-            return core::Error{prefix + err};
-        }
-
+        tinygltf::Model src;
+        parse(parser, src, bytes, isBinary, baseDirectory.string());
         checkVersion(src.asset);
         // tinygltf reads a GLB's BIN chunk for any buffer without a uri, not only the first.
         for (std::size_t b = 1; isBinary && b < src.buffers.size(); ++b)
@@ -593,76 +675,8 @@ core::Result<scene::Model> loadGltfFromMemory(std::span<const std::uint8_t> data
                 fail(bufferWithoutUri(b, isBinary));
         validateStructure(src);
         const std::set<int> lossy = decodeCompressedGeometry(src);
-        const AccessorReader reader(src, bytes->size());
-
-        scene::Model model;
-        model.sourceName = file;
-        // Extensions the file uses but does not require, which this engine does not implement:
-        // the file loads without them (what they add is missing), with a warning each.
-        for (const std::string& extension : src.extensionsUsed)
-            if (!supportedRequiredExtensions().count(extension))
-                model.warnings.push_back("extensionsUsed lists " + extension +
-                                         ", which this engine does not implement: loaded "
-                                         "without it");
-        for (const std::string& extension : src.extensionsRequired) // a material one, then
-            if (!supportedRequiredExtensions().count(extension) &&
-                std::find(src.extensionsUsed.begin(), src.extensionsUsed.end(), extension) ==
-                    src.extensionsUsed.end())
-                model.warnings.push_back("extensionsRequired lists " + extension +
-                                         ", which this engine does not implement: loaded "
-                                         "without it");
-        model.nodes = convertNodes(src);
-        model.variants = variantNames(src);
-        readInstancing(src, reader, model.nodes, model.warnings);
-        fractionalBoundsWarnings(src, model.warnings);
-        for (std::size_t i = 0; i < src.materials.size(); ++i)
-            model.materials.push_back(convertMaterial(src, int(i), model.warnings));
-        for (std::size_t i = 0; i < src.meshes.size(); ++i)
-            model.meshes.push_back(
-                convertMesh(src, reader, int(i), model.materials, lossy, model.warnings));
-        // Each instance is drawn as a placement of its own: the instances of one node must
-        // fit the scene's vertex limit on their own (the scene's total is checked when placed).
-        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
-            const scene::Node& node = model.nodes[i];
-            if (node.instances.empty())
-                continue;
-            std::size_t vertices = 0;
-            for (const scene::Primitive& p : model.meshes[std::size_t(node.mesh)].primitives)
-                vertices += p.vertexCount();
-            if (vertices * node.instances.size() > core::limits::kMaxSceneVertices)
-                fail("node " + n(i) + " EXT_mesh_gpu_instancing: " + n(node.instances.size()) +
-                     " instances of " + n(vertices) + " vertices are over the limit of " +
-                     n(core::limits::kMaxSceneVertices) + " deformed vertices");
-        }
-        for (std::size_t i = 0; i < src.skins.size(); ++i)
-            model.skins.push_back(convertSkin(src, reader, int(i)));
-        for (std::size_t i = 0; i < src.animations.size(); ++i)
-            model.animations.push_back(
-                convertAnimation(src, reader, model.warnings, int(i), model.meshes));
-        for (std::size_t i = 0; i < src.cameras.size(); ++i)
-            model.cameras.push_back(convertCamera(src, int(i)));
-        for (std::size_t i = 0; i < src.lights.size(); ++i)
-            model.lights.push_back(convertLight(src, int(i)));
-        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
-            const scene::Node& node = model.nodes[i];
-            if (node.mesh >= 0 && !node.weights.empty() &&
-                node.weights.size() != model.meshes[std::size_t(node.mesh)].morphTargetCount())
-                fail("node " + n(i) + " has " + n(node.weights.size()) + " morph weights, mesh " +
-                     n(std::size_t(node.mesh)) + " has " +
-                     n(model.meshes[std::size_t(node.mesh)].morphTargetCount()) + " targets");
-        }
-        validateSkinnedMeshes(model);
-
-        for (const tinygltf::Sampler& s : src.samplers)
-            model.samplers.push_back({s.magFilter, s.minFilter, s.wrapS, s.wrapT});
-        for (std::size_t i = 0; i < src.textures.size(); ++i)
-            model.textures.push_back(convertTexture(src, int(i), images.ktx2, model.warnings));
-        for (tinygltf::Image& image : src.images)
-            model.images.push_back({image.name, image.uri, image.width, image.height,
-                                    image.component, image.bits, std::move(image.image)});
-        for (const tinygltf::Scene& s : src.scenes)
-            model.scenes.push_back(s.nodes);
-        model.defaultScene = src.scenes.empty() ? -1 : std::max(src.defaultScene, 0);
+        const AccessorReader reader(src, bytes.size());
+        scene::Model model = convertModel(src, reader, lossy, images, file);
         for (const std::string& warning : model.warnings)
             core::logWarning(prefix + warning);
         return model;

@@ -86,35 +86,24 @@ Vec3Key keyOf(glm::vec3 p) {
     return k;
 }
 
-} // namespace
-
-core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, int level,
-                                           const std::string& what) {
-    const std::string where = "deform::buildSubdivision(): " + what + ": ";
-    if (level < 1 || level > core::limits::kMaxSubdivisionLevel)
-        return core::Error{where + "level " + std::to_string(level) + " is outside 1.." +
-                           std::to_string(core::limits::kMaxSubdivisionLevel)};
-    const std::size_t refinedTriangles = primitive.triangleCount() << (2 * level);
-    if (refinedTriangles > core::limits::kMaxRefinedTriangles)
-        return core::Error{where + std::to_string(primitive.triangleCount()) +
-                           " triangles refine to " + std::to_string(refinedTriangles) +
-                           " at level " + std::to_string(level) + ", over the limit of " +
-                           std::to_string(core::limits::kMaxRefinedTriangles)};
-
-    Subdivision sub;
-    // Weld by position.
-    std::vector<int> welded(primitive.vertexCount());
-    {
-        std::unordered_map<Vec3Key, int, Vec3KeyHash> index;
-        for (std::size_t v = 0; v < primitive.vertexCount(); ++v) {
-            const auto [it, added] =
-                index.emplace(keyOf(primitive.positions[v]), int(sub.representative.size()));
-            if (added)
-                sub.representative.push_back(std::uint32_t(v));
-            welded[v] = it->second;
-        }
-    }
+/** The cage OpenSubdiv refines: the triangles over the vertices welded by position (their
+ *  representatives kept in `sub`), each corner's face-varying value its own vertex. A triangle
+ *  with two corners welded together is counted in `sub` and left out. */
+struct Cage {
     std::vector<int> faceVertices, faceValues;
+};
+
+Cage weldedCage(const scene::Primitive& primitive, Subdivision& sub) {
+    std::vector<int> welded(primitive.vertexCount());
+    std::unordered_map<Vec3Key, int, Vec3KeyHash> index;
+    for (std::size_t v = 0; v < primitive.vertexCount(); ++v) {
+        const auto [it, added] =
+            index.emplace(keyOf(primitive.positions[v]), int(sub.representative.size()));
+        if (added)
+            sub.representative.push_back(std::uint32_t(v));
+        welded[v] = it->second;
+    }
+    Cage cage;
     for (std::size_t t = 0; t < primitive.triangleCount(); ++t) {
         const std::uint32_t* c = &primitive.indices[3 * t];
         const int a = welded[c[0]], b = welded[c[1]], d = welded[c[2]];
@@ -122,22 +111,31 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
             ++sub.degenerateTriangles;
             continue;
         }
-        faceVertices.insert(faceVertices.end(), {a, b, d});
-        faceValues.insert(faceValues.end(), {int(c[0]), int(c[1]), int(c[2])});
+        cage.faceVertices.insert(cage.faceVertices.end(), {a, b, d});
+        cage.faceValues.insert(cage.faceValues.end(), {int(c[0]), int(c[1]), int(c[2])});
     }
-    if (faceVertices.empty())
-        return core::Error{where + "no triangle with three distinct corners"};
-    const int faceCount = int(faceVertices.size() / 3);
-    std::vector<int> verticesPerFace(std::size_t(faceCount), 3);
+    return cage;
+}
 
+std::string osdDetail() {
+    return tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage;
+}
+
+/** The cage refined uniformly to `level` by Loop's scheme (boundaries sharp at the edges only,
+ *  face-varying values linear at the corners only), the last level's full topology kept for
+ *  the limit masks. */
+core::Result<std::unique_ptr<Far::TopologyRefiner>>
+refineTopology(Cage& cage, int values, int vertices, int level, const std::string& where) {
+    const int faceCount = int(cage.faceVertices.size() / 3);
+    std::vector<int> verticesPerFace(std::size_t(faceCount), 3);
     Far::TopologyDescriptor::FVarChannel channel;
-    channel.numValues = int(primitive.vertexCount());
-    channel.valueIndices = faceValues.data();
+    channel.numValues = values;
+    channel.valueIndices = cage.faceValues.data();
     Far::TopologyDescriptor descriptor;
-    descriptor.numVertices = int(sub.representative.size());
+    descriptor.numVertices = vertices;
     descriptor.numFaces = faceCount;
     descriptor.numVertsPerFace = verticesPerFace.data();
-    descriptor.vertIndicesPerFace = faceVertices.data();
+    descriptor.vertIndicesPerFace = cage.faceVertices.data();
     descriptor.numFVarChannels = 1;
     descriptor.fvarChannels = &channel;
 
@@ -151,12 +149,16 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     std::unique_ptr<Far::TopologyRefiner> refiner(
         Factory::Create(descriptor, Factory::Options(Sdc::SCHEME_LOOP, sdc)));
     if (!refiner)
-        return core::Error{where + "OpenSubdiv rejects the topology" +
-                           (tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage)};
+        return core::Error{where + "OpenSubdiv rejects the topology" + osdDetail()};
     Far::TopologyRefiner::UniformOptions uniform(level);
     uniform.fullTopologyInLastLevel = true; // the limit masks need the last level's neighbours
     refiner->RefineUniform(uniform);
+    return refiner;
+}
 
+/** The stencils from the cage to the last level's vertices and face-varying values. */
+core::Status stencilTables(const Far::TopologyRefiner& refiner, Subdivision& sub,
+                           const std::string& where) {
     // The float factory template itself: Far::StencilTableFactory::Create() downcasts what it
     // returns to a StencilTable it never constructed (undefined behaviour UBSan reports).
     using TableFactory = Far::StencilTableFactoryReal<float>;
@@ -164,59 +166,58 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
     options.generateIntermediateLevels = false;
     options.generateOffsets = true;
     std::unique_ptr<const Far::StencilTableReal<float>> vertexTable(
-        TableFactory::Create(*refiner, options));
+        TableFactory::Create(refiner, options));
     options.interpolationMode = TableFactory::INTERPOLATE_FACE_VARYING;
     std::unique_ptr<const Far::StencilTableReal<float>> valueTable(
-        TableFactory::Create(*refiner, options));
+        TableFactory::Create(refiner, options));
     if (!vertexTable || !valueTable)
-        return core::Error{where + "OpenSubdiv built no stencil table" +
-                           (tLastOsdMessage.empty() ? "" : ": " + tLastOsdMessage)};
+        return core::Error{where + "OpenSubdiv built no stencil table" + osdDetail()};
     sub.refine = copyTable(*vertexTable, sub.representative);
     sub.faceVarying = copyTable(*valueTable, {});
+    return {};
+}
 
-    // Limit masks of the last level: PrimvarRefiner::Limit() over unit combinations.
-    const Far::TopologyLevel& last = refiner->GetLevel(level);
-    const int refinedCount = last.GetNumVertices();
-    const Far::PrimvarRefiner primvars(*refiner);
-    {
-        const std::size_t n = std::size_t(refinedCount);
-        std::vector<Combination> unit(n), position(n), du(n), dv(n);
-        for (int v = 0; v < refinedCount; ++v)
-            unit[std::size_t(v)].terms = {{v, 1.0f}};
-        primvars.Limit(unit, position, du, dv);
-        Stencils& s = sub.limit;
-        std::vector<int> order;
-        for (int v = 0; v < refinedCount; ++v) {
-            // Merge the three masks into one stencil over the union of their vertices.
-            order.clear();
-            for (const Combination* c :
-                 {&position[std::size_t(v)], &du[std::size_t(v)], &dv[std::size_t(v)]})
-                for (const auto& term : c->terms)
-                    order.push_back(term.first);
-            std::sort(order.begin(), order.end());
-            order.erase(std::unique(order.begin(), order.end()), order.end());
-            s.offsets.push_back(int(s.indices.size()));
-            s.sizes.push_back(int(order.size()));
-            const std::size_t base = s.weights.size();
-            s.indices.insert(s.indices.end(), order.begin(), order.end());
-            s.weights.resize(base + order.size(), 0.0f);
-            s.duWeights.resize(base + order.size(), 0.0f);
-            s.dvWeights.resize(base + order.size(), 0.0f);
-            auto accumulate = [&](const Combination& c, std::vector<float>& weights) {
-                for (const auto& [index, w] : c.terms) {
-                    const auto at = std::lower_bound(order.begin(), order.end(), index);
-                    weights[base + std::size_t(at - order.begin())] += w;
-                }
-            };
-            accumulate(position[std::size_t(v)], s.weights);
-            accumulate(du[std::size_t(v)], s.duWeights);
-            accumulate(dv[std::size_t(v)], s.dvWeights);
-        }
+/** The limit masks of the last level's `count` vertices (PrimvarRefiner::Limit() over unit
+ *  combinations): per vertex, the position's, du's and dv's merged into one stencil over the
+ *  union of their vertices. */
+Stencils limitStencils(const Far::PrimvarRefiner& primvars, int count) {
+    const std::size_t n = std::size_t(count);
+    std::vector<Combination> unit(n), position(n), du(n), dv(n);
+    for (int v = 0; v < count; ++v)
+        unit[std::size_t(v)].terms = {{v, 1.0f}};
+    primvars.Limit(unit, position, du, dv);
+    Stencils s;
+    std::vector<int> order;
+    for (std::size_t v = 0; v < n; ++v) {
+        order.clear();
+        for (const Combination* c : {&position[v], &du[v], &dv[v]})
+            for (const auto& term : c->terms)
+                order.push_back(term.first);
+        std::sort(order.begin(), order.end());
+        order.erase(std::unique(order.begin(), order.end()), order.end());
+        s.offsets.push_back(int(s.indices.size()));
+        s.sizes.push_back(int(order.size()));
+        const std::size_t base = s.weights.size();
+        s.indices.insert(s.indices.end(), order.begin(), order.end());
+        s.weights.resize(base + order.size(), 0.0f);
+        s.duWeights.resize(base + order.size(), 0.0f);
+        s.dvWeights.resize(base + order.size(), 0.0f);
+        auto accumulate = [&](const Combination& c, std::vector<float>& weights) {
+            for (const auto& [index, w] : c.terms) {
+                const auto at = std::lower_bound(order.begin(), order.end(), index);
+                weights[base + std::size_t(at - order.begin())] += w;
+            }
+        };
+        accumulate(position[v], s.weights);
+        accumulate(du[v], s.duWeights);
+        accumulate(dv[v], s.dvWeights);
     }
-    if (!tLastOsdMessage.empty())
-        return core::Error{where + "OpenSubdiv: " + tLastOsdMessage};
+    return s;
+}
 
-    // Output vertices: one per (refined vertex, face-varying value) used by a refined face.
+/** The output vertices, one per (refined vertex, face-varying value) a refined face uses, into
+ *  `sub.corners`; returns the refined faces' indices into them. */
+std::vector<std::uint32_t> refinedCorners(const Far::TopologyLevel& last, Subdivision& sub) {
     std::unordered_map<std::uint64_t, std::uint32_t> cornerIndex;
     std::vector<std::uint32_t> indices;
     indices.reserve(std::size_t(last.GetNumFaces()) * 3);
@@ -232,39 +233,59 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
             indices.push_back(it->second);
         }
     }
+    return indices;
+}
 
-    // The rest mesh: the stencils applied to the rest cage, as the GPU will apply them.
+glm::vec3 vec3At(const std::vector<float>& a, std::size_t i) {
+    return glm::vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+}
+
+/** The limit face-varying values (TEXCOORD_0 in xy, TEXCOORD_1 in zw) of the last level. */
+std::vector<Uv> limitUvs(const scene::Primitive& primitive, const Subdivision& sub,
+                         const Far::PrimvarRefiner& primvars, int count) {
+    std::vector<Uv> values(static_cast<std::size_t>(count));
+    std::vector<float> uvs(primitive.vertexCount() * 4);
+    for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
+        std::memcpy(&uvs[4 * v], glm::value_ptr(primitive.uvs(v)), 4 * sizeof(float));
+    const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uvs.data(), 0, 4, 4);
+    std::vector<Uv> refinedValues(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        refinedValues[i].value = glm::make_vec4(&refinedUv.values[4 * i]);
+    primvars.LimitFaceVarying(refinedValues, values);
+    return values;
+}
+
+/** Per refined vertex, the sum of its refined faces' normals (by their winding, area
+ *  weighted). */
+std::vector<glm::vec3> faceNormalSums(const Far::TopologyLevel& last,
+                                      const std::vector<float>& refined) {
+    std::vector<glm::vec3> sums(std::size_t(last.GetNumVertices()), glm::vec3(0.0f));
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        const Far::ConstIndexArray v = last.GetFaceVertices(f);
+        const glm::vec3 a = vec3At(refined, std::size_t(v[0])),
+                        b = vec3At(refined, std::size_t(v[1])),
+                        c = vec3At(refined, std::size_t(v[2]));
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k)
+            sums[std::size_t(v[k])] += n;
+    }
+    return sums;
+}
+
+/** The rest mesh: the stencils applied to the rest cage, as the GPU will apply them, with
+ *  du x dv turned to agree with the refined faces' winding over the whole mesh. */
+void restMesh(const scene::Primitive& primitive, const Far::TopologyRefiner& refiner, int level,
+              std::vector<std::uint32_t> indices, Subdivision& sub) {
+    const Far::TopologyLevel& last = refiner.GetLevel(level);
     std::vector<float> restCage(primitive.vertexCount() * 3);
     std::memcpy(restCage.data(), primitive.positions.data(), restCage.size() * sizeof(float));
     const Evaluated refined = evaluateOnCpu(sub.refine, restCage.data(), 0, 3, 3);
     const Evaluated limit = evaluateOnCpu(sub.limit, refined.values.data(), 0, 3, 3);
-    std::vector<Uv> values(std::size_t(last.GetNumFVarValues()));
-    {
-        std::vector<float> uvs(primitive.vertexCount() * 4);
-        for (std::size_t v = 0; v < primitive.vertexCount(); ++v)
-            std::memcpy(&uvs[4 * v], glm::value_ptr(primitive.uvs(v)), 4 * sizeof(float));
-        const Evaluated refinedUv = evaluateOnCpu(sub.faceVarying, uvs.data(), 0, 4, 4);
-        std::vector<Uv> refinedValues(values.size());
-        for (std::size_t i = 0; i < values.size(); ++i)
-            refinedValues[i].value = glm::make_vec4(&refinedUv.values[4 * i]);
-        primvars.LimitFaceVarying(refinedValues, values);
-    }
-    auto vec3At = [](const std::vector<float>& a, std::size_t i) {
-        return glm::vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
-    };
-    // Orientation: du x dv against the refined faces' winding, over the whole mesh.
-    std::vector<glm::vec3> faceNormalSum(std::size_t(refinedCount), glm::vec3(0.0f));
-    for (int f = 0; f < last.GetNumFaces(); ++f) {
-        const Far::ConstIndexArray v = last.GetFaceVertices(f);
-        const glm::vec3 a = vec3At(refined.values, std::size_t(v[0])),
-                        b = vec3At(refined.values, std::size_t(v[1])),
-                        c = vec3At(refined.values, std::size_t(v[2]));
-        const glm::vec3 n = glm::cross(b - a, c - a);
-        for (int k = 0; k < 3; ++k)
-            faceNormalSum[std::size_t(v[k])] += n;
-    }
+    const std::vector<Uv> values =
+        limitUvs(primitive, sub, Far::PrimvarRefiner(refiner), last.GetNumFVarValues());
+    const std::vector<glm::vec3> faceNormalSum = faceNormalSums(last, refined.values);
     double agreement = 0.0;
-    for (std::size_t v = 0; v < std::size_t(refinedCount); ++v)
+    for (std::size_t v = 0; v < faceNormalSum.size(); ++v)
         agreement +=
             glm::dot(glm::cross(vec3At(limit.du, v), vec3At(limit.dv, v)), faceNormalSum[v]) > 0.0f
                 ? 1.0
@@ -287,6 +308,37 @@ core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, in
             rest.uv1.push_back(
                 glm::vec2(values[c.faceVarying].value.z, values[c.faceVarying].value.w));
     }
+}
+
+} // namespace
+
+core::Result<Subdivision> buildSubdivision(const scene::Primitive& primitive, int level,
+                                           const std::string& what) {
+    const std::string where = "deform::buildSubdivision(): " + what + ": ";
+    if (level < 1 || level > core::limits::kMaxSubdivisionLevel)
+        return core::Error{where + "level " + std::to_string(level) + " is outside 1.." +
+                           std::to_string(core::limits::kMaxSubdivisionLevel)};
+    const std::size_t refinedTriangles = primitive.triangleCount() << (2 * level);
+    if (refinedTriangles > core::limits::kMaxRefinedTriangles)
+        return core::Error{where + std::to_string(primitive.triangleCount()) +
+                           " triangles refine to " + std::to_string(refinedTriangles) +
+                           " at level " + std::to_string(level) + ", over the limit of " +
+                           std::to_string(core::limits::kMaxRefinedTriangles)};
+    Subdivision sub;
+    Cage cage = weldedCage(primitive, sub);
+    if (cage.faceVertices.empty())
+        return core::Error{where + "no triangle with three distinct corners"};
+    auto refiner = refineTopology(cage, int(primitive.vertexCount()),
+                                  int(sub.representative.size()), level, where);
+    if (!refiner)
+        return refiner.error();
+    if (auto tables = stencilTables(**refiner, sub, where); !tables)
+        return tables.error();
+    const Far::TopologyLevel& last = (*refiner)->GetLevel(level);
+    sub.limit = limitStencils(Far::PrimvarRefiner(**refiner), last.GetNumVertices());
+    if (!tLastOsdMessage.empty())
+        return core::Error{where + "OpenSubdiv: " + tLastOsdMessage};
+    restMesh(primitive, **refiner, level, refinedCorners(last, sub), sub);
     return sub;
 }
 

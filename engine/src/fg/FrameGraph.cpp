@@ -65,7 +65,7 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
 }
 
 std::uint32_t FrameGraph::addImported(const std::string& name, const gl::TextureDesc& desc,
-                                       void* object) {
+                                      void* object) {
     ENGINE_CHECK(!mCompiled, "importing '" + name + "' after compile()");
     mResources.push_back(Resource{name, desc, true, object});
     return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
@@ -141,10 +141,8 @@ void* Resources::object(BufferHandle handle) const {
     return mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
 }
 
-core::Status FrameGraph::compile() {
+core::Status FrameGraph::checkVersions() const {
     const std::string where = "fg::FrameGraph::compile(): ";
-    const auto passCount = std::uint32_t(mPasses.size());
-    // 1. Validity of every read and write.
     for (const Pass& pass : mPasses) {
         for (std::uint32_t node : pass.reads) {
             const Node& n = mNodes[node];
@@ -162,16 +160,21 @@ core::Status FrameGraph::compile() {
                                    mResources[n.resource].name + "' (version " +
                                    std::to_string(n.version - 1) + " was already written on)"};
         }
-    // 2. Dependency edges: writer of a read version -> reader; readers of a version -> the
-    //    writer of the next version. Only data edges keep a pass alive (`consumes`); both order.
-    std::vector<std::vector<std::uint32_t>> successors(passCount);
-    std::vector<std::vector<std::uint32_t>> consumes(passCount);
+    return {};
+}
+
+FrameGraph::Edges FrameGraph::dependencyEdges() const {
+    // Writer of a read version -> reader; readers of a version -> the writer of the next
+    // version. Only data edges keep a pass alive (`consumes`); both order.
+    const auto passCount = std::uint32_t(mPasses.size());
+    Edges edges{std::vector<std::vector<std::uint32_t>>(passCount),
+                std::vector<std::vector<std::uint32_t>>(passCount)};
     auto edge = [&](std::uint32_t from, std::uint32_t to, bool data) {
         if (from == to || from == UINT32_MAX)
             return;
-        successors[from].push_back(to);
+        edges.successors[from].push_back(to);
         if (data)
-            consumes[to].push_back(from);
+            edges.consumes[to].push_back(from);
     };
     for (std::uint32_t p = 0; p < passCount; ++p) {
         for (std::uint32_t node : mPasses[p].reads) {
@@ -183,8 +186,11 @@ core::Status FrameGraph::compile() {
                         edge(p, q, false);
         }
     }
-    // 3. Culling: keep side-effect passes and writers of imported resources, then everything
-    //    they depend on.
+    return edges;
+}
+
+std::vector<bool> FrameGraph::neededPasses(const Edges& edges) const {
+    const auto passCount = std::uint32_t(mPasses.size());
     std::vector<bool> needed(passCount, false);
     std::vector<std::uint32_t> stack;
     for (std::uint32_t p = 0; p < passCount; ++p) {
@@ -199,21 +205,24 @@ core::Status FrameGraph::compile() {
     while (!stack.empty()) {
         const std::uint32_t p = stack.back();
         stack.pop_back();
-        for (std::uint32_t q : consumes[p])
+        for (std::uint32_t q : edges.consumes[p])
             if (!needed[q]) {
                 needed[q] = true;
                 stack.push_back(q);
             }
     }
-    for (std::uint32_t p = 0; p < passCount; ++p)
-        mPasses[p].culled = !needed[p];
-    // 4. Order (Kahn, lowest declaration index first). Handles exist only once their version
-    //    is declared, so edges run from earlier passes to later ones; a cycle would be a bug
-    //    here, reported rather than left to hang.
+    return needed;
+}
+
+core::Status FrameGraph::orderPasses(const Edges& edges, const std::vector<bool>& needed) {
+    // Kahn's, lowest declaration index first. Handles exist only once their version is
+    // declared, so edges run from earlier passes to later ones; a cycle would be a bug here,
+    // reported rather than left to hang.
+    const auto passCount = std::uint32_t(mPasses.size());
     std::vector<int> inDegree(passCount, 0);
     for (std::uint32_t p = 0; p < passCount; ++p)
         if (needed[p])
-            for (std::uint32_t q : successors[p])
+            for (std::uint32_t q : edges.successors[p])
                 if (needed[q])
                     ++inDegree[q];
     mOrder.clear();
@@ -227,7 +236,7 @@ core::Status FrameGraph::compile() {
             break;
         done[next] = true;
         mOrder.push_back(next);
-        for (std::uint32_t q : successors[next])
+        for (std::uint32_t q : edges.successors[next])
             if (needed[q])
                 --inDegree[q];
     }
@@ -236,8 +245,12 @@ core::Status FrameGraph::compile() {
         if (needed[p] && !done[p])
             cycle += (cycle.empty() ? "'" : ", '") + mPasses[p].name + "'";
     if (!cycle.empty())
-        return core::Error{where + "the passes " + cycle + " depend on each other in a cycle"};
-    // 5. Lifetimes of transients over the execution order.
+        return core::Error{"fg::FrameGraph::compile(): the passes " + cycle +
+                           " depend on each other in a cycle"};
+    return {};
+}
+
+void FrameGraph::measureLifetimes() {
     for (Resource& r : mResources)
         r.firstUse = r.lastUse = -1;
     for (std::size_t i = 0; i < mOrder.size(); ++i) {
@@ -255,6 +268,18 @@ core::Status FrameGraph::compile() {
         for (std::uint32_t n : pass.writes)
             touch(mNodes[n].resource);
     }
+}
+
+core::Status FrameGraph::compile() {
+    if (auto valid = checkVersions(); !valid)
+        return valid;
+    const Edges edges = dependencyEdges();
+    const std::vector<bool> needed = neededPasses(edges);
+    for (std::size_t p = 0; p < mPasses.size(); ++p)
+        mPasses[p].culled = !needed[p];
+    if (auto ordered = orderPasses(edges, needed); !ordered)
+        return ordered;
+    measureLifetimes();
     mCompiled = true;
     return {};
 }
@@ -272,7 +297,8 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
         if (observer)
             observer->beginPass(pass.name);
         const auto start = std::chrono::steady_clock::now();
-        const core::Status status = pass.execute ? pass.execute(resources, context) : core::Status{};
+        const core::Status status =
+            pass.execute ? pass.execute(resources, context) : core::Status{};
         const auto end = std::chrono::steady_clock::now();
         if (observer)
             observer->endPass(pass.name);
@@ -284,8 +310,8 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
                 r.object = nullptr;
             }
         if (!status)
-            return core::Error{"fg::FrameGraph::execute(): pass '" + pass.name + "': " +
-                               status.error().message};
+            return core::Error{"fg::FrameGraph::execute(): pass '" + pass.name +
+                               "': " + status.error().message};
     }
     return timings;
 }

@@ -24,8 +24,7 @@ namespace fg {
 
 /** A version of a resource. Every write() yields a new handle; reads name the version they
  *  consume. Default-constructed handles are invalid. `Kind` keeps textures and buffers apart. */
-template <class Kind>
-struct Handle {
+template <class Kind> struct Handle {
     std::uint32_t node = UINT32_MAX;
     bool valid() const { return node != UINT32_MAX; }
     bool operator==(const Handle&) const = default;
@@ -116,15 +115,16 @@ public:
         const std::uint32_t pass = addPassNode(name);
         Builder builder(*this, pass);
         setup(builder, *data);
-        setExecute(pass, [data, execute = std::move(execute)](const Resources& r,
-                                                             gl::Context& c) -> core::Status {
-            if constexpr (std::is_void_v<Returned>) {
-                execute(r, *data, c);
-                return {};
-            } else {
-                return execute(r, *data, c);
-            }
-        });
+        setExecute(pass,
+                   [data, execute = std::move(execute)](const Resources& r,
+                                                        gl::Context& c) -> core::Status {
+                       if constexpr (std::is_void_v<Returned>) {
+                           execute(r, *data, c);
+                           return {};
+                       } else {
+                           return execute(r, *data, c);
+                       }
+                   });
         return *data;
     }
 
@@ -165,6 +165,21 @@ private:
     std::uint32_t addImported(const std::string& name, const gl::TextureDesc& desc, void* object);
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
+    // compile()'s steps.
+    /** Every read has a writer (or an import); no version is written twice. */
+    core::Status checkVersions() const;
+    /** Per pass, the passes after it (data edges and readers before the next writer), and
+     *  the passes whose data it reads. */
+    struct Edges {
+        std::vector<std::vector<std::uint32_t>> successors, consumes;
+    };
+    Edges dependencyEdges() const;
+    /** The passes kept: side effects, writers of imported resources and what they read. */
+    std::vector<bool> neededPasses(const Edges& edges) const;
+    /** mOrder: the kept passes, each after what it depends on, lowest index first. */
+    core::Status orderPasses(const Edges& edges, const std::vector<bool>& needed);
+    /** Each resource's first and last use over mOrder. */
+    void measureLifetimes();
 
     TexturePool& mPool;
     std::vector<Pass> mPasses;
