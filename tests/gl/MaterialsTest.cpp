@@ -455,7 +455,8 @@ scene::World played(const std::function<scene::World(bool)>& make, bool animated
 }
 
 /** The worlds of Materials.AnimatedPointersPlayOnTheGpuAndInTheReference at time `t`: an opaque
- *  sphere's factors, a glass's, a glass's texture transform and a light of the model. */
+ *  sphere's factors, a glass's, a glass's texture transform and a light of the model, built in
+ *  memory as the loader makes them; then all but the first together, through a glTF file. */
 std::vector<AnimatedCase> animatedCases(double t) {
     using P = scene::PointerProperty;
     using test::matrix::animatePointers;
@@ -518,6 +519,23 @@ std::vector<AnimatedCase> animatedCases(double t) {
                                       {P::LightOuterCone, cone0, cone1}});
         return c.world();
     };
+    const auto file = [&](bool animated) { // the same channels, through a file and the loader
+        test::TempDir dir;
+        auto loaded = asset::loadGltf(test::pointerGlassSphereModel().save(dir.path(), "sphere"));
+        EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
+        scene::Model model = std::move(*loaded);
+        if (!animated) {
+            model.animations.clear();
+            scene::Material& m = model.materials.at(0);
+            m.ior = mix(ior0, ior1).x;
+            m.transmissionFactor = mix(tr0, tr1).x;
+            m.baseColorTexture.setUv(
+                {glm::vec2(mix(offset0, offset1)), 0.0f, m.baseColorTexture.uv.scale});
+            model.lights.at(0).intensity = mix(power0, power1).x;
+            model.lights.at(0).color = glm::vec3(mix(white, amber));
+        }
+        return scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(model)));
+    };
     std::vector<AnimatedCase> cases;
     const auto add = [&](const char* name, const std::function<scene::World(bool)>& make,
                          double floor) {
@@ -527,6 +545,7 @@ std::vector<AnimatedCase> animatedCases(double t) {
     add("a glass sphere's IOR and transmission", glass, 43.0);         // measured 44.9 dB
     add("a glass sphere's texture transform", textured, 33.0);         // measured 35.2 dB
     add("a spot light of the model", lamp, 60.0);                      // measured 64.0 dB
+    add("a glTF file's glass, texture transform and spot light", file, 30.0);
     return cases;
 }
 

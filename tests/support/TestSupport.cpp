@@ -3,6 +3,7 @@
 
 #include "engine/asset/Glb.h"
 #include "engine/asset/HdrImage.h"
+#include "engine/asset/ModelLoader.h"
 
 #include <stb_image_write.h>
 
@@ -247,6 +248,87 @@ GltfBuilder pointerTwoJointModel(const std::string& rotationPointer) {
     return b;
 }
 
+GltfBuilder pointerGlassSphereModel() {
+    GltfBuilder b;
+    const scene::Model shape = asset::makeSphere(48);
+    const scene::Primitive& sphere = shape.meshes.at(0).primitives.at(0);
+    std::vector<float> positions, normals, uvs;
+    for (std::size_t v = 0; v < sphere.vertexCount(); ++v) {
+        positions.insert(positions.end(),
+                         {sphere.positions[v].x, sphere.positions[v].y, sphere.positions[v].z});
+        normals.insert(normals.end(),
+                       {sphere.normals[v].x, sphere.normals[v].y, sphere.normals[v].z});
+        uvs.insert(uvs.end(), {sphere.uv0[v].x, sphere.uv0[v].y});
+    }
+    const int position = b.addAccessor(positions, 5126, "VEC3");
+    b.doc["accessors"][position]["min"] = {-1.0, -1.0, -1.0};
+    b.doc["accessors"][position]["max"] = {1.0, 1.0, 1.0};
+    nlohmann::json primitive;
+    primitive["attributes"] = {{"POSITION", position},
+                               {"NORMAL", b.addAccessor(normals, 5126, "VEC3")},
+                               {"TEXCOORD_0", b.addAccessor(uvs, 5126, "VEC2")}};
+    primitive["indices"] = b.addAccessor(sphere.indices, 5125, "SCALAR");
+    primitive["material"] = 0;
+    b.doc["meshes"] = nlohmann::json::array();
+    b.doc["meshes"][0]["primitives"] = {primitive};
+    std::vector<std::uint8_t> checker;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            checker.insert(checker.end(),
+                           (x / 4 + y / 4) % 2
+                               ? std::initializer_list<std::uint8_t>{255, 200, 120, 255}
+                               : std::initializer_list<std::uint8_t>{120, 190, 255, 255});
+    const std::vector<std::uint8_t> png = makePng(16, 16, checker);
+    b.doc["images"] = {
+        {{"bufferView", b.addView(png.data(), png.size())}, {"mimeType", "image/png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    nlohmann::json base = {{"index", 0}};
+    base["extensions"]["KHR_texture_transform"] = {{"offset", {0.1, 0.0}}, {"scale", {2.0, 1.0}}};
+    nlohmann::json glass = {{"name", "glass"}};
+    glass["pbrMetallicRoughness"] = {
+        {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}, {"baseColorTexture", base}};
+    glass["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = 1.0;
+    glass["extensions"]["KHR_materials_ior"]["ior"] = 1.2;
+    b.doc["materials"] = {glass};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "spot"},
+         {"intensity", 8.0},
+         {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.6}}}}};
+    b.doc["nodes"] = {{{"name", "sphere"}, {"mesh", 0}},
+                      {{"name", "lamp"},
+                       {"translation", {0.6, 0.8, 2.5}},
+                       {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    b.doc["scene"] = 0;
+    const int times = b.addAccessor(std::vector<float>{0.0f, 1.0f}, 5126, "SCALAR");
+    b.doc["accessors"][times]["min"] = {0.0};
+    b.doc["accessors"][times]["max"] = {1.0};
+    nlohmann::json samplers = nlohmann::json::array(), channels = nlohmann::json::array();
+    const auto play = [&](const std::string& pointer, const std::vector<float>& keys,
+                          const char* type) {
+        channels.push_back(
+            {{"sampler", samplers.size()},
+             {"target",
+              {{"path", "pointer"},
+               {"extensions", {{"KHR_animation_pointer", {{"pointer", pointer}}}}}}}});
+        samplers.push_back({{"input", times}, {"output", b.addAccessor(keys, 5126, type)}});
+    };
+    play("/materials/0/extensions/KHR_materials_ior/ior", {1.2f, 1.8f}, "SCALAR");
+    play("/materials/0/extensions/KHR_materials_transmission/transmissionFactor", {1.0f, 0.6f},
+         "SCALAR");
+    play("/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/"
+         "offset",
+         {0.1f, 0.0f, 0.35f, 0.2f}, "VEC2");
+    play("/extensions/KHR_lights_punctual/lights/0/intensity", {8.0f, 30.0f}, "SCALAR");
+    play("/extensions/KHR_lights_punctual/lights/0/color", {1.0f, 1.0f, 1.0f, 1.0f, 0.55f, 0.2f},
+         "VEC3");
+    b.doc["animations"] = {{{"name", "pointers"}, {"samplers", samplers}, {"channels", channels}}};
+    b.doc["extensionsUsed"] = {"KHR_animation_pointer", "KHR_lights_punctual",
+                               "KHR_texture_transform", "KHR_materials_transmission",
+                               "KHR_materials_ior"};
+    return b;
+}
+
 GltfBuilder instancedTwoJointModel() {
     GltfBuilder b = twoJointModel();
     const std::vector<float> translations = {0, 0, 0, 2, 0, 0, 0, 0, 3};
@@ -262,8 +344,11 @@ GltfBuilder instancedTwoJointModel() {
 
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba) {
     std::vector<std::uint8_t> pixels;
-    for (int i = 0; i < width * height; ++i)
-        pixels.insert(pixels.end(), rgba.begin(), rgba.end());
+    if (rgba.size() == std::size_t(width) * std::size_t(height) * 4u)
+        pixels = std::move(rgba);
+    else
+        for (int i = 0; i < width * height; ++i)
+            pixels.insert(pixels.end(), rgba.begin(), rgba.end());
     std::vector<std::uint8_t> png;
     stbi_write_png_to_func(
         [](void* context, void* data, int size) {

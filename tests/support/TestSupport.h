@@ -95,7 +95,15 @@ GltfBuilder instancedTwoJointModel();
  *  base colour texture's offset ((0, 0) -> (0.5, 0.25)) and a camera's yfov (0.6 -> 1). */
 GltfBuilder pointerTwoJointModel(const std::string& rotationPointer = "/nodes/2/rotation");
 
-/** A PNG file's bytes for a width x height RGBA8 image (`rgba` repeated over every texel). */
+/** A glass sphere (the built-in one's mesh, TEXCOORD_0) whose base colour is a 16x16
+ *  checker through a KHR_texture_transform, lit by a spot light of the file, and a clip of
+ *  KHR_animation_pointer channels over a second: IOR 1.2 -> 1.8, transmission 1 -> 0.6, the
+ *  texture's offset (0.1, 0) -> (0.35, 0.2), the spot's intensity 8 -> 30 and colour white ->
+ *  (1, 0.55, 0.2). */
+GltfBuilder pointerGlassSphereModel();
+
+/** A PNG file's bytes for a width x height RGBA8 image: `rgba` is every texel's, or one texel's
+ *  repeated over them all. */
 std::vector<std::uint8_t> makePng(int width, int height, std::vector<std::uint8_t> rgba);
 
 /** Writes a width x height Radiance HDR file filled with one linear RGB colour. */
