@@ -1,7 +1,7 @@
 // GpuState's caches: each model's sides at rest, the BVH's parts.
 #include "GpuState.h"
 
-#include "Optics.h"
+#include "model/Optics.h"
 
 #include <algorithm>
 

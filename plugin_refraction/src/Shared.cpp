@@ -2,8 +2,8 @@
 // parameters named from the parameter table itself (one list of names for C++ and GLSL).
 #include "Shared.h"
 
-#include "GlassModel.h"
 #include "Settings.h"
+#include "model/GlassModel.h"
 
 #include <cctype>
 #include <deque>

@@ -2,7 +2,7 @@
 // them (GlassMaterialGpu), with the textures the trace reads at its hits.
 #include "Passes.h"
 
-#include "../Optics.h"
+#include "model/Optics.h"
 
 #include "engine/core/Log.h"
 

@@ -2,10 +2,10 @@
 // scene and the ground shaded like the GPU's opaque pass, the environment sampled like the GPU's.
 #include "refraction/ReferenceTracer.h"
 
-#include "GlassModel.h"
-#include "Optics.h"
 #include "PhotonMap.h"
 #include "ReferenceScene.h"
+#include "model/GlassModel.h"
+#include "model/Optics.h"
 
 #include "engine/render/CpuShading.h"
 #include "engine/render/Lighting.h"

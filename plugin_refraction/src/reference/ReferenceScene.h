@@ -3,8 +3,8 @@
 // their materials; and their bounds.
 #pragma once
 
-#include "Optics.h"
 #include "Settings.h"
+#include "model/Optics.h"
 
 #include "engine/core/Result.h"
 #include "engine/scene/World.h"
