@@ -110,6 +110,82 @@ struct Span {
     std::size_t stride = 0;
 };
 
+/** Where `count` elements (`elementBytes` each) start at `byteOffset` within bufferView
+ *  `viewIndex`, and their stride (the view's where `allowStride`), checked against the view
+ *  and its buffer. `name` and `role` name the accessor (and its part) in errors. */
+Span locate(const tinygltf::Model& model, const std::string& name, int viewIndex,
+            std::size_t byteOffset, std::size_t count, std::size_t elementBytes, bool allowStride,
+            const std::string& role) {
+    if (viewIndex < 0 || std::size_t(viewIndex) >= model.bufferViews.size())
+        fail(name + " " + role + "references bufferView " + std::to_string(viewIndex) +
+             ", file has " + std::to_string(model.bufferViews.size()) + " bufferViews");
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(viewIndex)];
+    const std::string viewName = "bufferView " + std::to_string(viewIndex);
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size())
+        fail(viewName + " references buffer " + std::to_string(view.buffer) + ", file has " +
+             std::to_string(model.buffers.size()) + " buffers");
+    const std::size_t bufferSize = model.buffers[std::size_t(view.buffer)].data.size();
+    if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset)
+        fail(viewName + " (offset " + std::to_string(view.byteOffset) + ", length " +
+             std::to_string(view.byteLength) + ") runs past the end of buffer " +
+             std::to_string(view.buffer) + " (" + std::to_string(bufferSize) + " bytes)");
+    std::size_t stride = elementBytes;
+    if (allowStride && view.byteStride != 0) {
+        if (view.byteStride < elementBytes)
+            fail(viewName + " byteStride " + std::to_string(view.byteStride) + " is smaller than " +
+                 name + "'s element size " + std::to_string(elementBytes));
+        stride = view.byteStride;
+    }
+    const std::size_t needed = count == 0 ? 0 : (count - 1) * stride + elementBytes;
+    if (byteOffset > view.byteLength || needed > view.byteLength - byteOffset)
+        fail(name + " " + role + "(offset " + std::to_string(byteOffset) + ", " +
+             std::to_string(count) + " elements of " + std::to_string(elementBytes) +
+             " bytes, stride " + std::to_string(stride) + ") runs past the end of " + viewName +
+             " (" + std::to_string(view.byteLength) + " bytes)");
+    const unsigned char* base =
+        model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + byteOffset;
+    return Span{base, stride};
+}
+
+/** Accessor `a`'s sparse values written over `out` (`components` a element), its indices
+ *  checked: in range, strictly increasing. */
+void applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, const std::string& name,
+                 int components, std::vector<double>& out) {
+    const int size = componentSize(a.componentType);
+    const std::size_t elementSize = std::size_t(size) * std::size_t(components);
+    const std::string sparseName = name + " sparse";
+    if (a.sparse.count < 1 || std::size_t(a.sparse.count) > a.count)
+        fail(sparseName + " count " + std::to_string(a.sparse.count) + " is not within 1.." +
+             std::to_string(a.count));
+    const std::size_t n = std::size_t(a.sparse.count);
+    const int indexType = a.sparse.indices.componentType;
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(sparseName + " indices have invalid componentType " + std::to_string(indexType));
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+        fail(sparseName + " has a negative byteOffset");
+    const Span indices =
+        locate(model, name, a.sparse.indices.bufferView, std::size_t(a.sparse.indices.byteOffset),
+               n, std::size_t(componentSize(indexType)), false, "sparse indices ");
+    const Span values =
+        locate(model, name, a.sparse.values.bufferView, std::size_t(a.sparse.values.byteOffset), n,
+               elementSize, false, "sparse values ");
+    double previous = -1.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double target = readComponent(indices.data + i * indices.stride, indexType, false);
+        if (target <= previous || target >= double(a.count))
+            fail(sparseName + " index " + std::to_string(i) + " (" +
+                 std::to_string(std::uint64_t(target)) +
+                 ") is out of range or not strictly increasing");
+        previous = target;
+        for (int c = 0; c < components; ++c)
+            out[std::size_t(target) * std::size_t(components) + std::size_t(c)] =
+                readComponent(values.data + i * values.stride + std::size_t(c * size),
+                              a.componentType, a.normalized);
+    }
+}
+
 } // namespace
 
 AccessorReader::AccessorReader(const tinygltf::Model& model, std::uint64_t fileBytes)
@@ -146,44 +222,10 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
     const std::size_t elementSize = std::size_t(size) * std::size_t(components);
     const std::size_t total = a.count * std::size_t(components);
 
-    // Locates `count` elements (elementBytes each) at byteOffset within a view, checked.
-    auto locate = [&](int viewIndex, std::size_t byteOffset, std::size_t count,
-                      std::size_t elementBytes, bool allowStride, const std::string& role) {
-        if (viewIndex < 0 || std::size_t(viewIndex) >= mModel.bufferViews.size())
-            fail(name + " " + role + "references bufferView " + std::to_string(viewIndex) +
-                 ", file has " + std::to_string(mModel.bufferViews.size()) + " bufferViews");
-        const tinygltf::BufferView& view = mModel.bufferViews[std::size_t(viewIndex)];
-        const std::string viewName = "bufferView " + std::to_string(viewIndex);
-        if (view.buffer < 0 || std::size_t(view.buffer) >= mModel.buffers.size())
-            fail(viewName + " references buffer " + std::to_string(view.buffer) + ", file has " +
-                 std::to_string(mModel.buffers.size()) + " buffers");
-        const std::size_t bufferSize = mModel.buffers[std::size_t(view.buffer)].data.size();
-        if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset)
-            fail(viewName + " (offset " + std::to_string(view.byteOffset) + ", length " +
-                 std::to_string(view.byteLength) + ") runs past the end of buffer " +
-                 std::to_string(view.buffer) + " (" + std::to_string(bufferSize) + " bytes)");
-        std::size_t stride = elementBytes;
-        if (allowStride && view.byteStride != 0) {
-            if (view.byteStride < elementBytes)
-                fail(viewName + " byteStride " + std::to_string(view.byteStride) +
-                     " is smaller than " + name + "'s element size " +
-                     std::to_string(elementBytes));
-            stride = view.byteStride;
-        }
-        const std::size_t needed = count == 0 ? 0 : (count - 1) * stride + elementBytes;
-        if (byteOffset > view.byteLength || needed > view.byteLength - byteOffset)
-            fail(name + " " + role + "(offset " + std::to_string(byteOffset) + ", " +
-                 std::to_string(count) + " elements of " + std::to_string(elementBytes) +
-                 " bytes, stride " + std::to_string(stride) + ") runs past the end of " + viewName +
-                 " (" + std::to_string(view.byteLength) + " bytes)");
-        const unsigned char* base =
-            mModel.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + byteOffset;
-        return Span{base, stride};
-    };
-
     std::vector<double> out;
     if (a.bufferView >= 0) {
-        const Span span = locate(a.bufferView, a.byteOffset, a.count, elementSize, true, "");
+        const Span span =
+            locate(mModel, name, a.bufferView, a.byteOffset, a.count, elementSize, true, "");
         out.resize(total);
         for (std::size_t i = 0; i < a.count; ++i)
             for (int c = 0; c < components; ++c)
@@ -199,40 +241,8 @@ std::vector<double> AccessorReader::decode(int index, int components, bool allow
         out.assign(total, 0.0);
     }
 
-    if (a.sparse.isSparse) {
-        const std::string sparseName = name + " sparse";
-        if (a.sparse.count < 1 || std::size_t(a.sparse.count) > a.count)
-            fail(sparseName + " count " + std::to_string(a.sparse.count) + " is not within 1.." +
-                 std::to_string(a.count));
-        const std::size_t n = std::size_t(a.sparse.count);
-        const int indexType = a.sparse.indices.componentType;
-        if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            fail(sparseName + " indices have invalid componentType " + std::to_string(indexType));
-        if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
-            fail(sparseName + " has a negative byteOffset");
-        const Span indices =
-            locate(a.sparse.indices.bufferView, std::size_t(a.sparse.indices.byteOffset), n,
-                   std::size_t(componentSize(indexType)), false, "sparse indices ");
-        const Span values =
-            locate(a.sparse.values.bufferView, std::size_t(a.sparse.values.byteOffset), n,
-                   elementSize, false, "sparse values ");
-        double previous = -1.0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const double target =
-                readComponent(indices.data + i * indices.stride, indexType, false);
-            if (target <= previous || target >= double(a.count))
-                fail(sparseName + " index " + std::to_string(i) + " (" +
-                     std::to_string(std::uint64_t(target)) +
-                     ") is out of range or not strictly increasing");
-            previous = target;
-            for (int c = 0; c < components; ++c)
-                out[std::size_t(target) * std::size_t(components) + std::size_t(c)] =
-                    readComponent(values.data + i * values.stride + std::size_t(c * size),
-                                  a.componentType, a.normalized);
-        }
-    }
+    if (a.sparse.isSparse)
+        applySparse(mModel, a, name, components, out);
 
     for (std::size_t i = 0; i < out.size(); ++i)
         if (!std::isfinite(out[i]))

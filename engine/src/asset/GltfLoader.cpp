@@ -333,6 +333,126 @@ scene::Texture convertTexture(const tinygltf::Model& m, int index, const std::se
     return texture;
 }
 
+/** One material's extension objects, and their numbers read with range checks. */
+struct ExtensionReader {
+    const tinygltf::Model& m;
+    const tinygltf::Material& src;
+    const std::string& what;
+    const tinygltf::Value* find(const char* name) const {
+        const auto it = src.extensions.find(name);
+        return it == src.extensions.end() ? nullptr : &it->second;
+    }
+    /** A number of extension `e`'s object, `fallback` when absent, checked in [lo, hi]. */
+    float factor(const tinygltf::Value& e, const char* key, double fallback, double lo,
+                 double hi) const {
+        const float value = float(number(e, key, fallback));
+        checkRange(value, lo, hi, what + " " + key);
+        return value;
+    }
+    scene::TextureRef texture(const tinygltf::Value& e, const char* key) const {
+        return textureInfo(m, e, key, what);
+    }
+};
+
+/** KHR_materials_pbrSpecularGlossiness, converted to metallic-roughness as a dielectric
+ *  (docs/importer.md, "glTF as shipped"): diffuse becomes the base colour, 1 - glossiness the
+ *  roughness; the specular colour and the specular-glossiness texture have no counterpart
+ *  there. */
+void readSpecularGlossiness(const ExtensionReader& r, const tinygltf::Value& e,
+                            scene::Material& mat, std::vector<std::string>& warnings) {
+    mat.baseColorFactor = glm::vec4(1.0f);
+    if (e.Has("diffuseFactor") && e.Get("diffuseFactor").IsArray() &&
+        e.Get("diffuseFactor").ArrayLen() == 4)
+        for (int c = 0; c < 4; ++c)
+            mat.baseColorFactor[c] = float(e.Get("diffuseFactor").Get(c).GetNumberAsDouble());
+    mat.baseColorTexture = r.texture(e, "diffuseTexture");
+    mat.metallicFactor = 0.0f;
+    mat.roughnessFactor = 1.0f - float(number(e, "glossinessFactor", 1.0));
+    mat.metallicRoughnessTexture = {};
+    checkRange(mat.roughnessFactor, 0.0, 1.0, r.what + " 1 - glossinessFactor");
+    if (e.Has("specularGlossinessTexture"))
+        warnings.push_back(r.what + " KHR_materials_pbrSpecularGlossiness: its "
+                                    "specularGlossinessTexture is not converted (the "
+                                    "glossiness factor is)");
+}
+
+/** The layers over the base: specular, clear coat, sheen, iridescence, anisotropy, and the
+ *  emissive strength. */
+void readLayers(const ExtensionReader& r, scene::Material& mat) {
+    if (const tinygltf::Value* e = r.find("KHR_materials_emissive_strength"))
+        mat.emissiveStrength = r.factor(*e, "emissiveStrength", 1.0, 0.0, 1e9);
+    if (const tinygltf::Value* e = r.find("KHR_materials_specular")) {
+        mat.hasSpecular = true;
+        mat.specularFactor = r.factor(*e, "specularFactor", 1.0, 0.0, 1.0);
+        mat.specularTexture = r.texture(*e, "specularTexture");
+        readColor(*e, "specularColorFactor", 1e6, r.what, mat.specularColorFactor);
+        mat.specularColorTexture = r.texture(*e, "specularColorTexture");
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_clearcoat")) {
+        mat.hasClearcoat = true;
+        mat.clearcoatFactor = r.factor(*e, "clearcoatFactor", 0.0, 0.0, 1.0);
+        mat.clearcoatTexture = r.texture(*e, "clearcoatTexture");
+        mat.clearcoatRoughnessFactor = r.factor(*e, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0);
+        mat.clearcoatRoughnessTexture = r.texture(*e, "clearcoatRoughnessTexture");
+        mat.clearcoatNormalTexture = r.texture(*e, "clearcoatNormalTexture");
+        if (e->Has("clearcoatNormalTexture"))
+            mat.clearcoatNormalTexture.scale =
+                float(number(e->Get("clearcoatNormalTexture"), "scale", 1.0));
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_sheen")) {
+        mat.hasSheen = true;
+        readColor(*e, "sheenColorFactor", 1.0, r.what, mat.sheenColorFactor);
+        mat.sheenColorTexture = r.texture(*e, "sheenColorTexture");
+        mat.sheenRoughnessFactor = r.factor(*e, "sheenRoughnessFactor", 0.0, 0.0, 1.0);
+        mat.sheenRoughnessTexture = r.texture(*e, "sheenRoughnessTexture");
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_iridescence")) {
+        mat.hasIridescence = true;
+        mat.iridescenceFactor = r.factor(*e, "iridescenceFactor", 0.0, 0.0, 1.0);
+        mat.iridescenceTexture = r.texture(*e, "iridescenceTexture");
+        mat.iridescenceIor = r.factor(*e, "iridescenceIor", 1.3, 1.0, 1e3);
+        mat.iridescenceThicknessMinimum =
+            r.factor(*e, "iridescenceThicknessMinimum", 100.0, 0.0, 1e6);
+        mat.iridescenceThicknessMaximum =
+            r.factor(*e, "iridescenceThicknessMaximum", 400.0, 0.0, 1e6);
+        mat.iridescenceThicknessTexture = r.texture(*e, "iridescenceThicknessTexture");
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_anisotropy")) {
+        mat.hasAnisotropy = true;
+        mat.anisotropyStrength = r.factor(*e, "anisotropyStrength", 0.0, 0.0, 1.0);
+        mat.anisotropyRotation = r.factor(*e, "anisotropyRotation", 0.0, -1e6, 1e6);
+        mat.anisotropyTexture = r.texture(*e, "anisotropyTexture");
+    }
+}
+
+/** The glass: transmission, volume, index of refraction, dispersion. */
+void readGlass(const ExtensionReader& r, scene::Material& mat) {
+    if (const tinygltf::Value* e = r.find("KHR_materials_transmission")) {
+        mat.hasTransmission = true;
+        mat.transmissionFactor = r.factor(*e, "transmissionFactor", 0.0, 0.0, 1.0);
+        mat.transmissionTexture = r.texture(*e, "transmissionTexture");
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_volume")) {
+        mat.hasVolume = true;
+        mat.thicknessFactor = r.factor(*e, "thicknessFactor", 0.0, 0.0, 1e9);
+        mat.thicknessTexture = r.texture(*e, "thicknessTexture");
+        mat.attenuationDistance = float(number(*e, "attenuationDistance", double(INFINITY)));
+        if (!(mat.attenuationDistance > 0.0f))
+            fail(r.what + " attenuationDistance must be positive");
+        readColor(*e, "attenuationColor", 1.0, r.what, mat.attenuationColor);
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_ior")) {
+        mat.hasIor = true;
+        mat.ior = float(number(*e, "ior", 1.5));
+        if (!(mat.ior == 0.0f || (mat.ior >= 1.0f && mat.ior < 1e6f)))
+            fail(r.what + " ior " + std::to_string(mat.ior) + " must be 0 or at least 1");
+    }
+    if (const tinygltf::Value* e = r.find("KHR_materials_dispersion")) {
+        mat.hasDispersion = true;
+        mat.dispersion = r.factor(*e, "dispersion", 0.0, 0.0, 1e6);
+    }
+}
+
 scene::Material convertMaterial(const tinygltf::Model& m, int index,
                                 std::vector<std::string>& warnings) {
     const tinygltf::Material& src = m.materials[std::size_t(index)];
@@ -360,107 +480,13 @@ scene::Material convertMaterial(const tinygltf::Model& m, int index,
     mat.alphaCutoff = float(src.alphaCutoff);
     mat.doubleSided = src.doubleSided;
 
-    auto extension = [&](const char* name) -> const tinygltf::Value* {
-        const auto it = src.extensions.find(name);
-        return it == src.extensions.end() ? nullptr : &it->second;
-    };
-    // A number of an extension's object, `fallback` when absent, checked in [lo, hi].
-    auto factor = [&](const tinygltf::Value& e, const char* key, double fallback, double lo,
-                      double hi) {
-        const float value = float(number(e, key, fallback));
-        checkRange(value, lo, hi, what + " " + key);
-        return value;
-    };
-    if (extension("KHR_materials_unlit"))
+    const ExtensionReader reader{m, src, what};
+    if (reader.find("KHR_materials_unlit"))
         mat.unlit = true;
-    if (const tinygltf::Value* e = extension("KHR_materials_pbrSpecularGlossiness")) {
-        // Converted to metallic-roughness as a dielectric (docs/importer.md, "glTF as shipped"):
-        // diffuse becomes the base colour, 1 - glossiness the roughness; the specular colour and
-        // the specular-glossiness texture have no counterpart there.
-        mat.baseColorFactor = glm::vec4(1.0f);
-        if (e->Has("diffuseFactor") && e->Get("diffuseFactor").IsArray() &&
-            e->Get("diffuseFactor").ArrayLen() == 4)
-            for (int c = 0; c < 4; ++c)
-                mat.baseColorFactor[c] = float(e->Get("diffuseFactor").Get(c).GetNumberAsDouble());
-        mat.baseColorTexture = textureInfo(m, *e, "diffuseTexture", what);
-        mat.metallicFactor = 0.0f;
-        mat.roughnessFactor = 1.0f - float(number(*e, "glossinessFactor", 1.0));
-        mat.metallicRoughnessTexture = {};
-        checkRange(mat.roughnessFactor, 0.0, 1.0, what + " 1 - glossinessFactor");
-        if (e->Has("specularGlossinessTexture"))
-            warnings.push_back(what + " KHR_materials_pbrSpecularGlossiness: its "
-                                      "specularGlossinessTexture is not converted (the "
-                                      "glossiness factor is)");
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_emissive_strength")) {
-        mat.emissiveStrength = factor(*e, "emissiveStrength", 1.0, 0.0, 1e9);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_specular")) {
-        mat.hasSpecular = true;
-        mat.specularFactor = factor(*e, "specularFactor", 1.0, 0.0, 1.0);
-        mat.specularTexture = textureInfo(m, *e, "specularTexture", what);
-        readColor(*e, "specularColorFactor", 1e6, what, mat.specularColorFactor);
-        mat.specularColorTexture = textureInfo(m, *e, "specularColorTexture", what);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_clearcoat")) {
-        mat.hasClearcoat = true;
-        mat.clearcoatFactor = factor(*e, "clearcoatFactor", 0.0, 0.0, 1.0);
-        mat.clearcoatTexture = textureInfo(m, *e, "clearcoatTexture", what);
-        mat.clearcoatRoughnessFactor = factor(*e, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0);
-        mat.clearcoatRoughnessTexture = textureInfo(m, *e, "clearcoatRoughnessTexture", what);
-        mat.clearcoatNormalTexture = textureInfo(m, *e, "clearcoatNormalTexture", what);
-        if (e->Has("clearcoatNormalTexture"))
-            mat.clearcoatNormalTexture.scale =
-                float(number(e->Get("clearcoatNormalTexture"), "scale", 1.0));
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_sheen")) {
-        mat.hasSheen = true;
-        readColor(*e, "sheenColorFactor", 1.0, what, mat.sheenColorFactor);
-        mat.sheenColorTexture = textureInfo(m, *e, "sheenColorTexture", what);
-        mat.sheenRoughnessFactor = factor(*e, "sheenRoughnessFactor", 0.0, 0.0, 1.0);
-        mat.sheenRoughnessTexture = textureInfo(m, *e, "sheenRoughnessTexture", what);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_iridescence")) {
-        mat.hasIridescence = true;
-        mat.iridescenceFactor = factor(*e, "iridescenceFactor", 0.0, 0.0, 1.0);
-        mat.iridescenceTexture = textureInfo(m, *e, "iridescenceTexture", what);
-        mat.iridescenceIor = factor(*e, "iridescenceIor", 1.3, 1.0, 1e3);
-        mat.iridescenceThicknessMinimum =
-            factor(*e, "iridescenceThicknessMinimum", 100.0, 0.0, 1e6);
-        mat.iridescenceThicknessMaximum =
-            factor(*e, "iridescenceThicknessMaximum", 400.0, 0.0, 1e6);
-        mat.iridescenceThicknessTexture = textureInfo(m, *e, "iridescenceThicknessTexture", what);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_anisotropy")) {
-        mat.hasAnisotropy = true;
-        mat.anisotropyStrength = factor(*e, "anisotropyStrength", 0.0, 0.0, 1.0);
-        mat.anisotropyRotation = factor(*e, "anisotropyRotation", 0.0, -1e6, 1e6);
-        mat.anisotropyTexture = textureInfo(m, *e, "anisotropyTexture", what);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_transmission")) {
-        mat.hasTransmission = true;
-        mat.transmissionFactor = factor(*e, "transmissionFactor", 0.0, 0.0, 1.0);
-        mat.transmissionTexture = textureInfo(m, *e, "transmissionTexture", what);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_volume")) {
-        mat.hasVolume = true;
-        mat.thicknessFactor = factor(*e, "thicknessFactor", 0.0, 0.0, 1e9);
-        mat.thicknessTexture = textureInfo(m, *e, "thicknessTexture", what);
-        mat.attenuationDistance = float(number(*e, "attenuationDistance", double(INFINITY)));
-        if (!(mat.attenuationDistance > 0.0f))
-            fail(what + " attenuationDistance must be positive");
-        readColor(*e, "attenuationColor", 1.0, what, mat.attenuationColor);
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_ior")) {
-        mat.hasIor = true;
-        mat.ior = float(number(*e, "ior", 1.5));
-        if (!(mat.ior == 0.0f || (mat.ior >= 1.0f && mat.ior < 1e6f)))
-            fail(what + " ior " + std::to_string(mat.ior) + " must be 0 or at least 1");
-    }
-    if (const tinygltf::Value* e = extension("KHR_materials_dispersion")) {
-        mat.hasDispersion = true;
-        mat.dispersion = factor(*e, "dispersion", 0.0, 0.0, 1e6);
-    }
+    if (const tinygltf::Value* e = reader.find("KHR_materials_pbrSpecularGlossiness"))
+        readSpecularGlossiness(reader, *e, mat, warnings);
+    readLayers(reader, mat);
+    readGlass(reader, mat);
     mat.forEachTexture([&](const scene::TextureRef& t, bool) {
         if (t.present() && (t.texCoord < 0 || t.texCoord > 1))
             fail(what + " uses TEXCOORD_" + std::to_string(t.texCoord) +
