@@ -105,91 +105,106 @@ int addView(tinygltf::Model& model, std::vector<unsigned char> data) {
 
 // --- EXT_meshopt_compression --------------------------------------------------------------
 
-void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const char* extension,
-                       const tinygltf::Value& ext, Budget& budget) {
-    const std::string what = "bufferView " + n(index) + " " + extension;
-    const std::int64_t buffer = integer(ext, "buffer", -1, what);
-    const std::int64_t byteOffset = integer(ext, "byteOffset", 0, what);
-    const std::int64_t byteLength = integer(ext, "byteLength", -1, what);
-    const std::int64_t stride = integer(ext, "byteStride", -1, what);
-    const std::int64_t count = integer(ext, "count", -1, what);
-    const std::string mode = text(ext, "mode", "");
-    const std::string filter = text(ext, "filter", "NONE");
-    if (buffer < 0 || std::uint64_t(buffer) >= model.buffers.size())
-        fail(what + " references buffer " + std::to_string(buffer) + ", file has " +
+/** An EXT_meshopt_compression stream as its extension object describes it. */
+struct MeshoptStream {
+    std::int64_t buffer, byteOffset, byteLength, stride, count;
+    std::string mode, filter;
+};
+
+/** The stream `ext` describes, checked: within its buffer, its count within the limit, its
+ *  mode, stride and filter among those the extension allows together. */
+MeshoptStream readMeshoptStream(const tinygltf::Model& model, const tinygltf::Value& ext,
+                                const std::string& what) {
+    const MeshoptStream s{
+        integer(ext, "buffer", -1, what),     integer(ext, "byteOffset", 0, what),
+        integer(ext, "byteLength", -1, what), integer(ext, "byteStride", -1, what),
+        integer(ext, "count", -1, what),      text(ext, "mode", ""),
+        text(ext, "filter", "NONE")};
+    if (s.buffer < 0 || std::uint64_t(s.buffer) >= model.buffers.size())
+        fail(what + " references buffer " + std::to_string(s.buffer) + ", file has " +
              n(model.buffers.size()));
-    const std::vector<unsigned char>& data = model.buffers[std::size_t(buffer)].data;
-    if (byteOffset < 0 || byteLength < 0 || std::uint64_t(byteOffset) > data.size() ||
-        std::uint64_t(byteLength) > data.size() - std::uint64_t(byteOffset))
-        fail(what + " (offset " + std::to_string(byteOffset) + ", length " +
-             std::to_string(byteLength) + ") runs past the end of buffer " +
-             std::to_string(buffer) + " (" + n(data.size()) + " bytes)");
-    if (count < 0 || std::uint64_t(count) > core::limits::kMaxVerticesPerPrimitive)
-        fail(what + " count " + std::to_string(count) + " is not within 0.." +
+    const std::size_t bytes = model.buffers[std::size_t(s.buffer)].data.size();
+    if (s.byteOffset < 0 || s.byteLength < 0 || std::uint64_t(s.byteOffset) > bytes ||
+        std::uint64_t(s.byteLength) > bytes - std::uint64_t(s.byteOffset))
+        fail(what + " (offset " + std::to_string(s.byteOffset) + ", length " +
+             std::to_string(s.byteLength) + ") runs past the end of buffer " +
+             std::to_string(s.buffer) + " (" + n(bytes) + " bytes)");
+    if (s.count < 0 || std::uint64_t(s.count) > core::limits::kMaxVerticesPerPrimitive)
+        fail(what + " count " + std::to_string(s.count) + " is not within 0.." +
              n(core::limits::kMaxVerticesPerPrimitive));
-    if (mode == "ATTRIBUTES") {
-        if (stride < 4 || stride > 256 || stride % 4 != 0)
-            fail(what + " byteStride " + std::to_string(stride) +
+    if (s.mode == "ATTRIBUTES") {
+        if (s.stride < 4 || s.stride > 256 || s.stride % 4 != 0)
+            fail(what + " byteStride " + std::to_string(s.stride) +
                  " must be a multiple of 4 within 4..256 for ATTRIBUTES");
-    } else if (mode == "TRIANGLES" || mode == "INDICES") {
-        if (stride != 2 && stride != 4)
-            fail(what + " byteStride " + std::to_string(stride) + " must be 2 or 4 for " + mode);
-        if (mode == "TRIANGLES" && count % 3 != 0)
-            fail(what + " count " + std::to_string(count) +
+    } else if (s.mode == "TRIANGLES" || s.mode == "INDICES") {
+        if (s.stride != 2 && s.stride != 4)
+            fail(what + " byteStride " + std::to_string(s.stride) + " must be 2 or 4 for " +
+                 s.mode);
+        if (s.mode == "TRIANGLES" && s.count % 3 != 0)
+            fail(what + " count " + std::to_string(s.count) +
                  " is not a multiple of 3 for TRIANGLES");
-        if (filter != "NONE")
-            fail(what + " filter " + filter + " applies to ATTRIBUTES only");
+        if (s.filter != "NONE")
+            fail(what + " filter " + s.filter + " applies to ATTRIBUTES only");
     } else {
-        fail(what + " mode '" + mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
+        fail(what + " mode '" + s.mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
     }
-    if (filter == "OCTAHEDRAL" && stride != 4 && stride != 8)
-        fail(what + " OCTAHEDRAL filter needs byteStride 4 or 8, not " + std::to_string(stride));
-    if (filter == "QUATERNION" && stride != 8)
-        fail(what + " QUATERNION filter needs byteStride 8, not " + std::to_string(stride));
-    if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" &&
-        filter != "EXPONENTIAL")
-        fail(what + " filter '" + filter + "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
+    if (s.filter == "OCTAHEDRAL" && s.stride != 4 && s.stride != 8)
+        fail(what + " OCTAHEDRAL filter needs byteStride 4 or 8, not " + std::to_string(s.stride));
+    if (s.filter == "QUATERNION" && s.stride != 8)
+        fail(what + " QUATERNION filter needs byteStride 8, not " + std::to_string(s.stride));
+    if (s.filter != "NONE" && s.filter != "OCTAHEDRAL" && s.filter != "QUATERNION" &&
+        s.filter != "EXPONENTIAL")
+        fail(what + " filter '" + s.filter +
+             "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
+    return s;
+}
 
-    const std::uint64_t decodedBytes = std::uint64_t(count) * std::uint64_t(stride);
-    if (decodedBytes > kMeshoptMaxRatio * std::uint64_t(byteLength) + 4096)
-        fail(what + " claims " + n(decodedBytes) + " decoded bytes from " +
-             std::to_string(byteLength) + " compressed ones, more than the codec can produce");
-    tinygltf::BufferView& view = model.bufferViews[index];
-    if (view.byteLength != decodedBytes)
-        fail(what + " decodes to " + n(decodedBytes) + " bytes (count " + std::to_string(count) +
-             " x byteStride " + std::to_string(stride) + "), but the bufferView's byteLength is " +
-             n(view.byteLength));
-    budget.take(decodedBytes, what);
-
-    std::vector<unsigned char> out(decodedBytes);
-    const unsigned char* source = data.data() + byteOffset;
-    const std::size_t size = std::size_t(byteLength);
+/** Stream `s` decoded from `source` into `out` (count x stride bytes), its filter undone. */
+void decodeMeshoptStream(const MeshoptStream& s, const unsigned char* source,
+                         std::vector<unsigned char>& out, const std::string& what) {
+    const std::size_t size = std::size_t(s.byteLength), count = std::size_t(s.count),
+                      stride = std::size_t(s.stride);
     int status = 0;
-    if (mode == "ATTRIBUTES")
-        status = meshopt_decodeVertexBuffer(out.data(), std::size_t(count), std::size_t(stride),
-                                            source, size);
-    else if (mode == "TRIANGLES")
-        status = meshopt_decodeIndexBuffer(out.data(), std::size_t(count), std::size_t(stride),
-                                           source, size);
+    if (s.mode == "ATTRIBUTES")
+        status = meshopt_decodeVertexBuffer(out.data(), count, stride, source, size);
+    else if (s.mode == "TRIANGLES")
+        status = meshopt_decodeIndexBuffer(out.data(), count, stride, source, size);
     else
-        status = meshopt_decodeIndexSequence(out.data(), std::size_t(count), std::size_t(stride),
-                                             source, size);
-    if (status != 0 && mode == "ATTRIBUTES" && size > 0 && (source[0] & 0xF0) == 0xA0 &&
+        status = meshopt_decodeIndexSequence(out.data(), count, stride, source, size);
+    if (status != 0 && s.mode == "ATTRIBUTES" && size > 0 && (source[0] & 0xF0) == 0xA0 &&
         source[0] != 0xA0)
         fail(what + ": the stream is in version " + std::to_string(source[0] & 0x0F) +
              " of meshopt's vertex codec; the libmeshoptimizer this engine is built with (" +
              std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." +
              std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10) + ") decodes version 0");
     if (status != 0)
-        fail(what + ": the " + mode + " stream is corrupt (meshopt error " +
+        fail(what + ": the " + s.mode + " stream is corrupt (meshopt error " +
              std::to_string(status) + ")");
-    if (filter == "OCTAHEDRAL")
-        meshopt_decodeFilterOct(out.data(), std::size_t(count), std::size_t(stride));
-    else if (filter == "QUATERNION")
-        meshopt_decodeFilterQuat(out.data(), std::size_t(count), std::size_t(stride));
-    else if (filter == "EXPONENTIAL")
-        meshopt_decodeFilterExp(out.data(), std::size_t(count), std::size_t(stride));
+    if (s.filter == "OCTAHEDRAL")
+        meshopt_decodeFilterOct(out.data(), count, stride);
+    else if (s.filter == "QUATERNION")
+        meshopt_decodeFilterQuat(out.data(), count, stride);
+    else if (s.filter == "EXPONENTIAL")
+        meshopt_decodeFilterExp(out.data(), count, stride);
+}
 
+void decodeMeshoptView(tinygltf::Model& model, std::size_t index, const char* extension,
+                       const tinygltf::Value& ext, Budget& budget) {
+    const std::string what = "bufferView " + n(index) + " " + extension;
+    const MeshoptStream s = readMeshoptStream(model, ext, what);
+    const std::uint64_t decodedBytes = std::uint64_t(s.count) * std::uint64_t(s.stride);
+    if (decodedBytes > kMeshoptMaxRatio * std::uint64_t(s.byteLength) + 4096)
+        fail(what + " claims " + n(decodedBytes) + " decoded bytes from " +
+             std::to_string(s.byteLength) + " compressed ones, more than the codec can produce");
+    tinygltf::BufferView& view = model.bufferViews[index];
+    if (view.byteLength != decodedBytes)
+        fail(what + " decodes to " + n(decodedBytes) + " bytes (count " + std::to_string(s.count) +
+             " x byteStride " + std::to_string(s.stride) +
+             "), but the bufferView's byteLength is " + n(view.byteLength));
+    budget.take(decodedBytes, what);
+    std::vector<unsigned char> out(decodedBytes);
+    decodeMeshoptStream(s, model.buffers[std::size_t(s.buffer)].data.data() + s.byteOffset, out,
+                        what);
     tinygltf::Buffer decoded;
     decoded.data = std::move(out);
     model.buffers.push_back(std::move(decoded));
@@ -254,6 +269,120 @@ tinygltf::Accessor& accessorAt(tinygltf::Model& model, std::int64_t index,
     return model.accessors[std::size_t(index)];
 }
 
+/** What a Draco primitive's accessors claim it decodes to. */
+struct DracoClaims {
+    std::uint64_t vertices = 0, indices = 0, bytes = 0;
+};
+
+/** The sizes the JSON claims, checked (each compressed attribute listed by the primitive, one
+ *  vertex count, the limits) before the decoder allocates anything. */
+DracoClaims claimedSizes(tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                         const tinygltf::Value& attributes, const std::string& what,
+                         const std::string& name) {
+    DracoClaims claims;
+    for (const std::string& semantic : attributes.Keys()) {
+        const auto it = primitive.attributes.find(semantic);
+        if (it == primitive.attributes.end())
+            fail(name + " compresses " + semantic + ", which the primitive does not list");
+        const tinygltf::Accessor& accessor = accessorAt(model, it->second, what + " " + semantic);
+        if (vectorComponents(accessor.type) == 0)
+            fail(what + " " + semantic + " accessor " + std::to_string(it->second) +
+                 " is not a scalar or vector");
+        if (claims.vertices != 0 && accessor.count != claims.vertices)
+            fail(name + ": " + semantic + " has " + n(accessor.count) +
+                 " elements, other attributes " + n(claims.vertices));
+        claims.vertices = accessor.count;
+        claims.bytes += std::uint64_t(accessor.count) *
+                        std::uint64_t(vectorComponents(accessor.type)) *
+                        std::uint64_t(componentSize(accessor.componentType));
+    }
+    if (claims.vertices > core::limits::kMaxVerticesPerPrimitive)
+        fail(name + " claims " + n(claims.vertices) + " vertices, over the limit of " +
+             n(core::limits::kMaxVerticesPerPrimitive));
+    if (primitive.indices >= 0) {
+        claims.indices = accessorAt(model, primitive.indices, what + " indices").count;
+        if (claims.indices > 3 * core::limits::kMaxVerticesPerPrimitive)
+            fail(name + " claims " + n(claims.indices) + " indices, over the limit");
+        claims.bytes += claims.indices * 4;
+    }
+    return claims;
+}
+
+/** The Draco triangle mesh of `ext`'s bufferView, checked against what its accessors claim. */
+std::unique_ptr<draco::Mesh> decodeDracoMesh(const tinygltf::Model& model,
+                                             const tinygltf::Value& ext, bool indexed,
+                                             const DracoClaims& claims, const std::string& name) {
+    const std::span<const std::uint8_t> compressed =
+        viewBytes(model, integer(ext, "bufferView", -1, name), name);
+    draco::DecoderBuffer stream;
+    stream.Init(reinterpret_cast<const char*>(compressed.data()), compressed.size());
+    auto geometryType = draco::Decoder::GetEncodedGeometryType(&stream);
+    if (!geometryType.ok() || geometryType.value() != draco::TRIANGULAR_MESH)
+        fail(name + ": the stream is not a Draco triangle mesh" +
+             (geometryType.ok() ? "" : " (" + geometryType.status().error_msg_string() + ")"));
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&stream);
+    if (!decoded.ok())
+        fail(name + ": the Draco stream does not decode (" + decoded.status().error_msg_string() +
+             ")");
+    std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
+    if (mesh->num_points() != claims.vertices)
+        fail(name + " decodes to " + n(mesh->num_points()) + " vertices, its accessors claim " +
+             n(claims.vertices));
+    if (indexed && std::uint64_t(mesh->num_faces()) * 3 != claims.indices)
+        fail(name + " decodes to " + n(mesh->num_faces()) + " triangles, its indices accessor " +
+             "claims " + n(claims.indices) + " indices");
+    return mesh;
+}
+
+/** Draco attribute `id` of `mesh` as the data of `accessor`, in a buffer view of its own. */
+void replaceAttribute(tinygltf::Model& model, tinygltf::Accessor& accessor, const draco::Mesh& mesh,
+                      std::int64_t id, const std::string& attributeName) {
+    const draco::PointAttribute* attribute =
+        id < 0 ? nullptr : mesh.GetAttributeByUniqueId(std::uint32_t(id));
+    if (!attribute)
+        fail(attributeName + " is Draco attribute " + std::to_string(id) +
+             ", which the stream does not have");
+    // glTF attributes are integers of up to 32 bits or floats; Draco's other types (a bool is
+    // loaded as one, whatever byte the stream holds) have no glTF meaning.
+    switch (attribute->data_type()) {
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32:
+    case draco::DT_FLOAT32:
+        break;
+    default:
+        fail(attributeName + " has Draco data type " + std::to_string(int(attribute->data_type())) +
+             ", which no glTF attribute uses");
+    }
+    if (attribute->num_components() < vectorComponents(accessor.type))
+        fail(attributeName + " has " + std::to_string(attribute->num_components()) +
+             " components in the stream, its accessor " +
+             std::to_string(vectorComponents(accessor.type)));
+    std::vector<unsigned char> data = convertAttribute(mesh, *attribute, accessor, attributeName);
+    accessor.bufferView = addView(model, std::move(data));
+    accessor.byteOffset = 0;
+    accessor.sparse = {};
+}
+
+/** The mesh's triangles as `accessor`'s data, 32-bit, in a buffer view of their own. */
+void replaceIndices(tinygltf::Model& model, tinygltf::Accessor& accessor, const draco::Mesh& mesh) {
+    std::vector<unsigned char> data(std::size_t(mesh.num_faces()) * 3 * 4);
+    for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t v = mesh.face(f)[corner].value();
+            std::memcpy(data.data() + (std::size_t(f.value()) * 3 + std::size_t(corner)) * 4, &v,
+                        4);
+        }
+    accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    accessor.bufferView = addView(model, std::move(data));
+    accessor.byteOffset = 0;
+    accessor.sparse = {};
+}
+
 void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive,
                           const std::string& what, Budget& budget) {
     const std::string name = what + " " + kDraco;
@@ -271,108 +400,16 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
         fail(name + " is on a primitive of mode " + std::to_string(primitive.mode) +
              "; Draco meshes are triangles");
-
-    // The sizes the JSON claims, checked before the decoder allocates anything.
-    std::uint64_t vertexCount = 0;
-    std::uint64_t decodedBytes = 0;
-    for (const std::string& semantic : attributes->Keys()) {
-        const auto it = primitive.attributes.find(semantic);
-        if (it == primitive.attributes.end())
-            fail(name + " compresses " + semantic + ", which the primitive does not list");
-        const tinygltf::Accessor& accessor = accessorAt(model, it->second, what + " " + semantic);
-        if (vectorComponents(accessor.type) == 0)
-            fail(what + " " + semantic + " accessor " + std::to_string(it->second) +
-                 " is not a scalar or vector");
-        if (vertexCount != 0 && accessor.count != vertexCount)
-            fail(name + ": " + semantic + " has " + n(accessor.count) +
-                 " elements, other attributes " + n(vertexCount));
-        vertexCount = accessor.count;
-        decodedBytes += std::uint64_t(accessor.count) *
-                        std::uint64_t(vectorComponents(accessor.type)) *
-                        std::uint64_t(componentSize(accessor.componentType));
-    }
-    if (vertexCount > core::limits::kMaxVerticesPerPrimitive)
-        fail(name + " claims " + n(vertexCount) + " vertices, over the limit of " +
-             n(core::limits::kMaxVerticesPerPrimitive));
-    std::uint64_t indexCount = 0;
-    if (primitive.indices >= 0) {
-        indexCount = accessorAt(model, primitive.indices, what + " indices").count;
-        if (indexCount > 3 * core::limits::kMaxVerticesPerPrimitive)
-            fail(name + " claims " + n(indexCount) + " indices, over the limit");
-        decodedBytes += indexCount * 4;
-    }
-    budget.take(decodedBytes, name);
-
-    const std::span<const std::uint8_t> compressed =
-        viewBytes(model, integer(ext, "bufferView", -1, name), name);
-    draco::DecoderBuffer stream;
-    stream.Init(reinterpret_cast<const char*>(compressed.data()), compressed.size());
-    auto geometryType = draco::Decoder::GetEncodedGeometryType(&stream);
-    if (!geometryType.ok() || geometryType.value() != draco::TRIANGULAR_MESH)
-        fail(name + ": the stream is not a Draco triangle mesh" +
-             (geometryType.ok() ? "" : " (" + geometryType.status().error_msg_string() + ")"));
-    draco::Decoder decoder;
-    auto decoded = decoder.DecodeMeshFromBuffer(&stream);
-    if (!decoded.ok())
-        fail(name + ": the Draco stream does not decode (" + decoded.status().error_msg_string() +
-             ")");
-    const draco::Mesh& mesh = *decoded.value();
-    if (mesh.num_points() != vertexCount)
-        fail(name + " decodes to " + n(mesh.num_points()) + " vertices, its accessors claim " +
-             n(vertexCount));
-    if (primitive.indices >= 0 && std::uint64_t(mesh.num_faces()) * 3 != indexCount)
-        fail(name + " decodes to " + n(mesh.num_faces()) + " triangles, its indices accessor " +
-             "claims " + n(indexCount) + " indices");
-
-    for (const std::string& semantic : attributes->Keys()) {
-        const std::string attributeName = name + " " + semantic;
-        const std::int64_t id = integer(*attributes, semantic.c_str(), -1, name + " attributes");
-        const draco::PointAttribute* attribute =
-            id < 0 ? nullptr : mesh.GetAttributeByUniqueId(std::uint32_t(id));
-        if (!attribute)
-            fail(attributeName + " is Draco attribute " + std::to_string(id) +
-                 ", which the stream does not have");
-        // glTF attributes are integers of up to 32 bits or floats; Draco's other types (a bool
-        // is loaded as one, whatever byte the stream holds) have no glTF meaning.
-        switch (attribute->data_type()) {
-        case draco::DT_INT8:
-        case draco::DT_UINT8:
-        case draco::DT_INT16:
-        case draco::DT_UINT16:
-        case draco::DT_INT32:
-        case draco::DT_UINT32:
-        case draco::DT_FLOAT32:
-            break;
-        default:
-            fail(attributeName + " has Draco data type " +
-                 std::to_string(int(attribute->data_type())) + ", which no glTF attribute uses");
-        }
-        tinygltf::Accessor& accessor =
-            model.accessors[std::size_t(primitive.attributes.at(semantic))];
-        if (attribute->num_components() < vectorComponents(accessor.type))
-            fail(attributeName + " has " + std::to_string(attribute->num_components()) +
-                 " components in the stream, its accessor " +
-                 std::to_string(vectorComponents(accessor.type)));
-        std::vector<unsigned char> data =
-            convertAttribute(mesh, *attribute, accessor, attributeName);
-        accessor.bufferView = addView(model, std::move(data));
-        accessor.byteOffset = 0;
-        accessor.sparse = {};
-    }
-    if (primitive.indices >= 0) {
-        std::vector<unsigned char> data(std::size_t(indexCount) * 4);
-        for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
-            for (int corner = 0; corner < 3; ++corner) {
-                const std::uint32_t v = mesh.face(f)[corner].value();
-                std::memcpy(data.data() + (std::size_t(f.value()) * 3 + std::size_t(corner)) * 4,
-                            &v, 4);
-            }
-        tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.indices)];
-        accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        accessor.bufferView = addView(model, std::move(data));
-        accessor.byteOffset = 0;
-        accessor.sparse = {};
-    }
+    const DracoClaims claims = claimedSizes(model, primitive, *attributes, what, name);
+    budget.take(claims.bytes, name);
+    const std::unique_ptr<draco::Mesh> mesh =
+        decodeDracoMesh(model, ext, primitive.indices >= 0, claims, name);
+    for (const std::string& semantic : attributes->Keys())
+        replaceAttribute(model, model.accessors[std::size_t(primitive.attributes.at(semantic))],
+                         *mesh, integer(*attributes, semantic.c_str(), -1, name + " attributes"),
+                         name + " " + semantic);
+    if (primitive.indices >= 0)
+        replaceIndices(model, model.accessors[std::size_t(primitive.indices)], *mesh);
 }
 
 } // namespace
