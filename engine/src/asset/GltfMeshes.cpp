@@ -303,53 +303,41 @@ void readInfluences(const tinygltf::Primitive& src, const AccessorReader& reader
     }
 }
 
-scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& src,
-                                  const AccessorReader& reader, const std::string& what,
-                                  const std::vector<scene::Material>& materials,
-                                  const std::set<int>& lossy, std::vector<std::string>& warnings) {
-    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        fail(what + " has mode " + std::to_string(mode) + ", which glTF does not define");
+/** Fails unless `got`, the elements of `attribute`, is the primitive's vertex count. */
+void sameCount(std::size_t got, std::size_t count, const std::string& attribute,
+               const std::string& what) {
+    if (got != count)
+        fail(what + " " + attribute + " has " + n(got) + " elements, POSITION has " + n(count));
+}
+
+/** The vertex attributes besides POSITION and the skin's: normals, tangents, two UV sets. */
+void readSurfaceAttributes(const tinygltf::Primitive& src, const AccessorReader& reader,
+                           scene::Primitive& p, const std::string& what) {
     const auto& attributes = src.attributes;
-    if (!attributes.count("POSITION"))
-        fail(what + " has no POSITION attribute");
-
-    checkAttributeFormats(model, src, what);
-
-    scene::Primitive p;
-    p.material = src.material;
-    if (const auto variants = src.extensions.find("KHR_materials_variants");
-        variants != src.extensions.end())
-        p.variantMaterials = variantMaterials(model, variants->second, materials.size(), what);
-    p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
-    if (!lossy.count(attributes.at("POSITION")))
-        checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions, what + " POSITION",
-                                  warnings);
-    p.sourceVertexCount = p.positions.size();
     const std::size_t count = p.vertexCount();
-    auto sameCount = [&](std::size_t got, const std::string& attribute) {
-        if (got != count)
-            fail(what + " " + attribute + " has " + n(got) + " elements, POSITION has " + n(count));
-    };
     if (attributes.count("NORMAL")) {
         p.normals = readVecs<glm::vec3, 3>(reader, attributes.at("NORMAL"), what + " NORMAL");
-        sameCount(p.normals.size(), "NORMAL");
+        sameCount(p.normals.size(), count, "NORMAL", what);
     }
     if (attributes.count("TANGENT")) {
         p.tangents = readVecs<glm::vec4, 4>(reader, attributes.at("TANGENT"), what + " TANGENT");
-        sameCount(p.tangents.size(), "TANGENT");
+        sameCount(p.tangents.size(), count, "TANGENT", what);
     }
     if (attributes.count("TEXCOORD_0")) {
         p.uv0 = readVecs<glm::vec2, 2>(reader, attributes.at("TEXCOORD_0"), what + " TEXCOORD_0");
-        sameCount(p.uv0.size(), "TEXCOORD_0");
+        sameCount(p.uv0.size(), count, "TEXCOORD_0", what);
     }
     if (attributes.count("TEXCOORD_1")) {
         p.uv1 = readVecs<glm::vec2, 2>(reader, attributes.at("TEXCOORD_1"), what + " TEXCOORD_1");
-        sameCount(p.uv1.size(), "TEXCOORD_1");
+        sameCount(p.uv1.size(), count, "TEXCOORD_1", what);
     }
-    readInfluences(src, reader, p, what);
+}
 
+/** The primitive's triangles as a list: its indices (each checked against the vertices), or
+ *  its vertices in order, in `mode`. */
+std::vector<std::uint32_t> readTriangles(const tinygltf::Primitive& src,
+                                         const AccessorReader& reader, std::size_t count, int mode,
+                                         const std::string& what) {
     std::vector<std::uint32_t> indices;
     if (src.indices >= 0) {
         indices = reader.readUints(src.indices, 1, what + " indices");
@@ -362,8 +350,13 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
         for (std::size_t i = 0; i < count; ++i)
             indices[i] = std::uint32_t(i);
     }
-    p.indices = toTriangleList(indices, mode, what);
+    return toTriangleList(indices, mode, what);
+}
 
+/** The morph targets: their position, normal and tangent deltas, within the limit. */
+void readTargets(const tinygltf::Model& model, const tinygltf::Primitive& src,
+                 const AccessorReader& reader, scene::Primitive& p, const std::string& what,
+                 std::vector<std::string>& warnings) {
     if (src.targets.size() > core::limits::kMaxMorphTargets)
         fail(what + " has " + n(src.targets.size()) + " morph targets, over the limit of " +
              n(core::limits::kMaxMorphTargets));
@@ -374,7 +367,7 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
             std::vector<glm::vec3> deltas =
                 readVecs<glm::vec3, 3>(reader, accessor, targetWhat + " " + name);
             checkBounds<glm::vec3, 3>(model, accessor, deltas, targetWhat + " " + name, warnings);
-            sameCount(deltas.size(), "target " + n(t) + " " + name);
+            sameCount(deltas.size(), p.vertexCount(), "target " + n(t) + " " + name, what);
             if (name == "POSITION")
                 target.positions = std::move(deltas);
             else if (name == "NORMAL")
@@ -384,29 +377,61 @@ scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::
         }
         p.targets.push_back(std::move(target));
     }
+}
 
+/** Flat normals where the file gives none (glTF 3.7.2.1), and tangents where a normal or
+ *  anisotropy map needs a frame the file does not give. */
+void completeFrame(scene::Primitive& p, const std::vector<scene::Material>& materials,
+                   const std::string& what) {
     if (p.normals.empty()) {
-        // glTF §3.7.2.1: no normals means flat normals.
         unweld(p);
         computeFlatNormals(p);
         p.flatNormals = true;
     }
-    if (p.material >= 0) {
-        // Normal maps (the base's, the clear coat's) and anisotropy need a tangent frame.
-        const scene::Material& m = materials[std::size_t(p.material)];
-        const scene::TextureRef& map = m.normalTexture.present() ? m.normalTexture
-                                       : m.clearcoatNormalTexture.present()
-                                           ? m.clearcoatNormalTexture
-                                           : m.anisotropyTexture;
-        if ((map.present() || m.hasAnisotropy) && p.tangents.empty()) {
-            const auto& uv = map.texCoord == 1 ? p.uv1 : p.uv0;
-            if (uv.size() == p.vertexCount())
-                generateTangents(p, map.texCoord);
-            else if (map.present())
-                fail(what + " uses a normal or anisotropy map on TEXCOORD_" +
-                     std::to_string(map.texCoord) + " but has no such attribute");
-        }
+    if (p.material < 0)
+        return;
+    const scene::Material& m = materials[std::size_t(p.material)];
+    const scene::TextureRef& map = m.normalTexture.present()            ? m.normalTexture
+                                   : m.clearcoatNormalTexture.present() ? m.clearcoatNormalTexture
+                                                                        : m.anisotropyTexture;
+    if ((map.present() || m.hasAnisotropy) && p.tangents.empty()) {
+        const auto& uv = map.texCoord == 1 ? p.uv1 : p.uv0;
+        if (uv.size() == p.vertexCount())
+            generateTangents(p, map.texCoord);
+        else if (map.present())
+            fail(what + " uses a normal or anisotropy map on TEXCOORD_" +
+                 std::to_string(map.texCoord) + " but has no such attribute");
     }
+}
+
+scene::Primitive convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& src,
+                                  const AccessorReader& reader, const std::string& what,
+                                  const std::vector<scene::Material>& materials,
+                                  const std::set<int>& lossy, std::vector<std::string>& warnings) {
+    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(what + " has mode " + std::to_string(mode) + ", which glTF does not define");
+    const auto& attributes = src.attributes;
+    if (!attributes.count("POSITION"))
+        fail(what + " has no POSITION attribute");
+    checkAttributeFormats(model, src, what);
+
+    scene::Primitive p;
+    p.material = src.material;
+    if (const auto variants = src.extensions.find("KHR_materials_variants");
+        variants != src.extensions.end())
+        p.variantMaterials = variantMaterials(model, variants->second, materials.size(), what);
+    p.positions = readVecs<glm::vec3, 3>(reader, attributes.at("POSITION"), what + " POSITION");
+    if (!lossy.count(attributes.at("POSITION")))
+        checkBounds<glm::vec3, 3>(model, attributes.at("POSITION"), p.positions, what + " POSITION",
+                                  warnings);
+    p.sourceVertexCount = p.positions.size();
+    readSurfaceAttributes(src, reader, p, what);
+    readInfluences(src, reader, p, what);
+    p.indices = readTriangles(src, reader, p.vertexCount(), mode, what);
+    readTargets(model, src, reader, p, what, warnings);
+    completeFrame(p, materials, what);
     return p;
 }
 

@@ -83,17 +83,12 @@ bool isMaterialExtension(const std::string& extension) { // GltfConvert.h
     return extension.rfind("KHR_materials_", 0) == 0;
 }
 
-void validateStructure(const tinygltf::Model& m) {
-    // A material extension the engine lacks leaves the geometry whole: the file loads without
-    // it, with a warning (GltfLoader), even when it is required. What else it lacks refuses.
-    for (const std::string& extension : m.extensionsRequired)
-        if (!supportedRequiredExtensions().count(extension) && !isMaterialExtension(extension))
-            fail("extensionsRequired lists " + extension + ", which this engine does not support");
+namespace {
 
+/** Node references, one parent per node, no cycle, scene roots that are roots. */
+void checkHierarchy(const tinygltf::Model& m) {
     if (m.nodes.size() > core::limits::kMaxNodes)
         fail(n(m.nodes.size()) + " nodes, over the limit of " + n(core::limits::kMaxNodes));
-
-    // Hierarchy: references, then one parent per node, then no cycles.
     std::vector<int> parent(m.nodes.size(), -1);
     for (std::size_t i = 0; i < m.nodes.size(); ++i) {
         const tinygltf::Node& node = m.nodes[i];
@@ -125,18 +120,14 @@ void validateStructure(const tinygltf::Model& m) {
             checkIndex(root, m.nodes.size(), false, "scene " + n(s), "node", "nodes");
             if (parent[std::size_t(root)] != -1)
                 fail("scene " + n(s) + " lists node " + n(root) +
-                     " as a root, but it is a child "
-                     "of node " +
-                     n(parent[std::size_t(root)]));
+                     " as a root, but it is a child of node " + n(parent[std::size_t(root)]));
         }
     if (!m.scenes.empty())
         checkIndex(m.defaultScene, m.scenes.size(), true, "the default scene", "scene", "scenes");
+}
 
-    for (std::size_t i = 0; i < m.meshes.size(); ++i)
-        for (std::size_t p = 0; p < m.meshes[i].primitives.size(); ++p)
-            checkIndex(m.meshes[i].primitives[p].material, m.materials.size(), true,
-                       "mesh " + n(i) + " primitive " + n(p), "material", "materials");
-
+/** Skins: joints within the limit, each a node of the file. */
+void checkSkins(const tinygltf::Model& m) {
     for (std::size_t i = 0; i < m.skins.size(); ++i) {
         const tinygltf::Skin& skin = m.skins[i];
         const std::string what = "skin " + n(i);
@@ -151,7 +142,15 @@ void validateStructure(const tinygltf::Model& m) {
                      ", file has " + n(m.nodes.size()) + " nodes");
         checkIndex(skin.skeleton, m.nodes.size(), true, what + " skeleton", "node", "nodes");
     }
+}
 
+/** Materials of the primitives, textures of the materials, images and samplers of the
+ *  textures. */
+void checkMaterialReferences(const tinygltf::Model& m) {
+    for (std::size_t i = 0; i < m.meshes.size(); ++i)
+        for (std::size_t p = 0; p < m.meshes[i].primitives.size(); ++p)
+            checkIndex(m.meshes[i].primitives[p].material, m.materials.size(), true,
+                       "mesh " + n(i) + " primitive " + n(p), "material", "materials");
     for (std::size_t i = 0; i < m.textures.size(); ++i) {
         const std::string what = "texture " + n(i);
         checkIndex(m.textures[i].source, m.images.size(), true, what, "image", "images");
@@ -167,7 +166,11 @@ void validateStructure(const tinygltf::Model& m) {
         checkTexture(m, mat.occlusionTexture.index, what + "occlusionTexture");
         checkTexture(m, mat.emissiveTexture.index, what + "emissiveTexture");
     }
+}
 
+/** Animation channels: their samplers, and their target nodes (pointers aside, which
+ *  convertAnimation checks). */
+void checkChannels(const tinygltf::Model& m) {
     for (std::size_t a = 0; a < m.animations.size(); ++a) {
         const tinygltf::Animation& anim = m.animations[a];
         for (std::size_t c = 0; c < anim.channels.size(); ++c) {
@@ -175,11 +178,25 @@ void validateStructure(const tinygltf::Model& m) {
             checkIndex(anim.channels[c].sampler, anim.samplers.size(), false, what, "sampler",
                        "samplers in this animation");
             const std::string& path = anim.channels[c].target_path;
-            if (path != kSkippedPointer && path != kMalformedPointer) // convertAnimation's
+            if (path != kSkippedPointer && path != kMalformedPointer)
                 checkIndex(anim.channels[c].target_node, m.nodes.size(), false, what + " target",
                            "node", "nodes");
         }
     }
+}
+
+} // namespace
+
+void validateStructure(const tinygltf::Model& m) {
+    // A material extension the engine lacks leaves the geometry whole: the file loads without
+    // it, with a warning (GltfLoader), even when it is required. What else it lacks refuses.
+    for (const std::string& extension : m.extensionsRequired)
+        if (!supportedRequiredExtensions().count(extension) && !isMaterialExtension(extension))
+            fail("extensionsRequired lists " + extension + ", which this engine does not support");
+    checkHierarchy(m);
+    checkMaterialReferences(m);
+    checkSkins(m);
+    checkChannels(m);
 }
 
 } // namespace asset::detail
