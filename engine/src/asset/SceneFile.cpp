@@ -125,32 +125,8 @@ scene::PlacedLight readLight(const Json& j, const std::string& key, const std::s
     return placed;
 }
 
-scene::Character readCharacter(const Json& j, const std::string& key, const std::string& where,
-                               const std::filesystem::path& directory,
-                               std::map<std::string, std::shared_ptr<const scene::Model>>& models,
-                               const LoadOptions& options) {
-    if (!j.is_object())
-        fail(key, "expected an object, got " + j.dump());
-    warnUnknownKeys(j,
-                    {"name", "model", "translation", "rotation", "scale", "clip", "time_offset",
-                     "speed", "loop", "layers", "transitions", "root_motion", "morph_weights",
-                     "paused_at", "glass", "ior", "tint", "dispersion", "variant"},
-                    where + key + ".");
-    scene::Character c;
-    if (!j.contains("model"))
-        fail(key + ".model", "missing (a model path relative to the scene file)");
-    c.modelPath = text(j["model"], key + ".model");
-    const std::string resolved = resolve(directory, c.modelPath);
-    auto& model = models[resolved];
-    if (!model) {
-        auto loaded = loadModel(resolved, options);
-        if (!loaded)
-            fail(key + ".model",
-                 "cannot load \"" + c.modelPath + "\" (" + loaded.error().message + ")");
-        model = std::make_shared<const scene::Model>(std::move(*loaded));
-    }
-    c.model = model;
-    c.name = j.contains("name") ? text(j["name"], key + ".name") : key;
+/** A character's translation, rotation (a unit quaternion) and scale (none 0). */
+void readPlacement(const Json& j, const std::string& key, scene::Character& c) {
     if (j.contains("translation"))
         c.placement.translation = vector<3>(j["translation"], key + ".translation");
     if (j.contains("rotation")) {
@@ -167,18 +143,10 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
         if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
             fail(key + ".scale", "a scale of 0 flattens the character");
     }
-    const scene::Model& m = *c.model;
-    c.performance = readPerformance(j, key, m, fileName(c.modelPath));
-    if (j.contains("variant")) { // KHR_materials_variants: by name or index
-        const Json& variant = j["variant"];
-        const std::string wanted =
-            variant.is_number_integer() ? variant.dump() : text(variant, key + ".variant");
-        const auto found = m.findVariant(wanted);
-        if (!found)
-            fail(key + ".variant", "\"" + wanted + "\" not in " + fileName(c.modelPath) +
-                                       " (variants: " + nameList(m.variants) + ")");
-        c.variant = *found;
-    }
+}
+
+/** A character's glass mode and its overrides of the glass: IOR, tint, dispersion. */
+void readGlass(const Json& j, const std::string& key, scene::Character& c) {
     if (j.contains("glass")) {
         const std::string mode = text(j["glass"], key + ".glass");
         if (mode == "auto")
@@ -210,6 +178,48 @@ scene::Character readCharacter(const Json& j, const std::string& key, const std:
                  "expected 20 / Abbe number in [0, 10], got " + j["dispersion"].dump());
         c.overrides.dispersion = float(dispersion);
     }
+}
+
+scene::Character readCharacter(const Json& j, const std::string& key, const std::string& where,
+                               const std::filesystem::path& directory,
+                               std::map<std::string, std::shared_ptr<const scene::Model>>& models,
+                               const LoadOptions& options) {
+    if (!j.is_object())
+        fail(key, "expected an object, got " + j.dump());
+    warnUnknownKeys(j,
+                    {"name", "model", "translation", "rotation", "scale", "clip", "time_offset",
+                     "speed", "loop", "layers", "transitions", "root_motion", "morph_weights",
+                     "paused_at", "glass", "ior", "tint", "dispersion", "variant"},
+                    where + key + ".");
+    scene::Character c;
+    if (!j.contains("model"))
+        fail(key + ".model", "missing (a model path relative to the scene file)");
+    c.modelPath = text(j["model"], key + ".model");
+    const std::string resolved = resolve(directory, c.modelPath);
+    auto& model = models[resolved];
+    if (!model) {
+        auto loaded = loadModel(resolved, options);
+        if (!loaded)
+            fail(key + ".model",
+                 "cannot load \"" + c.modelPath + "\" (" + loaded.error().message + ")");
+        model = std::make_shared<const scene::Model>(std::move(*loaded));
+    }
+    c.model = model;
+    c.name = j.contains("name") ? text(j["name"], key + ".name") : key;
+    readPlacement(j, key, c);
+    const scene::Model& m = *c.model;
+    c.performance = readPerformance(j, key, m, fileName(c.modelPath));
+    if (j.contains("variant")) { // KHR_materials_variants: by name or index
+        const Json& variant = j["variant"];
+        const std::string wanted =
+            variant.is_number_integer() ? variant.dump() : text(variant, key + ".variant");
+        const auto found = m.findVariant(wanted);
+        if (!found)
+            fail(key + ".variant", "\"" + wanted + "\" not in " + fileName(c.modelPath) +
+                                       " (variants: " + nameList(m.variants) + ")");
+        c.variant = *found;
+    }
+    readGlass(j, key, c);
     return c;
 }
 
