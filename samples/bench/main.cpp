@@ -204,130 +204,157 @@ void printSkipped(const std::vector<MethodRun>& runs,
         std::printf("\n");
 }
 
+/** One run's figures, in the table's and the report's terms. */
+struct RunFigures {
+    double median = 0.0, p95 = 0.0, cpu = 0.0, engine = 0.0;
+    double ratio = 0.0;         ///< to the opaque run with the same lights; 0: none ran
+    double ratioUnlit = 0.0;    ///< a lit run's to the unlit opaque run; 0: none ran
+    double saved = 0.0;         ///< what a run with --skip saves against the whole method
+    double temporalRatio = 0.0; ///< to the same method without accumulation; 0: none ran
+    double rays = 0.0, nodesPerRay = 0.0, raysPerSecond = 0.0;
+    std::string slowest; ///< the three slowest passes
+    nlohmann::json passes = nlohmann::json::array();
+};
+
+/** The medians of the runs with every step (no --skip), by method, lights and accumulation:
+ *  what the ratios are to. */
+using WholeMedians = std::map<std::tuple<std::string, bool, bool>, double>;
+
+double wholeMedian(const WholeMedians& whole, const std::string& method, bool lit, bool temporal) {
+    const auto found = whole.find({method, lit, temporal});
+    return found == whole.end() ? 0.0 : found->second;
+}
+
+RunFigures figuresOf(const MethodRun& r, const WholeMedians& whole) {
+    RunFigures f;
+    f.median = percentile(r.frameMs, 0.5);
+    f.p95 = percentile(r.frameMs, 0.95);
+    f.cpu = percentile(r.cpuMs, 0.5);
+    f.engine = percentile(r.engineMs, 0.5);
+    std::vector<std::pair<double, std::string>> slowest;
+    for (const std::string& name : r.passOrder) {
+        const auto& [gpu, cpu] = r.passes.at(name);
+        slowest.emplace_back(percentile(gpu, 0.5), name);
+        f.passes.push_back(
+            {{"name", name}, {"gpu_ms", percentile(gpu, 0.5)}, {"cpu_ms", percentile(cpu, 0.5)}});
+    }
+    std::sort(slowest.rbegin(), slowest.rend());
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, slowest.size()); ++i) {
+        char item[96];
+        std::snprintf(item, sizeof item, "%s%s %.1f", i ? ", " : "", slowest[i].second.c_str(),
+                      slowest[i].first);
+        f.slowest += item;
+    }
+    const double opaque = wholeMedian(whole, "opaque", r.lit, false);
+    const double unlit = wholeMedian(whole, "opaque", false, false);
+    f.ratio = opaque > 0.0 ? f.median / opaque : 0.0;
+    f.ratioUnlit = r.lit && unlit > 0.0 ? f.median / unlit : 0.0;
+    const double all = wholeMedian(whole, r.method, r.lit, r.temporal);
+    f.saved = !r.skipped.empty() && all > 0.0 ? all - f.median : 0.0;
+    const double off = wholeMedian(whole, r.method, r.lit, false);
+    f.temporalRatio = r.temporal && off > 0.0 ? f.median / off : 0.0;
+    // The trace's rays (a frame), BVH nodes a ray, and rays a second of the whole frame.
+    f.rays = double(r.layers.traceRays);
+    f.nodesPerRay = f.rays > 0.0 ? double(r.layers.traceSteps) / f.rays : 0.0;
+    f.raysPerSecond = f.median > 0.0 ? f.rays / (f.median * 1e-3) : 0.0;
+    return f;
+}
+
+/** The run's row of the printed table. */
+void printRow(const MethodRun& r, const RunFigures& f, int level, std::size_t characters,
+              std::size_t triangles) {
+    char timesOpaque[40] = "-"; // without the opaque run: unknown
+    if (f.ratio > 0.0)
+        std::snprintf(timesOpaque, sizeof timesOpaque, "%.2f", f.ratio);
+    if (f.ratioUnlit > 0.0) // a lit run beside an unlit opaque one: what the lights cost
+        std::snprintf(timesOpaque + std::strlen(timesOpaque),
+                      sizeof timesOpaque - std::strlen(timesOpaque), " (%.2f unlit)", f.ratioUnlit);
+    const double walked = std::max(double(r.layers.walkedPixels), 1.0);
+    char temporal[80] = "-";
+    if (r.temporal) {
+        char times[16] = "-"; // without the run without it (--temporal on alone): unknown
+        if (f.temporalRatio > 0.0)
+            std::snprintf(times, sizeof times, "%.3f", f.temporalRatio);
+        std::snprintf(temporal, sizeof temporal, "%s, %.1f MiB, fresh %.1f%%", times,
+                      double(r.historyBytes) / 1048576.0,
+                      100.0 * double(r.layers.freshPixels) / walked);
+    }
+    char layers[48] = "-";
+    if (r.layers.capacity > 0)
+        std::snprintf(layers, sizeof layers, "K=%d: %zu B/px, %u px over", r.layers.capacity,
+                      r.layers.bytesPerPixel, r.layers.overflowPixels);
+    // The hybrid's share of the glass pixels it traced, in all and for each reason.
+    auto share = [&](std::uint32_t pixels) { return 100.0 * double(pixels) / walked; };
+    const auto& by = r.layers.hybridBy;
+    char trace[192] = "-";
+    if (f.rays > 0.0)
+        std::snprintf(trace, sizeof trace, "%.0fk rays, %.0f nodes/ray, %.2f Mrays/s", f.rays / 1e3,
+                      f.nodesPerRay, f.raysPerSecond / 1e6);
+    if (r.method == "hybrid")
+        std::snprintf(trace + std::strlen(trace), sizeof trace - std::strlen(trace),
+                      "; traced %.1f%% of the glass (over K %.1f, off the layers %.1f, TIR "
+                      "%.1f, outline %.1f)",
+                      share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
+                      share(by[3]));
+    std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %s | %.2f | %.2f | %.1f | %s | %s | %s "
+                "| %s |\n",
+                r.label().c_str(), level, characters, triangles, f.median, f.p95, timesOpaque,
+                f.cpu, f.engine, double(r.transientBytes) / 1048576.0, temporal, layers, trace,
+                f.slowest.c_str());
+    std::fflush(stdout);
+}
+
+/** The run's row of the JSON report. */
+nlohmann::json rowJson(const MethodRun& r, const RunFigures& f, int level, std::size_t characters,
+                       std::size_t triangles) {
+    const auto ratio = [](double v) { return v > 0.0 ? nlohmann::json(v) : nlohmann::json(); };
+    const auto& by = r.layers.hybridBy;
+    return {{"method", r.label()},
+            {"temporal", r.temporal},
+            {"ratio_to_without_temporal", ratio(f.temporalRatio)},
+            {"history_bytes", r.historyBytes},
+            {"level", level},
+            {"characters", characters},
+            {"triangles", triangles},
+            {"median_ms", f.median},
+            {"p95_ms", f.p95},
+            {"cpu_ms", f.cpu},
+            {"animate_record_ms", f.engine},
+            {"ratio_to_opaque", ratio(f.ratio)},
+            {"lights", r.lit},
+            {"skipped", r.skipped},
+            {"saved_ms", f.saved},
+            {"ratio_to_unlit_opaque", ratio(f.ratioUnlit)},
+            {"transient_bytes", r.transientBytes},
+            {"layer_capacity", r.layers.capacity},
+            {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
+            {"layer_bytes", r.layers.bytes},
+            {"layer_overflow_pixels", r.layers.overflowPixels},
+            {"trace_rays", r.layers.traceRays},
+            {"trace_nodes_per_ray", f.nodesPerRay},
+            {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
+            {"trace_rays_per_second", f.raysPerSecond},
+            {"walked_pixels", r.layers.walkedPixels},
+            {"hybrid_traced_pixels", r.layers.hybridTraced},
+            {"fresh_pixels", r.layers.freshPixels},
+            {"hybrid_traced_by",
+             {{"overflow", by[0]}, {"off_the_layers", by[1]}, {"tir", by[2]}, {"outline", by[3]}}},
+            {"passes", f.passes}};
+}
+
 /** Prints one table row per run of `level` and `characters` and returns them as JSON; ratios
  *  are to the opaque run of the same configuration. */
 std::vector<nlohmann::json> summarise(const std::vector<MethodRun>& runs, int level,
                                       std::size_t characters, std::size_t triangles) {
-    // Each method's median with every step (no --skip), by light and accumulation: what the
-    // ratios are to (the opaque run's, the run without accumulation, the whole frame).
-    std::map<std::tuple<std::string, bool, bool>, double> whole;
+    WholeMedians whole;
     for (const MethodRun& r : runs)
         if (r.skipped.empty())
             whole[{r.method, r.lit, r.temporal}] = percentile(r.frameMs, 0.5);
-    const auto wholeMedian = [&whole](const std::string& method, bool lit, bool temporal) {
-        const auto found = whole.find({method, lit, temporal});
-        return found == whole.end() ? 0.0 : found->second;
-    };
-    // The opaque run's median with and without the lights (index: lit).
-    const double opaqueMedian[2] = {wholeMedian("opaque", false, false),
-                                    wholeMedian("opaque", true, false)};
     std::vector<nlohmann::json> rows;
     for (const MethodRun& r : runs) {
-        const double median = percentile(r.frameMs, 0.5), p95 = percentile(r.frameMs, 0.95);
-        std::vector<std::pair<double, std::string>> slowest;
-        nlohmann::json passes = nlohmann::json::array();
-        for (const std::string& name : r.passOrder) {
-            const auto& [gpu, cpu] = r.passes.at(name);
-            slowest.emplace_back(percentile(gpu, 0.5), name);
-            passes.push_back({{"name", name},
-                              {"gpu_ms", percentile(gpu, 0.5)},
-                              {"cpu_ms", percentile(cpu, 0.5)}});
-        }
-        std::sort(slowest.rbegin(), slowest.rend());
-        std::string top;
-        for (std::size_t i = 0; i < std::min<std::size_t>(3, slowest.size()); ++i) {
-            char item[96];
-            std::snprintf(item, sizeof item, "%s%s %.1f", i ? ", " : "", slowest[i].second.c_str(),
-                          slowest[i].first);
-            top += item;
-        }
-        const double ratio = opaqueMedian[r.lit] > 0.0 ? median / opaqueMedian[r.lit] : 0.0;
-        // A lit run beside an unlit opaque one: also its ratio to that (what the lights cost).
-        const double ratioUnlit = r.lit && opaqueMedian[0] > 0.0 ? median / opaqueMedian[0] : 0.0;
-        char timesOpaque[40] = "-"; // without the opaque run: unknown
-        if (ratio > 0.0)
-            std::snprintf(timesOpaque, sizeof timesOpaque, "%.2f", ratio);
-        if (ratioUnlit > 0.0)
-            std::snprintf(timesOpaque + std::strlen(timesOpaque),
-                          sizeof timesOpaque - std::strlen(timesOpaque), " (%.2f unlit)",
-                          ratioUnlit);
-        const double all = wholeMedian(r.method, r.lit, r.temporal);
-        const double saved = !r.skipped.empty() && all > 0.0 ? all - median : 0.0;
-        const double off = wholeMedian(r.method, r.lit, false);
-        const double temporalRatio = r.temporal && off > 0.0 ? median / off : 0.0;
-        char temporal[80] = "-";
-        if (r.temporal) {
-            char times[16] = "-"; // without the run without it (--temporal on alone): unknown
-            if (temporalRatio > 0.0)
-                std::snprintf(times, sizeof times, "%.3f", temporalRatio);
-            std::snprintf(temporal, sizeof temporal, "%s, %.1f MiB, fresh %.1f%%", times,
-                          double(r.historyBytes) / 1048576.0,
-                          100.0 * double(r.layers.freshPixels) /
-                              std::max(double(r.layers.walkedPixels), 1.0));
-        }
-        const double cpu = percentile(r.cpuMs, 0.5), engine = percentile(r.engineMs, 0.5);
-        char layers[48] = "-";
-        if (r.layers.capacity > 0)
-            std::snprintf(layers, sizeof layers, "K=%d: %zu B/px, %u px over", r.layers.capacity,
-                          r.layers.bytesPerPixel, r.layers.overflowPixels);
-        // The trace's rays (a frame), BVH nodes a ray, and rays a second of the whole frame.
-        const double rays = double(r.layers.traceRays);
-        const double nodesPerRay = rays > 0.0 ? double(r.layers.traceSteps) / rays : 0.0;
-        const double raysPerSecond = median > 0.0 ? rays / (median * 1e-3) : 0.0;
-        // The hybrid's share of the glass pixels it traced, in all and for each reason.
-        const double walked = std::max(double(r.layers.walkedPixels), 1.0);
-        auto share = [&](std::uint32_t pixels) { return 100.0 * double(pixels) / walked; };
-        const auto& by = r.layers.hybridBy;
-        char trace[192] = "-";
-        if (rays > 0.0)
-            std::snprintf(trace, sizeof trace, "%.0fk rays, %.0f nodes/ray, %.2f Mrays/s",
-                          rays / 1e3, nodesPerRay, raysPerSecond / 1e6);
-        if (r.method == "hybrid")
-            std::snprintf(trace + std::strlen(trace), sizeof trace - std::strlen(trace),
-                          "; traced %.1f%% of the glass (over K %.1f, off the layers %.1f, TIR "
-                          "%.1f, outline %.1f)",
-                          share(r.layers.hybridTraced), share(by[0]), share(by[1]), share(by[2]),
-                          share(by[3]));
-        std::printf("| %s | %d | %zu | %zu | %.2f | %.2f | %s | %.2f | %.2f | %.1f | %s | %s | %s "
-                    "| %s |\n",
-                    r.label().c_str(), level, characters, triangles, median, p95, timesOpaque, cpu,
-                    engine, double(r.transientBytes) / 1048576.0, temporal, layers, trace,
-                    top.c_str());
-        std::fflush(stdout);
-        rows.push_back(
-            {{"method", r.label()},
-             {"temporal", r.temporal},
-             {"ratio_to_without_temporal",
-              temporalRatio > 0.0 ? nlohmann::json(temporalRatio) : nlohmann::json()},
-             {"history_bytes", r.historyBytes},
-             {"level", level},
-             {"characters", characters},
-             {"triangles", triangles},
-             {"median_ms", median},
-             {"p95_ms", p95},
-             {"cpu_ms", cpu},
-             {"animate_record_ms", engine},
-             {"ratio_to_opaque", ratio > 0.0 ? nlohmann::json(ratio) : nlohmann::json()},
-             {"lights", r.lit},
-             {"skipped", r.skipped},
-             {"saved_ms", saved},
-             {"ratio_to_unlit_opaque",
-              ratioUnlit > 0.0 ? nlohmann::json(ratioUnlit) : nlohmann::json()},
-             {"transient_bytes", r.transientBytes},
-             {"layer_capacity", r.layers.capacity},
-             {"layer_bytes_per_pixel", r.layers.bytesPerPixel},
-             {"layer_bytes", r.layers.bytes},
-             {"layer_overflow_pixels", r.layers.overflowPixels},
-             {"trace_rays", r.layers.traceRays},
-             {"trace_nodes_per_ray", nodesPerRay},
-             {"trace_max_nodes_per_pixel_draw", r.layers.traceMaxSteps},
-             {"trace_rays_per_second", raysPerSecond},
-             {"walked_pixels", r.layers.walkedPixels},
-             {"hybrid_traced_pixels", r.layers.hybridTraced},
-             {"fresh_pixels", r.layers.freshPixels},
-             {"hybrid_traced_by",
-              {{"overflow", by[0]}, {"off_the_layers", by[1]}, {"tir", by[2]}, {"outline", by[3]}}},
-             {"passes", passes}});
+        const RunFigures f = figuresOf(r, whole);
+        printRow(r, f, level, characters, triangles);
+        rows.push_back(rowJson(r, f, level, characters, triangles));
     }
     printSkipped(runs, whole);
     return rows;
