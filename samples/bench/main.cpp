@@ -430,36 +430,8 @@ std::optional<bool> onOrOff(const std::string& mode) {
     return mode == "on";
 }
 
-void addOptions(CLI::App& app, Options& o) {
-    app.add_option("models", o.paths, "glTF models or a scene file (.json)")
-        ->type_name("MODEL|SCENE");
-    tool::addList<std::string>(
-        app, "--methods", o.methods,
-        [&o](const std::string& method) -> std::optional<std::string> {
-            if (!plugin::ParameterSet(o.parameters).set("method", method))
-                return std::nullopt;
-            return method;
-        },
-        "methods of the refraction plugin", "the methods to run (default opaque,sir,isr,dir)")
-        ->type_name("M,...");
-    tool::addList<int>(
-        app, "--subdiv", o.levels,
-        [](const std::string& level) {
-            return wholeNumber(level, 0, core::limits::kMaxSubdivisionLevel);
-        },
-        "levels 0.." + std::to_string(core::limits::kMaxSubdivisionLevel),
-        "OpenSubdiv levels, each refined every frame on the GPU from the deformed mesh "
-        "(default 0: the file's triangles)")
-        ->type_name("L,...");
-    tool::addList<int>(
-        app, "--instances", o.instances,
-        [](const std::string& count) {
-            return wholeNumber(count, 1, long(core::limits::kMaxCharacters));
-        },
-        "counts 1.." + std::to_string(core::limits::kMaxCharacters),
-        "also runs each count N of characters: copies of the scene's characters in turn, on a "
-        "square grid in the x-z plane, copy k at phase k/N of its clip, the camera framing all")
-        ->type_name("N,...");
+/** The frame measured: size, rounds, glass, ground, shadows and any refraction parameter. */
+void addFrameOptions(CLI::App& app, Options& o) {
     tool::addSize(app, "--size", o.size, 16, 8192, "frame size (default 512x512)");
     app.add_option("--frames", o.frames, "measured rounds (default 60)")
         ->check(tool::range(1, 100000))
@@ -491,6 +463,10 @@ void addOptions(CLI::App& app, Options& o) {
         ->type_name("KEY=VALUE")
         ->trigger_on_parse()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+/** What the runs vary: lights on and off, accumulation, the steps skipped. */
+void addVariedOptions(CLI::App& app, Options& o) {
     tool::addList<bool>(
         app, "--temporal", o.temporalModes, onOrOff, "off, on or off,on",
         "on: also runs each method with temporal accumulation (\"dir+temporal\": the jitter, the "
@@ -530,11 +506,19 @@ void addOptions(CLI::App& app, Options& o) {
         "with every step. The frames are wrong by design. The steps:" +
             steps)
         ->type_name("none,STEP[+STEP],...");
+}
+
+/** The accumulation's settings and a paused clock. */
+void addTemporalOptions(CLI::App& app, Options& o) {
     tool::addHistoryOptions(app, o.temporal);
     app.add_flag("--paused", o.paused,
                  "every round at the middle of the clips, as in a paused viewer: a temporal run's "
                  "frames are still and converge (glass-capture --accumulate), the trace's paths "
                  "sampled");
+}
+
+/** The report's files. */
+void addReportOptions(CLI::App& app, Options& o) {
     app.add_option("--json", o.jsonPath, "also write everything as JSON (atomically)")
         ->type_name("FILE");
     app.add_option("--plot", o.plotPath,
@@ -542,6 +526,42 @@ void addOptions(CLI::App& app, Options& o) {
                    "drawn (atomically)")
         ->type_name("PNG");
     app.add_flag("--force", o.force, "replace the --json and --plot files if they exist");
+}
+
+void addOptions(CLI::App& app, Options& o) {
+    app.add_option("models", o.paths, "glTF models or a scene file (.json)")
+        ->type_name("MODEL|SCENE");
+    tool::addList<std::string>(
+        app, "--methods", o.methods,
+        [&o](const std::string& method) -> std::optional<std::string> {
+            if (!plugin::ParameterSet(o.parameters).set("method", method))
+                return std::nullopt;
+            return method;
+        },
+        "methods of the refraction plugin", "the methods to run (default opaque,sir,isr,dir)")
+        ->type_name("M,...");
+    tool::addList<int>(
+        app, "--subdiv", o.levels,
+        [](const std::string& level) {
+            return wholeNumber(level, 0, core::limits::kMaxSubdivisionLevel);
+        },
+        "levels 0.." + std::to_string(core::limits::kMaxSubdivisionLevel),
+        "OpenSubdiv levels, each refined every frame on the GPU from the deformed mesh "
+        "(default 0: the file's triangles)")
+        ->type_name("L,...");
+    tool::addList<int>(
+        app, "--instances", o.instances,
+        [](const std::string& count) {
+            return wholeNumber(count, 1, long(core::limits::kMaxCharacters));
+        },
+        "counts 1.." + std::to_string(core::limits::kMaxCharacters),
+        "also runs each count N of characters: copies of the scene's characters in turn, on a "
+        "square grid in the x-z plane, copy k at phase k/N of its clip, the camera framing all")
+        ->type_name("N,...");
+    addFrameOptions(app, o);
+    addVariedOptions(app, o);
+    addTemporalOptions(app, o);
+    addReportOptions(app, o);
 }
 
 std::optional<int> parse(int argc, char** argv, Options& o) {

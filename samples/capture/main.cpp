@@ -79,19 +79,8 @@ private:
 
 /** The options that say what to render and where: the models, times, size, environment, the
  *  output, plugins. */
-void addSceneOptions(CLI::App& app, Options& o) {
-    app.add_option("models", o.session.models,
-                   "glTF models (.glb, .gltf, builtin:NAME) or a scene "
-                   "file (.json)")
-        ->type_name("MODEL|SCENE");
-    app.add_option("--clip", o.session.clip,
-                   "clip index or name, for every character (default: the first clip, or the "
-                   "scene file's; the rest pose if none)")
-        ->type_name("N|NAME");
-    app.add_option("--variant", o.session.variant,
-                   "a KHR_materials_variants variant (name or index) for every character whose "
-                   "model has it (glass-inspect lists a file's variants)")
-        ->type_name("NAME");
+/** --time and --frames: the scene times captured. */
+void addTimeOptions(CLI::App& app, Options& o) {
     app.add_option_function<double>(
            "--time", [&o](double t) { o.times = {t}; }, "one time in seconds (default 0)")
         ->check(CLI::NonNegativeNumber.description(""))
@@ -118,6 +107,11 @@ void addSceneOptions(CLI::App& app, Options& o) {
            },
            "times S, S+STEP, ... up to E inclusive (at most 10000 frames)")
         ->type_name("S:E:STEP");
+}
+
+/** What the frame shows besides the characters: size, environment, ground, shadows, exposure,
+ *  refinement. */
+void addLookOptions(CLI::App& app, Options& o) {
     tool::addSize(app, "--size", o.session.size, 1, 8192,
                   "output size in pixels (default 256x256)");
     app.add_option("--env", o.session.environment,
@@ -150,6 +144,10 @@ void addSceneOptions(CLI::App& app, Options& o) {
                    "file's triangles)")
         ->check(tool::range(0, core::limits::kMaxSubdivisionLevel))
         ->type_name("0.." + std::to_string(core::limits::kMaxSubdivisionLevel));
+}
+
+/** --plugin and the --set after it. */
+void addPluginOptions(CLI::App& app, Options& o) {
     app.add_option_function<std::string>(
            "--plugin",
            [&o](const std::string& path) {
@@ -172,6 +170,10 @@ void addSceneOptions(CLI::App& app, Options& o) {
         ->type_name("KEY=VALUE")
         ->trigger_on_parse()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+/** Where and how the frames are written, and the frame-capture cases. */
+void addOutputOptions(CLI::App& app, Options& o) {
     app.add_option("--out", o.out,
                    "the folder to write to (default out/capture; with --case the "
                    "case's folder)")
@@ -199,6 +201,25 @@ void addSceneOptions(CLI::App& app, Options& o) {
                    "\"plugins\"")
         ->type_name("FILE.json");
     app.add_flag("--update", o.update, "with --case: regenerate the goldens instead");
+}
+
+void addSceneOptions(CLI::App& app, Options& o) {
+    app.add_option("models", o.session.models,
+                   "glTF models (.glb, .gltf, builtin:NAME) or a scene "
+                   "file (.json)")
+        ->type_name("MODEL|SCENE");
+    app.add_option("--clip", o.session.clip,
+                   "clip index or name, for every character (default: the first clip, or the "
+                   "scene file's; the rest pose if none)")
+        ->type_name("N|NAME");
+    app.add_option("--variant", o.session.variant,
+                   "a KHR_materials_variants variant (name or index) for every character whose "
+                   "model has it (glass-inspect lists a file's variants)")
+        ->type_name("NAME");
+    addTimeOptions(app, o);
+    addLookOptions(app, o);
+    addPluginOptions(app, o);
+    addOutputOptions(app, o);
 }
 
 /** Temporal accumulation's options (docs/methods.md, "Temporal accumulation"). */
