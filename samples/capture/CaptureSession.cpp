@@ -22,76 +22,68 @@
 
 namespace capture {
 
-core::Result<std::unique_ptr<CaptureSession>>
-CaptureSession::create(const SessionOptions& options) {
-    std::unique_ptr<CaptureSession> s(new CaptureSession());
-    s->mOptions = options;
-    auto world = render::loadWorld(options.models);
-    if (!world)
-        return world.error();
-    s->mWorld = std::move(*world);
-    if (options.clip)
-        for (scene::Character& c : s->mWorld.characters) {
-            const auto clip = c.model->findAnimation(*options.clip);
-            if (!clip)
-                return core::Error{"glass-capture: --clip: " + c.name + " (" + c.model->sourceName +
-                                   ") has no clip '" + *options.clip + "'"};
-            // The clip alone, on the first layer's clock.
-            scene::Layer timing =
-                c.performance.layers.empty() ? scene::Layer{} : c.performance.layers.front();
-            c.play(*clip);
-            timing.clip = *clip;
-            timing.weight = 1.0;
-            timing.additive = false;
-            timing.mask.clear();
-            c.performance.layers.front() = timing;
+namespace {
+
+/** --clip: every character plays clip `name` alone, on its first layer's clock. */
+core::Status playClip(scene::World& world, const std::string& name) {
+    for (scene::Character& c : world.characters) {
+        const auto clip = c.model->findAnimation(name);
+        if (!clip)
+            return core::Error{"glass-capture: --clip: " + c.name + " (" + c.model->sourceName +
+                               ") has no clip '" + name + "'"};
+        scene::Layer timing =
+            c.performance.layers.empty() ? scene::Layer{} : c.performance.layers.front();
+        c.play(*clip);
+        timing.clip = *clip;
+        timing.weight = 1.0;
+        timing.additive = false;
+        timing.mask.clear();
+        c.performance.layers.front() = timing;
+    }
+    return {};
+}
+
+/** --variant: every character whose model has variant `name` shows it; none having it is an
+ *  error listing the variants offered. */
+core::Status chooseVariant(scene::World& world, const std::string& name) {
+    std::string offered;
+    bool any = false;
+    for (scene::Character& c : world.characters)
+        if (const auto variant = c.model->findVariant(name)) {
+            c.variant = *variant;
+            any = true;
+        } else {
+            for (const std::string& v : c.model->variants)
+                offered += (offered.empty() ? "" : ", ") + v;
         }
-    if (options.variant) {
-        std::string offered;
-        bool any = false;
-        for (scene::Character& c : s->mWorld.characters)
-            if (const auto variant = c.model->findVariant(*options.variant)) {
-                c.variant = *variant;
-                any = true;
-            } else {
-                for (const std::string& name : c.model->variants)
-                    offered += (offered.empty() ? "" : ", ") + name;
-            }
-        if (!any)
-            return core::Error{"glass-capture: --variant: no character's model has a variant '" +
-                               *options.variant +
-                               "' (variants: " + (offered.empty() ? "none" : offered) + ")"};
-    }
-    s->mOptions.ground = options.ground || s->mWorld.ground;
-    asset::HdrImage environment = render::Environment::proceduralSky();
-    if (const auto& path = options.environment ? options.environment : s->mWorld.environment) {
-        auto hdr = asset::loadHdr(*path);
-        if (!hdr && !options.environment) // the scene file's: name it and its key
-            return core::Error{"glass-capture: " + options.models.front() +
-                               ": environment: " + hdr.error().message};
-        if (!hdr)
-            return hdr.error();
-        environment = std::move(*hdr);
-    }
-    auto context = gl::createHeadlessContext();
-    if (!context)
-        return context.error();
-    s->mContext = std::move(*context);
-    auto renderer = render::Renderer::create(environment, *s->mContext);
-    if (!renderer)
-        return renderer.error();
-    s->mRenderer = std::move(*renderer);
-    if (auto refined = s->mRenderer->setSubdivisionLevel(options.subdivision); !refined)
-        return core::Error{"glass-capture: " + refined.error().message};
-    if (auto prepared = s->mRenderer->prepare(s->mWorld); !prepared)
-        return core::Error{"glass-capture: " + prepared.error().message};
-    s->mRefraction = refraction::createPlugin();
+    if (!any)
+        return core::Error{"glass-capture: --variant: no character's model has a variant '" + name +
+                           "' (variants: " + (offered.empty() ? "none" : offered) + ")"};
+    return {};
+}
+
+/** --env, else the scene file's environment, else the procedural sky. */
+core::Result<asset::HdrImage> environmentOf(const SessionOptions& options,
+                                            const scene::World& world) {
+    const auto& path = options.environment ? options.environment : world.environment;
+    if (!path)
+        return render::Environment::proceduralSky();
+    auto hdr = asset::loadHdr(*path);
+    if (!hdr && !options.environment) // the scene file's: name it and its key
+        return core::Error{"glass-capture: " + options.models.front() +
+                           ": environment: " + hdr.error().message};
+    return hdr;
+}
+
+/** The refraction plugin with --refraction's parameters, then each --plugin with its own. */
+core::Status addPlugins(render::Renderer& renderer, plugin::Plugin& refraction,
+                        const SessionOptions& options, std::vector<plugin::LoadedPlugin>& plugins) {
     for (const auto& [key, value] : options.refraction) {
-        auto set = s->mRefraction->parameters().set(key, value);
+        auto set = refraction.parameters().set(key, value);
         if (!set)
             return core::Error{"glass-capture: --" + key + ": " + set.error().message};
     }
-    if (auto added = s->mRenderer->addPlugin(s->mRefraction.get()); !added)
+    if (auto added = renderer.addPlugin(&refraction); !added)
         return added.error();
     for (const auto& spec : options.plugins) {
         auto loaded = plugin::loadPlugin(spec.path);
@@ -103,11 +95,49 @@ CaptureSession::create(const SessionOptions& options) {
                 return core::Error{"glass-capture: plugin " + std::string(loaded->get()->name()) +
                                    ": " + set.error().message};
         }
-        auto added = s->mRenderer->addPlugin(loaded->get());
+        auto added = renderer.addPlugin(loaded->get());
         if (!added)
             return added.error();
-        s->mPlugins.push_back(std::move(*loaded));
+        plugins.push_back(std::move(*loaded));
     }
+    return {};
+}
+
+} // namespace
+
+core::Result<std::unique_ptr<CaptureSession>>
+CaptureSession::create(const SessionOptions& options) {
+    std::unique_ptr<CaptureSession> s(new CaptureSession());
+    s->mOptions = options;
+    auto world = render::loadWorld(options.models);
+    if (!world)
+        return world.error();
+    s->mWorld = std::move(*world);
+    if (options.clip)
+        if (auto played = playClip(s->mWorld, *options.clip); !played)
+            return played.error();
+    if (options.variant)
+        if (auto chosen = chooseVariant(s->mWorld, *options.variant); !chosen)
+            return chosen.error();
+    s->mOptions.ground = options.ground || s->mWorld.ground;
+    auto environment = environmentOf(options, s->mWorld);
+    if (!environment)
+        return environment.error();
+    auto context = gl::createHeadlessContext();
+    if (!context)
+        return context.error();
+    s->mContext = std::move(*context);
+    auto renderer = render::Renderer::create(*environment, *s->mContext);
+    if (!renderer)
+        return renderer.error();
+    s->mRenderer = std::move(*renderer);
+    if (auto refined = s->mRenderer->setSubdivisionLevel(options.subdivision); !refined)
+        return core::Error{"glass-capture: " + refined.error().message};
+    if (auto prepared = s->mRenderer->prepare(s->mWorld); !prepared)
+        return core::Error{"glass-capture: " + prepared.error().message};
+    s->mRefraction = refraction::createPlugin();
+    if (auto added = addPlugins(*s->mRenderer, *s->mRefraction, options, s->mPlugins); !added)
+        return added.error();
     s->mBounds = render::worldBounds(s->mWorld);
     s->mRenderer->setGround(render::GroundPlane::under(s->mBounds));
     return s;

@@ -145,19 +145,53 @@ int judge(const std::vector<Report>& reports, const Options& o, int cycle) {
     return 0;
 }
 
+/** The world with one character more: a copy of the first, beside the others, a little later
+ *  in its clips. */
+scene::World grownWorld(const tool::HeadlessScene& headless) {
+    scene::World grown = headless.world;
+    scene::Character extra = grown.characters.front();
+    extra.name += " (copy)";
+    extra.placement.translation.x += 2.5 * double(headless.bounds.radius());
+    extra.performance.shift(0.37);
+    grown.characters.push_back(std::move(extra));
+    return grown;
+}
+
+/** A method the soak cycles through: its TIR policy, and whether it accumulates over frames
+ *  (the temporal history allocated, kept while off). */
+struct Method {
+    std::string name, tir;
+    bool temporal;
+};
+const std::vector<Method> kMethods = {{"opaque", "clamp", false},  {"sir", "clamp", false},
+                                      {"isr", "clamp", false},     {"dir", "clamp", false},
+                                      {"dir", "reflect", true},    {"trace", "reflect", true},
+                                      {"hybrid", "reflect", false}};
+const std::vector<glm::ivec2> kSizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
+
+/** The process's memory and live GL objects after `frame` frames, printed unless --json. */
+Report report(int frame, const std::string& method, glm::ivec2 size, bool json) {
+    gl::finish();
+    Report r{frame, residentKiB(), gl::liveObjects(), method, size};
+    if (!json)
+        std::printf("frame %6d  rss %7ld KiB  GL objects %4d (buffers %d, textures %d, "
+                    "framebuffers %d, vertex arrays %d, programs %d, queries %d)  %s %dx%d\n",
+                    r.frame, r.rssKiB, r.live.total(), r.live.buffers, r.live.textures,
+                    r.live.framebuffers, r.live.vertexArrays, r.live.programs, r.live.queries,
+                    r.method.c_str(), size.x, size.y);
+    std::fflush(stdout);
+    return r;
+}
+
 } // namespace
 
 int run(int argc, char** argv) {
     Options o;
     if (const auto code = parse(argc, argv, o))
         return *code;
-    std::vector<std::string>& paths = o.paths;
-    const int frames = o.frames, switchEvery = o.switchEvery, resizeEvery = o.resizeEvery,
-              reportEvery = o.reportEvery;
-    const bool json = o.json, injectLeak = o.injectLeak;
-    if (paths.empty())
-        paths.push_back("builtin:sphere");
-    auto opened = tool::openHeadlessScene(paths, 256);
+    if (o.paths.empty())
+        o.paths.push_back("builtin:sphere");
+    auto opened = tool::openHeadlessScene(o.paths, 256);
     if (!opened) {
         std::fprintf(stderr, "glass-soak: %s\n", opened.error().message.c_str());
         return 1;
@@ -165,67 +199,40 @@ int run(int argc, char** argv) {
     tool::HeadlessScene& headless = *opened;
     plugin::Plugin* const plugin = headless.glass.get();
     (void)plugin->parameters().set("glass", "all");
-    const double duration = headless.duration;
-    // Every other size, one character more: a copy of the first, beside the others.
-    scene::World grown = headless.world;
-    scene::Character extra = grown.characters.front();
-    extra.name += " (copy)";
-    extra.placement.translation.x += 2.5 * double(headless.bounds.radius());
-    extra.performance.shift(0.37);
-    grown.characters.push_back(std::move(extra));
-    // Two of them accumulate over frames (the temporal history allocated, kept while off).
-    struct Method {
-        std::string name, tir;
-        bool temporal;
-    };
-    const std::vector<Method> methods = {{"opaque", "clamp", false},  {"sir", "clamp", false},
-                                         {"isr", "clamp", false},     {"dir", "clamp", false},
-                                         {"dir", "reflect", true},    {"trace", "reflect", true},
-                                         {"hybrid", "reflect", false}};
-    const std::vector<glm::ivec2> sizes = {{128, 128}, {160, 96}, {96, 144}, {112, 112}};
+    // Every other size, one character more.
+    const scene::World grown = grownWorld(headless);
     // The frames after which methods, sizes and worlds come round together (the world alternates
     // with every size, an even count of them): every pairing of a method with a size and world.
-    const int cycle = std::lcm(switchEvery * int(methods.size()), resizeEvery * int(sizes.size()));
-
+    const int cycle =
+        std::lcm(o.switchEvery * int(kMethods.size()), o.resizeEvery * int(kSizes.size()));
     std::vector<Report> reports;
     std::vector<gl::Buffer> leaked; // --inject-leak: one more live buffer per report
-    for (int frame = 0; frame < frames; ++frame) {
+    for (int frame = 0; frame < o.frames; ++frame) {
         const auto& [method, tir, temporal] =
-            methods[std::size_t(frame / switchEvery) % methods.size()];
-        const glm::ivec2 size = sizes[std::size_t(frame / resizeEvery) % sizes.size()];
+            kMethods[std::size_t(frame / o.switchEvery) % kMethods.size()];
+        const glm::ivec2 size = kSizes[std::size_t(frame / o.resizeEvery) % kSizes.size()];
         (void)plugin->parameters().set("method", method);
         (void)plugin->parameters().set("tir", tir);
-        const double time = std::fmod(frame / 30.0, duration);
         render::RenderSettings settings;
         settings.size = size;
         settings.ground = true;
         settings.temporal.enabled = temporal;
-        const scene::World& world = (frame / resizeEvery) % 2 ? grown : headless.world;
-        auto stats = headless.renderer->render(world, headless.camera(size), settings, time);
+        const scene::World& world = (frame / o.resizeEvery) % 2 ? grown : headless.world;
+        auto stats = headless.renderer->render(world, headless.camera(size), settings,
+                                               std::fmod(frame / 30.0, headless.duration));
         if (!stats) {
             std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
                          stats.error().message.c_str());
             return 1;
         }
-        if ((frame + 1) % reportEvery == 0 || frame + 1 == frames) {
-            if (injectLeak)
+        if ((frame + 1) % o.reportEvery == 0 || frame + 1 == o.frames) {
+            if (o.injectLeak)
                 leaked.emplace_back(std::size_t(1) << 16);
-            gl::finish();
-            Report r{frame + 1, residentKiB(), gl::liveObjects(),
-                     method + "/" + tir + (temporal ? "/temporal" : ""), size};
-            reports.push_back(r);
-            if (!json)
-                std::printf("frame %6d  rss %7ld KiB  GL objects %4d (buffers %d, textures %d, "
-                            "framebuffers %d, vertex arrays %d, programs %d, queries %d)  %s "
-                            "%dx%d\n",
-                            r.frame, r.rssKiB, r.live.total(), r.live.buffers, r.live.textures,
-                            r.live.framebuffers, r.live.vertexArrays, r.live.programs,
-                            r.live.queries, r.method.c_str(), size.x, size.y);
-            std::fflush(stdout);
+            reports.push_back(report(frame + 1, method + "/" + tir + (temporal ? "/temporal" : ""),
+                                     size, o.json));
         }
     }
     gl::checkErrors("glass-soak");
-
     return judge(reports, o, cycle);
 }
 
