@@ -67,11 +67,7 @@ public:
         node.rest.scale = scale;
         node.rest.rotation = rotation;
         node.restMatrix = node.rest.matrix();
-        model.nodes.push_back(std::move(node));
-        if (model.scenes.empty())
-            model.scenes.emplace_back();
-        model.scenes[0].push_back(int(model.nodes.size()) - 1);
-        return int(model.nodes.size()) - 1;
+        return root(std::move(node));
     }
     /** Adds a KHR_lights_punctual light on a node of its own at `translation`, shining down
      *  the node's -z; returns the light. */
@@ -84,11 +80,16 @@ public:
         node.rest.translation = translation;
         node.rest.rotation = rotation;
         node.restMatrix = node.rest.matrix();
+        root(std::move(node));
+        return int(model.lights.size()) - 1;
+    }
+    /** Adds `node` as a root of the model's scene; returns it. */
+    int root(scene::Node node) {
         model.nodes.push_back(std::move(node));
         if (model.scenes.empty())
             model.scenes.emplace_back();
         model.scenes[0].push_back(int(model.nodes.size()) - 1);
-        return node.light;
+        return int(model.nodes.size()) - 1;
     }
     /** A square texture of `size` texels from `texel(x, y)` (RGBA8), sampled linearly. */
     int texture(int size, const std::function<glm::u8vec4(int, int)>& texel) {

@@ -34,7 +34,8 @@ template <class M> auto* factorIn(M& m, P property) {
         return &m.attenuationColor.x;
     case P::Dispersion:
         return &m.dispersion;
-    default:
+    case P::Metallic:
+    default: // not a factor: the callers ask for factors only
         return &m.metallicFactor;
     }
 }
@@ -50,7 +51,8 @@ template <class L> auto* lightIn(L& l, P property) {
         return &l.innerConeAngle;
     case P::LightOuterCone:
         return &l.outerConeAngle;
-    default:
+    case P::LightIntensity:
+    default: // not a light's: the callers ask for a light's only
         return &l.intensity;
     }
 }
