@@ -228,11 +228,11 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         blackboard.put(plugin::kShadowGlass,
                        addGlassShadowPass(graph, c, buffers,
                                           blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)));
-        if (c.caustics)
-            blackboard.put(
-                plugin::kShadowCaustics,
-                addCausticPasses(graph, c, buffers,
-                                 blackboard.get<fg::TextureHandle>(plugin::kShadowDepth)));
+        if (c.caustics) {
+            addCausticPhotonsPass(graph, c, buffers,
+                                  blackboard.get<fg::TextureHandle>(plugin::kShadowDepth));
+            blackboard.put(plugin::kShadowCaustics, addCausticResolvePass(graph, c, buffers));
+        }
         return;
     }
     if (auto built = selectWalkVariants(c); !built) {
@@ -260,7 +260,7 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (walked.motion.valid())
         blackboard.put(plugin::kSceneMotion, walked.motion);
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
-                                            ? addOutlinePass(graph, c, buffers, scene, walked)
+                                            ? addOutlinesPass(graph, c, buffers, scene, walked)
                                             : walked.color);
     mFrame->begun = false; // the callbacks hold copies of what they use
 }

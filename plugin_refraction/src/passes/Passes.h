@@ -5,7 +5,7 @@
 //   glass_materials (GlassMaterialsPass): the frame's glass optics;
 //   with caustics, glass_bvh (below);
 //   glass_shadow (GlassShadowPass): the glass into the engine's glass atlas, the caustics'
-//     emitters marked; with caustics, caustic_photons -> caustic_resolve (CausticsPass).
+//     emitters marked; with caustics, caustic_photons -> caustic_resolve.
 // After the opaque scene (where no light casts, the frame begins here with glass_materials):
 //   glass_bvh (GlassBvhPass; ISR and the tracing methods, unless built for the caustics): the
 //     BVH refitted, ISR's d_N cast;
@@ -20,7 +20,7 @@
 //     maps the papers' search reads);
 // then walk (WalkPass: the walk over the glass pixels), for the hybrid hybrid_trace
 // (HybridTracePass: the pixels its walk handed over, traced) and, optionally, outlines
-// (OutlinePass: the outlines anti-aliased). Each pass's function declares what it reads and
+// (OutlinesPass: the outlines anti-aliased). Each pass's function declares what it reads and
 // writes; the buffers the passes order themselves by (FrameBuffers) carry the version the last
 // writer left. What the passes share is in FrameContext.cpp (descriptors, imports, uniforms,
 // draws), Variants.cpp (the programs' variants), GlassIds.cpp (the glass ids and their optics)
@@ -245,12 +245,21 @@ void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
  *  atlas's new version. */
 fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& c,
                                      FrameBuffers& buffers, fg::TextureHandle atlas);
-/** `refraction.caustic_photons` and `refraction.caustic_resolve` (CausticsPass.cpp): photons
- *  from the emitters the glass shadow pass marked, refracted through the glass BVH onto the
- *  receivers, then filtered into a new caustics atlas over the shadow depth atlas `depth`'s
- *  tiles, bound at gl::slot::kShadowCaustics; returns it. */
-fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
-                                   FrameBuffers& buffers, fg::TextureHandle depth);
+/** `refraction.caustic_photons` (CausticPhotonsPass.cpp): photons from the emitters the glass
+ *  shadow pass marked, refracted through the glass BVH onto the receivers whose depth the
+ *  shadow depth atlas `depth` holds, summed (writes caustics). */
+void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           fg::TextureHandle depth);
+/** `refraction.caustic_resolve` (CausticResolvePass.cpp): the photons' sums filtered into a new
+ *  caustics atlas over the shadow views' tiles, bound at gl::slot::kShadowCaustics; returns
+ *  it. */
+fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContext& c,
+                                        FrameBuffers& buffers);
+/** What the photons' passes and the resolve share: the atlas's size and the budget. */
+inline void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
+    program.set("uCausticSize", c.gpu->caustics.size);
+    program.set("uPhotonBudget", c.settings.causticPhotons);
+}
 /** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
  *  d_N of every deformed vertex cast against it (writes bvh). */
 void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
@@ -302,19 +311,37 @@ fg::TextureHandle addSceneDepthTilesPass(fg::FrameGraph& graph, const FrameConte
                                          fg::TextureHandle sceneDepth);
 Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                    const SceneInputs& scene, const Capture& capture);
-/** The hybrid's handed-over pixels traced over the walk's colour (and motion); returns the
- *  new versions (writes counters; the fresh samples' list). */
+/** A listed pass's resources (ListedSamples.cpp): the walk's inputs and outputs, its motion
+ *  and history where the frame accumulates. */
+struct TraceData {
+    WalkInputs in;
+    fg::TextureHandle sceneMotion, historyColor, historyMotion, color, motion;
+    fg::BufferHandle counters;
+};
+/** The pixels a listed pass samples: those the hybrid's walk handed over, or the fresh ones. */
+enum class ListedPixels : int { HandedOver, Fresh };
+/** Declares a listed pass's reads and writes over the walk's outputs. */
+void declareListedSamples(fg::Builder& b, TraceData& d, const FrameContext& c,
+                          FrameBuffers& buffers, const SceneInputs& scene, const Capture& capture,
+                          const Walked& walked, ListedPixels list);
+/** Samples [first, last) of the list's pixels, each weighing 1 / `samples`. */
+core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameContext& c,
+                        ListedPixels list, int first, int last, int samples);
+/** `refraction.hybrid_trace` (HybridTracePass.cpp): the hybrid's handed-over pixels traced over
+ *  the walk's colour (and motion); returns the new versions (writes counters; the fresh
+ *  samples' list). */
 Walked addHybridTracePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture, const Walked& walked);
-/** Where c.freshSamples() > 1 (the trace and the hybrid): the later samples of the listed
+/** `refraction.fresh_samples` (FreshSamplesPass.cpp), where c.freshSamples() > 1 (the trace and
+ *  the hybrid): the later samples of the listed
  *  pixels (those whose history will be rejected, or differs from their first sample) traced
  *  and added to the walk's colour; returns its new version. */
 Walked addFreshSamplesPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            const SceneInputs& scene, const Capture& capture, const Walked& walked);
 /** The outlines of smooth glass anti-aliased over the walk's colour, into the scene colour
  *  (the walk read it: no copy); returns its new version. */
-fg::TextureHandle addOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
-                                 const FrameBuffers& buffers, const SceneInputs& scene,
-                                 const Walked& walked);
+fg::TextureHandle addOutlinesPass(fg::FrameGraph& graph, const FrameContext& c,
+                                  const FrameBuffers& buffers, const SceneInputs& scene,
+                                  const Walked& walked);
 
 } // namespace refraction

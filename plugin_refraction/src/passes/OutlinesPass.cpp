@@ -7,9 +7,9 @@
 
 namespace refraction {
 
-fg::TextureHandle addOutlinePass(fg::FrameGraph& graph, const FrameContext& c,
-                                 const FrameBuffers& buffers, const SceneInputs& scene,
-                                 const Walked& walked) {
+fg::TextureHandle addOutlinesPass(fg::FrameGraph& graph, const FrameContext& c,
+                                  const FrameBuffers& buffers, const SceneInputs& scene,
+                                  const Walked& walked) {
     struct OutlineData {
         fg::TextureHandle shaded, surface, out;
     };

@@ -1,13 +1,10 @@
-// `refraction.caustic_photons` and `refraction.caustic_resolve` (plugin::Stage::Shadows, after
-// the glass shadow pass has marked the emitters): the light the glass refracts, followed from
-// each light's views through the glass BVH onto the receivers as photons
-// (caustic_photons.comp.glsl), then filtered into the caustics atlas the shading reads
-// (caustic_resolve.frag.glsl, common/shadows.glsl; docs/materials.md, "Caustics").
+// `refraction.caustic_photons` (plugin::Stage::Shadows, after the glass shadow pass has marked
+// the emitters): the light the glass refracts, followed from each light's views through the
+// glass BVH onto the receivers as photons (caustic_photons.comp.glsl), summed for the resolve
+// (CausticResolvePass.cpp; docs/materials.md, "Caustics").
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
-
-#include <string>
 
 namespace refraction {
 
@@ -17,12 +14,6 @@ namespace {
  *  list pass's work groups, the photon count, the photon pass's work groups) of the two
  *  indirect dispatches' groups. */
 constexpr std::size_t kListGroups = 4, kPhotonGroups = 20;
-
-/** What the photons' passes and the resolve share: the atlas's size and the budget. */
-void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
-    program.set("uCausticSize", c.gpu->caustics.size);
-    program.set("uPhotonBudget", c.settings.causticPhotons);
-}
 
 /** The photons' receivers besides the BVH's opaque parts: the ground square. */
 void setGroundUniforms(const gl::Program& program, const FrameContext& c) {
@@ -76,58 +67,10 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     return {};
 }
 
-/** `refraction.caustic_resolve`: the sums filtered into a new caustics atlas over the shadow
- *  views' tiles, bound for the shading; returns it. */
-fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContext& c,
-                                        FrameBuffers& buffers) {
-    struct Resolve {
-        fg::TextureHandle atlas;
-    };
-    const glm::ivec2 size = c.frame->shadows->atlasSize / kCausticScale;
-    return graph
-        .addPass<Resolve>(
-            "refraction.caustic_resolve",
-            [&](fg::Builder& b, Resolve& d) {
-                b.read(buffers.caustics);
-                d.atlas = b.write(b.create("refraction.caustics", {size, gl::Format::RGBA16F, 1}));
-            },
-            [c](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
-                GpuState& gpu = *c.gpu;
-                const gl::Texture& atlas = r.texture(d.atlas);
-                if (auto bound = gpu.framebuffer.bindTargets("refraction.caustic_resolve", {&atlas},
-                                                             nullptr);
-                    !bound)
-                    return bound;
-                // Texels outside every tile: no caustics, the light straight.
-                gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, render::kNoGlass));
-                const gl::Program& program = *c.causticPrograms.resolve;
-                program.use();
-                setCausticUniforms(program, c);
-                gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
-                gl::apply({.cull = gl::Cull::None,
-                           .depthTest = false,
-                           .depthWrite = false,
-                           .blend = gl::Blend::None});
-                gpu.emptyVao.bind();
-                const render::ShadowPlan& plan = *c.frame->shadows;
-                for (std::size_t v = 0; v < plan.views.size(); ++v) {
-                    const render::ShadowView& view = plan.views[v];
-                    const glm::ivec3 tile = view.tile / kCausticScale;
-                    gl::setViewport({tile.x, tile.y, tile.z, tile.z});
-                    program.set("uView", int(v));
-                    gl::drawArrays(3);
-                }
-                // The receivers' shading reads it from here on.
-                gl::bindTexture(gl::slot::kShadowCaustics, atlas);
-                return {};
-            })
-        .atlas;
-}
-
 } // namespace
 
-fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
-                                   FrameBuffers& buffers, fg::TextureHandle depth) {
+void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           fg::TextureHandle depth) {
     struct Photons {
         fg::BufferHandle caustics;
     };
@@ -143,7 +86,6 @@ fg::TextureHandle addCausticPasses(fg::FrameGraph& graph, const FrameContext& c,
             return tracePhotons(r, c, depth);
         });
     buffers.caustics = photons.caustics;
-    return addCausticResolvePass(graph, c, buffers);
 }
 
 } // namespace refraction

@@ -1,0 +1,59 @@
+// Samples of a list of pixels (listed_samples.comp.glsl: a dispatch each sample of as many work
+// groups as the list holds), over the walk's colour, traced (the walk compiled as the trace's
+// variant): what the trace's and the hybrid's two listed passes share (HybridTracePass.cpp,
+// FreshSamplesPass.cpp).
+#include "Passes.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace refraction {
+
+void declareListedSamples(fg::Builder& b, TraceData& d, const FrameContext& c,
+                          FrameBuffers& buffers, const SceneInputs& scene, const Capture& capture,
+                          const Walked& walked, ListedPixels list) {
+    d.in = readWalkInputs(b, c, buffers, scene, capture);
+    b.read(buffers.handedOver); // the traced samples' program reads the hybrid's list
+    d.counters = b.write(buffers.counters);
+    d.color = b.write(walked.color);
+    if (list == ListedPixels::HandedOver && walked.motion.valid()) {
+        d.sceneMotion = b.read(scene.motion);
+        d.motion = b.write(walked.motion);
+        if (c.freshSamples() > 1) {
+            d.historyColor = b.read(scene.historyColor);
+            d.historyMotion = b.read(scene.historyMotion);
+        }
+    }
+}
+
+core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameContext& c,
+                        ListedPixels list, int first, int last, int samples) {
+    GpuState& gpu = *c.gpu;
+    if (auto bound = bindWalkInputs(r, c, d.in); !bound)
+        return bound;
+    gl::bindStorage(slot::kHandedOver, gpu.handedOver);
+    const gl::Program& program = *c.listedSamples;
+    c.setWalkUniforms(program);
+    c.setLayerUniforms(program);
+    program.set("uFreshList", list == ListedPixels::Fresh ? 1 : 0);
+    program.set("uTraceWeight", 1.0f / float(samples));
+    gl::bindImage(gl::slot::kOutputImage, r.texture(d.color), 0, true);
+    if (d.motion.valid()) {
+        gl::bindTexture(gl::slot::kMotion, r.texture(d.sceneMotion));
+        gl::bindImage(gl::slot::kMotionImage, r.texture(d.motion), 0, true);
+    }
+    if (d.historyMotion.valid())
+        bindHistory(r, d.historyColor, d.historyMotion);
+    for (int s = first; s < last; ++s) {
+        program.set("uTraceSample", s);
+        if (list == ListedPixels::Fresh)
+            gl::dispatchIndirect(gpu.counters, offsetof(WalkCountersGpu, freshGroups));
+        else
+            gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));
+        gl::memoryBarrier(gl::BarrierImage | gl::BarrierStorage | gl::BarrierCommand);
+    }
+    gl::memoryBarrier(gl::BarrierTexture | gl::BarrierFramebuffer | gl::BarrierBufferUpdate);
+    return {};
+}
+
+} // namespace refraction
