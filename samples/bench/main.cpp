@@ -665,7 +665,8 @@ core::Status benchWorld(const Options& o, tool::HeadlessScene& headless, const s
                         int level, render::RenderSettings& settings, nlohmann::json& report) {
     const render::Bounds bounds = render::worldBounds(world);
     headless.renderer->setGround(render::GroundPlane::under(bounds));
-    const render::Camera camera = tool::viewOf(world, bounds, o.size);
+    // One camera for every round: a file's camera the scene looks through, where it is at 0.
+    const render::Camera camera = tool::viewOf(world, bounds, o.size, 0.0);
     if (auto prepared = headless.renderer->prepare(world); !prepared)
         return prepared;
     std::size_t triangles = 0;

@@ -195,7 +195,7 @@ render::Camera CaptureSession::cameraAt(double time) const {
         camera = render::frameBounds(mBounds, aspect, mOptions.camera->yfov,
                                      mOptions.camera->azimuth, mOptions.camera->elevation);
     } else if (mWorld.camera) {
-        camera = render::worldCamera(*mWorld.camera, aspect, mBounds);
+        camera = render::sceneCamera(mWorld, time, aspect, mBounds);
     } else if (auto gltf = modelCamera(time, aspect)) {
         camera = *gltf;
     } else {

@@ -24,20 +24,21 @@ struct HeadlessScene {
     double duration = 1.0;
     render::Bounds bounds; ///< of every character over its clip
 
-    render::Camera camera(glm::ivec2 size) const;
+    render::Camera camera(glm::ivec2 size, double time) const;
 };
 
-/** The camera of `world` at `size`: its scene file's camera, else one framing `bounds`. */
+/** The camera of `world` at `size` and scene time `time`: its scene file's camera, else one
+ *  framing `bounds`. */
 inline render::Camera viewOf(const scene::World& world, const render::Bounds& bounds,
-                             glm::ivec2 size) {
+                             glm::ivec2 size, double time) {
     const float aspect = float(size.x) / float(size.y);
-    return world.camera ? render::worldCamera(*world.camera, aspect, bounds)
+    return world.camera ? render::sceneCamera(world, time, aspect, bounds)
                         : render::frameBounds(bounds, aspect);
 }
 
 /** viewOf() the scene and its bounds. */
-inline render::Camera HeadlessScene::camera(glm::ivec2 size) const {
-    return viewOf(world, bounds, size);
+inline render::Camera HeadlessScene::camera(glm::ivec2 size, double time) const {
+    return viewOf(world, bounds, size, time);
 }
 
 /** The longest clip of `world` in scene seconds, 1 when none plays one: the period tools sweep

@@ -218,8 +218,8 @@ int run(int argc, char** argv) {
         settings.ground = true;
         settings.temporal.enabled = temporal;
         const scene::World& world = (frame / o.resizeEvery) % 2 ? grown : headless.world;
-        auto stats = headless.renderer->render(world, headless.camera(size), settings,
-                                               std::fmod(frame / 30.0, headless.duration));
+        const double time = std::fmod(frame / 30.0, headless.duration);
+        auto stats = headless.renderer->render(world, headless.camera(size, time), settings, time);
         if (!stats) {
             std::fprintf(stderr, "glass-soak: frame %d: %s\n", frame,
                          stats.error().message.c_str());

@@ -463,14 +463,14 @@ void Panel::fileCameras(Viewer& v) {
     bool any = false;
     for (std::size_t i = 0; i < v.mWorld.characters.size(); ++i) {
         const scene::Character& c = v.mWorld.characters[i];
-        for (int node : render::cameraNodes(*c.model)) {
+        for (int node : c.model->cameraNodes()) {
             if (!any)
                 ImGui::TextUnformatted("The files' cameras");
             any = true;
             const std::string& name = c.model->nodes[std::size_t(node)].name;
             const std::string label =
                 c.name + ": " + (name.empty() ? "node " + std::to_string(node) : name);
-            const FileCamera camera{i, node};
+            const scene::CameraThrough camera{i, node};
             const bool through = v.mViewThrough == camera;
             const bool chosen = ImGui::Selectable(label.c_str(), through);
             uimap::mark(label);

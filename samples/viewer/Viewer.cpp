@@ -232,6 +232,7 @@ core::Status Viewer::applyStartSettings(const ViewerOptions& options) {
     if (mWorld.camera) { // a scene's own camera, over the last session's
         mCamera.look(*mWorld.camera);
         orbit = mCamera.orbitState();
+        mViewThrough = mWorld.camera->through;
     }
     if (options.environments.empty()) {
         useWorldEnvironment();

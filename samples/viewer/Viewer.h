@@ -56,13 +56,6 @@ struct WindowEvents {
     std::vector<KeyEvent> keys;
 };
 
-/** A camera of a character's file, on its node. */
-struct FileCamera {
-    std::size_t character = 0;
-    int node = -1;
-    bool operator==(const FileCamera&) const = default;
-};
-
 /** An environment the panel offers: the procedural sky (empty path) or an HDR file. */
 struct EnvironmentEntry {
     std::string name;
@@ -125,7 +118,7 @@ private:
     scene::WorldCamera viewPlacement() const;
     /** Looks through a file's camera, or (none) hands the view back to the orbit where it
      *  stands. */
-    void viewThrough(std::optional<FileCamera> camera);
+    void viewThrough(std::optional<scene::CameraThrough> camera);
     /** Shows the world's environment (added to the list when it is not there yet). */
     void useWorldEnvironment();
     void reportStatus(const core::Status& status, const std::string& success);
@@ -178,7 +171,7 @@ private:
     int mEnvironmentShown = -1;
     plugin::ParameterSet mSettings;
     OrbitCamera mCamera;
-    std::optional<FileCamera> mViewThrough; ///< a file's camera the view looks through
+    std::optional<scene::CameraThrough> mViewThrough; ///< a file's camera looked through
     double mTime = 0.0;
     render::FrameStats mStats;
     double mFrameMs = 0.0; ///< smoothed wall-clock frame time

@@ -80,7 +80,7 @@ void Viewer::worldChanged() {
     if (mViewThrough) { // a character removed or replaced takes its camera with it
         const std::size_t c = mViewThrough->character;
         const std::vector<int> nodes = c < mWorld.characters.size()
-                                           ? render::cameraNodes(*mWorld.characters[c].model)
+                                           ? mWorld.characters[c].model->cameraNodes()
                                            : std::vector<int>{};
         if (std::ranges::find(nodes, mViewThrough->node) == nodes.end())
             mViewThrough.reset();
@@ -171,6 +171,7 @@ bool Viewer::saveWorld(const std::string& path) {
     // The scene keeps what is shown: the camera, the environment (the sky: none) and the
     // ground.
     mWorld.camera = viewPlacement();
+    mWorld.camera->through = mViewThrough; // a file's camera looked through, as it moves
     const std::string& environment =
         mEnvironments[std::size_t(mSettings.number("environment"))].path;
     mWorld.environment = environment.empty() ? std::nullopt : std::optional(environment);
@@ -342,7 +343,7 @@ scene::WorldCamera Viewer::viewPlacement() const {
     return {c.position, c.position + forward * ahead, c.yfov};
 }
 
-void Viewer::viewThrough(std::optional<FileCamera> camera) {
+void Viewer::viewThrough(std::optional<scene::CameraThrough> camera) {
     if (mViewThrough && !camera)
         mCamera.look(viewPlacement());
     mViewThrough = camera;

@@ -342,7 +342,7 @@ TEST_F(ViewerWindow, TheFilesCamerasAreListedAndLookedThrough) {
     // A model with a camera whose yfov its clip plays (0.6 -> 1 rad over a second): chosen in
     // the panel's list (the scene section closed to bring it into the window), the view looks
     // through it as glass-capture does (a model's capture looks through its first camera), at
-    // the screenshot's time.
+    // the screenshot's time; the scene Escape saves looks through it too.
     const auto model = test::pointerTwoJointModel().save(mOut.path(), "eye");
     std::string out;
     ASSERT_EQ(throughThePanel("key Right\nkey Right\nkey Right\nkey Right\nkey Right\n"
@@ -363,6 +363,19 @@ TEST_F(ViewerWindow, TheFilesCamerasAreListedAndLookedThrough) {
     const double psnr = capture::score(captured, shot).psnr;
     std::printf("through the file's camera against glass-capture: %.2f dB\n", psnr);
     EXPECT_GE(psnr, 50.0);
+    // Escape saved the scene looking through that camera: its capture follows the camera too.
+    const auto saved = mConfig / "glass-viewer" / "last-scene.json";
+    auto world = asset::loadScene(saved);
+    ASSERT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message) << out;
+    ASSERT_TRUE(world->camera && world->camera->through);
+    EXPECT_EQ(world->characters[0].model->nodes[std::size_t(world->camera->through->node)].name,
+              "eye");
+    const double savedPsnr = capture::score(captureFrame(saved.string() + " --method opaque", at[1],
+                                                         {shot.width, shot.height}, mOut / "saved"),
+                                            shot)
+                                 .psnr;
+    std::printf("the saved scene's capture against the screenshot: %.2f dB\n", savedPsnr);
+    EXPECT_GE(savedPsnr, 50.0);
 }
 
 TEST_F(ViewerWindow, BadInputFailsClearlyWithoutOutput) {

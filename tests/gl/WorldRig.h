@@ -153,7 +153,7 @@ public:
     /** Views the world from its scene file's camera instead of framing its bounds. */
     void useSceneCamera() {
         ASSERT_TRUE(mWorld.camera.has_value());
-        mCamera = render::worldCamera(*mWorld.camera, 1.0f, render::worldBounds(mWorld));
+        mCamera = render::sceneCamera(mWorld, 0.0, 1.0f, render::worldBounds(mWorld));
     }
 
 private:

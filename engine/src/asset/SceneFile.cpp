@@ -233,6 +233,37 @@ std::size_t vertexCount(const scene::Model& model) {
 }
 
 /** The world of a scene file in `directory`; `where` prefixes warnings (function and file). */
+/** camera.through: a character (its index or name) and the node of its file's camera (the
+ *  node's index or name), which must hold a perspective camera. */
+scene::CameraThrough readThrough(const Json& j, const scene::World& world) {
+    const std::string key = "camera.through";
+    if (!j.is_object() || !j.contains("character") || !j.contains("node"))
+        fail(key, "expected {\"character\": name or index, \"node\": name or index}");
+    scene::CameraThrough through;
+    const Json& who = j["character"];
+    if (who.is_number_unsigned() && who.get<std::size_t>() < world.characters.size()) {
+        through.character = who.get<std::size_t>();
+    } else {
+        const std::string name = who.is_string() ? who.get<std::string>() : who.dump();
+        const auto found = std::find_if(world.characters.begin(), world.characters.end(),
+                                        [&](const scene::Character& c) { return c.name == name; });
+        if (found == world.characters.end())
+            fail(key + ".character", "no character " + who.dump() + " in the scene");
+        through.character = std::size_t(found - world.characters.begin());
+    }
+    const scene::Character& c = world.characters[through.character];
+    const std::vector<int> cameras = c.model->cameraNodes();
+    const Json& node = j["node"];
+    for (int n : cameras)
+        if ((node.is_number_integer() && node.get<int>() == n) ||
+            (node.is_string() && c.model->nodes[std::size_t(n)].name == node.get<std::string>()))
+            through.node = n;
+    if (through.node < 0)
+        fail(key + ".node",
+             "no perspective camera on node " + node.dump() + " of " + fileName(c.modelPath));
+    return through;
+}
+
 scene::World readWorld(const Json& root, const std::filesystem::path& directory,
                        const std::string& where, const LoadOptions& options) {
     if (!root.is_object())
@@ -252,7 +283,7 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
         const Json& cam = root["camera"];
         if (!cam.is_object())
             fail("camera", "expected an object with position, target and yfov");
-        warnUnknownKeys(cam, {"position", "target", "yfov"}, where + "camera.");
+        warnUnknownKeys(cam, {"position", "target", "yfov", "through"}, where + "camera.");
         scene::WorldCamera camera;
         if (cam.contains("position"))
             camera.position = vector<3>(cam["position"], "camera.position");
@@ -297,6 +328,8 @@ scene::World readWorld(const Json& root, const std::filesystem::path& directory,
                      " vertices with this character, the limit is " +
                      std::to_string(core::limits::kMaxSceneVertices));
     }
+    if (world.camera && root["camera"].contains("through"))
+        world.camera->through = readThrough(root["camera"]["through"], world);
     return world;
 }
 
@@ -425,6 +458,13 @@ std::string encodeScene(const scene::World& world, const std::filesystem::path& 
              {world.camera->position.x, world.camera->position.y, world.camera->position.z}},
             {"target", {world.camera->target.x, world.camera->target.y, world.camera->target.z}},
             {"yfov", world.camera->yfov}};
+    if (world.camera && world.camera->through) {
+        const scene::CameraThrough& t = *world.camera->through;
+        const std::string& node =
+            world.characters.at(t.character).model->nodes.at(std::size_t(t.node)).name;
+        root["camera"]["through"] = {{"character", t.character},
+                                     {"node", node.empty() ? Json(t.node) : Json(node)}};
+    }
     for (const scene::PlacedLight& l : world.lights) {
         Json j = {{"name", l.light.name},
                   {"type", lightTypeName(l.light.type)},

@@ -110,6 +110,17 @@ Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds&
     return c;
 }
 
+Camera sceneCamera(const scene::World& world, double time, float aspect, const Bounds& bounds) {
+    const scene::WorldCamera& placed = world.camera.value();
+    if (placed.through && placed.through->character < world.characters.size()) {
+        const scene::Character& c = world.characters[placed.through->character];
+        if (auto camera = nodeCamera(*c.model, anim::evaluate(*c.model, c.performance, time),
+                                     placed.through->node, c.transform(), aspect))
+            return *camera;
+    }
+    return worldCamera(placed, aspect, bounds);
+}
+
 Camera frameBounds(const Bounds& bounds, float aspect, float yfov, float azimuth, float elevation,
                    float distanceScale) {
     Camera c;
@@ -149,19 +160,8 @@ std::optional<Camera> nodeCamera(const scene::Model& model, const anim::Pose& po
     return c;
 }
 
-std::vector<int> cameraNodes(const scene::Model& model) {
-    std::vector<int> nodes;
-    for (int node : model.sceneNodes()) {
-        const int camera = model.nodes[std::size_t(node)].camera;
-        if (camera >= 0 &&
-            model.cameras[std::size_t(camera)].type == scene::Camera::Type::Perspective)
-            nodes.push_back(node);
-    }
-    return nodes;
-}
-
 std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& pose, float aspect) {
-    const std::vector<int> nodes = cameraNodes(model);
+    const std::vector<int> nodes = model.cameraNodes();
     if (nodes.empty())
         return std::nullopt;
     return nodeCamera(model, pose, nodes.front(), glm::dmat4(1.0), aspect);

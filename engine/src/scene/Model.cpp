@@ -94,6 +94,16 @@ std::vector<int> Model::sceneNodes() const {
     return order;
 }
 
+std::vector<int> Model::cameraNodes() const {
+    std::vector<int> found;
+    for (int node : sceneNodes()) {
+        const int camera = nodes[std::size_t(node)].camera;
+        if (camera >= 0 && cameras[std::size_t(camera)].type == Camera::Type::Perspective)
+            found.push_back(node);
+    }
+    return found;
+}
+
 std::vector<int> Model::meshNodes() const {
     std::vector<int> result;
     for (int node : sceneNodes())

@@ -121,6 +121,12 @@ std::vector<BadScene> badScenes() {
         {"CameraOnItsTarget",
          scene({character()}, {{"camera", {{"position", {1, 1, 1}}, {"target", {1, 1, 1}}}}}),
          "camera: position and target coincide"},
+        {"CameraThroughUnknownCharacter",
+         scene({character()}, {{"camera", {{"through", {{"character", "nobody"}, {"node", 0}}}}}}),
+         "camera.through.character: no character \"nobody\" in the scene"},
+        {"CameraThroughANodeWithoutACamera",
+         scene({character()}, {{"camera", {{"through", {{"character", 0}, {"node", "tip"}}}}}}),
+         "camera.through.node: no perspective camera on node \"tip\" of twojoint.glb"},
         {"GroundNotABool", scene({character()}, {{"ground", 1}}),
          "ground: expected true or false, got 1"},
         {"UnknownVariant", scene({character({{"variant", "blue"}})}),
@@ -386,6 +392,37 @@ TEST(SceneFile, SavedSceneOpensAsTheSameWorld) {
     ASSERT_TRUE(asset::saveScene(dir.dir / "c.json", *first).ok());
     std::ifstream inC(dir.dir / "c.json");
     EXPECT_EQ(Json::parse(inC)["characters"][0]["model"], "models/twojoint.glb");
+}
+
+TEST(SceneFile, ACameraLookedThroughRoundTripsAndMovesWithItsCharacter) {
+    // A scene looking through the camera of a character's file (its yfov played by the clip,
+    // 0.6 -> 1 rad over a second): by the character's name and the node's; saved, it opens the
+    // same; at 0.75 s its camera is the file's there.
+    SceneDir dir;
+    test::pointerTwoJointModel().save(dir.dir / "models", "eye", test::GltfFormat::Glb);
+    const Json root = {{"camera",
+                        {{"position", {0, 1, 5}},
+                         {"target", {0, 0, 0}},
+                         {"through", {{"character", "watcher"}, {"node", "eye"}}}}},
+                       {"characters",
+                        {character(), character({{"model", "models/eye.glb"},
+                                                 {"name", "watcher"},
+                                                 {"translation", {3, 0, 0}}})}}};
+    const auto first = asset::loadScene(dir.write("a.json", root.dump()));
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    ASSERT_TRUE(first->camera && first->camera->through);
+    EXPECT_EQ(first->camera->through->character, 1u);
+    const scene::Model& model = *first->characters[1].model;
+    EXPECT_EQ(model.nodes[std::size_t(first->camera->through->node)].name, "eye");
+    ASSERT_TRUE(asset::saveScene(dir.dir / "b.json", *first).ok());
+    const auto second = asset::loadScene(dir.dir / "b.json");
+    ASSERT_TRUE(second.ok()) << second.error().message;
+    EXPECT_EQ(second->camera->through, first->camera->through);
+    const render::Camera camera =
+        render::sceneCamera(*second, 0.75, 1.0f, render::worldBounds(*second));
+    EXPECT_NEAR(camera.yfov, 0.9f, 1e-5f);
+    EXPECT_NEAR(camera.position.x, 3.0f, 1e-5f) << "the eye node, moved with its character";
+    EXPECT_NEAR(camera.position.z, 4.0f, 1e-5f);
 }
 
 TEST(SceneFile, PerformancesRoundTrip) {

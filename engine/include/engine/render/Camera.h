@@ -55,6 +55,11 @@ Bounds worldBounds(const scene::World& world, int samples = 16);
 /** The camera a scene file places, its near and far planes fitted to `bounds`. */
 Camera worldCamera(const scene::WorldCamera& camera, float aspect, const Bounds& bounds);
 
+/** `world`'s camera at scene time `time`: the character's file camera it looks through, as the
+ *  character's performance poses it then, else its placement (worldCamera()). The world must
+ *  have a camera. */
+Camera sceneCamera(const scene::World& world, double time, float aspect, const Bounds& bounds);
+
 /** Looks at the bounds' centre from the front (+z side, slightly above), far enough that the
  *  bounding sphere fits the vertical and horizontal field of view. */
 Camera frameBounds(const Bounds& bounds, float aspect, float yfov = 0.7f, float azimuth = 0.0f,
@@ -69,8 +74,5 @@ std::optional<Camera> gltfCamera(const scene::Model& model, const anim::Pose& po
  *  plays it. */
 std::optional<Camera> nodeCamera(const scene::Model& model, const anim::Pose& pose, int node,
                                  const glm::dmat4& placement, float aspect);
-
-/** The perspective camera nodes of `model`'s default scene. */
-std::vector<int> cameraNodes(const scene::Model& model);
 
 } // namespace render

@@ -42,6 +42,8 @@ struct Model {
     std::vector<int> sceneNodes() const;
     /** Nodes of the default scene that carry a mesh, in sceneNodes() order. */
     std::vector<int> meshNodes() const;
+    /** The default scene's nodes that hold a perspective camera. */
+    std::vector<int> cameraNodes() const;
     /** Clip index by name, or by decimal index when `nameOrIndex` is a number. */
     std::optional<int> findAnimation(std::string_view nameOrIndex) const;
     /** The variant named `nameOrIndex` (KHR_materials_variants: a name, or an index). */

@@ -53,12 +53,22 @@ struct Character {
     double period() const { return model ? performance.period(*model) : 0.0; }
 };
 
+/** A character's file camera: the camera on node `node` of character `character`'s model, as
+ *  the character's performance moves it. */
+struct CameraThrough {
+    std::size_t character = 0;
+    int node = -1;
+    bool operator==(const CameraThrough&) const = default;
+};
+
 /** A camera a scene file places: at `position`, looking at `target`, vertical field of view
- *  `yfov` in radians. */
+ *  `yfov` in radians; or, with `through`, a character's file camera (the placement then where
+ *  it stood when the scene was saved). */
 struct WorldCamera {
     glm::vec3 position{0.0f, 1.0f, 4.0f};
     glm::vec3 target{0.0f};
     float yfov = 0.7f;
+    std::optional<CameraThrough> through{};
 };
 
 struct World {
