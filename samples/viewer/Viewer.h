@@ -5,6 +5,7 @@
 
 #include "OrbitCamera.h"
 #include "Preset.h"
+#include "engine/anim/Pose.h"
 #include "engine/gl/Context.h"
 #include "engine/plugin/Plugin.h"
 #include "engine/render/Renderer.h"
@@ -172,6 +173,8 @@ private:
     plugin::ParameterSet mSettings;
     OrbitCamera mCamera;
     std::optional<scene::CameraThrough> mViewThrough; ///< a file's camera looked through
+    mutable anim::Pose mViewPose;                     ///< its character's pose, for viewCamera()
+    mutable const scene::Model* mViewPoseModel = nullptr;
     double mTime = 0.0;
     render::FrameStats mStats;
     double mFrameMs = 0.0; ///< smoothed wall-clock frame time

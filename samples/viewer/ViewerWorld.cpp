@@ -73,6 +73,7 @@ void Viewer::useWorldEnvironment() {
 
 void Viewer::worldChanged() {
     mClipBounds.clear(); // releases models no character places any more
+    mViewPoseModel = nullptr; // its model may be gone: a new pose for the next
     boundsChanged();
     if (mWorld.ground && mSettings.find("ground"))
         mSettings.setNumber("ground", 1.0);
@@ -325,9 +326,13 @@ void Viewer::drawSkeleton() const {
 render::Camera Viewer::viewCamera(float aspect) const {
     if (mViewThrough && mViewThrough->character < mWorld.characters.size()) {
         const scene::Character& c = mWorld.characters[mViewThrough->character];
+        if (mViewPoseModel != c.model.get()) { // the pose kept, so that a frame allocates nothing
+            mViewPose = anim::restPose(*c.model);
+            mViewPoseModel = c.model.get();
+        }
+        anim::evaluate(*c.model, c.performance, mTime, mViewPose);
         if (auto camera =
-                render::nodeCamera(*c.model, anim::evaluate(*c.model, c.performance, mTime),
-                                   mViewThrough->node, c.transform(), aspect))
+                render::nodeCamera(*c.model, mViewPose, mViewThrough->node, c.transform(), aspect))
             return *camera;
     }
     return mCamera.camera(aspect);
