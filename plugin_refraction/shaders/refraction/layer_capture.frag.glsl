@@ -2,12 +2,13 @@
 // itself to its pixel's fixed array (layers.glsl): depth, outward normal after normal mapping,
 // glass id, facing, d_N. Glass behind the opaque scene is kept too (a glass head's far side
 // behind its opaque eyes, which rays inside the head still cross); the shading pass skips pixels
-// whose nearest glass is hidden. Fragments past K only count; every fragment also bids for the
-// pixel's overflow fallback (nearest front, farthest back). The depth attachment (depth test
-// ALWAYS) is the shading pass's mask: below 1 where any glass was kept. With textured glass in
-// the frame (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's; where the
-// frame accumulates, each kept fragment's motion. Nothing depends on the order the fragments
-// of a pixel arrive in: slots are taken by one atomic, the fallback is won by atomic bids.
+// whose nearest glass is hidden. Fragments past K only count, and bid for the pixel's overflow
+// fallback (nearest front, farthest back; the kept ones bid from their slots after the pass,
+// where the pixel overflowed). The depth attachment (depth test ALWAYS) is the shading pass's
+// mask: below 1 where any glass was kept. With textured glass in the frame (GLASS_TEXTURES),
+// each kept fragment's surface too, and the fallback's; where the frame accumulates, each kept
+// fragment's motion. Nothing depends on the order the fragments of a pixel arrive in: slots are
+// taken by one atomic, the fallback is won by atomic bids over all of them.
 #include "common/motion.glsl"
 #include "refraction/fragment_surface.glsl"
 #include "refraction/view.glsl"
@@ -27,6 +28,8 @@ void main() {
     // Read by every fragment, kept or not: its textures' filtering needs the derivatives of
     // uniform control flow.
     uvec2 surface = packSurface(fragmentSurface(id));
+#else
+    uvec2 surface = uvec2(0u);
 #endif
     if (slot < uint(kLayerCapacity)) {
         layerDepth4[pixel * uint(kDepthGroups) + slot / 4u][slot % 4u] = z;
@@ -39,11 +42,11 @@ void main() {
             layerMotion[pixel * uint(kLayerCapacity) + slot] =
                 packHalf2x16(clipToPixel(vClip) - clipToPixel(vPreviousClip));
     }
-    // The fallback's bids: its key, and its surface with it (layers.glsl, bidForFallback).
-#if !GLASS_TEXTURES
-    uvec2 surface = uvec2(0u);
-#endif
 #ifndef SKIP_FALLBACK // glass-bench --skip fallback
-    bidForFallback(pixel, gl_FrontFacing, fallbackKey(z, n, id), surface);
+    // A fragment past K bids for the fallback: its key, and its surface with it (layers.glsl,
+    // bidForFallback). The kept ones bid from their slots in the depths pass, and only where
+    // the pixel overflowed (layer_depths.frag.glsl).
+    else
+        bidForFallback(pixel, gl_FrontFacing, fallbackKey(z, packOctNormal(n), id), surface);
 #endif
 }

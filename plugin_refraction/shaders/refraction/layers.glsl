@@ -105,9 +105,10 @@ uvec2 fallbackSurface(uint pixel, int i) {
 }
 #endif
 
-uint fallbackKey(float z, vec3 n, uint id) {
+// The key of a fragment at depth z, its normal as a layer packs it (packOctNormal), glass id.
+uint fallbackKey(float z, uint octNormal, uint id) {
     uint q = min(uint(logDepthFraction(z) * 65536.0), 65535u);
-    uvec2 o = uvec2(round(clamp(octEncode(n), 0.0, 1.0) * 15.0));
+    uvec2 o = uvec2(round(unpackUnorm2x16(octNormal) * 15.0));
     return (q << 16) | ((id & 255u) << 8) | (o.x << 4) | o.y;
 }
 
@@ -144,6 +145,23 @@ vec4 storedDepths(ivec2 p, int g) {
     }
     vec4 d = layerDepth4[pixel * uint(kDepthGroups) + uint(g)];
     return mix(vec4(NO_DEPTH), d, vec4(lessThan(slots, vec4(float(n)))));
+}
+
+// The kept layers' bids for the fallback of an overflowing pixel, from their slots (the
+// fragments past K bid as the capture draws them): once, after the capture, so that the
+// fragments a pixel keeps pay no atomic bids of their own where it does not overflow.
+void bidKeptForFallback(uint pixel) {
+    for (int i = 0; i < kLayerCapacity; ++i) {
+        uvec2 attr = layerAttr[pixel * uint(kLayerCapacity) + uint(i)];
+        float z = layerDepth4[pixel * uint(kDepthGroups) + uint(i / 4)][i % 4];
+#if GLASS_TEXTURES
+        uvec2 surface = layerSurface[pixel * uint(kLayerCapacity) + uint(i)];
+#else
+        uvec2 surface = uvec2(0u);
+#endif
+        bidForFallback(pixel, (attr.y & kLayerFront) != 0u, fallbackKey(z, attr.x, attr.y),
+                       surface);
+    }
 }
 #endif
 

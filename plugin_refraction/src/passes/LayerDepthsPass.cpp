@@ -1,14 +1,15 @@
 // `refraction.layer_depths`: the layers' depths resolved, over the glass pixels, into the one or
 // two RGBA32F maps the walk's searches read (one texel fetch per sample; the overflow pair in
-// place, negated: layer_depths.frag.glsl).
+// place, negated: layer_depths.frag.glsl), after an overflowing pixel's kept layers bid for its
+// fallback (writes layers).
 #include "Passes.h"
 
 #include <vector>
 
 namespace refraction {
 
-Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
-                           const FrameBuffers& buffers, fg::TextureHandle mask) {
+Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           fg::TextureHandle mask) {
     const glm::ivec2 size = c.frame->settings.size;
     // The depths the walk's searches read, as maps (one texel fetch per sample).
     struct ResolveData {
@@ -20,7 +21,7 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.layer_depths",
         [&](fg::Builder& b, ResolveData& d) {
-            d.layers = b.read(buffers.layers);
+            d.layers = b.write(buffers.layers);
             b.read(buffers.extent);
             d.mask = b.read(mask);
             d.depths0 = b.write(b.create("refraction.layer_depths.depths0", depthsDesc));
@@ -41,8 +42,10 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
             c.capture.resolve->use();
             c.setLayerUniforms(*c.capture.resolve);
             c.drawMaskedRectangle();
+            gl::memoryBarrier(gl::BarrierStorage); // the fallback, for the passes that read it
             return {};
         });
+    buffers.layers = resolved.layers;
 
     Capture capture;
     capture.mask = mask;

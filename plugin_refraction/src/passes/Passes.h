@@ -272,9 +272,10 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
  *  mask. */
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers);
-/** The layers' depths as the maps the walk's searches read (one or two RGBA32F). */
-Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
-                           const FrameBuffers& buffers, fg::TextureHandle mask);
+/** The layers' depths as the maps the walk's searches read (one or two RGBA32F), after an
+ *  overflowing pixel's kept layers bid for its fallback (writes layers). */
+Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
+                           fg::TextureHandle mask);
 
 // ---- The capture: the pair
 
