@@ -39,8 +39,12 @@ vec3 channelSees(vec3 point, vec3 dir, float hitT, float roughness) {
     vec2 uv = projectToUv(X);
     if (X.z < 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))
         return texelFetch(uSceneColor, ivec2(uv * uViewportSize), 0).rgb;
+#if NEARBY_GROUND
     float t = groundHit(point, dir);
-    return t > 0.0 ? groundSeen(point, dir, t) : environmentRadiance(uViewToWorld * dir, roughness);
+    if (t > 0.0)
+        return groundSeen(point, dir, t);
+#endif
+    return environmentRadiance(uViewToWorld * dir, roughness);
 }
 
 // The glass's colour at the entry P (view space; view direction V, normal N1 facing it, its

@@ -7,9 +7,17 @@
 #include "common/ground.glsl"
 #include "refraction/march.glsl"
 
-uniform int uNearby;
-uniform int uGround;       // the ground square is drawn (render::GroundPlane):
-uniform vec4 uGroundPlane; // its height, centre x and z, half size
+// Compiled in (the walk's variants): NEARBY_SCENE, the lookup meets the nearby opaque scene (the
+// nearby option on, and opaque geometry in the frame); NEARBY_GROUND, it meets the ground square
+// too (render::GroundPlane, drawn). Without them the environment alone: a CPU rasteriser runs
+// a march or the ground's shading it carries, met or not.
+#ifndef NEARBY_SCENE
+#define NEARBY_SCENE 1
+#endif
+#ifndef NEARBY_GROUND
+#define NEARBY_GROUND NEARBY_SCENE
+#endif
+uniform vec4 uGroundPlane; // the ground's height, centre x and z, half size
 layout(binding = SCENE_COLOR_UNIT) uniform sampler2D uSceneColor;
 uniform float uNearbyDistance;
 uniform mat3 uViewToWorld; // rotation part of the inverse view matrix
@@ -78,8 +86,11 @@ bool marchScene(vec3 P, vec3 dir, float distance, int steps, out float hitT, out
 // Where the ray P + t dir (view space), t > 0, meets the ground square: t, or -1. Exact, at any
 // distance and off screen (a ray through a pane sees the ground's far edge where it is).
 float groundHit(vec3 P, vec3 dir) {
+#if !NEARBY_GROUND
+    return -1.0;
+#endif
     vec3 o = uViewToWorld * P + uViewOriginWorld, d = uViewToWorld * dir;
-    if (uGround == 0 || abs(d.y) < 1e-9)
+    if (abs(d.y) < 1e-9)
         return -1.0;
     float t = (uGroundPlane.x - o.y) / d.y;
     vec2 q = abs(o.xz + t * d.xz - uGroundPlane.yz);
@@ -98,13 +109,16 @@ vec3 groundSeen(vec3 P, vec3 dir, float t) {
 // environment.
 vec3 lookup(vec3 P, vec3 dir, float roughness, bool march, out float hitT) {
     ivec2 hit;
-#ifndef SKIP_SCENE // glass-bench --skip scene: the ground and the environment alone
-    if (uNearby != 0 && march && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
+#if NEARBY_SCENE && !defined(SKIP_SCENE) // glass-bench --skip scene: the ground and environment
+    if (march && marchScene(P, dir, uNearbyDistance, 24, hitT, hit))
         return texelFetch(uSceneColor, hit, 0).rgb;
 #endif
-    hitT = uNearby != 0 ? groundHit(P, dir) : -1.0;
-    return hitT > 0.0 ? groundSeen(P, dir, hitT)
-                      : environmentRadiance(uViewToWorld * dir, roughness);
+    hitT = groundHit(P, dir);
+#if NEARBY_GROUND
+    if (hitT > 0.0)
+        return groundSeen(P, dir, hitT);
+#endif
+    return environmentRadiance(uViewToWorld * dir, roughness);
 }
 
 #endif

@@ -217,12 +217,12 @@ bool opaqueBefore(Crossing c, vec3 P, vec3 dir, out float hitT, out vec3 seen) {
     if (tracedOpaque(c))
         seen = opaqueSeen(c, dir);
     return tracedOpaque(c);
-#elif defined(SKIP_SCENE) // glass-bench --skip scene: no opaque part between interfaces
+#elif !NEARBY_SCENE || defined(SKIP_SCENE) // (--skip scene): no opaque part between interfaces
     hitT = 0.0;
     return false;
 #else
     ivec2 hit;
-    bool met = uNearby != 0 && marchScene(P, dir, length(c.point - P), 12, hitT, hit);
+    bool met = marchScene(P, dir, length(c.point - P), 12, hitT, hit);
     if (met)
         seen = texelFetch(uSceneColor, hit, 0).rgb;
     return met;

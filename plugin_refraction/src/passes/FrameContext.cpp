@@ -78,9 +78,6 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uTirPolicy", reflect ? 1 : 0);
     f.set("uBounces", s.tirBounces);
     f.set("uFresnelMode", int(s.fresnel)); // 0 exact, 1 schlick, 2 off
-    // Without opaque geometry the walk could only find the background, which is the
-    // environment the lookup falls back to: skip it (the same image, cheaper).
-    f.set("uNearby", s.nearby && frame->opaqueGeometry ? 1 : 0);
     f.set("uDebug", s.debug);
     f.set("uViewportSize", glm::vec2(frame->settings.size));
     f.set("uProjection", frame->camera.projection);
@@ -90,7 +87,6 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
     f.set("uNearbyDistance", 0.5f * (frame->camera.zfar - frame->camera.znear));
     f.set("uSceneTileLevels", sceneTiles().levels);
     const render::GroundPlane& ground = frame->ground;
-    f.set("uGround", frame->settings.ground ? 1 : 0);
     f.set("uGroundPlane",
           glm::vec4(ground.height, ground.center.x, ground.center.z, ground.halfSize));
     const glm::mat4 viewToWorld = glm::inverse(frame->camera.view);
@@ -196,8 +192,14 @@ int FrameContext::freshSamples() const {
     return moving && settings.freshSampled() && settings.debug == 0 ? settings.freshSamples : 1;
 }
 
+bool FrameContext::seesNearbyScene() const {
+    // Without opaque geometry the walk could only find the background, which is the
+    // environment the lookup falls back to: left out (the same image, cheaper).
+    return settings.nearby && frame->opaqueGeometry;
+}
+
 bool FrameContext::marchesScene() const {
-    return settings.nearby && frame->opaqueGeometry && settings.method != Settings::Method::Trace;
+    return seesNearbyScene() && settings.method != Settings::Method::Trace;
 }
 
 gl::TextureDesc FrameContext::sceneTiles() const {

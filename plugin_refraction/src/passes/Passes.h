@@ -127,8 +127,11 @@ struct FrameContext {
      *  the hybrid, walked for DIR), every other pixel one; 1 in any other frame, a debug view
      *  or a method that takes none (Settings::freshSampled). */
     int freshSamples() const;
-    /** The walk marches through the nearby opaque scene (the nearby lookup on, opaque geometry
-     *  drawn, a method that does not trace): the scene's depth tiles help it. */
+    /** The walk's rays meet the nearby opaque scene (the nearby lookup on, opaque geometry
+     *  drawn: NEARBY_SCENE), and the ground square where it is drawn (NEARBY_GROUND). */
+    bool seesNearbyScene() const;
+    /** The walk marches through the nearby opaque scene (it sees it, with a method that does
+     *  not trace): the scene's depth tiles help it. */
     bool marchesScene() const;
     /** The scene's depth tiles (R32F): a texel a tile of 4 x 4 pixels, and levels of tiles up to
      *  128 pixels as the frame allows. */
