@@ -408,7 +408,7 @@ TEST_F(Layers, OverflowingPixelsKeepTheirNearestFrontAndFarthestBack) {
     const auto oneStats = rig.plugin().layerStats();
     EXPECT_EQ(fullStats.capacity, 4);
     EXPECT_EQ(oneStats.capacity, 1);
-    EXPECT_LE(fullStats.bytesPerPixel, 80u);
+    EXPECT_LE(fullStats.bytesPerPixel, 84u);
     EXPECT_EQ(fullStats.overflowPixels, 0u);
     EXPECT_GT(oneStats.overflowPixels, 1000u);
     const double psnr = capture::score(one, full).psnr;

@@ -4,7 +4,7 @@
 // behind its opaque eyes, which rays inside the head still cross); the shading pass skips pixels
 // whose nearest glass is hidden. Fragments past K only count, and bid for the pixel's overflow
 // fallback (nearest front, farthest back; the kept ones bid from their slots after the pass,
-// where the pixel overflowed). The depth attachment (depth test ALWAYS) is the shading pass's
+// over the list of the pixels that overflowed). The depth attachment (depth test ALWAYS) is the shading pass's
 // mask: below 1 where any glass was kept. With textured glass in the frame (GLASS_TEXTURES),
 // each kept fragment's surface too, and the fallback's; where the frame accumulates, each kept
 // fragment's motion. Nothing depends on the order the fragments of a pixel arrive in: slots are
@@ -44,9 +44,12 @@ void main() {
     }
 #ifndef SKIP_FALLBACK // glass-bench --skip fallback
     // A fragment past K bids for the fallback: its key, and its surface with it (layers.glsl,
-    // bidForFallback). The kept ones bid from their slots in the depths pass, and only where
-    // the pixel overflowed (layer_depths.frag.glsl).
-    else
+    // bidForFallback). The first lists its pixel, whose kept layers bid from their slots after
+    // the pass (layer_overflow.comp.glsl).
+    else {
         bidForFallback(pixel, gl_FrontFacing, fallbackKey(z, packOctNormal(n), id), surface);
+        if (slot == uint(kLayerCapacity))
+            listOverflow(pixel);
+    }
 #endif
 }

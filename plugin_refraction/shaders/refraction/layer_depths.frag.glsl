@@ -1,23 +1,15 @@
-// After the capture, over the glass pixels (the mask's early test): an overflowing pixel's kept
-// layers bid for its fallback (the fragments past K did as the capture drew them), then each
-// pixel's layer depths as the walk reads them (layers.glsl storedDepths: the overflow fallback in
-// place, negated so that the map itself says the pixel overflowed; 3e38 where unused) into one
-// or two RGBA32F maps, so that a search sample costs one texel fetch.
+// After the capture, over the glass pixels (the mask's early test): each pixel's layer depths
+// as the walk reads them (layers.glsl storedDepths: the overflow fallback in place, negated so
+// that the map itself says the pixel overflowed; 3e38 where unused) into one or two RGBA32F
+// maps, so that a search sample costs one texel fetch.
 #include "refraction/layers.glsl"
 
-// The mask's test before the shader (its bids are side effects, which would otherwise move the
-// test after it, for every pixel of the rectangle).
-layout(early_fragment_tests) in;
 layout(location = 0) out vec4 outDepths0;
 layout(location = 1) out vec4 outDepths1;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     bool overflow = int(layerHeads[pixelIndex(p)]) > kLayerCapacity;
-#ifndef SKIP_FALLBACK // glass-bench --skip fallback
-    if (overflow)
-        bidKeptForFallback(pixelIndex(p));
-#endif
     outDepths0 = storedDepths(p, 0);
     if (overflow)
         outDepths0.xy = -outDepths0.xy;

@@ -5,7 +5,8 @@
 //               overflow); then the overflow fallback's nearest front (atomicMin) and
 //               farthest back (atomicMax), each its key and, with textured glass, its surface
 //               in three more words (fallbackIndex): every word an atomic bid, so the winner
-//               does not depend on the order fragments arrive in
+//               does not depend on the order fragments arrive in; then the list of the pixels
+//               that overflowed (overflowIndex), for the kept layers' bids
 //   LayerDepths per pixel, ceil(K / 4) vec4: the linear view depth of the fragment in each slot
 //               (the search reads four at once)
 //   LayerAttrs  per pixel and slot: x the outward view normal (octahedral, 16 + 16 bits);
@@ -106,6 +107,20 @@ uvec2 fallbackSurface(uint pixel, int i) {
 #endif
 
 // The key of a fragment at depth z, its normal as a layer packs it (packOctNormal), glass id.
+// Word w of the list of the pixels that overflowed, after the heads' planes: 0 their count, 1-3
+// the work groups of 64 that bid for their kept layers (an indirect dispatch), then the pixels.
+uint overflowIndex(uint w) {
+    return uint(uPixelCount) * (1u + 2u * kFallbackWords) + w;
+}
+
+// Pixel `pixel`, which just overflowed (its fragment took slot K), into that list.
+void listOverflow(uint pixel) {
+    uint n = atomicAdd(layerHeads[overflowIndex(0u)], 1u);
+    layerHeads[overflowIndex(4u + n)] = pixel;
+    if (n % 64u == 0u)
+        atomicAdd(layerHeads[overflowIndex(1u)], 1u);
+}
+
 uint fallbackKey(float z, uint octNormal, uint id) {
     uint q = min(uint(logDepthFraction(z) * 65536.0), 65535u);
     uvec2 o = uvec2(round(unpackUnorm2x16(octNormal) * 15.0));
@@ -148,8 +163,9 @@ vec4 storedDepths(ivec2 p, int g) {
 }
 
 // The kept layers' bids for the fallback of an overflowing pixel, from their slots (the
-// fragments past K bid as the capture draws them): once, after the capture, so that the
-// fragments a pixel keeps pay no atomic bids of their own where it does not overflow.
+// fragments past K bid as the capture draws them): once, after the capture, over the list of
+// the pixels that overflowed (layer_overflow.comp.glsl), so that the fragments a pixel keeps pay
+// no atomic bids of their own where it does not overflow.
 void bidKeptForFallback(uint pixel) {
     for (int i = 0; i < kLayerCapacity; ++i) {
         uvec2 attr = layerAttr[pixel * uint(kLayerCapacity) + uint(i)];

@@ -1,7 +1,8 @@
 // `refraction.layer_capture`: the layered capture. Every glass item of every character in one
 // geometry pass, each fragment into its pixel's layer arrays (at most K, the nearest front and
-// farthest back kept aside for a pixel with more: layer_capture.frag.glsl); the depth attachment
-// becomes the glass pixels' mask.
+// farthest back kept aside for a pixel with more: layer_capture.frag.glsl, and bid for by its
+// kept layers after the draw: layer_overflow.comp.glsl); the depth attachment becomes the glass
+// pixels' mask.
 #include "Passes.h"
 
 namespace refraction {
@@ -31,13 +32,16 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity, surfaces,
                                c.frame->temporal.enabled);
             // The counts, then the fallback's nearest front (bid down from the most) and
-            // farthest back (bid up from 0) words, a plane of pixels each (layers.glsl).
+            // farthest back (bid up from 0) words, a plane of pixels each, then the overflow
+            // list's count and work groups (layers.glsl).
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
-            const std::size_t side = (layerHeadWords(surfaces) - 1) / 2 * pixels;
-            const std::size_t word = sizeof(std::uint32_t);
+            const std::size_t side = (layerHeadPlanes(surfaces) - 1) / 2 * pixels;
+            const std::size_t word = sizeof(std::uint32_t), list = (pixels + 2 * side) * word;
             gpu.layers.heads.fill(0, pixels, 0u);
             gpu.layers.heads.fill(pixels * word, side, 0xFFFFFFFFu);
             gpu.layers.heads.fill((pixels + side) * word, side, 0u);
+            gpu.layers.heads.fill(list, 2, 0u);
+            gpu.layers.heads.fill(list + 2 * word, 2, 1u);
             // Depth only: the shading pass's mask.
             if (auto bound =
                     gpu.framebuffer.bindTargets("refraction.layer_capture", {}, &r.texture(d.mask));
@@ -49,6 +53,11 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             c.setLayerUniforms(program);
             c.drawGlassMaterials(program,
                                  {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
+            // The overflowing pixels' kept layers bid for their fallback (layer_overflow).
+            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
+            c.capture.overflow->use();
+            c.setLayerUniforms(*c.capture.overflow);
+            gl::dispatchIndirect(gpu.layers.heads, list + word);
             // the arrays for the passes that read them; the heads for the next frame's clear
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};

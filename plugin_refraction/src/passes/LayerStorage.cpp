@@ -15,7 +15,8 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
     if (layers.surfaces.size() != surfaceBytes)
         layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
     layers.surfaceSlots = surfaceSlots;
-    const std::size_t headBytes = pixels * layerHeadWords(surfaceSlots) * sizeof(std::uint32_t);
+    const std::size_t headBytes =
+        (pixels * layerHeadWords(surfaceSlots) + kOverflowListHeader) * sizeof(std::uint32_t);
     if (layers.heads.size() != headBytes)
         layers.heads = gl::Buffer(headBytes);
     if (layers.size == size && layers.capacity == capacity)
@@ -26,9 +27,13 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
     layers.capacity = capacity;
 }
 
-std::size_t layerHeadWords(int surfaceSlots) {
+std::size_t layerHeadPlanes(int surfaceSlots) {
     // the count, then the fallback's two sides: each its key, and with surfaces its surface
     return 1 + 2 * std::size_t(1 + (surfaceSlots > 0 ? kFallbackSurfaceWords : 0));
+}
+
+std::size_t layerHeadWords(int surfaceSlots) {
+    return layerHeadPlanes(surfaceSlots) + 1; // and the pixel's place in the overflow list
 }
 
 std::size_t layerDepthSlots(int capacity) {

@@ -75,10 +75,10 @@ struct FrameContext {
      *  shades or crosses it (selectVariants): surface layers, KHR_materials_specular, the film,
      *  partial transmission, textures, normal maps. */
     std::vector<std::string> glassModel;
-    /** The capture's variants (selectVariants): the layers' capture and depth maps, or the
-     *  pair's geometry passes and their resolve. */
+    /** The capture's variants (selectVariants): the layers' capture, the overflowing pixels'
+     *  kept bids and the depth maps, or the pair's geometry passes and their resolve. */
     struct CapturePrograms {
-        const gl::Program *geometry = nullptr, *resolve = nullptr;
+        const gl::Program *geometry = nullptr, *resolve = nullptr, *overflow = nullptr;
     } capture;
     const gl::Program* walk = nullptr; ///< the walk's variant (selectWalkVariants)
     /** refraction.glass_shadow's variant: textured glass, caustic emitters (selectVariants). */
@@ -234,7 +234,12 @@ void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int cap
  *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */
 std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0);
-/** Words per pixel in the layer heads (layers.glsl's LayerHeads planes). */
+/** Planes of a word a pixel in the layer heads: the count and the fallback's bids (layers.glsl's
+ *  LayerHeads). The list of the overflowing pixels follows them: its header of
+ *  kOverflowListHeader words (the count, the work groups), then a word a pixel. */
+std::size_t layerHeadPlanes(int surfaceSlots);
+inline constexpr std::size_t kOverflowListHeader = 4;
+/** Words per pixel in the layer heads, the overflow list's included. */
 std::size_t layerHeadWords(int surfaceSlots);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
 std::size_t layerDepthSlots(int capacity);

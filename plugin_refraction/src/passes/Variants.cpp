@@ -32,7 +32,7 @@ core::Status captureVariants(FrameContext& c) {
     const std::string motion = define("WRITE_MOTION", c.frame->temporal.enabled);
     const std::string glass = "refraction/glass.vert.glsl";
     const std::string rectangle = "refraction/rectangle.vert.glsl";
-    core::Result<const gl::Program*> first = nullptr, second = nullptr;
+    core::Result<const gl::Program*> first = nullptr, second = nullptr, overflow = nullptr;
     if (!c.settings.layered()) {
         first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
                                   concat(c.glassModel, {motion}));
@@ -51,11 +51,12 @@ core::Status captureVariants(FrameContext& c) {
                                   define("TEXTURES_BASE_LEVEL", baseLevel), motion});
         first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
         second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
+        overflow = programs.compute("refraction/layer_overflow.comp.glsl", defines);
     }
-    for (const auto* built : {&first, &second})
+    for (const auto* built : {&first, &second, &overflow})
         if (!*built)
             return built->error();
-    c.capture = {*first, *second};
+    c.capture = {*first, *second, *overflow};
     return {};
 }
 
