@@ -62,9 +62,15 @@ uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uDebug;
 uniform mat4 uInverseProjection;
 // trace-samples rays a pixel, one draw each (Mesa's llvmpipe ends a shader invocation's loops
 // after 65535 iterations in all: a draw a sample keeps each within that): this draw's, and the
-// weight of each.
+// weight of each. The trace's and the hybrid's alone: the other methods walk one sample a pixel,
+// and leave the later samples' entries out.
+#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
 uniform int uTraceSample;
 uniform float uTraceWeight;
+#else
+const int uTraceSample = 0;
+const float uTraceWeight = 1.0;
+#endif
 uniform int uHybridCriteria; // hybrid-criteria: what hands a pixel to the trace (main)
 uniform int uTraceSamples;   // trace-samples
 // The trace's paths are sampled: several samples a pixel, or one a frame of a frame that
