@@ -175,7 +175,8 @@ struct Walk {
     // grazing exits; handedOverBy).
     bool hardReflection;
     bool outline;       // a crossing's normal was filtered near an outline
-    bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in)
+    bool overflowed;    // a crossing's pixel held more than K layers (its pair stood in; the
+                        // hybrid records it)
     int steps;
     int sightLayers;    // the layers on its pixel's line of sight (the hybrid's judge)
 };
@@ -271,6 +272,12 @@ vec3 crossingFacet(vec3 N, vec3 dir, GlassSurface s, inout uint rng) {
     return sampleMicrofacet(N, s.roughness, -dir, u);
 }
 
+// Whether the facet m that crossingFacet gave for normal N is a sampled microfacet (its share of
+// the light then weighs the path): never where the paths are not sampled, whose code is out.
+bool sampledFacet(vec3 m, vec3 N) {
+    return sampledPaths() && m != N;
+}
+
 // The entry's path in channel `channel`: into the glass at P1 (view direction V, normal N1
 // facing it), refracted (about a sampled microfacet of rough glass, the trace sampling).
 Path entryPath(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int channel,
@@ -282,7 +289,7 @@ Path entryPath(vec3 P1, vec3 V, vec3 N1, uvec2 entryAttr, GlassSurface s, int ch
     vec3 m = crossingFacet(N1, V, s, rng);
     if (!refractRay(V, m, 1.0 / path.ior, path.dir)) // only about a facet tilted far
         path.dir = reflect(V, m);
-    if (m != N1)
+    if (sampledFacet(m, N1))
         path.weight *= microfacetWeight(path.dir, m, N1, s.roughness, true);
     return path;
 }
@@ -336,7 +343,7 @@ Path mirrorPath(Path before, Path after, vec3 m, vec3 facing, vec3 reflected, fl
     mirror.dir = reflect(before.dir, m);
     mirror.weight =
         reflected *
-        (m != facing ? microfacetWeight(mirror.dir, m, facing, roughness, false) : 1.0);
+        (sampledFacet(m, facing) ? microfacetWeight(mirror.dir, m, facing, roughness, false) : 1.0);
     mirror.interfaces = after.interfaces;
     mirror.crossings = after.crossings;
     mirror.roughness = max(before.roughness, roughness);
@@ -382,7 +389,8 @@ bool walkStep(inout Walk w, inout Path path, inout Segment seg, inout PathEnd en
     bool outline;
     SurfaceMet met = crossingSurface(c, path, inside, N, outline);
     w.fallback = w.fallback || c.silhouette;
-    w.overflowed = w.overflowed || (!kTrace && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
+    w.overflowed = w.overflowed ||
+                   (kMethod == METHOD_HYBRID && storedCount(pixelOf(c.beyond)) > kLayerCapacity);
     w.outline = w.outline || outline;
     vec3 facing = dot(N, path.dir) < 0.0 ? N : -N;
     vec3 m = crossingFacet(facing, path.dir, met.surface, rng);
@@ -398,7 +406,7 @@ bool walkStep(inout Walk w, inout Path path, inout Segment seg, inout PathEnd en
         path.P = c.beyond;
         return true;
     }
-    if (m != facing) // a sampled microfacet's share of the light, the way it went
+    if (sampledFacet(m, facing)) // a sampled microfacet's share of the light, the way it went
         path.weight *= microfacetWeight(path.dir, m, facing, met.surface.roughness,
                                         crossed != CROSSED_REFLECTED);
     w.tir = w.tir || crossed == CROSSED_REFLECTED || crossed == CROSSED_GRAZING;
