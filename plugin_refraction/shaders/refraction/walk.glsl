@@ -62,9 +62,13 @@ uniform int uSteps, uMarchSteps, uInterfaces, uTirPolicy, uBounces, uDebug;
 uniform mat4 uInverseProjection;
 // trace-samples rays a pixel, one draw each (Mesa's llvmpipe ends a shader invocation's loops
 // after 65535 iterations in all: a draw a sample keeps each within that): this draw's, and the
-// weight of each. The trace's and the hybrid's alone: the other methods walk one sample a pixel,
-// and leave the later samples' entries out.
-#if LAYER_METHOD == METHOD_TRACE || LAYER_METHOD == METHOD_HYBRID
+// weight of each. SEVERAL_SAMPLES: the frame takes samples past a pixel's first (the trace's and
+// the hybrid's trace-samples, or their fresh samples); where it takes one, the later samples'
+// code is out.
+#ifndef SEVERAL_SAMPLES
+#define SEVERAL_SAMPLES 1
+#endif
+#if SEVERAL_SAMPLES
 uniform int uTraceSample;
 uniform float uTraceWeight;
 #else

@@ -192,6 +192,10 @@ int FrameContext::freshSamples() const {
     return moving && settings.freshSampled() && settings.debug == 0 ? settings.freshSamples : 1;
 }
 
+bool FrameContext::severalSamples() const {
+    return settings.traces() && (traceSamples() > 1 || freshSamples() > 1);
+}
+
 bool FrameContext::seesNearbyScene() const {
     // Without opaque geometry the walk could only find the background, which is the
     // environment the lookup falls back to: left out (the same image, cheaper).

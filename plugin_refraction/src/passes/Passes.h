@@ -127,6 +127,9 @@ struct FrameContext {
      *  the hybrid, walked for DIR), every other pixel one; 1 in any other frame, a debug view
      *  or a method that takes none (Settings::freshSampled). */
     int freshSamples() const;
+    /** The frame takes samples past a pixel's first: traceSamples() or freshSamples() over 1
+     *  for a method that traces (SEVERAL_SAMPLES). */
+    bool severalSamples() const;
     /** The walk's rays meet the nearby opaque scene (the nearby lookup on, opaque geometry
      *  drawn: NEARBY_SCENE), and the ground square where it is drawn (NEARBY_GROUND). */
     bool seesNearbyScene() const;

@@ -86,7 +86,8 @@ std::vector<std::string> glassDefines(const FrameContext& c) {
 
 /** The walk's defines for `method`: the capture (the pair, or the layers' K), the dispersion
  *  search, the frame's lighting features, what of the glass's model it uses, whether it writes
- *  motion and shows a debug view, and what of the nearby scene its rays can meet. */
+ *  motion, shows a debug view or takes several samples a pixel, and what of the nearby scene
+ *  its rays can meet. */
 std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method) {
     const int capture = c.settings.layered() ? c.settings.layerCapacity : 0; // 0: the pair
     // Dispersion: none in this frame, or the dispersion search's.
@@ -100,6 +101,7 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
                 dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
          define("WRITE_MOTION", c.frame->temporal.enabled),
          define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
+         define("SEVERAL_SAMPLES", c.severalSamples()),
          define("HYBRID_LIST", method == Settings::Method::Hybrid),
          define("NEARBY_SCENE", c.seesNearbyScene()),
          define("NEARBY_GROUND", c.seesNearbyScene() && c.frame->settings.ground),
