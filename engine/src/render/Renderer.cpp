@@ -481,6 +481,7 @@ FrameInfo Renderer::describeFrame(const scene::World& world, const Camera& camer
     frame.environment = gpu.environment.get();
     frame.shaders = &mShaders;
     frame.programs = mPrograms.get();
+    frame.shadowSampler = &gpu.shadowSampler;
     frame.camera = frame.temporal.enabled
                        ? TemporalHistory::jittered(camera, frame.temporal.jitter, settings.size)
                        : camera;
@@ -500,7 +501,7 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
         passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", &gpu.characters));
     blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
-    const passes::ShadowTargets shadows = recordShadows(graph, blackboard, frame, vertices);
+    const ShadowAtlases shadows = recordShadows(graph, blackboard, frame, vertices);
     if (auto selected = selectPrograms(frame); !selected)
         return selected;
 
@@ -535,16 +536,15 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
     return {};
 }
 
-passes::ShadowTargets Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
-                                              FrameInfo& frame, fg::BufferHandle vertices) {
+ShadowAtlases Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
+                                      FrameInfo& frame, fg::BufferHandle vertices) {
     RenderGpu& gpu = *mGpu;
-    passes::ShadowTargets shadows;
+    ShadowAtlases shadows;
     if (gpu.shadows.empty()) {
         shadows.depth =
             graph.importTexture("scene.shadow_depth", gpu.noShadowDepth.desc(), &gpu.noShadowDepth);
         shadows.glass =
             graph.importTexture("scene.shadow_glass", gpu.noShadowGlass.desc(), &gpu.noShadowGlass);
-        passes::bindShadowMaps(gpu, gpu.noShadowDepth, gpu.noShadowGlass);
     } else {
         shadows = passes::addShadows(graph, gpu, frame, vertices);
     }
@@ -557,7 +557,7 @@ passes::ShadowTargets Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackbo
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(plugin::Stage::Shadows, graph, blackboard);
     // What the plugins drew into the glass and caustics atlases decides the shading's variants.
-    const passes::ShadowTargets engineShadows = shadows;
+    const ShadowAtlases engineShadows = shadows;
     shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
     shadows.caustics = blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics);
     frame.lighting =

@@ -46,8 +46,6 @@ fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContex
                     program.set("uView", int(v));
                     gl::drawArrays(3);
                 }
-                // The receivers' shading reads it from here on.
-                gl::bindTexture(gl::slot::kShadowCaustics, atlas);
                 return {};
             })
         .atlas;

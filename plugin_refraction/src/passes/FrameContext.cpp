@@ -52,9 +52,9 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
             motion ? *motion : fg::TextureHandle{},
             historyColor ? *historyColor : fg::TextureHandle{},
             history ? *history : fg::TextureHandle{},
-            blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
-            blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
-            blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics),
+            {blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
+             blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
+             blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics)},
             fg::TextureHandle{}};
 }
 
@@ -235,9 +235,7 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
     in.sceneDepth = b.read(scene.depth);
     if (scene.depthTiles.valid())
         in.sceneDepthTiles = b.read(scene.depthTiles);
-    b.read(scene.shadowDepth); // the lights' shading samples them where they are bound
-    b.read(scene.shadowGlass);
-    b.read(scene.shadowCaustics);
+    in.shadows = scene.shadows.read(b);
     return in;
 }
 
@@ -247,6 +245,7 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     gl::bindStorage(slot::kWalkCounters, gpu.counters);
     gl::bindTexture(slot::kSceneColor, r.texture(in.sceneColor));
     gl::bindTexture(slot::kSceneDepth, r.texture(in.sceneDepth));
+    in.shadows.bind(r, *c.frame->shadowSampler);
     if (in.sceneDepthTiles.valid())
         gl::bindTexture(slot::kSceneDepthTiles, r.texture(in.sceneDepthTiles));
     // The layer depth maps (layers.glsl), the pair's normals; an absent map: the first depth

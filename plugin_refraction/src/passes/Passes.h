@@ -36,6 +36,7 @@
 #include "engine/plugin/Plugin.h"
 #include "engine/render/FrameInfo.h"
 #include "engine/render/MaterialTextures.h"
+#include "engine/render/ShadowAtlases.h"
 
 #include <cstdint>
 #include <functional>
@@ -162,9 +163,8 @@ struct SceneInputs {
     fg::TextureHandle color, depth, motion;
     /** With motion: the history's colour and the previous frame's motion (plugin::kHistory*). */
     fg::TextureHandle historyColor, historyMotion;
-    /** The shadow atlases, bound for the frame by the engine (the caustics by their pass):
-     *  what the lights' shading reads. */
-    fg::TextureHandle shadowDepth, shadowGlass, shadowCaustics;
+    /** The shadow atlases: what the lights' shading reads. */
+    render::ShadowAtlases shadows;
     /** Where the walk marches through the scene: its nearest depth over tiles (the scene's
      *  depth tiles pass, added after the rest). */
     fg::TextureHandle depthTiles;
@@ -181,10 +181,11 @@ struct Capture {
 struct WalkInputs {
     Capture capture;
     fg::TextureHandle sceneColor, sceneDepth, sceneDepthTiles;
+    render::ShadowAtlases shadows;
 };
 /** Declares what the walk reads as read by the pass: the capture's maps, the scene's colour
- *  and depth, the extent, layers, materials, the pair's ranges and, where the method traces,
- *  the BVH. */
+ *  and depth, the shadow atlases, the extent, layers, materials, the pair's ranges and, where
+ *  the method traces, the BVH. */
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture);
 /** Binds them, with the glass BVH and its textures where the method traces. */
@@ -262,8 +263,7 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
 void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            fg::TextureHandle depth);
 /** `refraction.caustic_resolve` (CausticResolvePass.cpp): the photons' sums filtered into a new
- *  caustics atlas over the shadow views' tiles, bound at gl::slot::kShadowCaustics; returns
- *  it. */
+ *  caustics atlas over the shadow views' tiles; returns it (plugin::kShadowCaustics). */
 fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContext& c,
                                         FrameBuffers& buffers);
 /** What the photons' passes and the resolve share: the atlas's size and the budget. */

@@ -74,8 +74,10 @@ namespace plugin {
  *  registered with ShaderLibrary::share), MaterialTextures::bind at gl::slot::kMaterial with
  *  seventeen slots (transmission and thickness added); 6 shadows: Stage::Shadows, the shadow
  *  atlases kShadowDepth and kShadowGlass at units 23 and 24, plugins' units from 26; 7 caustics:
- *  kShadowCaustics at unit 25. */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/7";
+ *  kShadowCaustics at unit 25; 8 no texture bound for the whole frame: a pass that shades with the
+ *  lights reads and binds the shadow atlases itself (render::ShadowAtlases,
+ *  FrameInfo::shadowSampler). */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/8";
 
 /** Where in the frame a plugin's passes go. */
 enum class Stage {
@@ -109,19 +111,20 @@ inline constexpr const char* kHistoryMotion = "history.motion";
  *  in a the frames it holds). */
 inline constexpr const char* kHistoryColor = "history.color";
 inline constexpr const char* kSceneVertices = "scene.vertices";
-/** The shadow atlases (fg::TextureHandle; render/Shadows.h, common/shadows.glsl), bound at
- *  their units for the whole frame: a pass whose program shades with the lights declares reads
- *  of both. "scene.shadow_glass" holds, per texel, the optical depth of the glass along the
- *  light's ray (RGB, added) and its nearest distance from the light (A, the minimum). */
+/** The shadow atlases (fg::TextureHandle; render/Shadows.h, common/shadows.glsl): a pass whose
+ *  program shades with the lights declares reads of them and binds them where it executes, all
+ *  three with the caustics (render::ShadowAtlases). "scene.shadow_glass" holds, per texel, the
+ *  optical depth of the glass along the light's ray (RGB, added) and its nearest distance from
+ *  the light (A, the minimum). */
 inline constexpr const char* kShadowDepth = "scene.shadow_depth";
 inline constexpr const char* kShadowGlass = "scene.shadow_glass";
-/** The caustics (fg::TextureHandle, RGBA16F, common/shadows.glsl), bound at
+/** The caustics (fg::TextureHandle, RGBA16F, common/shadows.glsl), read at
  *  gl::slot::kShadowCaustics: per texel of a light's view, the light that reached the receiver
  *  seen there through glass, as a share of what would reach it unblocked (RGB), where A is
  *  under kNoGlass; where A is kNoGlass, none was focused and light through glass goes straight.
  *  The engine's holds none; a plugin that focuses light through its surfaces at the Shadows
- *  stage creates its own atlas (the tiles of the depth atlas, any resolution), binds it at the
- *  unit when written, and puts it here; a pass that shades with the lights reads it. */
+ *  stage creates its own atlas (the tiles of the depth atlas, any resolution) and puts it here;
+ *  a pass that shades with the lights reads and binds it. */
 inline constexpr const char* kShadowCaustics = "scene.shadow_caustics";
 inline constexpr const char* kFrame = "frame";
 

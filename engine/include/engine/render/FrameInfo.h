@@ -27,6 +27,7 @@ struct GpuPrimitive;
 namespace gl {
 class Program;
 class ProgramCache;
+class Sampler;
 class ShaderLibrary;
 class VertexArray;
 } // namespace gl
@@ -178,6 +179,8 @@ struct FrameInfo {
     const gl::ShaderLibrary* shaders = nullptr;
     /** The renderer's program variants, compiled once each (passes ask it for theirs). */
     gl::ProgramCache* programs = nullptr;
+    /** The comparing sampler the shadow depth atlas is read through (ShadowAtlases::bind). */
+    const gl::Sampler* shadowSampler = nullptr;
     /** The frame's camera: its projection offset by the temporal jitter where accumulating
      *  (temporal.viewProjection is the unjittered one). */
     Camera camera;

@@ -29,9 +29,7 @@ namespace render {
 
 struct RenderGpu;
 struct CharacterGpu;
-namespace passes {
-struct ShadowTargets;
-}
+struct ShadowAtlases;
 
 /** One executed pass: CPU time of its execute callback and its GPU time: with
  *  RenderSettings::exactPassTimes this frame's, the wall clock from an idle GPU to the pass's
@@ -158,8 +156,8 @@ private:
     core::Status record(fg::FrameGraph& graph, FrameInfo& frame);
     /** The lights' shadow maps and the plugins' Shadows stage; the frame's lighting features
      *  from what they drew. */
-    passes::ShadowTargets recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
-                                        FrameInfo& frame, fg::BufferHandle vertices);
+    ShadowAtlases recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard, FrameInfo& frame,
+                                fg::BufferHandle vertices);
     /** Runs the compiled graph, each pass timed (RenderSettings::exactPassTimes), into
      *  `stats`; ends the temporal history's frame and the pool's. */
     core::Status execute(fg::FrameGraph& graph, const FrameInfo& frame, FrameStats& stats);

@@ -6,24 +6,25 @@
 namespace render::passes {
 
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, const ShadowTargets& shadows) {
-    return graph.addPass<SceneTargets>(
+                       SceneTargets scene, const ShadowAtlases& shadows) {
+    struct GroundData : SceneTargets {
+        ShadowAtlases shadows;
+    };
+    return graph.addPass<GroundData>(
         "ground",
-        [&](fg::Builder& b, SceneTargets& d) {
-            b.read(shadows.depth);
-            b.read(shadows.glass);
-            b.read(shadows.caustics);
+        [&](fg::Builder& b, GroundData& d) {
+            d.shadows = shadows.read(b);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())
                 d.motion = b.write(scene.motion);
         },
-        [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
-                       gl::Context&) -> core::Status {
+        [&gpu, &frame](const fg::Resources& r, const GroundData& d, gl::Context&) -> core::Status {
             if (auto bound =
                     gpu.framebuffer.bindTargets("ground", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
+            d.shadows.bind(r, gpu.shadowSampler);
             gl::apply({.cull = gl::Cull::None});
             const gl::Program& p = *gpu.ground;
             p.use();

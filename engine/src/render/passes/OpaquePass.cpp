@@ -18,25 +18,26 @@ gl::Cull cullFor(const scene::Material* material) {
 
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices,
-                       const ShadowTargets& shadows) {
-    return graph.addPass<SceneTargets>(
+                       const ShadowAtlases& shadows) {
+    struct OpaqueData : SceneTargets {
+        ShadowAtlases shadows;
+    };
+    return graph.addPass<OpaqueData>(
         "opaque",
-        [&](fg::Builder& b, SceneTargets& d) {
-            b.read(shadows.depth);
-            b.read(shadows.glass);
-            b.read(shadows.caustics);
+        [&](fg::Builder& b, OpaqueData& d) {
+            d.shadows = shadows.read(b);
             b.read(vertices);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())
                 d.motion = b.write(scene.motion);
         },
-        [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
-                       gl::Context&) -> core::Status {
+        [&gpu, &frame](const fg::Resources& r, const OpaqueData& d, gl::Context&) -> core::Status {
             if (auto bound =
                     gpu.framebuffer.bindTargets("opaque", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
+            d.shadows.bind(r, gpu.shadowSampler);
             for (auto& [layers, program] : gpu.opaque) {
                 gpu.environment->bind(*program, frame.settings.environmentRotation,
                                       frame.settings.environmentIntensity);

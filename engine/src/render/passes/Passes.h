@@ -8,6 +8,7 @@
 
 #include "engine/fg/FrameGraph.h"
 #include "engine/render/FrameInfo.h"
+#include "engine/render/ShadowAtlases.h"
 
 #include <vector>
 
@@ -32,38 +33,26 @@ inline std::vector<const gl::Texture*> sceneTargets(const fg::Resources& r,
  *  RenderGpu::poses (uploaded before the frame graph runs); writes `vertices` (the imported
  *  resource standing for every character's deformed buffers), returns the new version. */
 fg::BufferHandle addDeform(fg::FrameGraph& graph, RenderGpu& gpu, fg::BufferHandle vertices);
-/** The shadow atlases (render/Shadows.h): the casters' depth, and the glass's optical depth and
- *  nearest distance (common/shadows.glsl). */
-struct ShadowTargets {
-    fg::TextureHandle depth, glass;
-    /** The caustics a plugin focused (plugin::kShadowCaustics), else RenderGpu::noCaustics. */
-    fg::TextureHandle caustics;
-};
-
-/** `shadows`: creates both atlases of FrameInfo::shadows, draws every opaque item into each
- *  view's tile of the depth atlas, clears the glass atlas (1 x 1 where no glass casts) for the
- *  plugins, and binds both for the frame's shading passes (bindShadowMaps). */
-ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+/** `shadows`: creates both atlases of FrameInfo::shadows (the depth and the glass; the caustics
+ *  left unset), draws every opaque item into each view's tile of the depth atlas and clears the
+ *  glass atlas (1 x 1 where no glass casts) for the plugins. */
+ShadowAtlases addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                          fg::BufferHandle vertices);
-/** Binds the shadow atlases at their units (gl::slot::kShadowDepth with the comparing sampler,
- *  kShadowGlass), where every program that shades reads them, and RenderGpu::noCaustics at
- *  kShadowCaustics, which a plugin that focuses light replaces with its caustics. */
-void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass);
 /** `shadow_map_view`: a new colour target showing the atlas frame.settings.shadowMapView
  *  names (the depth, the glass's or the caustics), fitted into the frame, for the tonemap. */
 fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                                   const ShadowTargets& shadows);
+                                   const ShadowAtlases& shadows);
 /** `background`: creates scene.color (RGBA16F) and scene.depth (cleared to 1) and draws the
  *  environment behind everything; where the frame accumulates, creates scene.motion with the
  *  environment's motion. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
 /** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, const ShadowTargets& shadows);
+                       SceneTargets scene, const ShadowAtlases& shadows);
 /** `opaque`: every draw item no plugin claimed, metallic-roughness with image-based lighting,
  *  from the deformed vertices. */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, fg::BufferHandle vertices, const ShadowTargets& shadows);
+                       SceneTargets scene, fg::BufferHandle vertices, const ShadowAtlases& shadows);
 /** `temporal`: the frame (`color`, jittered) blended into the history (TemporalHistory, its
  *  textures imported) by each pixel's motion (`motion`), rejected where what the pixel tracks
  *  changed, clipped to the frame's neighbourhood while anything moves; returns the resolved

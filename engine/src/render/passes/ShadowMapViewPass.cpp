@@ -7,7 +7,7 @@
 namespace render::passes {
 
 fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                                   const ShadowTargets& shadows) {
+                                   const ShadowAtlases& shadows) {
     struct Data {
         fg::TextureHandle atlas, color;
     };

@@ -1,7 +1,7 @@
 // `shadows`: the frame's shadow atlases (render/Shadows.h): every opaque draw item from each
 // shadow view into its tile of the depth atlas; the glass atlas cleared for the plugins that
-// draw their glass into it (plugin::Stage::Shadows). Both stay bound at their units for the
-// frame's shading passes, which declare reads of them.
+// draw their glass into it (plugin::Stage::Shadows). The frame's shading passes read and bind
+// them (render::ShadowAtlases).
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
@@ -10,12 +10,12 @@
 
 namespace render::passes {
 
-ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+ShadowAtlases addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                          fg::BufferHandle vertices) {
     const ShadowPlan& plan = *frame.shadows;
-    return graph.addPass<ShadowTargets>(
+    return graph.addPass<ShadowAtlases>(
         "shadows",
-        [&](fg::Builder& b, ShadowTargets& d) {
+        [&](fg::Builder& b, ShadowAtlases& d) {
             b.read(vertices);
             d.depth =
                 b.write(b.create("scene.shadow_depth", {plan.atlasSize, gl::Format::Depth32F, 1}));
@@ -26,7 +26,7 @@ ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
                 b.write(b.create("scene.shadow_glass", {claimed ? plan.atlasSize : glm::ivec2(1),
                                                         gl::Format::RGBA16F, 1}));
         },
-        [&gpu, &frame, &plan](const fg::Resources& r, const ShadowTargets& d,
+        [&gpu, &frame, &plan](const fg::Resources& r, const ShadowAtlases& d,
                               gl::Context&) -> core::Status {
             const gl::Texture& depth = r.texture(d.depth);
             const gl::Texture& glass = r.texture(d.glass);
@@ -54,16 +54,8 @@ ShadowTargets addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
                     gl::drawIndexed(item.gpu->indexCount);
                 }
             }
-            bindShadowMaps(gpu, depth, glass);
             return {};
         });
-}
-
-void bindShadowMaps(const RenderGpu& gpu, const gl::Texture& depth, const gl::Texture& glass) {
-    gl::bindTexture(gl::slot::kShadowDepth, depth);
-    gpu.shadowSampler.bind(gl::slot::kShadowDepth);
-    gl::bindTexture(gl::slot::kShadowGlass, glass);
-    gl::bindTexture(gl::slot::kShadowCaustics, gpu.noCaustics); // until a plugin binds its own
 }
 
 } // namespace render::passes
