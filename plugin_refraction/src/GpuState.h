@@ -57,20 +57,20 @@ static_assert(sizeof(GlassMaterialGpu) == 16 * 16);
 // Three small buffers, one a job, each as its GLSL block reads it (std430; SharedLayout checks
 // the offsets).
 
-/** The glass's extent on screen and in view space (refraction/glass_extent.glsl): written by
+/** The glass's extent on screen and in view space (refraction/passes/glass_extent.glsl): written by
  *  the glass_extent pass, read by every pass over the glass rectangle and by the walk. */
 struct GlassExtentGpu {
     std::int32_t pixelMin[2], pixelMax[2]; ///< inclusive; empty while min > max
     std::int32_t boxMin[3], boxMax[3];     ///< view space, floats as ordered ints
 };
 
-/** The depth ranges of the pair's surfaces (refraction/pair_ranges.glsl, positive floats'
+/** The depth ranges of the pair's surfaces (refraction/passes/pair_ranges.glsl, positive floats'
  *  bits): written by the pair's resolve, read by the papers' search. */
 struct PairRangesGpu {
     std::uint32_t backRange[2], frontMin;
 };
 
-/** What the walk and the hybrid's trace count (refraction/walk_counters.glsl), read back as
+/** What the walk and the hybrid's trace count (refraction/passes/walk_counters.glsl), read back as
  *  LayerStats. */
 struct WalkCountersGpu {
     std::uint32_t overflowPixels;                          ///< pixels over K in the walk

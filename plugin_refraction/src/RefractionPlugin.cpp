@@ -84,16 +84,16 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         const char* shader;
         std::vector<std::string> defines;
     };
-    const char* glass = "refraction/glass.vert.glsl";
-    const char* rectangle = "refraction/rectangle.vert.glsl";
+    const char* glass = "refraction/passes/glass.vert.glsl";
+    const char* rectangle = "refraction/passes/rectangle.vert.glsl";
     const Spec specs[] = {
-        {&mGpu->pairGather, glass, "refraction/pair_gather.frag.glsl", {}},
+        {&mGpu->pairGather, glass, "refraction/passes/pair_gather.frag.glsl", {}},
         {&mGpu->pairGatheredResolve,
          rectangle,
-         "refraction/pair_resolve.frag.glsl",
+         "refraction/passes/pair_resolve.frag.glsl",
          {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
-        {&mGpu->outlines, rectangle, "refraction/outlines.frag.glsl", {}},
-        {&mGpu->growExtent, nullptr, "refraction/glass_extent.comp.glsl", {}},
+        {&mGpu->outlines, rectangle, "refraction/passes/outlines.frag.glsl", {}},
+        {&mGpu->growExtent, nullptr, "refraction/passes/glass_extent.comp.glsl", {}},
         {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
         {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
         {&mGpu->bvh.stages[0], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 1"}},

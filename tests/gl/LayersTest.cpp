@@ -39,7 +39,7 @@ class Layers : public test::GlTest {};
 // a frame that silently lacks its glass (and a tool exiting 0 with it).
 TEST_F(Layers, AGlassProgramThatDoesNotCompileFailsTheFrame) {
     WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 32);
-    const gl::ShaderFile broken[] = {{"refraction/walk.frag.glsl", "void main() { not glsl }"}};
+    const gl::ShaderFile broken[] = {{"refraction/passes/walk.frag.glsl", "void main() { not glsl }"}};
     rig.renderer().shaders().add(broken);
     render::RenderSettings settings;
     settings.size = {32, 32};

@@ -24,10 +24,10 @@ namespace {
 class SharedLayout : public test::GlTest {};
 
 const gl::ShaderFile kProbe[] = {{"probe.comp.glsl",
-                                  "#include \"refraction/glass_materials.glsl\"\n"
-                                  "#include \"refraction/glass_extent.glsl\"\n"
-                                  "#include \"refraction/pair_ranges.glsl\"\n"
-                                  "#include \"refraction/walk_counters.glsl\"\n"
+                                  "#include \"refraction/model/glass_materials.glsl\"\n"
+                                  "#include \"refraction/passes/glass_extent.glsl\"\n"
+                                  "#include \"refraction/passes/pair_ranges.glsl\"\n"
+                                  "#include \"refraction/passes/walk_counters.glsl\"\n"
                                   "layout(local_size_x = 1) in;\n"
                                   "void main() {\n"
                                   "    walkedPixels = glassMaterials[0].solid + pairFrontMin;\n"

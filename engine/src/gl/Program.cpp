@@ -97,7 +97,7 @@ core::Status link(const std::string& name, const std::vector<std::uint32_t>& sha
     return {};
 }
 
-/** "refraction/walk.frag.glsl" -> "walk". */
+/** "refraction/passes/walk.frag.glsl" -> "walk". */
 std::string programStem(const std::string& file) {
     std::string stem = std::filesystem::path(file).filename().string();
     return stem.substr(0, stem.find('.'));

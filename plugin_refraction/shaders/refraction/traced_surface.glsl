@@ -5,7 +5,7 @@
 #define REFRACTION_TRACED_SURFACE_GLSL
 #include "common/normal_map.glsl"
 #include "refraction/bvh.glsl"
-#include "refraction/glass_materials.glsl"
+#include "refraction/model/glass_materials.glsl"
 
 // GLASS_TEXTURES and GLASS_NORMAL_MAPS: some glass of the frame has textures that change its
 // surface, a normal map (the plugin's variants). Each texel read switches over the texture

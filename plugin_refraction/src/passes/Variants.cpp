@@ -30,14 +30,14 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 core::Status captureVariants(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
     const std::string motion = define("WRITE_MOTION", c.frame->temporal.enabled);
-    const std::string glass = "refraction/glass.vert.glsl";
-    const std::string rectangle = "refraction/rectangle.vert.glsl";
+    const std::string glass = "refraction/passes/glass.vert.glsl";
+    const std::string rectangle = "refraction/passes/rectangle.vert.glsl";
     core::Result<const gl::Program*> first = nullptr, second = nullptr, overflow = nullptr;
     if (!c.settings.layered()) {
-        first = programs.graphics(glass, "refraction/pair_surface.frag.glsl",
+        first = programs.graphics(glass, "refraction/passes/pair_surface.frag.glsl",
                                   concat(c.glassModel, {motion}));
         second = programs.graphics(
-            rectangle, "refraction/pair_resolve.frag.glsl",
+            rectangle, "refraction/passes/pair_resolve.frag.glsl",
             concat(c.glassModel, {"LAYER_CAPACITY 2", "PAIR_GATHERED 0", motion}));
     } else {
         // The trace with several samples (or one a frame of a frame that accumulates) reads the
@@ -49,9 +49,9 @@ core::Status captureVariants(FrameContext& c) {
         const std::vector<std::string> defines =
             concat(c.glassModel, {define("LAYER_CAPACITY", c.settings.layerCapacity),
                                   define("TEXTURES_BASE_LEVEL", baseLevel), motion});
-        first = programs.graphics(glass, "refraction/layer_capture.frag.glsl", defines);
-        second = programs.graphics(rectangle, "refraction/layer_depths.frag.glsl", defines);
-        overflow = programs.compute("refraction/layer_overflow.comp.glsl", defines);
+        first = programs.graphics(glass, "refraction/passes/layer_capture.frag.glsl", defines);
+        second = programs.graphics(rectangle, "refraction/passes/layer_depths.frag.glsl", defines);
+        overflow = programs.compute("refraction/passes/layer_overflow.comp.glsl", defines);
     }
     for (const auto* built : {&first, &second, &overflow})
         if (!*built)
@@ -113,12 +113,12 @@ core::Status causticPrograms(FrameContext& c) {
     if (!c.caustics)
         return {};
     gl::ProgramCache& programs = *c.frame->programs;
-    const std::string photons = "refraction/caustic_photons.comp.glsl";
+    const std::string photons = "refraction/passes/caustic_photons.comp.glsl";
     auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
     auto list = programs.compute(photons, {"CAUSTIC_LIST 1"});
     auto trace = programs.compute(photons, c.glassModel);
     auto resolve =
-        programs.graphics("render/fullscreen.vert.glsl", "refraction/caustic_resolve.frag.glsl");
+        programs.graphics("render/fullscreen.vert.glsl", "refraction/passes/caustic_resolve.frag.glsl");
     for (const auto* built : {&grid, &list, &trace, &resolve})
         if (!*built)
             return built->error();
@@ -135,7 +135,7 @@ core::Status selectVariants(FrameContext& c) {
     if (auto built = causticPrograms(c); !built)
         return built;
     auto shadow = c.frame->programs->graphics(
-        "refraction/glass.vert.glsl", "refraction/glass_shadow.frag.glsl",
+        "refraction/passes/glass.vert.glsl", "refraction/passes/glass_shadow.frag.glsl",
         concat(c.glassModel,
                {"PUNCTUAL_LIGHTS 0", "WRITE_MOTION 0", define("CAUSTIC_EMITTERS", c.caustics)}));
     if (!shadow)
@@ -146,7 +146,7 @@ core::Status selectVariants(FrameContext& c) {
 
 core::Status selectWalkVariants(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
-    auto walk = programs.graphics("refraction/rectangle.vert.glsl", "refraction/walk.frag.glsl",
+    auto walk = programs.graphics("refraction/passes/rectangle.vert.glsl", "refraction/passes/walk.frag.glsl",
                                   walkDefines(c, c.settings.method));
     if (!walk)
         return walk.error();
@@ -161,7 +161,7 @@ core::Status selectWalkVariants(FrameContext& c) {
     *std::find(defines.begin(), defines.end(), "HYBRID_LIST 0") = "HYBRID_LIST 1";
     defines.push_back(std::string("SHADED_FORMAT ") +
                       (c.settings.addsSamples() ? "rgba32f" : "rgba16f"));
-    auto listed = programs.compute("refraction/listed_samples.comp.glsl", defines);
+    auto listed = programs.compute("refraction/passes/listed_samples.comp.glsl", defines);
     if (!listed)
         return listed.error();
     c.listedSamples = *listed;

@@ -12,7 +12,7 @@
 //   fraction, or along the ray in view space).
 #ifndef REFRACTION_MARCH_GLSL
 #define REFRACTION_MARCH_GLSL
-#include "refraction/layers.glsl"
+#include "refraction/passes/layers.glsl"
 #include "refraction/view.glsl"
 
 layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;

@@ -5,8 +5,8 @@
 #define REFRACTION_FRAGMENT_SURFACE_GLSL
 #include "common/material_uv.glsl"
 #include "common/normal_map.glsl"
-#include "refraction/glass_inputs.glsl"
-#include "refraction/glass_materials.glsl"
+#include "refraction/passes/glass_inputs.glsl"
+#include "refraction/model/glass_materials.glsl"
 
 #ifndef GLASS_TEXTURES
 #define GLASS_TEXTURES 0

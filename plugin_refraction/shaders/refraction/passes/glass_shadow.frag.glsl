@@ -7,13 +7,13 @@
 // entering reflectance at the light's angle to the surface (optics.glsl), at both crossings.
 // With CAUSTIC_EMITTERS, it also marks each texel of the caustics atlas whose light meets glass,
 // where the photon pass emits (caustics.glsl).
-#include "refraction/fragment_surface.glsl"
-#include "refraction/optics.glsl"
+#include "refraction/passes/fragment_surface.glsl"
+#include "refraction/model/optics.glsl"
 #ifndef CAUSTIC_EMITTERS
 #define CAUSTIC_EMITTERS 0
 #endif
 #if CAUSTIC_EMITTERS
-#include "refraction/caustics.glsl"
+#include "refraction/passes/caustics.glsl"
 #endif
 
 uniform int uGlassId;

@@ -205,7 +205,7 @@ Crossing searchLayers(vec3 P, vec3 dir, int parity, bool inGlass) {
 }
 
 #if CAPTURE_PAIR && LAYER_METHOD != METHOD_TRACE // (the trace reads neither its maps nor ranges)
-#include "refraction/pair_ranges.glsl"
+#include "refraction/passes/pair_ranges.glsl"
 // the front's and the back's outward normals, with mips
 layout(binding = PAIR_NORMALS_UNIT) uniform sampler2D uPairNormals[2];
 uniform float uNormalLod;

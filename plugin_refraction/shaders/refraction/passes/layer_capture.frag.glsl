@@ -10,9 +10,9 @@
 // fragment's motion. Nothing depends on the order the fragments of a pixel arrive in: slots are
 // taken by one atomic, the fallback is won by atomic bids over all of them.
 #include "common/motion.glsl"
-#include "refraction/fragment_surface.glsl"
+#include "refraction/passes/fragment_surface.glsl"
 #include "refraction/view.glsl"
-#include "refraction/layers.glsl"
+#include "refraction/passes/layers.glsl"
 
 uniform int uGlassId;
 

@@ -1,7 +1,7 @@
 // After the capture, over the pixels that overflowed (their list, layers.glsl listOverflow): each
 // one's K kept layers bid for its fallback from their slots, as the fragments past K did as they
 // were drawn. Between the two, every fragment of the pixel has bid, whatever the order.
-#include "refraction/layers.glsl"
+#include "refraction/passes/layers.glsl"
 
 layout(local_size_x = 64) in;
 

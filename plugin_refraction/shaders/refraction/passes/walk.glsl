@@ -25,10 +25,10 @@
 // How the walk finds each crossing (DIR's search over the layers and over the pair, ISR's
 // estimate, the trace's hit): walk_crossings.glsl.
 #define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
-#include "refraction/glass_extent.glsl"
-#include "refraction/glass_surface.glsl"
-#include "refraction/layers.glsl"
-#include "refraction/walk_counters.glsl"
+#include "refraction/passes/glass_extent.glsl"
+#include "refraction/passes/glass_surface.glsl"
+#include "refraction/passes/layers.glsl"
+#include "refraction/passes/walk_counters.glsl"
 
 // METHOD_*, TIR_*, DISPERSION_SEARCH_*: the parameters' choices (Shared.h).
 // Incidence angles this close past the critical angle leave grazing instead of reflecting
@@ -156,7 +156,7 @@ vec3 silhouetteNormal(vec3 dir) {
     return normalize(vec3(dir.xy, 0.0) + vec3(0.0, 0.0, 1e-6));
 }
 
-#include "refraction/walk_crossings.glsl"
+#include "refraction/passes/walk_crossings.glsl"
 
 // A pixel's walk in one channel (for its indices): its primary path as it ended, with what
 // the walk found on the way.

@@ -8,8 +8,8 @@
 // The walk left the glass motion this pass reads in the motion image: the layers' motions are
 // one storage block past a compute shader's 16 (layers.glsl).
 #define GLASS_MOTION_READ
-#include "refraction/walk.glsl"
-#include "refraction/walk_motion.glsl"
+#include "refraction/passes/walk.glsl"
+#include "refraction/passes/walk_motion.glsl"
 
 layout(local_size_x = 64) in;
 uniform int uFreshList; // 1: over the pixels that take the fresh samples

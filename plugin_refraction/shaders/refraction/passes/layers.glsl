@@ -22,7 +22,7 @@
 // (pair_resolve.frag.glsl) fills the same arrays at K = 2, its front as layer 0, its back as layer 1.
 #ifndef REFRACTION_LAYERS_GLSL
 #define REFRACTION_LAYERS_GLSL
-#include "refraction/glass_materials.glsl"
+#include "refraction/model/glass_materials.glsl"
 #include "common/math.glsl" // octEncode, octDecode
 #include "refraction/depth_codes.glsl"
 #include "refraction/view.glsl"

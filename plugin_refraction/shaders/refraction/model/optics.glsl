@@ -5,7 +5,7 @@
 #ifndef REFRACTION_OPTICS_GLSL
 #define REFRACTION_OPTICS_GLSL
 #include "common/brdf.glsl"
-#include "refraction/glass_materials.glsl"
+#include "refraction/model/glass_materials.glsl"
 
 // FRESNEL_EXACT, _SCHLICK, _OFF: the fresnel parameter's choices (Shared.h).
 uniform int uFresnelMode;

@@ -1,7 +1,7 @@
 // The single geometry pass (pair_gather.glsl): front and back fragments of the glass into the
 // MAX-blended targets; no depth test, no culling.
-#include "refraction/pair_gather.glsl"
-#include "refraction/glass_inputs.glsl"
+#include "refraction/passes/pair_gather.glsl"
+#include "refraction/passes/glass_inputs.glsl"
 
 layout(location = 0) out vec4 outNear;
 layout(location = 1) out vec4 outFar;

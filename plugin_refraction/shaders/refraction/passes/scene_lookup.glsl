@@ -5,7 +5,7 @@
 #define REFRACTION_SCENE_LOOKUP_GLSL
 #include "common/environment.glsl"
 #include "common/ground.glsl"
-#include "refraction/march.glsl"
+#include "refraction/passes/march.glsl"
 
 // Compiled in (the walk's variants): NEARBY_SCENE, the lookup meets the nearby opaque scene (the
 // nearby option on, and opaque geometry in the frame); NEARBY_GROUND, it meets the ground square

@@ -3,8 +3,8 @@
 // reflectance with the reflected environment, tint, transmission, emission).
 #ifndef REFRACTION_GLASS_SURFACE_GLSL
 #define REFRACTION_GLASS_SURFACE_GLSL
-#include "refraction/optics.glsl"
-#include "refraction/scene_lookup.glsl"
+#include "refraction/model/optics.glsl"
+#include "refraction/passes/scene_lookup.glsl"
 
 // GLASS_PARTIAL: some glass of the frame transmits only in part (its factor or texture), so
 // the opaque term is compiled in (the plugin's variants; on where not given).

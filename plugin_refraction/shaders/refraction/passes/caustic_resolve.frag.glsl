@@ -5,7 +5,7 @@
 // receiver unblocked (RGB); A 0, the tile's mark (outside the tiles the atlas
 // clears to NO_GLASS, where common/shadows.glsl takes the light straight).
 #include "common/lighting.glsl"
-#include "refraction/caustics.glsl"
+#include "refraction/passes/caustics.glsl"
 
 uniform int uView;
 uniform int uPhotonBudget;

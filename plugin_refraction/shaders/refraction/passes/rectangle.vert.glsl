@@ -1,6 +1,6 @@
 // The glass rectangle (glass_extent.glsl) as two triangles, for the full-screen passes that only
 // matter where the glass is; an empty rectangle draws nothing.
-#include "refraction/glass_extent.glsl"
+#include "refraction/passes/glass_extent.glsl"
 
 uniform vec2 uViewportSize;
 uniform float uRectangleMargin; // pixels added around it (0 unless set)

@@ -4,7 +4,7 @@
 // projection. One atomic per group and bound. The view-space box of the vertices too (where
 // the walk's searches end).
 #include "common/vertex.glsl"
-#include "refraction/glass_extent.glsl"
+#include "refraction/passes/glass_extent.glsl"
 
 layout(local_size_x = 64) in;
 

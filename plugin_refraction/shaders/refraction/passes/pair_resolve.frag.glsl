@@ -9,9 +9,9 @@
 //     are those maps already; with textured glass in the frame (GLASS_TEXTURES) also their
 //     surfaces, into the layers' (never gathered: the one pass reads no texture).
 #include "common/motion.glsl"
-#include "refraction/layers.glsl"
-#include "refraction/pair_gather.glsl"
-#include "refraction/pair_ranges.glsl"
+#include "refraction/passes/layers.glsl"
+#include "refraction/passes/pair_gather.glsl"
+#include "refraction/passes/pair_ranges.glsl"
 
 layout(binding = SCENE_DEPTH_UNIT) uniform sampler2D uSceneDepth;
 uniform float uNear, uFar;

@@ -6,7 +6,7 @@
 // the glass id + 1 in w (0: no surface, the clear value); with textured glass in the frame
 // (GLASS_TEXTURES), the glass surface there (packSurface). pair_resolve.frag.glsl reads them.
 #include "common/motion.glsl"
-#include "refraction/fragment_surface.glsl"
+#include "refraction/passes/fragment_surface.glsl"
 
 uniform int uGlassId;
 

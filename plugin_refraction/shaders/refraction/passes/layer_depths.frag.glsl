@@ -2,7 +2,7 @@
 // as the walk reads them (layers.glsl storedDepths: the overflow fallback in place, negated so
 // that the map itself says the pixel overflowed; 3e38 where unused) into one or two RGBA32F
 // maps, so that a search sample costs one texel fetch.
-#include "refraction/layers.glsl"
+#include "refraction/passes/layers.glsl"
 
 layout(location = 0) out vec4 outDepths0;
 layout(location = 1) out vec4 outDepths1;

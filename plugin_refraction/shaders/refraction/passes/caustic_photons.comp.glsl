@@ -14,9 +14,9 @@
 // the cell's photons that start on an emitter (caustics.glsl); without either, the photon pass,
 // an invocation a listed photon (a CPU rasteriser's SIMD lanes, or a GPU's, then all trace).
 #include "common/lighting.glsl"
-#include "refraction/optics.glsl"
+#include "refraction/model/optics.glsl"
 #include "refraction/traced_surface.glsl"
-#include "refraction/caustics.glsl"
+#include "refraction/passes/caustics.glsl"
 #ifndef CAUSTIC_GRID
 #define CAUSTIC_GRID 0
 #endif

@@ -2,8 +2,8 @@
 // draw each trace sample for the trace and the hybrid, added up; where the frame accumulates,
 // one sample, each pixel's motion by what it shows (walk_motion.glsl), and while anything moves
 // the pixels whose history will be rejected listed for the fresh samples' pass.
-#include "refraction/walk.glsl"
-#include "refraction/walk_motion.glsl"
+#include "refraction/passes/walk.glsl"
+#include "refraction/passes/walk_motion.glsl"
 
 // The mask's depth test before the shader (its overflow count is a side effect, which would
 // otherwise move the test after it, for every pixel of the rectangle).
