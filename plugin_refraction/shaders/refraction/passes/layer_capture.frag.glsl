@@ -3,12 +3,12 @@
 // glass id, facing, d_N. Glass behind the opaque scene is kept too (a glass head's far side
 // behind its opaque eyes, which rays inside the head still cross); the shading pass skips pixels
 // whose nearest glass is hidden. Fragments past K only count, and bid for the pixel's overflow
-// fallback (nearest front, farthest back; the kept ones bid from their slots after the pass,
-// over the list of the pixels that overflowed). The depth attachment (depth test ALWAYS) is the shading pass's
-// mask: below 1 where any glass was kept. With textured glass in the frame (GLASS_TEXTURES),
-// each kept fragment's surface too, and the fallback's; where the frame accumulates, each kept
-// fragment's motion. Nothing depends on the order the fragments of a pixel arrive in: slots are
-// taken by one atomic, the fallback is won by atomic bids over all of them.
+// fallback (nearest front, farthest back; the kept ones bid from their slots after the pass, over
+// the list of the pixels that overflowed). The depth attachment (depth test ALWAYS) is the
+// shading pass's mask: below 1 where any glass was kept. With textured glass in the frame
+// (GLASS_TEXTURES), each kept fragment's surface too, and the fallback's; where the frame
+// accumulates, each kept fragment's motion. Nothing depends on the order the fragments of a
+// pixel arrive in: slots are taken by one atomic, the fallback is won by atomic bids over all.
 #include "common/motion.glsl"
 #include "refraction/passes/fragment_surface.glsl"
 #include "refraction/view.glsl"

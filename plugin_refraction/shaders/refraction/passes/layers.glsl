@@ -106,7 +106,6 @@ uvec2 fallbackSurface(uint pixel, int i) {
 }
 #endif
 
-// The key of a fragment at depth z, its normal as a layer packs it (packOctNormal), glass id.
 // Word w of the list of the pixels that overflowed, after the heads' planes: 0 their count, 1-3
 // the work groups of 64 that bid for their kept layers (an indirect dispatch), then the pixels.
 uint overflowIndex(uint w) {
@@ -121,6 +120,7 @@ void listOverflow(uint pixel) {
         atomicAdd(layerHeads[overflowIndex(1u)], 1u);
 }
 
+// The key of a fragment at depth z, its normal as a layer packs it (packOctNormal), glass id.
 uint fallbackKey(float z, uint octNormal, uint id) {
     uint q = min(uint(logDepthFraction(z) * 65536.0), 65535u);
     uvec2 o = uvec2(round(unpackUnorm2x16(octNormal) * 15.0));
