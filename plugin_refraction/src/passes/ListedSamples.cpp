@@ -1,4 +1,4 @@
-// Samples of a list of pixels (listed_samples.comp.glsl: a dispatch each sample of as many work
+// Samples of a list of pixels (listed_samples.glsl: a dispatch each sample of as many work
 // groups as the list holds), over the walk's colour, traced (the walk compiled as the trace's
 // variant): what the trace's and the hybrid's two listed passes share (HybridTracePass.cpp,
 // FreshSamplesPass.cpp).
@@ -32,10 +32,10 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
     gl::bindStorage(slot::kHandedOver, gpu.handedOver);
-    const gl::Program& program = *c.listedSamples;
+    const gl::Program& program =
+        list == ListedPixels::Fresh ? *c.listed.fresh : *c.listed.handedOver;
     c.setWalkUniforms(program);
     c.setLayerUniforms(program);
-    program.set("uFreshList", list == ListedPixels::Fresh ? 1 : 0);
     program.set("uTraceWeight", 1.0f / float(samples));
     gl::bindImage(gl::slot::kOutputImage, r.texture(d.color), 0, true);
     if (d.motion.valid()) {

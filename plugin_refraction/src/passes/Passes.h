@@ -89,9 +89,12 @@ struct FrameContext {
     struct CausticPrograms {
         const gl::Program *grid = nullptr, *list = nullptr, *photons = nullptr, *resolve = nullptr;
     } causticPrograms;
-    /** Samples of a list of pixels, traced (listed_samples.comp.glsl, selectWalkVariants): the
-     *  hybrid's trace pass's, the fresh samples' (the trace and the hybrid). */
-    const gl::Program* listedSamples = nullptr;
+    /** Samples of a list of pixels, traced (listed_samples.glsl, selectWalkVariants), where
+     *  their passes run: the hybrid's trace pass's (hybrid_trace.comp.glsl), the fresh
+     *  samples' of the trace and the hybrid (fresh_samples.comp.glsl). */
+    struct ListedPrograms {
+        const gl::Program *handedOver = nullptr, *fresh = nullptr;
+    } listed;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
      *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
     bool caustics = false;
@@ -221,7 +224,7 @@ void assignGlassIds(FrameContext& c);
  *  (the layers' for capacity K, the pair's; textured glass), the glass shadow's and, where the
  *  frame focuses caustics, the caustics' programs. */
 core::Status selectVariants(FrameContext& c);
-/** The walk's and the listed samples' variants (FrameContext::walk, listedSamples) for the
+/** The walk's and the listed samples' variants (FrameContext::walk, listed) for the
  *  frame's method, capture, dispersion, textures and lighting features (FrameInfo::lighting,
  *  known from the AfterOpaque stage on), from the engine's program cache. */
 core::Status selectWalkVariants(FrameContext& c);

@@ -117,8 +117,8 @@ core::Status causticPrograms(FrameContext& c) {
     auto grid = programs.compute(photons, {"CAUSTIC_GRID 1"});
     auto list = programs.compute(photons, {"CAUSTIC_LIST 1"});
     auto trace = programs.compute(photons, c.glassModel);
-    auto resolve =
-        programs.graphics("render/fullscreen.vert.glsl", "refraction/passes/caustic_resolve.frag.glsl");
+    auto resolve = programs.graphics("render/fullscreen.vert.glsl",
+                                     "refraction/passes/caustic_resolve.frag.glsl");
     for (const auto* built : {&grid, &list, &trace, &resolve})
         if (!*built)
             return built->error();
@@ -146,25 +146,35 @@ core::Status selectVariants(FrameContext& c) {
 
 core::Status selectWalkVariants(FrameContext& c) {
     gl::ProgramCache& programs = *c.frame->programs;
-    auto walk = programs.graphics("refraction/passes/rectangle.vert.glsl", "refraction/passes/walk.frag.glsl",
-                                  walkDefines(c, c.settings.method));
+    auto walk =
+        programs.graphics("refraction/passes/rectangle.vert.glsl",
+                          "refraction/passes/walk.frag.glsl", walkDefines(c, c.settings.method));
     if (!walk)
         return walk.error();
     c.walk = *walk;
     if (!c.settings.traces())
         return {};
-    // The listed samples (listed_samples.comp.glsl), storing the format of the walk's target:
-    // the trace's variant of the walk, over the hybrid's handed-over pixels or the fresh
-    // samples'.
+    // The listed samples (listed_samples.glsl), storing the format of the walk's target: the
+    // trace's variant of the walk, over the hybrid's handed-over pixels or the fresh samples',
+    // each compiled where its pass runs.
     std::vector<std::string> defines = walkDefines(c, Settings::Method::Trace);
     // the trace's walk, over the hybrid's list too
     *std::find(defines.begin(), defines.end(), "HYBRID_LIST 0") = "HYBRID_LIST 1";
     defines.push_back(std::string("SHADED_FORMAT ") +
                       (c.settings.addsSamples() ? "rgba32f" : "rgba16f"));
-    auto listed = programs.compute("refraction/passes/listed_samples.comp.glsl", defines);
-    if (!listed)
-        return listed.error();
-    c.listedSamples = *listed;
+    c.listed = {};
+    if (c.settings.method == Settings::Method::Hybrid && c.settings.debug == 0) {
+        auto traced = programs.compute("refraction/passes/hybrid_trace.comp.glsl", defines);
+        if (!traced)
+            return traced.error();
+        c.listed.handedOver = *traced;
+    }
+    if (c.freshSamples() > 1) {
+        auto fresh = programs.compute("refraction/passes/fresh_samples.comp.glsl", defines);
+        if (!fresh)
+            return fresh.error();
+        c.listed.fresh = *fresh;
+    }
     return {};
 }
 

@@ -1,8 +1,9 @@
-// The walk (walk.frag.glsl, the one shading pass over the glass pixels, and the hybrid's trace
-// pass, listed_samples.comp.glsl), whichever capture filled the layers: a pixel's primary ray
-// enters the nearest captured layer and walks the others (layers.glsl) in
-// texture space, refracting at every interface it crosses (or reflecting under total internal
-// reflection) with the media on both sides, up to N interfaces; then it sees the nearby opaque
+// The walk (walk.frag.glsl, the one shading pass over the glass pixels; the hybrid's trace pass,
+// hybrid_trace.comp.glsl, and the fresh samples' pass, fresh_samples.comp.glsl), whichever
+// capture filled the layers: a pixel's primary ray enters the nearest captured layer and walks
+// the others (layers.glsl) in texture space, refracting at every interface it crosses (or
+// reflecting under total internal reflection) with the media on both sides, up to N
+// interfaces; then it sees the nearby opaque
 // scene or the environment (scene_lookup.glsl). An opaque part met between two interfaces
 // (inside the glass, or between two pieces) ends the walk there. ARCHITECTURE.md ("How a ray
 // walks the layers") has the figure. Compiled in: the capture (CAPTURE_PAIR), K, the method
@@ -98,7 +99,7 @@ bool sampledPaths() {
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
 // The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (listed_samples.comp.glsl's indirect dispatch), then a bit a pixel (row by
+// work groups of 64 (hybrid_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
 // row, handedOverListStart words) and the list of the pixels (x | y << 16).
 layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];

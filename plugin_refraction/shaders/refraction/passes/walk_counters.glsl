@@ -4,7 +4,7 @@
 // glass pixels walked, and those the hybrid traced: all, and for each of its reasons (HYBRID_*:
 // bit k counts in walkHybridBy[k]); those that take the fresh samples (walk_motion.glsl), the
 // work groups of 64 of the fresh samples' pass over them (an indirect dispatch:
-// listed_samples.comp.glsl) and their list (x | y << 16), which the buffer holds where the frame
+// fresh_samples.comp.glsl) and their list (x | y << 16), which the buffer holds where the frame
 // takes fresh samples.
 #ifndef REFRACTION_WALK_COUNTERS_GLSL
 #define REFRACTION_WALK_COUNTERS_GLSL

@@ -96,7 +96,7 @@ uvec4 glassPixelMotion(ivec2 p, Entry e, Walk green, float endT) {
 // history the resolve will reject take uFreshSamples samples, every other pixel one: the first
 // sample (the walk's, or the hybrid trace pass's for the pixels it takes) decides from the
 // previous frame's motion and lists the pixel for the fresh samples' pass, which takes the
-// others (listed_samples.comp.glsl).
+// others (fresh_samples.comp.glsl).
 uniform int uFreshSamples;
 // A pixel that takes them: its colour's alpha, minus the samples it will average (the resolve,
 // render/temporal.frag.glsl, weighs it so; no other pass of the scene writes a negative alpha).

@@ -1,7 +1,8 @@
-// Samples of a list of pixels (ListedPasses.cpp), a dispatch each sample, over the walk's
+// Samples of a list of pixels (ListedSamples.cpp), a dispatch each sample, over the walk's
 // colour, traced as the trace traces them (walk.glsl compiled with LAYER_METHOD 4): the pixels
-// the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD 5), or (uFreshList) the later
-// samples of the trace's or the hybrid's pixels that take the fresh samples (walk_motion.glsl).
+// the hybrid's walk handed over (walk.frag.glsl, LAYER_METHOD 5: hybrid_trace.comp.glsl), or
+// with FRESH_LIST the later samples of the trace's or the hybrid's pixels that take the fresh
+// samples (walk_motion.glsl: fresh_samples.comp.glsl). The program of each includes this.
 // A list, not the rectangle again: a walk's loops run as long as their longest lane, and a
 // listed pixel among others would hold its whole block of lanes through them (a CPU
 // rasteriser's 4x4 block, a GPU's warp), and would pay for the rectangle's other pixels.
@@ -12,13 +13,13 @@
 #include "refraction/passes/walk_motion.glsl"
 
 layout(local_size_x = 64) in;
-uniform int uFreshList; // 1: over the pixels that take the fresh samples
+const bool kFreshList = FRESH_LIST != 0; // over the pixels that take the fresh samples
 // the walk's colour target
 layout(SHADED_FORMAT, binding = OUTPUT_IMAGE_UNIT) uniform image2D uShaded;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    bool fresh = uFreshList != 0;
+    bool fresh = kFreshList;
     if (i >= (fresh ? walkFreshPixels : handedOverCount))
         return;
     uint pixel = fresh ? freshPixelList[i] : handedOverWords[handedOverListStart() + i];
