@@ -7,19 +7,16 @@ namespace render::passes {
 
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, const ShadowAtlases& shadows) {
-    struct GroundData : SceneTargets {
-        ShadowAtlases shadows;
-    };
-    return graph.addPass<GroundData>(
+    return graph.addPass<LitTargets>(
         "ground",
-        [&](fg::Builder& b, GroundData& d) {
+        [&](fg::Builder& b, LitTargets& d) {
             d.shadows = shadows.read(b);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())
                 d.motion = b.write(scene.motion);
         },
-        [&gpu, &frame](const fg::Resources& r, const GroundData& d, gl::Context&) -> core::Status {
+        [&gpu, &frame](const fg::Resources& r, const LitTargets& d, gl::Context&) -> core::Status {
             if (auto bound =
                     gpu.framebuffer.bindTargets("ground", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)

@@ -19,12 +19,9 @@ gl::Cull cullFor(const scene::Material* material) {
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices,
                        const ShadowAtlases& shadows) {
-    struct OpaqueData : SceneTargets {
-        ShadowAtlases shadows;
-    };
-    return graph.addPass<OpaqueData>(
+    return graph.addPass<LitTargets>(
         "opaque",
-        [&](fg::Builder& b, OpaqueData& d) {
+        [&](fg::Builder& b, LitTargets& d) {
             d.shadows = shadows.read(b);
             b.read(vertices);
             d.color = b.write(scene.color);
@@ -32,7 +29,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
             if (scene.motion.valid())
                 d.motion = b.write(scene.motion);
         },
-        [&gpu, &frame](const fg::Resources& r, const OpaqueData& d, gl::Context&) -> core::Status {
+        [&gpu, &frame](const fg::Resources& r, const LitTargets& d, gl::Context&) -> core::Status {
             if (auto bound =
                     gpu.framebuffer.bindTargets("opaque", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)

@@ -19,6 +19,11 @@ namespace render::passes {
 struct SceneTargets {
     fg::TextureHandle color, depth, motion;
 };
+/** A pass that shades with the lights: its scene targets and the shadow atlases it reads,
+ *  bound where it executes. */
+struct LitTargets : SceneTargets {
+    ShadowAtlases shadows;
+};
 
 /** The colour target and, where the frame accumulates, the motion target of `scene`. */
 inline std::vector<const gl::Texture*> sceneTargets(const fg::Resources& r,
