@@ -5,18 +5,20 @@
 #include "Shared.h"
 
 #include "engine/gl/Commands.h"
+#include "engine/gl/ProgramCache.h"
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace refraction {
 
 namespace {
 
 constexpr std::size_t kVertexFloats = 12; // common/vertex.glsl: position, normal, tangent
-constexpr std::uint32_t kCostOffset = 6 * sizeof(std::uint32_t); // bvh_build.comp.glsl's cost
+constexpr std::uint32_t kCostOffset = 6 * sizeof(std::uint32_t); // glass_bvh.comp.glsl's cost
 constexpr std::uint32_t kCostNodes = 8; // nodes a thread of the cost stage sums
 
 std::uint32_t groups(std::uint32_t threads) {
@@ -69,7 +71,7 @@ GlassBvh::GlassBvh(std::span<const scene::Primitive* const> parts) {
 
 void GlassBvh::gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t count,
                       const glm::mat4& world, const BvhPrograms& programs) const {
-    const gl::Program& gather = programs.gather;
+    const gl::Program& gather = *programs.gather;
     gather.use();
     gather.set("uWorld", world);
     gather.set("uNormalMatrix", glm::mat3(glm::transpose(glm::inverse(world))));
@@ -80,13 +82,31 @@ void GlassBvh::gather(std::size_t i, const gl::Buffer& vertices, std::uint32_t c
     gl::dispatch(groups(count));
 }
 
+core::Result<BvhPrograms> BvhPrograms::from(gl::ProgramCache& programs) {
+    BvhPrograms kept;
+    for (std::size_t stage = 0; stage < kept.stages.size(); ++stage) {
+        auto program = programs.compute("refraction/glass_bvh.comp.glsl",
+                                        {"BVH_STAGE " + std::to_string(stage + 1)});
+        if (!program)
+            return program.error();
+        kept.stages[stage] = *program;
+    }
+    auto gather = programs.compute("refraction/mesh_gather.comp.glsl");
+    auto cast = programs.compute("refraction/normal_distance.comp.glsl");
+    if (!gather || !cast)
+        return !gather ? gather.error() : cast.error();
+    kept.gather = *gather;
+    kept.cast = *cast;
+    return kept;
+}
+
 void GlassBvh::build(const BvhPrograms& programs) {
     const std::uint32_t n = triangleCount();
     mBuild.fill(0, 3, std::uint32_t(INT32_MAX)); // empty centroid box: min > max
     mBuild.fill(12, 3, std::uint32_t(INT32_MIN));
-    run(programs.stages[0], n, n);
-    run(programs.stages[1], mPairs, n);
-    const gl::Program& sort = programs.stages[2];
+    run(*programs.stages[0], n, n);
+    run(*programs.stages[1], mPairs, n);
+    const gl::Program& sort = *programs.stages[2];
     sort.use();
     for (std::uint32_t size = 2; size <= mPairs; size *= 2)
         for (std::uint32_t stride = size / 2; stride > 0; stride /= 2) {
@@ -94,7 +114,7 @@ void GlassBvh::build(const BvhPrograms& programs) {
             sort.set("uSortStride", int(stride));
             run(sort, mPairs, n);
         }
-    run(programs.stages[3], n, n);
+    run(*programs.stages[3], n, n);
     mRebuild = false;
     ++mBuilds;
 }
@@ -105,7 +125,7 @@ void GlassBvh::refit(const BvhPrograms& programs) {
     gl::memoryBarrier(gl::BarrierBufferUpdate);
     mPackedBounds.copy(frame + 2 * sizeof(glm::uvec4), frame, 2 * sizeof(glm::uvec4));
     mVisits.fill(0, triangleCount(), 0u);
-    run(programs.stages[4], triangleCount(), triangleCount());
+    run(*programs.stages[4], triangleCount(), triangleCount());
 }
 
 void GlassBvh::readCosts() {
@@ -138,7 +158,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
     readCosts();
     const bool fresh = mBuilds == 0 || mRebuild;
     bindForTraversal();
-    gl::bindStorage(slot::kBvhBuild, mBuild); // bvh_build.comp.glsl's own
+    gl::bindStorage(slot::kBvhBuild, mBuild); // glass_bvh.comp.glsl's own
     gl::bindStorage(slot::kBvhKeys, mKeys);
     gl::bindStorage(slot::kBvhParents, mParents);
     gl::bindStorage(slot::kBvhVisits, mVisits);
@@ -154,7 +174,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
         mNext = (mNext + 1) % mMeasures.size();
         m.cost.fill(kCostOffset, 1, 0u);
         gl::bindStorage(slot::kBvhBuild, m.cost); // the cost stage writes Build.cost
-        run(programs.stages[5], (2 * n - 1 + kCostNodes - 1) / kCostNodes, n);
+        run(*programs.stages[5], (2 * n - 1 + kCostNodes - 1) / kCostNodes, n);
         m.fence.insert();
         m.pending = true;
         m.fresh = fresh;
@@ -163,7 +183,7 @@ void GlassBvh::update(const BvhPrograms& programs) {
 }
 
 void GlassBvh::castNormalDistances(const BvhPrograms& programs) {
-    const gl::Program& cast = programs.cast;
+    const gl::Program& cast = *programs.cast;
     cast.use();
     bindForTraversal();
     gl::bindStorage(slot::kNormalDistances, mDistances);
@@ -229,10 +249,10 @@ Bvh GlassBvh::download() const {
         std::memcpy(&q, packed.data() + i * sizeof q, sizeof q);
         const glm::uvec3 lo(q.x & 0xFFFFu, q.x >> 16, q.y & 0xFFFFu);
         const glm::uvec3 hi(q.y >> 16, q.z & 0xFFFFu, q.z >> 16);
-        tree.packedLo.push_back(glm::mix(glm::vec3(lo), glm::vec3(-kUnbounded),
-                                         glm::equal(lo, glm::uvec3(0u))));
-        tree.packedHi.push_back(glm::mix(glm::vec3(hi), glm::vec3(kUnbounded),
-                                         glm::equal(hi, glm::uvec3(0xFFFFu))));
+        tree.packedLo.push_back(
+            glm::mix(glm::vec3(lo), glm::vec3(-kUnbounded), glm::equal(lo, glm::uvec3(0u))));
+        tree.packedHi.push_back(
+            glm::mix(glm::vec3(hi), glm::vec3(kUnbounded), glm::equal(hi, glm::uvec3(0xFFFFu))));
     }
     if (n == 1)
         tree.parents[0] = -1;

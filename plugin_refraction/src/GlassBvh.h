@@ -1,12 +1,13 @@
 // The one structure over the frame's deformed glass: every glass part's deformed surface as drawn
 // (refined under subdivision) gathered into one world-space mesh, and a BVH over its static
-// triangles built on the GPU (a linear BVH from Morton codes, bvh_build.comp.glsl) and refitted to
+// triangles built on the GPU (a linear BVH from Morton codes, glass_bvh.comp.glsl) and refitted to
 // the deformed vertices every frame, rebuilt when refitting has worn its surface-area cost past
 // kRebuildRatio of the fresh tree's (a moving character, an exploding pose); no CPU-GPU sync in a
 // frame (the cost is read back frames later, once a fence says it is there). ISR's d_N is cast
 // against it (one ray per vertex along -N, exact nearest hit). Private to the plugin.
 #pragma once
 
+#include "engine/core/Result.h"
 #include "engine/gl/Buffer.h"
 #include "engine/gl/Program.h"
 #include "engine/gl/Query.h"
@@ -19,6 +20,10 @@
 #include <span>
 #include <vector>
 
+namespace gl {
+class ProgramCache;
+}
+
 namespace refraction {
 
 /** A BVH over triangles as the GPU holds it, read back (tests, tools). Internal nodes
@@ -29,8 +34,8 @@ struct Bvh {
         std::int32_t first = 0, count = 0;  ///< leaf: range in `order`
     };
     std::vector<Node> nodes;
-    std::vector<std::uint32_t> order;        ///< triangle indices, leaves' ranges
-    std::vector<glm::vec3> lo, hi;           ///< each node's box
+    std::vector<std::uint32_t> order; ///< triangle indices, leaves' ranges
+    std::vector<glm::vec3> lo, hi;    ///< each node's box
     /** Each inner node's children as its box holds them for the traversal (bvh.glsl's
      *  BvhBox): gamma << 2 | left is a leaf << 1 | right is a leaf. */
     std::vector<std::int32_t> children;
@@ -38,13 +43,16 @@ struct Bvh {
      *  frame; infinite where it leaves the frame. */
     std::vector<glm::vec3> packedLo, packedHi;
     glm::vec3 frameLo{0.0f}, cell{0.0f}; ///< bvh.glsl's bvhFrame
-    std::vector<std::int32_t> parents; ///< -1 for the root
+    std::vector<std::int32_t> parents;   ///< -1 for the root
 };
 
-/** The compute programs the structure runs (bvh_build.comp.glsl's stages, the d_N cast). */
+/** The compute programs the structure runs (glass_bvh.comp.glsl's stages, the d_N cast). */
 struct BvhPrograms {
-    std::array<gl::Program, 6> stages; ///< BVH_STAGE 1-6
-    gl::Program gather, cast;          ///< mesh_gather.comp.glsl, normal_distance.comp.glsl
+    std::array<const gl::Program*, 6> stages{}; ///< BVH_STAGE 1-6
+    /** mesh_gather.comp.glsl, normal_distance.comp.glsl */
+    const gl::Program *gather = nullptr, *cast = nullptr;
+    /** The variants from the program cache `programs` (each compiled the first time asked). */
+    static core::Result<BvhPrograms> from(gl::ProgramCache& programs);
 };
 
 class GlassBvh {
@@ -108,7 +116,7 @@ private:
     std::vector<std::uint32_t> mTriangleIndices; ///< into the world mesh
     std::vector<std::uint32_t> mPartTriangles;   ///< each part's triangle count
     std::vector<std::uint32_t> mPartTags;
-    std::uint32_t mVertexCount = 0, mPairs = 1;  ///< pairs: triangles padded to a power of two
+    std::uint32_t mVertexCount = 0, mPairs = 1; ///< pairs: triangles padded to a power of two
     gl::Buffer mVertices, mIndices, mNodes, mOrder, mKeys, mParents, mVisits, mBounds,
         mPackedBounds, mLeafCorners, mBuild, mTriangleTags, mDistances, mUvs;
     /** A cost measured after an update (kMeasureEvery), read back once its fence has passed. */

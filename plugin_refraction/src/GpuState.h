@@ -1,5 +1,5 @@
-// The refraction plugin's GL objects and per-geometry caches, kept across frames. Private to
-// the plugin.
+// The refraction plugin's storage (buffers, framebuffers) and per-geometry caches, kept across
+// frames; its passes' programs come from the engine's program cache. Private to the plugin.
 #pragma once
 
 #include "GlassBvh.h"
@@ -80,12 +80,6 @@ struct WalkCountersGpu {
 };
 
 struct GpuState {
-    BvhPrograms bvh;        // the glass BVH's build and refit, the d_N cast
-    gl::Program growExtent; // the glass_extent pass (glass_extent.comp.glsl)
-    // The pair capture in one pass (pair_gather) and its resolve (PAIR_GATHERED 1); the two
-    // passes' and theirs are variants (FrameContext::capture).
-    gl::Program pairGather, pairGatheredResolve;
-    gl::Program outlines; // the outline pass
     /** The caustics' storage (caustics.glsl), for a caustics atlas of `size` texels, grown as
      *  needed: the emitters (a count, the photons' work groups, then a bit a texel) and the
      *  sums (four words a cell, the fine cells' then the coarse). */

@@ -74,42 +74,7 @@ core::Status RefractionPlugin::initialize(gl::ShaderLibrary& shaders) {
         return core::Error{"refraction: its storage bindings reach " + std::to_string(highest) +
                            ", past this GL's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
                            std::to_string(gl::maxStorageBindings()) + ")"};
-    mGpu = std::make_unique<GpuState>();
-    // The programs every frame may use; the variants (the captures', the glass shadow's, the
-    // walk's, the caustics') come from the engine's program cache when a frame first needs
-    // them (selectVariants, selectWalkVariants).
-    struct Spec {
-        gl::Program* target;
-        const char* vertex; // null: a compute program
-        const char* shader;
-        std::vector<std::string> defines;
-    };
-    const char* glass = "refraction/passes/glass.vert.glsl";
-    const char* rectangle = "refraction/passes/rectangle.vert.glsl";
-    const Spec specs[] = {
-        {&mGpu->pairGather, glass, "refraction/passes/pair_gather.frag.glsl", {}},
-        {&mGpu->pairGatheredResolve,
-         rectangle,
-         "refraction/passes/pair_resolve.frag.glsl",
-         {"LAYER_CAPACITY 2", "PAIR_GATHERED 1"}},
-        {&mGpu->outlines, rectangle, "refraction/passes/outlines.frag.glsl", {}},
-        {&mGpu->growExtent, nullptr, "refraction/passes/glass_extent.comp.glsl", {}},
-        {&mGpu->bvh.cast, nullptr, "refraction/normal_distance.comp.glsl", {}},
-        {&mGpu->bvh.gather, nullptr, "refraction/mesh_gather.comp.glsl", {}},
-        {&mGpu->bvh.stages[0], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 1"}},
-        {&mGpu->bvh.stages[1], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 2"}},
-        {&mGpu->bvh.stages[2], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 3"}},
-        {&mGpu->bvh.stages[3], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 4"}},
-        {&mGpu->bvh.stages[4], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 5"}},
-        {&mGpu->bvh.stages[5], nullptr, "refraction/bvh_build.comp.glsl", {"BVH_STAGE 6"}}};
-    for (const Spec& spec : specs) {
-        auto program = spec.vertex
-                           ? gl::Program::graphics(shaders, spec.vertex, spec.shader, spec.defines)
-                           : gl::Program::compute(shaders, spec.shader, spec.defines);
-        if (!program)
-            return program.error();
-        *spec.target = std::move(*program);
-    }
+    mGpu = std::make_unique<GpuState>(); // the passes' programs: the engine's program cache
     return {};
 }
 
@@ -155,19 +120,8 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
     c.onePass = c.settings.geometryPasses == Settings::GeometryPasses::One && oneMaterial &&
                 !normalMap && !firstBack && !c.texturedGlass && !c.frame->temporal.enabled;
     const PairTargets pair = c.onePass ? addPairGatherPass(graph, c, buffers)
-                                       : addPairSurfacesPasses(graph, c, buffers, firstBack);
+                                       : addPairSurfacePasses(graph, c, buffers, firstBack);
     return addPairResolvePass(graph, c, buffers, scene, pair);
-}
-
-/** A pass that fails the frame with `error`, what kept the plugin from recording its passes (a
- *  variant that does not compile): the frame's render returns it, rather than a frame that
- *  silently lacks its glass. */
-void failFrame(fg::FrameGraph& graph, const core::Error& error) {
-    struct Nothing {};
-    graph.addPass<Nothing>(
-        "refraction.failed", [](fg::Builder& b, Nothing&) { b.sideEffect(); },
-        [message = error.message](const fg::Resources&, const Nothing&, gl::Context&)
-            -> core::Status { return core::Error{"refraction: " + message}; });
 }
 
 } // namespace
@@ -199,10 +153,7 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
     if (c.gpu->glassOptics.empty())
         return false;
     c.caustics = c.settings.focusesCaustics() && c.frame->shadows && !c.frame->shadows->empty();
-    if (auto built = selectVariants(c); !built) {
-        failFrame(graph, built.error());
-        return false;
-    }
+    c.glassModel = glassDefines(c);
     mFrame->buffers = importBuffers(graph, blackboard, *mGpu);
     addGlassMaterialsPass(graph, c, mFrame->buffers);
     mFrame->begun = true;
@@ -235,11 +186,6 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
         }
         return;
     }
-    if (auto built = selectWalkVariants(c); !built) {
-        failFrame(graph, built.error());
-        mFrame->begun = false;
-        return;
-    }
     SceneInputs scene = sceneInputs(blackboard);
     if (c.marchesScene())
         scene.depthTiles = addSceneDepthTilesPass(graph, c, scene.depth);
@@ -248,10 +194,14 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     addGlassExtentPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),
     // or the pair.
-    const Capture capture =
-        c.settings.layered()
-            ? addLayerDepthsPass(graph, c, buffers, addLayerCapturePass(graph, c, buffers))
-            : addPairCapture(graph, c, buffers, scene);
+    Capture capture;
+    if (c.settings.layered()) {
+        const fg::TextureHandle mask = addLayerCapturePass(graph, c, buffers);
+        addLayerOverflowPass(graph, c, buffers);
+        capture = addLayerDepthsPass(graph, c, buffers, mask);
+    } else {
+        capture = addPairCapture(graph, c, buffers, scene);
+    }
     Walked walked = addWalkPass(graph, c, buffers, scene, capture);
     if (c.settings.method == Settings::Method::Hybrid && c.settings.debug == 0)
         walked = addHybridTracePass(graph, c, buffers, scene, capture, walked);

@@ -10,6 +10,7 @@
 #include "engine/asset/ModelLoader.h"
 #include "engine/deform/GpuDeformer.h"
 #include "engine/gl/Commands.h"
+#include "engine/gl/ProgramCache.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -66,6 +67,7 @@ std::vector<float> downloadFloats(const gl::Buffer& buffer, std::size_t count) {
 struct DistanceRig {
     scene::Model model;
     gl::ShaderLibrary library;
+    std::unique_ptr<gl::ProgramCache> cache;
     refraction::BvhPrograms programs;
     void open(const gl::ShaderLibrary& engineShaders, const std::string& path) {
         auto loaded = asset::loadModel(path);
@@ -74,17 +76,10 @@ struct DistanceRig {
         library = engineShaders;
         library.add(refractionShaderFiles());
         ASSERT_TRUE(library.share("refraction", refraction::sharedTable()).ok());
-        for (int stage = 0; stage < int(programs.stages.size()); ++stage) {
-            auto built = gl::Program::compute(library, "refraction/bvh_build.comp.glsl",
-                                              {"BVH_STAGE " + std::to_string(stage + 1)});
-            ASSERT_TRUE(built.ok()) << built.error().message;
-            programs.stages[std::size_t(stage)] = std::move(*built);
-        }
-        auto c = gl::Program::compute(library, "refraction/normal_distance.comp.glsl");
-        auto g = gl::Program::compute(library, "refraction/mesh_gather.comp.glsl");
-        ASSERT_TRUE(c.ok() && g.ok());
-        programs.cast = std::move(*c);
-        programs.gather = std::move(*g);
+        cache = std::make_unique<gl::ProgramCache>(library);
+        auto built = refraction::BvhPrograms::from(*cache);
+        ASSERT_TRUE(built.ok()) << built.error().message;
+        programs = *built;
     }
     /** The glass BVH of one primitive's deformed cage `vertices` (identity placement: mesh
      *  space), with its d_N. */
@@ -92,8 +87,7 @@ struct DistanceRig {
                                                     const gl::Buffer& vertices) const {
         const scene::Primitive* primitives[] = {&primitive};
         auto bvh = std::make_unique<refraction::GlassBvh>(primitives);
-        bvh->gather(0, vertices, std::uint32_t(primitive.vertexCount()), glm::mat4(1.0f),
-                    programs);
+        bvh->gather(0, vertices, std::uint32_t(primitive.vertexCount()), glm::mat4(1.0f), programs);
         bvh->update(programs);
         bvh->castNormalDistances(programs);
         return bvh;
@@ -415,8 +409,9 @@ TEST_F(Refraction, NormalDistanceOfTheRefinedSurfaceMatchesBruteForce) {
     ASSERT_TRUE(deformer);
     const auto& primitive = deformer->instances()[0].primitives[0];
     ASSERT_EQ(primitive.topology->vertexCount(), primitive.vertexCount);
-    const std::vector<float> gpu = downloadFloats(
-        rig.distances(*primitive.topology, *primitive.deformed)->distances(), primitive.vertexCount);
+    const std::vector<float> gpu =
+        downloadFloats(rig.distances(*primitive.topology, *primitive.deformed)->distances(),
+                       primitive.vertexCount);
 
     const auto surface = deformer->download(0, 0);
     const auto& indices = primitive.topology->indices;

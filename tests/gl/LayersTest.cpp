@@ -39,7 +39,8 @@ class Layers : public test::GlTest {};
 // a frame that silently lacks its glass (and a tool exiting 0 with it).
 TEST_F(Layers, AGlassProgramThatDoesNotCompileFailsTheFrame) {
     WorldRig rig(test::generatedWorld("glass_figure.glb"), context(), 32);
-    const gl::ShaderFile broken[] = {{"refraction/passes/walk.frag.glsl", "void main() { not glsl }"}};
+    const gl::ShaderFile broken[] = {
+        {"refraction/passes/walk.frag.glsl", "void main() { not glsl }"}};
     rig.renderer().shaders().add(broken);
     render::RenderSettings settings;
     settings.size = {32, 32};
@@ -272,10 +273,10 @@ TEST_F(Layers, EveryMaterialAndNormalMapInOneGeometryPass) {
         return std::find(passes.begin(), passes.end(), name) != passes.end();
     };
     EXPECT_TRUE(has(layered, "refraction.layer_capture"));
-    EXPECT_FALSE(has(layered, "refraction.pair_back"));
-    EXPECT_FALSE(has(layered, "refraction.pair_front"));
-    EXPECT_TRUE(has(twoSurface, "refraction.pair_back"));
-    EXPECT_TRUE(has(twoSurface, "refraction.pair_front"));
+    EXPECT_FALSE(has(layered, "refraction.pair_surface.back"));
+    EXPECT_FALSE(has(layered, "refraction.pair_surface.front"));
+    EXPECT_TRUE(has(twoSurface, "refraction.pair_surface.back"));
+    EXPECT_TRUE(has(twoSurface, "refraction.pair_surface.front"));
 }
 
 TEST_F(Layers, TheCaptureAppliesNormalMaps) {

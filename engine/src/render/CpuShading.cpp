@@ -88,7 +88,7 @@ dvec3 EnvironmentSampler::irradiance(dvec3 normal) const {
 
 namespace cpu {
 
-// ---- Textures, as render/pbr.frag.glsl and common/material_uv.glsl read them
+// ---- Textures, as render/opaque.frag.glsl and common/material_uv.glsl read them
 
 namespace {
 

@@ -1,5 +1,5 @@
 // The renderer's GPU objects, shared by its passes (render/passes/): the world's models and
-// characters on the GPU, the frame's draw items, environment, programs and the framebuffer
+// characters on the GPU, the frame's draw items, environment and the framebuffer
 // they draw with.
 #pragma once
 
@@ -53,7 +53,6 @@ struct RenderGpu {
     LightingBuffer lighting;                            // the lights (gl::slot::kLighting)
     ShadowPlan shadows;                                 // this frame's shadow views
     std::size_t reportedOverLimit = 0; ///< lights over the shadow limit last warned of
-    gl::Program shadowCaster;          ///< render/shadow.vert.glsl: depth from a light's view
     /** Reads the shadow depth atlas as a shadow sampler (compared, bilinear). */
     gl::Sampler shadowSampler{gl::Filter::Linear, gl::Wrap::Clamp, true};
     /** What the shadow units hold in frames where no light casts: nothing in front. */
@@ -62,17 +61,10 @@ struct RenderGpu {
      *  binds its own): no receiver anywhere (kNoGlass), so light through glass goes straight. */
     gl::Texture noCaustics;
     std::unique_ptr<Environment> environment;
-    gl::Program background, tonemap;
-    gl::Program shadowMapView; ///< the shadow atlases' debug view (shadow_map_view.frag.glsl)
     TemporalHistory history;
-    /** This frame's variants (from the renderer's ProgramCache, for its lighting features):
-     *  the ground's, render/pbr.frag.glsl's per set of material layers
-     *  (Material::surfaceLayers()), and the temporal resolve's for the frame's history (where
-     *  it accumulates). */
-    const gl::Program* ground = nullptr;
-    std::map<int, const gl::Program*> opaque;
-    const gl::Program* temporal = nullptr;
-    std::vector<int> layerSets; ///< the sets of layers the prepared models' materials use
+    /** The sets of layers the prepared models' materials use (Material::surfaceLayers()): the
+     *  opaque pass's variants. */
+    std::vector<int> layerSets;
     gl::VertexArray emptyVao;
     gl::Framebuffer framebuffer;
 };

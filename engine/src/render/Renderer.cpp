@@ -155,27 +155,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
     if (!env)
         return env.error();
     gpu.environment = std::move(*env);
-    struct ProgramSpec {
-        gl::Program* target;
-        const char* vertex;
-        const char* fragment;
-    };
-    for (const ProgramSpec& spec :
-         {ProgramSpec{&gpu.background, "render/fullscreen.vert.glsl",
-                      "render/background.frag.glsl"},
-          ProgramSpec{&gpu.tonemap, "render/fullscreen.vert.glsl", "render/tonemap.frag.glsl"},
-          ProgramSpec{&gpu.shadowMapView, "render/fullscreen.vert.glsl",
-                      "render/shadow_map_view.frag.glsl"}}) {
-        auto program = gl::Program::graphics(r->mShaders, spec.vertex, spec.fragment);
-        if (!program)
-            return core::Error{"render::Renderer::create(): " + program.error().message};
-        *spec.target = std::move(*program);
-    }
-    auto caster =
-        gl::Program::graphics(r->mShaders, "render/shadow.vert.glsl", "render/shadow.frag.glsl");
-    if (!caster)
-        return core::Error{"render::Renderer::create(): " + caster.error().message};
-    gpu.shadowCaster = std::move(*caster);
     gpu.noShadowDepth = gl::Texture({glm::ivec2(1), gl::Format::Depth32F, 1});
     gpu.noShadowGlass = gl::Texture({glm::ivec2(1), gl::Format::RGBA16F, 1});
     gpu.noCaustics = gl::Texture({glm::ivec2(1), gl::Format::RGBA16F, 1});
@@ -318,44 +297,6 @@ void Renderer::planShadows(const scene::World& world, const RenderSettings& sett
         core::logWarning("render: the shadow maps' resolutions halved " +
                          std::to_string(gpu.shadows.halved) +
                          " times to fit the GPU's largest texture");
-}
-
-core::Status Renderer::selectPrograms(const FrameInfo& frame) {
-    RenderGpu& gpu = *mGpu;
-    auto fail = [](const core::Error& e) {
-        return core::Error{"render::Renderer::render(): " + e.message};
-    };
-    const bool temporal = frame.temporal.enabled;
-    std::vector<std::string> defines = frame.lighting.defines();
-    defines.push_back(std::string("WRITE_MOTION ") + (temporal ? "1" : "0"));
-    auto ground =
-        mPrograms->graphics("render/ground.vert.glsl", "render/ground.frag.glsl", defines);
-    if (!ground)
-        return fail(ground.error());
-    gpu.ground = *ground;
-    gpu.opaque.clear();
-    for (const int layers : gpu.layerSets) {
-        std::vector<std::string> layered = defines;
-        layered.push_back("SURFACE_LAYERS " + std::to_string(layers));
-        auto program =
-            mPrograms->graphics("render/mesh.vert.glsl", "render/pbr.frag.glsl", layered);
-        if (!program)
-            return fail(program.error());
-        gpu.opaque.emplace(layers, *program);
-    }
-    gpu.temporal = nullptr;
-    if (temporal) {
-        const TemporalSettings& s = frame.settings.temporal;
-        auto resolve = mPrograms->graphics(
-            "render/fullscreen.vert.glsl", "render/temporal.frag.glsl",
-            {"TEMPORAL_STILL " + std::to_string(frame.temporal.still && s.convergeStill ? 1 : 0),
-             "TEMPORAL_REJECT " + std::to_string(s.rejectHistory ? 1 : 0),
-             "TEMPORAL_VIEW " + std::to_string(int(s.view))});
-        if (!resolve)
-            return fail(resolve.error());
-        gpu.temporal = *resolve;
-    }
-    return {};
 }
 
 namespace {
@@ -502,8 +443,6 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
     blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
     const ShadowAtlases shadows = recordShadows(graph, blackboard, frame, vertices);
-    if (auto selected = selectPrograms(frame); !selected)
-        return selected;
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (frame.settings.ground)

@@ -71,9 +71,9 @@ private:
     /** The parameters decoded, again only after they change. */
     const Settings& settings() const;
     struct Frame;
-    /** At the frame's first stage: its decisions, glass ids, variants, buffers and the glass
-     *  materials pass, kept in mFrame (its storage reused) for its later stages; false when no
-     *  glass is drawn. */
+    /** At the frame's first stage: its decisions, glass ids and their model's defines, buffers
+     *  and the glass materials pass, kept in mFrame (its storage reused) for its later stages;
+     *  false when no glass is drawn. */
     bool beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard);
     std::unique_ptr<Frame> mFrame;
     plugin::ParameterSet mParameters;

@@ -1,6 +1,6 @@
 // The BVH over the frame's deformed glass (GlassBvh.h): the world mesh of every glass part as drawn
 // (and for the tracing methods every opaque one), its static triangles, and a linear BVH over them
-// built on the GPU (bvh_build.comp.glsl: Morton codes of the triangles' centroids, sorted; Karras
+// built on the GPU (glass_bvh.comp.glsl: Morton codes of the triangles' centroids, sorted; Karras
 // 2012's hierarchy) and refitted to the deformed vertices every frame. Internal nodes 0..n-2 (the
 // root is node 0), leaf k (one triangle, the k-th in Morton order) is node n-1+k; with one triangle
 // the root is that leaf.
@@ -31,7 +31,7 @@ layout(std430, binding = BVH_LEAF_CORNERS_BINDING) buffer BvhLeafCorners { vec4 
 layout(std430, binding = BVH_TAGS_BINDING) readonly buffer BvhTags { uint triangleTags[]; };
 const uint kOpaqueTag = OPAQUE_TAG, kOpaqueTextured = OPAQUE_TEXTURED_TAG;
 // The traversal's copy of each node's box, packed by the refit as it computes the box
-// (bvh_build.comp.glsl's stage 5): its corners in cells of the frame (bvhFrame), 16 bits an
+// (glass_bvh.comp.glsl's stage 5): its corners in cells of the frame (bvhFrame), 16 bits an
 // axis, rounded outward, and the children word: lo.x | lo.y << 16, lo.z | hi.x << 16,
 // hi.y | hi.z << 16, children. A visit reads one vector of four words a child instead of two
 // (seven words): on a CPU rasteriser the loads were most of a visit's cost. After the 2n - 1

@@ -6,6 +6,8 @@
 
 #include "engine/gl/Commands.h"
 
+#include <string>
+
 namespace refraction {
 
 namespace {
@@ -29,20 +31,28 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     GpuState& gpu = *c.gpu;
     if (!gpu.glass.bvh)
         return core::Error{"refraction: the caustics have no glass BVH"};
+    // The list pass's work groups, the list of photons, the photons.
+    const std::string shader = "refraction/passes/caustic_photons.comp.glsl";
+    auto grid = c.compute(shader, {"CAUSTIC_GRID 1"});
+    auto listed = c.compute(shader, {"CAUSTIC_LIST 1"});
+    auto photons = c.compute(shader, c.glassModel);
+    for (const auto* built : {&grid, &listed, &photons})
+        if (!*built)
+            return built->error();
     const render::ShadowPlan& plan = *c.frame->shadows;
     gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
     gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
     // The grid for this frame's emitters, then the photons that start on them, listed (an
     // invocation a cell of the grid; caustic_photons.comp.glsl).
-    c.causticPrograms.grid->use();
-    setCausticUniforms(*c.causticPrograms.grid, c);
+    (*grid)->use();
+    setCausticUniforms(**grid, c);
     gl::dispatch(1);
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-    c.causticPrograms.list->use();
-    setCausticUniforms(*c.causticPrograms.list, c);
+    (*listed)->use();
+    setCausticUniforms(**listed, c);
     gl::dispatchIndirect(gpu.caustics.emitters, kListGroups);
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-    const gl::Program& program = *c.causticPrograms.photons;
+    const gl::Program& program = **photons;
     program.use();
     setCausticUniforms(program, c);
     setGroundUniforms(program, c);

@@ -21,6 +21,10 @@ fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContex
                 d.atlas = b.write(b.create("refraction.caustics", {size, gl::Format::RGBA16F, 1}));
             },
             [c](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
+                auto resolve = c.graphics("render/fullscreen.vert.glsl",
+                                          "refraction/passes/caustic_resolve.frag.glsl");
+                if (!resolve)
+                    return resolve.error();
                 GpuState& gpu = *c.gpu;
                 const gl::Texture& atlas = r.texture(d.atlas);
                 if (auto bound = gpu.framebuffer.bindTargets("refraction.caustic_resolve", {&atlas},
@@ -29,7 +33,7 @@ fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContex
                     return bound;
                 // Texels outside every tile: no caustics, the light straight.
                 gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, render::kNoGlass));
-                const gl::Program& program = *c.causticPrograms.resolve;
+                const gl::Program& program = **resolve;
                 program.use();
                 setCausticUniforms(program, c);
                 gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);

@@ -48,7 +48,10 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
             b.read(buffers.vertices);
             d.bvh = b.write(buffers.bvh);
         },
-        [c](const fg::Resources&, const Data&, gl::Context&) {
+        [c](const fg::Resources&, const Data&, gl::Context&) -> core::Status {
+            auto programs = BvhPrograms::from(*c.frame->programs);
+            if (!programs)
+                return core::Error{"refraction: " + programs.error().message};
             GpuState& gpu = *c.gpu;
             GpuState::Glass& glass = gpu.glass;
             // This frame's parts: its glass items and, for the trace and the caustics, its
@@ -78,11 +81,12 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
             }
             for (std::size_t i = 0; i < items.size(); ++i)
                 glass.bvh->gather(i, *items[i]->gpu->deformed, items[i]->gpu->vertexCount,
-                                  items[i]->world, gpu.bvh);
-            glass.bvh->update(gpu.bvh);
+                                  items[i]->world, *programs);
+            glass.bvh->update(*programs);
             glass.bvh->setTags(tags);
             if (c.settings.usesNormalDistance())
-                glass.bvh->castNormalDistances(gpu.bvh);
+                glass.bvh->castNormalDistances(*programs);
+            return core::Status{};
         });
     buffers.bvh = pass.bvh;
 }

@@ -21,7 +21,10 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
             b.read(buffers.vertices);
             d.extent = b.write(buffers.extent);
         },
-        [c](const fg::Resources&, const Data&, gl::Context&) {
+        [c](const fg::Resources&, const Data&, gl::Context&) -> core::Status {
+            auto grow = c.compute("refraction/passes/glass_extent.comp.glsl");
+            if (!grow)
+                return grow.error();
             GpuState& gpu = *c.gpu;
             const render::FrameInfo& frame = *c.frame;
             // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
@@ -30,7 +33,7 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
             gpu.extent.fill(offsetof(E, pixelMax), 2, std::uint32_t(INT32_MIN));
             gpu.extent.fill(offsetof(E, boxMin), 3, std::uint32_t(INT32_MAX));
             gpu.extent.fill(offsetof(E, boxMax), 3, std::uint32_t(INT32_MIN));
-            const gl::Program& program = gpu.growExtent;
+            const gl::Program& program = **grow;
             program.use();
             program.set("uViewportSize", glm::vec2(frame.settings.size));
             gl::bindStorage(slot::kGlassExtent, gpu.extent);
@@ -46,6 +49,7 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
                 gl::dispatch(std::uint32_t((count + 63) / 64));
             }
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // and the next clear
+            return core::Status{};
         });
     buffers.extent = pass.extent;
 }

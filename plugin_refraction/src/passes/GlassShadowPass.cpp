@@ -50,12 +50,19 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                 d.caustics = b.write(buffers.caustics);
         },
         [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            // textured glass, the caustics' emitters
+            auto shadow = c.graphics(
+                "refraction/passes/glass.vert.glsl", "refraction/passes/glass_shadow.frag.glsl",
+                concat(c.glassModel, {"PUNCTUAL_LIGHTS 0", "WRITE_MOTION 0",
+                                      define("CAUSTIC_EMITTERS", c.caustics)}));
+            if (!shadow)
+                return shadow.error();
             GpuState& gpu = *c.gpu;
             if (auto bound = gpu.framebuffer.bindTargets("refraction.glass_shadow",
                                                          {&r.texture(d.atlas)}, nullptr);
                 !bound)
                 return bound;
-            const gl::Program& program = *c.glassShadow;
+            const gl::Program& program = **shadow;
             program.use();
             program.set("uFresnelMode", int(c.settings.fresnel));
             if (c.caustics) {

@@ -1,8 +1,7 @@
 // `refraction.layer_capture`: the layered capture. Every glass item of every character in one
-// geometry pass, each fragment into its pixel's layer arrays (at most K, the nearest front and
-// farthest back kept aside for a pixel with more: layer_capture.frag.glsl, and bid for by its
-// kept layers after the draw: layer_overflow.comp.glsl); the depth attachment becomes the glass
-// pixels' mask.
+// geometry pass, each fragment into its pixel's layer arrays (at most K; a fragment past K bids
+// for the pixel's overflow fallback, the nearest front and farthest back, and the first lists
+// the pixel for refraction.layer_overflow); the depth attachment becomes the glass pixels' mask.
 #include "Passes.h"
 
 namespace refraction {
@@ -24,7 +23,12 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             d.mask = b.write(b.create("refraction.layer_capture.mask", zDesc(size)));
             d.layers = b.write(buffers.layers);
         },
-        [c](const fg::Resources& r, const CaptureData& d, gl::Context&) -> core::Status {
+        [c, defines = layerDefines(c)](const fg::Resources& r, const CaptureData& d,
+                                       gl::Context&) -> core::Status {
+            auto program = c.graphics("refraction/passes/glass.vert.glsl",
+                                      "refraction/passes/layer_capture.frag.glsl", defines);
+            if (!program)
+                return program.error();
             GpuState& gpu = *c.gpu;
             const glm::ivec2 viewport = c.frame->settings.size;
             // With textured glass: each layer's surface (the fallback's bid in the heads).
@@ -36,7 +40,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             // list's count and work groups (layers.glsl).
             const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
             const std::size_t side = (layerHeadPlanes(surfaces) - 1) / 2 * pixels;
-            const std::size_t word = sizeof(std::uint32_t), list = (pixels + 2 * side) * word;
+            const std::size_t word = sizeof(std::uint32_t), list = overflowListOffset(gpu.layers);
             gpu.layers.heads.fill(0, pixels, 0u);
             gpu.layers.heads.fill(pixels * word, side, 0xFFFFFFFFu);
             gpu.layers.heads.fill((pixels + side) * word, side, 0u);
@@ -48,18 +52,12 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
                 !bound)
                 return bound;
             gl::clearDepth(1.0f);
-            const gl::Program& program = *c.capture.geometry;
-            program.use();
-            c.setLayerUniforms(program);
-            c.drawGlassMaterials(program,
+            (*program)->use();
+            c.setLayerUniforms(**program);
+            c.drawGlassMaterials(**program,
                                  {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
-            // The overflowing pixels' kept layers bid for their fallback (layer_overflow).
+            // the arrays and the overflow list for layer_overflow's dispatch
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
-            c.capture.overflow->use();
-            c.setLayerUniforms(*c.capture.overflow);
-            gl::dispatchIndirect(gpu.layers.heads, list + word);
-            // the arrays for the passes that read them; the heads for the next frame's clear
-            gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};
         });
     buffers.layers = captured.layers;

@@ -36,6 +36,11 @@ std::size_t layerHeadWords(int surfaceSlots) {
     return layerHeadPlanes(surfaceSlots) + 1; // and the pixel's place in the overflow list
 }
 
+std::size_t overflowListOffset(const GpuState::LayerStorage& layers) {
+    const std::size_t pixels = std::size_t(layers.size.x) * std::size_t(layers.size.y);
+    return layerHeadPlanes(layers.surfaceSlots) * pixels * sizeof(std::uint32_t);
+}
+
 std::size_t layerDepthSlots(int capacity) {
     return (std::size_t(capacity) + 3) / 4 * 4;
 }

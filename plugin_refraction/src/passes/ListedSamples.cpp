@@ -4,8 +4,11 @@
 // FreshSamplesPass.cpp).
 #include "Passes.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace refraction {
 
@@ -26,14 +29,32 @@ void declareListedSamples(fg::Builder& b, TraceData& d, const FrameContext& c,
     }
 }
 
+namespace {
+
+/** The program of `list`'s pass, storing the format of the walk's target: the trace's variant
+ *  of the walk, over the hybrid's list too (its handed-over pixels are traced). */
+core::Result<const gl::Program*> listedProgram(const FrameContext& c, ListedPixels list) {
+    std::vector<std::string> defines = walkDefines(c, Settings::Method::Trace);
+    *std::find(defines.begin(), defines.end(), "HYBRID_LIST 0") = "HYBRID_LIST 1";
+    defines.push_back(std::string("SHADED_FORMAT ") +
+                      (c.settings.addsSamples() ? "rgba32f" : "rgba16f"));
+    return c.compute(list == ListedPixels::Fresh ? "refraction/passes/fresh_samples.comp.glsl"
+                                                 : "refraction/passes/hybrid_trace.comp.glsl",
+                     defines);
+}
+
+} // namespace
+
 core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameContext& c,
                         ListedPixels list, int first, int last, int samples) {
+    auto listed = listedProgram(c, list);
+    if (!listed)
+        return listed.error();
+    const gl::Program& program = **listed;
     GpuState& gpu = *c.gpu;
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
     gl::bindStorage(slot::kHandedOver, gpu.handedOver);
-    const gl::Program& program =
-        list == ListedPixels::Fresh ? *c.listed.fresh : *c.listed.handedOver;
     c.setWalkUniforms(program);
     c.setLayerUniforms(program);
     program.set("uTraceWeight", 1.0f / float(samples));

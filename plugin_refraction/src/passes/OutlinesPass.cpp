@@ -27,7 +27,11 @@ fg::TextureHandle addOutlinesPass(fg::FrameGraph& graph, const FrameContext& c,
                                                          nullptr);
                 !bound)
                 return bound;
-            const gl::Program& program = gpu.outlines;
+            auto outlines = c.graphics("refraction/passes/rectangle.vert.glsl",
+                                       "refraction/passes/outlines.frag.glsl");
+            if (!outlines)
+                return outlines.error();
+            const gl::Program& program = **outlines;
             program.use();
             program.set("uViewportSize", glm::vec2(c.frame->settings.size));
             program.set("uRectangleMargin", 1.0f);

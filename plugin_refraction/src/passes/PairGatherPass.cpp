@@ -24,6 +24,11 @@ PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
             d.farTargets = b.write(b.create("refraction.pair_gather.far", gatherDesc));
         },
         [c](const fg::Resources& r, const GatherData& d, gl::Context&) -> core::Status {
+            auto gather = c.graphics("refraction/passes/glass.vert.glsl",
+                                     "refraction/passes/pair_gather.frag.glsl");
+            if (!gather)
+                return gather.error();
+            const gl::Program& program = **gather;
             GpuState& gpu = *c.gpu;
             const render::FrameInfo& frame = *c.frame;
             if (auto bound = gpu.framebuffer.bindTargets(
@@ -33,13 +38,13 @@ PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
                 return bound;
             gl::clearColor(0, glm::vec4(kNoSurface));
             gl::clearColor(1, glm::vec4(kNoSurface));
-            gpu.pairGather.use();
-            gpu.pairGather.set("uKeyNear", frame.camera.znear);
-            gpu.pairGather.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
-            c.drawGlass(gpu.pairGather, {.cull = gl::Cull::None,
-                                         .depthTest = false,
-                                         .depthWrite = false,
-                                         .blend = gl::Blend::Max});
+            program.use();
+            program.set("uKeyNear", frame.camera.znear);
+            program.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
+            c.drawGlass(program, {.cull = gl::Cull::None,
+                                  .depthTest = false,
+                                  .depthWrite = false,
+                                  .blend = gl::Blend::Max});
             return {};
         });
     PairTargets pair;

@@ -5,6 +5,7 @@
 #include "Passes.h"
 
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -18,9 +19,23 @@ struct ResolveData {
     fg::BufferHandle layers, pairRanges;
 };
 
+/** The resolve's variant: of the one gathered pass, or of the two passes (with the glass's
+ *  model, which their surfaces carry). */
+core::Result<const gl::Program*> resolveProgram(const FrameContext& c, bool gathered) {
+    const std::vector<std::string> pair = {"LAYER_CAPACITY 2", define("PAIR_GATHERED", gathered)};
+    return c.graphics(
+        "refraction/passes/rectangle.vert.glsl", "refraction/passes/pair_resolve.frag.glsl",
+        gathered ? pair
+                 : concat(c.glassModel,
+                          concat(pair, {define("WRITE_MOTION", c.frame->temporal.enabled)})));
+}
+
 core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const FrameContext& c) {
     GpuState& gpu = *c.gpu;
     const bool gathered = d.pair.nearTargets.valid();
+    auto resolve = resolveProgram(c, gathered);
+    if (!resolve)
+        return resolve.error();
     const bool surfaces = d.pair.frontSurface.valid();
     ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0,
                        c.frame->temporal.enabled);
@@ -43,7 +58,7 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     gpu.pairRanges.fill(offsetof(PairRangesGpu, frontMin), 1, kFloatMax);
     gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
     gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
-    const gl::Program& program = gathered ? gpu.pairGatheredResolve : *c.capture.resolve;
+    const gl::Program& program = **resolve;
     program.use();
     c.setLayerUniforms(program);
     // The pair's maps in pair_resolve.frag.glsl's order (one pass's two, or two passes' four).

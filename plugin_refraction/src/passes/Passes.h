@@ -1,7 +1,7 @@
 // The refraction plugin's passes, one file each in this folder, named like the pass and its
-// shader, recorded into the frame graph by RefractionPlugin::addPasses (ARCHITECTURE.md, "One
-// frame"): one pipeline, a capture and the walk.
-// At the Shadows stage, where lights cast:
+// shader (a pass drawn twice takes a suffix: pair_surface.back, .front), recorded into the frame
+// graph by RefractionPlugin::addPasses (ARCHITECTURE.md, "One frame"): one pipeline, a capture and
+// the walk. At the Shadows stage, where lights cast:
 //   glass_materials (GlassMaterialsPass): the frame's glass optics;
 //   with caustics, glass_bvh (below);
 //   glass_shadow (GlassShadowPass): the glass into the engine's glass atlas, the caustics'
@@ -12,10 +12,11 @@
 //   glass_extent (GlassExtentPass): where the glass lies on screen and in view space;
 // then the capture, either
 //   the layers (default): layer_capture (LayerCapturePass: every glass surface of every
-//     character, K a pixel, one geometry pass) -> layer_depths (LayerDepthsPass: their depths
-//     as maps), or
+//     character, K a pixel, one geometry pass) -> layer_overflow (LayerOverflowPass: the
+//     overflowing pixels' kept layers bid for their fallback) -> layer_depths (LayerDepthsPass:
+//     their depths as maps), or
 //   the pair (the papers' two-surface model): pair_gather (PairGatherPass: one MAX-blended
-//     geometry pass) or pair_back and pair_front (PairSurfacesPass: the papers' two
+//     geometry pass) or pair_surface.back and .front (PairSurfacePass: the papers' two
 //     depth-tested ones) -> pair_resolve (PairResolvePass: the pair as layers 0 and 1, with the
 //     maps the papers' search reads);
 // then walk (WalkPass: the walk over the glass pixels), for the hybrid hybrid_trace
@@ -23,8 +24,8 @@
 // (OutlinesPass: the outlines anti-aliased). Each pass's function declares what it reads and
 // writes; the buffers the passes order themselves by (FrameBuffers) carry the version the last
 // writer left. What the passes share is in FrameContext.cpp (descriptors, imports, uniforms,
-// draws), Variants.cpp (the programs' variants), GlassIds.cpp (the glass ids and their optics)
-// and LayerStorage.cpp (the layer arrays' sizes). Private to the plugin.
+// draws), Variants.cpp (the defines the passes' programs are keyed by), GlassIds.cpp (the glass ids
+// and their optics) and LayerStorage.cpp (the layer arrays' sizes). Private to the plugin.
 #pragma once
 
 #include "../GpuState.h"
@@ -41,6 +42,8 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace refraction {
 
@@ -73,33 +76,23 @@ struct FrameContext {
      *  glass shadow, which read it per fragment). */
     bool normalMappedGlass = false;
     /** What of the glass's model the frame's glass uses, as the defines of every program that
-     *  shades or crosses it (selectVariants): surface layers, KHR_materials_specular, the film,
+     *  shades or crosses it (glassDefines): surface layers, KHR_materials_specular, the film,
      *  partial transmission, textures, normal maps. */
     std::vector<std::string> glassModel;
-    /** The capture's variants (selectVariants): the layers' capture, the overflowing pixels'
-     *  kept bids and the depth maps, or the pair's geometry passes and their resolve. */
-    struct CapturePrograms {
-        const gl::Program *geometry = nullptr, *resolve = nullptr, *overflow = nullptr;
-    } capture;
-    const gl::Program* walk = nullptr; ///< the walk's variant (selectWalkVariants)
-    /** refraction.glass_shadow's variant: textured glass, caustic emitters (selectVariants). */
-    const gl::Program* glassShadow = nullptr;
-    /** With the caustics: the list pass's work groups (CAUSTIC_GRID), the list of photons
-     *  (CAUSTIC_LIST), the photons, the resolve. */
-    struct CausticPrograms {
-        const gl::Program *grid = nullptr, *list = nullptr, *photons = nullptr, *resolve = nullptr;
-    } causticPrograms;
-    /** Samples of a list of pixels, traced (listed_samples.glsl, selectWalkVariants), where
-     *  their passes run: the hybrid's trace pass's (hybrid_trace.comp.glsl), the fresh
-     *  samples' of the trace and the hybrid (fresh_samples.comp.glsl). */
-    struct ListedPrograms {
-        const gl::Program *handedOver = nullptr, *fresh = nullptr;
-    } listed;
     /** The lights cast this frame and the glass focuses their caustics (Settings's
      *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
     bool caustics = false;
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }
+    /** The variant of the program of `vertex` and `fragment` (or of the compute shader `name`)
+     *  under `defines`, from the engine's program cache, which compiles it the first time any
+     *  frame asks for it: each pass asks for its own where it executes. One that does not
+     *  compile is an error naming its file ("refraction: ..."), which stops the frame there. */
+    core::Result<const gl::Program*> graphics(const std::string& vertex,
+                                              const std::string& fragment,
+                                              const std::vector<std::string>& defines = {}) const;
+    core::Result<const gl::Program*> compute(const std::string& name,
+                                             const std::vector<std::string>& defines = {}) const;
     /** The BVH holds the opaque parts too, which a traced ray or a photon may meet. */
     bool bvhHoldsOpaque() const { return settings.traces() || caustics; }
     /** The camera's view and projection. */
@@ -218,16 +211,23 @@ gl::TextureDesc zDesc(glm::ivec2 size);
  *  a layer can name share the last, with a warning. */
 void assignGlassIds(FrameContext& c);
 
-// ---- The programs' variants (Variants.cpp)
+// ---- The programs' defines (Variants.cpp): what each pass's variant is keyed by
 
-/** Into `c`, from the engine's program cache (FrameInfo::programs): the capture's variants
- *  (the layers' for capacity K, the pair's; textured glass), the glass shadow's and, where the
- *  frame focuses caustics, the caustics' programs. */
-core::Status selectVariants(FrameContext& c);
-/** The walk's and the listed samples' variants (FrameContext::walk, listed) for the
- *  frame's method, capture, dispersion, textures and lighting features (FrameInfo::lighting,
- *  known from the AfterOpaque stage on), from the engine's program cache. */
-core::Status selectWalkVariants(FrameContext& c);
+/** "NAME value", a define. */
+std::string define(const std::string& name, int value);
+/** `a`, then `b`. */
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b);
+
+/** What of the glass's model the frame's glass uses (FrameContext::glassModel). */
+std::vector<std::string> glassDefines(const FrameContext& c);
+/** The layers' capture, overflow bids and depth maps: the glass model, K, the textures' level
+ *  and motion. */
+std::vector<std::string> layerDefines(const FrameContext& c);
+/** The walk's variant for `method`: the capture (the pair, or the layers' K), the dispersion
+ *  search, the frame's lighting features (FrameInfo::lighting), what of the glass's model it
+ *  uses, motion, the debug view, several samples a pixel, what of the nearby scene its rays
+ *  can meet. */
+std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method method);
 
 // ---- The layer arrays (LayerStorage.cpp)
 
@@ -246,6 +246,8 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0
  *  kOverflowListHeader words (the count, the work groups), then a word a pixel. */
 std::size_t layerHeadPlanes(int surfaceSlots);
 inline constexpr std::size_t kOverflowListHeader = 4;
+/** Where the list of the overflowing pixels starts in the layer heads, in bytes. */
+std::size_t overflowListOffset(const GpuState::LayerStorage& layers);
 /** Words per pixel in the layer heads, the overflow list's included. */
 std::size_t layerHeadWords(int surfaceSlots);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
@@ -286,10 +288,12 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
  *  mask. */
 fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext& c,
                                       FrameBuffers& buffers);
-/** The layers' depths as the maps the walk's searches read (one or two RGBA32F), after an
- *  overflowing pixel's kept layers bid for its fallback (writes layers). */
-Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
-                           fg::TextureHandle mask);
+/** `refraction.layer_overflow` (LayerOverflowPass.cpp): the kept layers of the pixels the
+ *  capture listed as overflowing bid for their fallback (writes layers). */
+void addLayerOverflowPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers);
+/** The layers' depths as the maps the walk's searches read (one or two RGBA32F). */
+Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
+                           const FrameBuffers& buffers, fg::TextureHandle mask);
 
 // ---- The capture: the pair
 
@@ -304,8 +308,8 @@ struct PairTargets {
 PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
                               const FrameBuffers& buffers);
 /** The papers' two geometry passes: back faces (farthest, or `firstBack`) and front faces. */
-PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
-                                  const FrameBuffers& buffers, bool firstBack);
+PairTargets addPairSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
+                                 const FrameBuffers& buffers, bool firstBack);
 /** The pair resolved into layers 0 and 1, the depth ranges and the mask (writes layers,
  *  pairRanges). */
 Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace refraction {
@@ -61,7 +62,13 @@ core::Status copySceneColor(GpuState& gpu, const gl::Texture& sceneColor, const 
     return {};
 }
 
-core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext& c) {
+core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext& c,
+                  const std::vector<std::string>& defines) {
+    auto walked = c.graphics("refraction/passes/rectangle.vert.glsl",
+                             "refraction/passes/walk.frag.glsl", defines);
+    if (!walked)
+        return walked.error();
+    const gl::Program& program = **walked;
     GpuState& gpu = *c.gpu;
     const bool hybrid = c.settings.method == Settings::Method::Hybrid;
     resetCounters(gpu.counters, c.frame->settings.size, c.freshSamples() > 1);
@@ -94,13 +101,13 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
     // debug view shows the first alone); while a frame accumulates, one, and while anything
     // moves the fresh samples' pass takes the later ones where the first lists the pixel.
     const int draws = c.settings.traces() && c.settings.debug == 0 ? c.traceSamples() : 1;
-    c.setWalkUniforms(*c.walk);
-    c.setLayerUniforms(*c.walk);
-    c.walk->set("uTraceWeight", 1.0f / float(draws));
+    c.setWalkUniforms(program);
+    c.setLayerUniforms(program);
+    program.set("uTraceWeight", 1.0f / float(draws));
     for (int s = 0; s < draws; ++s) {
         if (hybrid && s == 1) // the pixels the first handed over
             gl::memoryBarrier(gl::BarrierStorage);
-        c.walk->set("uTraceSample", s);
+        program.set("uTraceSample", s);
         c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
     }
     // The motion written, for the resolve; the list and counts, for the trace pass.
@@ -137,7 +144,10 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 d.surface =
                     b.write(b.create("refraction.walk.surface", {size, gl::Format::R32UI, 1}));
         },
-        [c](const fg::Resources& r, const WalkData& d, gl::Context&) { return walk(r, d, c); });
+        [c, defines = walkDefines(c, c.settings.method)](const fg::Resources& r, const WalkData& d,
+                                                         gl::Context&) {
+            return walk(r, d, c, defines);
+        });
     buffers.counters = walked.counters;
     if (walked.handedOver.valid())
         buffers.handedOver = walked.handedOver;

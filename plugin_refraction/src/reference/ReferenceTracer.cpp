@@ -177,7 +177,7 @@ public:
                    : -1.0;
     }
 
-    /** An opaque surface or the ground, lit like render/pbr.frag.glsl or ground.frag.glsl. */
+    /** An opaque surface or the ground, lit like render/opaque.frag.glsl or ground.frag.glsl. */
     dvec3 shadeOpaque(const Hit& h, const dvec3& dir) const {
         const dvec3 V = -dir;
         const render::cpu::Lighting& lighting = mLighting;

@@ -1,5 +1,5 @@
 // The CPU twin of the GPU's material model, in double precision: the environment as
-// common/environment.glsl samples it, a material read as render/pbr.frag.glsl reads it, and
+// common/environment.glsl samples it, a material read as render/opaque.frag.glsl reads it, and
 // shaded as common/brdf.glsl shades it (its layers and the punctual lights included), and the
 // display image as render/tonemap.frag.glsl makes it. What the Embree reference shades its
 // opaque surfaces and its glass's layers with.
@@ -115,7 +115,7 @@ double spotFalloff(const scene::PlacedLight& light, dvec3 L);
  *  lightArriving. */
 dvec3 lightArriving(const Lighting& lighting, std::size_t i, dvec3 P, dvec3 N, dvec3& L);
 
-/** Material `m` of `model` at `p` as render/pbr.frag.glsl reads it (the normal map already in
+/** Material `m` of `model` at `p` as render/opaque.frag.glsl reads it (the normal map already in
  *  p.normal); its emission in `emissive`. */
 Surface readSurface(const scene::Model& model, const scene::Material& m, const Point& p,
                     dvec3& emissive);

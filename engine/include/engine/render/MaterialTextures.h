@@ -1,5 +1,5 @@
 // A model's textures on the GPU (colour slots as sRGB, the rest linear), plus per-material
-// binding of the material uniforms of render/pbr.frag.glsl and common/material_uv.glsl.
+// binding of the material uniforms of render/opaque.frag.glsl and common/material_uv.glsl.
 #pragma once
 
 #include "engine/core/Result.h"

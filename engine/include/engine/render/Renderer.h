@@ -134,10 +134,6 @@ private:
     Renderer() = default;
     /** This frame's shadow views (RenderGpu::shadows) of its lights around the characters. */
     void planShadows(const scene::World& world, const RenderSettings& settings);
-    /** The ground's and the opaque pass's variants for the frame's lighting features and
-     *  whether it accumulates (their motion), and the temporal resolve's for its history
-     *  (RenderGpu::ground, opaque, temporal), from the program cache. */
-    core::Status selectPrograms(const FrameInfo& frame);
     // The frame's steps (render), in order.
     /** Poses every character at `time`, stages its skin and morph uploads, places its lights
      *  and lists its draw items (RenderGpu::poses, lights, items); whether the opaque pass

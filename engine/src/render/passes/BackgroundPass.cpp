@@ -22,6 +22,11 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
         },
         [&gpu, &frame](const fg::Resources& r, const SceneTargets& d,
                        gl::Context&) -> core::Status {
+            auto background = frame.programs->graphics("render/fullscreen.vert.glsl",
+                                                       "render/background.frag.glsl");
+            if (!background)
+                return background.error();
+            const gl::Program& program = **background;
             if (auto bound = gpu.framebuffer.bindTargets("background", sceneTargets(r, d),
                                                          &r.texture(d.depth));
                 !bound)
@@ -35,12 +40,11 @@ SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInf
                     return bound;
             }
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            gpu.background.use();
-            gpu.environment->bind(gpu.background, frame.settings.environmentRotation,
+            program.use();
+            gpu.environment->bind(program, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);
-            gpu.background.set("uInverseViewProjection",
-                               glm::inverse(frame.camera.viewProjection()));
-            gpu.background.set("uBackgroundBlur", frame.settings.backgroundBlur);
+            program.set("uInverseViewProjection", glm::inverse(frame.camera.viewProjection()));
+            program.set("uBackgroundBlur", frame.settings.backgroundBlur);
             gpu.emptyVao.bind();
             gl::drawArrays(3);
             return {};

@@ -17,13 +17,17 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 d.motion = b.write(scene.motion);
         },
         [&gpu, &frame](const fg::Resources& r, const LitTargets& d, gl::Context&) -> core::Status {
+            auto ground = frame.programs->graphics("render/ground.vert.glsl",
+                                                   "render/ground.frag.glsl", litDefines(frame));
+            if (!ground)
+                return ground.error();
             if (auto bound =
                     gpu.framebuffer.bindTargets("ground", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
             d.shadows.bind(r, gpu.shadowSampler);
             gl::apply({.cull = gl::Cull::None});
-            const gl::Program& p = *gpu.ground;
+            const gl::Program& p = **ground;
             p.use();
             gpu.environment->bind(p, frame.settings.environmentRotation,
                                   frame.settings.environmentIntensity);

@@ -1,4 +1,4 @@
-// `opaque`: the primitives no plugin claims, glTF's material model (render/pbr.frag.glsl, one
+// `opaque`: the primitives no plugin claims, glTF's material model (render/opaque.frag.glsl, one
 // program per set of material layers) lit by the environment and the punctual lights; where the
 // frame accumulates, their motion from the previous frame's deformation and placement.
 #include "Passes.h"
@@ -7,11 +7,32 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <map>
+#include <string>
+#include <vector>
+
 namespace render::passes {
 namespace {
 
 gl::Cull cullFor(const scene::Material* material) {
     return material && material->doubleSided ? gl::Cull::None : gl::Cull::Back;
+}
+
+/** The variant for each set of material layers the prepared models use (RenderGpu::layerSets,
+ *  Material::surfaceLayers()), for the frame's lights and motion. */
+core::Result<std::map<int, const gl::Program*>> opaquePrograms(const RenderGpu& gpu,
+                                                               const FrameInfo& frame) {
+    std::map<int, const gl::Program*> programs;
+    for (const int layers : gpu.layerSets) {
+        std::vector<std::string> defines = litDefines(frame);
+        defines.push_back("SURFACE_LAYERS " + std::to_string(layers));
+        auto program =
+            frame.programs->graphics("render/mesh.vert.glsl", "render/opaque.frag.glsl", defines);
+        if (!program)
+            return program.error();
+        programs.emplace(layers, *program);
+    }
+    return programs;
 }
 
 } // namespace
@@ -30,12 +51,15 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                 d.motion = b.write(scene.motion);
         },
         [&gpu, &frame](const fg::Resources& r, const LitTargets& d, gl::Context&) -> core::Status {
+            auto programs = opaquePrograms(gpu, frame);
+            if (!programs)
+                return programs.error();
             if (auto bound =
                     gpu.framebuffer.bindTargets("opaque", sceneTargets(r, d), &r.texture(d.depth));
                 !bound)
                 return bound;
             d.shadows.bind(r, gpu.shadowSampler);
-            for (auto& [layers, program] : gpu.opaque) {
+            for (auto& [layers, program] : *programs) {
                 gpu.environment->bind(*program, frame.settings.environmentRotation,
                                       frame.settings.environmentIntensity);
                 program->set("uViewProjection", frame.camera.viewProjection());
@@ -48,7 +72,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
                     continue;
                 // The program of the layers its material puts on the base.
                 const int layers = item.values ? item.values->surfaceLayers() : 0;
-                const gl::Program& p = *gpu.opaque.at(layers);
+                const gl::Program& p = *programs->at(layers);
                 p.use();
                 p.set("uModel", item.world);
                 p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(item.world)));

@@ -1,15 +1,19 @@
 // The renderer's own passes, one file each, recorded by Renderer::render in this order:
 // deform -> shadows (where lights cast) -> [plugins' Shadows stage] -> background -> ground
 // (optional) -> opaque -> [plugin stages] -> temporal (where the frame accumulates) -> tonemap.
+// Each asks the renderer's program cache (FrameInfo::programs) for its program's variant where
+// it executes.
 #pragma once
 
 #include "../RenderGpu.h"
 #include "../TemporalHistory.h"
 
 #include "engine/fg/FrameGraph.h"
+#include "engine/gl/ProgramCache.h"
 #include "engine/render/FrameInfo.h"
 #include "engine/render/ShadowAtlases.h"
 
+#include <string>
 #include <vector>
 
 namespace render::passes {
@@ -24,6 +28,14 @@ struct SceneTargets {
 struct LitTargets : SceneTargets {
     ShadowAtlases shadows;
 };
+
+/** The defines of a pass that shades with the lights: the frame's lighting features
+ *  (FrameInfo::lighting) and whether it writes motion (the frame accumulates). */
+inline std::vector<std::string> litDefines(const FrameInfo& frame) {
+    std::vector<std::string> defines = frame.lighting.defines();
+    defines.push_back(std::string("WRITE_MOTION ") + (frame.temporal.enabled ? "1" : "0"));
+    return defines;
+}
 
 /** The colour target and, where the frame accumulates, the motion target of `scene`. */
 inline std::vector<const gl::Texture*> sceneTargets(const fg::Resources& r,

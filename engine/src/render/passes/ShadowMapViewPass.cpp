@@ -25,12 +25,16 @@ fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const 
                                            {frame.settings.size, gl::Format::RGBA16F, 1}));
             },
             [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+                auto view = frame.programs->graphics("render/fullscreen.vert.glsl",
+                                                     "render/shadow_map_view.frag.glsl");
+                if (!view)
+                    return view.error();
                 if (auto bound = gpu.framebuffer.bindTargets("shadow_map_view",
                                                              {&r.texture(d.color)}, nullptr);
                     !bound)
                     return bound;
                 gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-                const gl::Program& program = gpu.shadowMapView;
+                const gl::Program& program = **view;
                 program.use();
                 gl::bindTexture(gl::slot::kSource, r.texture(d.atlas));
                 program.set("uMode", int(frame.settings.shadowMapView));

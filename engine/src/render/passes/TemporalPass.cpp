@@ -33,19 +33,28 @@ fg::TextureHandle addTemporal(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
                     b.create("temporal.view", {frame.settings.size, gl::Format::RGBA16F, 1}));
         },
         [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            // The resolve's variant for the frame's history (temporal.frag.glsl).
+            const TemporalSettings& s = frame.settings.temporal;
+            const bool still = frame.temporal.still && s.convergeStill;
+            auto resolve = frame.programs->graphics(
+                "render/fullscreen.vert.glsl", "render/temporal.frag.glsl",
+                {std::string("TEMPORAL_STILL ") + (still ? "1" : "0"),
+                 std::string("TEMPORAL_REJECT ") + (s.rejectHistory ? "1" : "0"),
+                 "TEMPORAL_VIEW " + std::to_string(int(s.view))});
+            if (!resolve)
+                return resolve.error();
             std::vector<const gl::Texture*> targets{&r.texture(d.nextColor)};
             if (d.view.valid())
                 targets.push_back(&r.texture(d.view));
             if (auto bound = gpu.framebuffer.bindTargets("temporal", targets, nullptr); !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            const gl::Program& p = *gpu.temporal;
+            const gl::Program& p = **resolve;
             p.use();
             gl::bindTexture(gl::slot::kSource, r.texture(d.color));
             gl::bindTexture(gl::slot::kMotion, r.texture(d.motion));
             gl::bindTexture(gl::slot::kHistory, r.texture(d.previousColor), 0);
             gl::bindTexture(gl::slot::kHistory, r.texture(d.previousMotion), 1);
-            const TemporalSettings& s = frame.settings.temporal;
             setMotionUniforms(p, frame);
             p.set("uIndex", int(frame.temporal.index));
             p.set("uHistoryWeight", s.historyWeight);

@@ -17,15 +17,20 @@ void addTonemap(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
             d.output = b.write(output);
         },
         [&gpu, &frame](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
+            auto tonemap =
+                frame.programs->graphics("render/fullscreen.vert.glsl", "render/tonemap.frag.glsl");
+            if (!tonemap)
+                return tonemap.error();
+            const gl::Program& program = **tonemap;
             if (auto bound =
                     gpu.framebuffer.bindTargets("tonemap", {&r.texture(d.output)}, nullptr);
                 !bound)
                 return bound;
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            gpu.tonemap.use();
+            program.use();
             gl::bindTexture(gl::slot::kSource, r.texture(d.scene));
-            gpu.tonemap.set("uExposure", frame.settings.exposure);
-            gpu.tonemap.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
+            program.set("uExposure", frame.settings.exposure);
+            program.set("uRaw", frame.settings.hdrOutput ? 1 : 0);
             gpu.emptyVao.bind();
             gl::drawArrays(3);
             return {};

@@ -1,4 +1,4 @@
-// `refraction.pair_back` and `refraction.pair_front`: the pair capture drawn as the papers' two
+// `refraction.pair_surface.back` and `.front`: the pair capture drawn as the papers' two
 // geometry passes, the back faces (farthest, or first) and the nearest front faces, each into a
 // depth map (with d_N) and a mip-filtered normal map (with the glass id), and where the frame's
 // glass is textured a map of its surfaces, under its own depth test (pair_surface.frag.glsl).
@@ -9,8 +9,8 @@
 
 namespace refraction {
 
-PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
-                                  const FrameBuffers& buffers, bool firstBack) {
+PairTargets addPairSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
+                                 const FrameBuffers& buffers, bool firstBack) {
     struct SurfaceData {
         fg::TextureHandle depth, normal, surface, zbuffer; // surface: with textured glass
     };
@@ -37,6 +37,11 @@ PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
             },
             [c, backFaces, nearest, name](const fg::Resources& r, const SurfaceData& d,
                                           gl::Context&) -> core::Status {
+                auto program = c.graphics(
+                    "refraction/passes/glass.vert.glsl", "refraction/passes/pair_surface.frag.glsl",
+                    concat(c.glassModel, {define("WRITE_MOTION", c.frame->temporal.enabled)}));
+                if (!program)
+                    return program.error();
                 std::vector<const gl::Texture*> targets{&r.texture(d.depth), &r.texture(d.normal)};
                 if (d.surface.valid())
                     targets.push_back(&r.texture(d.surface));
@@ -50,7 +55,7 @@ PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
                     gl::clearColorUint(2, 0u);
                 gl::clearDepth(nearest ? 1.0f : 0.0f);
                 c.drawGlassMaterials(
-                    *c.capture.geometry,
+                    **program,
                     {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
                      .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
                 // DIR §3.1: mip-filtered normals (the front's only for TIR bounces toward it)
@@ -59,8 +64,8 @@ PairTargets addPairSurfacesPasses(fg::FrameGraph& graph, const FrameContext& c,
                 return {};
             });
     };
-    const SurfaceData& back = surfacePass("refraction.pair_back", true, firstBack);
-    const SurfaceData& front = surfacePass("refraction.pair_front", false, true);
+    const SurfaceData& back = surfacePass("refraction.pair_surface.back", true, firstBack);
+    const SurfaceData& front = surfacePass("refraction.pair_surface.front", false, true);
     PairTargets pair;
     pair.frontDepth = front.depth;
     pair.frontNormal = front.normal;

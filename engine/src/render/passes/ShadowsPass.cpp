@@ -28,6 +28,11 @@ ShadowAtlases addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
         },
         [&gpu, &frame, &plan](const fg::Resources& r, const ShadowAtlases& d,
                               gl::Context&) -> core::Status {
+            auto caster =
+                frame.programs->graphics("render/shadows.vert.glsl", "render/shadows.frag.glsl");
+            if (!caster)
+                return caster.error();
+            const gl::Program& program = **caster;
             const gl::Texture& depth = r.texture(d.depth);
             const gl::Texture& glass = r.texture(d.glass);
             if (auto bound = gpu.framebuffer.bindTargets("shadows", {&glass}, nullptr); !bound)
@@ -36,10 +41,10 @@ ShadowAtlases addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
             if (auto bound = gpu.framebuffer.bindTargets("shadows", {}, &depth); !bound)
                 return bound;
             gl::clearDepth(1.0f);
-            gpu.shadowCaster.use();
+            program.use();
             for (const ShadowView& view : plan.views) {
                 gl::setViewport({view.tile.x, view.tile.y, view.tile.z, view.tile.z});
-                gpu.shadowCaster.set("uViewProjection", view.viewProjection());
+                program.set("uViewProjection", view.viewProjection());
                 for (const DrawItem& item : frame.items) {
                     if (item.owner)
                         continue;
@@ -48,7 +53,7 @@ ShadowAtlases addShadows(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo&
                                .clockwise = item.mirrored,
                                .depthBiasSlope = 2.0f,
                                .depthBiasUnits = 4.0f});
-                    gpu.shadowCaster.set("uModel", item.world);
+                    program.set("uModel", item.world);
                     gl::bindStorage(gl::slot::kVertices, *item.gpu->deformed);
                     item.vertexArray->bind();
                     gl::drawIndexed(item.gpu->indexCount);
