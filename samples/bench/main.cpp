@@ -46,10 +46,10 @@ frame time (render + finish, wall clock), the median CPU time of the frame on th
 own work ("animate+record ms": pose every character, upload the skin matrices, list and claim
 the draw items, record and compile the frame graph), each pass's median GPU and CPU time,
 triangles drawn, pixels the world covers (CPU coverage of the deformed file triangles at the
-middle of the clip) and the GPU memory of the frame graph's pooled textures. Without
---instances every pass is timed alone, the wall clock between a finish before it and one after
-it (exact per-pass GPU times; the CPU times then include those waits); with it, frames pipeline
-as in an application and pass times come from the timer queries. Prints a table (and a progress line on a terminal).)";
+middle of the clip) and the GPU memory of the frame graph's pooled textures and buffers (the
+layer arrays among them). Without --instances every pass is timed alone, the wall clock between
+a finish before it and one after it (exact per-pass GPU times; the CPU times then include those
+waits); with it, frames pipeline as in an application and pass times come from the timer queries. Prints a table (and a progress line on a terminal).)";
 
 /** The steps glass-bench --skip can leave out of a frame, each a define SKIP_<STEP> that the
  *  shaders test (RenderSettings::skippedSteps; docs/performance.md, "Where the time goes"). */

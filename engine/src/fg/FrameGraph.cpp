@@ -21,7 +21,9 @@ struct FrameGraph::Pass {
 
 struct FrameGraph::Resource {
     std::string name;
-    gl::TextureDesc desc; // textures only
+    gl::TextureDesc desc;      // textures only
+    gl::BufferDesc bufferDesc; // buffers only
+    bool buffer = false;
     bool imported = false;
     void* object = nullptr; // imported object, or the pooled one while alive
     std::uint32_t latestNode = UINT32_MAX;
@@ -34,7 +36,8 @@ struct FrameGraph::Node {
     std::uint32_t writer; // pass, UINT32_MAX for version 0
 };
 
-FrameGraph::FrameGraph(TexturePool& pool) : mPool(pool) {}
+FrameGraph::FrameGraph(TexturePool& textures, BufferPool& buffers)
+    : mTextures(textures), mBuffers(buffers) {}
 FrameGraph::~FrameGraph() = default;
 
 std::uint32_t FrameGraph::addPassNode(const std::string& name) {
@@ -65,26 +68,38 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
 }
 
 std::uint32_t FrameGraph::addImported(const std::string& name, const gl::TextureDesc& desc,
-                                      void* object) {
+                                      void* object, bool buffer) {
     ENGINE_CHECK(!mCompiled, "importing '" + name + "' after compile()");
-    mResources.push_back(Resource{name, desc, true, object});
+    mResources.push_back(Resource{name, desc, {}, buffer, true, object});
+    return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
+}
+
+std::uint32_t FrameGraph::addCreated(const std::string& name, const gl::TextureDesc& texture,
+                                     const gl::BufferDesc& buffer, bool isBuffer) {
+    ENGINE_CHECK(!mCompiled, "creating '" + name + "' after compile()");
+    mResources.push_back(Resource{name, texture, buffer, isBuffer, false, nullptr});
     return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
 }
 
 TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc,
                                         void* object) {
-    return TextureHandle{addImported(name, desc, object)};
+    return TextureHandle{addImported(name, desc, object, false)};
 }
 
 BufferHandle FrameGraph::importBuffer(const std::string& name, void* object) {
-    return BufferHandle{addImported(name, {}, object)};
+    return BufferHandle{addImported(name, {}, object, true)};
 }
 
 TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
-    mGraph.mResources.push_back(FrameGraph::Resource{name, desc, false, nullptr});
-    const auto resource = std::uint32_t(mGraph.mResources.size() - 1);
-    mGraph.mPasses[mPass].creates.push_back(resource);
-    return TextureHandle{mGraph.addNode(resource, 0, UINT32_MAX)};
+    const std::uint32_t node = mGraph.addCreated(name, desc, {}, false);
+    mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
+    return TextureHandle{node};
+}
+
+BufferHandle Builder::create(const std::string& name, const gl::BufferDesc& desc) {
+    const std::uint32_t node = mGraph.addCreated(name, {}, desc, true);
+    mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
+    return BufferHandle{node};
 }
 
 std::uint32_t Builder::read(std::uint32_t node) {
@@ -138,7 +153,9 @@ const gl::TextureDesc& Resources::desc(TextureHandle handle) const {
 
 void* Resources::object(BufferHandle handle) const {
     ENGINE_CHECK(handle.valid() && handle.node < mGraph.mNodes.size(), "invalid buffer handle");
-    return mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
+    void* object = mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
+    ENGINE_CHECK(object != nullptr, "buffer used by a pass that did not declare it");
+    return object;
 }
 
 core::Status FrameGraph::checkVersions() const {
@@ -292,7 +309,7 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
     for (std::size_t i = 0; i < mOrder.size(); ++i) {
         for (Resource& r : mResources)
             if (!r.imported && r.firstUse == int(i))
-                r.object = mPool.acquire(r.desc);
+                r.object = r.buffer ? mBuffers.acquire(r.bufferDesc) : mTextures.acquire(r.desc);
         Pass& pass = mPasses[mOrder[i]];
         if (observer)
             observer->beginPass(pass.name);
@@ -306,7 +323,10 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
             {pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
         for (Resource& r : mResources)
             if (!r.imported && r.object && (r.lastUse == int(i) || !status)) {
-                mPool.release(r.object);
+                if (r.buffer)
+                    mBuffers.release(r.object);
+                else
+                    mTextures.release(r.object);
                 r.object = nullptr;
             }
         if (!status)
@@ -333,9 +353,14 @@ std::string FrameGraph::dump() const {
     for (std::uint32_t p : listed) {
         const Pass& pass = mPasses[p];
         out << (pass.culled ? "  [culled] " : "  ") << pass.name << "\n";
-        for (std::uint32_t r : pass.creates)
-            out << "      creates '" << mResources[r].name << "' " << mResources[r].desc.size.x
-                << "x" << mResources[r].desc.size.y << "\n";
+        for (std::uint32_t r : pass.creates) {
+            const Resource& created = mResources[r];
+            out << "      creates '" << created.name << "' ";
+            if (created.buffer)
+                out << created.bufferDesc.size << " bytes\n";
+            else
+                out << created.desc.size.x << "x" << created.desc.size.y << "\n";
+        }
         for (std::uint32_t n : pass.reads)
             out << "      reads   " << nodeName(n) << "\n";
         for (std::uint32_t n : pass.writes)

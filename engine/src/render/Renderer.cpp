@@ -26,7 +26,7 @@
 namespace render {
 
 /** Pooled transient textures are plain gl::Textures, sampled nearest with clamping. */
-class Renderer::Allocator final : public fg::TextureAllocator {
+class Renderer::TextureAllocator final : public fg::TextureAllocator {
 public:
     void* allocate(const gl::TextureDesc& desc) override {
         auto* texture = new gl::Texture(desc);
@@ -35,6 +35,13 @@ public:
         return texture;
     }
     void release(void* object) override { delete static_cast<gl::Texture*>(object); }
+};
+
+/** Pooled transient buffers are plain gl::Buffers. */
+class Renderer::BufferAllocator final : public fg::BufferAllocator {
+public:
+    void* allocate(const gl::BufferDesc& desc) override { return new gl::Buffer(desc.size); }
+    void release(void* object) override { delete static_cast<gl::Buffer*>(object); }
 };
 
 /** Timer queries per pass name, a ring of kFrames sets reused across frames. With exact pass
@@ -167,8 +174,10 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& 
         gl::clearColor(0, glm::vec4(0.0f, 0.0f, 0.0f, kNoGlass));
     }
     r->mPrograms = std::make_unique<gl::ProgramCache>(r->mShaders);
-    r->mAllocator = std::make_unique<Allocator>();
-    r->mPool = std::make_unique<fg::TexturePool>(*r->mAllocator);
+    r->mTextureAllocator = std::make_unique<TextureAllocator>();
+    r->mTextures = std::make_unique<fg::TexturePool>(*r->mTextureAllocator);
+    r->mBufferAllocator = std::make_unique<BufferAllocator>();
+    r->mBuffers = std::make_unique<fg::BufferPool>(*r->mBufferAllocator);
     r->mTimer = std::make_unique<Timer>();
     return r;
 }
@@ -326,7 +335,7 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
     stats.animateMs = millisecondsSince(frameStart);
 
     const auto recordStart = std::chrono::steady_clock::now();
-    fg::FrameGraph graph(*mPool);
+    fg::FrameGraph graph(*mTextures, *mBuffers);
     if (auto recorded = record(graph, frame); !recorded)
         return recorded.error();
     if (auto compiled = graph.compile(); !compiled)
@@ -514,7 +523,8 @@ core::Status Renderer::execute(fg::FrameGraph& graph, const FrameInfo& frame, Fr
     // attached to the bound framebuffer makes the driver re-validate it (a KHR_debug warning).
     gl::Framebuffer::bindDefault(frame.settings.size);
     if (!executed) {
-        mPool->endFrame();
+        mTextures->endFrame();
+        mBuffers->endFrame();
         return core::Error{"render::Renderer::render(): " + executed.error().message};
     }
     for (const fg::PassTiming& t : *executed) {
@@ -525,8 +535,9 @@ core::Status Renderer::execute(fg::FrameGraph& graph, const FrameInfo& frame, Fr
         gpu.history.end();
     stats.historyBytes = frame.temporal.enabled ? gpu.history.bytes() : 0;
     stats.graph = graph.dump();
-    stats.transientBytes = mPool->allocatedBytes();
-    mPool->endFrame();
+    stats.transientBytes = mTextures->allocatedBytes() + mBuffers->allocatedBytes();
+    mTextures->endFrame();
+    mBuffers->endFrame();
     return {};
 }
 

@@ -6,20 +6,24 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace {
 
-/** Hands out distinct fake objects and counts them. */
-class FakeAllocator final : public fg::TextureAllocator {
+/** Hands out distinct fake objects, textures and buffers, and counts them. */
+class FakeAllocator final : public fg::TextureAllocator, public fg::BufferAllocator {
 public:
-    void* allocate(const gl::TextureDesc&) override {
+    void* allocate(const gl::TextureDesc&) override { return fake(); }
+    void* allocate(const gl::BufferDesc&) override { return fake(); }
+    void release(void*) override { --live; }
+    void* fake() {
         ++allocations;
         ++live;
         // A fake handle, never dereferenced: the allocator under test only stores it.
         const std::uintptr_t handle = std::uintptr_t(++next) * 16;
         return reinterpret_cast<void*>(handle); // NOLINT(performance-no-int-to-ptr)
     }
-    void release(void*) override { --live; }
     int allocations = 0, live = 0;
     std::uintptr_t next = 0;
 };
@@ -47,7 +51,8 @@ struct InOut {
 TEST(FrameGraph, CulledPassNeverExecutes) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
@@ -77,7 +82,8 @@ TEST(FrameGraph, CulledPassNeverExecutes) {
 TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     NoContext context;
     // A chain t0 -> t1 -> t2 -> t3 of same-descriptor textures: pass i reads t(i-1) and writes
     // t(i), so at most two are alive at once and the pool needs exactly two.
@@ -105,7 +111,7 @@ TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
     EXPECT_EQ(pool.inUseCount(), 0u);
 
     // A second frame reuses the pooled textures: no new allocation.
-    fg::FrameGraph again(pool);
+    fg::FrameGraph again(pool, buffers);
     again.addPass<One>(
         "x",
         [&](fg::Builder& b, One& d) {
@@ -124,7 +130,8 @@ TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
 TEST(FrameGraph, BuffersOrderPassesAndKeepTheirWritersAlive) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
     int vertexObject = 0;
@@ -172,7 +179,8 @@ TEST(FrameGraph, BuffersOrderPassesAndKeepTheirWritersAlive) {
 TEST(FrameGraph, ReaderOfABufferRunsBeforeItsNextWriter) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     const auto distances = graph.importBuffer("distances", nullptr);
     struct Buffered {
         fg::BufferHandle out;
@@ -197,7 +205,8 @@ TEST(FrameGraph, ReaderOfABufferRunsBeforeItsNextWriter) {
 TEST(FrameGraph, FailingPassEndsTheFrameNamingItAndReturnsItsTextures) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
@@ -227,7 +236,8 @@ TEST(FrameGraph, FailingPassEndsTheFrameNamingItAndReturnsItsTextures) {
 TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     fg::TextureHandle orphan;
     graph.addPass<One>(
         "maker", [&](fg::Builder& b, One&) { orphan = b.create("orphan", kColor); },
@@ -248,8 +258,9 @@ TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
 TEST(FrameGraph, RejectsOutdatedWrite) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
+    fg::BufferPool buffers(allocator);
     {
-        fg::FrameGraph graph(pool);
+        fg::FrameGraph graph(pool, buffers);
         const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
         graph.addPass<One>(
             "w1", [&](fg::Builder& b, One& d) { d.out = b.write(back); },
@@ -266,10 +277,61 @@ TEST(FrameGraph, RejectsOutdatedWrite) {
     }
 }
 
+// Transient buffers live from their creator to their last reader, from the buffer pool: two
+// whose lives do not overlap share one object, and the pool keeps it for the next frame.
+TEST(FrameGraph, TransientBuffersShareThePoolAcrossPassesAndFrames) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::BufferPool buffers(allocator);
+    NoContext context;
+    const gl::BufferDesc words{4096};
+    struct Written {
+        fg::BufferHandle list;
+        fg::TextureHandle out;
+    };
+    for (int frame = 0; frame < 2; ++frame) {
+        fg::FrameGraph graph(pool, buffers);
+        const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+        std::vector<void*> seen;
+        fg::TextureHandle target = back;
+        for (const char* name : {"first", "second"}) {
+            const auto& listed = graph.addPass<Written>(
+                std::string(name) + ".list",
+                [&](fg::Builder& b, Written& d) { d.list = b.write(b.create(name, words)); },
+                [&](const fg::Resources& r, const Written& d, gl::Context&) {
+                    seen.push_back(r.object(d.list));
+                });
+            target = graph
+                         .addPass<Written>(
+                             std::string(name) + ".use",
+                             [&, list = listed.list](fg::Builder& b, Written& d) {
+                                 d.list = b.read(list);
+                                 d.out = b.write(target);
+                             },
+                             [&](const fg::Resources& r, const Written& d, gl::Context&) {
+                                 seen.push_back(r.object(d.list));
+                             })
+                         .out;
+        }
+        ASSERT_TRUE(graph.compile().ok());
+        ASSERT_TRUE(graph.execute(context).ok());
+        ASSERT_EQ(seen.size(), 4u);
+        EXPECT_EQ(seen[0], seen[1]); // one object from creator to reader
+        EXPECT_EQ(seen[2], seen[0]); // the second list after the first's last reader: the same
+        EXPECT_EQ(buffers.allocatedCount(), 1u);
+        EXPECT_EQ(buffers.inUseCount(), 0u);
+        EXPECT_EQ(buffers.allocatedBytes(), 4096u);
+        EXPECT_NE(graph.dump().find("creates 'first' 4096 bytes"), std::string::npos);
+        buffers.endFrame();
+    }
+    EXPECT_EQ(allocator.allocations, 1); // kept across the frames
+}
+
 TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);
-    fg::FrameGraph graph(pool);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
     NoContext context;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
     const auto& first = graph.addPass<One>(

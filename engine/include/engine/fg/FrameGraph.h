@@ -1,11 +1,11 @@
-// The frame graph: passes declare the textures they create, read and write, and the buffers
-// they read and write; compile() orders them, culls what nobody consumes and rejects bad graphs;
-// execute() runs them with transient textures from a pool and stops at a pass that fails. No GL
-// calls here: GPU objects come through TexturePool's allocator or are imported.
+// The frame graph: passes declare the textures and buffers they create, read and write;
+// compile() orders them, culls what nobody consumes and rejects bad graphs; execute() runs them
+// with transient textures and buffers from pools and stops at a pass that fails. No GL calls
+// here: GPU objects come through the pools' allocators or are imported.
 #pragma once
 
 #include "engine/core/Result.h"
-#include "engine/fg/TexturePool.h"
+#include "engine/fg/Pool.h"
 #include "engine/gl/Types.h"
 
 #include <cstdint>
@@ -16,6 +16,7 @@
 #include <vector>
 
 namespace gl {
+class Buffer;
 class Context;
 class Texture;
 } // namespace gl
@@ -32,8 +33,9 @@ template <class Kind> struct Handle {
 struct TextureKind {};
 struct BufferKind {};
 using TextureHandle = Handle<TextureKind>;
-/** A buffer the graph orders passes by (deformed vertices, per-vertex distances, a depth
- *  range): always imported, its GPU object owned outside the graph. */
+/** A buffer the graph orders passes by: transient (created by a pass, a gl::Buffer from the
+ *  pool for this frame) or imported (deformed vertices, a BVH: its GPU objects owned outside the
+ *  graph). */
 using BufferHandle = Handle<BufferKind>;
 
 class FrameGraph;
@@ -47,6 +49,9 @@ public:
     TextureHandle read(TextureHandle handle);
     /** Declares that the pass writes (on top of) this version; returns the new version. */
     TextureHandle write(TextureHandle handle);
+    /** A transient buffer of `desc.size` bytes, from the pool for this pass through its last
+     *  reader; what it holds when acquired is undefined (its first writer fills it). */
+    BufferHandle create(const std::string& name, const gl::BufferDesc& desc);
     /** The same for buffers: the pass runs after the version's writer and before its next. */
     BufferHandle read(BufferHandle handle);
     BufferHandle write(BufferHandle handle);
@@ -71,8 +76,12 @@ public:
         return *static_cast<gl::Texture*>(object(handle));
     }
     const gl::TextureDesc& desc(TextureHandle handle) const;
-    /** The object an imported buffer was given with. */
+    /** The object an imported buffer was given with, or a transient buffer's gl::Buffer. */
     void* object(BufferHandle handle) const;
+    /** A transient buffer (or one imported as a gl::Buffer). */
+    gl::Buffer& buffer(BufferHandle handle) const {
+        return *static_cast<gl::Buffer*>(object(handle));
+    }
 
 private:
     friend class FrameGraph;
@@ -96,7 +105,7 @@ struct PassTiming {
 
 class FrameGraph {
 public:
-    explicit FrameGraph(TexturePool& pool);
+    FrameGraph(TexturePool& textures, BufferPool& buffers);
     ~FrameGraph();
     FrameGraph(const FrameGraph&) = delete;
     FrameGraph& operator=(const FrameGraph&) = delete;
@@ -162,7 +171,10 @@ private:
     std::uint32_t addPassNode(const std::string& name);
     void setExecute(std::uint32_t pass,
                     std::function<core::Status(const Resources&, gl::Context&)> fn);
-    std::uint32_t addImported(const std::string& name, const gl::TextureDesc& desc, void* object);
+    std::uint32_t addImported(const std::string& name, const gl::TextureDesc& desc, void* object,
+                              bool buffer);
+    std::uint32_t addCreated(const std::string& name, const gl::TextureDesc& texture,
+                             const gl::BufferDesc& buffer, bool isBuffer);
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
     // compile()'s steps.
@@ -181,7 +193,8 @@ private:
     /** Each resource's first and last use over mOrder. */
     void measureLifetimes();
 
-    TexturePool& mPool;
+    TexturePool& mTextures;
+    BufferPool& mBuffers;
     std::vector<Pass> mPasses;
     std::vector<Resource> mResources;
     std::vector<Node> mNodes;

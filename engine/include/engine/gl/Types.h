@@ -60,6 +60,13 @@ struct TextureDesc {
     }
 };
 
+/** A buffer's size in bytes (the frame graph's transient buffers). */
+struct BufferDesc {
+    std::size_t size = 0;
+    bool operator==(const BufferDesc&) const = default;
+    std::size_t bytes() const { return size; }
+};
+
 enum class Filter : std::uint8_t { Nearest, Linear, LinearMipmap };
 enum class Wrap : std::uint8_t { Repeat, Clamp, MirroredRepeat };
 

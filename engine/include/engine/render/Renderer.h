@@ -8,7 +8,7 @@
 #include "engine/deform/GpuDeformer.h"
 #include "engine/fg/Blackboard.h"
 #include "engine/fg/FrameGraph.h"
-#include "engine/fg/TexturePool.h"
+#include "engine/fg/Pool.h"
 #include "engine/gl/Commands.h"
 #include "engine/gl/Context.h"
 #include "engine/gl/Framebuffer.h"
@@ -52,7 +52,7 @@ struct FrameStats {
      *  cpuMs is issuing GL commands, which on a CPU rasteriser includes running them. */
     double recordMs = 0.0;
     double gpuMs = 0.0;             ///< sum of the passes' GPU times
-    std::size_t transientBytes = 0; ///< GPU memory of the frame graph's pooled textures
+    std::size_t transientBytes = 0; ///< GPU memory of the frame graph's pooled textures, buffers
     std::size_t historyBytes = 0;   ///< GPU memory of the temporal history (0 while off)
     std::string graph;              ///< the compiled frame graph as text
 };
@@ -157,14 +157,17 @@ private:
     /** Runs the compiled graph, each pass timed (RenderSettings::exactPassTimes), into
      *  `stats`; ends the temporal history's frame and the pool's. */
     core::Status execute(fg::FrameGraph& graph, const FrameInfo& frame, FrameStats& stats);
-    class Allocator;
+    class TextureAllocator;
+    class BufferAllocator;
     class Timer;
     gl::Context* mContext = nullptr;
     int mLevel = 0;
     gl::ShaderLibrary mShaders;
     std::unique_ptr<gl::ProgramCache> mPrograms; ///< every pass's variants, over mShaders
-    std::unique_ptr<Allocator> mAllocator;
-    std::unique_ptr<fg::TexturePool> mPool;
+    std::unique_ptr<TextureAllocator> mTextureAllocator;
+    std::unique_ptr<fg::TexturePool> mTextures; ///< the frame graph's transient textures
+    std::unique_ptr<BufferAllocator> mBufferAllocator;
+    std::unique_ptr<fg::BufferPool> mBuffers; ///< and buffers
     // What the passes draw with; declared after the pool so that its framebuffer goes before
     // the pooled textures it may still hold.
     std::unique_ptr<RenderGpu> mGpu;

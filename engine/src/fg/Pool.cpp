@@ -1,5 +1,5 @@
-// Transient texture pool.
-#include "engine/fg/TexturePool.h"
+// Transient resource pools.
+#include "engine/fg/Pool.h"
 
 #include "engine/core/Check.h"
 
@@ -7,12 +7,12 @@
 
 namespace fg {
 
-TexturePool::~TexturePool() {
+template <class Desc> Pool<Desc>::~Pool() {
     for (Entry& e : mEntries)
         mAllocator.release(e.object);
 }
 
-void* TexturePool::acquire(const gl::TextureDesc& desc) {
+template <class Desc> void* Pool<Desc>::acquire(const Desc& desc) {
     for (Entry& e : mEntries)
         if (!e.inUse && e.desc == desc) {
             e.inUse = true;
@@ -25,17 +25,17 @@ void* TexturePool::acquire(const gl::TextureDesc& desc) {
     return entry.object;
 }
 
-void TexturePool::release(void* object) {
+template <class Desc> void Pool<Desc>::release(void* object) {
     for (Entry& e : mEntries)
         if (e.object == object) {
-            ENGINE_CHECK(e.inUse, "TexturePool::release() of a texture not in use");
+            ENGINE_CHECK(e.inUse, "fg::Pool::release() of an object not in use");
             e.inUse = false;
             return;
         }
-    ENGINE_CHECK(false, "TexturePool::release() of a texture the pool does not own");
+    ENGINE_CHECK(false, "fg::Pool::release() of an object the pool does not own");
 }
 
-void TexturePool::endFrame(int maxIdleFrames) {
+template <class Desc> void Pool<Desc>::endFrame(int maxIdleFrames) {
     for (Entry& e : mEntries)
         if (!e.inUse)
             ++e.idleFrames;
@@ -46,9 +46,12 @@ void TexturePool::endFrame(int maxIdleFrames) {
     mEntries.erase(std::remove_if(mEntries.begin(), mEntries.end(), stale), mEntries.end());
 }
 
-std::size_t TexturePool::inUseCount() const {
+template <class Desc> std::size_t Pool<Desc>::inUseCount() const {
     return std::size_t(
         std::count_if(mEntries.begin(), mEntries.end(), [](const Entry& e) { return e.inUse; }));
 }
+
+template class Pool<gl::TextureDesc>;
+template class Pool<gl::BufferDesc>;
 
 } // namespace fg
