@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -79,27 +80,19 @@ struct WalkCountersGpu {
     std::uint32_t freshPixels, freshGroups[3];             ///< take the fresh samples; their groups
 };
 
+/** What a frame's layer arrays (layers.glsl; the frame graph lends them: passes/Passes.h's
+ *  LayerBuffers) are made for: its size, K, surfaces a pixel (with textured glass) and each
+ *  layer's motion (where it accumulates). */
+struct LayerShape {
+    glm::ivec2 size{0};
+    int capacity = 0, surfaceSlots = 0;
+    bool motions = false;
+    std::size_t pixels() const { return std::size_t(size.x) * std::size_t(size.y); }
+};
+
 struct GpuState {
-    /** The caustics' storage (caustics.glsl), for a caustics atlas of `size` texels, grown as
-     *  needed: the emitters (a count, the photons' work groups, then a bit a texel) and the
-     *  sums (four words a cell, the fine cells' then the coarse). */
-    struct Caustics {
-        gl::Buffer emitters, sums;
-        glm::ivec2 size{0};
-    } caustics;
-    /** The hybrid's handed-over pixels (walk.glsl's HandedOver): count, work groups, then one
-     *  word a pixel; reallocated when the viewport grows (the trace's listed pass binds it). */
-    gl::Buffer handedOver;
-    /** The per-pixel layer arrays of layers.glsl, reallocated when the size or K changes. */
-    struct LayerStorage {
-        gl::Buffer heads;    // count, the fallback's front and back bids (layerHeadWords)
-        gl::Buffer depths;   // K floats per pixel
-        gl::Buffer attrs;    // K uvec2 per pixel
-        gl::Buffer surfaces; // surfaceSlots uvec2 per pixel where the glass is textured
-        gl::Buffer motions;  // K words per pixel where the frame accumulates (else one word)
-        glm::ivec2 size{0};
-        int capacity = 0, surfaceSlots = 0;
-    } layers;
+    /** What the last layered frame's arrays were made for (layerStats). */
+    LayerShape layers;
     gl::Buffer glassMaterials; // GlassMaterial (layers.glsl) per glass id, grown as needed
     /** This frame's glass ids per frame item (-1: not glass) and optics per id (one per
      *  character and material), refilled each frame in place (assignGlassIds). */
@@ -118,8 +111,6 @@ struct GpuState {
     /** The scene's colour, read to convert it into the walk's single-precision target. */
     gl::Framebuffer sceneColorRead;
     gl::VertexArray emptyVao;
-    gl::Buffer extent{sizeof(GlassExtentGpu)};
-    gl::Buffer pairRanges{sizeof(PairRangesGpu)};
     gl::Buffer counters{sizeof(WalkCountersGpu)};
     /** The BVH over the frame's glass as drawn, and for the tracing methods its opaque parts
      *  too (parts: its draw items' (character, instance, primitive), in frame order), rebuilt

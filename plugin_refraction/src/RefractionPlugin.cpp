@@ -219,11 +219,11 @@ LayerStats RefractionPlugin::layerStats() const {
     LayerStats stats;
     if (!mGpu || mGpu->layers.capacity == 0)
         return stats;
-    const GpuState::LayerStorage& layers = mGpu->layers;
+    const LayerShape& layers = mGpu->layers;
     stats.capacity = layers.capacity;
     stats.bytesPerPixel =
         layerBytesPerPixel(layers.capacity, settings().outlinePass(), layers.surfaceSlots);
-    stats.bytes = stats.bytesPerPixel * std::size_t(layers.size.x) * std::size_t(layers.size.y);
+    stats.bytes = stats.bytesPerPixel * layers.pixels();
     WalkCountersGpu counts{};
     const auto bytes = mGpu->counters.download(0, sizeof counts);
     std::memcpy(&counts, bytes.data(), sizeof counts);

@@ -27,7 +27,8 @@ void setGroundUniforms(const gl::Program& program, const FrameContext& c) {
 
 /** Lists the frame's photons (an invocation a cell of the grid) and traces them (an invocation
  *  a listed photon), adding their light into the caustics' sums. */
-core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::TextureHandle depth) {
+core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::TextureHandle depth,
+                          gl::Buffer& emitters, gl::Buffer& sums) {
     GpuState& gpu = *c.gpu;
     if (!gpu.glass.bvh)
         return core::Error{"refraction: the caustics have no glass BVH"};
@@ -40,8 +41,8 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
         if (!*built)
             return built->error();
     const render::ShadowPlan& plan = *c.frame->shadows;
-    gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
-    gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
+    gl::bindStorage(slot::kCausticEmitters, emitters);
+    gl::bindStorage(slot::kCausticSums, sums);
     // The grid for this frame's emitters, then the photons that start on them, listed (an
     // invocation a cell of the grid; caustic_photons.comp.glsl).
     (*grid)->use();
@@ -50,7 +51,7 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
     (*listed)->use();
     setCausticUniforms(**listed, c);
-    gl::dispatchIndirect(gpu.caustics.emitters, kListGroups);
+    gl::dispatchIndirect(emitters, kListGroups);
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
     const gl::Program& program = **photons;
     program.use();
@@ -71,7 +72,7 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
     gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
     gl::bindTexture(slot::kCausticDepth, r.texture(depth));
     bindTracedTextures(gpu);
-    gl::dispatchIndirect(gpu.caustics.emitters, kPhotonGroups); // a listed photon an invocation
+    gl::dispatchIndirect(emitters, kPhotonGroups); // a listed photon an invocation
     // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
     return {};
@@ -82,7 +83,7 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
 void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            fg::TextureHandle depth) {
     struct Photons {
-        fg::BufferHandle caustics;
+        fg::BufferHandle emitters, sums;
     };
     const Photons& photons = graph.addPass<Photons>(
         "refraction.caustic_photons",
@@ -90,12 +91,14 @@ void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
             b.read(buffers.bvh);
             b.read(buffers.materials);
             b.read(depth);
-            d.caustics = b.write(buffers.caustics);
+            d.emitters = b.write(buffers.causticEmitters);
+            d.sums = b.write(buffers.causticSums);
         },
-        [c, depth](const fg::Resources& r, const Photons&, gl::Context&) {
-            return tracePhotons(r, c, depth);
+        [c, depth](const fg::Resources& r, const Photons& d, gl::Context&) {
+            return tracePhotons(r, c, depth, r.buffer(d.emitters), r.buffer(d.sums));
         });
-    buffers.caustics = photons.caustics;
+    buffers.causticEmitters = photons.emitters;
+    buffers.causticSums = photons.sums;
 }
 
 } // namespace refraction

@@ -11,13 +11,14 @@ fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContex
                                         FrameBuffers& buffers) {
     struct Resolve {
         fg::TextureHandle atlas;
+        fg::BufferHandle sums;
     };
     const glm::ivec2 size = c.frame->shadows->atlasSize / kCausticScale;
     return graph
         .addPass<Resolve>(
             "refraction.caustic_resolve",
             [&](fg::Builder& b, Resolve& d) {
-                b.read(buffers.caustics);
+                d.sums = b.read(buffers.causticSums);
                 d.atlas = b.write(b.create("refraction.caustics", {size, gl::Format::RGBA16F, 1}));
             },
             [c](const fg::Resources& r, const Resolve& d, gl::Context&) -> core::Status {
@@ -36,7 +37,7 @@ fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContex
                 const gl::Program& program = **resolve;
                 program.use();
                 setCausticUniforms(program, c);
-                gl::bindStorage(slot::kCausticSums, gpu.caustics.sums);
+                gl::bindStorage(slot::kCausticSums, r.buffer(d.sums));
                 gl::apply({.cull = gl::Cull::None,
                            .depthTest = false,
                            .depthWrite = false,

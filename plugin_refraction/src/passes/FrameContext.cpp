@@ -33,13 +33,8 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     FrameBuffers buffers;
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
     buffers.bvh = graph.importBuffer("refraction.bvh", &gpu.glass);
-    buffers.extent = graph.importBuffer("refraction.extent", &gpu.extent);
-    buffers.pairRanges = graph.importBuffer("refraction.pair_ranges", &gpu.pairRanges);
     buffers.counters = graph.importBuffer("refraction.counters", &gpu.counters);
-    buffers.layers = graph.importBuffer("refraction.layers", &gpu.layers);
     buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
-    buffers.handedOver = graph.importBuffer("refraction.handed_over", &gpu.handedOver);
-    buffers.caustics = graph.importBuffer("refraction.caustics", &gpu.caustics);
     return buffers;
 }
 
@@ -149,35 +144,35 @@ void FrameContext::drawGlass(
     }
 }
 
-void FrameContext::drawMaskedRectangle(gl::Blend blend) const {
+void FrameContext::drawMaskedRectangle(const gl::Buffer& extent, gl::Blend blend) const {
     // The rectangle lies at depth 1: it passes only where the mask holds less.
     gl::apply({.cull = gl::Cull::None,
                .depthWrite = false,
                .depthFunc = gl::DepthFunc::Greater,
                .blend = blend});
-    drawRectangle();
+    drawRectangle(extent);
 }
 
-void FrameContext::drawRectangle() const {
-    gl::bindStorage(slot::kGlassExtent, gpu->extent);
+void FrameContext::drawRectangle(const gl::Buffer& extent) const {
+    gl::bindStorage(slot::kGlassExtent, extent);
     gpu->emptyVao.bind();
     gl::drawArrays(6);
 }
 
-void FrameContext::setLayerUniforms(const gl::Program& program) const {
+void FrameContext::setLayerUniforms(const gl::Program& program, const fg::Resources& r,
+                                    const LayerBuffers& layers) const {
     const glm::ivec2 size = frame->settings.size;
     program.set("uPixelCount", size.x * size.y);
     program.set("uViewportWidth", size.x);
     program.set("uViewportSize", glm::vec2(size));
     program.set("uKeyNear", frame->camera.znear);
     program.set("uKeyLogRange", std::log2(frame->camera.zfar / frame->camera.znear));
-    const GpuState::LayerStorage& layers = gpu->layers;
-    gl::bindStorage(slot::kLayerHeads, layers.heads);
-    gl::bindStorage(slot::kLayerDepths, layers.depths);
-    gl::bindStorage(slot::kLayerAttrs, layers.attrs);
-    if (texturedGlass)
-        gl::bindStorage(slot::kLayerSurfaces, layers.surfaces);
-    gl::bindStorage(slot::kLayerMotions, layers.motions);
+    gl::bindStorage(slot::kLayerHeads, r.buffer(layers.heads));
+    gl::bindStorage(slot::kLayerDepths, r.buffer(layers.depths));
+    gl::bindStorage(slot::kLayerAttrs, r.buffer(layers.attrs));
+    if (layers.surfaces.valid())
+        gl::bindStorage(slot::kLayerSurfaces, r.buffer(layers.surfaces));
+    gl::bindStorage(slot::kLayerMotions, r.buffer(layers.motions));
     gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
     render::setMotionUniforms(program, *frame);
 }
@@ -216,14 +211,15 @@ gl::TextureDesc FrameContext::sceneTiles() const {
 
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture) {
-    b.read(buffers.extent);
-    b.read(buffers.layers);
+    WalkInputs in;
+    in.extent = b.read(buffers.extent);
+    readLayers(b, buffers.layers);
+    in.layers = buffers.layers;
     b.read(buffers.materials);
     if (!c.settings.layered())
-        b.read(buffers.pairRanges);
+        in.pairRanges = b.read(buffers.pairRanges);
     if (c.settings.traces())
         b.read(buffers.bvh);
-    WalkInputs in;
     for (auto [from, to] : {std::pair{capture.mask, &in.capture.mask},
                             std::pair{capture.depths0, &in.capture.depths0},
                             std::pair{capture.depths1, &in.capture.depths1},
@@ -241,7 +237,9 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
 
 core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in) {
     GpuState& gpu = *c.gpu;
-    gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
+    gl::bindStorage(slot::kGlassExtent, r.buffer(in.extent));
+    if (in.pairRanges.valid())
+        gl::bindStorage(slot::kPairRanges, r.buffer(in.pairRanges));
     gl::bindStorage(slot::kWalkCounters, gpu.counters);
     gl::bindTexture(slot::kSceneColor, r.texture(in.sceneColor));
     gl::bindTexture(slot::kSceneDepth, r.texture(in.sceneDepth));

@@ -19,24 +19,24 @@ void addGlassExtentPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffe
         "refraction.glass_extent",
         [&](fg::Builder& b, Data& d) {
             b.read(buffers.vertices);
-            d.extent = b.write(buffers.extent);
+            d.extent = b.write(b.create("refraction.extent", {sizeof(GlassExtentGpu)}));
         },
-        [c](const fg::Resources&, const Data&, gl::Context&) -> core::Status {
+        [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
             auto grow = c.compute("refraction/passes/glass_extent.comp.glsl");
             if (!grow)
                 return grow.error();
-            GpuState& gpu = *c.gpu;
+            gl::Buffer& extent = r.buffer(d.extent);
             const render::FrameInfo& frame = *c.frame;
             // Empty: min > max (ints for the rectangle, floats as ordered ints for the box).
             using E = GlassExtentGpu;
-            gpu.extent.fill(offsetof(E, pixelMin), 2, std::uint32_t(INT32_MAX));
-            gpu.extent.fill(offsetof(E, pixelMax), 2, std::uint32_t(INT32_MIN));
-            gpu.extent.fill(offsetof(E, boxMin), 3, std::uint32_t(INT32_MAX));
-            gpu.extent.fill(offsetof(E, boxMax), 3, std::uint32_t(INT32_MIN));
+            extent.fill(offsetof(E, pixelMin), 2, std::uint32_t(INT32_MAX));
+            extent.fill(offsetof(E, pixelMax), 2, std::uint32_t(INT32_MIN));
+            extent.fill(offsetof(E, boxMin), 3, std::uint32_t(INT32_MAX));
+            extent.fill(offsetof(E, boxMax), 3, std::uint32_t(INT32_MIN));
             const gl::Program& program = **grow;
             program.use();
             program.set("uViewportSize", glm::vec2(frame.settings.size));
-            gl::bindStorage(slot::kGlassExtent, gpu.extent);
+            gl::bindStorage(slot::kGlassExtent, extent);
             for (const render::DrawItem& item : frame.items) {
                 if (!c.isGlass(item))
                     continue;

@@ -12,24 +12,23 @@ namespace refraction {
 
 namespace {
 
-/** The caustics' storage sized for an atlas of `size` texels and `photons` photons a frame
- *  (grown, never shrunk), the emitters and the sums cleared. */
-void resetCaustics(GpuState::Caustics& caustics, glm::ivec2 size, int photons) {
+/** Words of the emitters' header for an atlas of `texels`: the count and the passes' work
+ *  groups, then a bit a texel (caustics.glsl). */
+std::size_t emitterHeader(std::size_t texels) {
+    return 8 + (texels + 31) / 32;
+}
+
+/** The caustics' storage for an atlas of `size` texels and `photons` photons a frame: the
+ *  emitters, their header then the photon list (at most a photon a cell of the grid where
+ *  cells are wider than a texel, at most the budget, and a rounding's one, where they are a
+ *  texel); the sums, four words a cell for as many fine cells as texels and again for the
+ *  coarse. */
+void createCaustics(fg::Builder& b, FrameBuffers& buffers, glm::ivec2 size, int photons) {
     const std::size_t texels = std::size_t(size.x) * std::size_t(size.y);
-    // The count and the passes' work groups, a bit a texel, then the photon list
-    // (caustics.glsl): at most a photon a cell of the grid where cells are wider than a texel,
-    // at most the budget (and a rounding's one) where they are a texel.
-    const std::size_t header = 8 + (texels + 31) / 32;
     const std::size_t listed = texels + std::size_t(photons) + std::size_t(photons) / 1000 + 1;
-    const std::size_t emitterBytes = 4 * (header + listed), sumBytes = 2 * 16 * texels;
-    // The sums: four words a cell, for as many fine cells as texels and again for the coarse.
-    if (caustics.emitters.size() < emitterBytes)
-        caustics.emitters = gl::Buffer(emitterBytes);
-    if (caustics.sums.size() < sumBytes)
-        caustics.sums = gl::Buffer(sumBytes);
-    caustics.size = size;
-    caustics.emitters.fill(0, header, 0u); // the list is written before it is read
-    caustics.sums.fill(0, sumBytes / 4, 0u);
+    buffers.causticEmitters = b.write(b.create(
+        "refraction.caustic_emitters", {sizeof(std::uint32_t) * (emitterHeader(texels) + listed)}));
+    buffers.causticSums = b.write(b.create("refraction.caustic_sums", {2 * 16 * texels}));
 }
 
 } // namespace
@@ -38,7 +37,7 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                                      FrameBuffers& buffers, fg::TextureHandle atlas) {
     struct Data {
         fg::TextureHandle atlas;
-        fg::BufferHandle caustics;
+        fg::BufferHandle emitters, sums;
     };
     const Data& pass = graph.addPass<Data>(
         "refraction.glass_shadow",
@@ -46,8 +45,11 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
             b.read(buffers.vertices);
             b.read(buffers.materials);
             d.atlas = b.write(atlas);
-            if (c.caustics)
-                d.caustics = b.write(buffers.caustics);
+            if (c.caustics) {
+                createCaustics(b, buffers, causticSize(c), c.settings.causticPhotons);
+                d.emitters = buffers.causticEmitters;
+                d.sums = buffers.causticSums;
+            }
         },
         [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
             // textured glass, the caustics' emitters
@@ -65,12 +67,15 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
             const gl::Program& program = **shadow;
             program.use();
             program.set("uFresnelMode", int(c.settings.fresnel));
-            if (c.caustics) {
-                resetCaustics(gpu.caustics, c.frame->shadows->atlasSize / kCausticScale,
-                              c.settings.causticPhotons);
-                program.set("uCausticSize", gpu.caustics.size);
-                gl::bindStorage(slot::kCausticEmitters, gpu.caustics.emitters);
-                gl::bindStorage(slot::kCausticSums, gpu.caustics.sums); // declared, unwritten
+            if (c.caustics) { // emptied: no emitter, no light summed
+                const glm::ivec2 size = causticSize(c);
+                gl::Buffer& emitters = r.buffer(d.emitters);
+                gl::Buffer& sums = r.buffer(d.sums);
+                emitters.fill(0, emitterHeader(std::size_t(size.x) * std::size_t(size.y)), 0u);
+                sums.fill(0, sums.size() / sizeof(std::uint32_t), 0u);
+                program.set("uCausticSize", size);
+                gl::bindStorage(slot::kCausticEmitters, emitters);
+                gl::bindStorage(slot::kCausticSums, sums); // declared, unwritten
             }
             for (const render::ShadowView& view : c.frame->shadows->views) {
                 gl::setViewport({view.tile.x, view.tile.y, view.tile.z, view.tile.z});
@@ -87,8 +92,6 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                 gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};
         });
-    if (c.caustics)
-        buffers.caustics = pass.caustics;
     return pass.atlas;
 }
 

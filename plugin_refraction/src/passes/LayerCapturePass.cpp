@@ -11,8 +11,14 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
     const glm::ivec2 size = c.frame->settings.size;
     struct CaptureData {
         fg::TextureHandle mask;
-        fg::BufferHandle layers;
+        LayerBuffers layers;
     };
+    // With textured glass each layer's surface (and the fallback's bid in the heads); where the
+    // frame accumulates, each layer's motion.
+    const LayerShape shape{size, c.settings.layerCapacity,
+                           c.texturedGlass ? c.settings.layerCapacity : 0,
+                           c.frame->temporal.enabled};
+    c.gpu->layers = shape;
     const auto& captured = graph.addPass<CaptureData>(
         "refraction.layer_capture",
         [&](fg::Builder& b, CaptureData& d) {
@@ -21,7 +27,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             if (c.settings.usesNormalDistance())
                 b.read(buffers.bvh); // d_N
             d.mask = b.write(b.create("refraction.layer_capture.mask", zDesc(size)));
-            d.layers = b.write(buffers.layers);
+            d.layers = createLayers(b, shape);
         },
         [c, defines = layerDefines(c)](const fg::Resources& r, const CaptureData& d,
                                        gl::Context&) -> core::Status {
@@ -30,22 +36,19 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             if (!program)
                 return program.error();
             GpuState& gpu = *c.gpu;
-            const glm::ivec2 viewport = c.frame->settings.size;
-            // With textured glass: each layer's surface (the fallback's bid in the heads).
-            const int surfaces = c.texturedGlass ? c.settings.layerCapacity : 0;
-            ensureLayerStorage(gpu.layers, viewport, c.settings.layerCapacity, surfaces,
-                               c.frame->temporal.enabled);
             // The counts, then the fallback's nearest front (bid down from the most) and
             // farthest back (bid up from 0) words, a plane of pixels each, then the overflow
             // list's count and work groups (layers.glsl).
-            const std::size_t pixels = std::size_t(viewport.x) * std::size_t(viewport.y);
-            const std::size_t side = (layerHeadPlanes(surfaces) - 1) / 2 * pixels;
-            const std::size_t word = sizeof(std::uint32_t), list = overflowListOffset(gpu.layers);
-            gpu.layers.heads.fill(0, pixels, 0u);
-            gpu.layers.heads.fill(pixels * word, side, 0xFFFFFFFFu);
-            gpu.layers.heads.fill((pixels + side) * word, side, 0u);
-            gpu.layers.heads.fill(list, 2, 0u);
-            gpu.layers.heads.fill(list + 2 * word, 2, 1u);
+            const LayerShape& made = d.layers.shape;
+            const std::size_t pixels = made.pixels();
+            const std::size_t side = (layerHeadPlanes(made.surfaceSlots) - 1) / 2 * pixels;
+            const std::size_t word = sizeof(std::uint32_t), list = overflowListOffset(made);
+            gl::Buffer& heads = r.buffer(d.layers.heads);
+            heads.fill(0, pixels, 0u);
+            heads.fill(pixels * word, side, 0xFFFFFFFFu);
+            heads.fill((pixels + side) * word, side, 0u);
+            heads.fill(list, 2, 0u);
+            heads.fill(list + 2 * word, 2, 1u);
             // Depth only: the shading pass's mask.
             if (auto bound =
                     gpu.framebuffer.bindTargets("refraction.layer_capture", {}, &r.texture(d.mask));
@@ -53,7 +56,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
                 return bound;
             gl::clearDepth(1.0f);
             (*program)->use();
-            c.setLayerUniforms(**program);
+            c.setLayerUniforms(**program, r, d.layers);
             c.drawGlassMaterials(**program,
                                  {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
             // the arrays and the overflow list for layer_overflow's dispatch

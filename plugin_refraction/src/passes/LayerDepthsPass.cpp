@@ -13,14 +13,17 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
     // The depths the walk's searches read, as maps (one texel fetch per sample).
     struct ResolveData {
         fg::TextureHandle mask, depths0, depths1;
+        LayerBuffers layers;
+        fg::BufferHandle extent;
     };
     const bool twoMaps = c.settings.layerCapacity > 4;
     const gl::TextureDesc depthsDesc{size, gl::Format::RGBA32F, 1};
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.layer_depths",
         [&](fg::Builder& b, ResolveData& d) {
-            b.read(buffers.layers);
-            b.read(buffers.extent);
+            readLayers(b, buffers.layers);
+            d.layers = buffers.layers;
+            d.extent = b.read(buffers.extent);
             d.mask = b.read(mask);
             d.depths0 = b.write(b.create("refraction.layer_depths.depths0", depthsDesc));
             if (twoMaps)
@@ -43,8 +46,8 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
             for (int i = 0; i < int(targets.size()); ++i)
                 gl::clearColor(i, glm::vec4(kNoDepth));
             (*program)->use();
-            c.setLayerUniforms(**program);
-            c.drawMaskedRectangle();
+            c.setLayerUniforms(**program, r, d.layers);
+            c.drawMaskedRectangle(r.buffer(d.extent));
             return {};
         });
 

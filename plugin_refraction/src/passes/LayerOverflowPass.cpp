@@ -8,21 +8,21 @@ namespace refraction {
 
 void addLayerOverflowPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers) {
     struct OverflowData {
-        fg::BufferHandle layers;
+        LayerBuffers layers;
     };
     const auto& bid = graph.addPass<OverflowData>(
         "refraction.layer_overflow",
-        [&](fg::Builder& b, OverflowData& d) { d.layers = b.write(buffers.layers); },
-        [c, defines = layerDefines(c)](const fg::Resources&, const OverflowData&,
+        [&](fg::Builder& b, OverflowData& d) { d.layers = writeLayers(b, buffers.layers); },
+        [c, defines = layerDefines(c)](const fg::Resources& r, const OverflowData& d,
                                        gl::Context&) -> core::Status {
             auto program = c.compute("refraction/passes/layer_overflow.comp.glsl", defines);
             if (!program)
                 return program.error();
-            const GpuState::LayerStorage& layers = c.gpu->layers;
             (*program)->use();
-            c.setLayerUniforms(**program);
+            c.setLayerUniforms(**program, r, d.layers);
             // the list's work groups, after its count (layers.glsl overflowIndex)
-            gl::dispatchIndirect(layers.heads, overflowListOffset(layers) + sizeof(std::uint32_t));
+            gl::dispatchIndirect(r.buffer(d.layers.heads),
+                                 overflowListOffset(d.layers.shape) + sizeof(std::uint32_t));
             // the arrays for the passes that read them; the heads for the next frame's clear
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
             return {};

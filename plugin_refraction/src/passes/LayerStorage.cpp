@@ -1,30 +1,46 @@
-// The layer arrays' sizes (layers.glsl): what they hold a pixel, reallocated when that changes.
+// The layer arrays (layers.glsl) as the frame graph lends them, and their sizes: what they hold
+// a pixel.
 #include "Passes.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
 
 namespace refraction {
 
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        int surfaceSlots, bool motions) {
-    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
-    const std::size_t motionBytes =
-        motions ? pixels * std::size_t(capacity) * sizeof(std::uint32_t) : sizeof(std::uint32_t);
-    if (layers.motions.size() != motionBytes)
-        layers.motions = gl::Buffer(motionBytes);
-    const std::size_t layerBytes = 2 * sizeof(std::uint32_t) * pixels;
-    const std::size_t surfaceBytes = layerBytes * std::size_t(surfaceSlots);
-    if (layers.surfaces.size() != surfaceBytes)
-        layers.surfaces = surfaceSlots > 0 ? gl::Buffer(surfaceBytes) : gl::Buffer();
-    layers.surfaceSlots = surfaceSlots;
-    const std::size_t headBytes =
-        (pixels * layerHeadWords(surfaceSlots) + kOverflowListHeader) * sizeof(std::uint32_t);
-    if (layers.heads.size() != headBytes)
-        layers.heads = gl::Buffer(headBytes);
-    if (layers.size == size && layers.capacity == capacity)
-        return;
-    layers.depths = gl::Buffer(pixels * layerDepthSlots(capacity) * sizeof(float));
-    layers.attrs = gl::Buffer(layerBytes * std::size_t(capacity));
-    layers.size = size;
-    layers.capacity = capacity;
+LayerBuffers createLayers(fg::Builder& b, const LayerShape& shape) {
+    const std::size_t pixels = shape.pixels(), word = sizeof(std::uint32_t);
+    const std::size_t layer = 2 * word * pixels; // a uvec2 a pixel
+    const auto create = [&](const char* name, std::size_t bytes) {
+        return b.write(b.create(std::string("refraction.layers.") + name, gl::BufferDesc{bytes}));
+    };
+    LayerBuffers layers;
+    layers.shape = shape;
+    layers.heads =
+        create("heads", (pixels * layerHeadWords(shape.surfaceSlots) + kOverflowListHeader) * word);
+    layers.depths = create("depths", pixels * layerDepthSlots(shape.capacity) * sizeof(float));
+    layers.attrs = create("attrs", layer * std::size_t(shape.capacity));
+    if (shape.surfaceSlots > 0)
+        layers.surfaces = create("surfaces", layer * std::size_t(shape.surfaceSlots));
+    layers.motions =
+        create("motions", shape.motions ? pixels * std::size_t(shape.capacity) * word : word);
+    return layers;
+}
+
+LayerBuffers writeLayers(fg::Builder& b, const LayerBuffers& layers) {
+    LayerBuffers written = layers;
+    for (fg::BufferHandle* h :
+         {&written.heads, &written.depths, &written.attrs, &written.surfaces, &written.motions})
+        if (h->valid())
+            *h = b.write(*h);
+    return written;
+}
+
+void readLayers(fg::Builder& b, const LayerBuffers& layers) {
+    for (fg::BufferHandle h :
+         {layers.heads, layers.depths, layers.attrs, layers.surfaces, layers.motions})
+        if (h.valid())
+            b.read(h);
 }
 
 std::size_t layerHeadPlanes(int surfaceSlots) {
@@ -36,9 +52,8 @@ std::size_t layerHeadWords(int surfaceSlots) {
     return layerHeadPlanes(surfaceSlots) + 1; // and the pixel's place in the overflow list
 }
 
-std::size_t overflowListOffset(const GpuState::LayerStorage& layers) {
-    const std::size_t pixels = std::size_t(layers.size.x) * std::size_t(layers.size.y);
-    return layerHeadPlanes(layers.surfaceSlots) * pixels * sizeof(std::uint32_t);
+std::size_t overflowListOffset(const LayerShape& shape) {
+    return layerHeadPlanes(shape.surfaceSlots) * shape.pixels() * sizeof(std::uint32_t);
 }
 
 std::size_t layerDepthSlots(int capacity) {

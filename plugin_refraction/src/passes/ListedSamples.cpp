@@ -16,7 +16,7 @@ void declareListedSamples(fg::Builder& b, TraceData& d, const FrameContext& c,
                           FrameBuffers& buffers, const SceneInputs& scene, const Capture& capture,
                           const Walked& walked, ListedPixels list) {
     d.in = readWalkInputs(b, c, buffers, scene, capture);
-    b.read(buffers.handedOver); // the traced samples' program reads the hybrid's list
+    d.handedOver = b.read(buffers.handedOver); // the traced samples' program reads the list
     d.counters = b.write(buffers.counters);
     d.color = b.write(walked.color);
     if (list == ListedPixels::HandedOver && walked.motion.valid()) {
@@ -54,9 +54,10 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
     GpuState& gpu = *c.gpu;
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
-    gl::bindStorage(slot::kHandedOver, gpu.handedOver);
+    gl::Buffer& handedOver = r.buffer(d.handedOver);
+    gl::bindStorage(slot::kHandedOver, handedOver);
     c.setWalkUniforms(program);
-    c.setLayerUniforms(program);
+    c.setLayerUniforms(program, r, d.in.layers);
     program.set("uTraceWeight", 1.0f / float(samples));
     gl::bindImage(gl::slot::kOutputImage, r.texture(d.color), 0, true);
     if (d.motion.valid()) {
@@ -70,7 +71,7 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
         if (list == ListedPixels::Fresh)
             gl::dispatchIndirect(gpu.counters, offsetof(WalkCountersGpu, freshGroups));
         else
-            gl::dispatchIndirect(gpu.handedOver, sizeof(std::uint32_t));
+            gl::dispatchIndirect(handedOver, sizeof(std::uint32_t));
         gl::memoryBarrier(gl::BarrierImage | gl::BarrierStorage | gl::BarrierCommand);
     }
     gl::memoryBarrier(gl::BarrierTexture | gl::BarrierFramebuffer | gl::BarrierBufferUpdate);

@@ -12,11 +12,12 @@ fg::TextureHandle addOutlinesPass(fg::FrameGraph& graph, const FrameContext& c,
                                   const Walked& walked) {
     struct OutlineData {
         fg::TextureHandle shaded, surface, out;
+        fg::BufferHandle extent;
     };
     const auto& outlined = graph.addPass<OutlineData>(
         "refraction.outlines",
         [&](fg::Builder& b, OutlineData& d) {
-            b.read(buffers.extent);
+            d.extent = b.read(buffers.extent);
             d.shaded = b.read(walked.color);
             d.surface = b.read(walked.surface);
             d.out = b.write(scene.color);
@@ -38,7 +39,7 @@ fg::TextureHandle addOutlinesPass(fg::FrameGraph& graph, const FrameContext& c,
             gl::bindTexture(slot::kSceneColor, r.texture(d.shaded));
             gl::bindTexture(slot::kOutlineSurface, r.texture(d.surface));
             gl::apply({.cull = gl::Cull::None, .depthTest = false, .depthWrite = false});
-            c.drawRectangle();
+            c.drawRectangle(r.buffer(d.extent));
             return {};
         });
     return outlined.out;

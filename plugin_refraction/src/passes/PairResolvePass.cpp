@@ -16,7 +16,8 @@ namespace {
 struct ResolveData {
     PairTargets pair;
     fg::TextureHandle sceneDepth, depths0, normals[2], mask;
-    fg::BufferHandle layers, pairRanges;
+    LayerBuffers layers;
+    fg::BufferHandle extent, pairRanges;
 };
 
 /** The resolve's variant: of the one gathered pass, or of the two passes (with the glass's
@@ -37,8 +38,6 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     if (!resolve)
         return resolve.error();
     const bool surfaces = d.pair.frontSurface.valid();
-    ensureLayerStorage(gpu.layers, c.frame->settings.size, 2, surfaces ? 2 : 0,
-                       c.frame->temporal.enabled);
     std::vector<const gl::Texture*> targets{&r.texture(d.depths0)};
     if (gathered)
         targets.insert(targets.end(), {&r.texture(d.normals[0]), &r.texture(d.normals[1])});
@@ -53,14 +52,15 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     gl::clearDepth(1.0f);
     // The depth ranges empty: the back's [FLT_MAX, 0], the front's nearest FLT_MAX.
     constexpr std::uint32_t kFloatMax = 0x7F7FFFFFu;
-    gpu.pairRanges.fill(offsetof(PairRangesGpu, backRange), 1, kFloatMax);
-    gpu.pairRanges.fill(offsetof(PairRangesGpu, backRange) + 4, 1, 0u);
-    gpu.pairRanges.fill(offsetof(PairRangesGpu, frontMin), 1, kFloatMax);
-    gl::bindStorage(slot::kPairRanges, gpu.pairRanges);
+    gl::Buffer& ranges = r.buffer(d.pairRanges);
+    ranges.fill(offsetof(PairRangesGpu, backRange), 1, kFloatMax);
+    ranges.fill(offsetof(PairRangesGpu, backRange) + 4, 1, 0u);
+    ranges.fill(offsetof(PairRangesGpu, frontMin), 1, kFloatMax);
+    gl::bindStorage(slot::kPairRanges, ranges);
     gl::apply({.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
     const gl::Program& program = **resolve;
     program.use();
-    c.setLayerUniforms(program);
+    c.setLayerUniforms(program, r, d.layers);
     // The pair's maps in pair_resolve.frag.glsl's order (one pass's two, or two passes' four).
     const fg::TextureHandle maps[] = {d.pair.nearTargets, d.pair.farTargets, d.pair.frontDepth,
                                       d.pair.frontNormal, d.pair.backDepth,  d.pair.backNormal};
@@ -76,7 +76,7 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     program.set("uGlassId", c.firstGlassId);
     program.set("uNear", c.frame->camera.znear);
     program.set("uFar", c.frame->camera.zfar);
-    c.drawRectangle();
+    c.drawRectangle(r.buffer(d.extent));
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate); // and the next clear
     if (gathered) {
         r.texture(d.normals[1]).generateMipmaps(); // DIR §3.1: mip-filtered normals
@@ -92,12 +92,16 @@ Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
                            const SceneInputs& scene, const PairTargets& pair) {
     const glm::ivec2 size = c.frame->settings.size;
     const bool gathered = pair.nearTargets.valid();
+    // Layers 0 and 1 (K = 2), with textured glass their surfaces, where the frame accumulates
+    // the front's motion.
+    const LayerShape shape{size, 2, pair.frontSurface.valid() ? 2 : 0, c.frame->temporal.enabled};
+    c.gpu->layers = shape;
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.pair_resolve",
         [&](fg::Builder& b, ResolveData& d) {
-            b.read(buffers.extent);
-            d.pairRanges = b.write(buffers.pairRanges);
-            d.layers = b.write(buffers.layers);
+            d.extent = b.read(buffers.extent);
+            d.pairRanges = b.write(b.create("refraction.pair_ranges", {sizeof(PairRangesGpu)}));
+            d.layers = createLayers(b, shape);
             for (auto [from, to] : {std::pair{pair.nearTargets, &d.pair.nearTargets},
                                     std::pair{pair.farTargets, &d.pair.farTargets},
                                     std::pair{pair.frontDepth, &d.pair.frontDepth},

@@ -102,11 +102,12 @@ struct FrameContext {
     void drawGlass(const gl::Program& program, const gl::PipelineState& state,
                    const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {},
                    const std::optional<GlassView>& from = {}) const;
-    /** Draws the glass rectangle (rectangle.vert.glsl) with the bound program against the bound
-     *  mask: the early depth test runs the program only on glass pixels. */
-    void drawMaskedRectangle(gl::Blend blend = gl::Blend::None) const;
+    /** Draws the glass rectangle (rectangle.vert.glsl: from the glass's extent `extent`) with
+     *  the bound program against the bound mask: the early depth test runs the program only on
+     *  glass pixels. */
+    void drawMaskedRectangle(const gl::Buffer& extent, gl::Blend blend = gl::Blend::None) const;
     /** The glass rectangle with the state as it is (no mask test unless set). */
-    void drawRectangle() const;
+    void drawRectangle(const gl::Buffer& extent) const;
     /** What the walk and the outline pass set alike: searches and march, TIR policy, Fresnel,
      *  debug view, camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
@@ -114,8 +115,9 @@ struct FrameContext {
      *  `from` (the camera's when not given). */
     void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
                             const std::optional<GlassView>& from = {}) const;
-    /** layers.glsl's uniforms and the layer arrays. */
-    void setLayerUniforms(const gl::Program& program) const;
+    /** layers.glsl's uniforms and the layer arrays `layers` (LayerBuffers, below). */
+    void setLayerUniforms(const gl::Program& program, const fg::Resources& r,
+                          const struct LayerBuffers& layers) const;
     /** The trace's and the hybrid's samples a frame (one where the frame accumulates). */
     int traceSamples() const;
     /** Where the frame accumulates while anything moves (its history's second frame on), the
@@ -138,19 +140,32 @@ struct FrameContext {
     gl::TextureDesc sceneTiles() const;
 };
 
-/** The frame graph's buffers the passes order themselves by: the engine's deformed vertices
- *  and the plugin's own (GpuState), imported each frame. A pass that writes one leaves the new
- *  version here for the passes after it. */
+/** The layer arrays (layers.glsl), lent by the frame graph for one frame: transient buffers
+ *  the capture (or the pair's resolve) creates for `shape`, which every pass after it reads or
+ *  writes through these handles. surfaces: with textured glass only; motions: a word where the
+ *  frame does not accumulate (layers.glsl declares them). */
+struct LayerBuffers {
+    LayerShape shape;
+    fg::BufferHandle heads, depths, attrs, surfaces, motions;
+};
+
+/** The frame graph's buffers the passes order themselves by: the engine's deformed vertices,
+ *  the plugin's own storage (GpuState) imported each frame, and the layer arrays once a capture
+ *  has created them. A pass that writes one leaves the new version here for the passes after
+ *  it. */
 struct FrameBuffers {
     fg::BufferHandle vertices;   ///< the engine's deformed vertices (plugin::kSceneVertices)
     fg::BufferHandle bvh;        ///< GpuState::glass: the glass BVH and ISR's d_N
-    fg::BufferHandle extent;     ///< GpuState::extent (glass_extent.glsl)
-    fg::BufferHandle pairRanges; ///< GpuState::pairRanges (pair_ranges.glsl)
+    fg::BufferHandle extent;     ///< the glass's extent (glass_extent.glsl; transient)
+    fg::BufferHandle pairRanges; ///< the pair's (pair_ranges.glsl), from its resolve (transient)
     fg::BufferHandle counters;   ///< GpuState::counters (walk_counters.glsl)
     fg::BufferHandle materials;  ///< GpuState::glassMaterials (glass_materials.glsl)
-    fg::BufferHandle layers;     ///< GpuState::layers (what the capture holds)
-    fg::BufferHandle handedOver; ///< GpuState::handedOver (the hybrid's list, walk.glsl)
-    fg::BufferHandle caustics;   ///< GpuState::caustics (caustics.glsl)
+    LayerBuffers layers;         ///< what the capture holds (transient)
+    fg::BufferHandle handedOver; ///< the hybrid's list (walk.glsl), from the walk (transient)
+    /** The caustics' storage (caustics.glsl; transient, from the glass shadow pass): the
+     *  emitters (a count, the photons' work groups, a bit a texel, the photon list) and the sums
+     *  (four words a cell, the fine cells' then the coarse). */
+    fg::BufferHandle causticEmitters, causticSums;
 };
 
 /** The scene the glass is drawn over, from the blackboard; where the frame accumulates, the
@@ -176,6 +191,9 @@ struct Capture {
 /** What the walk and the hybrid's trace read alike: the capture, the scene under the glass. */
 struct WalkInputs {
     Capture capture;
+    LayerBuffers layers;
+    fg::BufferHandle extent;
+    fg::BufferHandle pairRanges; ///< with the pair
     fg::TextureHandle sceneColor, sceneDepth, sceneDepthTiles;
     render::ShadowAtlases shadows;
 };
@@ -231,12 +249,14 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
 
 // ---- The layer arrays (LayerStorage.cpp)
 
-/** The layer arrays for `size` and capacity K, `surfaceSlots` surfaces a pixel (0: none;
- *  with textured glass K, and then the overflow fallback bids for its surfaces in the heads)
- *  and with `motions` (the frame accumulates) each layer's motion, reallocated only when one
- *  changes. */
-void ensureLayerStorage(GpuState::LayerStorage& layers, glm::ivec2 size, int capacity,
-                        int surfaceSlots = 0, bool motions = false);
+/** The layer arrays for `shape` (surfaceSlots: 0, none, or with textured glass K, and then the
+ *  overflow fallback bids for its surfaces in the heads), created and written by the pass `b`
+ *  declares (their contents undefined until it writes them). */
+LayerBuffers createLayers(fg::Builder& b, const LayerShape& shape);
+/** Declares that the pass writes (on top of) every array of `layers`; returns the new versions. */
+LayerBuffers writeLayers(fg::Builder& b, const LayerBuffers& layers);
+/** Declares that the pass reads every array of `layers`. */
+void readLayers(fg::Builder& b, const LayerBuffers& layers);
 /** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers,
  *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */
@@ -247,7 +267,7 @@ std::size_t layerBytesPerPixel(int capacity, bool outlines, int surfaceSlots = 0
 std::size_t layerHeadPlanes(int surfaceSlots);
 inline constexpr std::size_t kOverflowListHeader = 4;
 /** Where the list of the overflowing pixels starts in the layer heads, in bytes. */
-std::size_t overflowListOffset(const GpuState::LayerStorage& layers);
+std::size_t overflowListOffset(const LayerShape& shape);
 /** Words per pixel in the layer heads, the overflow list's included. */
 std::size_t layerHeadWords(int surfaceSlots);
 /** Depth slots per pixel: whole vec4s (layers.glsl reads four at once). */
@@ -271,9 +291,13 @@ void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
  *  caustics atlas over the shadow views' tiles; returns it (plugin::kShadowCaustics). */
 fg::TextureHandle addCausticResolvePass(fg::FrameGraph& graph, const FrameContext& c,
                                         FrameBuffers& buffers);
+/** The caustics atlas's size: the shadow atlases' over kCausticScale. */
+inline glm::ivec2 causticSize(const FrameContext& c) {
+    return c.frame->shadows->atlasSize / kCausticScale;
+}
 /** What the photons' passes and the resolve share: the atlas's size and the budget. */
 inline void setCausticUniforms(const gl::Program& program, const FrameContext& c) {
-    program.set("uCausticSize", c.gpu->caustics.size);
+    program.set("uCausticSize", causticSize(c));
     program.set("uPhotonBudget", c.settings.causticPhotons);
 }
 /** ISR and trace: the glass BVH refitted (or rebuilt) to the frame's deformed glass; for ISR
@@ -335,7 +359,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
 struct TraceData {
     WalkInputs in;
     fg::TextureHandle sceneMotion, historyColor, historyMotion, color, motion;
-    fg::BufferHandle counters;
+    fg::BufferHandle counters, handedOver;
 };
 /** The pixels a listed pass samples: those the hybrid's walk handed over, or the fresh ones. */
 enum class ListedPixels : int { HandedOver, Fresh };

@@ -16,14 +16,15 @@ namespace refraction {
 
 namespace {
 
-/** The hybrid's list of handed-over pixels emptied (no work group, no pixel's bit), grown to
- *  the viewport: count, work groups (x, y, z), then a bit a pixel and the list. */
+/** Words of a bit a pixel of a `size` frame. */
+std::size_t pixelBitWords(glm::ivec2 size) {
+    return (std::size_t(size.x) * std::size_t(size.y) + 31) / 32;
+}
+
+/** The hybrid's list of handed-over pixels emptied (no work group, no pixel's bit): count,
+ *  work groups (x, y, z), then a bit a pixel and the list. */
 void resetHandedOver(gl::Buffer& handedOver, glm::ivec2 size) {
-    const std::size_t pixels = std::size_t(size.x) * std::size_t(size.y);
-    const std::size_t bits = (pixels + 31) / 32;
-    const std::size_t bytes = (4 + bits + pixels) * sizeof(std::uint32_t);
-    if (handedOver.size() < bytes)
-        handedOver = gl::Buffer(bytes);
+    const std::size_t bits = pixelBitWords(size);
     handedOver.fill(0, 2, 0u);
     handedOver.fill(2 * sizeof(std::uint32_t), 2, 1u);
     handedOver.fill(4 * sizeof(std::uint32_t), bits, 0u);
@@ -94,21 +95,22 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
     if (auto bound = bindWalkInputs(r, c, d.in); !bound)
         return bound;
     if (d.handedOver.valid()) {
-        resetHandedOver(gpu.handedOver, c.frame->settings.size);
-        gl::bindStorage(slot::kHandedOver, gpu.handedOver);
+        resetHandedOver(r.buffer(d.handedOver), c.frame->settings.size);
+        gl::bindStorage(slot::kHandedOver, r.buffer(d.handedOver));
     }
     // The trace's and the hybrid's samples one draw each, added up (their weights sum to 1; a
     // debug view shows the first alone); while a frame accumulates, one, and while anything
     // moves the fresh samples' pass takes the later ones where the first lists the pixel.
     const int draws = c.settings.traces() && c.settings.debug == 0 ? c.traceSamples() : 1;
     c.setWalkUniforms(program);
-    c.setLayerUniforms(program);
+    c.setLayerUniforms(program, r, d.in.layers);
     program.set("uTraceWeight", 1.0f / float(draws));
     for (int s = 0; s < draws; ++s) {
         if (hybrid && s == 1) // the pixels the first handed over
             gl::memoryBarrier(gl::BarrierStorage);
         program.set("uTraceSample", s);
-        c.drawMaskedRectangle(s == 0 ? gl::Blend::None : gl::Blend::Additive);
+        c.drawMaskedRectangle(r.buffer(d.in.extent),
+                              s == 0 ? gl::Blend::None : gl::Blend::Additive);
     }
     // The motion written, for the resolve; the list and counts, for the trace pass.
     // (and the counts and list for their next clear, or layerStats' read back)
@@ -130,7 +132,10 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
             // The hybrid's list, bound for its trace pass (and the traced fresh samples').
             if (c.settings.method == Settings::Method::Hybrid ||
                 (c.settings.traces() && c.freshSamples() > 1))
-                d.handedOver = b.write(buffers.handedOver);
+                d.handedOver = b.write(b.create(
+                    "refraction.handed_over",
+                    {(4 + pixelBitWords(size) + std::size_t(size.x) * std::size_t(size.y)) *
+                     sizeof(std::uint32_t)}));
             d.out = b.write(b.create("refraction.walk.color", walkDesc(size, c.settings)));
             if (scene.motion.valid()) { // the scene's motion, the glass pixels' written over
                 d.sceneMotion = b.read(scene.motion);

@@ -98,9 +98,10 @@ bool sampledPaths() {
 }
 
 #if HYBRID_LIST // the hybrid's walk and its trace pass
-// The hybrid's pixels handed to the trace (GpuState::handedOver): their count, the trace pass's
-// work groups of 64 (hybrid_trace.comp.glsl's indirect dispatch), then a bit a pixel (row by
-// row, handedOverListStart words) and the list of the pixels (x | y << 16).
+// The hybrid's pixels handed to the trace (refraction.handed_over, a buffer the walk creates):
+// their count, the trace pass's work groups of 64 (hybrid_trace.comp.glsl's indirect dispatch),
+// then a bit a pixel (row by row, handedOverListStart words) and the list of the pixels
+// (x | y << 16).
 layout(std430, binding = HANDED_OVER_BINDING) buffer HandedOver {
     uint handedOverCount, handedOverGroups[3];
     uint handedOverWords[];
