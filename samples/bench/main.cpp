@@ -49,7 +49,8 @@ triangles drawn, pixels the world covers (CPU coverage of the deformed file tria
 middle of the clip) and the GPU memory of the frame graph's pooled textures and buffers (the
 layer arrays among them). Without --instances every pass is timed alone, the wall clock between
 a finish before it and one after it (exact per-pass GPU times; the CPU times then include those
-waits); with it, frames pipeline as in an application and pass times come from the timer queries. Prints a table (and a progress line on a terminal).)";
+waits); with it, frames pipeline as in an application and pass times come from the timer
+queries. Prints a table (and a progress line on a terminal).)";
 
 /** The steps glass-bench --skip can leave out of a frame, each a define SKIP_<STEP> that the
  *  shaders test (RenderSettings::skippedSteps; docs/performance.md, "Where the time goes"). */

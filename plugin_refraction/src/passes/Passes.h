@@ -58,6 +58,15 @@ struct GlassView {
     glm::mat4 view, projection;
 };
 
+/** The layer arrays (layers.glsl), lent by the frame graph for one frame: transient buffers
+ *  the capture (or the pair's resolve) creates for `shape`, which every pass after it reads or
+ *  writes through these handles. surfaces: with textured glass only; motions: a word where the
+ *  frame does not accumulate (layers.glsl declares them). */
+struct LayerBuffers {
+    LayerShape shape;
+    fg::BufferHandle heads, depths, attrs, surfaces, motions;
+};
+
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
 struct FrameContext {
@@ -115,9 +124,9 @@ struct FrameContext {
      *  `from` (the camera's when not given). */
     void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
                             const std::optional<GlassView>& from = {}) const;
-    /** layers.glsl's uniforms and the layer arrays `layers` (LayerBuffers, below). */
+    /** layers.glsl's uniforms and the layer arrays `layers`. */
     void setLayerUniforms(const gl::Program& program, const fg::Resources& r,
-                          const struct LayerBuffers& layers) const;
+                          const LayerBuffers& layers) const;
     /** The trace's and the hybrid's samples a frame (one where the frame accumulates). */
     int traceSamples() const;
     /** Where the frame accumulates while anything moves (its history's second frame on), the
@@ -140,19 +149,10 @@ struct FrameContext {
     gl::TextureDesc sceneTiles() const;
 };
 
-/** The layer arrays (layers.glsl), lent by the frame graph for one frame: transient buffers
- *  the capture (or the pair's resolve) creates for `shape`, which every pass after it reads or
- *  writes through these handles. surfaces: with textured glass only; motions: a word where the
- *  frame does not accumulate (layers.glsl declares them). */
-struct LayerBuffers {
-    LayerShape shape;
-    fg::BufferHandle heads, depths, attrs, surfaces, motions;
-};
-
 /** The frame graph's buffers the passes order themselves by: the engine's deformed vertices,
- *  the plugin's own storage (GpuState) imported each frame, and the layer arrays once a capture
- *  has created them. A pass that writes one leaves the new version here for the passes after
- *  it. */
+ *  the plugin's storage kept across frames (GpuState), imported each frame, and the transient
+ *  buffers this frame's passes create once they have. A pass that writes one leaves the new
+ *  version here for the passes after it. */
 struct FrameBuffers {
     fg::BufferHandle vertices;   ///< the engine's deformed vertices (plugin::kSceneVertices)
     fg::BufferHandle bvh;        ///< GpuState::glass: the glass BVH and ISR's d_N
