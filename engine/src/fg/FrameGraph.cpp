@@ -28,6 +28,7 @@ struct FrameGraph::Resource {
     void* object = nullptr; // imported object, or the pooled one while alive
     std::uint32_t latestNode = UINT32_MAX;
     int firstUse = -1, lastUse = -1; // positions in mOrder
+    bool glBuffer = false;           // a gl::Buffer: transient, or imported as one
 };
 
 struct FrameGraph::Node {
@@ -90,6 +91,12 @@ BufferHandle FrameGraph::importBuffer(const std::string& name, void* object) {
     return BufferHandle{addImported(name, {}, object, true)};
 }
 
+BufferHandle FrameGraph::importBuffer(const std::string& name, gl::Buffer& buffer) {
+    const BufferHandle handle{addImported(name, {}, &buffer, true)};
+    mResources.back().glBuffer = true;
+    return handle;
+}
+
 TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
     const std::uint32_t node = mGraph.addCreated(name, desc, {}, false);
     mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
@@ -98,6 +105,7 @@ TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& de
 
 BufferHandle Builder::create(const std::string& name, const gl::BufferDesc& desc) {
     const std::uint32_t node = mGraph.addCreated(name, {}, desc, true);
+    mGraph.mResources.back().glBuffer = true;
     mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
     return BufferHandle{node};
 }
@@ -156,6 +164,13 @@ void* Resources::object(BufferHandle handle) const {
     void* object = mGraph.mResources[mGraph.mNodes[handle.node].resource].object;
     ENGINE_CHECK(object != nullptr, "buffer used by a pass that did not declare it");
     return object;
+}
+
+gl::Buffer& Resources::buffer(BufferHandle handle) const {
+    void* buffer = object(handle);
+    const FrameGraph::Resource& r = mGraph.mResources[mGraph.mNodes[handle.node].resource];
+    ENGINE_CHECK(r.glBuffer, "'" + r.name + "' is not a gl::Buffer (reach it through object())");
+    return *static_cast<gl::Buffer*>(buffer);
 }
 
 core::Status FrameGraph::checkVersions() const {

@@ -33,8 +33,8 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     FrameBuffers buffers;
     buffers.vertices = blackboard.get<fg::BufferHandle>(plugin::kSceneVertices);
     buffers.bvh = graph.importBuffer("refraction.bvh", &gpu.glass);
-    buffers.counters = graph.importBuffer("refraction.counters", &gpu.counters);
-    buffers.materials = graph.importBuffer("refraction.glass_materials", &gpu.glassMaterials);
+    buffers.counters = graph.importBuffer("refraction.counters", gpu.counters);
+    buffers.materials = graph.importBuffer("refraction.glass_materials", gpu.glassMaterials);
     return buffers;
 }
 

@@ -327,6 +327,33 @@ TEST(FrameGraph, TransientBuffersShareThePoolAcrossPassesAndFrames) {
     EXPECT_EQ(allocator.allocations, 1); // kept across the frames
 }
 
+// Resources::buffer reaches only gl::Buffers: a buffer imported as an object of its own (a BVH,
+// say) is an error there, not a reinterpretation.
+TEST(FrameGraphDeathTest, ABufferImportedAsAnObjectIsNotAGlBuffer) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
+    NoContext context;
+    int tree = 0; // stands for a structure of several buffers
+    const fg::BufferHandle imported = graph.importBuffer("tree", &tree);
+    struct Read {
+        fg::BufferHandle tree;
+    };
+    graph.addPass<Read>(
+        "reader",
+        [&](fg::Builder& b, Read& d) {
+            d.tree = b.read(imported);
+            b.sideEffect();
+        },
+        [&](const fg::Resources& r, const Read& d, gl::Context&) {
+            EXPECT_EQ(r.object(d.tree), &tree);
+            r.buffer(d.tree);
+        });
+    ASSERT_TRUE(graph.compile().ok());
+    EXPECT_DEATH((void)graph.execute(context), "'tree' is not a gl::Buffer");
+}
+
 TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
     FakeAllocator allocator;
     fg::TexturePool pool(allocator);

@@ -78,10 +78,9 @@ public:
     const gl::TextureDesc& desc(TextureHandle handle) const;
     /** The object an imported buffer was given with, or a transient buffer's gl::Buffer. */
     void* object(BufferHandle handle) const;
-    /** A transient buffer (or one imported as a gl::Buffer). */
-    gl::Buffer& buffer(BufferHandle handle) const {
-        return *static_cast<gl::Buffer*>(object(handle));
-    }
+    /** A transient buffer, or one imported as a gl::Buffer (checked: a buffer imported as an
+     *  object of its own is reached through object()). */
+    gl::Buffer& buffer(BufferHandle handle) const;
 
 private:
     friend class FrameGraph;
@@ -143,6 +142,9 @@ public:
     /** A buffer (or a set of buffers: `object` is whatever its passes need) that lives outside
      *  the graph. Version 0 counts as written; passes that write it are never culled. */
     BufferHandle importBuffer(const std::string& name, void* object);
+    /** One gl::Buffer that lives outside the graph, which its passes reach through
+     *  Resources::buffer. */
+    BufferHandle importBuffer(const std::string& name, gl::Buffer& buffer);
 
     /** Orders passes (dependencies, then declaration order), culls passes whose outputs nobody
      *  consumes, computes transient lifetimes. Fails on a read of something never written or a
