@@ -19,16 +19,17 @@ struct FrameGraph::Pass {
     std::function<core::Status(const Resources&, gl::Context&)> execute;
 };
 
+enum class FrameGraph::Kind : std::uint8_t { Texture, Buffer, Object };
+
 struct FrameGraph::Resource {
     std::string name;
+    Kind kind = Kind::Texture;
     gl::TextureDesc desc;      // textures only
-    gl::BufferDesc bufferDesc; // buffers only
-    bool buffer = false;
+    gl::BufferDesc bufferDesc; // transient buffers only
     bool imported = false;
     void* object = nullptr; // imported object, or the pooled one while alive
     std::uint32_t latestNode = UINT32_MAX;
     int firstUse = -1, lastUse = -1; // positions in mOrder
-    bool glBuffer = false;           // a gl::Buffer: transient, or imported as one
 };
 
 struct FrameGraph::Node {
@@ -68,44 +69,41 @@ std::string FrameGraph::nodeName(std::uint32_t node) const {
     return "'" + mResources[n.resource].name + "' (version " + std::to_string(n.version) + ")";
 }
 
-std::uint32_t FrameGraph::addImported(const std::string& name, const gl::TextureDesc& desc,
-                                      void* object, bool buffer) {
+std::uint32_t FrameGraph::addImported(const std::string& name, Kind kind,
+                                      const gl::TextureDesc& desc, void* object) {
     ENGINE_CHECK(!mCompiled, "importing '" + name + "' after compile()");
-    mResources.push_back(Resource{name, desc, {}, buffer, true, object});
+    mResources.push_back(Resource{name, kind, desc, {}, true, object});
     return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
 }
 
-std::uint32_t FrameGraph::addCreated(const std::string& name, const gl::TextureDesc& texture,
-                                     const gl::BufferDesc& buffer, bool isBuffer) {
+std::uint32_t FrameGraph::addCreated(const std::string& name, Kind kind,
+                                     const gl::TextureDesc& texture, const gl::BufferDesc& buffer) {
     ENGINE_CHECK(!mCompiled, "creating '" + name + "' after compile()");
-    mResources.push_back(Resource{name, texture, buffer, isBuffer, false, nullptr});
+    mResources.push_back(Resource{name, kind, texture, buffer, false, nullptr});
     return addNode(std::uint32_t(mResources.size() - 1), 0, UINT32_MAX);
 }
 
 TextureHandle FrameGraph::importTexture(const std::string& name, const gl::TextureDesc& desc,
                                         void* object) {
-    return TextureHandle{addImported(name, desc, object, false)};
+    return TextureHandle{addImported(name, Kind::Texture, desc, object)};
 }
 
 BufferHandle FrameGraph::importBuffer(const std::string& name, void* object) {
-    return BufferHandle{addImported(name, {}, object, true)};
+    return BufferHandle{addImported(name, Kind::Object, {}, object)};
 }
 
 BufferHandle FrameGraph::importBuffer(const std::string& name, gl::Buffer& buffer) {
-    const BufferHandle handle{addImported(name, {}, &buffer, true)};
-    mResources.back().glBuffer = true;
-    return handle;
+    return BufferHandle{addImported(name, Kind::Buffer, {}, &buffer)};
 }
 
 TextureHandle Builder::create(const std::string& name, const gl::TextureDesc& desc) {
-    const std::uint32_t node = mGraph.addCreated(name, desc, {}, false);
+    const std::uint32_t node = mGraph.addCreated(name, FrameGraph::Kind::Texture, desc, {});
     mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
     return TextureHandle{node};
 }
 
 BufferHandle Builder::create(const std::string& name, const gl::BufferDesc& desc) {
-    const std::uint32_t node = mGraph.addCreated(name, {}, desc, true);
-    mGraph.mResources.back().glBuffer = true;
+    const std::uint32_t node = mGraph.addCreated(name, FrameGraph::Kind::Buffer, {}, desc);
     mGraph.mPasses[mPass].creates.push_back(mGraph.mNodes[node].resource);
     return BufferHandle{node};
 }
@@ -169,7 +167,8 @@ void* Resources::object(BufferHandle handle) const {
 gl::Buffer& Resources::buffer(BufferHandle handle) const {
     void* buffer = object(handle);
     const FrameGraph::Resource& r = mGraph.mResources[mGraph.mNodes[handle.node].resource];
-    ENGINE_CHECK(r.glBuffer, "'" + r.name + "' is not a gl::Buffer (reach it through object())");
+    ENGINE_CHECK(r.kind == FrameGraph::Kind::Buffer,
+                 "'" + r.name + "' is not a gl::Buffer (reach it through object())");
     return *static_cast<gl::Buffer*>(buffer);
 }
 
@@ -324,7 +323,8 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
     for (std::size_t i = 0; i < mOrder.size(); ++i) {
         for (Resource& r : mResources)
             if (!r.imported && r.firstUse == int(i))
-                r.object = r.buffer ? mBuffers.acquire(r.bufferDesc) : mTextures.acquire(r.desc);
+                r.object = r.kind == Kind::Buffer ? mBuffers.acquire(r.bufferDesc)
+                                                  : mTextures.acquire(r.desc);
         Pass& pass = mPasses[mOrder[i]];
         if (observer)
             observer->beginPass(pass.name);
@@ -338,7 +338,7 @@ core::Result<std::vector<PassTiming>> FrameGraph::execute(gl::Context& context,
             {pass.name, std::chrono::duration<double, std::milli>(end - start).count()});
         for (Resource& r : mResources)
             if (!r.imported && r.object && (r.lastUse == int(i) || !status)) {
-                if (r.buffer)
+                if (r.kind == Kind::Buffer)
                     mBuffers.release(r.object);
                 else
                     mTextures.release(r.object);
@@ -371,7 +371,7 @@ std::string FrameGraph::dump() const {
         for (std::uint32_t r : pass.creates) {
             const Resource& created = mResources[r];
             out << "      creates '" << created.name << "' ";
-            if (created.buffer)
+            if (created.kind == Kind::Buffer)
                 out << created.bufferDesc.size << " bytes\n";
             else
                 out << created.desc.size.x << "x" << created.desc.size.y << "\n";

@@ -213,8 +213,7 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
                           const SceneInputs& scene, const Capture& capture) {
     WalkInputs in;
     in.extent = b.read(buffers.extent);
-    readLayers(b, buffers.layers);
-    in.layers = buffers.layers;
+    in.layers = readLayers(b, buffers.layers);
     b.read(buffers.materials);
     if (!c.settings.layered())
         in.pairRanges = b.read(buffers.pairRanges);

@@ -21,8 +21,7 @@ Capture addLayerDepthsPass(fg::FrameGraph& graph, const FrameContext& c,
     const auto& resolved = graph.addPass<ResolveData>(
         "refraction.layer_depths",
         [&](fg::Builder& b, ResolveData& d) {
-            readLayers(b, buffers.layers);
-            d.layers = buffers.layers;
+            d.layers = readLayers(b, buffers.layers);
             d.extent = b.read(buffers.extent);
             d.mask = b.read(mask);
             d.depths0 = b.write(b.create("refraction.layer_depths.depths0", depthsDesc));

@@ -27,20 +27,25 @@ LayerBuffers createLayers(fg::Builder& b, const LayerShape& shape) {
     return layers;
 }
 
-LayerBuffers writeLayers(fg::Builder& b, const LayerBuffers& layers) {
-    LayerBuffers written = layers;
+namespace {
+
+/** `layers`, each array's handle the one `declare` (a read or a write) returns for it. */
+template <class Declare> LayerBuffers declared(LayerBuffers layers, Declare declare) {
     for (fg::BufferHandle* h :
-         {&written.heads, &written.depths, &written.attrs, &written.surfaces, &written.motions})
+         {&layers.heads, &layers.depths, &layers.attrs, &layers.surfaces, &layers.motions})
         if (h->valid())
-            *h = b.write(*h);
-    return written;
+            *h = declare(*h);
+    return layers;
 }
 
-void readLayers(fg::Builder& b, const LayerBuffers& layers) {
-    for (fg::BufferHandle h :
-         {layers.heads, layers.depths, layers.attrs, layers.surfaces, layers.motions})
-        if (h.valid())
-            b.read(h);
+} // namespace
+
+LayerBuffers writeLayers(fg::Builder& b, const LayerBuffers& layers) {
+    return declared(layers, [&b](fg::BufferHandle h) { return b.write(h); });
+}
+
+LayerBuffers readLayers(fg::Builder& b, const LayerBuffers& layers) {
+    return declared(layers, [&b](fg::BufferHandle h) { return b.read(h); });
 }
 
 std::size_t layerHeadPlanes(int surfaceSlots) {

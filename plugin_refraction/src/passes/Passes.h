@@ -255,8 +255,8 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
 LayerBuffers createLayers(fg::Builder& b, const LayerShape& shape);
 /** Declares that the pass writes (on top of) every array of `layers`; returns the new versions. */
 LayerBuffers writeLayers(fg::Builder& b, const LayerBuffers& layers);
-/** Declares that the pass reads every array of `layers`. */
-void readLayers(fg::Builder& b, const LayerBuffers& layers);
+/** Declares that the pass reads every array of `layers`; returns the versions read. */
+LayerBuffers readLayers(fg::Builder& b, const LayerBuffers& layers);
 /** Bytes per pixel the layered path keeps at capacity K: the per-pixel head, K layers,
  *  `surfaceSlots` surfaces, the depth maps the walk reads and, with `outlines`, the outline
  *  pass's map. */

@@ -23,7 +23,8 @@ fg::TextureHandle addSceneDepthTilesPass(fg::FrameGraph& graph, const FrameConte
             },
             [c, levels = desc.levels](const fg::Resources& r, const Data& d,
                                       gl::Context&) -> core::Status {
-                auto program = c.frame->programs->compute("refraction/passes/scene_depth_tiles.comp.glsl");
+                auto program =
+                    c.frame->programs->compute("refraction/passes/scene_depth_tiles.comp.glsl");
                 if (!program)
                     return program.error();
                 const gl::Texture& tiles = r.texture(d.tiles);

@@ -173,10 +173,13 @@ private:
     std::uint32_t addPassNode(const std::string& name);
     void setExecute(std::uint32_t pass,
                     std::function<core::Status(const Resources&, gl::Context&)> fn);
-    std::uint32_t addImported(const std::string& name, const gl::TextureDesc& desc, void* object,
-                              bool buffer);
-    std::uint32_t addCreated(const std::string& name, const gl::TextureDesc& texture,
-                             const gl::BufferDesc& buffer, bool isBuffer);
+    /** What a resource is: a texture, a gl::Buffer, or a buffer imported as an object of its
+     *  own (a BVH: Resources::object only). */
+    enum class Kind : std::uint8_t;
+    std::uint32_t addImported(const std::string& name, Kind kind, const gl::TextureDesc& desc,
+                              void* object);
+    std::uint32_t addCreated(const std::string& name, Kind kind, const gl::TextureDesc& texture,
+                             const gl::BufferDesc& buffer);
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
     // compile()'s steps.
