@@ -126,18 +126,7 @@ Capture addPairCapture(fg::FrameGraph& graph, FrameContext& c, FrameBuffers& buf
 
 } // namespace
 
-/** What the frame's first stage decided and imported, which its later stages go on from. */
-struct RefractionPlugin::Frame {
-    bool begun = false; ///< this frame's Shadows stage began it (its AfterOpaque ends it)
-    FrameContext c;
-    FrameBuffers buffers;
-};
-
-bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard) {
-    if (!mFrame)
-        mFrame = std::make_unique<Frame>();
-    *mFrame = Frame{};
-    FrameContext& c = mFrame->c;
+bool RefractionPlugin::beginFrame(FrameContext& c, const fg::Blackboard& blackboard) const {
     c.settings = settings();
     if (c.settings.method == Settings::Method::Opaque)
         return false;
@@ -152,30 +141,26 @@ bool RefractionPlugin::beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackbo
     assignGlassIds(c);
     if (c.gpu->glassOptics.empty())
         return false;
-    c.caustics = c.settings.focusesCaustics() && c.frame->shadows && !c.frame->shadows->empty();
+    c.shadowed = c.settings.glassShadows && c.frame->shadows && !c.frame->shadows->empty();
+    c.caustics = c.shadowed && c.settings.focusesCaustics();
     c.glassModel = glassDefines(c);
-    mFrame->buffers = importBuffers(graph, blackboard, *mGpu);
-    addGlassMaterialsPass(graph, c, mFrame->buffers);
-    mFrame->begun = true;
     return true;
 }
 
 void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                                  fg::Blackboard& blackboard) {
-    if (!mGpu || stage == plugin::Stage::BeforeTonemap)
+    if (!mGpu || stage != plugin::Stage::AfterOpaque)
         return;
-    // The Shadows stage (where lights cast) begins the frame; AfterOpaque goes on from it, or
-    // begins it where there was none.
-    const bool begun = stage == plugin::Stage::AfterOpaque && mFrame && mFrame->begun;
-    if (!begun && !beginFrame(graph, blackboard))
+    FrameContext c; // copied into every pass's callback
+    if (!beginFrame(c, blackboard))
         return;
-    FrameContext& c = mFrame->c;
-    FrameBuffers& buffers = mFrame->buffers;
-    if (stage == plugin::Stage::Shadows) {
-        if (!c.settings.glassShadows)
-            return;
-        if (c.caustics) // the photons' BVH, the frame's from here on
-            addGlassBvhPass(graph, c, buffers);
+    FrameBuffers buffers = importBuffers(graph, blackboard, *mGpu);
+    addGlassMaterialsPass(graph, c, buffers);
+    if (c.settings.usesGlassBvh() || c.caustics)
+        addGlassBvhPass(graph, c, buffers);
+    // The glass's shadow and caustics, which the engine's shading, recorded before, reads as
+    // the frame leaves them: the graph runs these first.
+    if (c.shadowed) {
         blackboard.put(plugin::kShadowGlass,
                        addGlassShadowPass(graph, c, buffers,
                                           blackboard.get<fg::TextureHandle>(plugin::kShadowGlass)));
@@ -184,13 +169,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
                                   blackboard.get<fg::TextureHandle>(plugin::kShadowDepth));
             blackboard.put(plugin::kShadowCaustics, addCausticResolvePass(graph, c, buffers));
         }
-        return;
     }
     SceneInputs scene = sceneInputs(blackboard);
     if (c.marchesScene())
         scene.depthTiles = addSceneDepthTilesPass(graph, c, scene.depth);
-    if (c.settings.usesGlassBvh() && !c.caustics) // else built at the Shadows stage
-        addGlassBvhPass(graph, c, buffers);
     addGlassExtentPass(graph, c, buffers);
     // The capture: the layers (every glass item, whatever its material, in one geometry pass),
     // or the pair.
@@ -212,7 +194,6 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     blackboard.put(plugin::kSceneColor, c.settings.outlinePass()
                                             ? addOutlinesPass(graph, c, buffers, scene, walked)
                                             : walked.color);
-    mFrame->begun = false; // the callbacks hold copies of what they use
 }
 
 LayerStats RefractionPlugin::layerStats() const {

@@ -217,7 +217,7 @@ TEST(CaptureTool, PluginInterfaceVersionIsChecked) {
                       &out),
               1);
     EXPECT_NE(
-        out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/8'"),
+        out.find("built for plugin interface 'glass.plugin/0', this engine needs 'glass.plugin/9'"),
         std::string::npos)
         << out;
     EXPECT_EQ(

@@ -36,6 +36,13 @@ struct FrameGraph::Node {
     std::uint32_t resource;
     std::uint32_t version;
     std::uint32_t writer; // pass, UINT32_MAX for version 0
+    bool final = false;   // a final read's: the version it names, from compile() on
+};
+
+struct FrameGraph::FinalRead {
+    std::uint32_t node, pass;
+    std::string key;
+    std::function<std::uint32_t()> resolve; // the node the blackboard holds under key
 };
 
 FrameGraph::FrameGraph(TexturePool& textures, BufferPool& buffers)
@@ -114,8 +121,18 @@ std::uint32_t Builder::read(std::uint32_t node) {
     return node;
 }
 
+std::uint32_t Builder::readFinal(const std::string& key, std::function<std::uint32_t()> resolve) {
+    ENGINE_CHECK(!mGraph.mCompiled, "readFinal() after compile()");
+    mGraph.mNodes.push_back({UINT32_MAX, 0, UINT32_MAX, true});
+    const auto node = std::uint32_t(mGraph.mNodes.size() - 1);
+    mGraph.mFinalReads.push_back({node, mPass, key, std::move(resolve)});
+    mGraph.mPasses[mPass].reads.push_back(node);
+    return node;
+}
+
 std::uint32_t Builder::write(std::uint32_t node) {
     ENGINE_CHECK(node < mGraph.mNodes.size(), "write() of an invalid handle");
+    ENGINE_CHECK(!mGraph.mNodes[node].final, "write() on a final read");
     const FrameGraph::Node previous = mGraph.mNodes[node];
     // A written version keeps the previous content (draws accumulate), so writing on top of a
     // written or imported version also reads it.
@@ -172,6 +189,19 @@ gl::Buffer& Resources::buffer(BufferHandle handle) const {
     return *static_cast<gl::Buffer*>(buffer);
 }
 
+core::Status FrameGraph::resolveFinalReads() {
+    for (const FinalRead& read : mFinalReads) {
+        const std::uint32_t target = read.resolve();
+        if (target >= mNodes.size() || mNodes[target].final)
+            return core::Error{"fg::FrameGraph::compile(): pass '" + mPasses[read.pass].name +
+                               "' reads the final '" + read.key +
+                               "', which the blackboard holds no version of"};
+        mNodes[read.node] = mNodes[target];
+        mNodes[read.node].final = true;
+    }
+    return {};
+}
+
 core::Status FrameGraph::checkVersions() const {
     const std::string where = "fg::FrameGraph::compile(): ";
     for (const Pass& pass : mPasses) {
@@ -185,6 +215,8 @@ core::Status FrameGraph::checkVersions() const {
     for (std::uint32_t later = 0; later < mNodes.size(); ++later)
         for (std::uint32_t earlier = 0; earlier < later; ++earlier) {
             const Node& n = mNodes[later];
+            if (n.final || mNodes[earlier].final)
+                continue; // another name for a version
             if (mNodes[earlier].resource == n.resource && mNodes[earlier].version == n.version)
                 return core::Error{where + "pass '" + mPasses[n.writer].name +
                                    "' writes an outdated version of '" +
@@ -246,9 +278,9 @@ std::vector<bool> FrameGraph::neededPasses(const Edges& edges) const {
 }
 
 core::Status FrameGraph::orderPasses(const Edges& edges, const std::vector<bool>& needed) {
-    // Kahn's, lowest declaration index first. Handles exist only once their version is
-    // declared, so edges run from earlier passes to later ones; a cycle would be a bug here,
-    // reported rather than left to hang.
+    // Kahn's, lowest declaration index first. Edges run from earlier passes to later ones,
+    // except a final read's, which may run back to a pass recorded before its writer: a cycle
+    // through one is reported, never left to hang.
     const auto passCount = std::uint32_t(mPasses.size());
     std::vector<int> inDegree(passCount, 0);
     for (std::uint32_t p = 0; p < passCount; ++p)
@@ -302,6 +334,8 @@ void FrameGraph::measureLifetimes() {
 }
 
 core::Status FrameGraph::compile() {
+    if (auto resolved = resolveFinalReads(); !resolved)
+        return resolved;
     if (auto valid = checkVersions(); !valid)
         return valid;
     const Edges edges = dependencyEdges();

@@ -336,7 +336,8 @@ core::Result<FrameStats> Renderer::render(const scene::World& world, const Camer
 
     const auto recordStart = std::chrono::steady_clock::now();
     fg::FrameGraph graph(*mTextures, *mBuffers);
-    if (auto recorded = record(graph, frame); !recorded)
+    fg::Blackboard blackboard; // the graph's final reads look it up when it compiles
+    if (auto recorded = record(graph, frame, blackboard); !recorded)
         return recorded.error();
     if (auto compiled = graph.compile(); !compiled)
         return compiled.error();
@@ -443,20 +444,19 @@ FrameInfo Renderer::describeFrame(const scene::World& world, const Camera& camer
     return frame;
 }
 
-core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
+core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame, fg::Blackboard& blackboard) {
     RenderGpu& gpu = *mGpu;
-    fg::Blackboard blackboard;
     const fg::TextureHandle output = graph.importTexture("output", mOutput.desc(), &mOutput);
     const fg::BufferHandle vertices =
         passes::addDeform(graph, gpu, graph.importBuffer("scene.vertices", &gpu.characters));
     blackboard.put(plugin::kSceneVertices, vertices);
     blackboard.put(plugin::kFrame, static_cast<const FrameInfo*>(&frame));
-    const ShadowAtlases shadows = recordShadows(graph, blackboard, frame, vertices);
+    const ShadowAtlases engineShadows = recordShadows(graph, blackboard, frame, vertices);
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
     if (frame.settings.ground)
-        scene = passes::addGround(graph, gpu, frame, scene, shadows);
-    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, shadows);
+        scene = passes::addGround(graph, gpu, frame, scene, blackboard);
+    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, blackboard);
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
     if (scene.motion.valid()) {
@@ -471,6 +471,12 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
     for (plugin::Stage stage : {plugin::Stage::AfterOpaque, plugin::Stage::BeforeTonemap})
         for (plugin::Plugin* p : mPlugins)
             p->addPasses(stage, graph, blackboard);
+    // What the plugins drew into the glass and caustics atlases decides the variants of the
+    // passes that shade with the lights, which pick them where they execute.
+    const ShadowAtlases shadows = ShadowAtlases::of(blackboard);
+    frame.lighting =
+        LightingFeatures::of(gpu.lights, gpu.shadows, shadows.glass != engineShadows.glass,
+                             shadows.caustics != engineShadows.caustics);
 
     fg::TextureHandle color = blackboard.get<fg::TextureHandle>(plugin::kSceneColor);
     if (frame.temporal.enabled)
@@ -485,7 +491,7 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame) {
 }
 
 ShadowAtlases Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
-                                      FrameInfo& frame, fg::BufferHandle vertices) {
+                                      const FrameInfo& frame, fg::BufferHandle vertices) {
     RenderGpu& gpu = *mGpu;
     ShadowAtlases shadows;
     if (gpu.shadows.empty()) {
@@ -501,16 +507,6 @@ ShadowAtlases Renderer::recordShadows(fg::FrameGraph& graph, fg::Blackboard& bla
     blackboard.put(plugin::kShadowDepth, shadows.depth);
     blackboard.put(plugin::kShadowGlass, shadows.glass);
     blackboard.put(plugin::kShadowCaustics, shadows.caustics);
-    if (!gpu.shadows.empty())
-        for (plugin::Plugin* p : mPlugins)
-            p->addPasses(plugin::Stage::Shadows, graph, blackboard);
-    // What the plugins drew into the glass and caustics atlases decides the shading's variants.
-    const ShadowAtlases engineShadows = shadows;
-    shadows.glass = blackboard.get<fg::TextureHandle>(plugin::kShadowGlass);
-    shadows.caustics = blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics);
-    frame.lighting =
-        LightingFeatures::of(gpu.lights, gpu.shadows, shadows.glass != engineShadows.glass,
-                             shadows.caustics != engineShadows.caustics);
     return shadows;
 }
 

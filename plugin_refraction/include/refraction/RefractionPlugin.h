@@ -19,6 +19,7 @@ class GpuDeformer;
 
 namespace refraction {
 
+struct FrameContext;
 struct GpuState;
 struct Settings;
 
@@ -70,12 +71,9 @@ public:
 private:
     /** The parameters decoded, again only after they change. */
     const Settings& settings() const;
-    struct Frame;
-    /** At the frame's first stage: its decisions, glass ids and their model's defines, buffers
-     *  and the glass materials pass, kept in mFrame (its storage reused) for its later stages;
+    /** The frame's decisions into `c`: its settings, glass ids and their model's defines;
      *  false when no glass is drawn. */
-    bool beginFrame(fg::FrameGraph& graph, fg::Blackboard& blackboard);
-    std::unique_ptr<Frame> mFrame;
+    bool beginFrame(FrameContext& c, const fg::Blackboard& blackboard) const;
     plugin::ParameterSet mParameters;
     mutable std::unique_ptr<Settings> mSettings;
     mutable std::uint64_t mSettingsRevision = 0;

@@ -1,7 +1,7 @@
-// `refraction.caustic_photons` (plugin::Stage::Shadows, after the glass shadow pass has marked
-// the emitters): the light the glass refracts, followed from each light's views through the
-// glass BVH onto the receivers as photons (caustic_photons.comp.glsl), summed for the resolve
-// (CausticResolvePass.cpp; docs/materials.md, "Caustics").
+// `refraction.caustic_photons` (after the glass shadow pass has marked the emitters): the light the
+// glass refracts, followed from each light's views through the glass BVH onto the receivers as
+// photons (caustic_photons.comp.glsl), summed for the resolve (CausticResolvePass.cpp;
+// docs/materials.md, "Caustics").
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"

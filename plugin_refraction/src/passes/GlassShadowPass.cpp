@@ -1,4 +1,4 @@
-// `refraction.glass_shadow` (plugin::Stage::Shadows): every glass item from each shadow view of
+// `refraction.glass_shadow`: every glass item from each shadow view of
 // the frame's lights into its tile of the engine's glass atlas, blended (optical depth added,
 // the nearest distance kept: glass_shadow.frag.glsl), so that light through the glass reaches
 // what lies behind it tinted by Fresnel, base colour, transmission and Beer-Lambert over the

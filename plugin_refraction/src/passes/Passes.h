@@ -1,14 +1,13 @@
 // The refraction plugin's passes, one file each in this folder, named like the pass and its
 // shader (a pass drawn twice takes a suffix: pair_surface.back, .front), recorded into the frame
 // graph by RefractionPlugin::addPasses (ARCHITECTURE.md, "One frame"): one pipeline, a capture and
-// the walk. At the Shadows stage, where lights cast:
+// the walk, all at the AfterOpaque stage:
 //   glass_materials (GlassMaterialsPass): the frame's glass optics;
-//   with caustics, glass_bvh (below);
-//   glass_shadow (GlassShadowPass): the glass into the engine's glass atlas, the caustics'
-//     emitters marked; with caustics, caustic_photons -> caustic_resolve.
-// After the opaque scene (where no light casts, the frame begins here with glass_materials):
-//   glass_bvh (GlassBvhPass; ISR and the tracing methods, unless built for the caustics): the
-//     BVH refitted, ISR's d_N cast;
+//   glass_bvh (GlassBvhPass; ISR, the tracing methods and the caustics): the BVH refitted,
+//     ISR's d_N cast;
+//   where lights cast: glass_shadow (GlassShadowPass): the glass into the engine's glass atlas,
+//     the caustics' emitters marked; with caustics, caustic_photons -> caustic_resolve. The
+//     engine's shading reads the atlases as the frame leaves them, so these run before it;
 //   glass_extent (GlassExtentPass): where the glass lies on screen and in view space;
 // then the capture, either
 //   the layers (default): layer_capture (LayerCapturePass: every glass surface of every
@@ -20,7 +19,8 @@
 //     depth-tested ones) -> pair_resolve (PairResolvePass: the pair as layers 0 and 1, with the
 //     maps the papers' search reads);
 // then walk (WalkPass: the walk over the glass pixels), for the hybrid hybrid_trace
-// (HybridTracePass: the pixels its walk handed over, traced) and, optionally, outlines
+// (HybridTracePass: the pixels its walk handed over, traced), where the history will reject
+// glass pixels fresh_samples (FreshSamplesPass: more samples there) and, optionally, outlines
 // (OutlinesPass: the outlines anti-aliased). Each pass's function declares what it reads and
 // writes; the buffers the passes order themselves by (FrameBuffers) carry the version the last
 // writer left. What the passes share is in FrameContext.cpp (descriptors, imports, uniforms,
@@ -88,8 +88,10 @@ struct FrameContext {
      *  shades or crosses it (glassDefines): surface layers, KHR_materials_specular, the film,
      *  partial transmission, textures, normal maps. */
     std::vector<std::string> glassModel;
-    /** The lights cast this frame and the glass focuses their caustics (Settings's
-     *  focusesCaustics): the BVH is built at the Shadows stage, with the opaque parts. */
+    /** The lights cast this frame and the glass casts its shadow (Settings::glassShadows). */
+    bool shadowed = false;
+    /** With it, the glass focuses their caustics (Settings's focusesCaustics): the BVH holds
+     *  the opaque parts, which the photons may meet. */
     bool caustics = false;
 
     bool isGlass(const render::DrawItem& item) const { return item.owner == plugin; }

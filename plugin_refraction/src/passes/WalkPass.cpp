@@ -63,10 +63,10 @@ core::Status copySceneColor(GpuState& gpu, const gl::Texture& sceneColor, const 
     return {};
 }
 
-core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext& c,
-                  const std::vector<std::string>& defines) {
+core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext& c) {
+    // Picked here: the frame's lighting features are known once it is recorded.
     auto walked = c.graphics("refraction/passes/rectangle.vert.glsl",
-                             "refraction/passes/walk.frag.glsl", defines);
+                             "refraction/passes/walk.frag.glsl", walkDefines(c, c.settings.method));
     if (!walked)
         return walked.error();
     const gl::Program& program = **walked;
@@ -149,10 +149,7 @@ Walked addWalkPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& b
                 d.surface =
                     b.write(b.create("refraction.walk.surface", {size, gl::Format::R32UI, 1}));
         },
-        [c, defines = walkDefines(c, c.settings.method)](const fg::Resources& r, const WalkData& d,
-                                                         gl::Context&) {
-            return walk(r, d, c, defines);
-        });
+        [c](const fg::Resources& r, const WalkData& d, gl::Context&) { return walk(r, d, c); });
     buffers.counters = walked.counters;
     if (walked.handedOver.valid())
         buffers.handedOver = walked.handedOver;

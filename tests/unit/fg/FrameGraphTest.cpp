@@ -384,6 +384,88 @@ TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
     EXPECT_GE((*timings)[0].cpuMs, 0.0);
 }
 
+TEST(FrameGraph, AFinalReadRunsAfterAWriterRecordedLater) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::BufferPool buffers(allocator);
+    fg::FrameGraph graph(pool, buffers);
+    NoContext context;
+    fg::Blackboard board;
+    const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
+    // The engine's shadows, then its shading, which reads the atlas as the frame leaves it.
+    const auto& shadows = graph.addPass<One>(
+        "shadows", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("atlas", kColor)); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    board.put("atlas", shadows.out);
+    const void* shaded = nullptr;
+    graph.addPass<InOut>(
+        "shade",
+        [&](fg::Builder& b, InOut& d) {
+            d.in = b.readFinal<fg::TextureHandle>(board, "atlas");
+            d.out = b.write(back);
+        },
+        [&](const fg::Resources& r, const InOut& d, gl::Context&) { shaded = r.object(d.in); });
+    // A plugin recorded after the shading draws its glass into the atlas.
+    const auto& glass = graph.addPass<One>(
+        "glass", [&](fg::Builder& b, One& d) { d.out = b.write(shadows.out); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    board.put("atlas", glass.out);
+    // Writes on top of what nothing reads: culled.
+    graph.addPass<One>(
+        "late", [&](fg::Builder& b, One& d) { d.out = b.write(b.create("late", kColor)); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    ASSERT_TRUE(graph.compile().ok());
+    // "glass" lives because the shading reads its version, and runs before it.
+    EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"shadows", "glass", "shade"}));
+    ASSERT_TRUE(graph.execute(context).ok());
+    EXPECT_NE(shaded, nullptr);
+    EXPECT_NE(graph.dump().find("reads   'atlas' (version 2)"), std::string::npos) << graph.dump();
+}
+
+TEST(FrameGraph, AFinalReadFailsWhereTheKeyHoldsNoVersionOrMakesACycle) {
+    FakeAllocator allocator;
+    fg::TexturePool pool(allocator);
+    fg::BufferPool buffers(allocator);
+    {
+        fg::FrameGraph graph(pool, buffers);
+        fg::Blackboard board;
+        board.put("atlas", 1.0f); // another type
+        graph.addPass<One>(
+            "shade",
+            [&](fg::Builder& b, One& d) {
+                b.readFinal<fg::TextureHandle>(board, "atlas");
+                d.out = b.write(b.create("shaded", kColor));
+                b.sideEffect();
+            },
+            [](const fg::Resources&, const One&, gl::Context&) {});
+        const auto compiled = graph.compile();
+        ASSERT_FALSE(compiled.ok());
+        EXPECT_NE(compiled.error().message.find("pass 'shade' reads the final 'atlas'"),
+                  std::string::npos)
+            << compiled.error().message;
+    }
+    fg::FrameGraph graph(pool, buffers);
+    fg::Blackboard board;
+    // "shade" reads what "glass" writes last, and "glass" draws on what "shade" wrote.
+    const auto& shade = graph.addPass<One>(
+        "shade",
+        [&](fg::Builder& b, One& d) {
+            b.readFinal<fg::TextureHandle>(board, "atlas");
+            d.out = b.write(b.create("shaded", kColor));
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    const auto& glass = graph.addPass<One>(
+        "glass", [&](fg::Builder& b, One& d) { d.out = b.write(shade.out); },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+    board.put("atlas", glass.out);
+    const auto compiled = graph.compile();
+    ASSERT_FALSE(compiled.ok());
+    EXPECT_NE(compiled.error().message.find("'shade', 'glass' depend on each other in a cycle"),
+              std::string::npos)
+        << compiled.error().message;
+}
+
 TEST(Blackboard, TypedValues) {
     fg::Blackboard board;
     board.put("scene.color", fg::TextureHandle{3});

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "engine/core/Result.h"
+#include "engine/fg/Blackboard.h"
 #include "engine/fg/Pool.h"
 #include "engine/gl/Types.h"
 
@@ -55,6 +56,17 @@ public:
     /** The same for buffers: the pass runs after the version's writer and before its next. */
     BufferHandle read(BufferHandle handle);
     BufferHandle write(BufferHandle handle);
+    /** Declares that the pass reads the version `blackboard` holds under `key` once recording
+     *  ends, however late the pass that writes it is recorded: the pass runs after that writer.
+     *  (The engine's shading reads the shadow atlases so; a plugin draws its glass into them
+     *  after the opaque scene is recorded.) `blackboard` outlives compile(), which fails naming
+     *  the pass and the key where it holds no H there. The handle is valid in execute. */
+    template <class H> H readFinal(const Blackboard& blackboard, const std::string& key) {
+        return H{readFinal(key, [&blackboard, key] {
+            const H* handle = blackboard.find<H>(key);
+            return handle ? handle->node : UINT32_MAX;
+        })};
+    }
     /** The pass is never culled (it has effects outside the graph). */
     void sideEffect();
 
@@ -63,6 +75,7 @@ private:
     Builder(FrameGraph& graph, std::uint32_t pass) : mGraph(graph), mPass(pass) {}
     std::uint32_t read(std::uint32_t node);
     std::uint32_t write(std::uint32_t node);
+    std::uint32_t readFinal(const std::string& key, std::function<std::uint32_t()> resolve);
     FrameGraph& mGraph;
     std::uint32_t mPass;
 };
@@ -146,9 +159,10 @@ public:
      *  Resources::buffer. */
     BufferHandle importBuffer(const std::string& name, gl::Buffer& buffer);
 
-    /** Orders passes (dependencies, then declaration order), culls passes whose outputs nobody
-     *  consumes, computes transient lifetimes. Fails on a read of something never written or a
-     *  write to an outdated version, naming passes and resources. */
+    /** Resolves the final reads, orders passes (dependencies, then declaration order), culls
+     *  passes whose outputs nobody consumes, computes transient lifetimes. Fails on a read of
+     *  something never written, a write to an outdated version or a cycle, naming passes and
+     *  resources. */
     core::Status compile();
 
     /** Runs the compiled passes in order; transient textures are acquired before their first
@@ -170,6 +184,7 @@ private:
     struct Pass;
     struct Resource;
     struct Node;
+    struct FinalRead;
     std::uint32_t addPassNode(const std::string& name);
     void setExecute(std::uint32_t pass,
                     std::function<core::Status(const Resources&, gl::Context&)> fn);
@@ -183,6 +198,8 @@ private:
     std::uint32_t addNode(std::uint32_t resource, std::uint32_t version, std::uint32_t writer);
     std::string nodeName(std::uint32_t node) const;
     // compile()'s steps.
+    /** Each final read's node becomes the version its key names. */
+    core::Status resolveFinalReads();
     /** Every read has a writer (or an import); no version is written twice. */
     core::Status checkVersions() const;
     /** Per pass, the passes after it (data edges and readers before the next writer), and
@@ -203,6 +220,7 @@ private:
     std::vector<Pass> mPasses;
     std::vector<Resource> mResources;
     std::vector<Node> mNodes;
+    std::vector<FinalRead> mFinalReads;
     std::vector<std::uint32_t> mOrder; // executed passes after compile()
     bool mCompiled = false;
 };

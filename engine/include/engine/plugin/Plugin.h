@@ -33,8 +33,8 @@ struct DrawItem;
  *  `graph.addPass<Data>(name, setup, execute)`, whose execute callbacks run later in the same
  *  frame, in an order the graph derives from reads and writes (of textures and buffers); an
  *  execute callback may return a core::Status, and an error ends the frame with it. Stages run in
- * enum order; at each stage the blackboard holds the keys below. A plugin that replaces the scene
- * colour writes a new texture and puts its handle back under kSceneColor; later stages and the
+ *  enum order; at each stage the blackboard holds the keys below. A plugin that replaces the scene
+ *  colour writes a new texture and puts its handle back under kSceneColor; later stages and the
  *  tonemap read that. Handles and the FrameInfo pointer are valid for that frame only.
  *  A frame draws a world of characters as draw items (render::DrawItem: character, primitive,
  *  deformed vertices, material, world matrix); `claims` is asked once a frame per item before
@@ -76,16 +76,22 @@ namespace plugin {
  *  atlases kShadowDepth and kShadowGlass at units 23 and 24, plugins' units from 26; 7 caustics:
  *  kShadowCaustics at unit 25; 8 no texture bound for the whole frame: a pass that shades with the
  *  lights reads and binds the shadow atlases itself (render::ShadowAtlases,
- *  FrameInfo::shadowSampler). */
-inline constexpr const char* kInterfaceVersion = "glass.plugin/8";
+ *  FrameInfo::shadowSampler); 9 one entry a frame: Stage::Shadows gone, a plugin draws into the
+ *  shadow atlases at AfterOpaque and the engine's shading reads them as the frame leaves them
+ *  (fg::Builder::readFinal). */
+inline constexpr const char* kInterfaceVersion = "glass.plugin/9";
 
-/** Where in the frame a plugin's passes go. */
+/** Where in the frame a plugin's passes go: each stage is entered once a frame, in this order.
+ *  A plugin does its frame's work at one of them. */
 enum class Stage {
-    /** Where lights cast shadows (FrameInfo::shadows not empty): after the engine's `shadows`
-     *  pass, before anything is shaded; a plugin whose surfaces let light through draws them
-     *  into the glass atlas (kShadowGlass, common/shadows.glsl) and puts its version back. */
-    Shadows,
-    AfterOpaque,   ///< the background, the opaque scene and the ground are in the scene colour
+    /** The background, the ground and the opaque scene are recorded into the scene colour and
+     *  depth, and the lights' shadow atlases (FrameInfo::shadows not empty) into kShadowDepth
+     *  and kShadowGlass. A plugin whose surfaces let light through draws them into the glass
+     *  atlas (common/shadows.glsl) and puts its version back, and may put an atlas of caustics
+     *  under kShadowCaustics: every pass that shades with the lights, the engine's recorded
+     *  before this stage among them, reads the atlases as the frame leaves them, so the graph
+     *  runs the plugin's shadow passes before the scene is shaded. */
+    AfterOpaque,
     BeforeTonemap, ///< last HDR stage: after every plugin's AfterOpaque passes
 };
 
@@ -113,18 +119,19 @@ inline constexpr const char* kHistoryColor = "history.color";
 inline constexpr const char* kSceneVertices = "scene.vertices";
 /** The shadow atlases (fg::TextureHandle; render/Shadows.h, common/shadows.glsl): a pass whose
  *  program shades with the lights declares reads of them and binds them where it executes, all
- *  three with the caustics (render::ShadowAtlases). "scene.shadow_glass" holds, per texel, the
- *  optical depth of the glass along the light's ray (RGB, added) and its nearest distance from
- *  the light (A, the minimum). */
+ *  three with the caustics (render::ShadowAtlases); one recorded before the plugins' passes
+ *  reads them as the frame leaves them (ShadowAtlases::readFinal). "scene.shadow_glass"
+ *  holds, per texel, the optical depth of the glass along the light's ray (RGB, added) and its
+ *  nearest distance from the light (A, the minimum). */
 inline constexpr const char* kShadowDepth = "scene.shadow_depth";
 inline constexpr const char* kShadowGlass = "scene.shadow_glass";
 /** The caustics (fg::TextureHandle, RGBA16F, common/shadows.glsl), read at
  *  gl::slot::kShadowCaustics: per texel of a light's view, the light that reached the receiver
  *  seen there through glass, as a share of what would reach it unblocked (RGB), where A is
  *  under kNoGlass; where A is kNoGlass, none was focused and light through glass goes straight.
- *  The engine's holds none; a plugin that focuses light through its surfaces at the Shadows
- *  stage creates its own atlas (the tiles of the depth atlas, any resolution) and puts it here;
- *  a pass that shades with the lights reads and binds it. */
+ *  The engine's holds none; a plugin that focuses light through its surfaces creates its own
+ *  atlas (the tiles of the depth atlas, any resolution) and puts it here; a pass that shades
+ *  with the lights reads and binds it. */
 inline constexpr const char* kShadowCaustics = "scene.shadow_caustics";
 inline constexpr const char* kFrame = "frame";
 

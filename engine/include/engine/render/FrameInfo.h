@@ -196,7 +196,8 @@ struct FrameInfo {
      *  RenderSettings::shadows is off): a plugin that casts draws into their tiles. */
     const ShadowPlan* shadows = nullptr;
     /** What the frame's lights ask of the programs that shade (their defines), known once the
-     *  plugins' Shadows stage is recorded: empty before. */
+     *  frame is recorded (what the plugins drew into the atlases): a pass picks its variant
+     *  where it executes. */
     LightingFeatures lighting;
 };
 

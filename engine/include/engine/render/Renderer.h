@@ -148,12 +148,14 @@ private:
     /** What the passes read of this frame (its place in the temporal history too). */
     FrameInfo describeFrame(const scene::World& world, const Camera& camera,
                             const RenderSettings& settings, double time, bool opaqueGeometry);
-    /** The engine's passes and the plugins' at their stages, into `graph`. */
-    core::Status record(fg::FrameGraph& graph, FrameInfo& frame);
-    /** The lights' shadow maps and the plugins' Shadows stage; the frame's lighting features
-     *  from what they drew. */
-    ShadowAtlases recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard, FrameInfo& frame,
-                                fg::BufferHandle vertices);
+    /** The engine's passes and the plugins' at their stages, into `graph`, through
+     *  `blackboard`; the frame's lighting features from what the plugins drew into the shadow
+     *  atlases. */
+    core::Status record(fg::FrameGraph& graph, FrameInfo& frame, fg::Blackboard& blackboard);
+    /** The lights' shadow atlases (the engine's empty ones where none casts), on the
+     *  blackboard for the plugins to draw into; returns them as the engine left them. */
+    ShadowAtlases recordShadows(fg::FrameGraph& graph, fg::Blackboard& blackboard,
+                                const FrameInfo& frame, fg::BufferHandle vertices);
     /** Runs the compiled graph, each pass timed (RenderSettings::exactPassTimes), into
      *  `stats`; ends the temporal history's frame and the pool's. */
     core::Status execute(fg::FrameGraph& graph, const FrameInfo& frame, FrameStats& stats);

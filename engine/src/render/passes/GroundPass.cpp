@@ -6,11 +6,11 @@
 namespace render::passes {
 
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, const ShadowAtlases& shadows) {
+                       SceneTargets scene, const fg::Blackboard& blackboard) {
     return graph.addPass<LitTargets>(
         "ground",
         [&](fg::Builder& b, LitTargets& d) {
-            d.shadows = shadows.read(b);
+            d.shadows = ShadowAtlases::readFinal(b, blackboard);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);
             if (scene.motion.valid())

@@ -39,11 +39,11 @@ core::Result<std::map<int, const gl::Program*>> opaquePrograms(const RenderGpu& 
 
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices,
-                       const ShadowAtlases& shadows) {
+                       const fg::Blackboard& blackboard) {
     return graph.addPass<LitTargets>(
         "opaque",
         [&](fg::Builder& b, LitTargets& d) {
-            d.shadows = shadows.read(b);
+            d.shadows = ShadowAtlases::readFinal(b, blackboard);
             b.read(vertices);
             d.color = b.write(scene.color);
             d.depth = b.write(scene.depth);

@@ -1,6 +1,8 @@
 // The renderer's own passes, one file each, recorded by Renderer::render in this order:
-// deform -> shadows (where lights cast) -> [plugins' Shadows stage] -> background -> ground
-// (optional) -> opaque -> [plugin stages] -> temporal (where the frame accumulates) -> tonemap.
+// deform -> shadows (where lights cast) -> background -> ground (optional) -> opaque -> [plugin
+// stages] -> temporal (where the frame accumulates) -> tonemap. The ground and the opaque pass
+// read the shadow atlases as the plugins leave them, so the graph runs the plugins' shadow
+// passes before them.
 // Each asks the renderer's program cache (FrameInfo::programs) for its program's variant where
 // it executes.
 #pragma once
@@ -63,13 +65,15 @@ fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const 
  *  environment behind everything; where the frame accumulates, creates scene.motion with the
  *  environment's motion. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
-/** `ground`: the ground plane (FrameInfo::ground) into the scene targets. */
+/** `ground`: the ground plane (FrameInfo::ground) into the scene targets, shadowed by the
+ *  atlases `blackboard` holds once the frame is recorded (ShadowAtlases::readFinal). */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, const ShadowAtlases& shadows);
+                       SceneTargets scene, const fg::Blackboard& blackboard);
 /** `opaque`: every draw item no plugin claimed, metallic-roughness with image-based lighting,
- *  from the deformed vertices. */
+ *  from the deformed vertices, shadowed as the ground. */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                       SceneTargets scene, fg::BufferHandle vertices, const ShadowAtlases& shadows);
+                       SceneTargets scene, fg::BufferHandle vertices,
+                       const fg::Blackboard& blackboard);
 /** `temporal`: the frame (`color`, jittered) blended into the history (TemporalHistory, its
  *  textures imported) by each pixel's motion (`motion`), rejected where what the pixel tracks
  *  changed, clipped to the frame's neighbourhood while anything moves; returns the resolved

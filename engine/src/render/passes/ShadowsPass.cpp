@@ -1,7 +1,7 @@
 // `shadows`: the frame's shadow atlases (render/Shadows.h): every opaque draw item from each
 // shadow view into its tile of the depth atlas; the glass atlas cleared for the plugins that
-// draw their glass into it (plugin::Stage::Shadows). The frame's shading passes read and bind
-// them (render::ShadowAtlases).
+// draw their glass into it. The frame's shading passes read the atlases as the plugins leave
+// them, and bind them (render::ShadowAtlases).
 #include "Passes.h"
 
 #include "engine/gl/Commands.h"
