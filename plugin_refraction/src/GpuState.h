@@ -1,5 +1,7 @@
 // The refraction plugin's storage (buffers, framebuffers) and per-geometry caches, kept across
-// frames; its passes' programs come from the engine's program cache. Private to the plugin.
+// frames; its passes' programs come from the engine's program cache. The glass BVH, the glass
+// materials and the walk's counters are imported into each frame's graph (importBuffers), and a
+// pass reaches them only through the handles it declared. Private to the plugin.
 #pragma once
 
 #include "GlassBvh.h"

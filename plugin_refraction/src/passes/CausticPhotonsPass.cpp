@@ -28,9 +28,9 @@ void setGroundUniforms(const gl::Program& program, const FrameContext& c) {
 /** Lists the frame's photons (an invocation a cell of the grid) and traces them (an invocation
  *  a listed photon), adding their light into the caustics' sums. */
 core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::TextureHandle depth,
+                          const GpuState::Glass& glass, const gl::Buffer& materials,
                           gl::Buffer& emitters, gl::Buffer& sums) {
-    GpuState& gpu = *c.gpu;
-    if (!gpu.glass.bvh)
+    if (!glass.bvh)
         return core::Error{"refraction: the caustics have no glass BVH"};
     // The list pass's work groups, the list of photons, the photons.
     const std::string shader = "refraction/passes/caustic_photons.comp.glsl";
@@ -68,10 +68,10 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
         program.set(gl::Program::element("uViewAxis", v).c_str(),
                     -glm::vec3(glm::transpose(view.view)[2]));
     }
-    gpu.glass.bvh->bindForTraversal();
-    gl::bindStorage(slot::kGlassMaterials, gpu.glassMaterials);
+    glass.bvh->bindForTraversal();
+    gl::bindStorage(slot::kGlassMaterials, materials);
     gl::bindTexture(slot::kCausticDepth, r.texture(depth));
-    bindTracedTextures(gpu);
+    bindTracedTextures(*c.gpu);
     gl::dispatchIndirect(emitters, kPhotonGroups); // a listed photon an invocation
     // the sums for the resolve; and for the next frame's clear (BarrierBufferUpdate)
     gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);
@@ -83,19 +83,20 @@ core::Status tracePhotons(const fg::Resources& r, const FrameContext& c, fg::Tex
 void addCausticPhotonsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers& buffers,
                            fg::TextureHandle depth) {
     struct Photons {
-        fg::BufferHandle emitters, sums;
+        fg::BufferHandle bvh, materials, emitters, sums;
     };
     const Photons& photons = graph.addPass<Photons>(
         "refraction.caustic_photons",
         [&](fg::Builder& b, Photons& d) {
-            b.read(buffers.bvh);
-            b.read(buffers.materials);
+            d.bvh = b.read(buffers.bvh);
+            d.materials = b.read(buffers.materials);
             b.read(depth);
             d.emitters = b.write(buffers.causticEmitters);
             d.sums = b.write(buffers.causticSums);
         },
         [c, depth](const fg::Resources& r, const Photons& d, gl::Context&) {
-            return tracePhotons(r, c, depth, r.buffer(d.emitters), r.buffer(d.sums));
+            return tracePhotons(r, c, depth, glassBvh(r, d.bvh), r.buffer(d.materials),
+                                r.buffer(d.emitters), r.buffer(d.sums));
         });
     buffers.causticEmitters = photons.emitters;
     buffers.causticSums = photons.sums;

@@ -38,6 +38,17 @@ FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboa
     return buffers;
 }
 
+GpuState::Glass& glassBvh(const fg::Resources& r, fg::BufferHandle bvh) {
+    return *static_cast<GpuState::Glass*>(r.object(bvh));
+}
+
+GlassDrawn readGlassDrawn(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers) {
+    GlassDrawn glass{b.read(buffers.vertices), b.read(buffers.materials), {}};
+    if (c.settings.usesNormalDistance())
+        glass.bvh = b.read(buffers.bvh);
+    return glass;
+}
+
 SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
     const auto* motion = blackboard.find<fg::TextureHandle>(plugin::kSceneMotion);
     const auto* historyColor = blackboard.find<fg::TextureHandle>(plugin::kHistoryColor);
@@ -92,10 +103,11 @@ void FrameContext::setWalkUniforms(const gl::Program& f) const {
 }
 
 void FrameContext::drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
+                                      const fg::Resources& r, const GlassDrawn& glass,
                                       const std::optional<GlassView>& from) const {
-    gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
+    gl::bindStorage(slot::kGlassMaterials, r.buffer(glass.materials));
     drawGlass(
-        program, state,
+        program, state, r, glass,
         [this, &program](const render::DrawItem& item, std::size_t index) {
             program.set("uGlassId", gpu->glassIds[index]);
             item.materials->bind(program, item.values);
@@ -104,10 +116,12 @@ void FrameContext::drawGlassMaterials(const gl::Program& program, const gl::Pipe
 }
 
 void FrameContext::drawGlass(
-    const gl::Program& program, const gl::PipelineState& state,
+    const gl::Program& program, const gl::PipelineState& state, const fg::Resources& r,
+    const GlassDrawn& glass,
     const std::function<void(const render::DrawItem&, std::size_t)>& perItem,
     const std::optional<GlassView>& from) const {
     const GlassView v = from ? *from : cameraView();
+    const GpuState::Glass* bvh = glass.bvh.valid() ? &glassBvh(r, glass.bvh) : nullptr;
     program.use();
     program.set("uProjection", v.projection);
     render::setMotionUniforms(program, *frame);
@@ -125,15 +139,13 @@ void FrameContext::drawGlass(
                         item.gpu->previous ? *item.gpu->previous : *item.gpu->deformed);
         gl::bindStorage(gl::slot::kUvs, *item.gpu->uvs);
         // d_N: the BVH's values from this part's base.
-        const GpuState::Glass& glass = gpu->glass;
-        const int part = settings.usesNormalDistance() && glass.bvh
-                             ? glass.find({item.key, item.instance, item.primitiveIndex})
-                             : -1;
+        const int part =
+            bvh && bvh->bvh ? bvh->find({item.key, item.instance, item.primitiveIndex}) : -1;
         program.set("uHasNormalDistance", part >= 0 ? 1 : 0);
-        program.set("uDistanceBase", part >= 0 ? int(glass.bvh->base(std::size_t(part))) : 0);
+        program.set("uDistanceBase", part >= 0 ? int(bvh->bvh->base(std::size_t(part))) : 0);
         // Without d_N the binding still needs a buffer: the vertices stand in (unread).
         gl::bindStorage(slot::kNormalDistances,
-                        part >= 0 ? glass.bvh->distances() : *item.gpu->deformed);
+                        part >= 0 ? bvh->bvh->distances() : *item.gpu->deformed);
         if (perItem)
             perItem(item, index);
         gl::PipelineState itemState = state;
@@ -173,7 +185,6 @@ void FrameContext::setLayerUniforms(const gl::Program& program, const fg::Resour
     if (layers.surfaces.valid())
         gl::bindStorage(slot::kLayerSurfaces, r.buffer(layers.surfaces));
     gl::bindStorage(slot::kLayerMotions, r.buffer(layers.motions));
-    gl::bindStorage(slot::kGlassMaterials, gpu->glassMaterials);
     render::setMotionUniforms(program, *frame);
 }
 
@@ -214,11 +225,11 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
     WalkInputs in;
     in.extent = b.read(buffers.extent);
     in.layers = readLayers(b, buffers.layers);
-    b.read(buffers.materials);
+    in.materials = b.read(buffers.materials);
     if (!c.settings.layered())
         in.pairRanges = b.read(buffers.pairRanges);
     if (c.settings.traces())
-        b.read(buffers.bvh);
+        in.bvh = b.read(buffers.bvh);
     for (auto [from, to] : {std::pair{capture.mask, &in.capture.mask},
                             std::pair{capture.depths0, &in.capture.depths0},
                             std::pair{capture.depths1, &in.capture.depths1},
@@ -234,12 +245,13 @@ WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuff
     return in;
 }
 
-core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in) {
-    GpuState& gpu = *c.gpu;
+core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in,
+                            fg::BufferHandle counters) {
     gl::bindStorage(slot::kGlassExtent, r.buffer(in.extent));
     if (in.pairRanges.valid())
         gl::bindStorage(slot::kPairRanges, r.buffer(in.pairRanges));
-    gl::bindStorage(slot::kWalkCounters, gpu.counters);
+    gl::bindStorage(slot::kGlassMaterials, r.buffer(in.materials));
+    gl::bindStorage(slot::kWalkCounters, r.buffer(counters));
     gl::bindTexture(slot::kSceneColor, r.texture(in.sceneColor));
     gl::bindTexture(slot::kSceneDepth, r.texture(in.sceneDepth));
     in.shadows.bind(r, *c.frame->shadowSampler);
@@ -256,10 +268,11 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     gl::bindTexture(slot::kPairNormals, present(in.capture.normals[1]), 1);
     if (!c.settings.traces())
         return {};
-    if (!gpu.glass.bvh)
+    const GpuState::Glass& glass = glassBvh(r, in.bvh);
+    if (!glass.bvh)
         return core::Error{"refraction: the trace has no glass BVH"};
-    gpu.glass.bvh->bindForTraversal();
-    bindTracedTextures(gpu);
+    glass.bvh->bindForTraversal();
+    bindTracedTextures(*c.gpu);
     return {};
 }
 

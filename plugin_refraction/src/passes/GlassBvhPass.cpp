@@ -48,12 +48,12 @@ void addGlassBvhPass(fg::FrameGraph& graph, const FrameContext& c, FrameBuffers&
             b.read(buffers.vertices);
             d.bvh = b.write(buffers.bvh);
         },
-        [c](const fg::Resources&, const Data&, gl::Context&) -> core::Status {
+        [c](const fg::Resources& r, const Data& d, gl::Context&) -> core::Status {
             auto programs = BvhPrograms::from(*c.frame->programs);
             if (!programs)
                 return core::Error{"refraction: " + programs.error().message};
             GpuState& gpu = *c.gpu;
-            GpuState::Glass& glass = gpu.glass;
+            GpuState::Glass& glass = glassBvh(r, d.bvh);
             // This frame's parts: its glass items and, for the trace and the caustics, its
             // opaque ones (an exit ray or a photon meets them exactly), with their tags, in
             // storage kept across frames.

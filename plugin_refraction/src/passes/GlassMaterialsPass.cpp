@@ -11,12 +11,13 @@ void addGlassMaterialsPass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
     const Data& pass = graph.addPass<Data>(
         "refraction.glass_materials",
         [&](fg::Builder& b, Data& d) { d.materials = b.write(buffers.materials); },
-        [c](const fg::Resources&, const Data&, gl::Context&) {
-            GpuState& gpu = *c.gpu;
-            const std::size_t bytes = gpu.glassOptics.size() * sizeof(GlassMaterialGpu);
-            if (gpu.glassMaterials.size() < bytes)
-                gpu.glassMaterials = gl::Buffer(bytes);
-            gpu.glassMaterials.update(0, bytes, gpu.glassOptics.data());
+        [c](const fg::Resources& r, const Data& d, gl::Context&) {
+            const std::vector<GlassMaterialGpu>& optics = c.gpu->glassOptics;
+            const std::size_t bytes = optics.size() * sizeof(GlassMaterialGpu);
+            gl::Buffer& materials = r.buffer(d.materials); // grown as needed
+            if (materials.size() < bytes)
+                materials = gl::Buffer(bytes);
+            materials.update(0, bytes, optics.data());
         });
     buffers.materials = pass.materials;
 }

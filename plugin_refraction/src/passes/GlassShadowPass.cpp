@@ -38,12 +38,12 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
     struct Data {
         fg::TextureHandle atlas;
         fg::BufferHandle emitters, sums;
+        GlassDrawn glass;
     };
     const Data& pass = graph.addPass<Data>(
         "refraction.glass_shadow",
         [&](fg::Builder& b, Data& d) {
-            b.read(buffers.vertices);
-            b.read(buffers.materials);
+            d.glass = readGlassDrawn(b, c, buffers);
             d.atlas = b.write(atlas);
             if (c.caustics) {
                 createCaustics(b, buffers, causticSize(c), c.settings.causticPhotons);
@@ -86,7 +86,7 @@ fg::TextureHandle addGlassShadowPass(fg::FrameGraph& graph, const FrameContext& 
                                       .depthTest = false,
                                       .depthWrite = false,
                                       .blend = gl::Blend::AddMinAlpha},
-                                     GlassView{view.view, view.projection});
+                                     r, d.glass, GlassView{view.view, view.projection});
             }
             if (c.caustics) // the emitters, for the photons and the next frame's clear
                 gl::memoryBarrier(gl::BarrierStorage | gl::BarrierBufferUpdate);

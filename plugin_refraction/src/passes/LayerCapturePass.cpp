@@ -12,6 +12,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
     struct CaptureData {
         fg::TextureHandle mask;
         LayerBuffers layers;
+        GlassDrawn glass;
     };
     // With textured glass each layer's surface (and the fallback's bid in the heads); where the
     // frame accumulates, each layer's motion.
@@ -22,10 +23,7 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
     const auto& captured = graph.addPass<CaptureData>(
         "refraction.layer_capture",
         [&](fg::Builder& b, CaptureData& d) {
-            b.read(buffers.vertices);
-            b.read(buffers.materials);
-            if (c.settings.usesNormalDistance())
-                b.read(buffers.bvh); // d_N
+            d.glass = readGlassDrawn(b, c, buffers);
             d.mask = b.write(b.create("refraction.layer_capture.mask", zDesc(size)));
             d.layers = createLayers(b, shape);
         },
@@ -58,7 +56,8 @@ fg::TextureHandle addLayerCapturePass(fg::FrameGraph& graph, const FrameContext&
             (*program)->use();
             c.setLayerUniforms(**program, r, d.layers);
             c.drawGlassMaterials(**program,
-                                 {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always});
+                                 {.cull = gl::Cull::None, .depthFunc = gl::DepthFunc::Always}, r,
+                                 d.glass);
             // the arrays and the overflow list for layer_overflow's dispatch
             gl::memoryBarrier(gl::BarrierStorage | gl::BarrierCommand);
             return {};

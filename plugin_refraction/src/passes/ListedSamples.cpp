@@ -51,8 +51,7 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
     if (!listed)
         return listed.error();
     const gl::Program& program = **listed;
-    GpuState& gpu = *c.gpu;
-    if (auto bound = bindWalkInputs(r, c, d.in); !bound)
+    if (auto bound = bindWalkInputs(r, c, d.in, d.counters); !bound)
         return bound;
     gl::Buffer& handedOver = r.buffer(d.handedOver);
     gl::bindStorage(slot::kHandedOver, handedOver);
@@ -69,7 +68,7 @@ core::Status sampleList(const fg::Resources& r, const TraceData& d, const FrameC
     for (int s = first; s < last; ++s) {
         program.set("uTraceSample", s);
         if (list == ListedPixels::Fresh)
-            gl::dispatchIndirect(gpu.counters, offsetof(WalkCountersGpu, freshGroups));
+            gl::dispatchIndirect(r.buffer(d.counters), offsetof(WalkCountersGpu, freshGroups));
         else
             gl::dispatchIndirect(handedOver, sizeof(std::uint32_t));
         gl::memoryBarrier(gl::BarrierImage | gl::BarrierStorage | gl::BarrierCommand);

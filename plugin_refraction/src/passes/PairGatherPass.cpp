@@ -12,14 +12,13 @@ PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
     const glm::ivec2 size = c.frame->settings.size;
     struct GatherData {
         fg::TextureHandle nearTargets, farTargets;
+        GlassDrawn glass;
     };
     const gl::TextureDesc gatherDesc{size, gl::Format::RGBA32F, 1};
     const auto& gathered = graph.addPass<GatherData>(
         "refraction.pair_gather",
         [&](fg::Builder& b, GatherData& d) {
-            b.read(buffers.vertices);
-            if (c.settings.usesNormalDistance())
-                b.read(buffers.bvh); // d_N
+            d.glass = readGlassDrawn(b, c, buffers);
             d.nearTargets = b.write(b.create("refraction.pair_gather.near", gatherDesc));
             d.farTargets = b.write(b.create("refraction.pair_gather.far", gatherDesc));
         },
@@ -41,10 +40,12 @@ PairTargets addPairGatherPass(fg::FrameGraph& graph, const FrameContext& c,
             program.use();
             program.set("uKeyNear", frame.camera.znear);
             program.set("uKeyLogRange", std::log2(frame.camera.zfar / frame.camera.znear));
-            c.drawGlass(program, {.cull = gl::Cull::None,
-                                  .depthTest = false,
-                                  .depthWrite = false,
-                                  .blend = gl::Blend::Max});
+            c.drawGlass(program,
+                        {.cull = gl::Cull::None,
+                         .depthTest = false,
+                         .depthWrite = false,
+                         .blend = gl::Blend::Max},
+                        r, d.glass);
             return {};
         });
     PairTargets pair;

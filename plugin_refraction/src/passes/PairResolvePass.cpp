@@ -17,7 +17,7 @@ struct ResolveData {
     PairTargets pair;
     fg::TextureHandle sceneDepth, depths0, normals[2], mask;
     LayerBuffers layers;
-    fg::BufferHandle extent, pairRanges;
+    fg::BufferHandle extent, pairRanges, materials;
 };
 
 /** The resolve's variant: of the one gathered pass, or of the two passes (with the glass's
@@ -61,6 +61,7 @@ core::Status resolvePair(const fg::Resources& r, const ResolveData& d, const Fra
     const gl::Program& program = **resolve;
     program.use();
     c.setLayerUniforms(program, r, d.layers);
+    gl::bindStorage(slot::kGlassMaterials, r.buffer(d.materials));
     // The pair's maps in pair_resolve.frag.glsl's order (one pass's two, or two passes' four).
     const fg::TextureHandle maps[] = {d.pair.nearTargets, d.pair.farTargets, d.pair.frontDepth,
                                       d.pair.frontNormal, d.pair.backDepth,  d.pair.backNormal};
@@ -100,6 +101,7 @@ Capture addPairResolvePass(fg::FrameGraph& graph, const FrameContext& c, FrameBu
         "refraction.pair_resolve",
         [&](fg::Builder& b, ResolveData& d) {
             d.extent = b.read(buffers.extent);
+            d.materials = b.read(buffers.materials);
             d.pairRanges = b.write(b.create("refraction.pair_ranges", {sizeof(PairRangesGpu)}));
             d.layers = createLayers(b, shape);
             for (auto [from, to] : {std::pair{pair.nearTargets, &d.pair.nearTargets},

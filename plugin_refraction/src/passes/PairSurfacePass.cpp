@@ -13,6 +13,7 @@ PairTargets addPairSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
                                  const FrameBuffers& buffers, bool firstBack) {
     struct SurfaceData {
         fg::TextureHandle depth, normal, surface, zbuffer; // surface: with textured glass
+        GlassDrawn glass;
     };
     const glm::ivec2 size = c.frame->settings.size;
     // Farthest: GREATER from 0; nearest: LESS from 1.
@@ -20,10 +21,7 @@ PairTargets addPairSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
         return graph.addPass<SurfaceData>(
             name,
             [&](fg::Builder& b, SurfaceData& d) {
-                b.read(buffers.vertices);
-                b.read(buffers.materials);
-                if (c.settings.usesNormalDistance())
-                    b.read(buffers.bvh); // d_N
+                d.glass = readGlassDrawn(b, c, buffers);
                 // The front's motion rides in z and w where the frame accumulates.
                 const bool motion = !backFaces && c.frame->temporal.enabled;
                 d.depth =
@@ -57,7 +55,8 @@ PairTargets addPairSurfacePasses(fg::FrameGraph& graph, const FrameContext& c,
                 c.drawGlassMaterials(
                     **program,
                     {.cull = backFaces ? gl::Cull::Front : gl::Cull::Back,
-                     .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater});
+                     .depthFunc = nearest ? gl::DepthFunc::Less : gl::DepthFunc::Greater},
+                    r, d.glass);
                 // DIR §3.1: mip-filtered normals (the front's only for TIR bounces toward it)
                 if (backFaces || c.reflect)
                     r.texture(d.normal).generateMipmaps();

@@ -67,6 +67,13 @@ struct LayerBuffers {
     fg::BufferHandle heads, depths, attrs, surfaces, motions;
 };
 
+/** What a pass that draws the glass draws it with, as the frame graph lends it: the deformed
+ *  vertices, the glass materials (glass_materials.glsl) and, for ISR, the BVH whose d_N the
+ *  glass's vertices read (readGlassDrawn). */
+struct GlassDrawn {
+    fg::BufferHandle vertices, materials, bvh;
+};
+
 /** A frame's decisions and what its passes share, copied into every pass's callback (the
  *  callbacks run after addPasses() returns). */
 struct FrameContext {
@@ -109,8 +116,10 @@ struct FrameContext {
     /** The camera's view and projection. */
     GlassView cameraView() const { return {frame->camera.view, frame->camera.projection}; }
     /** Draws every glass item with `program` (glass.vert.glsl) from `from` (the camera's when
-     *  not given), calling `perItem` (its index in the frame's items) first when given. */
+     *  not given), calling `perItem` (its index in the frame's items) first when given; d_N
+     *  from `glass`'s BVH where it was read. */
     void drawGlass(const gl::Program& program, const gl::PipelineState& state,
+                   const fg::Resources& r, const GlassDrawn& glass,
                    const std::function<void(const render::DrawItem&, std::size_t)>& perItem = {},
                    const std::optional<GlassView>& from = {}) const;
     /** Draws the glass rectangle (rectangle.vert.glsl: from the glass's extent `extent`) with
@@ -122,9 +131,10 @@ struct FrameContext {
     /** What the walk and the outline pass set alike: searches and march, TIR policy, Fresnel,
      *  debug view, camera, the lookup's parameters and the environment (texture units 0-1). */
     void setWalkUniforms(const gl::Program& program) const;
-    /** Draws every glass item with `program`, its glass id and material textures set, from
-     *  `from` (the camera's when not given). */
+    /** Draws every glass item with `program`, its glass id and material textures set, and
+     *  `glass`'s materials bound, from `from` (the camera's when not given). */
     void drawGlassMaterials(const gl::Program& program, const gl::PipelineState& state,
+                            const fg::Resources& r, const GlassDrawn& glass,
                             const std::optional<GlassView>& from = {}) const;
     /** layers.glsl's uniforms and the layer arrays `layers`. */
     void setLayerUniforms(const gl::Program& program, const fg::Resources& r,
@@ -196,6 +206,8 @@ struct WalkInputs {
     LayerBuffers layers;
     fg::BufferHandle extent;
     fg::BufferHandle pairRanges; ///< with the pair
+    fg::BufferHandle materials;
+    fg::BufferHandle bvh; ///< where the method traces
     fg::TextureHandle sceneColor, sceneDepth, sceneDepthTiles;
     render::ShadowAtlases shadows;
 };
@@ -204,8 +216,10 @@ struct WalkInputs {
  *  the method traces, the BVH. */
 WalkInputs readWalkInputs(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers,
                           const SceneInputs& scene, const Capture& capture);
-/** Binds them, with the glass BVH and its textures where the method traces. */
-core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in);
+/** Binds them, with the glass BVH and its textures where the method traces, and the walk's
+ *  counters `counters` (which the pass writes). */
+core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const WalkInputs& in,
+                            fg::BufferHandle counters);
 /** The history's colour and motion (SceneInputs' historyColor, historyMotion) at the engine's
  *  history units, for the fresh samples' choice (walk_motion.glsl). */
 void bindHistory(const fg::Resources& r, fg::TextureHandle color, fg::TextureHandle motion);
@@ -217,6 +231,11 @@ void bindTracedTextures(const GpuState& gpu);
 
 /** The frame's buffers: the engine's vertices from the blackboard, the plugin's imported. */
 FrameBuffers importBuffers(fg::FrameGraph& graph, const fg::Blackboard& blackboard, GpuState& gpu);
+/** The glass BVH the graph lends as `bvh` (FrameBuffers::bvh, imported as an object). */
+GpuState::Glass& glassBvh(const fg::Resources& r, fg::BufferHandle bvh);
+/** Declares the reads of what the glass is drawn with (GlassDrawn): the vertices, the
+ *  materials and, for ISR, the BVH's d_N. */
+GlassDrawn readGlassDrawn(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers);
 SceneInputs sceneInputs(const fg::Blackboard& blackboard);
 gl::TextureDesc colorDesc(glm::ivec2 size);
 /** The walk's colour target: single precision where it adds samples up (in half floats each

@@ -72,7 +72,7 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
     const gl::Program& program = **walked;
     GpuState& gpu = *c.gpu;
     const bool hybrid = c.settings.method == Settings::Method::Hybrid;
-    resetCounters(gpu.counters, c.frame->settings.size, c.freshSamples() > 1);
+    resetCounters(r.buffer(d.counters), c.frame->settings.size, c.freshSamples() > 1);
     const gl::Texture& out = r.texture(d.out);
     if (auto copied = copySceneColor(gpu, r.texture(d.in.sceneColor), out); !copied)
         return copied;
@@ -92,7 +92,7 @@ core::Status walk(const fg::Resources& r, const WalkData& d, const FrameContext&
     }
     if (d.historyMotion.valid())
         bindHistory(r, d.historyColor, d.historyMotion);
-    if (auto bound = bindWalkInputs(r, c, d.in); !bound)
+    if (auto bound = bindWalkInputs(r, c, d.in, d.counters); !bound)
         return bound;
     if (d.handedOver.valid()) {
         resetHandedOver(r.buffer(d.handedOver), c.frame->settings.size);
