@@ -103,6 +103,7 @@ GpuDeformer::create(std::shared_ptr<const GpuModel> uploaded, const gl::ShaderLi
             gp.topology = s.subdivision ? &s.subdivision->rest : &p;
             gp.vertexCount = std::uint32_t(gp.topology->vertexCount());
             gp.indexCount = std::uint32_t(gp.topology->indices.size());
+            gp.closed = s.closed;
             gp.deformed = std::make_shared<gl::Buffer>(gp.vertexCount * sizeof(VertexGpu));
             gp.uvs = &s.uvs;
             gp.indices = &s.indices;

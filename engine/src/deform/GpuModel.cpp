@@ -33,6 +33,7 @@ std::unique_ptr<GpuModel::Primitive> upload(const scene::Primitive& p) {
     }
     s->influences = gl::Buffer(std::span<const InfluenceGpu>(influences));
     s->targetCount = std::uint32_t(p.targets.size());
+    s->closed = scene::isClosed(p);
     std::vector<glm::vec4> deltas(std::max<std::size_t>(1, p.targets.size() * count * 3),
                                   glm::vec4(0.0f));
     for (std::size_t t = 0; t < p.targets.size(); ++t) {

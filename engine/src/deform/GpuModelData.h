@@ -41,6 +41,7 @@ struct GpuModel::Primitive {
     gl::Buffer rest, influences, deltas, indices, uvs;
     gl::Buffer cageIndices; // with subdivision: the file's triangles (indices: the refined)
     std::uint32_t targetCount = 0;
+    bool closed = false; // scene::isClosed: its refinement is too
     // With subdivision: the tables, the drawn mesh's static buffers (indices and uvs above are
     // then the refined ones) and the corners the pack pass reads.
     std::unique_ptr<Subdivision> subdivision;

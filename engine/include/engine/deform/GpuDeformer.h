@@ -33,6 +33,9 @@ struct GpuPrimitive {
     const scene::Primitive* topology = nullptr;
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;
+    /** It bounds a solid in every pose (scene::isClosed; a refinement of a closed cage is too):
+     *  from outside only its front faces show. */
+    bool closed = false;
     /** Shared by the draws of one mesh node: EXT_mesh_gpu_instancing's instances draw one
      *  deformation. */
     std::shared_ptr<gl::Buffer> deformed;

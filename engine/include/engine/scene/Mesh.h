@@ -66,6 +66,13 @@ struct Primitive {
     bool isMorphed() const { return !targets.empty(); }
 };
 
+/** Whether `p` bounds a solid in every pose: each edge lies between two triangles that cross
+ *  it in opposite directions, where vertices that deform alike (the same rest position, skin
+ *  influences and morph deltas: a seam's copies) count as one. From outside such a surface
+ *  shows only its front faces, so a shadow map may leave its back faces out. Degenerate
+ *  triangles (two corners that count as one) are left out: they cover nothing. */
+bool isClosed(const Primitive& p);
+
 /** A glTF mesh: primitives sharing one set of morph weights. */
 struct Mesh {
     std::string name;
