@@ -2,9 +2,7 @@
 #include "engine/scene/Mesh.h"
 
 #include <algorithm>
-#include <cstring>
 #include <map>
-#include <tuple>
 #include <unordered_map>
 #include <vector>
 
