@@ -43,12 +43,15 @@ scene::Model glassModel(const std::string& name, scene::Primitive primitive) {
 scene::Model makeSphere(int segments) {
     const int longitudes = segments, latitudes = segments / 2;
     scene::Primitive p;
+    // The seam's column (lon = longitudes) and each pole's row repeat a point exactly, so that
+    // the surface reads as closed (scene::isClosed): sin(pi) and sin(2 pi) are not 0 in doubles.
     for (int lat = 0; lat <= latitudes; ++lat) {
         const double theta = M_PI * double(lat) / double(latitudes);
+        const double sinTheta = lat == 0 || lat == latitudes ? 0.0 : std::sin(theta);
         for (int lon = 0; lon <= longitudes; ++lon) {
-            const double phi = 2.0 * M_PI * double(lon) / double(longitudes);
-            const glm::vec3 n(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
-                              float(-std::sin(theta) * std::sin(phi)));
+            const double phi = 2.0 * M_PI * double(lon % longitudes) / double(longitudes);
+            const glm::vec3 n(float(sinTheta * std::cos(phi)), float(std::cos(theta)),
+                              float(-sinTheta * std::sin(phi)));
             p.positions.push_back(n);
             p.normals.push_back(n);
             p.tangents.emplace_back(float(-std::sin(phi)), 0.0f, float(-std::cos(phi)), 1.0f);
