@@ -43,7 +43,8 @@ GpuState::Glass& glassBvh(const fg::Resources& r, fg::BufferHandle bvh) {
 }
 
 GlassDrawn readGlassDrawn(fg::Builder& b, const FrameContext& c, const FrameBuffers& buffers) {
-    GlassDrawn glass{b.read(buffers.vertices), b.read(buffers.materials), {}};
+    b.read(buffers.vertices); // drawn from the deformed vertices (DrawItem::gpu)
+    GlassDrawn glass{b.read(buffers.materials), {}};
     if (c.settings.usesNormalDistance())
         glass.bvh = b.read(buffers.bvh);
     return glass;
@@ -58,9 +59,7 @@ SceneInputs sceneInputs(const fg::Blackboard& blackboard) {
             motion ? *motion : fg::TextureHandle{},
             historyColor ? *historyColor : fg::TextureHandle{},
             history ? *history : fg::TextureHandle{},
-            {blackboard.get<fg::TextureHandle>(plugin::kShadowDepth),
-             blackboard.get<fg::TextureHandle>(plugin::kShadowGlass),
-             blackboard.get<fg::TextureHandle>(plugin::kShadowCaustics)},
+            render::ShadowAtlases::of(blackboard),
             fg::TextureHandle{}};
 }
 

@@ -67,11 +67,11 @@ struct LayerBuffers {
     fg::BufferHandle heads, depths, attrs, surfaces, motions;
 };
 
-/** What a pass that draws the glass draws it with, as the frame graph lends it: the deformed
- *  vertices, the glass materials (glass_materials.glsl) and, for ISR, the BVH whose d_N the
- *  glass's vertices read (readGlassDrawn). */
+/** What a pass that draws the glass draws it with, as the frame graph lends it: the glass
+ *  materials (glass_materials.glsl) and, for ISR, the BVH whose d_N the glass's vertices read
+ *  (readGlassDrawn, which also declares the read of the deformed vertices). */
 struct GlassDrawn {
-    fg::BufferHandle vertices, materials, bvh;
+    fg::BufferHandle materials, bvh;
 };
 
 /** A frame's decisions and what its passes share, copied into every pass's callback (the

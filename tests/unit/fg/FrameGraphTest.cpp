@@ -41,6 +41,15 @@ private:
 
 const gl::TextureDesc kColor{{64, 64}, gl::Format::RGBA16F, 1};
 
+/** Each test's pools, over one fake allocator; its graphs draw from them. */
+class FrameGraph : public ::testing::Test {
+protected:
+    FakeAllocator allocator;
+    fg::TexturePool pool{allocator};
+    fg::BufferPool buffers{allocator};
+};
+using FrameGraphDeathTest = FrameGraph;
+
 struct One {
     fg::TextureHandle out;
 };
@@ -48,10 +57,7 @@ struct InOut {
     fg::TextureHandle in, out;
 };
 
-TEST(FrameGraph, CulledPassNeverExecutes) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, CulledPassNeverExecutes) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
@@ -79,10 +85,7 @@ TEST(FrameGraph, CulledPassNeverExecutes) {
     EXPECT_EQ(allocator.allocations, 1); // the culled pass's texture is never allocated
 }
 
-TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     // A chain t0 -> t1 -> t2 -> t3 of same-descriptor textures: pass i reads t(i-1) and writes
@@ -127,10 +130,7 @@ TEST(FrameGraph, PoolPeakEqualsPeakOfOverlappingLifetimes) {
     EXPECT_EQ(allocator.live, 0); // idle textures are eventually freed
 }
 
-TEST(FrameGraph, BuffersOrderPassesAndKeepTheirWritersAlive) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, BuffersOrderPassesAndKeepTheirWritersAlive) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
@@ -176,10 +176,7 @@ TEST(FrameGraph, BuffersOrderPassesAndKeepTheirWritersAlive) {
     EXPECT_EQ(ran, (std::vector<std::string>{"rest", "deform", "draw"}));
 }
 
-TEST(FrameGraph, ReaderOfABufferRunsBeforeItsNextWriter) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, ReaderOfABufferRunsBeforeItsNextWriter) {
     fg::FrameGraph graph(pool, buffers);
     const auto distances = graph.importBuffer("distances", nullptr);
     struct Buffered {
@@ -202,10 +199,7 @@ TEST(FrameGraph, ReaderOfABufferRunsBeforeItsNextWriter) {
     EXPECT_EQ(graph.executionOrder(), (std::vector<std::string>{"first", "reader", "second"}));
 }
 
-TEST(FrameGraph, FailingPassEndsTheFrameNamingItAndReturnsItsTextures) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, FailingPassEndsTheFrameNamingItAndReturnsItsTextures) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     std::vector<std::string> ran;
@@ -233,10 +227,7 @@ TEST(FrameGraph, FailingPassEndsTheFrameNamingItAndReturnsItsTextures) {
     EXPECT_EQ(pool.inUseCount(), 0u); // a.out went back to the pool although 'b' never ran
 }
 
-TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, RejectsReadOfNeverWrittenResource) {
     fg::FrameGraph graph(pool, buffers);
     fg::TextureHandle orphan;
     graph.addPass<One>(
@@ -255,10 +246,7 @@ TEST(FrameGraph, RejectsReadOfNeverWrittenResource) {
                                       "(version 0), which no pass writes");
 }
 
-TEST(FrameGraph, RejectsOutdatedWrite) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, RejectsOutdatedWrite) {
     {
         fg::FrameGraph graph(pool, buffers);
         const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
@@ -279,10 +267,7 @@ TEST(FrameGraph, RejectsOutdatedWrite) {
 
 // Transient buffers live from their creator to their last reader, from the buffer pool: two
 // whose lives do not overlap share one object, and the pool keeps it for the next frame.
-TEST(FrameGraph, TransientBuffersShareThePoolAcrossPassesAndFrames) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, TransientBuffersShareThePoolAcrossPassesAndFrames) {
     NoContext context;
     const gl::BufferDesc words{4096};
     struct Written {
@@ -329,10 +314,7 @@ TEST(FrameGraph, TransientBuffersShareThePoolAcrossPassesAndFrames) {
 
 // Resources::buffer reaches only gl::Buffers: a buffer imported as an object of its own (a BVH,
 // say) is an error there, not a reinterpretation.
-TEST(FrameGraphDeathTest, ABufferImportedAsAnObjectIsNotAGlBuffer) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraphDeathTest, ABufferImportedAsAnObjectIsNotAGlBuffer) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     int tree = 0; // stands for a structure of several buffers
@@ -354,10 +336,7 @@ TEST(FrameGraphDeathTest, ABufferImportedAsAnObjectIsNotAGlBuffer) {
     EXPECT_DEATH((void)graph.execute(context), "'tree' is not a gl::Buffer");
 }
 
-TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, ReadersRunBeforeTheNextWriter) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     const auto back = graph.importTexture("backbuffer", kColor, reinterpret_cast<void*>(8));
@@ -384,10 +363,7 @@ TEST(FrameGraph, ReadersRunBeforeTheNextWriter) {
     EXPECT_GE((*timings)[0].cpuMs, 0.0);
 }
 
-TEST(FrameGraph, AFinalReadRunsAfterAWriterRecordedLater) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, AFinalReadRunsAfterAWriterRecordedLater) {
     fg::FrameGraph graph(pool, buffers);
     NoContext context;
     fg::Blackboard board;
@@ -422,10 +398,7 @@ TEST(FrameGraph, AFinalReadRunsAfterAWriterRecordedLater) {
     EXPECT_NE(graph.dump().find("reads   'atlas' (version 2)"), std::string::npos) << graph.dump();
 }
 
-TEST(FrameGraph, AFinalReadFailsWhereTheKeyHoldsNoVersionOrMakesACycle) {
-    FakeAllocator allocator;
-    fg::TexturePool pool(allocator);
-    fg::BufferPool buffers(allocator);
+TEST_F(FrameGraph, AFinalReadFailsWhereTheKeyHoldsNoVersionOrMakesACycle) {
     {
         fg::FrameGraph graph(pool, buffers);
         fg::Blackboard board;
