@@ -398,19 +398,24 @@ TEST_F(FrameGraph, AFinalReadRunsAfterAWriterRecordedLater) {
     EXPECT_NE(graph.dump().find("reads   'atlas' (version 2)"), std::string::npos) << graph.dump();
 }
 
+/** A shading pass that reads the final "atlas" of `board` into a texture of its own. */
+const One& addShade(fg::FrameGraph& graph, const fg::Blackboard& board) {
+    return graph.addPass<One>(
+        "shade",
+        [&](fg::Builder& b, One& d) {
+            b.readFinal<fg::TextureHandle>(board, "atlas");
+            d.out = b.write(b.create("shaded", kColor));
+            b.sideEffect();
+        },
+        [](const fg::Resources&, const One&, gl::Context&) {});
+}
+
 TEST_F(FrameGraph, AFinalReadFailsWhereTheKeyHoldsNoVersionOrMakesACycle) {
     {
         fg::FrameGraph graph(pool, buffers);
         fg::Blackboard board;
         board.put("atlas", 1.0f); // another type
-        graph.addPass<One>(
-            "shade",
-            [&](fg::Builder& b, One& d) {
-                b.readFinal<fg::TextureHandle>(board, "atlas");
-                d.out = b.write(b.create("shaded", kColor));
-                b.sideEffect();
-            },
-            [](const fg::Resources&, const One&, gl::Context&) {});
+        addShade(graph, board);
         const auto compiled = graph.compile();
         ASSERT_FALSE(compiled.ok());
         EXPECT_NE(compiled.error().message.find("pass 'shade' reads the final 'atlas'"),
@@ -420,14 +425,7 @@ TEST_F(FrameGraph, AFinalReadFailsWhereTheKeyHoldsNoVersionOrMakesACycle) {
     fg::FrameGraph graph(pool, buffers);
     fg::Blackboard board;
     // "shade" reads what "glass" writes last, and "glass" draws on what "shade" wrote.
-    const auto& shade = graph.addPass<One>(
-        "shade",
-        [&](fg::Builder& b, One& d) {
-            b.readFinal<fg::TextureHandle>(board, "atlas");
-            d.out = b.write(b.create("shaded", kColor));
-            b.sideEffect();
-        },
-        [](const fg::Resources&, const One&, gl::Context&) {});
+    const One& shade = addShade(graph, board);
     const auto& glass = graph.addPass<One>(
         "glass", [&](fg::Builder& b, One& d) { d.out = b.write(shade.out); },
         [](const fg::Resources&, const One&, gl::Context&) {});
