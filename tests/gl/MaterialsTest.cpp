@@ -38,7 +38,7 @@ scene::World sharedWorld(const std::string& file,
 // full-size texels (ClearCoatTest's and LightsPunctualLamp's normal maps most).
 constexpr double kClearcoatFloor = 22.0, kSheenFloor = 29.0, kSphereLayerFloor = 55.0,
                  kAnisotropyFloor = 38.0, kLightsFloor = 12.0, kNodeLightsFloor = 55.0,
-                 kEmissiveFloor = 60.0, kGlassLayersFloor = 28.0;
+                 kEmissiveFloor = 60.0, kGlassLayersFloor = 28.0, kUnlitFloor = 40.0;
 
 class Materials : public test::GlTest {
 protected:
@@ -388,6 +388,78 @@ TEST_F(Materials, PunctualLightsOfAFileLightItOnTheGpuAndInTheReference) {
                 lit, unlit);
     EXPECT_GE(lit, kLightsFloor);
     EXPECT_GT(lit, unlit + 3.0);
+}
+
+TEST_F(Materials, UnlitSurfacesTakeNoLightOnTheGpuAndInTheReference) {
+    // UnlitTest (KHR_materials_unlit) under the test lights: its base colour is its colour on
+    // both, the deferred lighting adding nothing to it; lit as metallic-roughness, it is not.
+    GLASS_REQUIRE_SHARED();
+    const std::string file = "UnlitTest/glTF-Binary/UnlitTest.glb";
+    const auto [unlit, lit] = againstReference(
+        withTestLights(sharedWorld(file,
+                                   [](scene::Model& m) {
+                                       EXPECT_TRUE(std::all_of(
+                                           m.materials.begin(), m.materials.end(),
+                                           [](const scene::Material& x) { return x.unlit; }));
+                                   })),
+        withTestLights(sharedWorld(file,
+                                   [](scene::Model& m) {
+                                       for (scene::Material& x : m.materials)
+                                           x.unlit = false;
+                                   })),
+        kSize);
+    std::printf("UnlitTest under lights against the reference: %.2f dB, %.2f dB lit\n", unlit, lit);
+    EXPECT_GE(unlit, kUnlitFloor);
+    EXPECT_GT(unlit, lit + 5.0);
+}
+
+TEST_F(Materials, LitOpaqueSurfacesAreShadedOncePerPixelAndLayeredOnesAsDrawn) {
+    // With punctual lights, the opaque pass writes the materials without layers into the
+    // surface targets and the lighting pass shades them; a material with layers is drawn and
+    // shaded after it (opaque_layers), where the frame has such a surface. With the environment
+    // alone, the opaque pass shades every surface as drawn. A sphere beside a layered one, the
+    // two frames against the reference.
+    auto spheres = [](int layered, bool lights) {
+        scene::World world;
+        for (int k = 0; k < 2; ++k) {
+            auto loaded = asset::loadModel("builtin:sphere");
+            EXPECT_TRUE(loaded.ok());
+            scene::Model model = std::move(*loaded);
+            model.materials.at(0).baseColorFactor = {0.8f, 0.3f, 0.2f, 1.0f};
+            if (k < layered)
+                test::matrix::addMaterialLayers(model.materials.at(0));
+            scene::World one =
+                scene::singleCharacterWorld(std::make_shared<const scene::Model>(std::move(model)));
+            one.characters.at(0).placement.translation = {2.5 * k, 0.0, 0.0};
+            one.characters.at(0).glass = scene::GlassMode::None;
+            world.characters.push_back(one.characters.at(0));
+        }
+        return lights ? withTestLights(std::move(world)) : world;
+    };
+    const auto passes = [&](scene::World world) {
+        WorldRig rig(std::move(world), context(), 64);
+        std::vector<std::string> names;
+        rig.render(0.0, &names);
+        return names;
+    };
+    const auto has = [](const std::vector<std::string>& names, const char* name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    const auto mixed = passes(spheres(1, true));
+    EXPECT_TRUE(has(mixed, "opaque") && has(mixed, "lighting") && has(mixed, "opaque_layers"));
+    const auto plain = passes(spheres(0, true));
+    EXPECT_TRUE(has(plain, "lighting") && !has(plain, "opaque_layers"));
+    const auto layered = passes(spheres(2, true));
+    EXPECT_TRUE(has(layered, "opaque") && !has(layered, "lighting"));
+    const auto environment = passes(spheres(1, false));
+    EXPECT_TRUE(has(environment, "opaque") && !has(environment, "lighting") &&
+                !has(environment, "opaque_layers"));
+    const auto [lit, dark] = againstReference(spheres(1, true), spheres(1, false), kSize, true);
+    std::printf("a plain and a layered sphere under the test lights against the reference: "
+                "%.2f dB, %.2f dB without the lights\n",
+                lit, dark);
+    EXPECT_GE(lit, kSphereLayerFloor);
+    EXPECT_GT(lit, dark + 5.0);
 }
 
 TEST_F(Materials, EmissiveStrengthBrightensTheEmissionOnTheGpuAndInTheReference) {

@@ -1,10 +1,20 @@
 // Opaque surfaces: glTF's material model with its extensions' layers (common/brdf.glsl), lit by
 // the environment and the punctual lights; compiled per set of layers (SURFACE_LAYERS). Where the
 // frame accumulates (uWriteMotion), each fragment's motion too (common/motion.glsl).
+// DEFERRED (a material without layers): the surface's material into the surface targets and its
+// emitted light into the colour, for the lighting pass to shade (common/surface_targets.glsl).
+#ifndef DEFERRED
+#define DEFERRED 0
+#endif
 #include "common/brdf.glsl"
 #include "common/material_uv.glsl"
 #include "common/motion.glsl"
 #include "common/normal_map.glsl"
+#if DEFERRED
+#include "common/surface_targets.glsl"
+#else
+#define MOTION_TARGET 1
+#endif
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -12,7 +22,7 @@ in vec4 vWorldTangent;
 in vec4 vUv; // TEXCOORD_0 in xy, TEXCOORD_1 in zw
 in vec4 vClip, vPreviousClip;
 layout(location = 0) out vec4 outColor;
-layout(location = 1) out uvec4 outMotion;
+layout(location = MOTION_TARGET) out uvec4 outMotion;
 uniform int uMotionObject; // the draw item's index + 1
 
 uniform vec3 uCameraPosition;
@@ -53,6 +63,12 @@ void main() {
         baseColor *= read(SLOT_BASE_COLOR); // sRGB: decoded to linear
     if (uUnlit != 0) {
         outColor = vec4(baseColor.rgb, 1.0);
+#if DEFERRED // a surface that reflects nothing: the lighting adds zero
+        SurfaceMaterial none = coreSurface(vec3(0.0), 0.0, 1.0, 0.0, vWorldNormal);
+        none.dielectricF0 = vec3(0.0);
+        none.specularWeight = 0.0;
+        writeSurface(vWorldPosition, normalize(vWorldNormal), none);
+#endif
         return;
     }
     float metallic = uMetallicFactor, roughness = uRoughnessFactor;
@@ -137,9 +153,13 @@ void main() {
         }
     }
 #endif
-    vec3 color = shadeSurface(m, vWorldPosition, N, V);
     vec3 emissive = uEmissive;
     if (has(SLOT_EMISSIVE))
         emissive *= read(SLOT_EMISSIVE).rgb;
-    outColor = vec4(color + emissive, 1.0);
+#if DEFERRED
+    writeSurface(vWorldPosition, N, m);
+    outColor = vec4(emissive, 1.0);
+#else
+    outColor = vec4(shadeSurface(m, vWorldPosition, N, V) + emissive, 1.0);
+#endif
 }

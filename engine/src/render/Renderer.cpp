@@ -454,9 +454,9 @@ core::Status Renderer::record(fg::FrameGraph& graph, FrameInfo& frame, fg::Black
     const ShadowAtlases engineShadows = recordShadows(graph, blackboard, frame, vertices);
 
     passes::SceneTargets scene = passes::addBackground(graph, gpu, frame);
+    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, blackboard);
     if (frame.settings.ground)
         scene = passes::addGround(graph, gpu, frame, scene, blackboard);
-    scene = passes::addOpaque(graph, gpu, frame, scene, vertices, blackboard);
     blackboard.put(plugin::kSceneColor, scene.color);
     blackboard.put(plugin::kSceneDepth, scene.depth);
     if (scene.motion.valid()) {

@@ -1,5 +1,5 @@
-// The scene renderer: a world of characters through deform -> background -> (ground) -> opaque
-// -> plugin stages -> tonemap, recorded into a frame graph every frame (one file per pass:
+// The scene renderer: a world of characters through deform -> background -> opaque ->
+// (lighting, opaque_layers) -> (ground) -> plugin stages -> tonemap, recorded into a frame graph every frame (one file per pass:
 // src/render/passes/), executed, timed per pass on CPU and GPU.
 #pragma once
 

@@ -1,10 +1,11 @@
 // The renderer's own passes, one file each, recorded by Renderer::render in this order:
-// deform -> shadows (where lights cast) -> background -> ground (optional) -> opaque -> [plugin
-// stages] -> temporal (where the frame accumulates) -> tonemap. The ground and the opaque pass
-// read the shadow atlases as the plugins leave them, so the graph runs the plugins' shadow
-// passes before them.
-// Each asks the renderer's program cache (FrameInfo::programs) for its program's variant where
-// it executes.
+// deform -> shadows (where lights cast) -> background -> opaque -> lighting and opaque_layers
+// (where the frame has punctual lights: OpaquePass.cpp) -> ground (optional: after the
+// characters, so that it shades only what they leave) -> [plugin stages] -> temporal (where the
+// frame accumulates) -> tonemap. The passes that shade with the lights read the shadow atlases
+// as the plugins leave them, so the graph runs the plugins' shadow passes before them. Each asks
+// the renderer's program cache (FrameInfo::programs) for its program's variant where it
+// executes.
 #pragma once
 
 #include "../RenderGpu.h"
@@ -31,11 +32,16 @@ struct LitTargets : SceneTargets {
     ShadowAtlases shadows;
 };
 
+/** Whether a pass's program writes motion: the frame accumulates (common/motion.glsl). */
+inline std::string motionDefine(const FrameInfo& frame) {
+    return std::string("WRITE_MOTION ") + (frame.temporal.enabled ? "1" : "0");
+}
+
 /** The defines of a pass that shades with the lights: the frame's lighting features
  *  (FrameInfo::lighting) and whether it writes motion (the frame accumulates). */
 inline std::vector<std::string> litDefines(const FrameInfo& frame) {
     std::vector<std::string> defines = frame.lighting.defines();
-    defines.push_back(std::string("WRITE_MOTION ") + (frame.temporal.enabled ? "1" : "0"));
+    defines.push_back(motionDefine(frame));
     return defines;
 }
 
@@ -66,11 +72,16 @@ fg::TextureHandle addShadowMapView(fg::FrameGraph& graph, RenderGpu& gpu, const 
  *  environment's motion. */
 SceneTargets addBackground(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame);
 /** `ground`: the ground plane (FrameInfo::ground) into the scene targets, shadowed by the
- *  atlases `blackboard` holds once the frame is recorded (ShadowAtlases::readFinal). */
+ *  atlases `blackboard` holds once the frame is recorded (ShadowAtlases::readFinal). Drawn after
+ *  the characters, it shades only the pixels they leave. */
 SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, const fg::Blackboard& blackboard);
-/** `opaque`: every draw item no plugin claimed, metallic-roughness with image-based lighting,
- *  from the deformed vertices, shadowed as the ground. */
+/** The opaque characters: every draw item no plugin claimed, from the deformed vertices, shaded
+ *  with glTF's material model by the environment and the lights, shadowed by the atlases
+ *  `blackboard` holds once the frame is recorded (ShadowAtlases::readFinal). Where the frame
+ *  has punctual lights, `opaque` draws the items without material layers into the surface
+ *  targets, `lighting` shades each pixel they cover once and `opaque_layers` draws and shades
+ *  the items with layers; else `opaque` draws and shades them all (OpaquePass.cpp). */
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices,
                        const fg::Blackboard& blackboard);
