@@ -11,6 +11,18 @@
 #ifndef PUNCTUAL_LIGHTS
 #define PUNCTUAL_LIGHTS 1
 #endif
+// The types of light it has (each compiled in without the define): a frame of directional
+// lights alone, say, leaves out the local lights' falloffs, cube faces and perspective maps.
+#ifndef DIRECTIONAL_LIGHTS
+#define DIRECTIONAL_LIGHTS 1
+#endif
+#ifndef POINT_LIGHTS
+#define POINT_LIGHTS 1
+#endif
+#ifndef SPOT_LIGHTS
+#define SPOT_LIGHTS 1
+#endif
+#define LOCAL_LIGHTS (POINT_LIGHTS || SPOT_LIGHTS)
 
 struct PunctualLight {
     vec4 position;  // world; w: LIGHT_*
@@ -55,9 +67,9 @@ vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
 #endif
     PunctualLight light = punctualLights[i];
     float falloff = 1.0;
-    if (int(light.position.w) == LIGHT_DIRECTIONAL) {
-        L = -light.direction.xyz;
-    } else {
+    L = -light.direction.xyz;
+#if LOCAL_LIGHTS
+    if (DIRECTIONAL_LIGHTS == 0 || int(light.position.w) != LIGHT_DIRECTIONAL) {
         vec3 toLight = light.position.xyz - P;
         float d2 = max(dot(toLight, toLight), 1e-8);
         L = toLight * inversesqrt(d2);
@@ -67,11 +79,14 @@ vec3 lightArriving(uint i, vec3 P, vec3 N, out vec3 L) {
             float window = clamp(1.0 - x * x, 0.0, 1.0);
             falloff *= window * window;
         }
+#if SPOT_LIGHTS
         if (int(light.position.w) == LIGHT_SPOT)
             falloff *= spotFalloff(light, L);
+#endif
         if (falloff <= 0.0)
             return vec3(0.0);
     }
+#endif
     return light.radiance.rgb * falloff * lightShadow(light, P, N, L);
 }
 

@@ -21,19 +21,34 @@ bool gCausticReceiver = true;
 // The view of `light` that sees P: its first, or for a point light the cube face of P.
 int shadowView(PunctualLight light, vec3 P) {
     int view = int(light.cone.y);
-    if (int(light.position.w) != LIGHT_POINT)
-        return view;
-    vec3 d = P - light.position.xyz, a = abs(d);
-    if (a.x >= a.y && a.x >= a.z)
-        return view + (d.x >= 0.0 ? 0 : 1);
-    if (a.y >= a.z)
-        return view + (d.y >= 0.0 ? 2 : 3);
-    return view + (d.z >= 0.0 ? 4 : 5);
+#if POINT_LIGHTS
+    if (int(light.position.w) == LIGHT_POINT) {
+        vec3 d = P - light.position.xyz, a = abs(d);
+        if (a.x >= a.y && a.x >= a.z)
+            return view + (d.x >= 0.0 ? 0 : 1);
+        if (a.y >= a.z)
+            return view + (d.y >= 0.0 ? 2 : 3);
+        return view + (d.z >= 0.0 ? 4 : 5);
+    }
+#endif
+    return view;
+}
+
+// Whether `view` is a perspective one (a point light's or a spot's), as the frame's types of
+// light allow.
+bool perspective(ShadowView view) {
+#if !LOCAL_LIGHTS
+    return false;
+#elif !DIRECTIONAL_LIGHTS
+    return true;
+#else
+    return view.texel.y > 0.5;
+#endif
 }
 
 // Distance from the light to P along its rays past the near plane (ShadowView::distance).
 float shadowDistance(ShadowView view, vec3 P) {
-    return (view.texel.y > 0.5 ? distance(P, view.axis.xyz) : dot(view.axis.xyz, P) + view.axis.w) -
+    return (perspective(view) ? distance(P, view.axis.xyz) : dot(view.axis.xyz, P) + view.axis.w) -
            view.texel.z;
 }
 
@@ -99,7 +114,7 @@ vec3 lightShadow(PunctualLight light, vec3 P, vec3 N, vec3 L) {
     float softness = light.cone.z;
     // Offset along the normal toward the light by a few texels at P: no acne on lit slopes.
     float distanceToLight = shadowDistance(view, P);
-    float texel = view.texel.x * (view.texel.y > 0.5 ? distanceToLight + view.texel.z : 1.0);
+    float texel = view.texel.x * (perspective(view) ? distanceToLight + view.texel.z : 1.0);
     vec3 Nl = dot(N, L) < 0.0 ? -N : N;
     vec3 offset = P + (Nl * (1.5 + softness) + L * 0.5) * texel;
     vec4 clip = view.viewProjection * vec4(offset, 1.0);

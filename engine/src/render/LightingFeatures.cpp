@@ -7,6 +7,11 @@ LightingFeatures LightingFeatures::of(std::span<const scene::PlacedLight> lights
                                       const ShadowPlan& plan, bool glassShadows, bool caustics) {
     LightingFeatures f;
     f.lights = !lights.empty();
+    for (const scene::PlacedLight& l : lights) {
+        f.directional = f.directional || l.light.type == scene::Light::Type::Directional;
+        f.point = f.point || l.light.type == scene::Light::Type::Point;
+        f.spot = f.spot || l.light.type == scene::Light::Type::Spot;
+    }
     for (std::size_t i = 0; i < lights.size() && i < plan.firstView.size(); ++i)
         if (plan.firstView[i] >= 0) {
             f.shadowMaps = true;
@@ -19,9 +24,10 @@ LightingFeatures LightingFeatures::of(std::span<const scene::PlacedLight> lights
 
 std::vector<std::string> LightingFeatures::defines() const {
     auto define = [](const char* name, bool on) { return std::string(name) + (on ? " 1" : " 0"); };
-    return {define("PUNCTUAL_LIGHTS", lights), define("SHADOW_MAPS", shadowMaps),
-            define("SHADOW_SOFT", softShadows), define("SHADOW_GLASS", glassShadows),
-            define("SHADOW_CAUSTICS", caustics)};
+    return {define("PUNCTUAL_LIGHTS", lights),    define("DIRECTIONAL_LIGHTS", directional),
+            define("POINT_LIGHTS", point),        define("SPOT_LIGHTS", spot),
+            define("SHADOW_MAPS", shadowMaps),    define("SHADOW_SOFT", softShadows),
+            define("SHADOW_GLASS", glassShadows), define("SHADOW_CAUSTICS", caustics)};
 }
 
 } // namespace render

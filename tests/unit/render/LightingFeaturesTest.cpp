@@ -7,9 +7,10 @@
 
 namespace {
 
-scene::PlacedLight light(float softness) {
+scene::PlacedLight light(float softness,
+                         scene::Light::Type type = scene::Light::Type::Directional) {
     scene::PlacedLight l;
-    l.light.type = scene::Light::Type::Directional;
+    l.light.type = type;
     l.light.shadow.softness = softness;
     return l;
 }
@@ -32,8 +33,9 @@ bool has(const std::vector<std::string>& defines, const std::string& define) {
 TEST(LightingFeatures, AFrameWithoutLightsCompilesNoneOfTheirParts) {
     const auto f = render::LightingFeatures::of({}, plan(0, {}), true, true);
     EXPECT_EQ(f, render::LightingFeatures{});
-    for (const char* define : {"PUNCTUAL_LIGHTS 0", "SHADOW_MAPS 0", "SHADOW_SOFT 0",
-                               "SHADOW_GLASS 0", "SHADOW_CAUSTICS 0"})
+    for (const char* define :
+         {"PUNCTUAL_LIGHTS 0", "DIRECTIONAL_LIGHTS 0", "POINT_LIGHTS 0", "SPOT_LIGHTS 0",
+          "SHADOW_MAPS 0", "SHADOW_SOFT 0", "SHADOW_GLASS 0", "SHADOW_CAUSTICS 0"})
         EXPECT_TRUE(has(f.defines(), define)) << define;
 }
 
@@ -52,6 +54,20 @@ TEST(LightingFeatures, ShadowPartsFollowTheLightsThatCast) {
     EXPECT_FALSE(f.caustics);
     EXPECT_TRUE(has(f.defines(), "SHADOW_GLASS 1"));
     EXPECT_TRUE(has(f.defines(), "SHADOW_CAUSTICS 0"));
+}
+
+TEST(LightingFeatures, EachTypeOfLightCompilesOnlyWhereTheFrameHasOne) {
+    using Type = scene::Light::Type;
+    auto f = render::LightingFeatures::of(std::vector{light(0.0f)}, plan(1, {}), false, false);
+    EXPECT_TRUE(f.directional);
+    EXPECT_FALSE(f.point || f.spot);
+    EXPECT_TRUE(has(f.defines(), "DIRECTIONAL_LIGHTS 1"));
+    EXPECT_TRUE(has(f.defines(), "POINT_LIGHTS 0"));
+    EXPECT_TRUE(has(f.defines(), "SPOT_LIGHTS 0"));
+    f = render::LightingFeatures::of(std::vector{light(0.0f, Type::Spot), light(0.0f, Type::Point)},
+                                     plan(2, {}), false, false);
+    EXPECT_FALSE(f.directional);
+    EXPECT_TRUE(f.point && f.spot);
 }
 
 } // namespace

@@ -15,7 +15,10 @@ namespace render {
  *  runs every branch of a quad, so a part compiled in costs its whole time even where it is
  *  off). Programs built without these defines keep every part. */
 struct LightingFeatures {
-    bool lights = false;       ///< PUNCTUAL_LIGHTS: the frame has punctual lights
+    bool lights = false; ///< PUNCTUAL_LIGHTS: the frame has punctual lights
+    /** DIRECTIONAL_LIGHTS, POINT_LIGHTS, SPOT_LIGHTS: it has lights of that type (the code of
+     *  the others, their falloffs, cube faces and perspective maps, is out). */
+    bool directional = false, point = false, spot = false;
     bool shadowMaps = false;   ///< SHADOW_MAPS: one of them casts
     bool softShadows = false;  ///< SHADOW_SOFT: a casting light filters over a radius
     bool glassShadows = false; ///< SHADOW_GLASS: a plugin drew glass into the glass atlas

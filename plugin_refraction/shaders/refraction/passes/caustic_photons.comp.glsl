@@ -51,7 +51,7 @@ float groundDistance(vec3 origin, vec3 dir) {
 // solid angle of a texel) in a perspective view.
 float texelLight(int v, vec3 dir) {
     PunctualLight light = punctualLights[uViewLight[v]];
-    if (shadowViews[v].texel.y < 0.5)
+    if (!perspective(shadowViews[v]))
         return 1.0;
     float c = max(dot(dir, uViewAxis[v]), 0.0);
     float spot = int(light.position.w) == LIGHT_SPOT ? spotFalloff(light, -dir) : 1.0;
@@ -79,11 +79,11 @@ void land(int emitted, vec3 X, vec3 light, int cell) {
     if (depth < 1.0) {
         vec4 seen = uInverseViewProjection[v] * vec4(ndc.xy, depth * 2.0 - 1.0, 1.0);
         float receiver = shadowDistance(view, seen.xyz / seen.w);
-        float texel = view.texel.x * (view.texel.y > 0.5 ? along + view.texel.z : 1.0);
+        float texel = view.texel.x * (perspective(view) ? along + view.texel.z : 1.0);
         if (along > receiver + 4.0 * texel + 0.01 * along)
             return;
     }
-    vec3 toX = view.texel.y > 0.5 ? normalize(X - view.axis.xyz) : uViewAxis[v];
+    vec3 toX = perspective(view) ? normalize(X - view.axis.xyz) : uViewAxis[v];
     light /= max(texelLight(v, toX), 1e-3);
     // Bilinear into the tile's fine cells, the light and the photon; the light alone into the
     // coarse cell it fell in (the resolve's bilinear read smooths it).
