@@ -1,14 +1,18 @@
 // The surface targets, the deferred shading's G-buffer: for each pixel, the nearest opaque
-// surface the opaque pass drew (render/opaque.frag.glsl) as its world position, shading normal and core material (common/brdf.glsl's SurfaceMaterial without
-// layers), which the lighting pass (render/lighting.frag.glsl) shades once. A CPU rasteriser
-// shades every fragment of a small triangle's quads and every hidden one; this way the lights,
-// the environment and the shadow lookups are paid once per covered pixel. The surface's emitted
-// light is in the scene colour already; the lighting pass adds to it.
+// surface the opaque pass drew (render/opaque.frag.glsl) as its world position, shading normal
+// and core material (common/brdf.glsl's SurfaceMaterial without layers), which the lighting pass
+// (render/lighting.frag.glsl) shades once. A CPU rasteriser shades every fragment of a small
+// triangle's quads and every hidden one; this way the lights, the environment and the shadow
+// lookups are paid once per covered pixel. The surface's emitted light is in the scene colour
+// already; the lighting pass adds to it.
 // A writer defines DEFERRED 1 before it includes this file; the lighting pass includes it
 // without. render::passes::addOpaque creates the targets.
 #ifndef COMMON_SURFACE_TARGETS_GLSL
 #define COMMON_SURFACE_TARGETS_GLSL
 #include "common/brdf.glsl"
+#ifndef DEFERRED
+#define DEFERRED 0
+#endif
 
 #if DEFERRED
 // Colour attachments 1-4; the scene colour is 0 and the motion, where the frame accumulates, 5.

@@ -1,6 +1,6 @@
 // The scene renderer: a world of characters through deform -> background -> opaque ->
-// (lighting, opaque_layers) -> (ground) -> plugin stages -> tonemap, recorded into a frame graph every frame (one file per pass:
-// src/render/passes/), executed, timed per pass on CPU and GPU.
+// (lighting, opaque_layers) -> (ground) -> plugin stages -> tonemap, recorded into a frame graph
+// every frame (one file per pass: src/render/passes/), executed, timed per pass on CPU and GPU.
 #pragma once
 
 #include "engine/anim/Pose.h"
