@@ -23,20 +23,9 @@
 namespace render::passes {
 namespace {
 
-/** The deferred shading's G-buffer: world position and occlusion, shading normal and
- *  roughness, base colour and metallic, dielectric F0 and specular weight. */
-struct SurfaceTargets {
-    fg::TextureHandle position, normal, base, specular;
-};
-
+/** What `opaque` writes where it draws into the surface targets. */
 struct GeometryTargets : SceneTargets {
     SurfaceTargets surfaces;
-};
-
-struct LightingTargets {
-    fg::TextureHandle color, depth;
-    SurfaceTargets surfaces;
-    ShadowAtlases shadows;
 };
 
 gl::Cull cullFor(const scene::Material* material) {
@@ -128,54 +117,6 @@ GeometryTargets addGeometry(fg::FrameGraph& graph, RenderGpu& gpu, const FrameIn
         });
 }
 
-/** `lighting`: shades every pixel `opaque` covered, added to its colour. */
-fg::TextureHandle addLighting(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
-                              const GeometryTargets& geometry, const fg::Blackboard& blackboard) {
-    return graph
-        .addPass<LightingTargets>(
-            "lighting",
-            [&](fg::Builder& b, LightingTargets& d) {
-                d.shadows = ShadowAtlases::readFinal(b, blackboard);
-                d.depth = b.read(geometry.depth);
-                const SurfaceTargets& s = geometry.surfaces;
-                d.surfaces = {b.read(s.position), b.read(s.normal), b.read(s.base),
-                              b.read(s.specular)};
-                d.color = b.write(geometry.color);
-            },
-            [&gpu, &frame](const fg::Resources& r, const LightingTargets& d,
-                           gl::Context&) -> core::Status {
-                auto program =
-                    frame.programs->graphics("render/fullscreen.vert.glsl",
-                                             "render/lighting.frag.glsl", frame.lighting.defines());
-                if (!program)
-                    return program.error();
-                // The depth attached for its test alone: the far plane's triangle passes where
-                // a surface is nearer.
-                if (auto bound = gpu.framebuffer.bindTargets("lighting", {&r.texture(d.color)},
-                                                             &r.texture(d.depth));
-                    !bound)
-                    return bound;
-                d.shadows.bind(r, gpu.shadowSampler);
-                const fg::TextureHandle surfaces[] = {d.surfaces.position, d.surfaces.normal,
-                                                      d.surfaces.base, d.surfaces.specular};
-                for (std::uint32_t i = 0; i < 4; ++i)
-                    gl::bindTexture(gl::slot::kMaterial, r.texture(surfaces[i]), i);
-                gl::apply({.cull = gl::Cull::None,
-                           .depthWrite = false,
-                           .depthFunc = gl::DepthFunc::Greater,
-                           .blend = gl::Blend::Additive});
-                const gl::Program& p = **program;
-                p.use();
-                gpu.environment->bind(p, frame.settings.environmentRotation,
-                                      frame.settings.environmentIntensity);
-                p.set("uCameraPosition", frame.camera.position);
-                gpu.emptyVao.bind();
-                gl::drawArrays(3);
-                return {};
-            })
-        .color;
-}
-
 /** Pass `name`: the items `drawn` picks, each shaded as drawn by the variant of its material's
  *  layers (RenderGpu::layerSets). */
 SceneTargets addForward(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
@@ -235,7 +176,7 @@ SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
         return addForward(graph, gpu, frame, scene, vertices, blackboard, "opaque", unclaimed);
     const GeometryTargets geometry = addGeometry(graph, gpu, frame, scene, vertices);
     scene = geometry;
-    scene.color = addLighting(graph, gpu, frame, geometry, blackboard);
+    scene.color = addLighting(graph, gpu, frame, geometry, geometry.surfaces, blackboard);
     if (any(layered))
         scene =
             addForward(graph, gpu, frame, scene, vertices, blackboard, "opaque_layers", layered);

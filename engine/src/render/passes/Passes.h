@@ -37,6 +37,13 @@ inline std::string motionDefine(const FrameInfo& frame) {
     return std::string("WRITE_MOTION ") + (frame.temporal.enabled ? "1" : "0");
 }
 
+/** The surface targets, the deferred shading's G-buffer (common/surface_targets.glsl): world
+ *  position and occlusion, shading normal and roughness (RGBA32F), base colour and metallic,
+ *  dielectric F0 and specular weight (RGBA16F). */
+struct SurfaceTargets {
+    fg::TextureHandle position, normal, base, specular;
+};
+
 /** The defines of a pass that shades with the lights: the frame's lighting features
  *  (FrameInfo::lighting) and whether it writes motion (the frame accumulates). */
 inline std::vector<std::string> litDefines(const FrameInfo& frame) {
@@ -85,6 +92,12 @@ SceneTargets addGround(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& f
 SceneTargets addOpaque(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
                        SceneTargets scene, fg::BufferHandle vertices,
                        const fg::Blackboard& blackboard);
+/** `lighting`: every pixel of `scene` a surface covers (its depth nearer than the clear's)
+ *  shaded once from `surfaces` by the environment and the lights, shadowed by the atlases
+ *  `blackboard` holds once the frame is recorded, added to its colour; returns the colour. */
+fg::TextureHandle addLighting(fg::FrameGraph& graph, RenderGpu& gpu, const FrameInfo& frame,
+                              SceneTargets scene, SurfaceTargets surfaces,
+                              const fg::Blackboard& blackboard);
 /** `temporal`: the frame (`color`, jittered) blended into the history (TemporalHistory, its
  *  textures imported) by each pixel's motion (`motion`), rejected where what the pixel tracks
  *  changed, clipped to the frame's neighbourhood while anything moves; returns the resolved
