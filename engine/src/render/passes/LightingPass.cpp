@@ -23,8 +23,9 @@ fg::TextureHandle addLighting(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
             [&](fg::Builder& b, LightingTargets& d) {
                 d.shadows = ShadowAtlases::readFinal(b, blackboard);
                 d.depth = b.read(scene.depth);
-                d.surfaces = {b.read(surfaces.position), b.read(surfaces.normal),
-                              b.read(surfaces.base), b.read(surfaces.specular)};
+                for (const fg::TextureHandle surface : surfaces.all())
+                    b.read(surface);
+                d.surfaces = surfaces;
                 d.color = b.write(scene.color);
             },
             [&gpu, &frame](const fg::Resources& r, const LightingTargets& d,
@@ -41,9 +42,8 @@ fg::TextureHandle addLighting(fg::FrameGraph& graph, RenderGpu& gpu, const Frame
                     !bound)
                     return bound;
                 d.shadows.bind(r, gpu.shadowSampler);
-                const fg::TextureHandle targets[] = {d.surfaces.position, d.surfaces.normal,
-                                                     d.surfaces.base, d.surfaces.specular};
-                for (std::uint32_t i = 0; i < 4; ++i)
+                const auto targets = d.surfaces.all();
+                for (std::uint32_t i = 0; i < targets.size(); ++i)
                     gl::bindTexture(gl::slot::kMaterial, r.texture(targets[i]), i);
                 gl::apply({.cull = gl::Cull::None,
                            .depthWrite = false,

@@ -96,9 +96,9 @@ GeometryTargets addGeometry(fg::FrameGraph& graph, RenderGpu& gpu, const FrameIn
         },
         [&gpu, &frame](const fg::Resources& r, const GeometryTargets& d,
                        gl::Context&) -> core::Status {
-            std::vector<const gl::Texture*> targets{
-                &r.texture(d.color), &r.texture(d.surfaces.position), &r.texture(d.surfaces.normal),
-                &r.texture(d.surfaces.base), &r.texture(d.surfaces.specular)};
+            std::vector<const gl::Texture*> targets{&r.texture(d.color)};
+            for (const fg::TextureHandle surface : d.surfaces.all())
+                targets.push_back(&r.texture(surface));
             if (d.motion.valid())
                 targets.push_back(&r.texture(d.motion));
             if (auto bound = gpu.framebuffer.bindTargets("opaque", targets, &r.texture(d.depth));

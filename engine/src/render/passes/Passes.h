@@ -16,6 +16,7 @@
 #include "engine/render/FrameInfo.h"
 #include "engine/render/ShadowAtlases.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,8 @@ inline std::string motionDefine(const FrameInfo& frame) {
  *  dielectric F0 and specular weight (RGBA16F). */
 struct SurfaceTargets {
     fg::TextureHandle position, normal, base, specular;
+    /** The four in their order: the writer's colour attachments 1-4, the reader's units. */
+    std::array<fg::TextureHandle, 4> all() const { return {position, normal, base, specular}; }
 };
 
 /** The defines of a pass that shades with the lights: the frame's lighting features
