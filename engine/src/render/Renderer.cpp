@@ -22,8 +22,38 @@
 #include <cctype>
 #include <chrono>
 #include <map>
+#include <string_view>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace render {
+
+namespace {
+
+/** On a CPU rasteriser (Mesa's llvmpipe), keeps the heap a frame used for the next one.
+ *  llvmpipe bins each draw's triangles in heap blocks it frees when the scene is rasterised:
+ *  tens of MiB a frame for a refined character drawn on both faces. glibc gives that top of the
+ *  heap back to the kernel whenever the freed space lies above everything else, and the next
+ *  frame faults it in again, page by page, inside the passes' time: alternating methods at
+ *  subdivision level 2 made SIR's capture 3 times slower (docs/performance.md). Growing the
+ *  heap 64 MiB at a time and trimming only past 512 MiB keeps a frame's peak resident.
+ *  Process-wide, set once; GPU drivers do not bin on the heap and are left alone. */
+void keepHeapForCpuRasteriser() {
+#if defined(__GLIBC__)
+    static const bool kept = [] {
+        if (std::string_view(gl::rendererString()).find("llvmpipe") == std::string_view::npos)
+            return false;
+        mallopt(M_TOP_PAD, 64 << 20);
+        mallopt(M_TRIM_THRESHOLD, 512 << 20);
+        return true;
+    }();
+    (void)kept;
+#endif
+}
+
+} // namespace
 
 /** Pooled transient textures are plain gl::Textures, sampled nearest with clamping. */
 class Renderer::TextureAllocator final : public fg::TextureAllocator {
@@ -151,6 +181,7 @@ std::vector<std::string> skipDefines(const std::vector<std::string>& steps) {
 
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const asset::HdrImage& environment,
                                                          gl::Context& context) {
+    keepHeapForCpuRasteriser();
     std::unique_ptr<Renderer> r(new Renderer());
     r->mContext = &context;
     r->mGpu = std::make_unique<RenderGpu>();
