@@ -180,7 +180,10 @@ void RefractionPlugin::addPasses(plugin::Stage stage, fg::FrameGraph& graph,
     if (c.settings.layered()) {
         const fg::TextureHandle mask = addLayerCapturePass(graph, c, buffers);
         addLayerOverflowPass(graph, c, buffers);
-        capture = addLayerDepthsPass(graph, c, buffers, mask);
+        if (c.layerDepthMaps())
+            capture = addLayerDepthsPass(graph, c, buffers, mask);
+        else
+            capture.mask = mask; // SIR's walk reads its pixel's depths from the arrays
     } else {
         capture = addPairCapture(graph, c, buffers, scene);
     }

@@ -257,9 +257,11 @@ core::Status bindWalkInputs(const fg::Resources& r, const FrameContext& c, const
     if (in.sceneDepthTiles.valid())
         gl::bindTexture(slot::kSceneDepthTiles, r.texture(in.sceneDepthTiles));
     // The layer depth maps (layers.glsl), the pair's normals; an absent map: the first depth
-    // map stands in (unread).
+    // map stands in, or without maps (SIR's walk) the scene's colour (unread).
     const auto present = [&](fg::TextureHandle h) -> const gl::Texture& {
-        return r.texture(h.valid() ? h : in.capture.depths0);
+        return r.texture(h.valid()                    ? h
+                         : in.capture.depths0.valid() ? in.capture.depths0
+                                                      : in.sceneColor);
     };
     gl::bindTexture(slot::kLayerDepthMaps, present(in.capture.depths0), 0);
     gl::bindTexture(slot::kLayerDepthMaps, present(in.capture.depths1), 1);

@@ -13,7 +13,7 @@
 //   the layers (default): layer_capture (LayerCapturePass: every glass surface of every
 //     character, K a pixel, one geometry pass) -> layer_overflow (LayerOverflowPass: the
 //     overflowing pixels' kept layers bid for their fallback) -> layer_depths (LayerDepthsPass:
-//     their depths as maps), or
+//     their depths as maps, for the methods that search them: not SIR), or
 //   the pair (the papers' two-surface model): pair_gather (PairGatherPass: one MAX-blended
 //     geometry pass) or pair_surface.back and .front (PairSurfacePass: the papers' two
 //     depth-tested ones) -> pair_resolve (PairResolvePass: the pair as layers 0 and 1, with the
@@ -113,6 +113,12 @@ struct FrameContext {
                                              const std::vector<std::string>& defines = {}) const;
     /** The BVH holds the opaque parts too, which a traced ray or a photon may meet. */
     bool bvhHoldsOpaque() const { return settings.traces() || caustics; }
+    /** The walk reads the layers' depths from maps (refraction.layer_depths, or the pair's
+     *  resolve): every method that looks past a pixel's own layers. SIR's walk reads only its
+     *  pixel's, from the arrays, and its frame has no layer_depths pass (WALK_DEPTH_MAPS). */
+    bool layerDepthMaps() const {
+        return !settings.layered() || settings.method != Settings::Method::Sir;
+    }
     /** The camera's view and projection. */
     GlassView cameraView() const { return {frame->camera.view, frame->camera.projection}; }
     /** Draws every glass item with `program` (glass.vert.glsl) from `from` (the camera's when

@@ -88,6 +88,7 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
                 dispersion ? int(c.settings.dispersionSearch) : Settings::kNoDispersion),
          define("WRITE_MOTION", c.frame->temporal.enabled),
          define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
+         define("WALK_DEPTH_MAPS", c.layerDepthMaps()),
          define("SEVERAL_SAMPLES", c.severalSamples()),
          define("HYBRID_LIST", method == Settings::Method::Hybrid),
          define("NEARBY_SCENE", c.seesNearbyScene()),

@@ -198,7 +198,16 @@ vec4 layerDepths(ivec2 p, int g) {
 }
 #else
 vec4 layerDepths(ivec2 p, int g) {
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(uViewportSize))))
+        return vec4(NO_DEPTH);
     return storedDepths(p, g);
+}
+
+// What the maps would store, read from the arrays (the pair's searches ask for it).
+vec4 storedMap(ivec2 p, int g) {
+    vec4 d = layerDepths(p, g);
+    bool overflow = d.x < NO_DEPTH && int(layerHeads[pixelIndex(p)]) > kLayerCapacity;
+    return g == 0 && overflow ? vec4(-d.xy, d.zw) : d;
 }
 #endif
 

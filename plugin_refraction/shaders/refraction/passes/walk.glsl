@@ -25,7 +25,15 @@
 //
 // How the walk finds each crossing (DIR's search over the layers and over the pair, ISR's
 // estimate, the trace's hit): walk_crossings.glsl.
-#define LAYER_DEPTH_MAPS // the resolve pass's copy of the depths (layers.glsl)
+// The depths as the resolve pass copied them into maps (layers.glsl), one texel fetch a
+// search sample; SIR's walk (WALK_DEPTH_MAPS 0) reads only its pixel's, from the arrays, and
+// its frame makes no maps.
+#ifndef WALK_DEPTH_MAPS
+#define WALK_DEPTH_MAPS 1
+#endif
+#if WALK_DEPTH_MAPS
+#define LAYER_DEPTH_MAPS
+#endif
 #include "refraction/passes/glass_extent.glsl"
 #include "refraction/passes/glass_surface.glsl"
 #include "refraction/passes/layers.glsl"
