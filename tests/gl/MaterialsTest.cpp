@@ -462,6 +462,42 @@ TEST_F(Materials, LitOpaqueSurfacesAreShadedOncePerPixelAndLayeredOnesAsDrawn) {
     EXPECT_GT(lit, dark + 5.0);
 }
 
+// A glass texture is read only where some glass of the frame has one of its kind: a CPU
+// rasteriser reads a texture that a branch skips, and the trace's read switches over every unit
+// the variant has. The capture's and the trace's variants, for the textured sphere with its
+// base colour alone and with its transmission and metallic-roughness textures too.
+TEST_F(Materials, GlassTexturesAreReadOnlyWhereTheFrameHasThem) {
+    const auto variants = [&](bool transmissionTextures) {
+        scene::World world = test::matrix::texturedGlass();
+        scene::Model model = *world.characters[0].model;
+        if (!transmissionTextures)
+            model.materials[0].transmissionTexture =
+                model.materials[0].metallicRoughnessTexture = {};
+        world.characters[0].model = std::make_shared<const scene::Model>(std::move(model));
+        WorldRig rig(std::move(world), context(), 32);
+        rig.set("method", "trace");
+        rig.renderHdr();
+        return rig.renderer().programVariantKeys();
+    };
+    // Whether the variant of `shader` has `define`.
+    const auto has = [](const std::vector<std::string>& keys, const std::string& shader,
+                        const std::string& define) {
+        const auto key = std::find_if(keys.begin(), keys.end(), [&](const std::string& k) {
+            return k.find(shader) != std::string::npos;
+        });
+        EXPECT_NE(key, keys.end()) << shader;
+        return key != keys.end() && key->find("\n" + define + "\n") != std::string::npos;
+    };
+    const auto base = variants(false), all = variants(true);
+    for (const char* shader : {"layer_capture.frag.glsl", "walk.frag.glsl"}) {
+        EXPECT_TRUE(has(base, shader, "GLASS_BASE_COLOR_TEXTURES 1")) << shader;
+        EXPECT_TRUE(has(base, shader, "GLASS_TRANSMISSION_TEXTURES 0")) << shader;
+        EXPECT_TRUE(has(base, shader, "TRACED_TEXTURES_USED 1")) << shader;
+        EXPECT_TRUE(has(all, shader, "GLASS_TRANSMISSION_TEXTURES 1")) << shader;
+        EXPECT_TRUE(has(all, shader, "TRACED_TEXTURES_USED 3")) << shader;
+    }
+}
+
 TEST_F(Materials, EmissiveStrengthBrightensTheEmissionOnTheGpuAndInTheReference) {
     // EmissiveStrengthTest's cubes (KHR_materials_emissive_strength 1 to 16).
     GLASS_REQUIRE_SHARED();

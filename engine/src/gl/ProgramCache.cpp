@@ -35,6 +35,13 @@ core::Result<const Program*> ProgramCache::compute(const std::string& name,
                 [&] { return Program::compute(mLibrary, name, defines); });
 }
 
+std::vector<std::string> ProgramCache::keys() const {
+    std::vector<std::string> keys;
+    for (const auto& [key, program] : mPrograms)
+        keys.push_back(key);
+    return keys;
+}
+
 core::Result<const Program*>
 ProgramCache::kept(const std::string& key, const std::function<core::Result<Program>()>& compile) {
     if (auto found = mPrograms.find(key); found != mPrograms.end())

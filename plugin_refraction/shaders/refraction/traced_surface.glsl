@@ -22,6 +22,12 @@
 layout(std430, binding = WORLD_UVS_BINDING) readonly buffer WorldUvs { vec4 meshUvs[]; };
 layout(binding = TRACED_TEXTURES_UNIT) uniform sampler2D uTracedTextures[TRACED_TEXTURES];
 
+// The units the frame's glass textures take (GpuState::tracedTextures; the plugin's variants,
+// all where not given): a CPU rasteriser runs every case of a switch, so a case a unit.
+#ifndef TRACED_TEXTURES_USED
+#define TRACED_TEXTURES_USED TRACED_TEXTURES
+#endif
+
 // Texture `t` at the hit's texture coordinates `uvs` (TEXCOORD_0 in xy, _1 in zw), its base level
 // (no derivatives in the walk's loops; the reference reads level 0 too); a constant index in each
 // branch, as an array of samplers requires.
@@ -29,23 +35,39 @@ vec4 tracedTexel(TracedTexture t, vec4 uvs) {
     vec3 st = vec3(t.uvSet != 0 ? uvs.zw : uvs.xy, 1.0);
     vec2 uv = vec2(dot(t.row0, st), dot(t.row1, st));
     switch (t.unit) {
-    case 0: return textureLod(uTracedTextures[0], uv, 0.0);
+#if TRACED_TEXTURES_USED > 1
     case 1: return textureLod(uTracedTextures[1], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 2
     case 2: return textureLod(uTracedTextures[2], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 3
     case 3: return textureLod(uTracedTextures[3], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 4
     case 4: return textureLod(uTracedTextures[4], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 5
     case 5: return textureLod(uTracedTextures[5], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 6
     case 6: return textureLod(uTracedTextures[6], uv, 0.0);
-    default: return textureLod(uTracedTextures[7], uv, 0.0);
+#endif
+#if TRACED_TEXTURES_USED > 7
+    case 7: return textureLod(uTracedTextures[7], uv, 0.0);
+#endif
+    default: return textureLod(uTracedTextures[0], uv, 0.0);
     }
 }
 
 // Glass m's surface at a hit (its texture coordinates uvs), as the capture reads it.
 GlassSurface tracedSurface(GlassMaterial m, vec4 uvs) {
     GlassSurface s = materialSurface(m);
-#if GLASS_TEXTURES
+#if GLASS_TEXTURES && GLASS_BASE_COLOR_TEXTURES
     if (m.baseColorTexture.unit >= 0)
         s.baseColor *= tracedTexel(m.baseColorTexture, uvs).rgb;
+#endif
+#if GLASS_TEXTURES && GLASS_TRANSMISSION_TEXTURES
     if (m.authored == 0u)
         return s;
     if (m.transmissionTexture.unit >= 0)

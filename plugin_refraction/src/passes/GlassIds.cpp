@@ -82,12 +82,11 @@ GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, do
     return g;
 }
 
-/** Whether the surface of glass `g` varies over it: a texture that the capture reads for the
- *  walk (the normal map aside, which it reads anyway). */
-bool textured(const scene::Material* m) {
-    return m && (m->baseColorTexture.present() ||
-                 (m->isTransmissive() &&
-                  (m->transmissionTexture.present() || m->metallicRoughnessTexture.present())));
+/** Whether glass of material `m` reads textures of its transmission's (transmission,
+ *  metallic-roughness): only a material authored transmissive does. */
+bool transmissionTextured(const scene::Material* m) {
+    return m && m->isTransmissive() &&
+           (m->transmissionTexture.present() || m->metallicRoughnessTexture.present());
 }
 
 } // namespace
@@ -97,7 +96,7 @@ void assignGlassIds(FrameContext& c) {
     c.gpu->glassIds.assign(items.size(), -1);
     c.gpu->glassOptics.clear();
     c.gpu->tracedTextures.clear();
-    c.texturedGlass = false;
+    c.texturedGlass = c.baseColorTexturedGlass = c.transmissionTexturedGlass = false;
     c.normalMappedGlass = false;
     std::map<std::pair<std::uint64_t, int>, int> ids;
     std::map<std::uint64_t, int> solids; // a character's glass is one solid (the media rule)
@@ -120,7 +119,10 @@ void assignGlassIds(FrameContext& c) {
         c.gpu->glassOptics.push_back(
             glassMaterial(c, item, c.gpu->glassExtent(*item.source), solid));
         const scene::Material* material = item.values;
-        c.texturedGlass = c.texturedGlass || textured(material);
+        c.baseColorTexturedGlass =
+            c.baseColorTexturedGlass || (material && material->baseColorTexture.present());
+        c.transmissionTexturedGlass = c.transmissionTexturedGlass || transmissionTextured(material);
+        c.texturedGlass = c.baseColorTexturedGlass || c.transmissionTexturedGlass;
         c.normalMappedGlass =
             c.normalMappedGlass || (material && material->normalTexture.present());
         ids.emplace(key, int(c.gpu->glassOptics.size()) - 1);

@@ -86,8 +86,12 @@ struct FrameContext {
     /** The first glass item's glass id: with the pair in one pass, every one's. */
     int firstGlassId = 0;
     /** Some glass of the frame has textures the walk reads (its base colour, transmission or
-     *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). */
+     *  roughness): the capture keeps each layer's surface (GLASS_TEXTURES). Which of them:
+     *  some a base colour texture (GLASS_BASE_COLOR_TEXTURES); some, authored transmissive, a
+     *  transmission or metallic-roughness texture (GLASS_TRANSMISSION_TEXTURES). A texture read
+     *  that no glass of the frame needs is out of the programs that read them. */
     bool texturedGlass = false;
+    bool baseColorTexturedGlass = false, transmissionTexturedGlass = false;
     /** Some glass of the frame has a normal map (GLASS_NORMAL_MAPS of the captures and the
      *  glass shadow, which read it per fragment). */
     bool normalMappedGlass = false;

@@ -60,6 +60,9 @@ std::vector<std::string> glassDefines(const FrameContext& c) {
             define("GLASS_FILM", film),
             define("GLASS_PARTIAL", partial),
             define("GLASS_TEXTURES", c.texturedGlass),
+            define("GLASS_BASE_COLOR_TEXTURES", c.baseColorTexturedGlass),
+            define("GLASS_TRANSMISSION_TEXTURES", c.transmissionTexturedGlass),
+            define("TRACED_TEXTURES_USED", int(c.gpu->tracedTextures.size())),
             define("GLASS_NORMAL_MAPS", c.normalMappedGlass)};
 }
 

@@ -31,6 +31,9 @@ public:
     void setExtraDefines(std::vector<std::string> defines) { mExtraDefines = std::move(defines); }
     /** How many variants have been compiled (and kept) so far. */
     std::size_t size() const { return mPrograms.size(); }
+    /** Each kept variant's key: its stages' names a line each, an empty line, then its
+     *  defines sorted, a line each. */
+    std::vector<std::string> keys() const;
 
 private:
     /** The program under `key`, compiled by `compile` where there is none yet. */

@@ -123,6 +123,8 @@ public:
     /** How many program variants the renderer and its plugins have compiled so far (its
      *  ProgramCache): a frame like one drawn before compiles none. */
     std::size_t programVariants() const { return mPrograms->size(); }
+    /** Their keys (gl::ProgramCache::keys): each variant's shaders and defines. */
+    std::vector<std::string> programVariantKeys() const { return mPrograms->keys(); }
     /** Characters of the world last prepared, and each one's deformed geometry (as the last
      *  frame left it). */
     std::size_t characterCount() const;

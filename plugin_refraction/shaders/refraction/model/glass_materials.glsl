@@ -6,6 +6,17 @@
 #ifndef REFRACTION_GLASS_MATERIALS_GLSL
 #define REFRACTION_GLASS_MATERIALS_GLSL
 
+// Which textures some glass of the frame has, where it has any (the plugin's variants; all
+// where not given): a base colour; authored transmissive, a transmission or metallic-roughness
+// texture. A CPU rasteriser reads a texture a branch skips all the same, so the reads of the
+// others are out.
+#ifndef GLASS_BASE_COLOR_TEXTURES
+#define GLASS_BASE_COLOR_TEXTURES 1
+#endif
+#ifndef GLASS_TRANSMISSION_TEXTURES
+#define GLASS_TRANSMISSION_TEXTURES 1
+#endif
+
 // A texture the trace reads at its hits: its KHR_texture_transform's rows, its unit among
 // TRACED_TEXTURES_UNIT's (-1: none) and its texture coordinate set.
 struct TracedTexture {

@@ -54,8 +54,11 @@ vec3 fragmentNormal() {
 GlassSurface fragmentSurface(uint id) {
     GlassMaterial m = glassMaterials[id];
     GlassSurface s = materialSurface(m);
+#if GLASS_BASE_COLOR_TEXTURES
     if (hasTexture(SLOT_BASE_COLOR))
         s.baseColor *= captureTexel(SLOT_BASE_COLOR).rgb; // sRGB: decoded to linear
+#endif
+#if GLASS_TRANSMISSION_TEXTURES
     if (m.authored == 0u)
         return s;
     if (hasTexture(SLOT_TRANSMISSION))
@@ -65,6 +68,7 @@ GlassSurface fragmentSurface(uint id) {
         s.roughness *= mr.g;
         s.metallic *= mr.b;
     }
+#endif
     return s;
 }
 #endif
