@@ -641,6 +641,36 @@ TEST_F(Temporal, PixelsWithoutHistoryTakeFreshSamples) {
     EXPECT_GT(fresh, one + 0.25);
 }
 
+TEST_F(Temporal, OnlyFramesThatTakeFreshSamplesCompileTheirTest) {
+    // The test of whether a pixel takes the fresh samples reads the history's motion around it
+    // at every glass pixel, which a CPU rasteriser runs even where no frame takes them: only
+    // the walk's variants for frames that take them compile it (FRESH_SAMPLES).
+    const auto walkVariants = [&](const char* method, const char* fresh) {
+        WorldRig rig(test::projectScene("glass_pair.json"), context(), 32);
+        rig.useSceneCamera();
+        rig.set("method", method);
+        rig.set("fresh-samples", fresh);
+        rig.temporal.enabled = true;
+        for (int k = 0; k < 3; ++k)
+            rig.renderHdr(0.5 + k / 30.0);
+        std::vector<std::string> found;
+        for (const std::string& key : rig.renderer().programVariantKeys())
+            if (key.find("walk.frag.glsl") != std::string::npos)
+                found.push_back(key);
+        return found;
+    };
+    const auto with = [](const std::vector<std::string>& keys, const char* define) {
+        return std::count_if(keys.begin(), keys.end(), [&](const std::string& k) {
+            return k.find(std::string("\n") + define + "\n") != std::string::npos;
+        });
+    };
+    const auto dir = walkVariants("dir", "4"), hybrid = walkVariants("hybrid", "4");
+    EXPECT_FALSE(dir.empty());
+    EXPECT_EQ(with(dir, "FRESH_SAMPLES 0"), std::ptrdiff_t(dir.size()));
+    EXPECT_GE(with(hybrid, "FRESH_SAMPLES 1"), 1); // moving frames, after the first
+    EXPECT_GE(with(hybrid, "FRESH_SAMPLES 0"), 1); // the first, without a history
+}
+
 TEST_F(Temporal, FreshSamplesCoverTheirPixelAndWeighAsManySamples) {
     // A pixel listed on frame after frame (its first sample differing from its history) takes
     // its later samples over the pixel itself, at points turned every frame, and the resolve

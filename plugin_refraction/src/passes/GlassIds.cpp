@@ -82,8 +82,8 @@ GlassMaterialGpu glassMaterial(FrameContext& c, const render::DrawItem& item, do
     return g;
 }
 
-/** Whether glass of material `m` reads textures of its transmission's (transmission,
- *  metallic-roughness): only a material authored transmissive does. */
+/** Whether glass of material `m` has a transmission or metallic-roughness texture the walk
+ *  reads: only a material authored transmissive reads them. */
 bool transmissionTextured(const scene::Material* m) {
     return m && m->isTransmissive() &&
            (m->transmissionTexture.present() || m->metallicRoughnessTexture.present());

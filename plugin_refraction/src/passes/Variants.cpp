@@ -93,6 +93,7 @@ std::vector<std::string> walkDefines(const FrameContext& c, Settings::Method met
          define("WALK_DEBUG", c.settings.debug != 0), define("LAYER_METHOD", int(method)),
          define("WALK_DEPTH_MAPS", c.layerDepthMaps()),
          define("SEVERAL_SAMPLES", c.severalSamples()),
+         define("FRESH_SAMPLES", c.freshSamples() > 1),
          define("HYBRID_LIST", method == Settings::Method::Hybrid),
          define("NEARBY_SCENE", c.seesNearbyScene()),
          define("NEARBY_GROUND", c.seesNearbyScene() && c.frame->settings.ground),

@@ -138,15 +138,26 @@ bool historyDiffers(ivec2 p, uvec4 m, vec3 color) {
     return abs(now - then) > uFreshContrast * max(max(now, then), 0.02);
 }
 
+// FRESH_SAMPLES 0: a variant for frames that take none (uFreshSamples 0: SIR, ISR and DIR
+// always, the tracing methods on a still frame or with fresh-samples 1), whose test is out (a
+// CPU rasteriser would run its history reads at every glass pixel all the same).
+#ifndef FRESH_SAMPLES
+#define FRESH_SAMPLES 1
+#endif
+
 // Whether pixel p (its motion texel m, its first sample's colour `color`) takes the fresh
 // samples: its history will be rejected, or differs from it by uFreshContrast. Listed so for
 // the later ones. Its first sample then weighs 1 / uFreshSamples, and its colour's alpha is
 // freshAlpha(): the outline pass leaves it (its samples anti-alias its outlines).
 bool takesFreshSamples(ivec2 p, uvec4 m, vec3 color) {
+#if FRESH_SAMPLES
     bool fresh = !historyFound(p, m) || (uFreshContrast > 0.0 && historyDiffers(p, m, color));
     if (fresh)
         listFresh(p);
     return fresh;
+#else
+    return false;
+#endif
 }
 
 #endif
