@@ -476,7 +476,7 @@ TEST_F(Layers, StoredLayersMatchTheSurfacesTheReferenceCounts) {
 // llvmpipe bins a refined pair's triangles, drawn on both faces, in tens of MiB of heap a frame
 // and frees them when the frame is drawn. Alternating DIR and ISR (the viewer's split, the
 // bench's interleave) once made glibc hand that memory back between frames, and every capture
-// faulted it in again: 8 thousand page faults a frame here, three times the capture's time at
+// faulted it in again: 13 thousand page faults a frame here, three times the capture's time at
 // level 2. The renderer keeps the heap on a CPU rasteriser (Renderer.cpp).
 TEST_F(Layers, AlternatingMethodsFaultNoHeapBackInEachFrame) {
     const std::string renderer = gl::rendererString();
@@ -496,13 +496,16 @@ TEST_F(Layers, AlternatingMethodsFaultNoHeapBackInEachFrame) {
         getrusage(RUSAGE_SELF, &usage);
         return usage.ru_minflt;
     };
-    round();
-    const long before = faults();
-    for (int i = 0; i < 2; ++i)
+    for (int i = 0; i < 2; ++i) // every program and llvmpipe's variants of it compiled
         round();
-    const double perFrame = double(faults() - before) / 4.0;
+    const long before = faults();
+    for (int i = 0; i < 3; ++i)
+        round();
+    const double perFrame = double(faults() - before) / 6.0;
     std::printf("page faults a frame, alternating DIR and ISR at level 1: %.0f\n", perFrame);
-    EXPECT_LT(perFrame, 1000.0); // 4 MiB; 8 thousand with the heap handed back
+    // None here (after one warm-up round, 700-1,350: the first frames' own); 13 thousand with
+    // the heap handed back.
+    EXPECT_LT(perFrame, 3000.0);
 }
 
 } // namespace
